@@ -1,0 +1,130 @@
+// tsgraphs: the command line. A thin front end over the library; see docs/DESIGN.md for the
+// contract (commands, options, exit status 0 / 2 bad input / 1 internal error).
+#include <spdlog/spdlog.h>
+#include <tbb/global_control.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <thread>
+
+#include "progress.hpp"
+#include "tsgraphs/core/error.hpp"
+#include "tsgraphs/io/atomic_write.hpp"
+#include "tsgraphs/report/scene_svg.hpp"
+#include "tsgraphs/sim/builtin_scenes.hpp"
+#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/sim/simulator.hpp"
+
+namespace fs = std::filesystem;
+using namespace tsgraphs;
+
+namespace {
+
+struct Options {
+  bool quiet = false;
+  int threads = 0;
+  std::string scene;
+  std::string out;
+  long long seed = -1;
+  int laps = 0;
+  int seeds = 1;
+};
+
+// A scene file, or the name of a built-in scene (office, atrium, long_corridor, two_storeys).
+sim::Scene resolve_scene(const std::string& arg) {
+  if (!fs::exists(arg)) {
+    if (const auto text = sim::builtin_scene_text(arg)) return sim::parse_scene(*text, "builtin:" + arg, ".");
+    std::string names;
+    for (const std::string& n : sim::builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
+    throw input_error(arg, 0, "no such scene file (built-in scenes: " + names + ")");
+  }
+  return sim::load_scene(arg);
+}
+
+void simulate(const sim::Scene& scene_in, const std::string& out, std::uint64_t seed, int laps, bool quiet) {
+  sim::Scene scene = scene_in;
+  if (laps > 0) scene.trajectory.laps = laps;
+  sim::Simulator simulator(scene, seed);
+  if (!quiet) {
+    std::fprintf(stderr, "simulate: %s, %s %dx%d, %zu scans over %.1f m (%d lap%s), %zu triangles, seed %llu\n",
+                 scene.name.c_str(), scene.sensor.preset.empty() ? "custom sensor" : scene.sensor.preset.c_str(),
+                 scene.sensor.channels, scene.sensor.columns, simulator.num_scans(), simulator.trajectory().length(),
+                 scene.trajectory.laps, scene.trajectory.laps == 1 ? "" : "s", simulator.num_triangles(),
+                 static_cast<unsigned long long>(seed));
+  }
+  app::Progress progress("simulate", quiet);
+  sim::write_sequence(simulator, out, [&](std::size_t done, std::size_t total) { progress.update(done, total); });
+  if (!quiet) std::fprintf(stderr, "simulate: wrote %s\n", out.c_str());
+}
+
+void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet) {
+  const sim::Trajectory trajectory(scene);
+  io::write_file_atomic(out, report::scene_svg(scene, trajectory));
+  if (!quiet) std::fprintf(stderr, "draw-scene: wrote %s\n", out.c_str());
+}
+
+std::uint64_t seed_for(const sim::Scene& scene, long long cli_seed) {
+  return cli_seed >= 0 ? static_cast<std::uint64_t>(cli_seed) : scene.seed;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"tsgraphs: traversability-aware situational graphs from indoor 3-D LiDAR"};
+  app.require_subcommand(1);
+  Options opt;
+  app.add_flag("-q,--quiet", opt.quiet, "no progress output");
+  app.add_option("--threads", opt.threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+
+  auto* simulate_cmd = app.add_subcommand("simulate", "turn a scene into a LiDAR sequence folder");
+  simulate_cmd->add_option("SCENE", opt.scene, "scene YAML file or built-in scene name")->required();
+  simulate_cmd->add_option("--out", opt.out, "sequence folder to write")->required();
+  simulate_cmd->add_option("--seed", opt.seed, "random seed (default: the scene's)")->check(CLI::NonNegativeNumber);
+  simulate_cmd->add_option("--laps", opt.laps, "laps of the path (default: the scene's)")->check(CLI::PositiveNumber);
+
+  auto* draw_cmd = app.add_subcommand("draw-scene", "bird's-eye SVG of a scene and its path");
+  draw_cmd->add_option("SCENE", opt.scene, "scene YAML file or built-in scene name")->required();
+  draw_cmd->add_option("--out", opt.out, "SVG file to write")->required();
+
+  auto* demo_cmd = app.add_subcommand("demo", "simulate the built-in atrium scene and draw it");
+  opt.out = "";
+  demo_cmd->add_option("--out", opt.out, "output folder (default: tsgraphs-demo)");
+  demo_cmd->add_option("--seeds", opt.seeds, "number of seeds to simulate (1..N)")->check(CLI::PositiveNumber);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  spdlog::set_level(opt.quiet ? spdlog::level::warn : spdlog::level::info);
+  const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  tbb::global_control threads_control(tbb::global_control::max_allowed_parallelism, threads);
+
+  try {
+    if (*simulate_cmd) {
+      const sim::Scene scene = resolve_scene(opt.scene);
+      simulate(scene, opt.out, seed_for(scene, opt.seed), opt.laps, opt.quiet);
+    } else if (*draw_cmd) {
+      draw_scene(resolve_scene(opt.scene), opt.out, opt.quiet);
+    } else if (*demo_cmd) {
+      const std::string out = opt.out.empty() ? "tsgraphs-demo" : opt.out;
+      fs::create_directories(out);
+      const sim::Scene scene = resolve_scene("atrium");
+      draw_scene(scene, (fs::path(out) / "atrium.svg").string(), opt.quiet);
+      for (int s = 1; s <= opt.seeds; ++s) {
+        simulate(scene, (fs::path(out) / ("atrium_seed" + std::to_string(s))).string(), static_cast<std::uint64_t>(s), 0,
+                 opt.quiet);
+      }
+    }
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "tsgraphs: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tsgraphs: internal error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,17 @@
+# Writes a C++ source holding the text of every built-in scene (scenes/*.yaml), so that the
+# binary runs its demo from any folder. Called at build time with -DOUT=... -DSCENE_DIR=...
+file(GLOB scenes "${SCENE_DIR}/*.yaml")
+list(SORT scenes)
+set(body "// Generated from scenes/*.yaml by cmake/embed_scenes.cmake; do not edit.\n")
+string(APPEND body "#include \"tsgraphs/sim/builtin_scenes.hpp\"\n\nnamespace tsgraphs::sim {\n")
+string(APPEND body "const std::vector<std::pair<std::string, std::string>>& builtin_scenes() {\n")
+string(APPEND body "  static const std::vector<std::pair<std::string, std::string>> scenes = {\n")
+foreach(f ${scenes})
+  get_filename_component(name "${f}" NAME_WE)
+  file(READ "${f}" text)
+  string(APPEND body "    {\"${name}\", R\"tsgraphs_scene(${text})tsgraphs_scene\"},\n")
+endforeach()
+string(APPEND body "  };\n  return scenes;\n}\n}  // namespace tsgraphs::sim\n")
+file(WRITE "${OUT}.tmp" "${body}")
+file(COPY_FILE "${OUT}.tmp" "${OUT}" ONLY_IF_DIFFERENT)
+file(REMOVE "${OUT}.tmp")

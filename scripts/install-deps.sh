@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Installs the Debian packages tsgraphs needs, only those that are missing.
+# Idempotent: when everything is present it installs nothing and touches no package list.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake ninja-build ccache pkg-config
+  libeigen3-dev        # linear algebra, poses
+  libpcl-dev           # point-cloud filters, kd-trees, registration, PCD I/O
+  libceres-dev         # factor-graph back-end
+  libnanoflann-dev     # small kd-trees
+  libtbb-dev           # parallel loops (ray casting)
+  libembree-dev        # ray casting in the simulator (Embree 3)
+  libyaml-cpp-dev      # scene and parameter files
+  libcli11-dev         # command line
+  nlohmann-json3-dev   # JSON outputs
+  libspdlog-dev        # logging
+  librosbag-storage-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev
+  libroscpp-core-dev   # ROS1 bags without a ROS runtime
+  libgtest-dev libgmock-dev   # tests
+  libbenchmark-dev     # benchmarks
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"

@@ -1,0 +1,42 @@
+#pragma once
+/// A point cloud with optional per-point intensity and class label.
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace tsgraphs {
+
+/// Point classes shared by the simulator, the sequence folder and ground-truth scoring.
+enum class PointLabel : std::uint32_t {
+  kUnlabelled = 0,
+  kFloor = 1,
+  kRamp = 2,
+  kCeiling = 3,
+  kWall = 4,
+  kRailing = 5,
+  kBox = 6,
+};
+
+struct PointCloud {
+  std::vector<Eigen::Vector3f> points;
+  std::vector<float> intensity;        ///< empty or one per point
+  std::vector<std::uint32_t> labels;   ///< empty or one per point (PointLabel values)
+
+  std::size_t size() const { return points.size(); }
+  bool empty() const { return points.empty(); }
+  bool has_intensity() const { return !intensity.empty(); }
+  bool has_labels() const { return !labels.empty(); }
+  void reserve(std::size_t n, bool with_intensity, bool with_labels) {
+    points.reserve(n);
+    if (with_intensity) intensity.reserve(n);
+    if (with_labels) labels.reserve(n);
+  }
+  /// Appends every point of `other`; both must carry the same optional channels.
+  void append(const PointCloud& other) {
+    points.insert(points.end(), other.points.begin(), other.points.end());
+    intensity.insert(intensity.end(), other.intensity.begin(), other.intensity.end());
+    labels.insert(labels.end(), other.labels.begin(), other.labels.end());
+  }
+};
+
+}  // namespace tsgraphs

@@ -1,0 +1,82 @@
+#include "tsgraphs/io/atomic_write.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "tsgraphs/core/error.hpp"
+
+namespace fs = std::filesystem;
+
+namespace tsgraphs::io {
+namespace {
+
+std::string unique_suffix() {
+  static std::atomic<int> counter{0};
+  return ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+}  // namespace
+
+void write_file_atomic(const std::string& path, const std::string& content) {
+  const std::string tmp = path + unique_suffix();
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(path + ": cannot write (folder missing or not writable)");
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+    out.flush();
+    if (!out) {
+      out.close();
+      fs::remove(tmp);
+      throw std::runtime_error(path + ": write failed");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp);
+    throw std::runtime_error(path + ": cannot rename into place: " + ec.message());
+  }
+}
+
+AtomicDirectory::AtomicDirectory(std::string final_path, const std::string& marker_file)
+    : final_path_(fs::path(std::move(final_path)).lexically_normal().string()) {
+  if (!final_path_.empty() && final_path_.back() == '/') final_path_.pop_back();
+  if (fs::exists(final_path_)) {
+    if (!fs::is_directory(final_path_)) throw InputError(final_path_ + ": exists and is not a folder");
+    const bool empty = fs::is_empty(final_path_);
+    if (!empty && !fs::exists(fs::path(final_path_) / marker_file)) {
+      throw InputError(final_path_ + ": folder exists and does not hold an earlier output (no " + marker_file +
+                       "); refusing to overwrite it");
+    }
+  }
+  const fs::path parent = fs::path(final_path_).parent_path();
+  if (!parent.empty()) fs::create_directories(parent);
+  tmp_path_ = final_path_ + unique_suffix();
+  fs::create_directories(tmp_path_);
+}
+
+AtomicDirectory::~AtomicDirectory() {
+  if (!committed_) {
+    std::error_code ec;
+    fs::remove_all(tmp_path_, ec);
+  }
+}
+
+void AtomicDirectory::commit() {
+  std::error_code ec;
+  if (fs::exists(final_path_)) {
+    const std::string old = final_path_ + unique_suffix();
+    fs::rename(final_path_, old);
+    fs::rename(tmp_path_, final_path_);
+    fs::remove_all(old, ec);
+  } else {
+    fs::rename(tmp_path_, final_path_);
+  }
+  committed_ = true;
+}
+
+}  // namespace tsgraphs::io

@@ -1,0 +1,36 @@
+#pragma once
+/// Outputs that appear whole or not at all: write to a temporary sibling, then rename.
+#include <string>
+
+namespace tsgraphs::io {
+
+/// Writes `content` to `path` through a temporary file in the same folder and a rename.
+/// Throws std::runtime_error naming the path when it cannot.
+void write_file_atomic(const std::string& path, const std::string& content);
+
+/// A folder built under a temporary name next to its final place and renamed there by
+/// `commit()`. Destroying it uncommitted removes the temporary folder, so a failed or killed
+/// run never leaves a folder that looks complete under the final name.
+class AtomicDirectory {
+ public:
+  /// `final_path` may exist if it is empty or holds a previous output with `marker_file`
+  /// (it is then replaced on commit); anything else is refused with an InputError, so that
+  /// no unrelated folder is overwritten.
+  AtomicDirectory(std::string final_path, const std::string& marker_file);
+  ~AtomicDirectory();
+  AtomicDirectory(const AtomicDirectory&) = delete;
+  AtomicDirectory& operator=(const AtomicDirectory&) = delete;
+
+  /// The temporary folder to write into.
+  const std::string& path() const { return tmp_path_; }
+  const std::string& final_path() const { return final_path_; }
+  /// Moves the temporary folder to the final path (replacing an earlier output).
+  void commit();
+
+ private:
+  std::string final_path_;
+  std::string tmp_path_;
+  bool committed_ = false;
+};
+
+}  // namespace tsgraphs::io

@@ -1,0 +1,216 @@
+#include "tsgraphs/io/sequence_folder.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "tsgraphs/core/error.hpp"
+#include "tsgraphs/io/atomic_write.hpp"
+
+namespace fs = std::filesystem;
+
+namespace tsgraphs::io {
+namespace {
+
+void write_binary(const fs::path& path, const void* data, std::size_t bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
+  if (!out) throw std::runtime_error(path.string() + ": write failed");
+}
+
+void write_text(const fs::path& path, const std::string& text) { write_binary(path, text.data(), text.size()); }
+
+std::string read_all(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw input_error(path.string(), 0, "cannot open file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<double> read_numbers(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw input_error(path.string(), 0, "cannot open file");
+  std::vector<double> values;
+  std::string text;
+  int line = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    if (text.find_first_not_of(" \t\r") == std::string::npos || text[0] == '#') continue;
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (end == text.c_str() || text.find_first_not_of(" \t\r", end - text.c_str()) != std::string::npos) {
+      throw input_error(path.string(), line, "expected one number per line");
+    }
+    if (!std::isfinite(v)) throw input_error(path.string(), line, "non-finite value");
+    if (!values.empty() && v < values.back()) throw input_error(path.string(), line, "times go backwards");
+    values.push_back(v);
+  }
+  return values;
+}
+
+std::string format_times(const std::vector<double>& times) {
+  std::string out;
+  char buf[64];
+  for (double t : times) {
+    std::snprintf(buf, sizeof(buf), "%.9f\n", t);
+    out += buf;
+  }
+  return out;
+}
+
+std::vector<StampedPose> stamp(const std::vector<double>& times, const std::vector<Pose3>& poses) {
+  std::vector<StampedPose> out(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) out[i] = {times[i], poses[i]};
+  return out;
+}
+
+}  // namespace
+
+std::string scan_stem(std::size_t index) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%06zu", index);
+  return buf;
+}
+
+struct SequenceWriter::Impl {
+  explicit Impl(const std::string& dir) : folder(dir, "times.txt") {
+    fs::create_directories(fs::path(folder.path()) / "scans");
+  }
+  AtomicDirectory folder;
+  std::size_t scans_written = 0;
+};
+
+SequenceWriter::SequenceWriter(const std::string& dir) : impl_(std::make_unique<Impl>(dir)) {}
+SequenceWriter::~SequenceWriter() = default;
+
+void SequenceWriter::write_scan(std::size_t index, const PointCloud& cloud) {
+  const fs::path stem = fs::path(impl_->folder.path()) / "scans" / scan_stem(index);
+  std::vector<float> data(cloud.size() * 4);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    data[4 * i + 0] = cloud.points[i].x();
+    data[4 * i + 1] = cloud.points[i].y();
+    data[4 * i + 2] = cloud.points[i].z();
+    data[4 * i + 3] = cloud.has_intensity() ? cloud.intensity[i] : 0.0f;
+  }
+  write_binary(stem.string() + ".bin", data.data(), data.size() * sizeof(float));
+  if (cloud.has_labels()) {
+    write_binary(stem.string() + ".label", cloud.labels.data(), cloud.labels.size() * sizeof(std::uint32_t));
+  }
+  ++impl_->scans_written;
+}
+
+void SequenceWriter::commit(const SequenceInfo& info) {
+  const fs::path dir = impl_->folder.path();
+  if (info.times.size() != impl_->scans_written || info.odometry.size() != info.times.size() ||
+      (!info.groundtruth.empty() && info.groundtruth.size() != info.times.size())) {
+    throw std::logic_error("SequenceWriter::commit: scans, times and poses disagree in number");
+  }
+  write_text(dir / "odom.txt", format_tum(stamp(info.times, info.odometry)));
+  if (!info.groundtruth.empty()) write_text(dir / "groundtruth.txt", format_tum(stamp(info.times, info.groundtruth)));
+  if (!info.lap_starts.empty()) write_text(dir / "laps.txt", format_times(info.lap_starts));
+  if (info.has_rooms) {
+    nlohmann::json rooms = nlohmann::json::array();
+    for (const RoomTruth& r : info.rooms) {
+      nlohmann::json poly = nlohmann::json::array();
+      for (const Vec2& p : r.polygon) poly.push_back({p.x(), p.y()});
+      rooms.push_back({{"name", r.name}, {"level", r.level}, {"polygon", poly}, {"elevation", r.elevation}});
+    }
+    write_text(dir / "rooms_gt.json", rooms.dump(2) + "\n");
+  }
+  if (!info.scene_yaml.empty()) write_text(dir / "scene.yaml", info.scene_yaml);
+  // times.txt last: it marks a folder as a sequence.
+  write_text(dir / "times.txt", format_times(info.times));
+  impl_->folder.commit();
+}
+
+SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
+  const fs::path d(dir);
+  if (!fs::is_directory(d)) throw input_error(dir, 0, "not a folder");
+  if (!fs::exists(d / "times.txt")) throw input_error((d / "times.txt").string(), 0, "missing: not a sequence folder");
+  info_.times = read_numbers(d / "times.txt");
+  if (info_.times.empty()) throw input_error((d / "times.txt").string(), 0, "no timestamps");
+  const std::size_t n = info_.times.size();
+  auto poses_of = [&](const fs::path& p) {
+    const std::vector<StampedPose> stamped = read_tum(p.string());
+    if (stamped.size() != n) {
+      throw input_error(p.string(), 0, "has " + std::to_string(stamped.size()) + " poses but times.txt has " +
+                                           std::to_string(n) + " scans");
+    }
+    std::vector<Pose3> poses;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (std::abs(stamped[i].t - info_.times[i]) > 1e-6) {
+        throw input_error(p.string(), static_cast<int>(i) + 1, "timestamp does not match times.txt");
+      }
+      poses.push_back(stamped[i].pose);
+    }
+    return poses;
+  };
+  if (!fs::exists(d / "odom.txt")) throw input_error((d / "odom.txt").string(), 0, "missing");
+  info_.odometry = poses_of(d / "odom.txt");
+  if (fs::exists(d / "groundtruth.txt")) info_.groundtruth = poses_of(d / "groundtruth.txt");
+  if (fs::exists(d / "laps.txt")) info_.lap_starts = read_numbers(d / "laps.txt");
+  for (std::size_t i = 0; i < n; ++i) {
+    const fs::path bin = d / "scans" / (scan_stem(i) + ".bin");
+    if (!fs::exists(bin)) throw input_error(bin.string(), 0, "missing scan (times.txt lists " + std::to_string(n) + ")");
+  }
+  if (fs::exists(d / "rooms_gt.json")) {
+    const std::string path = (d / "rooms_gt.json").string();
+    info_.has_rooms = true;
+    try {
+      const nlohmann::json rooms = nlohmann::json::parse(read_all(path));
+      if (!rooms.is_array()) throw input_error(path, 0, "expected a list of rooms");
+      for (std::size_t i = 0; i < rooms.size(); ++i) {
+        const auto& r = rooms[i];
+        RoomTruth room;
+        room.name = r.at("name").get<std::string>();
+        room.level = r.at("level").get<std::string>();
+        room.elevation = r.value("elevation", 0.0);
+        for (const auto& p : r.at("polygon")) room.polygon.emplace_back(p.at(0).get<double>(), p.at(1).get<double>());
+        if (room.polygon.size() < 3) throw input_error(path, 0, "room " + std::to_string(i) + ": polygon needs 3 points");
+        info_.rooms.push_back(std::move(room));
+      }
+    } catch (const nlohmann::json::exception& e) {
+      throw input_error(path, 0, std::string("malformed: ") + e.what());
+    }
+  }
+}
+
+std::string SequenceReader::scene_path() const {
+  const fs::path p = fs::path(dir_) / "scene.yaml";
+  return fs::exists(p) ? p.string() : "";
+}
+
+PointCloud SequenceReader::scan(std::size_t index) const {
+  const fs::path stem = fs::path(dir_) / "scans" / scan_stem(index);
+  const std::string bin = read_all(stem.string() + ".bin");
+  if (bin.size() % (4 * sizeof(float)) != 0) {
+    throw input_error(stem.string() + ".bin", 0, "size is not a multiple of 16 bytes (x y z intensity float32)");
+  }
+  const std::size_t n = bin.size() / (4 * sizeof(float));
+  std::vector<float> data(4 * n);
+  std::memcpy(data.data(), bin.data(), bin.size());
+  PointCloud cloud;
+  cloud.reserve(n, true, false);
+  for (std::size_t i = 0; i < n; ++i) {
+    cloud.points.emplace_back(data[4 * i], data[4 * i + 1], data[4 * i + 2]);
+    cloud.intensity.push_back(data[4 * i + 3]);
+  }
+  const std::string label_path = stem.string() + ".label";
+  if (fs::exists(label_path)) {
+    const std::string raw = read_all(label_path);
+    if (raw.size() != n * sizeof(std::uint32_t)) {
+      throw input_error(label_path, 0, "has " + std::to_string(raw.size() / 4) + " labels for " + std::to_string(n) + " points");
+    }
+    cloud.labels.resize(n);
+    std::memcpy(cloud.labels.data(), raw.data(), raw.size());
+    for (std::uint32_t& l : cloud.labels) l &= 0xFFFFu;  // SemanticKITTI: class in the low 16 bits
+  }
+  return cloud;
+}
+
+}  // namespace tsgraphs::io

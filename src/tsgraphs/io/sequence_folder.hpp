@@ -1,0 +1,71 @@
+#pragma once
+/// The sequence folder (docs/scene-format.md, "Sequence folder"): what `simulate` writes and
+/// what `run` reads. KITTI-layout scans, SemanticKITTI labels, TUM poses.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tsgraphs/core/point_cloud.hpp"
+#include "tsgraphs/core/polygon.hpp"
+#include "tsgraphs/io/tum.hpp"
+
+namespace tsgraphs::io {
+
+/// A ground-truth room of rooms_gt.json.
+struct RoomTruth {
+  std::string name;
+  std::string level;       ///< the level's name
+  Polygon2 polygon;
+  double elevation = 0.0;  ///< the level's floor height
+};
+
+/// Everything of a sequence but the scans.
+struct SequenceInfo {
+  std::vector<double> times;                 ///< one per scan
+  std::vector<Pose3> odometry;               ///< one per scan, sensor in odom frame
+  std::vector<Pose3> groundtruth;            ///< empty, or one per scan
+  std::vector<double> lap_starts;            ///< empty, or the start time of each lap
+  bool has_rooms = false;                    ///< write / found rooms_gt.json
+  std::vector<RoomTruth> rooms;
+  std::string scene_yaml;                    ///< copied to scene.yaml when not empty
+};
+
+/// Writes a sequence folder under a temporary name; `commit` renames it into place, so a
+/// killed run leaves nothing that looks like a complete sequence.
+class SequenceWriter {
+ public:
+  /// An existing `dir` is replaced only if it is empty or holds an earlier sequence.
+  explicit SequenceWriter(const std::string& dir);
+  ~SequenceWriter();
+  /// Writes scans/NNNNNN.bin (and .label when the cloud has labels).
+  void write_scan(std::size_t index, const PointCloud& cloud);
+  /// Writes the text files and moves the folder into place. Scan count must match.
+  void commit(const SequenceInfo& info);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Reads a sequence folder, checking that the files agree with each other.
+class SequenceReader {
+ public:
+  /// Throws InputError naming the file and line for a missing or inconsistent folder.
+  explicit SequenceReader(const std::string& dir);
+  std::size_t size() const { return info_.times.size(); }
+  const SequenceInfo& info() const { return info_; }
+  const std::string& dir() const { return dir_; }
+  /// Path of scene.yaml, "" for real data.
+  std::string scene_path() const;
+  /// Reads scan `index` with intensity, and labels when the .label file exists.
+  PointCloud scan(std::size_t index) const;
+
+ private:
+  std::string dir_;
+  SequenceInfo info_;
+};
+
+/// "scans/000042.bin"-style name of a scan file without extension.
+std::string scan_stem(std::size_t index);
+
+}  // namespace tsgraphs::io

@@ -1,0 +1,150 @@
+#include "tsgraphs/sim/ray_caster.hpp"
+
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace tsgraphs::sim {
+namespace {
+
+constexpr int kPacket = 16;
+
+// The floor and the ceiling are one physical slab between storeys; which face a ray meets
+// decides the class: from above it is floor, from below ceiling.
+std::uint32_t label_for_direction(std::uint32_t label, float dir_z) {
+  const auto l = static_cast<PointLabel>(label);
+  if (l == PointLabel::kFloor || l == PointLabel::kCeiling) {
+    return static_cast<std::uint32_t>(dir_z < 0.0f ? PointLabel::kFloor : PointLabel::kCeiling);
+  }
+  return label;
+}
+
+}  // namespace
+
+BeamPattern BeamPattern::from_sensor(const SensorSpec& sensor) {
+  BeamPattern p;
+  p.rows = static_cast<int>(sensor.vertical_angles_deg.size());
+  p.cols = sensor.columns;
+  p.dirs.resize(static_cast<std::size_t>(p.rows) * p.cols);
+  for (int r = 0; r < p.rows; ++r) {
+    const double el = sensor.vertical_angles_deg[r] * M_PI / 180.0;
+    for (int c = 0; c < p.cols; ++c) {
+      const double az = 2.0 * M_PI * c / p.cols;
+      p.dirs[static_cast<std::size_t>(r) * p.cols + c] =
+          Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)).cast<float>();
+    }
+  }
+  return p;
+}
+
+struct RayCaster::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::vector<std::uint32_t> labels;
+
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+
+  // Fills one packet of up to 16 rays starting at column c0 of a row.
+  void trace_packet(const Eigen::Vector3f& origin, const Eigen::Matrix3f& R, const Eigen::Vector3f* dirs, int n,
+                    float min_range, float max_range, RayHit* out) const {
+    alignas(64) int valid[kPacket];
+    alignas(64) RTCRayHit16 rh;
+    Eigen::Vector3f world_dir[kPacket];
+    for (int i = 0; i < kPacket; ++i) {
+      valid[i] = i < n ? -1 : 0;
+      const Eigen::Vector3f d = i < n ? Eigen::Vector3f(R * dirs[i]) : Eigen::Vector3f::UnitX();
+      world_dir[i] = d;
+      rh.ray.org_x[i] = origin.x();
+      rh.ray.org_y[i] = origin.y();
+      rh.ray.org_z[i] = origin.z();
+      rh.ray.dir_x[i] = d.x();
+      rh.ray.dir_y[i] = d.y();
+      rh.ray.dir_z[i] = d.z();
+      rh.ray.tnear[i] = 0.0f;
+      rh.ray.tfar[i] = max_range;
+      rh.ray.time[i] = 0.0f;
+      rh.ray.mask[i] = 0xFFFFFFFFu;
+      rh.ray.id[i] = static_cast<unsigned>(i);
+      rh.ray.flags[i] = 0;
+      rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect16(valid, scene, &ctx, &rh);
+    for (int i = 0; i < n; ++i) {
+      RayHit& h = out[i];
+      if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID || rh.ray.tfar[i] < min_range) {
+        h = RayHit{};
+        continue;
+      }
+      h.range = rh.ray.tfar[i];
+      h.label = label_for_direction(labels[rh.hit.primID[i]], world_dir[i].z());
+      const Eigen::Vector3f ng(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
+      const float norm = ng.norm();
+      h.cos_incidence = norm > 0.0f ? std::abs(ng.dot(world_dir[i])) / norm : 0.0f;
+    }
+  }
+};
+
+RayCaster::RayCaster(const LabelledMesh& mesh) : impl_(std::make_unique<Impl>()) {
+  impl_->device = rtcNewDevice(nullptr);
+  if (!impl_->device) throw std::runtime_error("Embree: cannot create a device");
+  impl_->scene = rtcNewScene(impl_->device);
+  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
+  if (!mesh.triangles.empty()) {
+    RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                           3 * sizeof(float), mesh.vertices.size()));
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+      vb[3 * i + 0] = mesh.vertices[i].x();
+      vb[3 * i + 1] = mesh.vertices[i].y();
+      vb[3 * i + 2] = mesh.vertices[i].z();
+    }
+    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                              3 * sizeof(unsigned), mesh.triangles.size()));
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+      for (int k = 0; k < 3; ++k) ib[3 * i + k] = static_cast<unsigned>(mesh.triangles[i][k]);
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(impl_->scene, geom);
+    rtcReleaseGeometry(geom);
+  }
+  rtcCommitScene(impl_->scene);
+  impl_->labels = mesh.labels;
+}
+
+RayCaster::~RayCaster() = default;
+
+void RayCaster::cast_scan(const Pose3& sensor_pose, const BeamPattern& beams, float min_range, float max_range,
+                          std::vector<RayHit>* out) const {
+  out->resize(beams.dirs.size());
+  const Eigen::Vector3f origin = sensor_pose.translation().cast<float>();
+  const Eigen::Matrix3f R = sensor_pose.linear().cast<float>();
+  tbb::parallel_for(tbb::blocked_range<int>(0, beams.rows), [&](const tbb::blocked_range<int>& rows) {
+    for (int r = rows.begin(); r < rows.end(); ++r) {
+      const std::size_t row0 = static_cast<std::size_t>(r) * beams.cols;
+      for (int c = 0; c < beams.cols; c += kPacket) {
+        const int n = std::min(kPacket, beams.cols - c);
+        impl_->trace_packet(origin, R, &beams.dirs[row0 + c], n, min_range, max_range, &(*out)[row0 + c]);
+      }
+    }
+  });
+}
+
+RayHit RayCaster::cast(const Eigen::Vector3f& origin, const Eigen::Vector3f& dir, float max_range) const {
+  RayHit hit;
+  const Eigen::Vector3f d = dir.normalized();
+  impl_->trace_packet(origin, Eigen::Matrix3f::Identity(), &d, 1, 0.0f, max_range, &hit);
+  return hit;
+}
+
+}  // namespace tsgraphs::sim

@@ -1,0 +1,149 @@
+#pragma once
+/// A building, the LiDAR that scans it and the path it travels: the simulator's input
+/// (docs/scene-format.md). Plain data; `load_scene` reads and validates it.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "tsgraphs/core/polygon.hpp"
+
+namespace tsgraphs::sim {
+
+/// The LiDAR model. Defaults are the scene format's (an OS1-64-like sensor).
+struct SensorSpec {
+  std::string preset;                 ///< os1-64 | os0-128 | vlp-16 | hesai-xt32, or "" when given by hand
+  int channels = 64;                  ///< rows of the scan
+  int columns = 1024;                 ///< firings per revolution
+  double vertical_fov_min_deg = -22.5;  ///< lowest beam
+  double vertical_fov_max_deg = 22.5;   ///< highest beam
+  /// Elevation of each beam, top to bottom, degrees. Filled by the loader from the preset's
+  /// published table, from `vertical_angles_deg`, or evenly over the field of view.
+  std::vector<double> vertical_angles_deg;
+  double max_range = 60.0;            ///< returns beyond are lost, m
+  double min_range = 0.3;             ///< returns closer are lost, m
+  double rate_hz = 10.0;              ///< revolutions (scans) per second
+  double range_noise_std = 0.015;     ///< gaussian range noise, m
+  double dropout = 0.0;               ///< probability that a return is lost
+  double mount_height = 0.55;         ///< sensor above the walkable surface, m
+  double tilt_deg = 0.0;              ///< pitch about the sensor's y axis
+};
+
+/// How odometry drifts from truth: random walks, std growing with sqrt(distance or angle).
+struct OdometryNoise {
+  double trans_noise_per_m = 0.01;    ///< translation std per axis after 1 m (sqrt(m) scaling)
+  double yaw_noise_per_rad = 0.01;    ///< yaw std after turning 1 rad
+  double yaw_noise_per_m = 0.002;     ///< yaw std after travelling 1 m
+};
+
+struct Level {
+  std::string name;
+  double elevation = 0.0;             ///< z of the walkable floor surface
+  double ceiling = 3.0;               ///< ceiling height above the floor surface
+  Polygon2 slab;                      ///< outline of the walkable floor
+  std::vector<Polygon2> voids;        ///< holes in the slab, open to the storey below
+  int line = 0;                       ///< line in the scene file, for messages
+};
+
+struct Opening {
+  double at = 0.0;                    ///< distance of the opening's centre from the wall's `from`
+  double width = 0.9;
+  double height = 2.1;
+  double sill = 0.0;                  ///< 0 for a door
+};
+
+struct Wall {
+  int level = 0;                      ///< index into Scene::levels
+  Vec2 from = Vec2::Zero(), to = Vec2::Zero();  ///< centre line
+  double thickness = 0.2;
+  double height = 3.0;
+  std::vector<Opening> openings;
+  int line = 0;
+};
+
+enum class RailingStyle { kSolid, kBars };
+
+struct Railing {
+  int level = 0;
+  Vec2 from = Vec2::Zero(), to = Vec2::Zero();
+  double height = 1.0;
+  RailingStyle style = RailingStyle::kSolid;
+  int line = 0;
+};
+
+struct Box {
+  int level = 0;
+  Eigen::Vector3d min = Eigen::Vector3d::Zero();  ///< relative to the level's elevation
+  Eigen::Vector3d max = Eigen::Vector3d::Zero();
+  double yaw_deg = 0.0;               ///< rotation about the box centre
+  std::string label;                  ///< free text (bookshelf, pillar, ...)
+  int line = 0;
+};
+
+/// Point label given to the cubes of a voxel map.
+enum class VoxelLabel { kWall, kBox, kRailing, kAuto };
+
+struct VoxelMap {
+  std::string file;                   ///< resolved path of the PCD
+  double voxel_size = 0.1;            ///< edge of each cube
+  int level = 0;
+  VoxelLabel label = VoxelLabel::kAuto;
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  double yaw_deg = 0.0;               ///< rotation about z, applied before the offset
+  int line = 0;
+};
+
+struct Ramp {
+  int from_level = 0;                 ///< the ramp's low end is at this level's elevation
+  int to_level = 0;                   ///< its high end at this one's
+  Polygon2 polygon;                   ///< footprint
+  Vec2 axis = Vec2::UnitY();          ///< unit direction of ascent
+  int line = 0;
+};
+
+struct Room {
+  std::string name;
+  int level = 0;
+  Polygon2 polygon;
+};
+
+struct Waypoint {
+  Vec2 xy = Vec2::Zero();
+  int level = 0;                      ///< the level the waypoint stands on
+  int line = 0;
+};
+
+struct TrajectorySpec {
+  int level = 0;                      ///< level of the first waypoint
+  std::vector<Waypoint> waypoints;
+  bool closed = true;                 ///< return to the first waypoint at the end of each lap
+  int laps = 2;                       ///< repeats of the path
+  double speed = 1.0;                 ///< m/s, horizontal
+  double yaw_rate_deg = 90.0;         ///< max turn rate, deg/s
+};
+
+struct Scene {
+  std::string name;
+  std::uint64_t seed = 0;
+  SensorSpec sensor;
+  OdometryNoise odometry;
+  std::vector<Level> levels;
+  std::vector<Wall> walls;
+  std::vector<Railing> railings;
+  std::vector<Box> boxes;
+  std::vector<VoxelMap> voxel_maps;
+  std::vector<Ramp> ramps;
+  std::vector<Room> rooms;
+  TrajectorySpec trajectory;
+  std::string file;                   ///< the scene file it was loaded from (or "builtin:NAME")
+  std::string source_text;            ///< the YAML text it was read from (copied to sequences)
+};
+
+/// Geometry constants of railings (the format fixes the style, not the dimensions).
+struct RailingGeometry {
+  static constexpr double kSolidThickness = 0.04;  ///< glass or panel
+  static constexpr double kPostSpacing = 0.12;     ///< centre to centre, as the format says
+  static constexpr double kPostWidth = 0.03;       ///< square posts
+  static constexpr double kTopRailHeight = 0.05;   ///< the rail on top of the posts
+};
+
+}  // namespace tsgraphs::sim

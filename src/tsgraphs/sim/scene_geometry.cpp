@@ -1,0 +1,205 @@
+#include "tsgraphs/sim/scene_geometry.hpp"
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <unordered_set>
+
+#include "tsgraphs/core/error.hpp"
+#include "tsgraphs/io/pcd.hpp"
+#include "tsgraphs/sim/scene_loader.hpp"
+
+namespace tsgraphs::sim {
+namespace {
+
+double deg2rad(double d) { return d * M_PI / 180.0; }
+
+void add_region(LabelledMesh* mesh, const std::vector<Polygon2>& include, const std::vector<Polygon2>& exclude,
+                double z, PointLabel label) {
+  for (const Triangle2& t : triangulate_region(include, exclude)) {
+    mesh->add_triangle({t[0].x(), t[0].y(), z}, {t[1].x(), t[1].y(), z}, {t[2].x(), t[2].y(), z}, label);
+  }
+}
+
+void add_wall(LabelledMesh* mesh, const Wall& wall, double elevation) {
+  const Vec2 dir = (wall.to - wall.from).normalized();
+  const double yaw = std::atan2(dir.y(), dir.x());
+  for (const WallPiece& p : wall_pieces(wall)) {
+    const Vec2 c = wall.from + 0.5 * (p.s0 + p.s1) * dir;
+    mesh->add_box(c, {0.5 * (p.s1 - p.s0), 0.5 * wall.thickness}, yaw, elevation + p.z0, elevation + p.z1,
+                  PointLabel::kWall);
+  }
+}
+
+void add_railing(LabelledMesh* mesh, const Railing& r, double elevation) {
+  const Vec2 d = r.to - r.from;
+  const double length = d.norm();
+  const Vec2 dir = d / length;
+  const double yaw = std::atan2(dir.y(), dir.x());
+  const Vec2 mid = 0.5 * (r.from + r.to);
+  if (r.style == RailingStyle::kSolid) {
+    mesh->add_box(mid, {0.5 * length, 0.5 * RailingGeometry::kSolidThickness}, yaw, elevation, elevation + r.height,
+                  PointLabel::kRailing);
+    return;
+  }
+  const double top = elevation + r.height;
+  const double rail_bottom = top - RailingGeometry::kTopRailHeight;
+  const double half_post = 0.5 * RailingGeometry::kPostWidth;
+  mesh->add_box(mid, {0.5 * length, half_post}, yaw, rail_bottom, top, PointLabel::kRailing);
+  const int posts = static_cast<int>(std::floor(length / RailingGeometry::kPostSpacing + 1e-9)) + 1;
+  for (int k = 0; k < posts; ++k) {
+    const double s = std::min(k * RailingGeometry::kPostSpacing, length);
+    mesh->add_box(r.from + s * dir, {half_post, half_post}, yaw, elevation, rail_bottom, PointLabel::kRailing);
+  }
+  // A last post at the far end when the spacing does not land on it.
+  if (length - (posts - 1) * RailingGeometry::kPostSpacing > half_post * 2) {
+    mesh->add_box(r.to, {half_post, half_post}, yaw, elevation, rail_bottom, PointLabel::kRailing);
+  }
+}
+
+void add_ramp(LabelledMesh* mesh, const Scene& scene, const Ramp& ramp) {
+  for (const Triangle2& t : triangulate_region({ramp.polygon})) {
+    Eigen::Vector3d v[3];
+    for (int i = 0; i < 3; ++i) v[i] = {t[i].x(), t[i].y(), ramp_height(scene, ramp, t[i])};
+    mesh->add_triangle(v[0], v[1], v[2], PointLabel::kRamp);
+  }
+}
+
+struct KeyHash {
+  std::size_t operator()(const Eigen::Vector3i& k) const {
+    return (static_cast<std::size_t>(k.x()) * 73856093u) ^ (static_cast<std::size_t>(k.y()) * 19349663u) ^
+           (static_cast<std::size_t>(k.z()) * 83492791u);
+  }
+};
+
+void add_voxel_map(LabelledMesh* mesh, const Scene& scene, const VoxelMap& vm) {
+  const PointCloud cloud = io::read_pcd(vm.file);
+  if (cloud.empty()) throw InputError(vm.file + ": voxel map has no finite points");
+  const Level& level = scene.levels[vm.level];
+  // Snap points to the voxel grid through the first point, so voxel centres stay exact and
+  // a dense cloud becomes one cube per occupied voxel.
+  const Eigen::Vector3d origin = cloud.points.front().cast<double>();
+  const double s = vm.voxel_size;
+  std::unordered_set<Eigen::Vector3i, KeyHash> occupied;
+  std::vector<Eigen::Vector3i> keys;
+  for (const Eigen::Vector3f& p : cloud.points) {
+    const Eigen::Vector3i k = ((p.cast<double>() - origin) / s).array().round().cast<int>();
+    if (occupied.insert(k).second) keys.push_back(k);
+  }
+  const double c = std::cos(deg2rad(vm.yaw_deg)), sn = std::sin(deg2rad(vm.yaw_deg));
+  auto to_world = [&](const Eigen::Vector3d& p) {
+    return Eigen::Vector3d(c * p.x() - sn * p.y() + vm.offset.x(), sn * p.x() + c * p.y() + vm.offset.y(),
+                           p.z() + vm.offset.z() + level.elevation);
+  };
+  static const Eigen::Vector3i kNeighbours[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const Eigen::Vector3i& k : keys) {
+    const Eigen::Vector3d centre = origin + s * k.cast<double>();
+    const double z_rel = centre.z() + vm.offset.z();
+    PointLabel label = PointLabel::kWall;
+    switch (vm.label) {
+      case VoxelLabel::kWall: label = PointLabel::kWall; break;
+      case VoxelLabel::kBox: label = PointLabel::kBox; break;
+      case VoxelLabel::kRailing: label = PointLabel::kRailing; break;
+      case VoxelLabel::kAuto:
+        label = std::abs(z_rel) <= s                     ? PointLabel::kFloor
+                : std::abs(z_rel - level.ceiling) <= s ? PointLabel::kCeiling
+                                                         : PointLabel::kWall;
+        break;
+    }
+    for (const Eigen::Vector3i& n : kNeighbours) {
+      if (occupied.count(k + n)) continue;  // shared face: never visible
+      // The face square: centre of the face plus two in-plane half axes.
+      const Eigen::Vector3d nd = n.cast<double>();
+      const Eigen::Vector3d fc = centre + 0.5 * s * nd;
+      const Eigen::Vector3d u = 0.5 * s * (n.x() != 0 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX());
+      const Eigen::Vector3d v = nd.cross(u);
+      const Eigen::Vector3d a = to_world(fc - u - v), b = to_world(fc + u - v), cc = to_world(fc + u + v),
+                            d = to_world(fc - u + v);
+      mesh->add_triangle(a, b, cc, label);
+      mesh->add_triangle(a, cc, d, label);
+    }
+  }
+}
+
+}  // namespace
+
+void LabelledMesh::add_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                                PointLabel label) {
+  const int base = static_cast<int>(vertices.size());
+  vertices.push_back(a.cast<float>());
+  vertices.push_back(b.cast<float>());
+  vertices.push_back(c.cast<float>());
+  triangles.emplace_back(base, base + 1, base + 2);
+  labels.push_back(static_cast<std::uint32_t>(label));
+}
+
+void LabelledMesh::add_box(const Eigen::Vector2d& center, const Eigen::Vector2d& half_size, double yaw, double z0,
+                           double z1, PointLabel label) {
+  const Vec2 ax(std::cos(yaw), std::sin(yaw));
+  const Vec2 ay(-ax.y(), ax.x());
+  const Vec2 corners2[4] = {center - half_size.x() * ax - half_size.y() * ay,
+                            center + half_size.x() * ax - half_size.y() * ay,
+                            center + half_size.x() * ax + half_size.y() * ay,
+                            center - half_size.x() * ax + half_size.y() * ay};
+  const int base = static_cast<int>(vertices.size());
+  for (double z : {z0, z1}) {
+    for (const Vec2& p : corners2) vertices.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(z));
+  }
+  static const int kFaces[6][4] = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1}, {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}};
+  for (const auto& f : kFaces) {
+    triangles.emplace_back(base + f[0], base + f[1], base + f[2]);
+    triangles.emplace_back(base + f[0], base + f[2], base + f[3]);
+    labels.push_back(static_cast<std::uint32_t>(label));
+    labels.push_back(static_cast<std::uint32_t>(label));
+  }
+}
+
+std::vector<WallPiece> wall_pieces(const Wall& wall) {
+  const double length = (wall.to - wall.from).norm();
+  std::vector<WallPiece> pieces;
+  double s = 0.0;
+  for (const Opening& o : wall.openings) {  // sorted by `at`, not overlapping
+    const double a = o.at - 0.5 * o.width, b = o.at + 0.5 * o.width;
+    if (a > s) pieces.push_back({s, a, 0.0, wall.height});
+    if (o.sill > 0.0) pieces.push_back({a, b, 0.0, o.sill});
+    if (o.sill + o.height < wall.height) pieces.push_back({a, b, o.sill + o.height, wall.height});
+    s = b;
+  }
+  if (s < length) pieces.push_back({s, length, 0.0, wall.height});
+  return pieces;
+}
+
+std::vector<Polygon2> ceiling_holes(const Scene& scene, int level) {
+  std::vector<Polygon2> holes = scene.levels[level].voids;
+  // The next level up by elevation: its floor and this ceiling are one slab.
+  const double z = scene.levels[level].elevation;
+  int above = -1;
+  for (std::size_t i = 0; i < scene.levels.size(); ++i) {
+    const double zi = scene.levels[i].elevation;
+    if (zi > z && (above < 0 || zi < scene.levels[above].elevation)) above = static_cast<int>(i);
+  }
+  if (above >= 0) holes.insert(holes.end(), scene.levels[above].voids.begin(), scene.levels[above].voids.end());
+  return holes;
+}
+
+LabelledMesh build_scene_mesh(const Scene& scene) {
+  LabelledMesh mesh;
+  for (std::size_t i = 0; i < scene.levels.size(); ++i) {
+    const Level& l = scene.levels[i];
+    add_region(&mesh, {l.slab}, l.voids, l.elevation, PointLabel::kFloor);
+    add_region(&mesh, {l.slab}, ceiling_holes(scene, static_cast<int>(i)), l.elevation + l.ceiling,
+               PointLabel::kCeiling);
+  }
+  for (const Wall& w : scene.walls) add_wall(&mesh, w, scene.levels[w.level].elevation);
+  for (const Railing& r : scene.railings) add_railing(&mesh, r, scene.levels[r.level].elevation);
+  for (const Box& b : scene.boxes) {
+    const double e = scene.levels[b.level].elevation;
+    const Vec2 c = 0.5 * (b.min.head<2>() + b.max.head<2>());
+    const Vec2 half = 0.5 * (b.max.head<2>() - b.min.head<2>());
+    mesh.add_box(c, half, deg2rad(b.yaw_deg), e + b.min.z(), e + b.max.z(), PointLabel::kBox);
+  }
+  for (const Ramp& r : scene.ramps) add_ramp(&mesh, scene, r);
+  for (const VoxelMap& v : scene.voxel_maps) add_voxel_map(&mesh, scene, v);
+  return mesh;
+}
+
+}  // namespace tsgraphs::sim

@@ -1,0 +1,450 @@
+#include "tsgraphs/sim/scene_loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "tsgraphs/core/yaml_map.hpp"
+#include "tsgraphs/sim/lidar_model.hpp"
+
+namespace tsgraphs::sim {
+namespace {
+
+std::string fmt_point(const Vec2& p) {
+  std::ostringstream s;
+  s << "[" << p.x() << ", " << p.y() << "]";
+  return s.str();
+}
+
+class SceneParser {
+ public:
+  SceneParser(const YamlMap& root, std::string base_dir) : root_(root), base_dir_(std::move(base_dir)) {}
+
+  Scene parse() {
+    root_.check_keys({"name", "seed", "sensor", "odometry", "levels", "walls", "railings", "boxes",
+                      "voxel_maps", "ramps", "rooms", "trajectory"});
+    scene_.file = root_.file();
+    scene_.name = root_.get<std::string>("name", std::filesystem::path(root_.file()).stem().string());
+    const long long seed = root_.get<long long>("seed", 0);
+    if (seed < 0) throw root_.error("seed", "must be >= 0");
+    scene_.seed = static_cast<std::uint64_t>(seed);
+    parse_sensor(root_.map("sensor"));
+    parse_odometry(root_.map("odometry"));
+    parse_levels();
+    for (const YamlMap& m : root_.maps("walls")) parse_wall(m);
+    for (const YamlMap& m : root_.maps("railings")) parse_railing(m);
+    for (const YamlMap& m : root_.maps("boxes")) parse_box(m);
+    for (const YamlMap& m : root_.maps("voxel_maps")) parse_voxel_map(m);
+    for (const YamlMap& m : root_.maps("ramps")) parse_ramp(m);
+    for (const YamlMap& m : root_.maps("rooms")) parse_room(m);
+    parse_trajectory(root_.map("trajectory"));
+    return std::move(scene_);
+  }
+
+ private:
+  static void require_positive(const YamlMap& m, const std::string& key, double v) {
+    if (!(v > 0.0)) throw m.error(key, "must be > 0");
+  }
+  static void require_non_negative(const YamlMap& m, const std::string& key, double v) {
+    if (v < 0.0) throw m.error(key, "must be >= 0");
+  }
+
+  int level_index(const YamlMap& m, const std::string& key) const {
+    const std::string name = m.require<std::string>(key);
+    for (std::size_t i = 0; i < scene_.levels.size(); ++i) {
+      if (scene_.levels[i].name == name) return static_cast<int>(i);
+    }
+    throw m.error(key, "unknown level '" + name + "'" + known_levels());
+  }
+  std::string known_levels() const {
+    std::string s;
+    for (const Level& l : scene_.levels) s += (s.empty() ? " (levels: " : ", ") + l.name;
+    return s.empty() ? "" : s + ")";
+  }
+
+  // Reads a polygon and rejects repeated vertices, self-intersections and zero area.
+  Polygon2 simple_polygon(const YamlMap& m, const YAML::Node& node, const std::string& where) const {
+    Polygon2 poly = m.as_polygon(node, where);
+    const int line = node.Mark().line + 1;
+    if (const auto bad = find_self_intersection(poly)) {
+      const auto [i, j] = *bad;
+      const std::size_t n = poly.size();
+      if (i == j) {
+        throw input_error(m.file(), line, where + ": repeated vertex " + fmt_point(poly[i]) + " (points " +
+                                              std::to_string(i) + " and " + std::to_string((i + 1) % n) + ")");
+      }
+      throw input_error(m.file(), line,
+                        where + ": self-intersecting polygon: edge " + fmt_point(poly[i]) + "-" +
+                            fmt_point(poly[(i + 1) % n]) + " meets edge " + fmt_point(poly[j]) + "-" +
+                            fmt_point(poly[(j + 1) % n]));
+    }
+    if (area(poly) < 1e-9) throw input_error(m.file(), line, where + ": polygon has zero area");
+    return poly;
+  }
+  Polygon2 simple_polygon(const YamlMap& m, const std::string& key) const {
+    if (!m.has(key)) throw m.error_here("missing required key '" + key + "'");
+    return simple_polygon(m, m.raw(key), m.key_path(key));
+  }
+
+  void parse_sensor(const YamlMap& m) {
+    m.check_keys({"preset", "channels", "columns", "vertical_fov_deg", "vertical_angles_deg", "max_range",
+                  "min_range", "rate_hz", "range_noise_std", "dropout", "mount_height", "tilt_deg"});
+    SensorSpec& s = scene_.sensor;
+    if (m.has("preset")) {
+      const std::string name = m.require<std::string>("preset");
+      if (!apply_preset(name, &s)) {
+        std::string list;
+        for (const std::string& n : preset_names()) list += (list.empty() ? "" : ", ") + n;
+        throw m.error("preset", "unknown preset '" + name + "' (presets: " + list + ")");
+      }
+    }
+    s.channels = m.get<int>("channels", s.channels);
+    s.columns = m.get<int>("columns", s.columns);
+    if (s.channels < 1) throw m.error("channels", "must be >= 1");
+    if (s.columns < 1) throw m.error("columns", "must be >= 1");
+    const bool layout_overridden = m.has("channels") || m.has("vertical_fov_deg");
+    if (m.has("vertical_fov_deg")) {
+      const Vec2 fov = m.vec2("vertical_fov_deg");
+      if (!(fov.x() < fov.y()) && s.channels > 1) throw m.error("vertical_fov_deg", "expected [lowest, highest] with lowest < highest");
+      if (fov.x() < -90.0 || fov.y() > 90.0) throw m.error("vertical_fov_deg", "angles must lie in [-90, 90]");
+      s.vertical_fov_min_deg = fov.x();
+      s.vertical_fov_max_deg = fov.y();
+    }
+    if (m.has("vertical_angles_deg")) {
+      const YAML::Node n = m.raw("vertical_angles_deg");
+      if (!n.IsSequence() || n.size() == 0) throw m.error("vertical_angles_deg", "expected a list of beam elevations");
+      s.vertical_angles_deg.clear();
+      for (std::size_t i = 0; i < n.size(); ++i) {
+        const double a = m.as<double>(n[i], m.key_path("vertical_angles_deg"));
+        if (a < -90.0 || a > 90.0) throw m.error("vertical_angles_deg", "angles must lie in [-90, 90]");
+        s.vertical_angles_deg.push_back(a);
+      }
+      std::sort(s.vertical_angles_deg.begin(), s.vertical_angles_deg.end(), std::greater<>());
+      if (m.has("channels") && s.channels != static_cast<int>(n.size())) {
+        throw m.error("vertical_angles_deg", "has " + std::to_string(n.size()) + " beams but channels is " +
+                                                 std::to_string(s.channels));
+      }
+      s.channels = static_cast<int>(n.size());
+      s.vertical_fov_min_deg = s.vertical_angles_deg.back();
+      s.vertical_fov_max_deg = s.vertical_angles_deg.front();
+    } else if (layout_overridden || s.vertical_angles_deg.empty()) {
+      s.vertical_angles_deg = evenly_spaced_angles(s.channels, s.vertical_fov_min_deg, s.vertical_fov_max_deg);
+    }
+    s.max_range = m.get<double>("max_range", s.max_range);
+    s.min_range = m.get<double>("min_range", s.min_range);
+    s.rate_hz = m.get<double>("rate_hz", s.rate_hz);
+    s.range_noise_std = m.get<double>("range_noise_std", s.range_noise_std);
+    s.dropout = m.get<double>("dropout", s.dropout);
+    s.mount_height = m.get<double>("mount_height", s.mount_height);
+    s.tilt_deg = m.get<double>("tilt_deg", s.tilt_deg);
+    require_positive(m, "max_range", s.max_range);
+    require_non_negative(m, "min_range", s.min_range);
+    if (s.min_range >= s.max_range) throw m.error("min_range", "must be below max_range");
+    require_positive(m, "rate_hz", s.rate_hz);
+    require_non_negative(m, "range_noise_std", s.range_noise_std);
+    if (s.dropout < 0.0 || s.dropout >= 1.0) throw m.error("dropout", "must lie in [0, 1)");
+    require_positive(m, "mount_height", s.mount_height);
+    if (std::abs(s.tilt_deg) > 90.0) throw m.error("tilt_deg", "must lie in [-90, 90]");
+  }
+
+  void parse_odometry(const YamlMap& m) {
+    m.check_keys({"trans_noise_per_m", "yaw_noise_per_rad", "yaw_noise_per_m"});
+    OdometryNoise& o = scene_.odometry;
+    o.trans_noise_per_m = m.get<double>("trans_noise_per_m", o.trans_noise_per_m);
+    o.yaw_noise_per_rad = m.get<double>("yaw_noise_per_rad", o.yaw_noise_per_rad);
+    o.yaw_noise_per_m = m.get<double>("yaw_noise_per_m", o.yaw_noise_per_m);
+    require_non_negative(m, "trans_noise_per_m", o.trans_noise_per_m);
+    require_non_negative(m, "yaw_noise_per_rad", o.yaw_noise_per_rad);
+    require_non_negative(m, "yaw_noise_per_m", o.yaw_noise_per_m);
+  }
+
+  void parse_levels() {
+    const std::vector<YamlMap> maps = root_.maps("levels");
+    if (maps.empty()) throw root_.error("levels", "a scene needs at least one level");
+    for (const YamlMap& m : maps) {
+      m.check_keys({"name", "elevation", "ceiling", "slab", "voids"});
+      Level l;
+      l.line = m.line();
+      l.name = m.require<std::string>("name");
+      for (const Level& other : scene_.levels) {
+        if (other.name == l.name) throw m.error("name", "level '" + l.name + "' is defined twice");
+      }
+      l.elevation = m.get<double>("elevation", 0.0);
+      l.ceiling = m.get<double>("ceiling", 3.0);
+      require_positive(m, "ceiling", l.ceiling);
+      if (!m.has("slab")) throw m.error_here("level '" + l.name + "' has no slab (the outline of its floor)");
+      l.slab = simple_polygon(m, "slab");
+      if (m.has("voids")) {
+        const YAML::Node vs = m.raw("voids");
+        if (!vs.IsSequence()) throw m.error("voids", "expected a list of polygons");
+        for (std::size_t i = 0; i < vs.size(); ++i) {
+          l.voids.push_back(simple_polygon(m, vs[i], m.key_path("voids") + "[" + std::to_string(i) + "]"));
+        }
+      }
+      scene_.levels.push_back(std::move(l));
+    }
+  }
+
+  void parse_wall(const YamlMap& m) {
+    m.check_keys({"level", "from", "to", "thickness", "height", "openings"});
+    Wall w;
+    w.line = m.line();
+    w.level = level_index(m, "level");
+    w.from = m.vec2("from");
+    w.to = m.vec2("to");
+    const double length = (w.to - w.from).norm();
+    if (length < 1e-6) throw m.error("to", "zero-length wall: from and to are the same point " + fmt_point(w.from));
+    w.thickness = m.get<double>("thickness", 0.2);
+    w.height = m.get<double>("height", scene_.levels[w.level].ceiling);
+    require_positive(m, "thickness", w.thickness);
+    require_positive(m, "height", w.height);
+    std::vector<std::pair<double, double>> spans;
+    for (const YamlMap& om : m.maps("openings")) {
+      om.check_keys({"at", "width", "height", "sill"});
+      Opening o;
+      o.at = om.require<double>("at");
+      o.width = om.require<double>("width");
+      o.height = om.get<double>("height", 2.1);
+      o.sill = om.get<double>("sill", 0.0);
+      require_positive(om, "width", o.width);
+      require_positive(om, "height", o.height);
+      require_non_negative(om, "sill", o.sill);
+      if (o.width > length + 1e-9) {
+        std::ostringstream s;
+        s << "opening " << o.width << " m wide is wider than its wall (" << length << " m)";
+        throw om.error("width", s.str());
+      }
+      if (o.at - 0.5 * o.width < -1e-9 || o.at + 0.5 * o.width > length + 1e-9) {
+        std::ostringstream s;
+        s << "opening spans " << o.at - 0.5 * o.width << " to " << o.at + 0.5 * o.width
+          << " m along a wall of " << length << " m";
+        throw om.error("at", s.str());
+      }
+      if (o.sill + o.height > w.height + 1e-9) {
+        throw om.error("height", "sill + height exceeds the wall's height");
+      }
+      for (const auto& [lo, hi] : spans) {
+        if (o.at - 0.5 * o.width < hi - 1e-9 && o.at + 0.5 * o.width > lo + 1e-9) {
+          throw om.error("at", "opening overlaps another opening of the same wall");
+        }
+      }
+      spans.emplace_back(o.at - 0.5 * o.width, o.at + 0.5 * o.width);
+      w.openings.push_back(o);
+    }
+    std::sort(w.openings.begin(), w.openings.end(), [](const Opening& a, const Opening& b) { return a.at < b.at; });
+    scene_.walls.push_back(std::move(w));
+  }
+
+  void parse_railing(const YamlMap& m) {
+    m.check_keys({"level", "from", "to", "height", "style"});
+    Railing r;
+    r.line = m.line();
+    r.level = level_index(m, "level");
+    r.from = m.vec2("from");
+    r.to = m.vec2("to");
+    if ((r.to - r.from).norm() < 1e-6) throw m.error("to", "zero-length railing");
+    r.height = m.get<double>("height", 1.0);
+    require_positive(m, "height", r.height);
+    const std::string style = m.get<std::string>("style", "solid");
+    if (style == "solid") r.style = RailingStyle::kSolid;
+    else if (style == "bars") r.style = RailingStyle::kBars;
+    else throw m.error("style", "unknown railing style '" + style + "' (solid, bars)");
+    scene_.railings.push_back(r);
+  }
+
+  void parse_box(const YamlMap& m) {
+    m.check_keys({"level", "min", "max", "yaw_deg", "label"});
+    Box b;
+    b.line = m.line();
+    b.level = level_index(m, "level");
+    b.min = vec3(m, "min");
+    b.max = vec3(m, "max");
+    if ((b.max - b.min).minCoeff() <= 0.0) throw m.error("max", "must exceed min on every axis");
+    b.yaw_deg = m.get<double>("yaw_deg", 0.0);
+    b.label = m.get<std::string>("label", "box");
+    scene_.boxes.push_back(b);
+  }
+
+  Eigen::Vector3d vec3(const YamlMap& m, const std::string& key) const {
+    const YAML::Node n = m.raw(key);
+    if (!n.IsDefined() || n.IsNull()) throw m.error_here("missing required key '" + key + "'");
+    if (!n.IsSequence() || n.size() != 3) throw m.error(key, "expected [x, y, z]");
+    return {m.as<double>(n[0], m.key_path(key)), m.as<double>(n[1], m.key_path(key)),
+            m.as<double>(n[2], m.key_path(key))};
+  }
+
+  void parse_voxel_map(const YamlMap& m) {
+    m.check_keys({"file", "voxel_size", "level", "label", "offset", "yaw_deg"});
+    VoxelMap v;
+    v.line = m.line();
+    const std::string file = m.require<std::string>("file");
+    const std::filesystem::path p(file);
+    v.file = p.is_absolute() ? p.string() : (std::filesystem::path(base_dir_) / p).lexically_normal().string();
+    if (!std::filesystem::is_regular_file(v.file)) throw m.error("file", "no such file: " + v.file);
+    v.voxel_size = m.require<double>("voxel_size");
+    require_positive(m, "voxel_size", v.voxel_size);
+    v.level = level_index(m, "level");
+    const std::string label = m.get<std::string>("label", "auto");
+    if (label == "wall") v.label = VoxelLabel::kWall;
+    else if (label == "box") v.label = VoxelLabel::kBox;
+    else if (label == "railing") v.label = VoxelLabel::kRailing;
+    else if (label == "auto") v.label = VoxelLabel::kAuto;
+    else throw m.error("label", "unknown voxel label '" + label + "' (wall, box, railing, auto)");
+    v.offset = m.has("offset") ? vec3(m, "offset") : Eigen::Vector3d::Zero();
+    v.yaw_deg = m.get<double>("yaw_deg", 0.0);
+    scene_.voxel_maps.push_back(v);
+  }
+
+  void parse_ramp(const YamlMap& m) {
+    m.check_keys({"from_level", "to_level", "polygon", "axis"});
+    Ramp r;
+    r.line = m.line();
+    r.from_level = level_index(m, "from_level");
+    r.to_level = level_index(m, "to_level");
+    if (r.from_level == r.to_level) throw m.error("to_level", "a ramp joins two different levels");
+    r.polygon = simple_polygon(m, "polygon");
+    r.axis = m.vec2("axis");
+    if (r.axis.norm() < 1e-9) throw m.error("axis", "must be a non-zero direction");
+    r.axis.normalize();
+    scene_.ramps.push_back(r);
+  }
+
+  void parse_room(const YamlMap& m) {
+    m.check_keys({"name", "level", "polygon"});
+    Room r;
+    r.name = m.require<std::string>("name");
+    r.level = level_index(m, "level");
+    r.polygon = simple_polygon(m, "polygon");
+    scene_.rooms.push_back(r);
+  }
+
+  void parse_trajectory(const YamlMap& m) {
+    if (!root_.has("trajectory")) throw root_.error_here("missing required key 'trajectory'");
+    m.check_keys({"level", "waypoints", "closed", "laps", "speed", "yaw_rate_deg"});
+    TrajectorySpec& t = scene_.trajectory;
+    t.level = m.has("level") ? level_index(m, "level") : 0;
+    t.closed = m.get<bool>("closed", true);
+    t.laps = m.get<int>("laps", 2);
+    if (t.laps < 1) throw m.error("laps", "must be >= 1");
+    t.speed = m.get<double>("speed", 1.0);
+    require_positive(m, "speed", t.speed);
+    t.yaw_rate_deg = m.get<double>("yaw_rate_deg", 90.0);
+    require_positive(m, "yaw_rate_deg", t.yaw_rate_deg);
+    const YAML::Node wps = m.raw("waypoints");
+    if (!wps.IsDefined() || !wps.IsSequence() || wps.size() < 2) {
+      throw m.error("waypoints", "expected a list of at least two waypoints");
+    }
+    int level = t.level;
+    for (std::size_t i = 0; i < wps.size(); ++i) {
+      const YAML::Node n = wps[i];
+      const std::string where = m.key_path("waypoints") + "[" + std::to_string(i) + "]";
+      const int line = n.Mark().line + 1;
+      if (!n.IsSequence() || (n.size() != 2 && n.size() != 3)) {
+        throw input_error(m.file(), line, where + ": expected [x, y] or [x, y, level]");
+      }
+      Waypoint w;
+      w.line = line;
+      w.xy = Vec2(m.as<double>(n[0], where), m.as<double>(n[1], where));
+      if (n.size() == 3) {
+        const std::string name = m.as<std::string>(n[2], where);
+        level = -1;
+        for (std::size_t k = 0; k < scene_.levels.size(); ++k) {
+          if (scene_.levels[k].name == name) level = static_cast<int>(k);
+        }
+        if (level < 0) throw input_error(m.file(), line, where + ": unknown level '" + name + "'" + known_levels());
+      }
+      w.level = level;
+      check_waypoint(w, where);
+      t.waypoints.push_back(w);
+    }
+    for (std::size_t i = 0; i + 1 < t.waypoints.size(); ++i) {
+      if ((t.waypoints[i].xy - t.waypoints[i + 1].xy).norm() < 1e-6) {
+        throw input_error(m.file(), t.waypoints[i + 1].line,
+                          m.key_path("waypoints") + "[" + std::to_string(i + 1) + "]: repeats the previous waypoint");
+      }
+    }
+  }
+
+  void check_waypoint(const Waypoint& w, const std::string& where) const {
+    const Level& level = scene_.levels[w.level];
+    double z = 0.0;
+    if (!walkable_height(scene_, w.level, w.xy, &z)) {
+      throw input_error(root_.file(), w.line,
+                        where + ": " + fmt_point(w.xy) + " is outside every slab of level " + level.name +
+                            " (or in a void)");
+    }
+    for (std::size_t i = 0; i < scene_.walls.size(); ++i) {
+      const Wall& wall = scene_.walls[i];
+      if (wall.level != w.level) continue;
+      if (distance_to_segment(w.xy, wall.from, wall.to) >= 0.5 * wall.thickness) continue;
+      // Inside the wall's footprint: allowed only in a door (an opening from the floor).
+      const Vec2 dir = (wall.to - wall.from).normalized();
+      const double s = (w.xy - wall.from).dot(dir);
+      bool in_door = false;
+      for (const Opening& o : wall.openings) {
+        in_door = in_door || (o.sill <= 0.0 && std::abs(s - o.at) < 0.5 * o.width);
+      }
+      if (!in_door) {
+        throw input_error(root_.file(), w.line,
+                          where + ": " + fmt_point(w.xy) + " is inside the wall walls[" + std::to_string(i) +
+                              "] (line " + std::to_string(wall.line) + ")");
+      }
+    }
+  }
+
+  const YamlMap& root_;
+  std::string base_dir_;
+  Scene scene_;
+};
+
+}  // namespace
+
+double ramp_height(const Scene& scene, const Ramp& ramp, const Vec2& xy) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Vec2& p : ramp.polygon) {
+    lo = std::min(lo, p.dot(ramp.axis));
+    hi = std::max(hi, p.dot(ramp.axis));
+  }
+  const double z0 = scene.levels[ramp.from_level].elevation;
+  const double z1 = scene.levels[ramp.to_level].elevation;
+  const double s = std::clamp((xy.dot(ramp.axis) - lo) / std::max(hi - lo, 1e-9), 0.0, 1.0);
+  return z0 + s * (z1 - z0);
+}
+
+bool walkable_height(const Scene& scene, int level, const Vec2& xy, double* z) {
+  for (const Ramp& r : scene.ramps) {
+    if ((r.from_level == level || r.to_level == level) && contains(r.polygon, xy)) {
+      *z = ramp_height(scene, r, xy);
+      return true;
+    }
+  }
+  const Level& l = scene.levels[level];
+  if (!contains(l.slab, xy)) return false;
+  for (const Polygon2& v : l.voids) {
+    if (contains(v, xy)) return false;
+  }
+  *z = l.elevation;
+  return true;
+}
+
+Scene parse_scene(const std::string& text, const std::string& file, const std::string& base_dir) {
+  const YamlMap root = YamlMap::load_string(text, file);
+  Scene scene = SceneParser(root, base_dir).parse();
+  scene.source_text = text;
+  return scene;
+}
+
+Scene load_scene(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw input_error(file, 0, "cannot open file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string base = std::filesystem::path(file).parent_path().string();
+  return parse_scene(text.str(), file, base.empty() ? "." : base);
+}
+
+}  // namespace tsgraphs::sim

@@ -1,0 +1,109 @@
+#include "tsgraphs/sim/simulator.hpp"
+
+#include <cmath>
+
+#include "tsgraphs/io/sequence_folder.hpp"
+#include "tsgraphs/sim/odometry_drift.hpp"
+
+namespace tsgraphs::sim {
+namespace {
+
+// Counter-based random numbers (splitmix64): every ray's noise depends only on the seed,
+// the scan and the ray, so threads cannot change the output.
+std::uint64_t splitmix(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ULL;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+  return x ^ (x >> 31);
+}
+
+double to_unit(std::uint64_t x) { return static_cast<double>(x >> 11) * (1.0 / 9007199254740992.0); }
+
+}  // namespace
+
+float Reflectivity::of(std::uint32_t label) {
+  switch (static_cast<PointLabel>(label)) {
+    case PointLabel::kFloor: return kFloor;
+    case PointLabel::kRamp: return kRamp;
+    case PointLabel::kCeiling: return kCeiling;
+    case PointLabel::kWall: return kWall;
+    case PointLabel::kRailing: return kRailing;
+    case PointLabel::kBox: return kBox;
+    default: return 0.5f;
+  }
+}
+
+Simulator::Simulator(Scene scene, std::uint64_t seed) : scene_(std::move(scene)), seed_(seed) {
+  trajectory_ = std::make_unique<Trajectory>(scene_);
+  const LabelledMesh mesh = build_scene_mesh(scene_);
+  num_triangles_ = mesh.triangles.size();
+  caster_ = std::make_unique<RayCaster>(mesh);
+  beams_ = BeamPattern::from_sensor(scene_.sensor);
+  const double dt = 1.0 / scene_.sensor.rate_hz;
+  const std::size_t n = static_cast<std::size_t>(std::floor(trajectory_->duration() / dt + 1e-9)) + 1;
+  const Pose3 tilt = make_pose(Eigen::Vector3d::Zero(), 0.0, scene_.sensor.tilt_deg * M_PI / 180.0);
+  std::vector<Pose3> body(n);
+  times_.resize(n);
+  truth_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    times_[k] = k * dt;
+    body[k] = trajectory_->body_pose(times_[k]);
+    truth_[k] = body[k] * tilt;
+  }
+  odom_ = drift_odometry(body, scene_.odometry, seed_);
+  for (Pose3& p : odom_) p = p * tilt;
+}
+
+Simulator::~Simulator() = default;
+
+PointCloud Simulator::scan(std::size_t k) const { return scan_at(truth_.at(k), k); }
+
+PointCloud Simulator::scan_at(const Pose3& sensor_pose, std::uint64_t noise_index) const {
+  const SensorSpec& s = scene_.sensor;
+  std::vector<RayHit> hits;
+  caster_->cast_scan(sensor_pose, beams_, static_cast<float>(s.min_range), static_cast<float>(s.max_range), &hits);
+  PointCloud cloud;
+  cloud.reserve(hits.size(), true, true);
+  const std::uint64_t scan_key = splitmix(seed_ ^ splitmix(noise_index + 0x5CA11ULL));
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const RayHit& h = hits[i];
+    if (h.range < 0.0f) continue;
+    const std::uint64_t r1 = splitmix(scan_key + 2 * i);
+    const std::uint64_t r2 = splitmix(scan_key + 2 * i + 1);
+    if (s.dropout > 0.0 && to_unit(splitmix(r1 ^ r2)) < s.dropout) continue;
+    // Box-Muller from two independent uniforms.
+    const double u1 = std::max(to_unit(r1), 1e-300);
+    const double gauss = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * to_unit(r2));
+    const double range = h.range + s.range_noise_std * gauss;
+    if (range < s.min_range || range > s.max_range) continue;
+    cloud.points.push_back(beams_.dirs[i] * static_cast<float>(range));
+    cloud.intensity.push_back(Reflectivity::of(h.label) * h.cos_incidence);
+    cloud.labels.push_back(h.label);
+  }
+  return cloud;
+}
+
+void write_sequence(const Simulator& sim, const std::string& out_dir,
+                    const std::function<void(std::size_t, std::size_t)>& progress) {
+  io::SequenceWriter writer(out_dir);
+  const std::size_t n = sim.num_scans();
+  for (std::size_t k = 0; k < n; ++k) {
+    writer.write_scan(k, sim.scan(k));
+    if (progress) progress(k + 1, n);
+  }
+  const Scene& scene = sim.scene();
+  io::SequenceInfo info;
+  info.times = sim.times();
+  info.odometry = sim.odometry_poses();
+  info.groundtruth = sim.true_poses();
+  info.lap_starts = sim.trajectory().lap_starts();
+  info.has_rooms = !scene.rooms.empty();
+  for (const Room& r : scene.rooms) {
+    const Level& l = scene.levels[r.level];
+    info.rooms.push_back({r.name, l.name, r.polygon, l.elevation});
+  }
+  info.scene_yaml = scene.source_text;
+  writer.commit(info);
+}
+
+}  // namespace tsgraphs::sim

@@ -1,0 +1,73 @@
+#pragma once
+/// The indoor LiDAR simulator: a scene in, a sequence of labelled scans with true and
+/// drifting poses out. Each scan is taken at one pose (de-skewed).
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tsgraphs/core/point_cloud.hpp"
+#include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/sim/ray_caster.hpp"
+#include "tsgraphs/sim/scene.hpp"
+#include "tsgraphs/sim/trajectory.hpp"
+
+namespace tsgraphs::sim {
+
+/// Relative reflectivity of each surface class, for the simulated intensity
+/// (intensity = reflectivity * |cos incidence|, in [0, 1]).
+struct Reflectivity {
+  static constexpr float kFloor = 0.35f;
+  static constexpr float kRamp = 0.35f;
+  static constexpr float kCeiling = 0.6f;
+  static constexpr float kWall = 0.7f;
+  static constexpr float kRailing = 0.25f;
+  static constexpr float kBox = 0.5f;
+  static float of(std::uint32_t label);
+};
+
+class Simulator {
+ public:
+  /// Builds the geometry (reading voxel maps) and plans the path. `seed` drives the range
+  /// noise, the dropout and the odometry drift.
+  Simulator(Scene scene, std::uint64_t seed);
+  ~Simulator();
+
+  const Scene& scene() const { return scene_; }
+  const Trajectory& trajectory() const { return *trajectory_; }
+  const RayCaster& ray_caster() const { return *caster_; }
+  std::size_t num_triangles() const { return num_triangles_; }
+
+  /// One scan every 1 / rate_hz seconds from t = 0 to the end of the path.
+  std::size_t num_scans() const { return times_.size(); }
+  const std::vector<double>& times() const { return times_; }
+  /// True sensor poses (with mount height and tilt), one per scan.
+  const std::vector<Pose3>& true_poses() const { return truth_; }
+  /// Drifting odometry poses, one per scan; the first equals the truth.
+  const std::vector<Pose3>& odometry_poses() const { return odom_; }
+
+  /// Scan k in the sensor frame, with intensity and labels; the same for the same seed and k
+  /// whatever the number of threads.
+  PointCloud scan(std::size_t k) const;
+  /// The same for any sensor pose (noise drawn as for scan `noise_index`).
+  PointCloud scan_at(const Pose3& sensor_pose, std::uint64_t noise_index) const;
+
+ private:
+  Scene scene_;
+  std::uint64_t seed_;
+  std::unique_ptr<Trajectory> trajectory_;
+  std::unique_ptr<RayCaster> caster_;
+  BeamPattern beams_;
+  std::size_t num_triangles_ = 0;
+  std::vector<double> times_;
+  std::vector<Pose3> truth_;
+  std::vector<Pose3> odom_;
+};
+
+/// Writes the sequence folder (docs/scene-format.md) of the whole run to `out_dir`, under a
+/// temporary name renamed into place at the end. `progress(done, total)` after each scan.
+void write_sequence(const Simulator& sim, const std::string& out_dir,
+                    const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+}  // namespace tsgraphs::sim
