@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 #include <unordered_set>
 
 #include "tsgraphs/core/error.hpp"
@@ -168,6 +169,28 @@ std::vector<WallPiece> wall_pieces(const Wall& wall) {
   return pieces;
 }
 
+// The slab between two storeys has a thickness (from the lower ceiling up to the upper
+// floor); inside a void its edge is a vertical face. Labelled wall: vertical structure, not
+// walkable ground.
+static void add_void_edges(LabelledMesh* mesh, const Scene& scene, int level) {
+  const Level& l = scene.levels[level];
+  double below_ceiling = -std::numeric_limits<double>::infinity();
+  for (const Level& other : scene.levels) {
+    if (other.elevation < l.elevation) below_ceiling = std::max(below_ceiling, other.elevation + other.ceiling);
+  }
+  if (!(below_ceiling < l.elevation)) return;  // no storey below, or no slab thickness
+  for (const Polygon2& v : l.voids) {
+    for (std::size_t i = 0, n = v.size(); i < n; ++i) {
+      const Vec2& a = v[i];
+      const Vec2& b = v[(i + 1) % n];
+      const Eigen::Vector3d a0(a.x(), a.y(), below_ceiling), b0(b.x(), b.y(), below_ceiling);
+      const Eigen::Vector3d a1(a.x(), a.y(), l.elevation), b1(b.x(), b.y(), l.elevation);
+      mesh->add_triangle(a0, b0, b1, PointLabel::kWall);
+      mesh->add_triangle(a0, b1, a1, PointLabel::kWall);
+    }
+  }
+}
+
 std::vector<Polygon2> ceiling_holes(const Scene& scene, int level) {
   std::vector<Polygon2> holes = scene.levels[level].voids;
   // The next level up by elevation: its floor and this ceiling are one slab.
@@ -188,6 +211,7 @@ LabelledMesh build_scene_mesh(const Scene& scene) {
     add_region(&mesh, {l.slab}, l.voids, l.elevation, PointLabel::kFloor);
     add_region(&mesh, {l.slab}, ceiling_holes(scene, static_cast<int>(i)), l.elevation + l.ceiling,
                PointLabel::kCeiling);
+    add_void_edges(&mesh, scene, static_cast<int>(i));
   }
   for (const Wall& w : scene.walls) add_wall(&mesh, w, scene.levels[w.level].elevation);
   for (const Railing& r : scene.railings) add_railing(&mesh, r, scene.levels[r.level].elevation);

@@ -1,0 +1,248 @@
+// Scene loading: defaults, presets, and every validation error with the right key and line.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "tsgraphs/core/error.hpp"
+#include "tsgraphs/sim/lidar_model.hpp"
+#include "tsgraphs/sim/scene_loader.hpp"
+
+using namespace tsgraphs;
+using namespace tsgraphs::sim;
+using ::testing::HasSubstr;
+
+namespace {
+
+// A valid one-room scene; tests replace parts of it.
+const std::string kRoom = R"(name: room
+levels:
+  - name: L0
+    slab: [[0,0],[10,0],[10,8],[0,8]]
+walls:
+  - level: L0
+    from: [0, 0]
+    to: [10, 0]
+    openings:
+      - {at: 5.0, width: 1.0, height: 2.1}
+trajectory:
+  waypoints: [[2, 2], [8, 2], [8, 6]]
+)";
+
+// 1-based line of the first line of `text` that contains `marker`.
+int line_of(const std::string& text, const std::string& marker) {
+  const std::size_t pos = text.find(marker);
+  EXPECT_NE(pos, std::string::npos) << marker;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_scene(text, "test.yaml", ".");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "scene loaded but should not:\n" << text;
+  return "";
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t pos = text.find(from);
+  EXPECT_NE(pos, std::string::npos) << from;
+  return text.replace(pos, from.size(), to);
+}
+
+std::string at_line(const std::string& text, const std::string& marker) {
+  return "test.yaml:" + std::to_string(line_of(text, marker)) + ":";
+}
+
+}  // namespace
+
+TEST(SceneLoader, DefaultsFollowTheFormat) {
+  const Scene s = parse_scene(kRoom, "test.yaml", ".");
+  EXPECT_EQ(s.name, "room");
+  ASSERT_EQ(s.levels.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.levels[0].ceiling, 3.0);
+  ASSERT_EQ(s.walls.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.walls[0].thickness, 0.2);
+  EXPECT_DOUBLE_EQ(s.walls[0].height, 3.0);  // the level's ceiling
+  EXPECT_DOUBLE_EQ(s.walls[0].openings[0].sill, 0.0);
+  EXPECT_EQ(s.sensor.channels, 64);
+  EXPECT_EQ(s.sensor.vertical_angles_deg.size(), 64u);
+  EXPECT_DOUBLE_EQ(s.sensor.vertical_angles_deg.front(), 22.5);
+  EXPECT_DOUBLE_EQ(s.sensor.vertical_angles_deg.back(), -22.5);
+  EXPECT_DOUBLE_EQ(s.sensor.mount_height, 0.55);
+  EXPECT_DOUBLE_EQ(s.odometry.trans_noise_per_m, 0.01);
+  EXPECT_EQ(s.trajectory.laps, 2);
+  EXPECT_TRUE(s.trajectory.closed);
+  EXPECT_DOUBLE_EQ(s.trajectory.speed, 1.0);
+  EXPECT_EQ(s.trajectory.waypoints.size(), 3u);
+  EXPECT_EQ(s.source_text, kRoom);
+}
+
+TEST(SceneLoader, PresetsCarryTheDatasheetBeamLayouts) {
+  SensorSpec s;
+  ASSERT_TRUE(apply_preset("vlp-16", &s));
+  ASSERT_EQ(s.vertical_angles_deg.size(), 16u);
+  for (int i = 0; i < 16; ++i) EXPECT_DOUBLE_EQ(s.vertical_angles_deg[i], 15.0 - 2.0 * i);
+  EXPECT_EQ(s.columns, 1800);
+  ASSERT_TRUE(apply_preset("hesai-xt32", &s));
+  ASSERT_EQ(s.vertical_angles_deg.size(), 32u);
+  EXPECT_DOUBLE_EQ(s.vertical_angles_deg.front(), 15.0);
+  EXPECT_DOUBLE_EQ(s.vertical_angles_deg.back(), -16.0);
+  ASSERT_TRUE(apply_preset("os0-128", &s));
+  EXPECT_EQ(s.vertical_angles_deg.size(), 128u);
+  EXPECT_DOUBLE_EQ(s.vertical_angles_deg.back(), -45.0);
+  ASSERT_TRUE(apply_preset("os1-64", &s));
+  EXPECT_EQ(s.channels, 64);
+  EXPECT_FALSE(apply_preset("hdl-64", &s));
+}
+
+TEST(SceneLoader, PresetFieldsCanBeOverridden) {
+  const std::string text = replace(kRoom, "levels:", "sensor:\n  preset: vlp-16\n  max_range: 30\n  mount_height: 1.2\nlevels:");
+  const Scene s = parse_scene(text, "test.yaml", ".");
+  EXPECT_EQ(s.sensor.preset, "vlp-16");
+  EXPECT_EQ(s.sensor.channels, 16);
+  EXPECT_DOUBLE_EQ(s.sensor.max_range, 30.0);
+  EXPECT_DOUBLE_EQ(s.sensor.mount_height, 1.2);
+  // Overriding the field of view spreads the beams evenly over it.
+  const Scene s2 = parse_scene(replace(text, "max_range: 30", "vertical_fov_deg: [-10, 10]"), "test.yaml", ".");
+  EXPECT_DOUBLE_EQ(s2.sensor.vertical_angles_deg.front(), 10.0);
+  EXPECT_DOUBLE_EQ(s2.sensor.vertical_angles_deg.back(), -10.0);
+  // An explicit beam table (for example from a sensor's calibration) is sorted top to bottom.
+  const Scene s3 = parse_scene(replace(kRoom, "levels:", "sensor:\n  vertical_angles_deg: [-5, 3.5, 1]\nlevels:"),
+                               "test.yaml", ".");
+  EXPECT_EQ(s3.sensor.channels, 3);
+  EXPECT_THAT(s3.sensor.vertical_angles_deg, ::testing::ElementsAre(3.5, 1.0, -5.0));
+}
+
+TEST(SceneLoader, UnknownKeyNamesKeyAndLine) {
+  const std::string text = replace(kRoom, "    to: [10, 0]\n", "    to: [10, 0]\n    colour: red\n");
+  const std::string msg = error_of(text);
+  EXPECT_THAT(msg, HasSubstr(at_line(text, "colour")));
+  EXPECT_THAT(msg, HasSubstr("unknown key 'walls[0].colour'"));
+  const std::string top = kRoom + "lights: 3\n";
+  EXPECT_THAT(error_of(top), HasSubstr(at_line(top, "lights")));
+  EXPECT_THAT(error_of(top), HasSubstr("'lights'"));
+}
+
+TEST(SceneLoader, MissingSlab) {
+  const std::string text = replace(kRoom, "    slab: [[0,0],[10,0],[10,8],[0,8]]\n", "    elevation: 0\n");
+  const std::string msg = error_of(text);
+  EXPECT_THAT(msg, HasSubstr(at_line(text, "- name: L0")));
+  EXPECT_THAT(msg, HasSubstr("no slab"));
+}
+
+TEST(SceneLoader, ZeroLengthWall) {
+  const std::string text = replace(kRoom, "to: [10, 0]", "to: [0, 0]");
+  const std::string msg = error_of(text);
+  EXPECT_THAT(msg, HasSubstr(at_line(text, "to: [0, 0]")));
+  EXPECT_THAT(msg, HasSubstr("walls[0].to: zero-length wall"));
+}
+
+TEST(SceneLoader, SelfIntersectingPolygon) {
+  const std::string text = replace(kRoom, "[[0,0],[10,0],[10,8],[0,8]]", "[[0,0],[10,8],[10,0],[0,8]]");
+  const std::string msg = error_of(text);
+  EXPECT_THAT(msg, HasSubstr(at_line(text, "slab:")));
+  EXPECT_THAT(msg, HasSubstr("levels[0].slab: self-intersecting polygon"));
+  const std::string voids = replace(kRoom, "    slab: [[0,0],[10,0],[10,8],[0,8]]\n",
+                                    "    slab: [[0,0],[10,0],[10,8],[0,8]]\n    voids:\n      - [[4,4],[6,6],[6,4],[4,6]]\n");
+  EXPECT_THAT(error_of(voids), HasSubstr(at_line(voids, "[[4,4]")));
+  EXPECT_THAT(error_of(voids), HasSubstr("levels[0].voids[0]: self-intersecting"));
+}
+
+TEST(SceneLoader, OpeningWiderThanWall) {
+  const std::string text = replace(kRoom, "{at: 5.0, width: 1.0, height: 2.1}", "{at: 5.0, width: 12.0, height: 2.1}");
+  const std::string msg = error_of(text);
+  EXPECT_THAT(msg, HasSubstr(at_line(text, "width: 12.0")));
+  EXPECT_THAT(msg, HasSubstr("walls[0].openings[0].width"));
+  EXPECT_THAT(msg, HasSubstr("wider than its wall"));
+  const std::string off_end = replace(kRoom, "{at: 5.0,", "{at: 9.8,");
+  EXPECT_THAT(error_of(off_end), HasSubstr("walls[0].openings[0].at"));
+  const std::string too_tall = replace(kRoom, "height: 2.1}", "height: 2.5, sill: 1.0}");
+  EXPECT_THAT(error_of(too_tall), HasSubstr("exceeds the wall's height"));
+}
+
+TEST(SceneLoader, WaypointInsideWall) {
+  // The wall runs along y = 0 with thickness 0.2: y = 0.05 is inside it, away from the door.
+  const std::string text = replace(kRoom, "[[2, 2], [8, 2], [8, 6]]", "[[2, 2], [8, 0.05], [8, 6]]");
+  const std::string msg = error_of(text);
+  EXPECT_THAT(msg, HasSubstr(at_line(text, "waypoints:")));
+  EXPECT_THAT(msg, HasSubstr("trajectory.waypoints[1]"));
+  EXPECT_THAT(msg, HasSubstr("inside the wall walls[0] (line " + std::to_string(line_of(text, "- level: L0")) + ")"));
+  // In the door opening (at 5.0, 1.0 wide) the same offset is allowed.
+  EXPECT_NO_THROW(parse_scene(replace(kRoom, "[[2, 2], [8, 2], [8, 6]]", "[[2, 2], [5.1, 0.05], [8, 6]]"), "t.yaml", "."));
+}
+
+TEST(SceneLoader, WaypointOutsideEverySlab) {
+  const std::string text = replace(kRoom, "[[2, 2], [8, 2], [8, 6]]", "[[2, 2], [12, 2], [8, 6]]");
+  const std::string msg = error_of(text);
+  EXPECT_THAT(msg, HasSubstr("trajectory.waypoints[1]"));
+  EXPECT_THAT(msg, HasSubstr("outside every slab of level L0"));
+  const std::string in_void = replace(replace(kRoom, "    slab: [[0,0],[10,0],[10,8],[0,8]]\n",
+                                              "    slab: [[0,0],[10,0],[10,8],[0,8]]\n    voids: [[[7,1],[9,1],[9,3],[7,3]]]\n"),
+                                      "[[2, 2], [8, 2], [8, 6]]", "[[2, 2], [4, 2], [8, 6],\n    [8, 2]]");
+  const std::string msg2 = error_of(in_void);
+  EXPECT_THAT(msg2, HasSubstr("test.yaml:" + std::to_string(line_of(in_void, "[8, 2]]")) + ":"));
+  EXPECT_THAT(msg2, HasSubstr("trajectory.waypoints[3]"));
+}
+
+TEST(SceneLoader, UnknownLevel) {
+  const std::string text = replace(kRoom, "  - level: L0\n    from", "  - level: L9\n    from");
+  const std::string msg = error_of(text);
+  EXPECT_THAT(msg, HasSubstr(at_line(text, "level: L9")));
+  EXPECT_THAT(msg, HasSubstr("walls[0].level: unknown level 'L9' (levels: L0)"));
+  const std::string wp = replace(kRoom, "[8, 6]]", "[8, 6, L2]]");
+  EXPECT_THAT(error_of(wp), HasSubstr("trajectory.waypoints[2]: unknown level 'L2'"));
+}
+
+TEST(SceneLoader, UnknownPreset) {
+  const std::string text = replace(kRoom, "levels:", "sensor:\n  preset: os2-256\nlevels:");
+  const std::string msg = error_of(text);
+  EXPECT_THAT(msg, HasSubstr(at_line(text, "preset:")));
+  EXPECT_THAT(msg, HasSubstr("sensor.preset: unknown preset 'os2-256'"));
+  EXPECT_THAT(msg, HasSubstr("vlp-16"));
+}
+
+TEST(SceneLoader, OutOfRangeValuesAndTypes) {
+  EXPECT_THAT(error_of(replace(kRoom, "levels:", "sensor: {dropout: 1.5}\nlevels:")), HasSubstr("sensor.dropout"));
+  EXPECT_THAT(error_of(replace(kRoom, "levels:", "sensor: {rate_hz: .nan}\nlevels:")), HasSubstr("not a finite number"));
+  EXPECT_THAT(error_of(replace(kRoom, "levels:", "sensor: {channels: many}\nlevels:")), HasSubstr("expected an integer"));
+  EXPECT_THAT(error_of(replace(kRoom, "waypoints:", "speed: 0\n  waypoints:")), HasSubstr("trajectory.speed: must be > 0"));
+  EXPECT_THAT(error_of(replace(kRoom, "[[2, 2], [8, 2], [8, 6]]", "[[2, 2]]")), HasSubstr("at least two waypoints"));
+  EXPECT_THAT(error_of("levels: [\n"), HasSubstr("YAML syntax error"));
+}
+
+TEST(SceneLoader, MissingFileAndVoxelMapFile) {
+  try {
+    load_scene("/nonexistent/scene.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("/nonexistent/scene.yaml"));
+  }
+  const std::string text = kRoom + "voxel_maps:\n  - {file: maps/none.pcd, voxel_size: 0.1, level: L0}\n";
+  EXPECT_THAT(error_of(text), HasSubstr("voxel_maps[0].file: no such file"));
+}
+
+TEST(SceneLoader, WalkableHeightFollowsRamps) {
+  const std::string text = R"(levels:
+  - {name: low, elevation: 0.0, slab: [[0,0],[20,0],[20,10],[0,10]]}
+  - name: high
+    elevation: 2.0
+    slab: [[0,0],[20,0],[20,10],[0,10]]
+    voids: [[[4,2],[16,2],[16,4],[4,4]]]
+ramps:
+  - {from_level: low, to_level: high, polygon: [[4,2],[16,2],[16,4],[4,4]], axis: [1, 0]}
+trajectory:
+  waypoints: [[2, 3, low], [10, 3], [18, 3, high]]
+)";
+  const Scene s = parse_scene(text, "ramp.yaml", ".");
+  double z = -1;
+  ASSERT_TRUE(walkable_height(s, 0, {10, 3}, &z));
+  EXPECT_NEAR(z, 1.0, 1e-9);  // half way up a 12 m ramp rising 2 m
+  ASSERT_TRUE(walkable_height(s, 1, {4.6, 3}, &z));
+  EXPECT_NEAR(z, 0.1, 1e-9);
+  ASSERT_TRUE(walkable_height(s, 1, {10, 8}, &z));
+  EXPECT_NEAR(z, 2.0, 1e-9);
+}
