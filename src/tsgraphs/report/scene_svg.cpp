@@ -1,9 +1,913 @@
+// Bird's-eye SVG of a scene (tsgraphs draw-scene): one panel per level, in a common metric
+// scale with y up, drawn in layers from the floor up: slab, voids, rooms, ramps, voxel maps,
+// boxes, walls with their openings, railings, the first lap of the path, and the labels.
+//
+// Every element a reader (or a test) may want to count carries a class: "wall full",
+// "wall header" (the wall above an opening), "wall sill" (below a window), "door", "window",
+// "railing solid", "railing bars", "box", "void", "room", "ramp", "voxels", "path",
+// "arrow", "start", "end", "panel", "panel-title". Numbers are printed with two decimals
+// whatever the locale, so the same scene always gives the same bytes.
 #include "tsgraphs/report/scene_svg.hpp"
 
-namespace tsgraphs::report {
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <set>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <utility>
+#include <vector>
 
-std::string scene_svg(const sim::Scene& scene, const sim::Trajectory&) {
-  return "<svg xmlns=\"http://www.w3.org/2000/svg\"><title>" + scene.name + "</title></svg>\n";
+#include "tsgraphs/io/pcd.hpp"
+#include "tsgraphs/sim/scene_geometry.hpp"
+
+namespace tsgraphs::report {
+namespace {
+
+using sim::Scene;
+
+// ---------------------------------------------------------------------------------------
+// Layout (pixels unless the name says metres or seconds)
+
+constexpr double kPxPerMetre = 40.0;          // common scale of every panel
+constexpr double kWorldPaddingM = 0.6;        // free space around the scene's extent
+constexpr double kPageMargin = 20.0;          // around the whole picture
+constexpr double kTitleHeight = 56.0;         // scene name and subtitle
+constexpr double kPanelGap = 24.0;            // between panels, and panels to legend
+constexpr double kPanelPadding = 12.0;        // inside a panel's border, around the plan
+constexpr double kPanelTitleHeight = 26.0;    // level name and elevation above the plan
+constexpr double kScaleBarHeight = 36.0;      // below the plan
+constexpr double kMinPlanWidth = 280.0;       // so the title and scale bar always fit
+constexpr double kScaleBarMetres = 5.0;       // with a tick every metre
+constexpr double kScaleBarThickness = 6.0;
+constexpr double kLegendWidth = 220.0;
+constexpr double kLegendRow = 20.0;
+constexpr double kLegendSwatch = 34.0;        // width of the sample drawn before each entry
+
+// Path
+constexpr double kSampleStepS = 0.1;          // the path is sampled this often
+constexpr double kPathChunkS = 1.0;           // one colour per second of travel
+constexpr double kArrowSpacingM = 3.0;        // an arrowhead every this many metres
+constexpr double kArrowLength = 12.0;
+constexpr double kArrowHalfWidth = 5.5;
+constexpr double kStartRadius = 6.5;
+constexpr double kEndHalfSize = 5.0;
+constexpr double kEndMinDistanceM = 0.5;      // closer to the start than this: no end marker
+
+// Strokes and sizes
+constexpr double kMinRailingWidth = 2.5;
+constexpr double kBarsRailingWidth = 4.0;
+constexpr double kRampArrowFraction = 0.7;    // of the ramp's length along its axis
+constexpr double kRampArrowHead = 9.0;
+constexpr double kRoomHueStartDeg = 205.0;    // room colours: golden-angle hues from here
+constexpr double kGoldenAngleDeg = 137.50776;
+constexpr double kRoomSaturation = 0.62;
+constexpr double kRoomLightness = 0.48;
+constexpr double kEps = 1e-9;
+
+// Colours
+constexpr const char* kBackground = "#ffffff";
+constexpr const char* kInk = "#222222";
+constexpr const char* kMutedInk = "#666666";
+constexpr const char* kPanelBorder = "#c8c8c8";
+constexpr const char* kSlabFill = "#e9e9e9";
+constexpr const char* kSlabStroke = "#9a9a9a";
+constexpr const char* kVoidFill = "#7a7a7a";
+constexpr const char* kVoidHatch = "#3c3c3c";
+constexpr const char* kWallFill = "#2f2f2f";
+constexpr const char* kDoorColour = "#d2561e";
+constexpr const char* kWindowColour = "#2a86d6";
+constexpr const char* kWindowSillFill = "#b9dcf7";
+constexpr const char* kRailingColour = "#1d4fb8";
+constexpr const char* kBoxFill = "#b9834f";
+constexpr const char* kBoxStroke = "#6b4523";
+constexpr const char* kRampLow = "#fbf0cf";
+constexpr const char* kRampHigh = "#d6a53a";
+constexpr const char* kRampArrow = "#7a5510";
+constexpr const char* kVoxelFill = "#5d6d7e";
+constexpr const char* kPathCasing = "#ffffff";
+constexpr const char* kHalo = "#ffffff";
+constexpr const char* kFont = "DejaVu Sans, Helvetica, Arial, sans-serif";
+
+// The path's colour along time: start (dark blue) to end (red), through teal and yellow.
+struct ColourStop {
+  double at;
+  double r, g, b;
+};
+constexpr std::array<ColourStop, 5> kPathRamp = {{{0.00, 0x2b, 0x3a, 0x9e},
+                                                  {0.30, 0x14, 0x9c, 0x9a},
+                                                  {0.55, 0x7f, 0xbf, 0x3f},
+                                                  {0.78, 0xf2, 0xb1, 0x1c},
+                                                  {1.00, 0xd7, 0x26, 0x2b}}};
+
+// ---------------------------------------------------------------------------------------
+// Text and numbers
+
+/// Fixed two-decimal number, independent of the C locale; never "-0.00".
+std::string num(double v) {
+  if (!std::isfinite(v)) v = 0.0;
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 2);
+  std::string s(buf, r.ptr);
+  if (s == "-0.00") s = "0.00";
+  return s;
+}
+
+/// Length of the valid UTF-8 sequence starting at s[i], or 0.
+std::size_t utf8_length(std::string_view s, std::size_t i) {
+  const auto c = static_cast<unsigned char>(s[i]);
+  std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+  if (n == 0 || i + n > s.size()) return 0;
+  for (std::size_t k = 1; k < n; ++k) {
+    if ((static_cast<unsigned char>(s[i + k]) >> 6) != 0x2) return 0;
+  }
+  return n;
+}
+
+/// Text safe inside an element or an attribute: markup characters escaped, characters XML
+/// forbids (control codes, broken UTF-8) replaced by '?'.
+std::string xml_escape(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    switch (c) {
+      case '&': out += "&amp;"; ++i; continue;
+      case '<': out += "&lt;"; ++i; continue;
+      case '>': out += "&gt;"; ++i; continue;
+      case '"': out += "&quot;"; ++i; continue;
+      case '\'': out += "&apos;"; ++i; continue;
+      default: break;
+    }
+    const std::size_t n = utf8_length(text, i);
+    const bool control = n == 1 && static_cast<unsigned char>(c) < 0x20 && c != '\t';
+    if (n == 0 || control) {
+      out += '?';
+      ++i;
+    } else {
+      out.append(text.substr(i, n));
+      i += n;
+    }
+  }
+  return out;
+}
+
+std::string hex_colour(double r, double g, double b) {
+  static const char* kDigits = "0123456789abcdef";
+  std::string s = "#";
+  for (double v : {r, g, b}) {
+    const int i = std::clamp(static_cast<int>(std::lround(v)), 0, 255);
+    s += kDigits[i >> 4];
+    s += kDigits[i & 15];
+  }
+  return s;
+}
+
+/// Colour of the path at fraction u in [0, 1] of the lap.
+std::string path_colour(double u) {
+  u = std::clamp(u, 0.0, 1.0);
+  for (std::size_t i = 1; i < kPathRamp.size(); ++i) {
+    const ColourStop& a = kPathRamp[i - 1];
+    const ColourStop& b = kPathRamp[i];
+    if (u <= b.at || i + 1 == kPathRamp.size()) {
+      const double f = std::clamp((u - a.at) / (b.at - a.at), 0.0, 1.0);
+      return hex_colour(a.r + f * (b.r - a.r), a.g + f * (b.g - a.g), a.b + f * (b.b - a.b));
+    }
+  }
+  return hex_colour(kPathRamp.back().r, kPathRamp.back().g, kPathRamp.back().b);
+}
+
+/// Distinct colour of the i-th room: hues a golden angle apart.
+std::string room_colour(std::size_t i) {
+  const double h = std::fmod(kRoomHueStartDeg + kGoldenAngleDeg * static_cast<double>(i), 360.0) / 60.0;
+  const double c = (1.0 - std::abs(2.0 * kRoomLightness - 1.0)) * kRoomSaturation;
+  const double x = c * (1.0 - std::abs(std::fmod(h, 2.0) - 1.0));
+  const double m = kRoomLightness - 0.5 * c;
+  double r = 0, g = 0, b = 0;
+  switch (static_cast<int>(h)) {
+    case 0: r = c, g = x; break;
+    case 1: r = x, g = c; break;
+    case 2: g = c, b = x; break;
+    case 3: g = x, b = c; break;
+    case 4: r = x, b = c; break;
+    default: r = c, b = x; break;
+  }
+  return hex_colour(255.0 * (r + m), 255.0 * (g + m), 255.0 * (b + m));
+}
+
+// ---------------------------------------------------------------------------------------
+// Geometry helpers
+
+/// Axis-aligned extent in metres.
+struct Extent {
+  double min_x = std::numeric_limits<double>::infinity(), min_y = min_x;
+  double max_x = -min_x, max_y = -min_x;
+  void add(const Vec2& p) {
+    min_x = std::min(min_x, p.x()), max_x = std::max(max_x, p.x());
+    min_y = std::min(min_y, p.y()), max_y = std::max(max_y, p.y());
+  }
+  void add(const Polygon2& poly) {
+    for (const Vec2& p : poly) add(p);
+  }
+  bool empty() const { return !(min_x <= max_x); }
+};
+
+/// World metres to the pixels of one panel, y up.
+struct Frame {
+  double min_x = 0.0, max_y = 0.0;  // world corner drawn at (left, top)
+  double left = 0.0, top = 0.0;     // pixel position of that corner
+  Vec2 px(const Vec2& p) const {
+    return {left + (p.x() - min_x) * kPxPerMetre, top + (max_y - p.y()) * kPxPerMetre};
+  }
+};
+
+std::string xy(const Vec2& p) { return num(p.x()) + "," + num(p.y()); }
+
+std::string points_attr(const Frame& f, const Polygon2& poly) {
+  std::string s;
+  for (const Vec2& p : poly) s += (s.empty() ? "" : " ") + xy(f.px(p));
+  return s;
+}
+
+Vec2 rotate(const Vec2& v, double yaw) {
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
+}
+
+Vec2 left_normal(const Vec2& d) { return {-d.y(), d.x()}; }
+
+/// The rectangle [s0, s1] along the segment a -> b, `thickness` wide about it.
+Polygon2 strip(const Vec2& a, const Vec2& b, double s0, double s1, double thickness) {
+  const Vec2 d = (b - a).normalized();
+  const Vec2 n = 0.5 * thickness * left_normal(d);
+  return {a + s0 * d - n, a + s1 * d - n, a + s1 * d + n, a + s0 * d + n};
+}
+
+Polygon2 box_corners(const sim::Box& box) {
+  const Vec2 c = 0.5 * (box.min.head<2>() + box.max.head<2>());
+  const Vec2 h = 0.5 * (box.max.head<2>() - box.min.head<2>());
+  const double yaw = box.yaw_deg * M_PI / 180.0;
+  return {c + rotate({-h.x(), -h.y()}, yaw), c + rotate({h.x(), -h.y()}, yaw), c + rotate({h.x(), h.y()}, yaw),
+          c + rotate({-h.x(), h.y()}, yaw)};
+}
+
+/// A point inside `poly` to put its name at: the area centroid, or for shapes that do not
+/// contain it (an L, a U) the centroid of the polygon's largest triangle.
+Vec2 label_point(const Polygon2& poly) {
+  const double a = signed_area(poly);
+  Vec2 c = Vec2::Zero();
+  if (std::abs(a) > kEps) {
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const Vec2& p = poly[i];
+      const Vec2& q = poly[(i + 1) % poly.size()];
+      const double cross = p.x() * q.y() - q.x() * p.y();
+      c += (p + q) * cross;
+    }
+    c /= 6.0 * a;
+    if (contains(poly, c)) return c;
+  }
+  double best = -1.0;
+  for (const Triangle2& t : triangulate_region({poly})) {
+    const double ta = std::abs((t[1] - t[0]).x() * (t[2] - t[0]).y() - (t[1] - t[0]).y() * (t[2] - t[0]).x());
+    if (ta > best) best = ta, c = (t[0] + t[1] + t[2]) / 3.0;
+  }
+  if (best < 0.0 && !poly.empty()) {
+    c = Vec2::Zero();
+    for (const Vec2& p : poly) c += p;
+    c /= static_cast<double>(poly.size());
+  }
+  return c;
+}
+
+/// Direction in which a ramp climbs (its axis points up from `from_level` to `to_level`;
+/// if `from_level` is the higher one the surface falls along the axis instead).
+Vec2 ramp_uphill(const Scene& scene, const sim::Ramp& ramp) {
+  const double rise = scene.levels[ramp.to_level].elevation - scene.levels[ramp.from_level].elevation;
+  return rise >= 0.0 ? ramp.axis : Vec2(-ramp.axis);
+}
+
+// ---------------------------------------------------------------------------------------
+// The path
+
+struct PathSample {
+  Vec2 xy;
+  double yaw;
+  double t;      // s since the start
+  double s;      // m travelled
+  int level;     // panel it is drawn on
+};
+
+/// The level whose elevation is closest to the walkable surface under the sensor; among
+/// levels at the same elevation, the first whose slab holds the point.
+int level_at(const Scene& scene, double floor_z, const Vec2& p) {
+  int best = 0;
+  double best_gap = std::numeric_limits<double>::infinity();
+  bool best_holds = false;
+  for (std::size_t i = 0; i < scene.levels.size(); ++i) {
+    const double gap = std::abs(scene.levels[i].elevation - floor_z);
+    const bool holds = contains(scene.levels[i].slab, p);
+    if (gap < best_gap - kEps || (std::abs(gap - best_gap) <= kEps && holds && !best_holds)) {
+      best = static_cast<int>(i), best_gap = gap, best_holds = holds;
+    }
+  }
+  return best;
+}
+
+/// The first lap, sampled every kSampleStepS seconds (and at its end).
+std::vector<PathSample> sample_first_lap(const Scene& scene, const sim::Trajectory& trajectory) {
+  const std::vector<double>& laps = trajectory.lap_starts();
+  const double end = laps.size() > 1 ? laps[1] : trajectory.duration();
+  const auto steps = static_cast<long>(std::floor(end / kSampleStepS + kEps));
+  std::vector<PathSample> out;
+  for (long k = 0; k <= steps + 1; ++k) {
+    const double t = std::min(static_cast<double>(k) * kSampleStepS, end);
+    if (!out.empty() && t <= out.back().t) break;
+    const Pose3 pose = trajectory.body_pose(t);
+    const Vec2 p = pose.translation().head<2>();
+    const double floor_z = pose.translation().z() - scene.sensor.mount_height;
+    out.push_back({p, yaw_of(pose), t, trajectory.distance_at(t), level_at(scene, floor_z, p)});
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------
+// Voxel maps: the occupied cells seen from above (floor and ceiling cubes left out)
+
+struct VoxelFootprint {
+  int level = 0;
+  double cell = 0.1;
+  std::set<std::pair<long, long>> cells;  // ordered: deterministic output
+};
+
+VoxelFootprint voxel_footprint(const Scene& scene, const sim::VoxelMap& vm) {
+  VoxelFootprint fp;
+  fp.level = vm.level;
+  fp.cell = vm.voxel_size;
+  const PointCloud cloud = io::read_pcd(vm.file);
+  const double c = std::cos(vm.yaw_deg * M_PI / 180.0), s = std::sin(vm.yaw_deg * M_PI / 180.0);
+  const double ceiling = scene.levels[vm.level].ceiling;
+  for (const Eigen::Vector3f& pf : cloud.points) {
+    const Eigen::Vector3d p = pf.cast<double>();
+    const double z = p.z() + vm.offset.z();
+    if (vm.label == sim::VoxelLabel::kAuto && (std::abs(z) <= vm.voxel_size || std::abs(z - ceiling) <= vm.voxel_size)) {
+      continue;
+    }
+    const double x = c * p.x() - s * p.y() + vm.offset.x(), y = s * p.x() + c * p.y() + vm.offset.y();
+    fp.cells.emplace(std::lround(y / fp.cell), std::lround(x / fp.cell));  // row-major: rows merge into runs
+  }
+  return fp;
+}
+
+// ---------------------------------------------------------------------------------------
+// Drawing
+
+struct Label {
+  Vec2 at;             // world
+  std::string text;    // raw, escaped when written
+  std::string cls;
+};
+
+struct Panel {
+  int level = 0;
+  Frame frame;
+  double x = 0.0, y = 0.0, width = 0.0, height = 0.0;  // the panel's box on the page
+};
+
+class SceneDrawer {
+ public:
+  SceneDrawer(const Scene& scene, const sim::Trajectory& trajectory)
+      : scene_(scene), path_(sample_first_lap(scene, trajectory)) {
+    for (const sim::VoxelMap& vm : scene.voxel_maps) voxels_.push_back(voxel_footprint(scene, vm));
+  }
+
+  std::string draw() {
+    layout();
+    open_document();
+    for (const Panel& p : panels_) draw_panel(p);
+    draw_legend();
+    out_ += "</svg>\n";
+    return out_;
+  }
+
+ private:
+  // --- page layout ----------------------------------------------------------------------
+
+  Extent world_extent() const {
+    Extent e;
+    for (const sim::Level& l : scene_.levels) {
+      e.add(l.slab);
+      for (const Polygon2& v : l.voids) e.add(v);
+    }
+    for (const sim::Wall& w : scene_.walls) e.add(strip(w.from, w.to, 0.0, (w.to - w.from).norm(), w.thickness));
+    for (const sim::Railing& r : scene_.railings) e.add(r.from), e.add(r.to);
+    for (const sim::Box& b : scene_.boxes) e.add(box_corners(b));
+    for (const sim::Ramp& r : scene_.ramps) e.add(r.polygon);
+    for (const sim::Room& r : scene_.rooms) e.add(r.polygon);
+    for (const PathSample& s : path_) e.add(s.xy);
+    for (const VoxelFootprint& v : voxels_) {
+      for (const auto& [row, col] : v.cells) e.add(Vec2(col * v.cell, row * v.cell));
+    }
+    if (e.empty()) e.add(Vec2::Zero());
+    e.min_x -= kWorldPaddingM, e.min_y -= kWorldPaddingM;
+    e.max_x += kWorldPaddingM, e.max_y += kWorldPaddingM;
+    return e;
+  }
+
+  /// Panels side by side, or stacked when that makes the page closer to square.
+  void layout() {
+    const Extent e = world_extent();
+    const double plan_w = std::max((e.max_x - e.min_x) * kPxPerMetre, kMinPlanWidth);
+    const double plan_h = (e.max_y - e.min_y) * kPxPerMetre;
+    const double panel_w = plan_w + 2.0 * kPanelPadding;
+    const double panel_h = kPanelTitleHeight + plan_h + kScaleBarHeight + 2.0 * kPanelPadding;
+    const auto n = static_cast<double>(std::max<std::size_t>(scene_.levels.size(), 1));
+    auto page = [&](bool stacked) {
+      const double w = (stacked ? panel_w : n * panel_w + (n - 1.0) * kPanelGap) + kPanelGap + kLegendWidth;
+      const double h = kTitleHeight + std::max(stacked ? n * panel_h + (n - 1.0) * kPanelGap : panel_h, legend_height());
+      return std::make_pair(w + 2.0 * kPageMargin, h + 2.0 * kPageMargin);
+    };
+    const auto [wide_w, wide_h] = page(false);
+    const auto [tall_w, tall_h] = page(true);
+    const bool stacked = std::max(tall_w / tall_h, tall_h / tall_w) < std::max(wide_w / wide_h, wide_h / wide_w);
+    std::tie(page_w_, page_h_) = stacked ? std::make_pair(tall_w, tall_h) : std::make_pair(wide_w, wide_h);
+
+    // Lowest level first (left or top).
+    std::vector<int> order(scene_.levels.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return scene_.levels[a].elevation < scene_.levels[b].elevation; });
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      Panel p;
+      p.level = order[k];
+      p.width = panel_w;
+      p.height = panel_h;
+      p.x = kPageMargin + (stacked ? 0.0 : static_cast<double>(k) * (panel_w + kPanelGap));
+      p.y = kPageMargin + kTitleHeight + (stacked ? static_cast<double>(k) * (panel_h + kPanelGap) : 0.0);
+      p.frame.min_x = e.min_x;
+      p.frame.max_y = e.max_y;
+      p.frame.left = kPanelPadding;  // panel-local pixels (the panel group is translated)
+      p.frame.top = kPanelPadding + kPanelTitleHeight;
+      panels_.push_back(p);
+    }
+    legend_x_ = kPageMargin + (stacked ? panel_w : n * panel_w + (n - 1.0) * kPanelGap) + kPanelGap;
+    plan_h_ = plan_h;
+  }
+
+  double legend_height() const { return (legend_rows() + 1.5) * kLegendRow; }
+  int legend_rows() const { return 14 + (voxels_.empty() ? 0 : 1); }
+
+  void open_document() {
+    out_ += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(page_w_) + "\" height=\"" + num(page_h_) +
+            "\" viewBox=\"0 0 " + num(page_w_) + " " + num(page_h_) + "\">\n";
+    out_ += "<title>" + xml_escape(scene_.name) + "</title>\n";
+    write_defs();
+    out_ += "<rect class=\"background\" x=\"0\" y=\"0\" width=\"" + num(page_w_) + "\" height=\"" + num(page_h_) +
+            "\" fill=\"" + kBackground + "\"/>\n";
+    out_ += text(kPageMargin, kPageMargin + 22.0, "scene-title", scene_.name);
+    const double lap_s = path_.empty() ? 0.0 : path_.back().t;
+    const double lap_m = path_.empty() ? 0.0 : path_.back().s;
+    out_ += text(kPageMargin, kPageMargin + 42.0, "subtitle",
+                 std::to_string(scene_.levels.size()) + (scene_.levels.size() == 1 ? " level" : " levels") +
+                     "; first lap of the path: " + num(lap_m) + " m in " + num(lap_s) + " s; " +
+                     num(kPxPerMetre) + " px per metre, y up");
+  }
+
+  void write_defs() {
+    out_ += "<style>\n";
+    out_ += std::string("text { font-family: ") + kFont + "; fill: " + kInk + "; }\n";
+    out_ += ".scene-title { font-size: 20px; font-weight: bold; }\n";
+    out_ += std::string(".subtitle { font-size: 12px; fill: ") + kMutedInk + "; }\n";
+    out_ += ".panel-title { font-size: 14px; font-weight: bold; }\n";
+    out_ += std::string(".panel-border { fill: none; stroke: ") + kPanelBorder + "; stroke-width: 1; }\n";
+    out_ += std::string(".slab { fill: ") + kSlabFill + "; stroke: " + kSlabStroke + "; stroke-width: 1; }\n";
+    out_ += std::string(".void { fill: url(#void-hatch); stroke: ") + kVoidHatch + "; stroke-width: 1; }\n";
+    out_ += ".room { stroke-width: 1.5; fill-opacity: 0.22; stroke-opacity: 0.85; }\n";
+    out_ += std::string(".ramp { stroke: ") + kRampArrow + "; stroke-width: 1; }\n";
+    out_ += std::string(".ramp-arrow { fill: none; stroke: ") + kRampArrow +
+            "; stroke-width: 2; stroke-linecap: round; stroke-linejoin: round; }\n";
+    out_ += std::string(".voxels { fill: ") + kVoxelFill + "; stroke: none; }\n";
+    out_ += std::string(".box { fill: ") + kBoxFill + "; fill-opacity: 0.85; stroke: " + kBoxStroke +
+            "; stroke-width: 1; }\n";
+    out_ += std::string(".wall.full { fill: ") + kWallFill + "; stroke: " + kWallFill + "; stroke-width: 0.5; }\n";
+    out_ += std::string(".wall.header { fill: none; stroke: ") + kWallFill +
+            "; stroke-width: 0.8; stroke-dasharray: 3 2; }\n";
+    out_ += std::string(".wall.sill { fill: ") + kWindowSillFill + "; stroke: " + kWindowColour +
+            "; stroke-width: 0.8; }\n";
+    out_ += std::string(".door { fill: none; stroke: ") + kDoorColour + "; stroke-width: 1.2; }\n";
+    out_ += std::string(".window { stroke: ") + kWindowColour + "; stroke-width: 2; }\n";
+    out_ += std::string(".railing.solid { stroke: ") + kRailingColour + "; stroke-linecap: butt; }\n";
+    out_ += std::string(".railing.bars line { stroke: ") + kRailingColour + "; }\n";
+    out_ += std::string(".path-casing { fill: none; stroke: ") + kPathCasing +
+            "; stroke-width: 6; stroke-linejoin: round; stroke-linecap: round; }\n";
+    out_ += ".path { fill: none; stroke-width: 3; stroke-linejoin: round; stroke-linecap: round; }\n";
+    out_ += std::string(".arrow { stroke: ") + kPathCasing + "; stroke-width: 0.8; }\n";
+    out_ += std::string(".start { fill: ") + kPathCasing + "; stroke-width: 2.5; }\n";
+    out_ += std::string(".end { fill: ") + kPathCasing + "; stroke-width: 2.5; }\n";
+    out_ += std::string(".label { stroke: ") + kHalo +
+            "; stroke-width: 3px; stroke-linejoin: round; paint-order: stroke; text-anchor: middle; }\n";
+    out_ += ".room-name { font-size: 13px; font-weight: bold; }\n";
+    out_ += ".void-name { font-size: 12px; font-style: italic; }\n";
+    out_ += ".box-name { font-size: 9px; }\n";
+    out_ += std::string(".ramp-name { font-size: 11px; fill: ") + kRampArrow + "; }\n";
+    out_ += ".scale-text { font-size: 10px; }\n";
+    out_ += ".legend-title { font-size: 13px; font-weight: bold; }\n";
+    out_ += ".legend-text { font-size: 11px; }\n";
+    out_ += "</style>\n<defs>\n";
+    out_ += std::string("<pattern id=\"void-hatch\" patternUnits=\"userSpaceOnUse\" width=\"8\" height=\"8\" "
+                        "patternTransform=\"rotate(45)\"><rect width=\"8\" height=\"8\" fill=\"") +
+            kVoidFill + "\"/><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"8\" stroke=\"" + kVoidHatch +
+            "\" stroke-width=\"3\"/></pattern>\n";
+    out_ += "<linearGradient id=\"path-ramp\">";
+    for (const ColourStop& c : kPathRamp) {
+      out_ += "<stop offset=\"" + num(c.at) + "\" stop-color=\"" + hex_colour(c.r, c.g, c.b) + "\"/>";
+    }
+    out_ += "</linearGradient>\n";
+    out_ += std::string("<linearGradient id=\"ramp-legend\"><stop offset=\"0.00\" stop-color=\"") + kRampLow +
+            "\"/><stop offset=\"1.00\" stop-color=\"" + kRampHigh + "\"/></linearGradient>\n";
+    out_ += "</defs>\n";
+  }
+
+  // --- one panel -------------------------------------------------------------------------
+
+  void draw_panel(const Panel& p) {
+    const sim::Level& level = scene_.levels[p.level];
+    labels_.clear();
+    out_ += "<g class=\"panel\" transform=\"translate(" + num(p.x) + "," + num(p.y) + ")\">\n";
+    out_ += "<rect class=\"panel-border\" x=\"0\" y=\"0\" width=\"" + num(p.width) + "\" height=\"" +
+            num(p.height) + "\"/>\n";
+    out_ += text(kPanelPadding, kPanelPadding + 14.0, "panel-title",
+                 level.name + " \xE2\x80\x94 elevation " + num(level.elevation) + " m");
+    const Frame& f = p.frame;
+    draw_slab(f, level);
+    draw_rooms(f, p.level);
+    draw_ramps(f, p.level);
+    draw_voxels(f, p.level);
+    draw_boxes(f, p.level);
+    draw_walls(f, p.level);
+    draw_railings(f, p.level);
+    draw_path(f, p.level);
+    draw_labels(f);
+    draw_scale_bar(kPanelPadding, kPanelPadding + kPanelTitleHeight + plan_h_ + 14.0);
+    out_ += "</g>\n";
+  }
+
+  void draw_slab(const Frame& f, const sim::Level& level) {
+    out_ += "<g class=\"layer-slab\">\n";
+    out_ += "<polygon class=\"slab\" points=\"" + points_attr(f, level.slab) + "\"/>\n";
+    for (const Polygon2& v : level.voids) {
+      out_ += "<polygon class=\"void\" points=\"" + points_attr(f, v) + "\"/>\n";
+      labels_.push_back({label_point(v), "void", "void-name"});
+    }
+    out_ += "</g>\n";
+  }
+
+  void draw_rooms(const Frame& f, int level) {
+    out_ += "<g class=\"layer-rooms\">\n";
+    for (std::size_t i = 0; i < scene_.rooms.size(); ++i) {
+      const sim::Room& r = scene_.rooms[i];
+      if (r.level != level) continue;
+      const std::string colour = room_colour(i);
+      out_ += "<polygon class=\"room\" fill=\"" + colour + "\" stroke=\"" + colour + "\" points=\"" +
+              points_attr(f, r.polygon) + "\"/>\n";
+      labels_.push_back({label_point(r.polygon), r.name, "room-name"});
+    }
+    out_ += "</g>\n";
+  }
+
+  /// Ramps touching this level: a gradient rising along the ascent, an arrow pointing uphill
+  /// and the level at the other end.
+  void draw_ramps(const Frame& f, int level) {
+    out_ += "<g class=\"layer-ramps\">\n";
+    for (std::size_t i = 0; i < scene_.ramps.size(); ++i) {
+      const sim::Ramp& r = scene_.ramps[i];
+      if (r.from_level != level && r.to_level != level) continue;
+      const Vec2 up = ramp_uphill(scene_, r);
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (const Vec2& q : r.polygon) lo = std::min(lo, q.dot(up)), hi = std::max(hi, q.dot(up));
+      const Vec2 c = label_point(r.polygon);
+      const Vec2 across = c - c.dot(up) * up;  // the centre line's offset from the origin
+      const Vec2 low = across + lo * up, high = across + hi * up;
+      const std::string id = "ramp-" + std::to_string(i) + "-on-" + std::to_string(level);
+      out_ += "<linearGradient id=\"" + id + "\" gradientUnits=\"userSpaceOnUse\" x1=\"" + num(f.px(low).x()) +
+              "\" y1=\"" + num(f.px(low).y()) + "\" x2=\"" + num(f.px(high).x()) + "\" y2=\"" +
+              num(f.px(high).y()) + "\"><stop offset=\"0.00\" stop-color=\"" + kRampLow +
+              "\"/><stop offset=\"1.00\" stop-color=\"" + kRampHigh + "\"/></linearGradient>\n";
+      out_ += "<polygon class=\"ramp\" fill=\"url(#" + id + ")\" points=\"" + points_attr(f, r.polygon) + "\"/>\n";
+      const double half = 0.5 * kRampArrowFraction * (hi - lo);
+      out_ += "<path class=\"ramp-arrow\" d=\"" + arrow_path(f.px(c - half * up), f.px(c + half * up)) + "\"/>\n";
+      const bool here_low = scene_.levels[level].elevation <=
+                            scene_.levels[r.from_level == level ? r.to_level : r.from_level].elevation;
+      const int other = r.from_level == level ? r.to_level : r.from_level;
+      labels_.push_back({c, "ramp to " + scene_.levels[other].name + (here_low ? " (up)" : " (down)"), "ramp-name"});
+    }
+    out_ += "</g>\n";
+  }
+
+  /// A line from a to b (pixels) with an open arrowhead at b.
+  static std::string arrow_path(const Vec2& a, const Vec2& b) {
+    const Vec2 d = (b - a).norm() > kEps ? Vec2((b - a).normalized()) : Vec2(1.0, 0.0);
+    const Vec2 n = left_normal(d);
+    const Vec2 h1 = b - kRampArrowHead * d + 0.6 * kRampArrowHead * n;
+    const Vec2 h2 = b - kRampArrowHead * d - 0.6 * kRampArrowHead * n;
+    return "M" + xy(a) + " L" + xy(b) + " M" + xy(h1) + " L" + xy(b) + " L" + xy(h2);
+  }
+
+  /// Occupied voxel columns as merged runs along x, one path per map.
+  void draw_voxels(const Frame& f, int level) {
+    out_ += "<g class=\"layer-voxels\">\n";
+    for (const VoxelFootprint& v : voxels_) {
+      if (v.level != level || v.cells.empty()) continue;
+      std::string d;
+      for (auto it = v.cells.begin(); it != v.cells.end();) {
+        const long row = it->first, first = it->second;
+        long last = first;
+        for (++it; it != v.cells.end() && it->first == row && it->second == last + 1; ++it) ++last;
+        const Vec2 a = f.px(Vec2((first - 0.5) * v.cell, (row + 0.5) * v.cell));
+        const Vec2 b = f.px(Vec2((last + 0.5) * v.cell, (row - 0.5) * v.cell));
+        d += "M" + xy(a) + "h" + num(b.x() - a.x()) + "v" + num(b.y() - a.y()) + "h" + num(a.x() - b.x()) + "z";
+      }
+      out_ += "<path class=\"voxels\" d=\"" + d + "\"/>\n";
+    }
+    out_ += "</g>\n";
+  }
+
+  void draw_boxes(const Frame& f, int level) {
+    out_ += "<g class=\"layer-boxes\">\n";
+    for (const sim::Box& b : scene_.boxes) {
+      if (b.level != level) continue;
+      out_ += "<polygon class=\"box\" points=\"" + points_attr(f, box_corners(b)) + "\"/>\n";
+      if (!b.label.empty()) labels_.push_back({0.5 * (b.min.head<2>() + b.max.head<2>()), b.label, "box-name"});
+    }
+    out_ += "</g>\n";
+  }
+
+  /// Each solid piece of a wall as a rectangle: full height dark, above an opening as a
+  /// dashed outline, below a window light blue; then a swing arc in each door and a blue
+  /// line along each window.
+  void draw_walls(const Frame& f, int level) {
+    out_ += "<g class=\"layer-walls\">\n";
+    for (const char* kind : {"header", "sill", "full"}) {
+      for (const sim::Wall& w : scene_.walls) {
+        if (w.level != level) continue;
+        for (const sim::WallPiece& piece : sim::wall_pieces(w)) {
+          if (piece_kind(w, piece) != kind) continue;
+          out_ += std::string("<polygon class=\"wall ") + kind + "\" points=\"" +
+                  points_attr(f, strip(w.from, w.to, piece.s0, piece.s1, w.thickness)) + "\"/>\n";
+        }
+      }
+    }
+    for (const sim::Wall& w : scene_.walls) {
+      if (w.level != level) continue;
+      for (const sim::Opening& o : w.openings) out_ += o.sill > 0.0 ? window(f, w, o) : door(f, w, o);
+    }
+    out_ += "</g>\n";
+  }
+
+  static std::string piece_kind(const sim::Wall& w, const sim::WallPiece& p) {
+    if (p.z0 > kEps) return "header";
+    return p.z1 < w.height - kEps ? "sill" : "full";
+  }
+
+  /// The door leaf, open at right angles to the wall's left, and the arc its edge sweeps.
+  static std::string door(const Frame& f, const sim::Wall& w, const sim::Opening& o) {
+    const Vec2 d = (w.to - w.from).normalized();
+    const Vec2 hinge = w.from + (o.at - 0.5 * o.width) * d;
+    const Vec2 open = f.px(hinge + o.width * left_normal(d));
+    const Vec2 jamb = f.px(w.from + (o.at + 0.5 * o.width) * d);
+    const Vec2 h = f.px(hinge);
+    const Vec2 a = open - h, b = jamb - h;
+    const int sweep = a.x() * b.y() - a.y() * b.x() > 0.0 ? 1 : 0;  // turning direction on the page
+    const std::string r = num(o.width * kPxPerMetre);
+    return "<path class=\"door\" d=\"M" + xy(h) + " L" + xy(open) + " A" + r + "," + r + " 0 0," +
+           std::to_string(sweep) + " " + xy(jamb) + "\"/>\n";
+  }
+
+  static std::string window(const Frame& f, const sim::Wall& w, const sim::Opening& o) {
+    const Vec2 d = (w.to - w.from).normalized();
+    const Vec2 a = f.px(w.from + (o.at - 0.5 * o.width) * d), b = f.px(w.from + (o.at + 0.5 * o.width) * d);
+    return "<line class=\"window\" x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) +
+           "\" y2=\"" + num(b.y()) + "\"/>\n";
+  }
+
+  /// Solid railings as a line of the panel's thickness; bars as a dotted line, one dot per
+  /// post, under a thin top rail.
+  void draw_railings(const Frame& f, int level) {
+    using G = sim::RailingGeometry;
+    out_ += "<g class=\"layer-railings\">\n";
+    for (const sim::Railing& r : scene_.railings) {
+      if (r.level != level) continue;
+      const Vec2 a = f.px(r.from), b = f.px(r.to);
+      const std::string ends = "x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) +
+                               "\" y2=\"" + num(b.y()) + "\"";
+      if (r.style == sim::RailingStyle::kSolid) {
+        const double width = std::max(G::kSolidThickness * kPxPerMetre, kMinRailingWidth);
+        out_ += "<line class=\"railing solid\" " + ends + " stroke-width=\"" + num(width) + "\"/>\n";
+      } else {
+        const double post = G::kPostWidth * kPxPerMetre;
+        out_ += "<g class=\"railing bars\"><line " + ends + " stroke-width=\"1\"/><line " + ends +
+                " stroke-width=\"" + num(kBarsRailingWidth) + "\" stroke-dasharray=\"" + num(post) + " " +
+                num(G::kPostSpacing * kPxPerMetre - post) + "\"/></g>\n";
+      }
+    }
+    out_ += "</g>\n";
+  }
+
+  /// The part of the first lap on this level: a white casing, then one polyline per second
+  /// coloured by time, arrowheads every kArrowSpacingM metres, and start and end markers.
+  void draw_path(const Frame& f, int level) {
+    out_ += "<g class=\"layer-path\">\n";
+    if (path_.empty()) {
+      out_ += "</g>\n";
+      return;
+    }
+    const double duration = std::max(path_.back().t, kEps);
+    // Runs of consecutive samples on this level; a run keeps the sample where it leaves.
+    std::vector<std::pair<std::size_t, std::size_t>> runs;  // [first, last]
+    for (std::size_t i = 0; i < path_.size(); ++i) {
+      if (path_[i].level != level) continue;
+      if (!runs.empty() && runs.back().second + 1 == i) {
+        runs.back().second = i;
+      } else {
+        runs.emplace_back(i, i);
+      }
+    }
+    for (const auto& [first, last] : runs) {
+      out_ += "<polyline class=\"path-casing\" points=\"" + path_points(f, first, last) + "\"/>\n";
+    }
+    auto chunk_of = [&](std::size_t i) { return static_cast<long>(std::floor(path_[i].t / kPathChunkS + kEps)); };
+    for (const auto& [first, last] : runs) {
+      if (first == last) {
+        out_ += "<polyline class=\"path\" stroke=\"" + path_colour(path_[first].t / duration) + "\" points=\"" +
+                path_points(f, first, last) + "\"/>\n";
+        continue;
+      }
+      // One polyline per chunk, ending on the next chunk's first sample so they join.
+      for (std::size_t i = first; i < last;) {
+        std::size_t j = i + 1;
+        while (j < last && chunk_of(j) == chunk_of(i)) ++j;
+        const double mid = 0.5 * (path_[i].t + path_[j].t);
+        out_ += "<polyline class=\"path\" stroke=\"" + path_colour(mid / duration) + "\" points=\"" +
+                path_points(f, i, j) + "\"/>\n";
+        i = j;
+      }
+    }
+    draw_arrows(f, level, duration);
+    const PathSample& s0 = path_.front();
+    const PathSample& s1 = path_.back();
+    if (s1.level == level && (s1.xy - s0.xy).norm() >= kEndMinDistanceM) {
+      const Vec2 c = f.px(s1.xy);
+      out_ += "<rect class=\"end\" stroke=\"" + path_colour(1.0) + "\" x=\"" + num(c.x() - kEndHalfSize) +
+              "\" y=\"" + num(c.y() - kEndHalfSize) + "\" width=\"" + num(2.0 * kEndHalfSize) + "\" height=\"" +
+              num(2.0 * kEndHalfSize) + "\"/>\n";
+    }
+    if (s0.level == level) {
+      const Vec2 c = f.px(s0.xy);
+      out_ += "<circle class=\"start\" stroke=\"" + path_colour(0.0) + "\" cx=\"" + num(c.x()) + "\" cy=\"" +
+              num(c.y()) + "\" r=\"" + num(kStartRadius) + "\"/>\n";
+    }
+    out_ += "</g>\n";
+  }
+
+  std::string path_points(const Frame& f, std::size_t first, std::size_t last) const {
+    std::string s;
+    for (std::size_t i = first; i <= last; ++i) {
+      if (i > first && (path_[i].xy - path_[i - 1].xy).norm() < kEps) continue;  // turning in place
+      s += (s.empty() ? "" : " ") + xy(f.px(path_[i].xy));
+    }
+    if (s.find(' ') == std::string::npos) s += " " + s;  // a single point still draws a dot
+    return s;
+  }
+
+  /// Arrowheads at kArrowSpacingM / 2, 3/2 kArrowSpacingM, ... metres from the start.
+  void draw_arrows(const Frame& f, int level, double duration) {
+    std::size_t i = 0;
+    for (double at = 0.5 * kArrowSpacingM; at < path_.back().s; at += kArrowSpacingM) {
+      while (i + 1 < path_.size() && path_[i].s < at) ++i;
+      const PathSample& p = path_[i];
+      if (p.level != level) continue;
+      const Vec2 c = f.px(p.xy);
+      const Vec2 d(std::cos(p.yaw), -std::sin(p.yaw));  // page y points down
+      const Vec2 n = left_normal(d);
+      const Polygon2 tri = {c + 0.5 * kArrowLength * d, c - 0.5 * kArrowLength * d + kArrowHalfWidth * n,
+                            c - 0.5 * kArrowLength * d - kArrowHalfWidth * n};
+      std::string pts;
+      for (const Vec2& q : tri) pts += (pts.empty() ? "" : " ") + xy(q);
+      out_ += "<polygon class=\"arrow\" fill=\"" + path_colour(p.t / duration) + "\" points=\"" + pts + "\"/>\n";
+    }
+  }
+
+  void draw_labels(const Frame& f) {
+    out_ += "<g class=\"layer-labels\">\n";
+    for (const Label& l : labels_) {
+      const Vec2 p = f.px(l.at);
+      out_ += "<text class=\"label " + l.cls + "\" x=\"" + num(p.x()) + "\" y=\"" + num(p.y() + 4.0) + "\">" +
+              xml_escape(l.text) + "</text>\n";
+    }
+    out_ += "</g>\n";
+  }
+
+  /// kScaleBarMetres long, alternating dark and light metres, labelled 0, 1 and the length.
+  void draw_scale_bar(double x, double y) {
+    out_ += "<g class=\"scale-bar\">\n";
+    const int metres = static_cast<int>(kScaleBarMetres);
+    for (int m = 0; m < metres; ++m) {
+      out_ += "<rect x=\"" + num(x + m * kPxPerMetre) + "\" y=\"" + num(y) + "\" width=\"" + num(kPxPerMetre) +
+              "\" height=\"" + num(kScaleBarThickness) + "\" fill=\"" + (m % 2 == 0 ? kInk : kBackground) +
+              "\" stroke=\"" + kInk + "\" stroke-width=\"0.8\"/>\n";
+    }
+    const double ty = y + kScaleBarThickness + 12.0;
+    out_ += text(x - 3.0, ty, "scale-text", "0");
+    out_ += text(x + kPxPerMetre - 3.0, ty, "scale-text", "1");
+    out_ += text(x + metres * kPxPerMetre - 3.0, ty, "scale-text", std::to_string(metres) + " m");
+    out_ += "</g>\n";
+  }
+
+  // --- legend ----------------------------------------------------------------------------
+
+  void draw_legend() {
+    const double x = legend_x_;
+    double y = kPageMargin + kTitleHeight;
+    out_ += "<g class=\"legend\">\n";
+    out_ += "<rect class=\"panel-border\" x=\"" + num(x) + "\" y=\"" + num(y) + "\" width=\"" + num(kLegendWidth) +
+            "\" height=\"" + num(legend_height()) + "\"/>\n";
+    out_ += text(x + 10.0, y + 18.0, "legend-title", "Legend");
+    y += 1.5 * kLegendRow;
+    const double sx = x + 10.0, sw = kLegendSwatch;
+    auto row = [&](const std::string& swatch, const std::string& what) {
+      out_ += swatch;
+      out_ += text(sx + sw + 10.0, y + 4.0, "legend-text", what);
+      y += kLegendRow;
+    };
+    auto rect = [&](const std::string& attrs, double h) {
+      return "<rect " + attrs + " x=\"" + num(sx) + "\" y=\"" + num(y - 0.5 * h) + "\" width=\"" + num(sw) +
+             "\" height=\"" + num(h) + "\"/>\n";
+    };
+    auto line = [&](const std::string& attrs) {
+      return "<line " + attrs + " x1=\"" + num(sx) + "\" y1=\"" + num(y) + "\" x2=\"" + num(sx + sw) +
+             "\" y2=\"" + num(y) + "\"/>\n";
+    };
+    row(rect("class=\"slab\"", 12.0), "floor slab");
+    row(rect("class=\"void\"", 12.0), "void (open to the level below)");
+    row(rect("class=\"wall full\"", 6.0), "wall");
+    row(rect("class=\"wall header\"", 6.0), "wall above an opening");
+    {
+      const Vec2 h(sx + 4.0, y + 5.0), open(sx + 4.0, y - 9.0), jamb(sx + 18.0, y + 5.0);
+      row("<path class=\"door\" d=\"M" + xy(h) + " L" + xy(open) + " A14.00,14.00 0 0,1 " + xy(jamb) + "\"/>\n",
+          "door (leaf and swing)");
+    }
+    row(rect("class=\"wall sill\"", 6.0) + line("class=\"window\""), "window");
+    row(line("class=\"railing solid\" stroke-width=\"" + num(kMinRailingWidth) + "\""), "railing, solid");
+    {
+      const double post = sim::RailingGeometry::kPostWidth * kPxPerMetre;
+      row("<g class=\"railing bars\">" + line("stroke-width=\"1\"") +
+              line("stroke-width=\"" + num(kBarsRailingWidth) + "\" stroke-dasharray=\"" + num(post) + " " +
+                   num(sim::RailingGeometry::kPostSpacing * kPxPerMetre - post) + "\"") +
+              "</g>\n",
+          "railing, bars");
+    }
+    row(rect("class=\"box\"", 12.0), "box (with its label)");
+    row(rect("class=\"ramp\" fill=\"url(#ramp-legend)\"", 12.0) +
+            "<path class=\"ramp-arrow\" d=\"" + arrow_path({sx + 4.0, y}, {sx + sw - 4.0, y}) + "\"/>\n",
+        "ramp, arrow uphill");
+    if (!voxels_.empty()) row(rect("class=\"voxels\"", 12.0), "voxel map (walls, objects)");
+    row(rect("class=\"room\" fill=\"" + room_colour(0) + "\" stroke=\"" + room_colour(0) + "\"", 12.0),
+        "ground-truth room");
+    row(rect("fill=\"url(#path-ramp)\"", 5.0), "first lap, start to end");
+    {
+      const Vec2 c(sx + 0.5 * sw, y);
+      const Polygon2 tri = {c + Vec2(0.5 * kArrowLength, 0.0), c + Vec2(-0.5 * kArrowLength, kArrowHalfWidth),
+                            c + Vec2(-0.5 * kArrowLength, -kArrowHalfWidth)};
+      std::string pts;
+      for (const Vec2& q : tri) pts += (pts.empty() ? "" : " ") + xy(q);
+      row("<polygon class=\"arrow\" fill=\"" + path_colour(0.5) + "\" points=\"" + pts + "\"/>\n",
+          "direction, every " + num(kArrowSpacingM) + " m");
+    }
+    row("<circle class=\"start\" stroke=\"" + path_colour(0.0) + "\" cx=\"" + num(sx + 0.5 * sw) + "\" cy=\"" +
+            num(y) + "\" r=\"" + num(kStartRadius) + "\"/>\n",
+        "start (square: end)");
+    out_ += "</g>\n";
+  }
+
+  static std::string text(double x, double y, const std::string& cls, const std::string& what) {
+    return "<text class=\"" + cls + "\" x=\"" + num(x) + "\" y=\"" + num(y) + "\">" + xml_escape(what) + "</text>\n";
+  }
+
+  const Scene& scene_;
+  std::vector<PathSample> path_;
+  std::vector<VoxelFootprint> voxels_;
+  std::vector<Panel> panels_;
+  std::vector<Label> labels_;
+  double page_w_ = 0.0, page_h_ = 0.0, legend_x_ = 0.0, plan_h_ = 0.0;
+  std::string out_;
+};
+
+}  // namespace
+
+std::string scene_svg(const sim::Scene& scene, const sim::Trajectory& trajectory) {
+  return SceneDrawer(scene, trajectory).draw();
 }
 
 }  // namespace tsgraphs::report
