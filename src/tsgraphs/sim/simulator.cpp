@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/sim/odometry_drift.hpp"
 
@@ -62,24 +64,33 @@ PointCloud Simulator::scan_at(const Pose3& sensor_pose, std::uint64_t noise_inde
   const SensorSpec& s = scene_.sensor;
   std::vector<RayHit> hits;
   caster_->cast_scan(sensor_pose, beams_, static_cast<float>(s.min_range), static_cast<float>(s.max_range), &hits);
-  PointCloud cloud;
-  cloud.reserve(hits.size(), true, true);
   const std::uint64_t scan_key = splitmix(seed_ ^ splitmix(noise_index + 0x5CA11ULL));
-  for (std::size_t i = 0; i < hits.size(); ++i) {
-    const RayHit& h = hits[i];
-    if (h.range < 0.0f) continue;
-    const std::uint64_t r1 = splitmix(scan_key + 2 * i);
-    const std::uint64_t r2 = splitmix(scan_key + 2 * i + 1);
-    if (s.dropout > 0.0 && to_unit(splitmix(r1 ^ r2)) < s.dropout) continue;
-    // Box-Muller from two independent uniforms.
-    const double u1 = std::max(to_unit(r1), 1e-300);
-    const double gauss = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * to_unit(r2));
-    const double range = h.range + s.range_noise_std * gauss;
-    if (range < s.min_range || range > s.max_range) continue;
-    cloud.points.push_back(beams_.dirs[i] * static_cast<float>(range));
-    cloud.intensity.push_back(Reflectivity::of(h.label) * h.cos_incidence);
-    cloud.labels.push_back(h.label);
-  }
+  // Noise row by row in parallel; rows are joined in order, so threads change nothing.
+  std::vector<PointCloud> rows(static_cast<std::size_t>(beams_.rows));
+  tbb::parallel_for(0, beams_.rows, [&](int r) {
+    PointCloud& row = rows[r];
+    row.reserve(beams_.cols, true, true);
+    for (std::size_t i = static_cast<std::size_t>(r) * beams_.cols, end = i + beams_.cols; i < end; ++i) {
+      const RayHit& h = hits[i];
+      if (h.range < 0.0f) continue;
+      const std::uint64_t r1 = splitmix(scan_key + 2 * i);
+      const std::uint64_t r2 = splitmix(scan_key + 2 * i + 1);
+      if (s.dropout > 0.0 && to_unit(splitmix(r1 ^ r2)) < s.dropout) continue;
+      // Box-Muller from two independent uniforms.
+      const double u1 = std::max(to_unit(r1), 1e-300);
+      const double gauss = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * to_unit(r2));
+      const double range = h.range + s.range_noise_std * gauss;
+      if (range < s.min_range || range > s.max_range) continue;
+      row.points.push_back(beams_.dirs[i] * static_cast<float>(range));
+      row.intensity.push_back(Reflectivity::of(h.label) * h.cos_incidence);
+      row.labels.push_back(h.label);
+    }
+  });
+  std::size_t total = 0;
+  for (const PointCloud& row : rows) total += row.size();
+  PointCloud cloud;
+  cloud.reserve(total, true, true);
+  for (const PointCloud& row : rows) cloud.append(row);
   return cloud;
 }
 
