@@ -1,5 +1,7 @@
 // The simulator end to end: labels and poses agree with the scene, determinism (seed,
 // threads), the sequence folder it writes, and the command line's exit codes.
+#include <unistd.h>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -60,7 +62,7 @@ std::string read_file(const fs::path& p) {
 }
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path p = fs::path(::testing::TempDir()) / ("tsgraphs_sim_" + name);
+  const fs::path p = fs::path(::testing::TempDir()) / ("tsgraphs_sim_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(p);
   return p;
 }
@@ -173,7 +175,7 @@ TEST(Simulator, WritesIdenticalSequencesForTheSameSeed) {
 namespace {
 
 int run(const std::string& args, std::string* err) {
-  const fs::path log = fs::path(::testing::TempDir()) / "tsgraphs_cli_stderr.txt";
+  const fs::path log = fs::path(::testing::TempDir()) / ("tsgraphs_cli_stderr_" + std::to_string(::getpid()) + ".txt");
   const int status = std::system((std::string(TSGRAPHS_BINARY) + " " + args + " 2> " + log.string() + " > /dev/null").c_str());
   *err = read_file(log);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -1,6 +1,8 @@
 // Voxel maps: PCD voxel centres become cubes with the right labels, yaw and offset.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -48,7 +50,9 @@ Scene scene_with_map(const fs::path& dir, const std::string& extra) {
 class VoxelMapTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) / "tsgraphs_voxel_map";
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::path(::testing::TempDir()) / ("tsgraphs_voxel_map_" + std::string(info->name()) + "_" +
+                                             std::to_string(::getpid()));
     fs::remove_all(dir_);
     write_map(dir_);
   }

@@ -1,7 +1,9 @@
 #include "tsgraphs/core/yaml_map.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <map>
 
 namespace tsgraphs {
 
@@ -16,7 +18,7 @@ YamlMap::YamlMap(YAML::Node node, std::string file, std::string path)
 
 YamlMap YamlMap::load_file(const std::string& file) {
   std::ifstream in(file);
-  if (!in) throw input_error(file, 0, "cannot open file");
+  if (!in || !std::filesystem::is_regular_file(file)) throw input_error(file, 0, "cannot open file");
   try {
     return YamlMap(YAML::Load(in), file, "");
   } catch (const YAML::ParserException& e) {
@@ -107,8 +109,14 @@ Polygon2 YamlMap::as_polygon(const YAML::Node& n, const std::string& what) const
 }
 
 void YamlMap::check_keys(std::initializer_list<const char*> allowed) const {
+  std::map<std::string, int> seen;  // key -> 1-based line of its first occurrence
   for (auto it = node_.begin(); it != node_.end(); ++it) {
     const std::string key = it->first.Scalar();
+    const int line = it->first.Mark().line + 1;
+    if (const auto [first, fresh] = seen.emplace(key, line); !fresh) {
+      throw input_error(file_, line, "duplicate key '" + key_path(key) + "' (first at line " +
+                                         std::to_string(first->second) + ")");
+    }
     bool known = false;
     for (const char* a : allowed) known = known || key == a;
     if (!known) {

@@ -7,6 +7,8 @@
 #include <pcl/point_types.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -79,12 +81,48 @@ void check_pcd_header(const std::string& path) {
     }
     point_bytes += size * count;
   }
+  if (data == "ascii") {
+    long long values_per_point = 0;
+    for (std::size_t i = 0; i < n_fields; ++i) values_per_point += keys.count("COUNT") ? std::stoll(keys["COUNT"][i]) : 1;
+    for (std::string row; std::getline(in, row);) {
+      ++line_no;
+      std::istringstream s(row);
+      long long k = 0;
+      for (std::string tok; s >> tok; ++k) {
+        char* end = nullptr;
+        std::strtod(tok.c_str(), &end);
+        if (end == tok.c_str() || *end != '\0') throw input_error(path, line_no, "not a number: '" + tok + "'");
+      }
+      if (k != 0 && k != values_per_point) {
+        throw input_error(path, line_no, "expected " + std::to_string(values_per_point) + " values");
+      }
+    }
+  }
   if (data == "binary") {
     const std::streamoff body = static_cast<std::streamoff>(in.tellg());
     const auto total = static_cast<long long>(std::filesystem::file_size(path));
     if (body < 0 || total - body < points * point_bytes) {
       throw input_error(path, 0, "PCD body is shorter than POINTS * point size (truncated file?)");
     }
+  }
+}
+
+// Value of field `f` of point `i` as a float, whatever the field's numeric type.
+float field_value(const pcl::PCLPointCloud2& blob, const pcl::PCLPointField& f, std::size_t i) {
+  const std::uint8_t* p = blob.data.data() + i * blob.point_step + f.offset;
+  auto get = [p](auto v) {
+    std::memcpy(&v, p, sizeof v);
+    return static_cast<float>(v);
+  };
+  switch (f.datatype) {
+    case pcl::PCLPointField::INT8: return get(std::int8_t{});
+    case pcl::PCLPointField::UINT8: return get(std::uint8_t{});
+    case pcl::PCLPointField::INT16: return get(std::int16_t{});
+    case pcl::PCLPointField::UINT16: return get(std::uint16_t{});
+    case pcl::PCLPointField::INT32: return get(std::int32_t{});
+    case pcl::PCLPointField::UINT32: return get(std::uint32_t{});
+    case pcl::PCLPointField::FLOAT64: return get(double{});
+    default: return get(float{});
   }
 }
 
@@ -97,28 +135,28 @@ PointCloud read_pcd(const std::string& path) {
   pcl::PCLPointCloud2 blob;
   pcl::PCDReader reader;
   if (reader.read(path, blob) < 0) throw input_error(path, 0, "not a readable PCD file");
-  bool has_x = false, has_intensity = false;
+  const pcl::PCLPointField* fx = nullptr;
+  const pcl::PCLPointField* fy = nullptr;
+  const pcl::PCLPointField* fz = nullptr;
+  const pcl::PCLPointField* fi = nullptr;
   for (const auto& f : blob.fields) {
-    has_x = has_x || f.name == "x";
-    has_intensity = has_intensity || f.name == "intensity";
+    if (f.name == "x") fx = &f;
+    if (f.name == "y") fy = &f;
+    if (f.name == "z") fz = &f;
+    if (f.name == "intensity") fi = &f;
   }
-  if (!has_x) throw input_error(path, 0, "PCD has no x y z fields");
+  if (!fx || !fy || !fz) throw input_error(path, 0, "PCD has no x y z fields");
+  const std::size_t n = static_cast<std::size_t>(blob.width) * blob.height;
+  if (blob.data.size() < n * blob.point_step) throw input_error(path, 0, "PCD body is shorter than its header says");
   PointCloud cloud;
-  if (has_intensity) {
-    pcl::PointCloud<pcl::PointXYZI> pts;
-    pcl::fromPCLPointCloud2(blob, pts);
-    cloud.reserve(pts.size(), true, false);
-    for (const auto& p : pts) {
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
-      cloud.points.emplace_back(p.x, p.y, p.z);
-      cloud.intensity.push_back(std::isfinite(p.intensity) ? p.intensity : 0.0f);
-    }
-  } else {
-    pcl::PointCloud<pcl::PointXYZ> pts;
-    pcl::fromPCLPointCloud2(blob, pts);
-    cloud.reserve(pts.size(), false, false);
-    for (const auto& p : pts) {
-      if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) cloud.points.emplace_back(p.x, p.y, p.z);
+  cloud.reserve(n, fi != nullptr, false);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3f p(field_value(blob, *fx, i), field_value(blob, *fy, i), field_value(blob, *fz, i));
+    if (!p.allFinite()) continue;
+    cloud.points.push_back(p);
+    if (fi) {
+      const float v = field_value(blob, *fi, i);
+      cloud.intensity.push_back(std::isfinite(v) ? v : 0.0f);
     }
   }
   return cloud;

@@ -15,7 +15,7 @@ std::string format_tum(const std::vector<StampedPose>& poses) {
   for (const StampedPose& p : poses) {
     const Eigen::Vector3d t = p.pose.translation();
     const Eigen::Quaterniond q(p.pose.linear());
-    std::snprintf(line, sizeof(line), "%.9f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", p.t, t.x(), t.y(), t.z(),
+    std::snprintf(line, sizeof(line), "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", p.t, t.x(), t.y(), t.z(),
                   q.x(), q.y(), q.z(), q.w());
     out += line;
   }
@@ -37,6 +37,8 @@ std::vector<StampedPose> read_tum(const std::string& path) {
       if (!(s >> x)) throw input_error(path, line_no, "expected 8 numbers: t x y z qx qy qz qw");
       if (!std::isfinite(x)) throw input_error(path, line_no, "non-finite value");
     }
+    std::string rest;
+    if (s >> rest) throw input_error(path, line_no, "expected 8 numbers: t x y z qx qy qz qw, found more: '" + rest + "'");
     Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
     if (std::abs(q.norm() - 1.0) > 1e-3) throw input_error(path, line_no, "quaternion is not unit length");
     StampedPose p;

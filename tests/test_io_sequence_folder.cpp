@@ -1,0 +1,468 @@
+// The sequence folder: write / commit / read round trip, atomic replacement, and the reader's
+// checks of inconsistent folders.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/io/sequence_folder.hpp"
+
+using namespace tsgraphs;
+using namespace tsgraphs::io;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::uint32_t bits(float f) {
+  std::uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_file(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+
+std::set<std::string> names_in(const fs::path& dir) {
+  std::set<std::string> out;
+  for (const auto& e : fs::directory_iterator(dir)) out.insert(e.path().filename().string());
+  return out;
+}
+
+PointCloud random_cloud(std::mt19937& rng, std::size_t n, bool intensity, bool labels) {
+  std::uniform_real_distribution<float> u(-50.0f, 50.0f);
+  std::uniform_int_distribution<std::uint32_t> label(0, 6);
+  PointCloud c;
+  for (std::size_t i = 0; i < n; ++i) {
+    c.points.emplace_back(u(rng), u(rng), u(rng));
+    if (intensity) c.intensity.push_back(u(rng) + 50.0f);
+    if (labels) c.labels.push_back(label(rng));
+  }
+  return c;
+}
+
+void expect_pose_near(const Pose3& a, const Pose3& b, double tol = 1e-8) {
+  EXPECT_LT((a.translation() - b.translation()).cwiseAbs().maxCoeff(), tol);
+  EXPECT_LT((a.linear() - b.linear()).cwiseAbs().maxCoeff(), tol);
+}
+
+const char* kSceneYaml = "name: test_scene\nseed: 3\n";
+
+class SequenceFolder : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    parent_ = fs::path(::testing::TempDir()) /
+              ("tsgraphs_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(::getpid()));
+    fs::remove_all(parent_);
+    fs::create_directories(parent_);
+    dir_ = parent_ / "seq";
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(parent_, ec);
+  }
+
+  // Three scans: the first two with intensity and labels, the third with neither.
+  void make_clouds() {
+    std::mt19937 rng(99);
+    clouds_ = {random_cloud(rng, 50, true, true), random_cloud(rng, 7, true, true), random_cloud(rng, 20, false, false)};
+    // Values that must survive bit for bit.
+    clouds_[0].points[0] = Eigen::Vector3f(-0.0f, 1e-38f, 3.4e38f);
+    clouds_[0].intensity[0] = 1.17549435e-38f / 4.0f;  // subnormal
+    clouds_[0].points[1] = Eigen::Vector3f(0.1f, -123.456f, 1.0f / 3.0f);
+  }
+
+  SequenceInfo make_info(std::size_t n = 3) {
+    SequenceInfo info;
+    for (std::size_t i = 0; i < n; ++i) {
+      info.times.push_back(1000.0 + 0.1 * static_cast<double>(i) + 0.000000123);
+      info.odometry.push_back(make_pose(Eigen::Vector3d(0.5 * i, -0.25 * i, 0.01 * i), 0.3 * i, 0.02));
+      info.groundtruth.push_back(make_pose(Eigen::Vector3d(0.51 * i, -0.2 * i, 0.0), 0.31 * i));
+    }
+    info.lap_starts = {info.times.front(), info.times.front() + 0.15};
+    info.has_rooms = true;
+    info.rooms.push_back({"corridor_south", "L3", {Vec2(0, 0), Vec2(30, 0), Vec2(30, 3), Vec2(0, 3)}, 0.0});
+    info.rooms.push_back({"office \"A\"", "L4", {Vec2(0.1, 3), Vec2(5.25, 3), Vec2(5.25, 8.125)}, 3.5});
+    info.scene_yaml = kSceneYaml;
+    return info;
+  }
+
+  void write_sequence(const fs::path& dir, std::size_t n = 3) {
+    if (clouds_.empty()) make_clouds();
+    SequenceWriter w(dir.string());
+    for (std::size_t i = 0; i < n; ++i) w.write_scan(i, clouds_[i % clouds_.size()]);
+    w.commit(make_info(n));
+  }
+
+  // The message of the InputError that f throws.
+  template <class F>
+  std::string input_error_of(F&& f) {
+    try {
+      f();
+    } catch (const InputError& e) {
+      return e.what();
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "not an InputError: " << e.what();
+      return "";
+    }
+    ADD_FAILURE() << "no error thrown";
+    return "";
+  }
+
+  fs::path parent_, dir_;
+  std::vector<PointCloud> clouds_;
+};
+
+}  // namespace
+
+TEST(SequenceFolderNames, ScanStem) {
+  EXPECT_EQ(scan_stem(0), "000000");
+  EXPECT_EQ(scan_stem(42), "000042");
+  EXPECT_EQ(scan_stem(999999), "999999");
+  EXPECT_EQ(scan_stem(1234567), "1234567");
+}
+
+TEST_F(SequenceFolder, RoundTrip) {
+  write_sequence(dir_);
+  const SequenceInfo expected = make_info();
+  const SequenceReader r(dir_.string());
+  ASSERT_EQ(r.size(), 3u);
+  EXPECT_EQ(r.dir(), dir_.string());
+  const SequenceInfo& info = r.info();
+
+  ASSERT_EQ(info.times.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(info.times[i], expected.times[i], 1e-9) << i;
+  ASSERT_EQ(info.odometry.size(), 3u);
+  ASSERT_EQ(info.groundtruth.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    expect_pose_near(info.odometry[i], expected.odometry[i]);
+    expect_pose_near(info.groundtruth[i], expected.groundtruth[i]);
+  }
+  ASSERT_EQ(info.lap_starts.size(), 2u);
+  EXPECT_NEAR(info.lap_starts[0], expected.lap_starts[0], 1e-9);
+  EXPECT_NEAR(info.lap_starts[1], expected.lap_starts[1], 1e-9);
+
+  EXPECT_TRUE(info.has_rooms);
+  ASSERT_EQ(info.rooms.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(info.rooms[i].name, expected.rooms[i].name);
+    EXPECT_EQ(info.rooms[i].level, expected.rooms[i].level);
+    EXPECT_EQ(info.rooms[i].elevation, expected.rooms[i].elevation);
+    ASSERT_EQ(info.rooms[i].polygon.size(), expected.rooms[i].polygon.size());
+    for (std::size_t k = 0; k < expected.rooms[i].polygon.size(); ++k) {
+      EXPECT_EQ(info.rooms[i].polygon[k], expected.rooms[i].polygon[k]) << i << " " << k;
+    }
+  }
+
+  EXPECT_EQ(r.scene_path(), (dir_ / "scene.yaml").string());
+  EXPECT_EQ(read_file(r.scene_path()), kSceneYaml);
+
+  for (std::size_t s = 0; s < 3; ++s) {
+    const PointCloud& want = clouds_[s];
+    const PointCloud got = r.scan(s);
+    ASSERT_EQ(got.size(), want.size()) << s;
+    ASSERT_TRUE(got.has_intensity()) << s;
+    ASSERT_EQ(got.intensity.size(), got.size());
+    for (std::size_t i = 0; i < want.size(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_EQ(bits(got.points[i][k]), bits(want.points[i][k])) << "scan " << s << " point " << i << " axis " << k;
+      }
+      const float wi = want.has_intensity() ? want.intensity[i] : 0.0f;
+      ASSERT_EQ(bits(got.intensity[i]), bits(wi)) << "scan " << s << " point " << i;
+    }
+    EXPECT_EQ(got.has_labels(), want.has_labels()) << s;
+    if (want.has_labels()) {
+      EXPECT_EQ(got.labels, want.labels) << s;
+    }
+  }
+}
+
+TEST_F(SequenceFolder, FilesHaveTheNamesOfTheFormat) {
+  write_sequence(dir_);
+  for (const char* f : {"times.txt", "odom.txt", "groundtruth.txt", "laps.txt", "rooms_gt.json", "scene.yaml",
+                        "scans/000000.bin", "scans/000000.label", "scans/000001.bin", "scans/000001.label",
+                        "scans/000002.bin"}) {
+    EXPECT_TRUE(fs::is_regular_file(dir_ / f)) << f;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "scans/000002.label"));  // the third cloud has no labels
+  EXPECT_FALSE(fs::exists(dir_ / "scans/000003.bin"));
+  // KITTI layout: 4 float32 per point; SemanticKITTI: one uint32 per point.
+  EXPECT_EQ(fs::file_size(dir_ / "scans/000000.bin"), 50u * 16u);
+  EXPECT_EQ(fs::file_size(dir_ / "scans/000000.label"), 50u * 4u);
+  EXPECT_EQ(fs::file_size(dir_ / "scans/000001.bin"), 7u * 16u);
+  EXPECT_EQ(fs::file_size(dir_ / "scans/000002.bin"), 20u * 16u);
+  // Nothing else is left next to the sequence.
+  EXPECT_EQ(names_in(parent_), std::set<std::string>{"seq"});
+  // times.txt: one number a line.
+  std::istringstream times(read_file(dir_ / "times.txt"));
+  std::string line;
+  int lines = 0;
+  while (std::getline(times, line)) {
+    ++lines;
+    EXPECT_NEAR(std::stod(line), 1000.0 + 0.1 * (lines - 1) + 0.000000123, 1e-9) << line;
+  }
+  EXPECT_EQ(lines, 3);
+}
+
+TEST_F(SequenceFolder, MinimalSequenceHasNoOptionalFiles) {
+  std::mt19937 rng(1);
+  {
+    SequenceWriter w(dir_.string());
+    w.write_scan(0, random_cloud(rng, 3, true, false));
+    SequenceInfo info;
+    info.times = {0.5};
+    info.odometry = {Pose3::Identity()};
+    w.commit(info);
+  }
+  EXPECT_EQ(names_in(dir_), (std::set<std::string>{"scans", "times.txt", "odom.txt"}));
+  const SequenceReader r(dir_.string());
+  EXPECT_EQ(r.size(), 1u);
+  EXPECT_TRUE(r.info().groundtruth.empty());
+  EXPECT_TRUE(r.info().lap_starts.empty());
+  EXPECT_FALSE(r.info().has_rooms);
+  EXPECT_EQ(r.scene_path(), "");
+  EXPECT_FALSE(r.scan(0).has_labels());
+}
+
+TEST_F(SequenceFolder, EmptyRoomListIsWritten) {
+  {
+    SequenceWriter w(dir_.string());
+    w.write_scan(0, PointCloud());
+    SequenceInfo info;
+    info.times = {0.0};
+    info.odometry = {Pose3::Identity()};
+    info.has_rooms = true;  // simulated scene without rooms: the file says "no rooms"
+    w.commit(info);
+  }
+  const SequenceReader r(dir_.string());
+  EXPECT_TRUE(r.info().has_rooms);
+  EXPECT_TRUE(r.info().rooms.empty());
+  EXPECT_EQ(r.scan(0).size(), 0u);
+}
+
+TEST_F(SequenceFolder, UncommittedWriterLeavesNothing) {
+  make_clouds();
+  {
+    SequenceWriter w(dir_.string());
+    w.write_scan(0, clouds_[0]);
+    w.write_scan(1, clouds_[1]);
+    EXPECT_FALSE(fs::exists(dir_)) << "the final folder must not appear before commit";
+  }
+  EXPECT_FALSE(fs::exists(dir_));
+  EXPECT_TRUE(names_in(parent_).empty()) << "temporary folder left behind";
+}
+
+TEST_F(SequenceFolder, FailedCommitLeavesNothing) {
+  make_clouds();
+  {
+    SequenceWriter w(dir_.string());
+    w.write_scan(0, clouds_[0]);
+    SequenceInfo info = make_info(2);  // 2 times for 1 scan
+    EXPECT_THROW(w.commit(info), std::logic_error);
+  }
+  EXPECT_FALSE(fs::exists(dir_));
+  EXPECT_TRUE(names_in(parent_).empty());
+}
+
+TEST_F(SequenceFolder, UncommittedOverwriteKeepsTheEarlierSequence) {
+  write_sequence(dir_);
+  {
+    SequenceWriter w(dir_.string());
+    w.write_scan(0, clouds_[2]);
+  }
+  const SequenceReader r(dir_.string());
+  EXPECT_EQ(r.size(), 3u);
+  EXPECT_EQ(r.scan(0).size(), 50u);
+  EXPECT_EQ(names_in(parent_), std::set<std::string>{"seq"});
+}
+
+TEST_F(SequenceFolder, RefusesAFolderThatIsNotASequence) {
+  fs::create_directories(dir_);
+  write_file(dir_ / "thesis.tex", "precious");
+  const std::string msg = input_error_of([&] { SequenceWriter w(dir_.string()); });
+  EXPECT_THAT(msg, HasSubstr(dir_.string()));
+  EXPECT_EQ(read_file(dir_ / "thesis.tex"), "precious");
+  EXPECT_EQ(names_in(dir_), std::set<std::string>{"thesis.tex"});
+  EXPECT_EQ(names_in(parent_), std::set<std::string>{"seq"});
+}
+
+TEST_F(SequenceFolder, RefusesAFile) {
+  write_file(dir_, "not a folder");
+  input_error_of([&] { SequenceWriter w(dir_.string()); });
+  EXPECT_EQ(read_file(dir_), "not a folder");
+}
+
+TEST_F(SequenceFolder, WritesIntoAnEmptyExistingFolder) {
+  fs::create_directories(dir_);
+  write_sequence(dir_);
+  EXPECT_EQ(SequenceReader(dir_.string()).size(), 3u);
+  EXPECT_EQ(names_in(parent_), std::set<std::string>{"seq"});
+}
+
+TEST_F(SequenceFolder, CreatesMissingParents) {
+  const fs::path deep = parent_ / "a" / "b" / "seq";
+  write_sequence(deep);
+  EXPECT_EQ(SequenceReader(deep.string()).size(), 3u);
+}
+
+TEST_F(SequenceFolder, TrailingSlashNamesTheSameFolder) {
+  write_sequence(dir_.string() + "/");
+  EXPECT_EQ(names_in(parent_), std::set<std::string>{"seq"});
+  EXPECT_EQ(SequenceReader(dir_.string()).size(), 3u);
+}
+
+TEST_F(SequenceFolder, OverwritingAnEarlierSequenceReplacesIt) {
+  write_sequence(dir_, 3);
+  write_file(dir_ / "notes.txt", "from the first run");
+  // Second run: 2 scans, no optional files.
+  {
+    std::mt19937 rng(5);
+    SequenceWriter w(dir_.string());
+    w.write_scan(0, random_cloud(rng, 4, true, false));
+    w.write_scan(1, random_cloud(rng, 6, true, false));
+    SequenceInfo info;
+    info.times = {7.0, 8.0};
+    info.odometry = {Pose3::Identity(), Pose3::Identity()};
+    w.commit(info);
+  }
+  const SequenceReader r(dir_.string());
+  EXPECT_EQ(r.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.info().times[0], 7.0);
+  EXPECT_TRUE(r.info().groundtruth.empty());
+  EXPECT_FALSE(r.info().has_rooms);
+  EXPECT_EQ(r.scan(1).size(), 6u);
+  EXPECT_FALSE(r.scan(0).has_labels());
+  // Nothing of the first run is left.
+  EXPECT_FALSE(fs::exists(dir_ / "scans/000002.bin"));
+  EXPECT_FALSE(fs::exists(dir_ / "scans/000000.label"));
+  EXPECT_FALSE(fs::exists(dir_ / "groundtruth.txt"));
+  EXPECT_FALSE(fs::exists(dir_ / "scene.yaml"));
+  EXPECT_FALSE(fs::exists(dir_ / "notes.txt"));
+  EXPECT_EQ(names_in(parent_), std::set<std::string>{"seq"});
+}
+
+TEST_F(SequenceFolder, InstanceIdInTheHighBitsReadsAsTheClass) {
+  PointCloud c;
+  c.points = {Eigen::Vector3f(1, 2, 3), Eigen::Vector3f(4, 5, 6), Eigen::Vector3f(7, 8, 9)};
+  c.labels = {(7u << 16) | 4u, 1u, (0xFFFFu << 16) | 6u};
+  {
+    SequenceWriter w(dir_.string());
+    w.write_scan(0, c);
+    SequenceInfo info;
+    info.times = {1.0};
+    info.odometry = {Pose3::Identity()};
+    w.commit(info);
+  }
+  const PointCloud got = SequenceReader(dir_.string()).scan(0);
+  EXPECT_EQ(got.labels, (std::vector<std::uint32_t>{4u, 1u, 6u}));
+}
+
+// ---------------------------------------------------------------- reader errors
+
+TEST_F(SequenceFolder, ReaderRejectsAMissingFolder) {
+  const std::string msg = input_error_of([&] { SequenceReader r((parent_ / "nope").string()); });
+  EXPECT_THAT(msg, HasSubstr((parent_ / "nope").string()));
+}
+
+TEST_F(SequenceFolder, ReaderRejectsMissingTimes) {
+  write_sequence(dir_);
+  fs::remove(dir_ / "times.txt");
+  const std::string msg = input_error_of([&] { SequenceReader r(dir_.string()); });
+  EXPECT_THAT(msg, HasSubstr("times.txt"));
+}
+
+TEST_F(SequenceFolder, ReaderRejectsBadTimes) {
+  write_sequence(dir_);
+  write_file(dir_ / "times.txt", "1000.0\n1000.1\nabc\n");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }),
+              StartsWith((dir_ / "times.txt").string() + ":3: "));
+  write_file(dir_ / "times.txt", "1000.0\n999.0\n1000.2\n");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }),
+              StartsWith((dir_ / "times.txt").string() + ":2: "));
+  write_file(dir_ / "times.txt", "# no scans\n");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), HasSubstr("times.txt"));
+}
+
+TEST_F(SequenceFolder, ReaderRejectsMissingOdometry) {
+  write_sequence(dir_);
+  fs::remove(dir_ / "odom.txt");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), HasSubstr("odom.txt"));
+}
+
+TEST_F(SequenceFolder, ReaderRejectsFewerPosesThanTimes) {
+  write_sequence(dir_);
+  const std::string odom = read_file(dir_ / "odom.txt");
+  write_file(dir_ / "odom.txt", odom.substr(0, odom.rfind('\n', odom.size() - 2) + 1));  // drop the last line
+  const std::string msg = input_error_of([&] { SequenceReader r(dir_.string()); });
+  EXPECT_THAT(msg, StartsWith((dir_ / "odom.txt").string()));
+  EXPECT_THAT(msg, HasSubstr("2 poses"));
+}
+
+TEST_F(SequenceFolder, ReaderRejectsGroundTruthWithOtherTimestamps) {
+  write_sequence(dir_);
+  write_file(dir_ / "groundtruth.txt",
+             "1000.000000123 0 0 0 0 0 0 1\n1000.100000123 0 0 0 0 0 0 1\n1000.3 0 0 0 0 0 0 1\n");
+  const std::string msg = input_error_of([&] { SequenceReader r(dir_.string()); });
+  EXPECT_THAT(msg, StartsWith((dir_ / "groundtruth.txt").string() + ":3: "));
+}
+
+TEST_F(SequenceFolder, ReaderRejectsAMissingScan) {
+  write_sequence(dir_);
+  fs::remove(dir_ / "scans/000002.bin");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), HasSubstr("000002.bin"));
+}
+
+TEST_F(SequenceFolder, ReaderRejectsABinOfOddSize) {
+  write_sequence(dir_);
+  write_file(dir_ / "scans/000001.bin", std::string(17, '\0'));
+  const SequenceReader r(dir_.string());
+  EXPECT_EQ(r.scan(0).size(), 50u);
+  const std::string msg = input_error_of([&] { r.scan(1); });
+  EXPECT_THAT(msg, StartsWith((dir_ / "scans/000001.bin").string()));
+}
+
+TEST_F(SequenceFolder, ReaderRejectsALabelFileOfTheWrongCount) {
+  write_sequence(dir_);
+  write_file(dir_ / "scans/000000.label", std::string(3 * 4, '\0'));
+  const SequenceReader r(dir_.string());
+  const std::string msg = input_error_of([&] { r.scan(0); });
+  EXPECT_THAT(msg, StartsWith((dir_ / "scans/000000.label").string()));
+  EXPECT_THAT(msg, HasSubstr("3 labels for 50 points"));
+  // Not a whole number of labels either.
+  write_file(dir_ / "scans/000001.label", std::string(7 * 4 + 2, '\0'));
+  EXPECT_THAT(input_error_of([&] { r.scan(1); }), StartsWith((dir_ / "scans/000001.label").string()));
+}
+
+TEST_F(SequenceFolder, ReaderRejectsMalformedRooms) {
+  write_sequence(dir_);
+  const std::string rooms = (dir_ / "rooms_gt.json").string();
+  write_file(rooms, "[{\"name\": \"a\", \"level\": \"L0\"");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), StartsWith(rooms));
+  write_file(rooms, "{\"name\": \"a\"}");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), StartsWith(rooms));
+  write_file(rooms, "[{\"name\": \"a\", \"level\": \"L0\", \"polygon\": [[0, 0], [1, 0]]}]");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), StartsWith(rooms));
+  write_file(rooms, "[{\"name\": \"a\", \"level\": \"L0\", \"polygon\": [[0, 0], [1, \"x\"], [1, 1]]}]");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), StartsWith(rooms));
+  write_file(rooms, "[{\"level\": \"L0\", \"polygon\": [[0, 0], [1, 0], [1, 1]]}]");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), StartsWith(rooms));
+}
