@@ -1,11 +1,14 @@
 // The simulator end to end: labels and poses agree with the scene, determinism (seed,
 // threads), the sequence folder it writes, and the command line's exit codes.
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -212,5 +215,50 @@ TEST(Cli, BadSceneExitsTwoWithOneLineNamingFileAndLine) {
   EXPECT_EQ(run("simulate no_such_scene --out " + (dir / "x").string(), &err), 2);
   EXPECT_THAT(err, ::testing::HasSubstr("no such scene file (built-in scenes:"));
   EXPECT_EQ(run("simulate", &err), 2);
+  fs::remove_all(dir);
+}
+
+TEST(Cli, KilledRunLeavesNoSequenceAndTheNextRunCleansUp) {
+  const fs::path dir = temp_dir("kill");
+  fs::create_directories(dir);
+  const fs::path scene = dir / "long.yaml";
+  // 400 m of path: thousands of scans, far longer than the moment we kill it.
+  std::ofstream(scene) << "levels: [{name: L0, slab: [[0,0],[110,0],[110,10],[0,10]]}]\n"
+                          "walls: [{level: L0, from: [0, 0], to: [110, 0]}]\n"
+                          "sensor: {channels: 32, columns: 512}\n"
+                          "trajectory: {waypoints: [[2, 5], [102, 5]], laps: 2}\n";
+  const fs::path out = dir / "seq";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::freopen("/dev/null", "w", stderr);
+    ::execl(TSGRAPHS_BINARY, TSGRAPHS_BINARY, "-q", "simulate", scene.c_str(), "--out", out.c_str(), nullptr);
+    ::_exit(127);
+  }
+  // Wait until scans are being written, then kill it hard.
+  bool writing = false;
+  for (int i = 0; i < 400 && !writing; ++i) {
+    ::usleep(25000);
+    for (const auto& e : fs::directory_iterator(dir)) {
+      if (e.path().filename().string().rfind("seq.tmp-", 0) == 0 && fs::exists(e.path() / "scans" / "000005.bin")) writing = true;
+    }
+  }
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(writing) << "the simulation never started writing";
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the simulation finished before it was killed";
+  EXPECT_FALSE(fs::exists(out));  // nothing that looks like a sequence
+  // The next run into the same place completes and removes the dead run's temporary folder.
+  std::ofstream(scene) << "levels: [{name: L0, slab: [[0,0],[10,0],[10,10],[0,10]]}]\n"
+                          "sensor: {channels: 4, columns: 16}\n"
+                          "trajectory: {waypoints: [[2, 5], [8, 5]], laps: 1}\n";
+  std::string err;
+  EXPECT_EQ(run("-q simulate " + scene.string() + " --out " + out.string(), &err), 0) << err;
+  EXPECT_TRUE(fs::exists(out / "times.txt"));
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"long.yaml", "seq"}));
   fs::remove_all(dir);
 }

@@ -1,6 +1,10 @@
 #include "tsgraphs/io/atomic_write.hpp"
 
+#include <signal.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
 
 #include <atomic>
 #include <filesystem>
@@ -17,6 +21,21 @@ namespace {
 std::string unique_suffix() {
   static std::atomic<int> counter{0};
   return ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+// Removes temporary siblings of `final_path` left by runs that were killed (their process
+// no longer exists), so that killed runs leave no garbage behind for long.
+void remove_stale_temporaries(const std::string& final_path) {
+  const fs::path parent = fs::path(final_path).parent_path().empty() ? fs::path(".") : fs::path(final_path).parent_path();
+  const std::string prefix = fs::path(final_path).filename().string() + ".tmp-";
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(parent, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string rest = name.substr(prefix.size());
+    const pid_t pid = static_cast<pid_t>(std::atol(rest.substr(0, rest.find('-')).c_str()));
+    if (pid > 0 && pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
+  }
 }
 
 }  // namespace
@@ -55,6 +74,7 @@ AtomicDirectory::AtomicDirectory(std::string final_path, const std::string& mark
   }
   const fs::path parent = fs::path(final_path_).parent_path();
   if (!parent.empty()) fs::create_directories(parent);
+  remove_stale_temporaries(final_path_);
   tmp_path_ = final_path_ + unique_suffix();
   fs::create_directories(tmp_path_);
 }
