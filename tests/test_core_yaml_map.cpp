@@ -1,20 +1,20 @@
 // YamlMap: typed access with defaults, and errors that name the file, the line and the key.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/core/yaml_map.hpp"
 
+#include "test_support.hpp"
+
 using namespace tsgraphs;
+using tsgraphs::test::input_error_of;
+using tsgraphs::test::TempDirTest;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
-
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -35,43 +35,9 @@ walls:
   - from: [4, 0]
 )";
 
-// The message of the InputError thrown by f; a test failure when none is thrown.
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "not an InputError: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "no error thrown";
-  return "";
-}
-
 YamlMap doc(const std::string& text = kDoc) { return YamlMap::load_string(text, "test.yaml"); }
 
-class YamlMapFile : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) /
-           ("tsgraphs_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p) << text;
-    return p.string();
-  }
-  fs::path dir_;
-};
+using YamlMapFile = TempDirTest;
 
 }  // namespace
 
@@ -150,30 +116,30 @@ TEST(YamlMap, Vec2AndPolygon) {
 // ---------------------------------------------------------------- errors
 
 TEST(YamlMapErrors, RequireOfAMissingKeyNamesFileLineAndKey) {
-  const std::string root = error_of([] { doc().require<int>("frames"); });
+  const std::string root = input_error_of([] { doc().require<int>("frames"); });
   EXPECT_THAT(root, StartsWith("test.yaml:1: "));
   EXPECT_THAT(root, HasSubstr("'frames'"));
 
-  const std::string nested = error_of([] { doc().map("sensor").require<double>("max_range"); });
+  const std::string nested = input_error_of([] { doc().map("sensor").require<double>("max_range"); });
   EXPECT_THAT(nested, StartsWith("test.yaml:7: "));  // the mapping's first line
   EXPECT_THAT(nested, HasSubstr("sensor"));
   EXPECT_THAT(nested, HasSubstr("max_range"));
 
-  const std::string entry = error_of([] { doc().maps("walls")[1].vec2("to"); });
+  const std::string entry = input_error_of([] { doc().maps("walls")[1].vec2("to"); });
   EXPECT_THAT(entry, StartsWith("test.yaml:15: "));
   EXPECT_THAT(entry, HasSubstr("walls[1]"));
   EXPECT_THAT(entry, HasSubstr("'to'"));
 }
 
 TEST(YamlMapErrors, UnknownKeyNamesTheKeyAndItsLine) {
-  const std::string root = error_of([] {
+  const std::string root = input_error_of([] {
     doc().check_keys({"name", "seed", "ratio", "enabled", "nothing", "sensor", "point", "poly", "walls_typo"});
   });
   EXPECT_THAT(root, StartsWith("test.yaml:12: "));
   EXPECT_THAT(root, HasSubstr("'walls'"));
   EXPECT_THAT(root, HasSubstr("walls_typo"));  // the known keys are listed
 
-  const std::string nested = error_of([] { doc().map("sensor").check_keys({"channels", "range"}); });
+  const std::string nested = input_error_of([] { doc().map("sensor").check_keys({"channels", "range"}); });
   EXPECT_THAT(nested, StartsWith("test.yaml:9: "));
   EXPECT_THAT(nested, HasSubstr("'sensor.colour'"));
 
@@ -184,25 +150,25 @@ TEST(YamlMapErrors, UnknownKeyNamesTheKeyAndItsLine) {
 
 TEST(YamlMapErrors, TypeErrorsNameTheLine) {
   const std::string text = "a: 1\nb: abc\nc: maybe\nd: [1, 2]\ne: 2.5\n";
-  const std::string number = error_of([&] { doc(text).require<double>("b"); });
+  const std::string number = input_error_of([&] { doc(text).require<double>("b"); });
   EXPECT_THAT(number, StartsWith("test.yaml:2: "));
   EXPECT_THAT(number, HasSubstr("b: expected a number"));
 
-  const std::string defaulted = error_of([&] { doc(text).get<double>("b", 1.0); });
+  const std::string defaulted = input_error_of([&] { doc(text).get<double>("b", 1.0); });
   EXPECT_THAT(defaulted, StartsWith("test.yaml:2: "));
 
-  const std::string boolean = error_of([&] { doc(text).require<bool>("c"); });
+  const std::string boolean = input_error_of([&] { doc(text).require<bool>("c"); });
   EXPECT_THAT(boolean, StartsWith("test.yaml:3: "));
   EXPECT_THAT(boolean, HasSubstr("true or false"));
 
-  const std::string list = error_of([&] { doc(text).require<int>("d"); });
+  const std::string list = input_error_of([&] { doc(text).require<int>("d"); });
   EXPECT_THAT(list, StartsWith("test.yaml:4: "));
 
-  const std::string fraction = error_of([&] { doc(text).require<int>("e"); });
+  const std::string fraction = input_error_of([&] { doc(text).require<int>("e"); });
   EXPECT_THAT(fraction, StartsWith("test.yaml:5: "));
   EXPECT_THAT(fraction, HasSubstr("an integer"));
 
-  const std::string nested = error_of([] { doc("s:\n  x: 1\n  y: one\n").map("s").require<double>("y"); });
+  const std::string nested = input_error_of([] { doc("s:\n  x: 1\n  y: one\n").map("s").require<double>("y"); });
   EXPECT_THAT(nested, StartsWith("test.yaml:3: "));
   EXPECT_THAT(nested, HasSubstr("s.y"));
 }
@@ -210,26 +176,26 @@ TEST(YamlMapErrors, TypeErrorsNameTheLine) {
 TEST(YamlMapErrors, NonFiniteNumbersAreRejected) {
   const std::string text = "a: 1\nb: .nan\nc: .inf\nd: -.inf\ne: [0, .nan]\n";
   for (const auto& [key, line] : {std::pair<std::string, int>{"b", 2}, {"c", 3}, {"d", 4}}) {
-    const std::string msg = error_of([&, k = key] { doc(text).require<double>(k); });
+    const std::string msg = input_error_of([&, k = key] { doc(text).require<double>(k); });
     EXPECT_THAT(msg, StartsWith("test.yaml:" + std::to_string(line) + ": ")) << key;
     EXPECT_THAT(msg, HasSubstr("finite")) << key;
-    EXPECT_THAT(error_of([&, k = key] { doc(text).get<double>(k, 0.0); }), HasSubstr("finite")) << key;
-    EXPECT_THAT(error_of([&, k = key] { doc(text).require<float>(k); }), HasSubstr("finite")) << key;
+    EXPECT_THAT(input_error_of([&, k = key] { doc(text).get<double>(k, 0.0); }), HasSubstr("finite")) << key;
+    EXPECT_THAT(input_error_of([&, k = key] { doc(text).require<float>(k); }), HasSubstr("finite")) << key;
   }
-  const std::string point = error_of([&] { doc(text).vec2("e"); });
+  const std::string point = input_error_of([&] { doc(text).vec2("e"); });
   EXPECT_THAT(point, StartsWith("test.yaml:5: "));
   EXPECT_THAT(point, HasSubstr("finite"));
 }
 
 TEST(YamlMapErrors, BadVec2) {
   const std::string text = "three: [1, 2, 3]\nscalar: 5\nword: [1, x]\nmap: {x: 1, y: 2}\n";
-  EXPECT_THAT(error_of([&] { doc(text).vec2("three"); }), StartsWith("test.yaml:1: "));
-  EXPECT_THAT(error_of([&] { doc(text).vec2("scalar"); }), StartsWith("test.yaml:2: "));
-  const std::string word = error_of([&] { doc(text).vec2("word"); });
+  EXPECT_THAT(input_error_of([&] { doc(text).vec2("three"); }), StartsWith("test.yaml:1: "));
+  EXPECT_THAT(input_error_of([&] { doc(text).vec2("scalar"); }), StartsWith("test.yaml:2: "));
+  const std::string word = input_error_of([&] { doc(text).vec2("word"); });
   EXPECT_THAT(word, StartsWith("test.yaml:3: "));
   EXPECT_THAT(word, HasSubstr("word"));
-  EXPECT_THAT(error_of([&] { doc(text).vec2("map"); }), StartsWith("test.yaml:4: "));
-  EXPECT_THAT(error_of([&] { doc(text).vec2("absent"); }), HasSubstr("'absent'"));
+  EXPECT_THAT(input_error_of([&] { doc(text).vec2("map"); }), StartsWith("test.yaml:4: "));
+  EXPECT_THAT(input_error_of([&] { doc(text).vec2("absent"); }), HasSubstr("'absent'"));
 }
 
 TEST(YamlMapErrors, BadPolygon) {
@@ -240,30 +206,30 @@ bad_point:
   - [1, x]
 flat: [0, 1, 2, 3]
 )";
-  const std::string two = error_of([&] { doc(text).polygon("two"); });
+  const std::string two = input_error_of([&] { doc(text).polygon("two"); });
   EXPECT_THAT(two, StartsWith("test.yaml:1: "));
   EXPECT_THAT(two, HasSubstr("three"));
-  const std::string bad = error_of([&] { doc(text).polygon("bad_point"); });
+  const std::string bad = input_error_of([&] { doc(text).polygon("bad_point"); });
   EXPECT_THAT(bad, StartsWith("test.yaml:5: "));
   EXPECT_THAT(bad, HasSubstr("bad_point[2]"));
-  const std::string flat = error_of([&] { doc(text).polygon("flat"); });
+  const std::string flat = input_error_of([&] { doc(text).polygon("flat"); });
   EXPECT_THAT(flat, StartsWith("test.yaml:6: "));
   EXPECT_THAT(flat, HasSubstr("flat[0]"));
 }
 
 TEST(YamlMapErrors, MapsOfANonListAndNonMappingEntries) {
   const std::string text = "walls: 3\nrooms:\n  - 5\n";
-  const std::string walls = error_of([&] { doc(text).maps("walls"); });
+  const std::string walls = input_error_of([&] { doc(text).maps("walls"); });
   EXPECT_THAT(walls, StartsWith("test.yaml:1: "));
   EXPECT_THAT(walls, HasSubstr("list"));
-  const std::string rooms = error_of([&] { doc(text).maps("rooms"); });
+  const std::string rooms = input_error_of([&] { doc(text).maps("rooms"); });
   EXPECT_THAT(rooms, StartsWith("test.yaml:3: "));
   EXPECT_THAT(rooms, HasSubstr("rooms[0]"));
-  EXPECT_THAT(error_of([&] { doc(text).map("walls"); }), HasSubstr("walls"));
+  EXPECT_THAT(input_error_of([&] { doc(text).map("walls"); }), HasSubstr("walls"));
 }
 
 TEST(YamlMapErrors, DocumentThatIsNotAMapping) {
-  const std::string msg = error_of([] { doc("- 1\n- 2\n"); });
+  const std::string msg = input_error_of([] { doc("- 1\n- 2\n"); });
   EXPECT_THAT(msg, StartsWith("test.yaml:1: "));
   EXPECT_THAT(msg, HasSubstr("mapping"));
   EXPECT_NO_THROW(doc(""));  // an empty document is an empty mapping
@@ -277,15 +243,15 @@ TEST(YamlMapErrors, CustomErrors) {
 }
 
 TEST(YamlMapErrors, SyntaxErrorInAString) {
-  const std::string msg = error_of([] { YamlMap::load_string("a: 1\nb: 2\nc: d: e\n", "broken.yaml"); });
+  const std::string msg = input_error_of([] { YamlMap::load_string("a: 1\nb: 2\nc: d: e\n", "broken.yaml"); });
   EXPECT_THAT(msg, StartsWith("broken.yaml:3: "));
   EXPECT_THAT(msg, HasSubstr("syntax"));
 }
 
 TEST(YamlMapErrors, OutOfRangeIntegers) {
-  EXPECT_THAT(error_of([] { doc("a: 1\nx: -1\n").require<unsigned>("x"); }), StartsWith("test.yaml:2: "));
-  EXPECT_THAT(error_of([] { doc("x: -1\n").require<std::size_t>("x"); }), StartsWith("test.yaml:1: "));
-  EXPECT_THAT(error_of([] { doc("x: 99999999999\n").require<int>("x"); }), StartsWith("test.yaml:1: "));
+  EXPECT_THAT(input_error_of([] { doc("a: 1\nx: -1\n").require<unsigned>("x"); }), StartsWith("test.yaml:2: "));
+  EXPECT_THAT(input_error_of([] { doc("x: -1\n").require<std::size_t>("x"); }), StartsWith("test.yaml:1: "));
+  EXPECT_THAT(input_error_of([] { doc("x: 99999999999\n").require<int>("x"); }), StartsWith("test.yaml:1: "));
 }
 
 // YAML mapping keys must be unique, but yaml-cpp keeps the first of two equal keys and drops
@@ -293,39 +259,39 @@ TEST(YamlMapErrors, OutOfRangeIntegers) {
 // every mapping of a scene goes through, is the place to reject it.
 TEST(YamlMapErrors, DuplicateKeyIsRejected) {
   const YamlMap m = doc("name: a\nseed: 1\nseed: 2\n");
-  const std::string msg = error_of([&] { m.check_keys({"name", "seed"}); });
+  const std::string msg = input_error_of([&] { m.check_keys({"name", "seed"}); });
   EXPECT_THAT(msg, StartsWith("test.yaml:3: "));
   EXPECT_THAT(msg, HasSubstr("seed"));
 }
 
 TEST_F(YamlMapFile, LoadsAFile) {
-  const std::string path = write("scene.yaml", kDoc);
+  const std::string path = write_file("scene.yaml", kDoc);
   const YamlMap m = YamlMap::load_file(path);
   EXPECT_EQ(m.file(), path);
   EXPECT_EQ(m.require<int>("seed"), 7);
-  EXPECT_THAT(error_of([&] { m.require<int>("absent"); }), StartsWith(path + ":1: "));
+  EXPECT_THAT(input_error_of([&] { m.require<int>("absent"); }), StartsWith(path + ":1: "));
 }
 
 TEST_F(YamlMapFile, MissingFileNamesTheFile) {
   const std::string path = (dir_ / "nope.yaml").string();
-  const std::string msg = error_of([&] { YamlMap::load_file(path); });
+  const std::string msg = input_error_of([&] { YamlMap::load_file(path); });
   EXPECT_THAT(msg, StartsWith(path + ": "));
 }
 
 TEST_F(YamlMapFile, SyntaxErrorNamesFileAndLine) {
-  const std::string path = write("broken.yaml", "name: x\nseed: 1\nwalls: [1, 2\nrooms: 3: 4\n");
-  const std::string msg = error_of([&] { YamlMap::load_file(path); });
+  const std::string path = write_file("broken.yaml", "name: x\nseed: 1\nwalls: [1, 2\nrooms: 3: 4\n");
+  const std::string msg = input_error_of([&] { YamlMap::load_file(path); });
   EXPECT_THAT(msg, ::testing::MatchesRegex(".*broken\\.yaml:[0-9]+: .*"));
   EXPECT_THAT(msg, StartsWith(path + ":"));
 
-  const std::string path2 = write("broken2.yaml", "a: 1\nb: 2\nc: d: e\n");
-  EXPECT_THAT(error_of([&] { YamlMap::load_file(path2); }), StartsWith(path2 + ":3: "));
+  const std::string path2 = write_file("broken2.yaml", "a: 1\nb: 2\nc: d: e\n");
+  EXPECT_THAT(input_error_of([&] { YamlMap::load_file(path2); }), StartsWith(path2 + ":3: "));
 }
 
 // A folder opens as an ifstream on Linux; reading it then throws std::ios_base::failure
 // ("basic_filebuf::underflow error reading the file: Is a directory"), which escapes load_file
 // as a plain std::exception instead of an InputError naming the file.
 TEST_F(YamlMapFile, FolderInsteadOfAFile) {
-  const std::string msg = error_of([&] { YamlMap::load_file(dir_.string()); });
+  const std::string msg = input_error_of([&] { YamlMap::load_file(dir_.string()); });
   EXPECT_THAT(msg, HasSubstr(dir_.string()));
 }

@@ -2,7 +2,6 @@
 // under a temporary name and moved into place on commit.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -13,8 +12,11 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
 
+#include "test_support.hpp"
+
 using namespace tsgraphs;
 using namespace tsgraphs::io;
+using tsgraphs::test::TempDirTest;
 using ::testing::HasSubstr;
 
 namespace fs = std::filesystem;
@@ -34,22 +36,7 @@ std::set<std::string> names_in(const fs::path& dir) {
   return out;
 }
 
-class AtomicWrite : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) /
-           ("tsgraphs_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  fs::path dir_;
-};
-
+using AtomicWrite = TempDirTest;
 using AtomicDir = AtomicWrite;
 
 }  // namespace

@@ -2,7 +2,6 @@
 // errors naming the file.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -16,12 +15,14 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/pcd.hpp"
 
+#include "test_support.hpp"
+
 using namespace tsgraphs;
 using namespace tsgraphs::io;
+using tsgraphs::test::input_error_of;
+using tsgraphs::test::TempDirTest;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
-
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -67,38 +68,13 @@ std::string header(const std::string& fields, const std::string& size, const std
   return s.str();
 }
 
-class Pcd : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) /
-           ("tsgraphs_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string write(const std::string& name, const std::string& content) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << content;
-    return p.string();
-  }
-  std::string input_error_of(const std::string& path) {
-    try {
-      read_pcd(path);
-    } catch (const InputError& e) {
-      return e.what();
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << "not an InputError: " << e.what();
-      return "";
-    }
-    ADD_FAILURE() << "read without error: " << path;
-    return "";
-  }
-  fs::path dir_;
-};
+// The message of the InputError that reading the PCD file at `path` raises.
+std::string read_error(const std::string& path) {
+  SCOPED_TRACE("reading " + path);
+  return input_error_of([&] { read_pcd(path); });
+}
+
+using Pcd = TempDirTest;
 
 }  // namespace
 
@@ -143,31 +119,32 @@ TEST(PcdRealScans, LookLikeAnHdl32Scan) {
 
 TEST_F(Pcd, MissingFileNamesTheFile) {
   const std::string path = (dir_ / "nope.pcd").string();
-  EXPECT_THAT(input_error_of(path), StartsWith(path + ":"));
-  EXPECT_THAT(input_error_of(dir_.string()), StartsWith(dir_.string() + ":"));  // a folder
+  EXPECT_THAT(read_error(path), StartsWith(path + ":"));
+  EXPECT_THAT(read_error(dir_.string()), StartsWith(dir_.string() + ":"));  // a folder
 }
 
 TEST_F(Pcd, TextFileThatIsNotAPcdNamesTheFile) {
-  const std::string path = write("notes.pcd", "this is not a point cloud\njust some text\n");
-  EXPECT_THAT(input_error_of(path), StartsWith(path + ":"));
-  const std::string empty = write("empty.pcd", "");
-  EXPECT_THAT(input_error_of(empty), StartsWith(empty + ":"));
+  const std::string path = write_file("notes.pcd", "this is not a point cloud\njust some text\n");
+  EXPECT_THAT(read_error(path), StartsWith(path + ":"));
+  const std::string empty = write_file("empty.pcd", "");
+  EXPECT_THAT(read_error(empty), StartsWith(empty + ":"));
 }
 
 TEST_F(Pcd, TruncatedBinaryFileNamesTheFile) {
   std::string content = header("x y z", "4 4 4", "F F F", "1 1 1", 100, 1, "binary");
   content += std::string(5 * 12, '\0');  // 5 of 100 points
-  const std::string path = write("short.pcd", content);
-  EXPECT_THAT(input_error_of(path), StartsWith(path + ":"));
+  const std::string path = write_file("short.pcd", content);
+  EXPECT_THAT(read_error(path), StartsWith(path + ":"));
 }
 
 TEST_F(Pcd, AsciiWithNaNPointsDropsThem) {
-  const std::string path = write("nan.pcd", header("x y z intensity", "4 4 4 4", "F F F F", "1 1 1 1", 5, 1, "ascii") +
-                                                "1 2 3 10\n"
-                                                "nan nan nan 0\n"
-                                                "4.5 -5 6 20\n"
-                                                "7 8 nan 30\n"
-                                                "-1 -2 -3 nan\n");
+  const std::string path =
+      write_file("nan.pcd", header("x y z intensity", "4 4 4 4", "F F F F", "1 1 1 1", 5, 1, "ascii") +
+                                "1 2 3 10\n"
+                                "nan nan nan 0\n"
+                                "4.5 -5 6 20\n"
+                                "7 8 nan 30\n"
+                                "-1 -2 -3 nan\n");
   const PointCloud cloud = read_pcd(path);
   ASSERT_EQ(cloud.size(), 3u);
   ASSERT_TRUE(cloud.has_intensity());
@@ -184,7 +161,7 @@ TEST_F(Pcd, OrganisedBinaryCloudWithNaNs) {
   const float nan = std::nanf("");
   const float values[12] = {1, 1, 1, nan, nan, nan, 2, 2, 2, 3, nan, 3};
   content.append(reinterpret_cast<const char*>(values), sizeof values);
-  const PointCloud cloud = read_pcd(write("organised.pcd", content));
+  const PointCloud cloud = read_pcd(write_file("organised.pcd", content));
   ASSERT_EQ(cloud.size(), 2u);
   EXPECT_FALSE(cloud.has_intensity());
   EXPECT_EQ(cloud.points[0], Eigen::Vector3f(1, 1, 1));
@@ -193,7 +170,7 @@ TEST_F(Pcd, OrganisedBinaryCloudWithNaNs) {
 
 TEST_F(Pcd, XyzOnlyHasNoIntensity) {
   const PointCloud cloud = read_pcd(
-      write("xyz.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "ascii") + "0.5 0.25 -8\n100 200 300\n"));
+      write_file("xyz.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "ascii") + "0.5 0.25 -8\n100 200 300\n"));
   ASSERT_EQ(cloud.size(), 2u);
   EXPECT_FALSE(cloud.has_intensity());
   EXPECT_EQ(cloud.points[0], Eigen::Vector3f(0.5f, 0.25f, -8.0f));
@@ -201,9 +178,9 @@ TEST_F(Pcd, XyzOnlyHasNoIntensity) {
 }
 
 TEST_F(Pcd, ExtraFieldsAreIgnored) {
-  const PointCloud cloud = read_pcd(write("rich.pcd", header("x y z intensity ring time", "4 4 4 4 2 4",
-                                                             "F F F F U F", "1 1 1 1 1 1", 2, 1, "ascii") +
-                                                          "1 2 3 40 7 0.01\n4 5 6 50 8 0.02\n"));
+  const PointCloud cloud = read_pcd(write_file(
+      "rich.pcd", header("x y z intensity ring time", "4 4 4 4 2 4", "F F F F U F", "1 1 1 1 1 1", 2, 1, "ascii") +
+                      "1 2 3 40 7 0.01\n4 5 6 50 8 0.02\n"));
   ASSERT_EQ(cloud.size(), 2u);
   EXPECT_EQ(cloud.points[1], Eigen::Vector3f(4, 5, 6));
   ASSERT_TRUE(cloud.has_intensity());
@@ -212,24 +189,24 @@ TEST_F(Pcd, ExtraFieldsAreIgnored) {
 
 TEST_F(Pcd, NoCoordinatesIsAnInputError) {
   const std::string path =
-      write("noxyz.pcd", header("a b c", "4 4 4", "F F F", "1 1 1", 1, 1, "ascii") + "1 2 3\n");
-  EXPECT_THAT(input_error_of(path), StartsWith(path + ":"));
+      write_file("noxyz.pcd", header("a b c", "4 4 4", "F F F", "1 1 1", 1, 1, "ascii") + "1 2 3\n");
+  EXPECT_THAT(read_error(path), StartsWith(path + ":"));
 }
 
 // A file with x but no y and z must not be read as points on the x axis. read_pcd only checks
 // for "x", and PCL fills the missing y and z with 0.
 TEST_F(Pcd, OnlySomeCoordinatesIsAnInputError) {
   const std::string path =
-      write("xonly.pcd", header("x intensity", "4 4", "F F", "1 1", 2, 1, "ascii") + "1 5\n2 6\n");
-  EXPECT_THAT(input_error_of(path), StartsWith(path + ":"));
+      write_file("xonly.pcd", header("x intensity", "4 4", "F F", "1 1", 2, 1, "ascii") + "1 5\n2 6\n");
+  EXPECT_THAT(read_error(path), StartsWith(path + ":"));
 }
 
 // Double-precision coordinates (TYPE F, SIZE 8) are valid PCD, written e.g. by georeferenced
 // map exports; they must read as their values. pcl::fromPCLPointCloud2 matches fields by name
 // AND datatype, finds no float32 x y z and leaves every point at (0, 0, 0), silently.
 TEST_F(Pcd, DoublePrecisionCoordinates) {
-  const std::string path = write("double.pcd", header("x y z", "8 8 8", "F F F", "1 1 1", 2, 1, "ascii") +
-                                                   "1.5 2.5 3.5\n-4 5 6\n");
+  const std::string path =
+      write_file("double.pcd", header("x y z", "8 8 8", "F F F", "1 1 1", 2, 1, "ascii") + "1.5 2.5 3.5\n-4 5 6\n");
   const PointCloud cloud = read_pcd(path);
   ASSERT_EQ(cloud.size(), 2u);
   EXPECT_EQ(cloud.points[0], Eigen::Vector3f(1.5f, 2.5f, 3.5f));
@@ -239,9 +216,9 @@ TEST_F(Pcd, DoublePrecisionCoordinates) {
 // Integer intensities (TYPE U, as some drivers write them) must keep their values; for the
 // same reason as above they all read as 0.
 TEST_F(Pcd, IntegerIntensity) {
-  const std::string path = write("uint_intensity.pcd", header("x y z intensity", "4 4 4 2", "F F F U", "1 1 1 1", 2,
-                                                              1, "ascii") +
-                                                           "1 2 3 40\n4 5 6 300\n");
+  const std::string path =
+      write_file("uint_intensity.pcd",
+                 header("x y z intensity", "4 4 4 2", "F F F U", "1 1 1 1", 2, 1, "ascii") + "1 2 3 40\n4 5 6 300\n");
   const PointCloud cloud = read_pcd(path);
   ASSERT_EQ(cloud.size(), 2u);
   EXPECT_EQ(cloud.points[1], Eigen::Vector3f(4, 5, 6));
@@ -252,18 +229,18 @@ TEST_F(Pcd, IntegerIntensity) {
 
 TEST_F(Pcd, ShortOrTruncatedFilesNameTheFile) {
   const std::string ascii =
-      write("short.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 5, 1, "ascii") + "1 2 3\n4 5 6\n");
-  EXPECT_THAT(input_error_of(ascii), StartsWith(ascii + ":"));
+      write_file("short.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 5, 1, "ascii") + "1 2 3\n4 5 6\n");
+  EXPECT_THAT(read_error(ascii), StartsWith(ascii + ":"));
   std::string compressed = header("x y z", "4 4 4", "F F F", "1 1 1", 100, 1, "binary_compressed");
   compressed += std::string("\x10\x00\x00\x00\xb0\x04\x00\x00" "abcd", 12);
-  const std::string path = write("compressed.pcd", compressed);
-  EXPECT_THAT(input_error_of(path), StartsWith(path + ":"));
+  const std::string path = write_file("compressed.pcd", compressed);
+  EXPECT_THAT(read_error(path), StartsWith(path + ":"));
 }
 
 // "A missing or malformed file is an InputError", but PCL reads a word in an ASCII body as 0:
 // the second point below comes back as (4, 0, 6).
 TEST_F(Pcd, AsciiBodyWithAWordIsAnInputError) {
   const std::string path =
-      write("word.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "ascii") + "1 2 3\n4 abc 6\n");
-  EXPECT_THAT(input_error_of(path), StartsWith(path + ":"));
+      write_file("word.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "ascii") + "1 2 3\n4 abc 6\n");
+  EXPECT_THAT(read_error(path), StartsWith(path + ":"));
 }

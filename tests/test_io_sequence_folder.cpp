@@ -2,7 +2,6 @@
 // checks of inconsistent folders.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdint>
 #include <cstring>
@@ -17,8 +16,12 @@
 #include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 
+#include "test_support.hpp"
+
 using namespace tsgraphs;
 using namespace tsgraphs::io;
+using tsgraphs::test::input_error_of;
+using tsgraphs::test::TempDirTest;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
@@ -39,7 +42,8 @@ std::string read_file(const fs::path& p) {
   return s.str();
 }
 
-void write_file(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+// Writes text to any path (TempDirTest::write_file writes to a name in dir_).
+void write_text(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
 
 std::set<std::string> names_in(const fs::path& dir) {
   std::set<std::string> out;
@@ -66,19 +70,12 @@ void expect_pose_near(const Pose3& a, const Pose3& b, double tol = 1e-8) {
 
 const char* kSceneYaml = "name: test_scene\nseed: 3\n";
 
-class SequenceFolder : public ::testing::Test {
+class SequenceFolder : public TempDirTest {
  protected:
+  // The sequence goes to dir_/seq, which does not exist yet.
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    parent_ = fs::path(::testing::TempDir()) /
-              ("tsgraphs_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(parent_);
-    fs::create_directories(parent_);
-    dir_ = parent_ / "seq";
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(parent_, ec);
+    TempDirTest::SetUp();
+    seq_ = dir_ / "seq";
   }
 
   // Three scans: the first two with intensity and labels, the third with neither.
@@ -113,22 +110,7 @@ class SequenceFolder : public ::testing::Test {
     w.commit(make_info(n));
   }
 
-  // The message of the InputError that f throws.
-  template <class F>
-  std::string input_error_of(F&& f) {
-    try {
-      f();
-    } catch (const InputError& e) {
-      return e.what();
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << "not an InputError: " << e.what();
-      return "";
-    }
-    ADD_FAILURE() << "no error thrown";
-    return "";
-  }
-
-  fs::path parent_, dir_;
+  fs::path seq_;
   std::vector<PointCloud> clouds_;
 };
 
@@ -142,11 +124,11 @@ TEST(SequenceFolderNames, ScanStem) {
 }
 
 TEST_F(SequenceFolder, RoundTrip) {
-  write_sequence(dir_);
+  write_sequence(seq_);
   const SequenceInfo expected = make_info();
-  const SequenceReader r(dir_.string());
+  const SequenceReader r(seq_.string());
   ASSERT_EQ(r.size(), 3u);
-  EXPECT_EQ(r.dir(), dir_.string());
+  EXPECT_EQ(r.dir(), seq_.string());
   const SequenceInfo& info = r.info();
 
   ASSERT_EQ(info.times.size(), 3u);
@@ -173,7 +155,7 @@ TEST_F(SequenceFolder, RoundTrip) {
     }
   }
 
-  EXPECT_EQ(r.scene_path(), (dir_ / "scene.yaml").string());
+  EXPECT_EQ(r.scene_path(), (seq_ / "scene.yaml").string());
   EXPECT_EQ(read_file(r.scene_path()), kSceneYaml);
 
   for (std::size_t s = 0; s < 3; ++s) {
@@ -197,23 +179,23 @@ TEST_F(SequenceFolder, RoundTrip) {
 }
 
 TEST_F(SequenceFolder, FilesHaveTheNamesOfTheFormat) {
-  write_sequence(dir_);
+  write_sequence(seq_);
   for (const char* f : {"times.txt", "odom.txt", "groundtruth.txt", "laps.txt", "rooms_gt.json", "scene.yaml",
                         "scans/000000.bin", "scans/000000.label", "scans/000001.bin", "scans/000001.label",
                         "scans/000002.bin"}) {
-    EXPECT_TRUE(fs::is_regular_file(dir_ / f)) << f;
+    EXPECT_TRUE(fs::is_regular_file(seq_ / f)) << f;
   }
-  EXPECT_FALSE(fs::exists(dir_ / "scans/000002.label"));  // the third cloud has no labels
-  EXPECT_FALSE(fs::exists(dir_ / "scans/000003.bin"));
+  EXPECT_FALSE(fs::exists(seq_ / "scans/000002.label"));  // the third cloud has no labels
+  EXPECT_FALSE(fs::exists(seq_ / "scans/000003.bin"));
   // KITTI layout: 4 float32 per point; SemanticKITTI: one uint32 per point.
-  EXPECT_EQ(fs::file_size(dir_ / "scans/000000.bin"), 50u * 16u);
-  EXPECT_EQ(fs::file_size(dir_ / "scans/000000.label"), 50u * 4u);
-  EXPECT_EQ(fs::file_size(dir_ / "scans/000001.bin"), 7u * 16u);
-  EXPECT_EQ(fs::file_size(dir_ / "scans/000002.bin"), 20u * 16u);
+  EXPECT_EQ(fs::file_size(seq_ / "scans/000000.bin"), 50u * 16u);
+  EXPECT_EQ(fs::file_size(seq_ / "scans/000000.label"), 50u * 4u);
+  EXPECT_EQ(fs::file_size(seq_ / "scans/000001.bin"), 7u * 16u);
+  EXPECT_EQ(fs::file_size(seq_ / "scans/000002.bin"), 20u * 16u);
   // Nothing else is left next to the sequence.
-  EXPECT_EQ(names_in(parent_), std::set<std::string>{"seq"});
+  EXPECT_EQ(names_in(dir_), std::set<std::string>{"seq"});
   // times.txt: one number a line.
-  std::istringstream times(read_file(dir_ / "times.txt"));
+  std::istringstream times(read_file(seq_ / "times.txt"));
   std::string line;
   int lines = 0;
   while (std::getline(times, line)) {
@@ -226,15 +208,15 @@ TEST_F(SequenceFolder, FilesHaveTheNamesOfTheFormat) {
 TEST_F(SequenceFolder, MinimalSequenceHasNoOptionalFiles) {
   std::mt19937 rng(1);
   {
-    SequenceWriter w(dir_.string());
+    SequenceWriter w(seq_.string());
     w.write_scan(0, random_cloud(rng, 3, true, false));
     SequenceInfo info;
     info.times = {0.5};
     info.odometry = {Pose3::Identity()};
     w.commit(info);
   }
-  EXPECT_EQ(names_in(dir_), (std::set<std::string>{"scans", "times.txt", "odom.txt"}));
-  const SequenceReader r(dir_.string());
+  EXPECT_EQ(names_in(seq_), (std::set<std::string>{"scans", "times.txt", "odom.txt"}));
+  const SequenceReader r(seq_.string());
   EXPECT_EQ(r.size(), 1u);
   EXPECT_TRUE(r.info().groundtruth.empty());
   EXPECT_TRUE(r.info().lap_starts.empty());
@@ -245,7 +227,7 @@ TEST_F(SequenceFolder, MinimalSequenceHasNoOptionalFiles) {
 
 TEST_F(SequenceFolder, EmptyRoomListIsWritten) {
   {
-    SequenceWriter w(dir_.string());
+    SequenceWriter w(seq_.string());
     w.write_scan(0, PointCloud());
     SequenceInfo info;
     info.times = {0.0};
@@ -253,7 +235,7 @@ TEST_F(SequenceFolder, EmptyRoomListIsWritten) {
     info.has_rooms = true;  // simulated scene without rooms: the file says "no rooms"
     w.commit(info);
   }
-  const SequenceReader r(dir_.string());
+  const SequenceReader r(seq_.string());
   EXPECT_TRUE(r.info().has_rooms);
   EXPECT_TRUE(r.info().rooms.empty());
   EXPECT_EQ(r.scan(0).size(), 0u);
@@ -262,81 +244,81 @@ TEST_F(SequenceFolder, EmptyRoomListIsWritten) {
 TEST_F(SequenceFolder, UncommittedWriterLeavesNothing) {
   make_clouds();
   {
-    SequenceWriter w(dir_.string());
+    SequenceWriter w(seq_.string());
     w.write_scan(0, clouds_[0]);
     w.write_scan(1, clouds_[1]);
-    EXPECT_FALSE(fs::exists(dir_)) << "the final folder must not appear before commit";
+    EXPECT_FALSE(fs::exists(seq_)) << "the final folder must not appear before commit";
   }
-  EXPECT_FALSE(fs::exists(dir_));
-  EXPECT_TRUE(names_in(parent_).empty()) << "temporary folder left behind";
+  EXPECT_FALSE(fs::exists(seq_));
+  EXPECT_TRUE(names_in(dir_).empty()) << "temporary folder left behind";
 }
 
 TEST_F(SequenceFolder, FailedCommitLeavesNothing) {
   make_clouds();
   {
-    SequenceWriter w(dir_.string());
+    SequenceWriter w(seq_.string());
     w.write_scan(0, clouds_[0]);
     SequenceInfo info = make_info(2);  // 2 times for 1 scan
     EXPECT_THROW(w.commit(info), std::logic_error);
   }
-  EXPECT_FALSE(fs::exists(dir_));
-  EXPECT_TRUE(names_in(parent_).empty());
+  EXPECT_FALSE(fs::exists(seq_));
+  EXPECT_TRUE(names_in(dir_).empty());
 }
 
 TEST_F(SequenceFolder, UncommittedOverwriteKeepsTheEarlierSequence) {
-  write_sequence(dir_);
+  write_sequence(seq_);
   {
-    SequenceWriter w(dir_.string());
+    SequenceWriter w(seq_.string());
     w.write_scan(0, clouds_[2]);
   }
-  const SequenceReader r(dir_.string());
+  const SequenceReader r(seq_.string());
   EXPECT_EQ(r.size(), 3u);
   EXPECT_EQ(r.scan(0).size(), 50u);
-  EXPECT_EQ(names_in(parent_), std::set<std::string>{"seq"});
+  EXPECT_EQ(names_in(dir_), std::set<std::string>{"seq"});
 }
 
 TEST_F(SequenceFolder, RefusesAFolderThatIsNotASequence) {
-  fs::create_directories(dir_);
-  write_file(dir_ / "thesis.tex", "precious");
-  const std::string msg = input_error_of([&] { SequenceWriter w(dir_.string()); });
-  EXPECT_THAT(msg, HasSubstr(dir_.string()));
-  EXPECT_EQ(read_file(dir_ / "thesis.tex"), "precious");
-  EXPECT_EQ(names_in(dir_), std::set<std::string>{"thesis.tex"});
-  EXPECT_EQ(names_in(parent_), std::set<std::string>{"seq"});
+  fs::create_directories(seq_);
+  write_text(seq_ / "thesis.tex", "precious");
+  const std::string msg = input_error_of([&] { SequenceWriter w(seq_.string()); });
+  EXPECT_THAT(msg, HasSubstr(seq_.string()));
+  EXPECT_EQ(read_file(seq_ / "thesis.tex"), "precious");
+  EXPECT_EQ(names_in(seq_), std::set<std::string>{"thesis.tex"});
+  EXPECT_EQ(names_in(dir_), std::set<std::string>{"seq"});
 }
 
 TEST_F(SequenceFolder, RefusesAFile) {
-  write_file(dir_, "not a folder");
-  input_error_of([&] { SequenceWriter w(dir_.string()); });
-  EXPECT_EQ(read_file(dir_), "not a folder");
+  write_text(seq_, "not a folder");
+  input_error_of([&] { SequenceWriter w(seq_.string()); });
+  EXPECT_EQ(read_file(seq_), "not a folder");
 }
 
 TEST_F(SequenceFolder, WritesIntoAnEmptyExistingFolder) {
-  fs::create_directories(dir_);
-  write_sequence(dir_);
-  EXPECT_EQ(SequenceReader(dir_.string()).size(), 3u);
-  EXPECT_EQ(names_in(parent_), std::set<std::string>{"seq"});
+  fs::create_directories(seq_);
+  write_sequence(seq_);
+  EXPECT_EQ(SequenceReader(seq_.string()).size(), 3u);
+  EXPECT_EQ(names_in(dir_), std::set<std::string>{"seq"});
 }
 
 TEST_F(SequenceFolder, CreatesMissingParents) {
-  const fs::path deep = parent_ / "a" / "b" / "seq";
+  const fs::path deep = dir_ / "a" / "b" / "seq";
   write_sequence(deep);
   EXPECT_EQ(SequenceReader(deep.string()).size(), 3u);
 }
 
 TEST_F(SequenceFolder, TrailingSlashNamesTheSameFolder) {
-  write_sequence(dir_.string() + "/");
-  EXPECT_EQ(names_in(parent_), std::set<std::string>{"seq"});
-  EXPECT_EQ(SequenceReader(dir_.string()).size(), 3u);
+  write_sequence(seq_.string() + "/");
+  EXPECT_EQ(names_in(dir_), std::set<std::string>{"seq"});
+  EXPECT_EQ(SequenceReader(seq_.string()).size(), 3u);
 }
 
 TEST_F(SequenceFolder, OverwritingAnEarlierSequenceReplacesIt) {
-  write_sequence(dir_, 3);
-  write_file(dir_ / "notes.txt", "from the first run");
+  write_sequence(seq_, 3);
+  write_text(seq_ / "notes.txt", "from the first run");
   // Second run: 2 scans, no optional files.
   {
     std::mt19937 rng(5);
-    SequenceWriter w(dir_.string());
+    SequenceWriter w(seq_.string());
     w.write_scan(0, random_cloud(rng, 4, true, false));
     w.write_scan(1, random_cloud(rng, 6, true, false));
     SequenceInfo info;
@@ -344,7 +326,7 @@ TEST_F(SequenceFolder, OverwritingAnEarlierSequenceReplacesIt) {
     info.odometry = {Pose3::Identity(), Pose3::Identity()};
     w.commit(info);
   }
-  const SequenceReader r(dir_.string());
+  const SequenceReader r(seq_.string());
   EXPECT_EQ(r.size(), 2u);
   EXPECT_DOUBLE_EQ(r.info().times[0], 7.0);
   EXPECT_TRUE(r.info().groundtruth.empty());
@@ -352,12 +334,12 @@ TEST_F(SequenceFolder, OverwritingAnEarlierSequenceReplacesIt) {
   EXPECT_EQ(r.scan(1).size(), 6u);
   EXPECT_FALSE(r.scan(0).has_labels());
   // Nothing of the first run is left.
-  EXPECT_FALSE(fs::exists(dir_ / "scans/000002.bin"));
-  EXPECT_FALSE(fs::exists(dir_ / "scans/000000.label"));
-  EXPECT_FALSE(fs::exists(dir_ / "groundtruth.txt"));
-  EXPECT_FALSE(fs::exists(dir_ / "scene.yaml"));
-  EXPECT_FALSE(fs::exists(dir_ / "notes.txt"));
-  EXPECT_EQ(names_in(parent_), std::set<std::string>{"seq"});
+  EXPECT_FALSE(fs::exists(seq_ / "scans/000002.bin"));
+  EXPECT_FALSE(fs::exists(seq_ / "scans/000000.label"));
+  EXPECT_FALSE(fs::exists(seq_ / "groundtruth.txt"));
+  EXPECT_FALSE(fs::exists(seq_ / "scene.yaml"));
+  EXPECT_FALSE(fs::exists(seq_ / "notes.txt"));
+  EXPECT_EQ(names_in(dir_), std::set<std::string>{"seq"});
 }
 
 TEST_F(SequenceFolder, InstanceIdInTheHighBitsReadsAsTheClass) {
@@ -365,104 +347,104 @@ TEST_F(SequenceFolder, InstanceIdInTheHighBitsReadsAsTheClass) {
   c.points = {Eigen::Vector3f(1, 2, 3), Eigen::Vector3f(4, 5, 6), Eigen::Vector3f(7, 8, 9)};
   c.labels = {(7u << 16) | 4u, 1u, (0xFFFFu << 16) | 6u};
   {
-    SequenceWriter w(dir_.string());
+    SequenceWriter w(seq_.string());
     w.write_scan(0, c);
     SequenceInfo info;
     info.times = {1.0};
     info.odometry = {Pose3::Identity()};
     w.commit(info);
   }
-  const PointCloud got = SequenceReader(dir_.string()).scan(0);
+  const PointCloud got = SequenceReader(seq_.string()).scan(0);
   EXPECT_EQ(got.labels, (std::vector<std::uint32_t>{4u, 1u, 6u}));
 }
 
 // ---------------------------------------------------------------- reader errors
 
 TEST_F(SequenceFolder, ReaderRejectsAMissingFolder) {
-  const std::string msg = input_error_of([&] { SequenceReader r((parent_ / "nope").string()); });
-  EXPECT_THAT(msg, HasSubstr((parent_ / "nope").string()));
+  const std::string msg = input_error_of([&] { SequenceReader r((dir_ / "nope").string()); });
+  EXPECT_THAT(msg, HasSubstr((dir_ / "nope").string()));
 }
 
 TEST_F(SequenceFolder, ReaderRejectsMissingTimes) {
-  write_sequence(dir_);
-  fs::remove(dir_ / "times.txt");
-  const std::string msg = input_error_of([&] { SequenceReader r(dir_.string()); });
+  write_sequence(seq_);
+  fs::remove(seq_ / "times.txt");
+  const std::string msg = input_error_of([&] { SequenceReader r(seq_.string()); });
   EXPECT_THAT(msg, HasSubstr("times.txt"));
 }
 
 TEST_F(SequenceFolder, ReaderRejectsBadTimes) {
-  write_sequence(dir_);
-  write_file(dir_ / "times.txt", "1000.0\n1000.1\nabc\n");
-  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }),
-              StartsWith((dir_ / "times.txt").string() + ":3: "));
-  write_file(dir_ / "times.txt", "1000.0\n999.0\n1000.2\n");
-  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }),
-              StartsWith((dir_ / "times.txt").string() + ":2: "));
-  write_file(dir_ / "times.txt", "# no scans\n");
-  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), HasSubstr("times.txt"));
+  write_sequence(seq_);
+  write_text(seq_ / "times.txt", "1000.0\n1000.1\nabc\n");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }),
+              StartsWith((seq_ / "times.txt").string() + ":3: "));
+  write_text(seq_ / "times.txt", "1000.0\n999.0\n1000.2\n");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }),
+              StartsWith((seq_ / "times.txt").string() + ":2: "));
+  write_text(seq_ / "times.txt", "# no scans\n");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }), HasSubstr("times.txt"));
 }
 
 TEST_F(SequenceFolder, ReaderRejectsMissingOdometry) {
-  write_sequence(dir_);
-  fs::remove(dir_ / "odom.txt");
-  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), HasSubstr("odom.txt"));
+  write_sequence(seq_);
+  fs::remove(seq_ / "odom.txt");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }), HasSubstr("odom.txt"));
 }
 
 TEST_F(SequenceFolder, ReaderRejectsFewerPosesThanTimes) {
-  write_sequence(dir_);
-  const std::string odom = read_file(dir_ / "odom.txt");
-  write_file(dir_ / "odom.txt", odom.substr(0, odom.rfind('\n', odom.size() - 2) + 1));  // drop the last line
-  const std::string msg = input_error_of([&] { SequenceReader r(dir_.string()); });
-  EXPECT_THAT(msg, StartsWith((dir_ / "odom.txt").string()));
+  write_sequence(seq_);
+  const std::string odom = read_file(seq_ / "odom.txt");
+  write_text(seq_ / "odom.txt", odom.substr(0, odom.rfind('\n', odom.size() - 2) + 1));  // drop the last line
+  const std::string msg = input_error_of([&] { SequenceReader r(seq_.string()); });
+  EXPECT_THAT(msg, StartsWith((seq_ / "odom.txt").string()));
   EXPECT_THAT(msg, HasSubstr("2 poses"));
 }
 
 TEST_F(SequenceFolder, ReaderRejectsGroundTruthWithOtherTimestamps) {
-  write_sequence(dir_);
-  write_file(dir_ / "groundtruth.txt",
+  write_sequence(seq_);
+  write_text(seq_ / "groundtruth.txt",
              "1000.000000123 0 0 0 0 0 0 1\n1000.100000123 0 0 0 0 0 0 1\n1000.3 0 0 0 0 0 0 1\n");
-  const std::string msg = input_error_of([&] { SequenceReader r(dir_.string()); });
-  EXPECT_THAT(msg, StartsWith((dir_ / "groundtruth.txt").string() + ":3: "));
+  const std::string msg = input_error_of([&] { SequenceReader r(seq_.string()); });
+  EXPECT_THAT(msg, StartsWith((seq_ / "groundtruth.txt").string() + ":3: "));
 }
 
 TEST_F(SequenceFolder, ReaderRejectsAMissingScan) {
-  write_sequence(dir_);
-  fs::remove(dir_ / "scans/000002.bin");
-  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), HasSubstr("000002.bin"));
+  write_sequence(seq_);
+  fs::remove(seq_ / "scans/000002.bin");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }), HasSubstr("000002.bin"));
 }
 
 TEST_F(SequenceFolder, ReaderRejectsABinOfOddSize) {
-  write_sequence(dir_);
-  write_file(dir_ / "scans/000001.bin", std::string(17, '\0'));
-  const SequenceReader r(dir_.string());
+  write_sequence(seq_);
+  write_text(seq_ / "scans/000001.bin", std::string(17, '\0'));
+  const SequenceReader r(seq_.string());
   EXPECT_EQ(r.scan(0).size(), 50u);
   const std::string msg = input_error_of([&] { r.scan(1); });
-  EXPECT_THAT(msg, StartsWith((dir_ / "scans/000001.bin").string()));
+  EXPECT_THAT(msg, StartsWith((seq_ / "scans/000001.bin").string()));
 }
 
 TEST_F(SequenceFolder, ReaderRejectsALabelFileOfTheWrongCount) {
-  write_sequence(dir_);
-  write_file(dir_ / "scans/000000.label", std::string(3 * 4, '\0'));
-  const SequenceReader r(dir_.string());
+  write_sequence(seq_);
+  write_text(seq_ / "scans/000000.label", std::string(3 * 4, '\0'));
+  const SequenceReader r(seq_.string());
   const std::string msg = input_error_of([&] { r.scan(0); });
-  EXPECT_THAT(msg, StartsWith((dir_ / "scans/000000.label").string()));
+  EXPECT_THAT(msg, StartsWith((seq_ / "scans/000000.label").string()));
   EXPECT_THAT(msg, HasSubstr("3 labels for 50 points"));
   // Not a whole number of labels either.
-  write_file(dir_ / "scans/000001.label", std::string(7 * 4 + 2, '\0'));
-  EXPECT_THAT(input_error_of([&] { r.scan(1); }), StartsWith((dir_ / "scans/000001.label").string()));
+  write_text(seq_ / "scans/000001.label", std::string(7 * 4 + 2, '\0'));
+  EXPECT_THAT(input_error_of([&] { r.scan(1); }), StartsWith((seq_ / "scans/000001.label").string()));
 }
 
 TEST_F(SequenceFolder, ReaderRejectsMalformedRooms) {
-  write_sequence(dir_);
-  const std::string rooms = (dir_ / "rooms_gt.json").string();
-  write_file(rooms, "[{\"name\": \"a\", \"level\": \"L0\"");
-  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), StartsWith(rooms));
-  write_file(rooms, "{\"name\": \"a\"}");
-  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), StartsWith(rooms));
-  write_file(rooms, "[{\"name\": \"a\", \"level\": \"L0\", \"polygon\": [[0, 0], [1, 0]]}]");
-  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), StartsWith(rooms));
-  write_file(rooms, "[{\"name\": \"a\", \"level\": \"L0\", \"polygon\": [[0, 0], [1, \"x\"], [1, 1]]}]");
-  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), StartsWith(rooms));
-  write_file(rooms, "[{\"level\": \"L0\", \"polygon\": [[0, 0], [1, 0], [1, 1]]}]");
-  EXPECT_THAT(input_error_of([&] { SequenceReader r(dir_.string()); }), StartsWith(rooms));
+  write_sequence(seq_);
+  const std::string rooms = (seq_ / "rooms_gt.json").string();
+  write_text(rooms, "[{\"name\": \"a\", \"level\": \"L0\"");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }), StartsWith(rooms));
+  write_text(rooms, "{\"name\": \"a\"}");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }), StartsWith(rooms));
+  write_text(rooms, "[{\"name\": \"a\", \"level\": \"L0\", \"polygon\": [[0, 0], [1, 0]]}]");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }), StartsWith(rooms));
+  write_text(rooms, "[{\"name\": \"a\", \"level\": \"L0\", \"polygon\": [[0, 0], [1, \"x\"], [1, 1]]}]");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }), StartsWith(rooms));
+  write_text(rooms, "[{\"level\": \"L0\", \"polygon\": [[0, 0], [1, 0], [1, 1]]}]");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }), StartsWith(rooms));
 }

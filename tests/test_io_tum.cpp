@@ -1,11 +1,9 @@
 // TUM trajectory files: round trip, field order, skipped lines and every rejected line.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
@@ -13,46 +11,26 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/tum.hpp"
 
+#include "test_support.hpp"
+
 using namespace tsgraphs;
 using namespace tsgraphs::io;
+using tsgraphs::test::input_error_of;
+using tsgraphs::test::TempDirTest;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-namespace fs = std::filesystem;
-
 namespace {
 
-class Tum : public ::testing::Test {
+class Tum : public TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) /
-           ("tsgraphs_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string write(const std::string& text, const std::string& name = "poses.txt") {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << text;
-    return p.string();
-  }
-  // The message of the InputError that reading `text` raises.
+  // The message of the InputError that reading `text` from the file bad_path() raises.
   std::string error_reading(const std::string& text) {
-    const std::string path = write(text, "bad.txt");
-    try {
-      read_tum(path);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "read without error:\n" << text;
-    return "";
+    SCOPED_TRACE("reading:\n" + text);
+    const std::string path = write_file("bad.txt", text);
+    return input_error_of([&] { read_tum(path); });
   }
   std::string bad_path() const { return (dir_ / "bad.txt").string(); }
-  fs::path dir_;
 };
 
 Pose3 random_pose(std::mt19937& rng) {
@@ -84,7 +62,7 @@ std::vector<StampedPose> random_trajectory() {
 
 TEST_F(Tum, RoundTripOfRandomPoses) {
   const std::vector<StampedPose> poses = random_trajectory();
-  const std::vector<StampedPose> back = read_tum(write(format_tum(poses)));
+  const std::vector<StampedPose> back = read_tum(write_file("poses.txt", format_tum(poses)));
   ASSERT_EQ(back.size(), poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) {
     EXPECT_NEAR(back[i].t, poses[i].t, 1e-9) << i;
@@ -102,7 +80,7 @@ TEST_F(Tum, RoundTripOfRandomPoses) {
 // with 9 decimals (%.9f): rotation matrix entries come back up to ~1.3e-9 off.
 TEST_F(Tum, RoundTripOfRotationsTo1e9) {
   const std::vector<StampedPose> poses = random_trajectory();
-  const std::vector<StampedPose> back = read_tum(write(format_tum(poses)));
+  const std::vector<StampedPose> back = read_tum(write_file("poses.txt", format_tum(poses)));
   ASSERT_EQ(back.size(), poses.size());
   double worst = 0.0;
   for (std::size_t i = 0; i < poses.size(); ++i) {
@@ -137,7 +115,7 @@ TEST_F(Tum, FieldOrderIsTxyzQxQyQzQw) {
 
 TEST_F(Tum, ReadsKnownValues) {
   // 90 deg about x, given with qw last.
-  const auto poses = read_tum(write("5.25 -1 2.5 3 0.7071067811865476 0 0 0.7071067811865476\n"));
+  const auto poses = read_tum(write_file("poses.txt", "5.25 -1 2.5 3 0.7071067811865476 0 0 0.7071067811865476\n"));
   ASSERT_EQ(poses.size(), 1u);
   EXPECT_DOUBLE_EQ(poses[0].t, 5.25);
   EXPECT_DOUBLE_EQ(poses[0].pose.translation().x(), -1.0);
@@ -148,7 +126,7 @@ TEST_F(Tum, ReadsKnownValues) {
 }
 
 TEST_F(Tum, SlightlyNonUnitQuaternionIsNormalised) {
-  const auto poses = read_tum(write("1 0 0 0 0 0 0 1.0004\n"));
+  const auto poses = read_tum(write_file("poses.txt", "1 0 0 0 0 0 0 1.0004\n"));
   ASSERT_EQ(poses.size(), 1u);
   EXPECT_NEAR((poses[0].pose.linear() - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
 }
@@ -156,14 +134,14 @@ TEST_F(Tum, SlightlyNonUnitQuaternionIsNormalised) {
 TEST_F(Tum, CommentsAndBlankLinesAreSkipped) {
   const std::string text = std::string("# timestamp tx ty tz qx qy qz qw\n") + "\n" + "1.0 " + kIdentityLine +
                            "\n" + "   \n" + "\t\r\n" + "# another comment\n" + "2.0 1 2 3 0 0 0 1\r\n" + "\n";
-  const auto poses = read_tum(write(text));
+  const auto poses = read_tum(write_file("poses.txt", text));
   ASSERT_EQ(poses.size(), 2u);
   EXPECT_DOUBLE_EQ(poses[0].t, 1.0);
   EXPECT_DOUBLE_EQ(poses[1].t, 2.0);
   EXPECT_DOUBLE_EQ(poses[1].pose.translation().z(), 3.0);
 }
 
-TEST_F(Tum, EmptyFileHasNoPoses) { EXPECT_TRUE(read_tum(write("")).empty()); }
+TEST_F(Tum, EmptyFileHasNoPoses) { EXPECT_TRUE(read_tum(write_file("poses.txt", "")).empty()); }
 
 TEST_F(Tum, SevenNumbersNameFileAndLine) {
   const std::string msg = error_reading("# header\n1 0 0 0 0 0 0 1\n2 0 0 0 0 0 1\n");
@@ -195,7 +173,7 @@ TEST_F(Tum, BackwardsTimestampsAreRejected) {
   EXPECT_THAT(msg, StartsWith(bad_path() + ":3: "));
   EXPECT_THAT(msg, HasSubstr("backwards"));
   // Equal timestamps are allowed.
-  EXPECT_EQ(read_tum(write("1 0 0 0 0 0 0 1\n1 0 0 0 0 0 0 1\n")).size(), 2u);
+  EXPECT_EQ(read_tum(write_file("poses.txt", "1 0 0 0 0 0 0 1\n1 0 0 0 0 0 0 1\n")).size(), 2u);
 }
 
 // A line with more than 8 fields is not a TUM line ("a malformed line ... is an InputError"),

@@ -19,9 +19,13 @@
 #include "tsgraphs/sim/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
+#include "test_support.hpp"
+
 namespace fs = std::filesystem;
 using namespace tsgraphs;
 using namespace tsgraphs::sim;
+using tsgraphs::test::fresh_temp_dir;
+using tsgraphs::test::TempDirTest;
 
 namespace {
 
@@ -64,11 +68,7 @@ std::string read_file(const fs::path& p) {
   return s.str();
 }
 
-fs::path temp_dir(const std::string& name) {
-  const fs::path p = fs::path(::testing::TempDir()) / ("tsgraphs_sim_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  return p;
-}
+using Cli = TempDirTest;
 
 }  // namespace
 
@@ -143,7 +143,7 @@ TEST(Simulator, SameSeedSameScansWhateverTheThreads) {
 
 TEST(Simulator, WritesIdenticalSequencesForTheSameSeed) {
   const Scene scene = parse_scene(kScene, "small.yaml", ".");
-  const fs::path a = temp_dir("a"), b = temp_dir("b");
+  const fs::path a = fresh_temp_dir("a"), b = fresh_temp_dir("b");
   write_sequence(Simulator(scene, 9), a.string());
   write_sequence(Simulator(scene, 9), b.string());
   std::size_t files = 0;
@@ -181,53 +181,49 @@ int run(const std::string& args, std::string* err) {
   const fs::path log = fs::path(::testing::TempDir()) / ("tsgraphs_cli_stderr_" + std::to_string(::getpid()) + ".txt");
   const int status = std::system((std::string(TSGRAPHS_BINARY) + " " + args + " 2> " + log.string() + " > /dev/null").c_str());
   *err = read_file(log);
+  fs::remove(log);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 }  // namespace
 
-TEST(Cli, BadSceneExitsTwoWithOneLineNamingFileAndLine) {
-  const fs::path dir = temp_dir("cli");
-  fs::create_directories(dir);
-  const fs::path scene = dir / "bad.yaml";
+TEST_F(Cli, BadSceneExitsTwoWithOneLineNamingFileAndLine) {
+  const fs::path scene = dir_ / "bad.yaml";
   std::ofstream(scene) << "levels:\n  - name: L0\n    slab: [[0,0],[5,0],[5,5],[0,5]]\n    colour: red\n"
                           "trajectory: {waypoints: [[1,1],[2,2]]}\n";
   std::string err;
-  EXPECT_EQ(run("simulate " + scene.string() + " --out " + (dir / "seq").string(), &err), 2);
+  EXPECT_EQ(run("simulate " + scene.string() + " --out " + (dir_ / "seq").string(), &err), 2);
   EXPECT_THAT(err, ::testing::HasSubstr(scene.string() + ":4: unknown key 'levels[0].colour'"));
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1);
-  EXPECT_FALSE(fs::exists(dir / "seq"));
+  EXPECT_FALSE(fs::exists(dir_ / "seq"));
   // A folder that is not an earlier sequence is never overwritten.
-  fs::create_directories(dir / "mine");
-  std::ofstream(dir / "mine" / "notes.txt") << "keep";
+  fs::create_directories(dir_ / "mine");
+  std::ofstream(dir_ / "mine" / "notes.txt") << "keep";
   std::ofstream(scene) << "levels:\n  - name: L0\n    slab: [[0,0],[5,0],[5,5],[0,5]]\n"
                           "trajectory: {waypoints: [[1,1],[2,2]], laps: 1}\nsensor: {channels: 4, columns: 16}\n";
-  EXPECT_EQ(run("-q simulate " + scene.string() + " --out " + (dir / "mine").string(), &err), 2);
-  EXPECT_EQ(read_file(dir / "mine" / "notes.txt"), "keep");
+  EXPECT_EQ(run("-q simulate " + scene.string() + " --out " + (dir_ / "mine").string(), &err), 2);
+  EXPECT_EQ(read_file(dir_ / "mine" / "notes.txt"), "keep");
   // A good run writes the folder; a second run replaces it; no temporary folder is left.
-  EXPECT_EQ(run("-q simulate " + scene.string() + " --out " + (dir / "seq").string() + " --seed 4", &err), 0) << err;
-  EXPECT_TRUE(fs::exists(dir / "seq" / "times.txt"));
-  EXPECT_EQ(run("-q simulate " + scene.string() + " --out " + (dir / "seq").string() + " --laps 2", &err), 0) << err;
-  EXPECT_EQ(io::SequenceReader((dir / "seq").string()).info().lap_starts.size(), 2u);
+  EXPECT_EQ(run("-q simulate " + scene.string() + " --out " + (dir_ / "seq").string() + " --seed 4", &err), 0) << err;
+  EXPECT_TRUE(fs::exists(dir_ / "seq" / "times.txt"));
+  EXPECT_EQ(run("-q simulate " + scene.string() + " --out " + (dir_ / "seq").string() + " --laps 2", &err), 0) << err;
+  EXPECT_EQ(io::SequenceReader((dir_ / "seq").string()).info().lap_starts.size(), 2u);
   int entries = 0;
-  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_)) ++entries;
   EXPECT_EQ(entries, 3);  // bad.yaml, mine, seq
-  EXPECT_EQ(run("simulate no_such_scene --out " + (dir / "x").string(), &err), 2);
+  EXPECT_EQ(run("simulate no_such_scene --out " + (dir_ / "x").string(), &err), 2);
   EXPECT_THAT(err, ::testing::HasSubstr("no such scene file (built-in scenes:"));
   EXPECT_EQ(run("simulate", &err), 2);
-  fs::remove_all(dir);
 }
 
-TEST(Cli, KilledRunLeavesNoSequenceAndTheNextRunCleansUp) {
-  const fs::path dir = temp_dir("kill");
-  fs::create_directories(dir);
-  const fs::path scene = dir / "long.yaml";
+TEST_F(Cli, KilledRunLeavesNoSequenceAndTheNextRunCleansUp) {
+  const fs::path scene = dir_ / "long.yaml";
   // 400 m of path: thousands of scans, far longer than the moment we kill it.
   std::ofstream(scene) << "levels: [{name: L0, slab: [[0,0],[110,0],[110,10],[0,10]]}]\n"
                           "walls: [{level: L0, from: [0, 0], to: [110, 0]}]\n"
                           "sensor: {channels: 32, columns: 512}\n"
                           "trajectory: {waypoints: [[2, 5], [102, 5]], laps: 2}\n";
-  const fs::path out = dir / "seq";
+  const fs::path out = dir_ / "seq";
   const pid_t pid = ::fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
@@ -239,7 +235,7 @@ TEST(Cli, KilledRunLeavesNoSequenceAndTheNextRunCleansUp) {
   bool writing = false;
   for (int i = 0; i < 400 && !writing; ++i) {
     ::usleep(25000);
-    for (const auto& e : fs::directory_iterator(dir)) {
+    for (const auto& e : fs::directory_iterator(dir_)) {
       if (e.path().filename().string().rfind("seq.tmp-", 0) == 0 && fs::exists(e.path() / "scans" / "000005.bin")) writing = true;
     }
   }
@@ -257,8 +253,7 @@ TEST(Cli, KilledRunLeavesNoSequenceAndTheNextRunCleansUp) {
   EXPECT_EQ(run("-q simulate " + scene.string() + " --out " + out.string(), &err), 0) << err;
   EXPECT_TRUE(fs::exists(out / "times.txt"));
   std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"long.yaml", "seq"}));
-  fs::remove_all(dir);
 }

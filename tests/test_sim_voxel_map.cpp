@@ -1,8 +1,6 @@
 // Voxel maps: PCD voxel centres become cubes with the right labels, yaw and offset.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 
@@ -11,9 +9,12 @@
 #include "tsgraphs/sim/scene_geometry.hpp"
 #include "tsgraphs/sim/scene_loader.hpp"
 
+#include "test_support.hpp"
+
 namespace fs = std::filesystem;
 using namespace tsgraphs;
 using namespace tsgraphs::sim;
+using tsgraphs::test::TempDirTest;
 
 namespace {
 
@@ -47,17 +48,12 @@ Scene scene_with_map(const fs::path& dir, const std::string& extra) {
   return load_scene(scene.string());
 }
 
-class VoxelMapTest : public ::testing::Test {
+class VoxelMapTest : public TempDirTest {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) / ("tsgraphs_voxel_map_" + std::string(info->name()) + "_" +
-                                             std::to_string(::getpid()));
-    fs::remove_all(dir_);
+    TempDirTest::SetUp();
     write_map(dir_);
   }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
 };
 
 }  // namespace
