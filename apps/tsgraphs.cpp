@@ -43,6 +43,13 @@ sim::Scene resolve_scene(const std::string& arg) {
   return sim::load_scene(arg);
 }
 
+// Warnings are shown even with --quiet: they say the output may not be what was meant.
+sim::Scene load_and_warn(const std::string& arg) {
+  sim::Scene scene = resolve_scene(arg);
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "tsgraphs: warning: %s\n", w.c_str());
+  return scene;
+}
+
 void simulate(const sim::Scene& scene_in, const std::string& out, std::uint64_t seed, int laps, bool quiet) {
   sim::Scene scene = scene_in;
   if (laps > 0) scene.trajectory.laps = laps;
@@ -106,10 +113,10 @@ int main(int argc, char** argv) {
 
   try {
     if (*simulate_cmd) {
-      const sim::Scene scene = resolve_scene(opt.scene);
+      const sim::Scene scene = load_and_warn(opt.scene);
       simulate(scene, opt.out, seed_for(scene, opt.seed), opt.laps, opt.quiet);
     } else if (*draw_cmd) {
-      draw_scene(resolve_scene(opt.scene), opt.out, opt.quiet);
+      draw_scene(load_and_warn(opt.scene), opt.out, opt.quiet);
     } else if (*demo_cmd) {
       const std::string out = opt.out.empty() ? "tsgraphs-demo" : opt.out;
       fs::create_directories(out);

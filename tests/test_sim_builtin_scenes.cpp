@@ -106,6 +106,8 @@ TEST_P(BuiltinScene, LoadsWithLevelsRoomsAndTwoClosedLaps) {
   EXPECT_EQ(scene_.trajectory.laps, 2);
   EXPECT_TRUE(scene_.trajectory.closed);
   EXPECT_EQ(scene_.sensor.preset, "os1-64");
+  // No path through a wall, box or void, no storey inside another.
+  EXPECT_TRUE(scene_.warnings.empty()) << scene_.warnings.front();
 }
 
 TEST_P(BuiltinScene, RoomsLieOnTheirSlabOutsideVoids) {

@@ -175,3 +175,23 @@ trajectory: {waypoints: [[0, 0], [1, 0]]}
   const std::size_t kept = Simulator(with("0.25"), 1).scan_at(pose, 0).size();
   EXPECT_NEAR(static_cast<double>(kept) / all, 0.75, 0.03);
 }
+
+TEST(SceneGeometry, JoinedWallsCloseTheirCorner) {
+  const Scene scene = parse_scene(R"(levels: [{name: L0, slab: [[0,0],[10,0],[10,8],[0,8]]}]
+walls:
+  - {level: L0, from: [0, 0], to: [10, 0]}
+  - {level: L0, from: [10, 0], to: [10, 8]}
+trajectory: {waypoints: [[2, 2], [8, 2]]}
+)",
+                                  "corner.yaml", ".");
+  const RayCaster caster(build_scene_mesh(scene));
+  // Aim from outside at the outer corner square (10..10.1, -0.1..0): without the join the ray
+  // would pass through the gap between the two walls' ends.
+  const RayHit h = caster.cast({12.0f, -2.0f, 1.0f}, Eigen::Vector3f(-1.95f, 1.95f, 0.0f), 60.0f);
+  EXPECT_EQ(h.label, kWall);
+  // The pieces of a joined wall reach half its thickness past the joined end only.
+  const std::vector<WallPiece> pieces = wall_pieces(scene.walls[0]);
+  ASSERT_EQ(pieces.size(), 1u);
+  EXPECT_DOUBLE_EQ(pieces[0].s0, 0.0);
+  EXPECT_DOUBLE_EQ(pieces[0].s1, 10.1);
+}

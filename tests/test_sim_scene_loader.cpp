@@ -246,3 +246,59 @@ trajectory:
   ASSERT_TRUE(walkable_height(s, 1, {10, 8}, &z));
   EXPECT_NEAR(z, 2.0, 1e-9);
 }
+
+TEST(SceneLoader, WarnsAboutPathsThroughWallsBoxesAndVoids) {
+  EXPECT_TRUE(parse_scene(kRoom, "test.yaml", ".").warnings.empty());
+  // A second wall across the room, x = 5: the legs out (y = 2) and back (the closing leg)
+  // both cross it.
+  const std::string wall = replace(kRoom, "trajectory:", "  - {level: L0, from: [5, 1], to: [5, 7]}\ntrajectory:");
+  const Scene s1 = parse_scene(wall, "test.yaml", ".");
+  ASSERT_EQ(s1.warnings.size(), 2u);
+  EXPECT_THAT(s1.warnings[0], HasSubstr("trajectory.waypoints[0]-[1]: the path crosses wall walls[1]"));
+  EXPECT_THAT(s1.warnings[1], HasSubstr("trajectory.waypoints[2]-[0]: the path crosses wall walls[1]"));
+  EXPECT_THAT(s1.warnings[0], HasSubstr("test.yaml:" + std::to_string(line_of(wall, "waypoints:")) + ":"));
+  // Through a door it is fine.
+  const std::string door = replace(wall, "to: [5, 7]}", "to: [5, 7], openings: [{at: 1.0, width: 1.0}, {at: 3.0, width: 1.2}]}");
+  EXPECT_TRUE(parse_scene(door, "test.yaml", ".").warnings.empty());
+  const std::string box = replace(kRoom, "trajectory:", "boxes: [{level: L0, min: [4, 1.5, 0], max: [4.5, 2.5, 1]}]\ntrajectory:");
+  const Scene s2 = parse_scene(box, "test.yaml", ".");
+  ASSERT_EQ(s2.warnings.size(), 1u);
+  EXPECT_THAT(s2.warnings[0], HasSubstr("crosses box boxes[0]"));
+  // A hanging box (a shelf above head height) is not in the way.
+  EXPECT_TRUE(parse_scene(replace(box, "[4, 1.5, 0], max: [4.5, 2.5, 1]", "[4, 1.5, 2.2], max: [4.5, 2.5, 2.8]"), "test.yaml", ".").warnings.empty());
+  const std::string in_void = replace(kRoom, "    slab: [[0,0],[10,0],[10,8],[0,8]]\n",
+                                      "    slab: [[0,0],[10,0],[10,8],[0,8]]\n    voids: [[[7.5,3],[8.5,3],[8.5,4],[7.5,4]]]\n");
+  const Scene s3 = parse_scene(in_void, "test.yaml", ".");
+  ASSERT_EQ(s3.warnings.size(), 1u);
+  EXPECT_THAT(s3.warnings[0], HasSubstr("trajectory.waypoints[1]-[2]: the path crosses a void of level L0"));
+}
+
+TEST(SceneLoader, WarnsWhenACeilingIsAboveTheNextFloor) {
+  const std::string text = R"(levels:
+  - {name: G, elevation: 0.0, ceiling: 2.7, slab: [[0,0],[10,0],[10,10],[0,10]]}
+  - {name: U, elevation: 2.0, slab: [[5,5],[15,5],[15,15],[5,15]]}
+trajectory: {waypoints: [[1, 1], [3, 1]]}
+)";
+  const Scene s = parse_scene(text, "stack.yaml", ".");
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_THAT(s.warnings[0], HasSubstr("stack.yaml:3: levels: the ceiling of G (z 2.7) is above the floor of U (z 2)"));
+  // Side by side (no overlap), the same heights are fine.
+  std::string apart = text;
+  apart.replace(apart.find("[[5,5],[15,5],[15,15],[5,15]]"), 29, "[[20,0],[30,0],[30,10],[20,10]]");
+  EXPECT_TRUE(parse_scene(apart, "stack.yaml", ".").warnings.empty());
+}
+
+TEST(SceneLoader, WallEndsThatMeetAreJoined) {
+  const std::string text = R"(levels: [{name: L0, slab: [[0,0],[10,0],[10,8],[0,8]]}]
+walls:
+  - {level: L0, from: [0, 0], to: [10, 0]}
+  - {level: L0, from: [10, 0], to: [10, 8]}
+  - {level: L0, from: [3, 4], to: [6, 4]}
+trajectory: {waypoints: [[2, 2], [8, 2]]}
+)";
+  const Scene s = parse_scene(text, "join.yaml", ".");
+  EXPECT_FALSE(s.walls[0].joined_from);
+  EXPECT_TRUE(s.walls[0].joined_to);
+  EXPECT_TRUE(s.walls[1].joined_from);
+  EXPECT_FALSE(s.walls[2].joined_from || s.walls[2].joined_to);
+}

@@ -116,6 +116,13 @@ Polygon2 clip_to_convex(const Polygon2& subject, const Polygon2& clip) {
   return out;
 }
 
+double intersection_area(const Polygon2& a, const Polygon2& b) {
+  // Sutherland-Hodgman needs a convex clip: clip `a` by each triangle of `b`.
+  double sum = 0.0;
+  for (const Triangle2& t : triangulate_region({b})) sum += area(clip_to_convex(a, {t[0], t[1], t[2]}));
+  return sum;
+}
+
 std::vector<Triangle2> triangulate_region(const std::vector<Polygon2>& include,
                                           const std::vector<Polygon2>& exclude) {
   struct Edge {

@@ -35,6 +35,9 @@ std::optional<std::pair<std::size_t, std::size_t>> find_self_intersection(const 
 /// Intersection of `subject` with a convex polygon `clip` (Sutherland-Hodgman).
 Polygon2 clip_to_convex(const Polygon2& subject, const Polygon2& clip);
 
+/// Area shared by two simple polygons (either may be concave).
+double intersection_area(const Polygon2& a, const Polygon2& b);
+
 /// Triangles that exactly cover the union of `include` minus the union of `exclude`
 /// (each polygon read with the even-odd rule). Counter-clockwise triangles; the region is
 /// cut into horizontal trapezoids, so holes, touching and overlapping polygons all work.

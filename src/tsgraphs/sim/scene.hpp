@@ -57,6 +57,9 @@ struct Wall {
   double thickness = 0.2;
   double height = 3.0;
   std::vector<Opening> openings;
+  /// Set by the loader where this end meets the end of another wall of the level: the wall
+  /// then reaches half its thickness past the end, so that the corner is closed.
+  bool joined_from = false, joined_to = false;
   int line = 0;
 };
 
@@ -136,6 +139,9 @@ struct Scene {
   TrajectorySpec trajectory;
   std::string file;                   ///< the scene file it was loaded from (or "builtin:NAME")
   std::string source_text;            ///< the YAML text it was read from (copied to sequences)
+  /// Things that load but look wrong ("file:line: key: what"): a path through a wall, a box
+  /// or a void, a ceiling above the next storey's floor. Front ends print them.
+  std::vector<std::string> warnings;
 };
 
 /// Geometry constants of railings (the format fixes the style, not the dimensions).

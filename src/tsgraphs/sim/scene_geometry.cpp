@@ -156,16 +156,20 @@ void LabelledMesh::add_box(const Eigen::Vector2d& center, const Eigen::Vector2d&
 
 std::vector<WallPiece> wall_pieces(const Wall& wall) {
   const double length = (wall.to - wall.from).norm();
+  const double start = wall.joined_from ? -0.5 * wall.thickness : 0.0;
+  const double end = length + (wall.joined_to ? 0.5 * wall.thickness : 0.0);
   std::vector<WallPiece> pieces;
-  double s = 0.0;
+  double s = start;
   for (const Opening& o : wall.openings) {  // sorted by `at`, not overlapping
     const double a = o.at - 0.5 * o.width, b = o.at + 0.5 * o.width;
     if (a > s) pieces.push_back({s, a, 0.0, wall.height});
+    // An opening at the very end of a joined wall leaves the corner's square solid.
+    if (a <= 0.0 && s < 0.0) pieces.push_back({s, 0.0, 0.0, wall.height});
     if (o.sill > 0.0) pieces.push_back({a, b, 0.0, o.sill});
     if (o.sill + o.height < wall.height) pieces.push_back({a, b, o.sill + o.height, wall.height});
     s = b;
   }
-  if (s < length) pieces.push_back({s, length, 0.0, wall.height});
+  if (s < end) pieces.push_back({s, end, 0.0, wall.height});
   return pieces;
 }
 

@@ -9,7 +9,9 @@
 #include <sstream>
 
 #include "tsgraphs/core/yaml_map.hpp"
+#include "tsgraphs/core/rect.hpp"
 #include "tsgraphs/sim/lidar_model.hpp"
+#include "tsgraphs/sim/scene_geometry.hpp"
 
 namespace tsgraphs::sim {
 namespace {
@@ -42,6 +44,9 @@ class SceneParser {
     for (const YamlMap& m : root_.maps("ramps")) parse_ramp(m);
     for (const YamlMap& m : root_.maps("rooms")) parse_room(m);
     parse_trajectory(root_.map("trajectory"));
+    join_wall_ends();
+    warn_about_path();
+    warn_about_storeys();
     return std::move(scene_);
   }
 
@@ -392,6 +397,107 @@ class SceneParser {
         throw input_error(root_.file(), w.line,
                           where + ": " + fmt_point(w.xy) + " is inside the wall walls[" + std::to_string(i) +
                               "] (line " + std::to_string(wall.line) + ")");
+      }
+    }
+  }
+
+  // Walls whose ends meet are joined: each reaches half its thickness past the shared end.
+  void join_wall_ends() {
+    constexpr double kJoinTolerance = 1e-3;  // m between two ends that count as one corner
+    for (Wall& w : scene_.walls) {
+      for (const Wall& o : scene_.walls) {
+        if (&o == &w || o.level != w.level) continue;
+        for (const Vec2& e : {o.from, o.to}) {
+          w.joined_from = w.joined_from || (w.from - e).norm() < kJoinTolerance;
+          w.joined_to = w.joined_to || (w.to - e).norm() < kJoinTolerance;
+        }
+      }
+    }
+  }
+
+  void warn(int line, const std::string& what) {
+    scene_.warnings.push_back(root_.file() + ":" + std::to_string(line) + ": " + what);
+  }
+
+  // Straight legs of the path that pass through a wall (outside a door), a box standing on
+  // the floor or a void: the simulator would carry the sensor through them.
+  void warn_about_path() {
+    const std::vector<Waypoint>& wps = scene_.trajectory.waypoints;
+    const std::size_t legs = scene_.trajectory.closed ? wps.size() : wps.size() - 1;
+    for (std::size_t i = 0; i < legs; ++i) {
+      const Waypoint& a = wps[i];
+      const Waypoint& b = wps[(i + 1) % wps.size()];
+      const std::string leg = "trajectory.waypoints[" + std::to_string(i) + "]-[" +
+                              std::to_string((i + 1) % wps.size()) + "]: the path ";
+      const int line = (i + 1 < wps.size()) ? b.line : a.line;
+      // A leg between storeys climbs a ramp: what is under it on the lower storey is not in
+      // the way, and the loader does not know the height along it; such legs are not checked.
+      if (a.level != b.level) continue;
+      for (std::size_t k = 0; k < scene_.walls.size(); ++k) {
+        const Wall& w = scene_.walls[k];
+        if (w.level != a.level) continue;
+        const Vec2 dir = (w.to - w.from).normalized();
+        for (const WallPiece& p : wall_pieces(w)) {
+          if (p.z0 > 0.0) continue;  // above a door: walked under
+          OrientedRect r;
+          r.center = w.from + 0.5 * (p.s0 + p.s1) * dir;
+          r.size = Vec2(p.s1 - p.s0, w.thickness);
+          r.yaw = std::atan2(dir.y(), dir.x());
+          if (segment_meets(a.xy, b.xy, r)) {
+            warn(line, leg + "crosses wall walls[" + std::to_string(k) + "] (line " + std::to_string(w.line) +
+                           ") outside its openings");
+            break;
+          }
+        }
+      }
+      for (std::size_t k = 0; k < scene_.boxes.size(); ++k) {
+        const Box& bx = scene_.boxes[k];
+        if (bx.level != a.level || bx.min.z() > 0.0) continue;
+        OrientedRect r;
+        r.center = 0.5 * (bx.min.head<2>() + bx.max.head<2>());
+        r.size = bx.max.head<2>() - bx.min.head<2>();
+        r.yaw = bx.yaw_deg * M_PI / 180.0;
+        if (segment_meets(a.xy, b.xy, r)) {
+          warn(line, leg + "crosses box boxes[" + std::to_string(k) + "] (line " + std::to_string(bx.line) + ")");
+        }
+      }
+      for (const Polygon2& v : scene_.levels[a.level].voids) {
+        bool crosses = false;
+        for (std::size_t e = 0; e < v.size() && !crosses && !void_holds_ramp(a.level, v); ++e) {
+          crosses = segments_intersect(a.xy, b.xy, v[e], v[(e + 1) % v.size()]);
+        }
+        if (crosses) warn(line, leg + "crosses a void of level " + scene_.levels[a.level].name);
+      }
+    }
+  }
+
+  // True when the void is the opening of a ramp joining `level` (the ramp is walked over it).
+  bool void_holds_ramp(int level, const Polygon2& void_polygon) const {
+    for (const Ramp& r : scene_.ramps) {
+      if ((r.from_level == level || r.to_level == level) && intersection_area(r.polygon, void_polygon) > 0.0) return true;
+    }
+    return false;
+  }
+
+  static bool segment_meets(const Vec2& a, const Vec2& b, const OrientedRect& r) {
+    if (r.contains(a) || r.contains(b)) return true;
+    const Polygon2 c = r.corners();
+    for (std::size_t i = 0; i < 4; ++i) {
+      if (segments_intersect(a, b, c[i], c[(i + 1) % 4])) return true;
+    }
+    return false;
+  }
+
+  // A ceiling above the floor of the storey on top of it (where their slabs overlap).
+  void warn_about_storeys() {
+    for (const Level& low : scene_.levels) {
+      for (const Level& high : scene_.levels) {
+        if (high.elevation <= low.elevation || low.elevation + low.ceiling <= high.elevation + 1e-9) continue;
+        if (intersection_area(low.slab, high.slab) <= 0.0) continue;
+        std::ostringstream msg;
+        msg << "levels: the ceiling of " << low.name << " (z " << low.elevation + low.ceiling
+            << ") is above the floor of " << high.name << " (z " << high.elevation << ")";
+        warn(high.line, msg.str());
       }
     }
   }
