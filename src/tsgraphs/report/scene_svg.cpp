@@ -37,16 +37,30 @@ constexpr double kPxPerMetre = 40.0;          // common scale of every panel
 constexpr double kWorldPaddingM = 0.6;        // free space around the scene's extent
 constexpr double kPageMargin = 20.0;          // around the whole picture
 constexpr double kTitleHeight = 56.0;         // scene name and subtitle
+constexpr double kTitleBaseline = 22.0;       // of the scene name, below the page margin
+constexpr double kSubtitleBaseline = 42.0;
 constexpr double kPanelGap = 24.0;            // between panels, and panels to legend
 constexpr double kPanelPadding = 12.0;        // inside a panel's border, around the plan
 constexpr double kPanelTitleHeight = 26.0;    // level name and elevation above the plan
+constexpr double kPanelTitleBaseline = 14.0;
 constexpr double kScaleBarHeight = 36.0;      // below the plan
 constexpr double kMinPlanWidth = 280.0;       // so the title and scale bar always fit
 constexpr double kScaleBarMetres = 5.0;       // with a tick every metre
 constexpr double kScaleBarThickness = 6.0;
+constexpr double kScaleBarGap = 14.0;         // between the plan and the scale bar
+constexpr double kScaleTextGap = 12.0;        // between the bar and its numbers' baseline
+constexpr double kScaleTextShift = 3.0;       // numbers start this far left of their tick
 constexpr double kLegendWidth = 220.0;
 constexpr double kLegendRow = 20.0;
 constexpr double kLegendSwatch = 34.0;        // width of the sample drawn before each entry
+constexpr double kLegendInset = 10.0;         // inside the legend's border
+constexpr double kLegendTitleRows = 1.5;      // the heading takes this many rows
+constexpr int kLegendFixedRows = 14;          // entries always shown (voxel maps add one)
+constexpr double kSwatchTall = 12.0;          // heights of the legend's samples: areas,
+constexpr double kSwatchThin = 6.0;           // walls,
+constexpr double kSwatchLine = 5.0;           // the path's colour bar
+constexpr double kSwatchInset = 4.0;          // the ramp arrow inside its sample
+constexpr double kLegendDoorRadius = 14.0;
 
 // Path
 constexpr double kSampleStepS = 0.1;          // the path is sampled this often
@@ -58,15 +72,26 @@ constexpr double kStartRadius = 6.5;
 constexpr double kEndHalfSize = 5.0;
 constexpr double kEndMinDistanceM = 0.5;      // closer to the start than this: no end marker
 
+// Labels
+constexpr double kLabelBaseline = 4.0;        // text baseline below the labelled point
+constexpr double kLabelCharWidth = 7.5;       // rough width of a label character
+constexpr double kLabelLineHeight = 14.0;
+constexpr double kLabelMarkerShift = 18.0;    // a label over the start marker moves down this much
+
 // Strokes and sizes
 constexpr double kMinRailingWidth = 2.5;
-constexpr double kBarsRailingWidth = 4.0;
+constexpr double kBarsDotSize = 4.5;          // bars: a dotted line (a symbol: real posts are
+constexpr double kBarsDotSpacing = 8.0;       // 0.12 m apart, too close to show one by one)
+constexpr double kBarsRailWidth = 1.0;        // the top rail under the dots
 constexpr double kRampArrowFraction = 0.7;    // of the ramp's length along its axis
 constexpr double kRampArrowHead = 9.0;
+constexpr double kRampLabelGapM = 0.35;       // the ramp's label sits this far before its entry
 constexpr double kRoomHueStartDeg = 205.0;    // room colours: golden-angle hues from here
 constexpr double kGoldenAngleDeg = 137.50776;
 constexpr double kRoomSaturation = 0.62;
 constexpr double kRoomLightness = 0.48;
+constexpr double kHatchSpacing = 8.0;         // void hatching: line spacing and width
+constexpr double kHatchWidth = 3.0;
 constexpr double kEps = 1e-9;
 
 // Colours
@@ -114,6 +139,14 @@ std::string num(double v) {
   const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 2);
   std::string s(buf, r.ptr);
   if (s == "-0.00") s = "0.00";
+  return s;
+}
+
+/// As `num`, without trailing zeros: for numbers in prose ("every 3 m").
+std::string short_num(double v) {
+  std::string s = num(v);
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
   return s;
 }
 
@@ -401,7 +434,9 @@ class SceneDrawer {
       e.add(l.slab);
       for (const Polygon2& v : l.voids) e.add(v);
     }
-    for (const sim::Wall& w : scene_.walls) e.add(strip(w.from, w.to, 0.0, (w.to - w.from).norm(), w.thickness));
+    for (const sim::Wall& w : scene_.walls) {
+      for (const sim::WallPiece& p : sim::wall_pieces(w)) e.add(strip(w.from, w.to, p.s0, p.s1, w.thickness));
+    }
     for (const sim::Railing& r : scene_.railings) e.add(r.from), e.add(r.to);
     for (const sim::Box& b : scene_.boxes) e.add(box_corners(b));
     for (const sim::Ramp& r : scene_.ramps) e.add(r.polygon);
@@ -456,8 +491,8 @@ class SceneDrawer {
     plan_h_ = plan_h;
   }
 
-  double legend_height() const { return (legend_rows() + 1.5) * kLegendRow; }
-  int legend_rows() const { return 14 + (voxels_.empty() ? 0 : 1); }
+  double legend_height() const { return (legend_rows() + kLegendTitleRows) * kLegendRow; }
+  int legend_rows() const { return kLegendFixedRows + (voxels_.empty() ? 0 : 1); }
 
   void open_document() {
     out_ += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(page_w_) + "\" height=\"" + num(page_h_) +
@@ -466,13 +501,13 @@ class SceneDrawer {
     write_defs();
     out_ += "<rect class=\"background\" x=\"0\" y=\"0\" width=\"" + num(page_w_) + "\" height=\"" + num(page_h_) +
             "\" fill=\"" + kBackground + "\"/>\n";
-    out_ += text(kPageMargin, kPageMargin + 22.0, "scene-title", scene_.name);
+    out_ += text(kPageMargin, kPageMargin + kTitleBaseline, "scene-title", scene_.name);
     const double lap_s = path_.empty() ? 0.0 : path_.back().t;
     const double lap_m = path_.empty() ? 0.0 : path_.back().s;
-    out_ += text(kPageMargin, kPageMargin + 42.0, "subtitle",
+    out_ += text(kPageMargin, kPageMargin + kSubtitleBaseline, "subtitle",
                  std::to_string(scene_.levels.size()) + (scene_.levels.size() == 1 ? " level" : " levels") +
                      "; first lap of the path: " + num(lap_m) + " m in " + num(lap_s) + " s; " +
-                     num(kPxPerMetre) + " px per metre, y up");
+                     short_num(kPxPerMetre) + " px per metre, y up");
   }
 
   void write_defs() {
@@ -516,10 +551,11 @@ class SceneDrawer {
     out_ += ".legend-title { font-size: 13px; font-weight: bold; }\n";
     out_ += ".legend-text { font-size: 11px; }\n";
     out_ += "</style>\n<defs>\n";
-    out_ += std::string("<pattern id=\"void-hatch\" patternUnits=\"userSpaceOnUse\" width=\"8\" height=\"8\" "
-                        "patternTransform=\"rotate(45)\"><rect width=\"8\" height=\"8\" fill=\"") +
-            kVoidFill + "\"/><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"8\" stroke=\"" + kVoidHatch +
-            "\" stroke-width=\"3\"/></pattern>\n";
+    const std::string h = num(kHatchSpacing);
+    out_ += "<pattern id=\"void-hatch\" patternUnits=\"userSpaceOnUse\" width=\"" + h + "\" height=\"" + h +
+            "\" patternTransform=\"rotate(45)\"><rect width=\"" + h + "\" height=\"" + h + "\" fill=\"" + kVoidFill +
+            "\"/><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"" + h + "\" stroke=\"" + kVoidHatch + "\" stroke-width=\"" +
+            num(kHatchWidth) + "\"/></pattern>\n";
     out_ += "<linearGradient id=\"path-ramp\">";
     for (const ColourStop& c : kPathRamp) {
       out_ += "<stop offset=\"" + num(c.at) + "\" stop-color=\"" + hex_colour(c.r, c.g, c.b) + "\"/>";
@@ -538,10 +574,10 @@ class SceneDrawer {
     out_ += "<g class=\"panel\" transform=\"translate(" + num(p.x) + "," + num(p.y) + ")\">\n";
     out_ += "<rect class=\"panel-border\" x=\"0\" y=\"0\" width=\"" + num(p.width) + "\" height=\"" +
             num(p.height) + "\"/>\n";
-    out_ += text(kPanelPadding, kPanelPadding + 14.0, "panel-title",
+    out_ += text(kPanelPadding, kPanelPadding + kPanelTitleBaseline, "panel-title",
                  level.name + " \xE2\x80\x94 elevation " + num(level.elevation) + " m");
     const Frame& f = p.frame;
-    draw_slab(f, level);
+    draw_slab(f, p.level);
     draw_rooms(f, p.level);
     draw_ramps(f, p.level);
     draw_voxels(f, p.level);
@@ -549,17 +585,25 @@ class SceneDrawer {
     draw_walls(f, p.level);
     draw_railings(f, p.level);
     draw_path(f, p.level);
-    draw_labels(f);
-    draw_scale_bar(kPanelPadding, kPanelPadding + kPanelTitleHeight + plan_h_ + 14.0);
+    draw_labels(f, p.level);
+    draw_path_ends(f, p.level);  // last: never hidden under a room's name
+    draw_scale_bar(kPanelPadding, kPanelPadding + kPanelTitleHeight + plan_h_ + kScaleBarGap);
     out_ += "</g>\n";
   }
 
-  void draw_slab(const Frame& f, const sim::Level& level) {
+  /// The slab, and its voids hatched; a void's label is left out where a ramp (drawn over
+  /// it) already says what the hole is for.
+  void draw_slab(const Frame& f, int level) {
+    const sim::Level& l = scene_.levels[level];
     out_ += "<g class=\"layer-slab\">\n";
-    out_ += "<polygon class=\"slab\" points=\"" + points_attr(f, level.slab) + "\"/>\n";
-    for (const Polygon2& v : level.voids) {
+    out_ += "<polygon class=\"slab\" points=\"" + points_attr(f, l.slab) + "\"/>\n";
+    for (const Polygon2& v : l.voids) {
       out_ += "<polygon class=\"void\" points=\"" + points_attr(f, v) + "\"/>\n";
-      labels_.push_back({label_point(v), "void", "void-name"});
+      const Vec2 at = label_point(v);
+      const bool under_ramp = std::any_of(scene_.ramps.begin(), scene_.ramps.end(), [&](const sim::Ramp& r) {
+        return (r.from_level == level || r.to_level == level) && contains(r.polygon, at);
+      });
+      if (!under_ramp) labels_.push_back({at, "void", "void-name"});
     }
     out_ += "</g>\n";
   }
@@ -598,10 +642,11 @@ class SceneDrawer {
       out_ += "<polygon class=\"ramp\" fill=\"url(#" + id + ")\" points=\"" + points_attr(f, r.polygon) + "\"/>\n";
       const double half = 0.5 * kRampArrowFraction * (hi - lo);
       out_ += "<path class=\"ramp-arrow\" d=\"" + arrow_path(f.px(c - half * up), f.px(c + half * up)) + "\"/>\n";
-      const bool here_low = scene_.levels[level].elevation <=
-                            scene_.levels[r.from_level == level ? r.to_level : r.from_level].elevation;
+      // The label stands where one steps onto the ramp from this level.
       const int other = r.from_level == level ? r.to_level : r.from_level;
-      labels_.push_back({c, "ramp to " + scene_.levels[other].name + (here_low ? " (up)" : " (down)"), "ramp-name"});
+      const bool here_low = scene_.levels[level].elevation <= scene_.levels[other].elevation;
+      const Vec2 entry = here_low ? Vec2(low - kRampLabelGapM * up) : Vec2(high + kRampLabelGapM * up);
+      labels_.push_back({entry, "ramp to " + scene_.levels[other].name + (here_low ? " (up)" : " (down)"), "ramp-name"});
     }
     out_ += "</g>\n";
   }
@@ -692,10 +737,9 @@ class SceneDrawer {
            "\" y2=\"" + num(b.y()) + "\"/>\n";
   }
 
-  /// Solid railings as a line of the panel's thickness; bars as a dotted line, one dot per
-  /// post, under a thin top rail.
+  /// Solid railings as a line of the panel's thickness (at least kMinRailingWidth); bars
+  /// as a thin top rail with a dotted line over it.
   void draw_railings(const Frame& f, int level) {
-    using G = sim::RailingGeometry;
     out_ += "<g class=\"layer-railings\">\n";
     for (const sim::Railing& r : scene_.railings) {
       if (r.level != level) continue;
@@ -703,28 +747,30 @@ class SceneDrawer {
       const std::string ends = "x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) +
                                "\" y2=\"" + num(b.y()) + "\"";
       if (r.style == sim::RailingStyle::kSolid) {
-        const double width = std::max(G::kSolidThickness * kPxPerMetre, kMinRailingWidth);
+        const double width = std::max(sim::RailingGeometry::kSolidThickness * kPxPerMetre, kMinRailingWidth);
         out_ += "<line class=\"railing solid\" " + ends + " stroke-width=\"" + num(width) + "\"/>\n";
       } else {
-        const double post = G::kPostWidth * kPxPerMetre;
-        out_ += "<g class=\"railing bars\"><line " + ends + " stroke-width=\"1\"/><line " + ends +
-                " stroke-width=\"" + num(kBarsRailingWidth) + "\" stroke-dasharray=\"" + num(post) + " " +
-                num(G::kPostSpacing * kPxPerMetre - post) + "\"/></g>\n";
+        out_ += "<g class=\"railing bars\">" + bars_lines(ends) + "</g>\n";
       }
     }
     out_ += "</g>\n";
   }
 
+  /// The two lines of a bars railing between the given x1..y2 attributes.
+  static std::string bars_lines(const std::string& ends) {
+    return "<line " + ends + " stroke-width=\"" + num(kBarsRailWidth) + "\"/><line " + ends + " stroke-width=\"" +
+           num(kBarsDotSize) + "\" stroke-linecap=\"round\" stroke-dasharray=\"0.01 " + num(kBarsDotSpacing) +
+           "\"/>";
+  }
+
   /// The part of the first lap on this level: a white casing, then one polyline per second
-  /// coloured by time, arrowheads every kArrowSpacingM metres, and start and end markers.
+  /// coloured by time, and arrowheads every kArrowSpacingM metres.
   void draw_path(const Frame& f, int level) {
+    if (path_.empty()) return;
     out_ += "<g class=\"layer-path\">\n";
-    if (path_.empty()) {
-      out_ += "</g>\n";
-      return;
-    }
     const double duration = std::max(path_.back().t, kEps);
-    // Runs of consecutive samples on this level; a run keeps the sample where it leaves.
+    // Runs of consecutive samples on this level (a path that changes level leaves one run
+    // and starts another on the other panel).
     std::vector<std::pair<std::size_t, std::size_t>> runs;  // [first, last]
     for (std::size_t i = 0; i < path_.size(); ++i) {
       if (path_[i].level != level) continue;
@@ -755,6 +801,13 @@ class SceneDrawer {
       }
     }
     draw_arrows(f, level, duration);
+    out_ += "</g>\n";
+  }
+
+  /// The start (circle) and, when the lap does not return to it, the end (square).
+  void draw_path_ends(const Frame& f, int level) {
+    if (path_.empty()) return;
+    out_ += "<g class=\"layer-path-ends\">\n";
     const PathSample& s0 = path_.front();
     const PathSample& s1 = path_.back();
     if (s1.level == level && (s1.xy - s0.xy).norm() >= kEndMinDistanceM) {
@@ -781,6 +834,13 @@ class SceneDrawer {
     return s;
   }
 
+  /// A filled arrowhead centred on `c` (pixels) pointing along the unit `d`.
+  static std::string arrowhead_points(const Vec2& c, const Vec2& d) {
+    const Vec2 n = left_normal(d);
+    const Vec2 tip = c + 0.5 * kArrowLength * d, back = c - 0.5 * kArrowLength * d;
+    return xy(tip) + " " + xy(back + kArrowHalfWidth * n) + " " + xy(back - kArrowHalfWidth * n);
+  }
+
   /// Arrowheads at kArrowSpacingM / 2, 3/2 kArrowSpacingM, ... metres from the start.
   void draw_arrows(const Frame& f, int level, double duration) {
     std::size_t i = 0;
@@ -788,23 +848,26 @@ class SceneDrawer {
       while (i + 1 < path_.size() && path_[i].s < at) ++i;
       const PathSample& p = path_[i];
       if (p.level != level) continue;
-      const Vec2 c = f.px(p.xy);
       const Vec2 d(std::cos(p.yaw), -std::sin(p.yaw));  // page y points down
-      const Vec2 n = left_normal(d);
-      const Polygon2 tri = {c + 0.5 * kArrowLength * d, c - 0.5 * kArrowLength * d + kArrowHalfWidth * n,
-                            c - 0.5 * kArrowLength * d - kArrowHalfWidth * n};
-      std::string pts;
-      for (const Vec2& q : tri) pts += (pts.empty() ? "" : " ") + xy(q);
-      out_ += "<polygon class=\"arrow\" fill=\"" + path_colour(p.t / duration) + "\" points=\"" + pts + "\"/>\n";
+      out_ += "<polygon class=\"arrow\" fill=\"" + path_colour(p.t / duration) + "\" points=\"" +
+              arrowhead_points(f.px(p.xy), d) + "\"/>\n";
     }
   }
 
-  void draw_labels(const Frame& f) {
+  /// Names centred on their points; one that would cover the start marker moves below it.
+  void draw_labels(const Frame& f, int level) {
     out_ += "<g class=\"layer-labels\">\n";
+    const bool start_here = !path_.empty() && path_.front().level == level;
+    const Vec2 start = start_here ? f.px(path_.front().xy) : Vec2::Zero();
     for (const Label& l : labels_) {
-      const Vec2 p = f.px(l.at);
-      out_ += "<text class=\"label " + l.cls + "\" x=\"" + num(p.x()) + "\" y=\"" + num(p.y() + 4.0) + "\">" +
-              xml_escape(l.text) + "</text>\n";
+      Vec2 p = f.px(l.at);
+      const double half_width = 0.5 * kLabelCharWidth * static_cast<double>(l.text.size()) + kStartRadius;
+      if (start_here && std::abs(p.x() - start.x()) < half_width &&
+          std::abs(p.y() - start.y()) < 0.5 * kLabelLineHeight + kStartRadius) {
+        p.y() = start.y() + kLabelMarkerShift;
+      }
+      out_ += "<text class=\"label " + l.cls + "\" x=\"" + num(p.x()) + "\" y=\"" + num(p.y() + kLabelBaseline) +
+              "\">" + xml_escape(l.text) + "</text>\n";
     }
     out_ += "</g>\n";
   }
@@ -818,75 +881,67 @@ class SceneDrawer {
               "\" height=\"" + num(kScaleBarThickness) + "\" fill=\"" + (m % 2 == 0 ? kInk : kBackground) +
               "\" stroke=\"" + kInk + "\" stroke-width=\"0.8\"/>\n";
     }
-    const double ty = y + kScaleBarThickness + 12.0;
-    out_ += text(x - 3.0, ty, "scale-text", "0");
-    out_ += text(x + kPxPerMetre - 3.0, ty, "scale-text", "1");
-    out_ += text(x + metres * kPxPerMetre - 3.0, ty, "scale-text", std::to_string(metres) + " m");
+    const double ty = y + kScaleBarThickness + kScaleTextGap;
+    out_ += text(x - kScaleTextShift, ty, "scale-text", "0");
+    out_ += text(x + kPxPerMetre - kScaleTextShift, ty, "scale-text", "1");
+    out_ += text(x + metres * kPxPerMetre - kScaleTextShift, ty, "scale-text", std::to_string(metres) + " m");
     out_ += "</g>\n";
   }
 
   // --- legend ----------------------------------------------------------------------------
 
+  /// One row per kind of mark: a sample drawn with the same classes as in the panels, and
+  /// what it means.
   void draw_legend() {
     const double x = legend_x_;
     double y = kPageMargin + kTitleHeight;
     out_ += "<g class=\"legend\">\n";
     out_ += "<rect class=\"panel-border\" x=\"" + num(x) + "\" y=\"" + num(y) + "\" width=\"" + num(kLegendWidth) +
             "\" height=\"" + num(legend_height()) + "\"/>\n";
-    out_ += text(x + 10.0, y + 18.0, "legend-title", "Legend");
-    y += 1.5 * kLegendRow;
-    const double sx = x + 10.0, sw = kLegendSwatch;
+    out_ += text(x + kLegendInset, y + kLegendRow - kLabelBaseline, "legend-title", "Legend");
+    y += kLegendTitleRows * kLegendRow;
+    const double sx = x + kLegendInset, sw = kLegendSwatch;
     auto row = [&](const std::string& swatch, const std::string& what) {
       out_ += swatch;
-      out_ += text(sx + sw + 10.0, y + 4.0, "legend-text", what);
+      out_ += text(sx + sw + kLegendInset, y + kLabelBaseline, "legend-text", what);
       y += kLegendRow;
     };
     auto rect = [&](const std::string& attrs, double h) {
       return "<rect " + attrs + " x=\"" + num(sx) + "\" y=\"" + num(y - 0.5 * h) + "\" width=\"" + num(sw) +
              "\" height=\"" + num(h) + "\"/>\n";
     };
-    auto line = [&](const std::string& attrs) {
-      return "<line " + attrs + " x1=\"" + num(sx) + "\" y1=\"" + num(y) + "\" x2=\"" + num(sx + sw) +
-             "\" y2=\"" + num(y) + "\"/>\n";
+    auto ends = [&]() {
+      return "x1=\"" + num(sx) + "\" y1=\"" + num(y) + "\" x2=\"" + num(sx + sw) + "\" y2=\"" + num(y) + "\"";
     };
-    row(rect("class=\"slab\"", 12.0), "floor slab");
-    row(rect("class=\"void\"", 12.0), "void (open to the level below)");
-    row(rect("class=\"wall full\"", 6.0), "wall");
-    row(rect("class=\"wall header\"", 6.0), "wall above an opening");
+    const Vec2 mid(sx + 0.5 * sw, 0.0);
+    row(rect("class=\"slab\"", kSwatchTall), "floor slab");
+    row(rect("class=\"void\"", kSwatchTall), "void (open below)");
+    row(rect("class=\"wall full\"", kSwatchThin), "wall");
+    row(rect("class=\"wall header\"", kSwatchThin), "wall above an opening");
     {
-      const Vec2 h(sx + 4.0, y + 5.0), open(sx + 4.0, y - 9.0), jamb(sx + 18.0, y + 5.0);
-      row("<path class=\"door\" d=\"M" + xy(h) + " L" + xy(open) + " A14.00,14.00 0 0,1 " + xy(jamb) + "\"/>\n",
+      const double r = kLegendDoorRadius;
+      const Vec2 hinge(sx + kLegendInset, y + 0.5 * kSwatchTall), open = hinge - Vec2(0.0, r), jamb = hinge + Vec2(r, 0.0);
+      row("<path class=\"door\" d=\"M" + xy(hinge) + " L" + xy(open) + " A" + num(r) + "," + num(r) + " 0 0,1 " +
+              xy(jamb) + "\"/>\n",
           "door (leaf and swing)");
     }
-    row(rect("class=\"wall sill\"", 6.0) + line("class=\"window\""), "window");
-    row(line("class=\"railing solid\" stroke-width=\"" + num(kMinRailingWidth) + "\""), "railing, solid");
-    {
-      const double post = sim::RailingGeometry::kPostWidth * kPxPerMetre;
-      row("<g class=\"railing bars\">" + line("stroke-width=\"1\"") +
-              line("stroke-width=\"" + num(kBarsRailingWidth) + "\" stroke-dasharray=\"" + num(post) + " " +
-                   num(sim::RailingGeometry::kPostSpacing * kPxPerMetre - post) + "\"") +
-              "</g>\n",
-          "railing, bars");
-    }
-    row(rect("class=\"box\"", 12.0), "box (with its label)");
-    row(rect("class=\"ramp\" fill=\"url(#ramp-legend)\"", 12.0) +
-            "<path class=\"ramp-arrow\" d=\"" + arrow_path({sx + 4.0, y}, {sx + sw - 4.0, y}) + "\"/>\n",
+    row(rect("class=\"wall sill\"", kSwatchThin) + "<line class=\"window\" " + ends() + "/>\n", "window");
+    row("<line class=\"railing solid\" " + ends() + " stroke-width=\"" + num(kMinRailingWidth) + "\"/>\n",
+        "railing, solid");
+    row("<g class=\"railing bars\">" + bars_lines(ends()) + "</g>\n", "railing, bars");
+    row(rect("class=\"box\"", kSwatchTall), "box (with its label)");
+    row(rect("class=\"ramp\" fill=\"url(#ramp-legend)\"", kSwatchTall) + "<path class=\"ramp-arrow\" d=\"" +
+            arrow_path({sx + kSwatchInset, y}, {sx + sw - kSwatchInset, y}) + "\"/>\n",
         "ramp, arrow uphill");
-    if (!voxels_.empty()) row(rect("class=\"voxels\"", 12.0), "voxel map (walls, objects)");
-    row(rect("class=\"room\" fill=\"" + room_colour(0) + "\" stroke=\"" + room_colour(0) + "\"", 12.0),
+    if (!voxels_.empty()) row(rect("class=\"voxels\"", kSwatchTall), "voxel map (walls, objects)");
+    row(rect("class=\"room\" fill=\"" + room_colour(0) + "\" stroke=\"" + room_colour(0) + "\"", kSwatchTall),
         "ground-truth room");
-    row(rect("fill=\"url(#path-ramp)\"", 5.0), "first lap, start to end");
-    {
-      const Vec2 c(sx + 0.5 * sw, y);
-      const Polygon2 tri = {c + Vec2(0.5 * kArrowLength, 0.0), c + Vec2(-0.5 * kArrowLength, kArrowHalfWidth),
-                            c + Vec2(-0.5 * kArrowLength, -kArrowHalfWidth)};
-      std::string pts;
-      for (const Vec2& q : tri) pts += (pts.empty() ? "" : " ") + xy(q);
-      row("<polygon class=\"arrow\" fill=\"" + path_colour(0.5) + "\" points=\"" + pts + "\"/>\n",
-          "direction, every " + num(kArrowSpacingM) + " m");
-    }
-    row("<circle class=\"start\" stroke=\"" + path_colour(0.0) + "\" cx=\"" + num(sx + 0.5 * sw) + "\" cy=\"" +
-            num(y) + "\" r=\"" + num(kStartRadius) + "\"/>\n",
+    row(rect("fill=\"url(#path-ramp)\"", kSwatchLine), "first lap, start to end");
+    row("<polygon class=\"arrow\" fill=\"" + path_colour(0.5) + "\" points=\"" +
+            arrowhead_points(Vec2(mid.x(), y), Vec2(1.0, 0.0)) + "\"/>\n",
+        "direction, every " + short_num(kArrowSpacingM) + " m");
+    row("<circle class=\"start\" stroke=\"" + path_colour(0.0) + "\" cx=\"" + num(mid.x()) + "\" cy=\"" + num(y) +
+            "\" r=\"" + num(kStartRadius) + "\"/>\n",
         "start (square: end)");
     out_ += "</g>\n";
   }
