@@ -44,9 +44,13 @@ sim::Scene resolve_scene(const std::string& arg) {
 }
 
 // Warnings are shown even with --quiet: they say the output may not be what was meant.
+void print_warnings(const std::string& where, const std::vector<std::string>& warnings) {
+  for (const std::string& w : warnings) std::fprintf(stderr, "tsgraphs: warning: %s%s\n", where.c_str(), w.c_str());
+}
+
 sim::Scene load_and_warn(const std::string& arg) {
   sim::Scene scene = resolve_scene(arg);
-  for (const std::string& w : scene.warnings) std::fprintf(stderr, "tsgraphs: warning: %s\n", w.c_str());
+  print_warnings("", scene.warnings);
   return scene;
 }
 
@@ -54,6 +58,7 @@ void simulate(const sim::Scene& scene_in, const std::string& out, std::uint64_t 
   sim::Scene scene = scene_in;
   if (laps > 0) scene.trajectory.laps = laps;
   sim::Simulator simulator(scene, seed);
+  print_warnings(scene.file + ": trajectory: ", simulator.trajectory().warnings());
   if (!quiet) {
     std::fprintf(stderr, "simulate: %s, %s %dx%d, %zu scans over %.1f m (%d lap%s), %zu triangles, seed %llu\n",
                  scene.name.c_str(), scene.sensor.preset.empty() ? "custom sensor" : scene.sensor.preset.c_str(),
@@ -68,6 +73,7 @@ void simulate(const sim::Scene& scene_in, const std::string& out, std::uint64_t 
 
 void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet) {
   const sim::Trajectory trajectory(scene);
+  print_warnings(scene.file + ": trajectory: ", trajectory.warnings());
   io::write_file_atomic(out, report::scene_svg(scene, trajectory));
   if (!quiet) std::fprintf(stderr, "draw-scene: wrote %s\n", out.c_str());
 }

@@ -149,3 +149,31 @@ trajectory:
               0.1 * 2.0 / 16.0 + 1e-6);
   }
 }
+
+TEST(Trajectory, WarnsWhereThePathFallsOrLeavesTheFloor) {
+  // Off the top of the ramp straight into a void of the upper level: a 2 m drop to the
+  // lower floor, which the loader cannot see (the leg joins two storeys).
+  const Scene scene = parse_scene(R"(
+levels:
+  - {name: low, elevation: 0.0, slab: [[0,0],[30,0],[30,10],[0,10]]}
+  - name: high
+    elevation: 2.0
+    slab: [[0,0],[30,0],[30,10],[0,10]]
+    voids: [[[6,2],[22,2],[22,4],[6,4]], [[23,2],[26,2],[26,4],[23,4]]]
+ramps:
+  - {from_level: high, to_level: low, polygon: [[6,2],[22,2],[22,4],[6,4]], axis: [1, 0]}
+trajectory:
+  level: low
+  waypoints: [[2, 3], [28, 3, high], [28, 7, high]]
+  closed: false
+  laps: 1
+)",
+                                  "fall.yaml", ".");
+  const Trajectory traj(scene);
+  ASSERT_EQ(traj.warnings().size(), 1u);
+  EXPECT_EQ(traj.warnings()[0], "the path drops 2.00 m at [23.00, 3.00] (off a ramp's side or into a void?)");
+  // Past the void the lower floor is still the closest surface: the sensor stays down there.
+  EXPECT_NEAR(traj.body_pose(traj.duration()).translation().z(), scene.sensor.mount_height, 1e-9);
+  // The ramp rises along its axis whichever level is named first.
+  EXPECT_NEAR(traj.body_pose(12.0).translation().z(), 1.0 + scene.sensor.mount_height, 0.01);
+}

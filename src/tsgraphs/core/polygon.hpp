@@ -1,6 +1,7 @@
 #pragma once
 /// 2-D polygon geometry: area, containment, simplicity, clipping and triangulation of
 /// regions with holes. Polygons are vertex lists without the closing repeat.
+#include <cmath>
 #include <Eigen/Core>
 #include <array>
 #include <optional>

@@ -1,5 +1,6 @@
 #pragma once
 /// Rigid poses in SE(3), stored as Eigen isometries (map <- body).
+#include <cmath>
 #include <Eigen/Geometry>
 
 namespace tsgraphs {

@@ -1,6 +1,7 @@
 #pragma once
 /// A building, the LiDAR that scans it and the path it travels: the simulator's input
 /// (docs/scene-format.md). Plain data; `load_scene` reads and validates it.
+#include <cstdint>
 #include <Eigen/Core>
 #include <string>
 #include <vector>

@@ -162,9 +162,7 @@ std::vector<WallPiece> wall_pieces(const Wall& wall) {
   double s = start;
   for (const Opening& o : wall.openings) {  // sorted by `at`, not overlapping
     const double a = o.at - 0.5 * o.width, b = o.at + 0.5 * o.width;
-    if (a > s) pieces.push_back({s, a, 0.0, wall.height});
-    // An opening at the very end of a joined wall leaves the corner's square solid.
-    if (a <= 0.0 && s < 0.0) pieces.push_back({s, 0.0, 0.0, wall.height});
+    if (a > s) pieces.push_back({s, a, 0.0, wall.height});  // also a joined end's corner square
     if (o.sill > 0.0) pieces.push_back({a, b, 0.0, o.sill});
     if (o.sill + o.height < wall.height) pieces.push_back({a, b, o.sill + o.height, wall.height});
     s = b;

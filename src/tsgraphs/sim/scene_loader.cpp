@@ -515,8 +515,10 @@ double ramp_height(const Scene& scene, const Ramp& ramp, const Vec2& xy) {
     lo = std::min(lo, p.dot(ramp.axis));
     hi = std::max(hi, p.dot(ramp.axis));
   }
-  const double z0 = scene.levels[ramp.from_level].elevation;
-  const double z1 = scene.levels[ramp.to_level].elevation;
+  // `axis` is the direction of ascent, whichever of the two levels is named first.
+  const double z_a = scene.levels[ramp.from_level].elevation;
+  const double z_b = scene.levels[ramp.to_level].elevation;
+  const double z0 = std::min(z_a, z_b), z1 = std::max(z_a, z_b);
   const double s = std::clamp((xy.dot(ramp.axis) - lo) / std::max(hi - lo, 1e-9), 0.0, 1.0);
   return z0 + s * (z1 - z0);
 }

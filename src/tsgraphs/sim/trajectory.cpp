@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "tsgraphs/sim/scene_loader.hpp"
@@ -12,6 +13,7 @@ namespace {
 constexpr double kHeightStep = 0.05;       // m of travel between samples of the surface height
 constexpr double kMaxArcTurnRad = 170.0 * M_PI / 180.0;  // sharper corners turn in place
 constexpr double kMinTurnRad = 1e-6;       // straighter corners need no turn at all
+constexpr double kMaxStep = 0.25;          // m of height change between two samples that is a fall, not a slope
 
 double heading(const Vec2& a, const Vec2& b) { return std::atan2(b.y() - a.y(), b.x() - a.x()); }
 
@@ -144,6 +146,7 @@ void Trajectory::plan_heights(const Scene& scene) {
   heights_.assign(n, 0.0);
   double z = scene.levels[scene.trajectory.level].elevation;
   std::size_t k = 0;
+  bool was_off = false;
   for (const Piece& p : pieces_) {
     if (p.kind == Piece::kTurn) continue;
     const double len = p.duration * speed_;
@@ -160,7 +163,18 @@ void Trajectory::plan_heights(const Scene& scene) {
           best = zl;
         }
       }
-      z = best;  // off every surface (an arc clipping a corner): keep the last height
+      char where[160];
+      const bool off = !std::isfinite(best_gap);
+      if (off && !was_off) {
+        std::snprintf(where, sizeof(where), "the path leaves every walkable surface at [%.2f, %.2f]", xy.x(), xy.y());
+        warnings_.emplace_back(where);
+      } else if (!off && k > 0 && best_gap > kMaxStep) {
+        std::snprintf(where, sizeof(where), "the path %s %.2f m at [%.2f, %.2f] (off a ramp's side or into a void?)",
+                      best < z ? "drops" : "jumps up", std::abs(best - z), xy.x(), xy.y());
+        warnings_.emplace_back(where);
+      }
+      was_off = off;
+      z = best;  // off every surface: keep the last height
       heights_[k] = z;
     }
   }

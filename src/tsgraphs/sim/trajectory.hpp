@@ -3,6 +3,7 @@
 /// an arc whose curvature keeps the turn rate at `yaw_rate_deg` (or, where the arc does not
 /// fit between the corner's neighbours, a turn in place), repeated for `laps`. The height
 /// follows the walkable surface (slabs and ramps) under the path.
+#include <string>
 #include <vector>
 
 #include "tsgraphs/core/pose.hpp"
@@ -31,6 +32,10 @@ class Trajectory {
   double distance_at(double t) const;
   /// Lap index (0-based) at time t.
   int lap_at(double t) const;
+  /// Places where the planned path leaves the walkable surface: a drop or a climb of more
+  /// than a step (off a ramp's side, into a void) or no surface at all under it. Empty for a
+  /// sound scene; front ends print them.
+  const std::vector<std::string>& warnings() const { return warnings_; }
 
  private:
   struct Piece {
@@ -61,6 +66,7 @@ class Trajectory {
   int in_place_turns_ = 0;
   double height_step_;             // spacing of the height profile, m
   std::vector<double> heights_;    // surface height every height_step_ metres of travel
+  std::vector<std::string> warnings_;
 };
 
 }  // namespace tsgraphs::sim
