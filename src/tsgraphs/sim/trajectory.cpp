@@ -60,7 +60,10 @@ Trajectory::Trajectory(const Scene& scene)
       lap_starts_.push_back(i == 0 ? 0.0 : (cut[i] > 0.0 ? duration_ - 0.5 * std::abs(turn[i]) / yaw_rate_ : duration_));
       ++lap_index;
     }
-    if (i > 0 && cut[i] < 0.0) add_turn(path[i], heading(path[i - 1], path[i]), turn[i]), ++in_place_turns_;
+    if (i > 0 && cut[i] < 0.0) {
+      add_turn(path[i], heading(path[i - 1], path[i]), turn[i]);
+      ++in_place_turns_;
+    }
     const Vec2 dir = (path[i + 1] - path[i]).normalized();
     const Vec2 a = path[i] + std::max(cut[i], 0.0) * dir;
     const Vec2 b = path[i + 1] - std::max(cut[i + 1], 0.0) * dir;
