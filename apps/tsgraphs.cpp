@@ -88,6 +88,7 @@ int main(int argc, char** argv) {
   CLI::App app{"tsgraphs: traversability-aware situational graphs from indoor 3-D LiDAR"};
   app.require_subcommand(1);
   app.fallthrough();  // --quiet and --threads also after the subcommand
+  app.set_version_flag("--version", "tsgraphs " TSGRAPHS_VERSION);
   Options opt;
   app.add_flag("-q,--quiet", opt.quiet, "no progress output");
   app.add_option("--threads", opt.threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
