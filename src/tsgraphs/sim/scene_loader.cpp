@@ -1,15 +1,15 @@
 #include "tsgraphs/sim/scene_loader.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <map>
 #include <sstream>
 
-#include "tsgraphs/core/yaml_map.hpp"
 #include "tsgraphs/core/rect.hpp"
+#include "tsgraphs/core/yaml_map.hpp"
 #include "tsgraphs/sim/lidar_model.hpp"
 #include "tsgraphs/sim/scene_geometry.hpp"
 

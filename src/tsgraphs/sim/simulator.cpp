@@ -1,8 +1,8 @@
 #include "tsgraphs/sim/simulator.hpp"
 
-#include <cmath>
-
 #include <tbb/parallel_for.h>
+
+#include <cmath>
 
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/sim/odometry_drift.hpp"
