@@ -302,3 +302,8 @@ trajectory: {waypoints: [[2, 2], [8, 2]]}
   EXPECT_TRUE(s.walls[1].joined_from);
   EXPECT_FALSE(s.walls[2].joined_from || s.walls[2].joined_to);
 }
+
+TEST(SceneLoader, RejectsScansTooLargeForMemory) {
+  const std::string text = replace(kRoom, "levels:", "sensor: {channels: 100000, columns: 100000}\nlevels:");
+  EXPECT_THAT(error_of(text), HasSubstr("sensor.columns: channels x columns = 10000000000 rays per scan"));
+}

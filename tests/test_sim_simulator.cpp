@@ -214,6 +214,12 @@ TEST_F(Cli, BadSceneExitsTwoWithOneLineNamingFileAndLine) {
   EXPECT_EQ(run("simulate no_such_scene --out " + (dir_ / "x").string(), &err), 2);
   EXPECT_THAT(err, ::testing::HasSubstr("no such scene file (built-in scenes:"));
   EXPECT_EQ(run("simulate", &err), 2);
+  // Output places that cannot be written are bad input too.
+  EXPECT_EQ(run("-q simulate " + scene.string() + " --out /proc/no_such_place/seq", &err), 2);
+  EXPECT_THAT(err, ::testing::HasSubstr("/proc/no_such_place/seq: cannot create the output folder"));
+  EXPECT_EQ(run("draw-scene " + scene.string() + " --out /nonexistent/dir/x.svg", &err), 2);
+  EXPECT_EQ(run("simulate " + dir_.string() + " --out " + (dir_ / "x").string(), &err), 2);
+  EXPECT_THAT(err, ::testing::HasSubstr(dir_.string() + ": cannot open file"));
 }
 
 TEST_F(Cli, KilledRunLeavesNoSequenceAndTheNextRunCleansUp) {

@@ -44,7 +44,7 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   const std::string tmp = path + unique_suffix();
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(path + ": cannot write (folder missing or not writable)");
+    if (!out) throw InputError(path + ": cannot write (folder missing or not writable)");
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
     out.flush();
     if (!out) {
@@ -73,10 +73,14 @@ AtomicDirectory::AtomicDirectory(std::string final_path, const std::string& mark
     }
   }
   const fs::path parent = fs::path(final_path_).parent_path();
-  if (!parent.empty()) fs::create_directories(parent);
+  std::error_code ec;
+  if (!parent.empty()) fs::create_directories(parent, ec);
   remove_stale_temporaries(final_path_);
   tmp_path_ = final_path_ + unique_suffix();
-  fs::create_directories(tmp_path_);
+  if (ec || !fs::create_directories(tmp_path_, ec) || ec) {
+    throw InputError(final_path_ + ": cannot create the output folder here (" +
+                     (ec ? ec.message() : std::string("not writable")) + ")");
+  }
 }
 
 AtomicDirectory::~AtomicDirectory() {

@@ -5,7 +5,8 @@
 namespace tsgraphs::io {
 
 /// Writes `content` to `path` through a temporary file in the same folder and a rename.
-/// Throws std::runtime_error naming the path when it cannot.
+/// Throws an InputError naming the path when it cannot create it (missing folder, no
+/// permission) and std::runtime_error when a write fails half way (a full disk).
 void write_file_atomic(const std::string& path, const std::string& content);
 
 /// A folder built under a temporary name next to its final place and renamed there by
@@ -15,7 +16,7 @@ class AtomicDirectory {
  public:
   /// `final_path` may exist if it is empty or holds a previous output with `marker_file`
   /// (it is then replaced on commit); anything else is refused with an InputError, so that
-  /// no unrelated folder is overwritten.
+  /// no unrelated folder is overwritten. A place where no folder can be made is an InputError.
   AtomicDirectory(std::string final_path, const std::string& marker_file);
   ~AtomicDirectory();
   AtomicDirectory(const AtomicDirectory&) = delete;

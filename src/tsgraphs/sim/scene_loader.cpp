@@ -22,6 +22,9 @@ std::string fmt_point(const Vec2& p) {
   return s.str();
 }
 
+// 2^24 rays: 16 times an OS0-128 at 2048 columns, far below what runs out of memory.
+constexpr long long kMaxRaysPerScan = 1LL << 24;
+
 class SceneParser {
  public:
   SceneParser(const YamlMap& root, std::string base_dir) : root_(root), base_dir_(std::move(base_dir)) {}
@@ -111,6 +114,11 @@ class SceneParser {
     s.columns = m.get<int>("columns", s.columns);
     if (s.channels < 1) throw m.error("channels", "must be >= 1");
     if (s.columns < 1) throw m.error("columns", "must be >= 1");
+    if (static_cast<long long>(s.channels) * s.columns > kMaxRaysPerScan) {
+      throw m.error(m.has("columns") ? "columns" : "channels",
+                    "channels x columns = " + std::to_string(static_cast<long long>(s.channels) * s.columns) +
+                        " rays per scan, more than the limit of " + std::to_string(kMaxRaysPerScan));
+    }
     const bool layout_overridden = m.has("channels") || m.has("vertical_fov_deg");
     if (m.has("vertical_fov_deg")) {
       const Vec2 fov = m.vec2("vertical_fov_deg");
@@ -548,7 +556,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::s
 
 Scene load_scene(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw input_error(file, 0, "cannot open file");
+  if (!in || !std::filesystem::is_regular_file(file)) throw input_error(file, 0, "cannot open file");
   std::ostringstream text;
   text << in.rdbuf();
   const std::string base = std::filesystem::path(file).parent_path().string();
