@@ -54,11 +54,9 @@ bool apply_preset(const std::string& name, SensorSpec* spec) {
     spec->columns = p.columns;
     spec->vertical_fov_min_deg = p.fov_min_deg;
     spec->vertical_fov_max_deg = p.fov_max_deg;
-    spec->vertical_angles_deg.clear();
-    for (int i = 0; i < p.channels; ++i) {
-      spec->vertical_angles_deg.push_back(
-          p.beam_step_deg > 0.0 ? p.fov_max_deg - i * p.beam_step_deg
-                                : evenly_spaced_angles(p.channels, p.fov_min_deg, p.fov_max_deg)[i]);
+    spec->vertical_angles_deg = evenly_spaced_angles(p.channels, p.fov_min_deg, p.fov_max_deg);
+    if (p.beam_step_deg > 0.0) {  // the datasheet's fixed step, exact rather than interpolated
+      for (int i = 0; i < p.channels; ++i) spec->vertical_angles_deg[i] = p.fov_max_deg - i * p.beam_step_deg;
     }
     spec->max_range = p.max_range;
     spec->min_range = p.min_range;
