@@ -109,6 +109,10 @@ Polygon2 YamlMap::as_polygon(const YAML::Node& n, const std::string& what) const
 }
 
 void YamlMap::check_keys(std::initializer_list<const char*> allowed) const {
+  check_keys(std::vector<std::string>(allowed.begin(), allowed.end()));
+}
+
+void YamlMap::check_keys(const std::vector<std::string>& allowed) const {
   std::map<std::string, int> seen;  // key -> 1-based line of its first occurrence
   for (auto it = node_.begin(); it != node_.end(); ++it) {
     const std::string key = it->first.Scalar();
@@ -118,10 +122,10 @@ void YamlMap::check_keys(std::initializer_list<const char*> allowed) const {
                                          std::to_string(first->second) + ")");
     }
     bool known = false;
-    for (const char* a : allowed) known = known || key == a;
+    for (const std::string& a : allowed) known = known || key == a;
     if (!known) {
       std::string list;
-      for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
       throw input_error(file_, it->first.Mark().line + 1,
                         "unknown key '" + key_path(key) + "' (known keys: " + list + ")");
     }

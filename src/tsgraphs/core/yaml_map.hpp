@@ -47,6 +47,7 @@ class YamlMap {
 
   /// Throws an InputError naming the first key that is not in `allowed`.
   void check_keys(std::initializer_list<const char*> allowed) const;
+  void check_keys(const std::vector<std::string>& allowed) const;
 
   /// An InputError at `key`'s line (the mapping's own line when the key is absent).
   InputError error(const std::string& key, const std::string& what) const;
