@@ -42,14 +42,19 @@ Simulator::Simulator(Scene scene, std::uint64_t seed) : scene_(std::move(scene))
   caster_ = std::make_unique<RayCaster>(mesh);
   beams_ = BeamPattern::from_sensor(scene_.sensor);
   const double dt = 1.0 / scene_.sensor.rate_hz;
-  const std::size_t n = static_cast<std::size_t>(std::floor(trajectory_->duration() / dt + 1e-9)) + 1;
+  // The last scan is taken at the end of the path (so a closed path's sequence ends where it
+  // starts, as ATE_loop assumes): the motion runs at speed * time_scale_, within half a scan
+  // period over the whole path of the scene's speed.
+  const std::size_t intervals = static_cast<std::size_t>(std::llround(trajectory_->duration() / dt));
+  const std::size_t n = intervals + 1;
+  time_scale_ = intervals > 0 ? trajectory_->duration() / (intervals * dt) : 1.0;
   const Pose3 tilt = make_pose(Eigen::Vector3d::Zero(), 0.0, scene_.sensor.tilt_deg * M_PI / 180.0);
   std::vector<Pose3> body(n);
   times_.resize(n);
   truth_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     times_[k] = k * dt;
-    body[k] = trajectory_->body_pose(times_[k]);
+    body[k] = trajectory_->body_pose(k == intervals ? trajectory_->duration() : times_[k] * time_scale_);
     truth_[k] = body[k] * tilt;
   }
   odom_ = drift_odometry(body, scene_.odometry, seed_);
@@ -108,6 +113,7 @@ void write_sequence(const Simulator& sim, const std::string& out_dir,
   info.odometry = sim.odometry_poses();
   info.groundtruth = sim.true_poses();
   info.lap_starts = sim.trajectory().lap_starts();
+  for (double& t : info.lap_starts) t /= sim.time_scale();  // path time -> scan time
   info.has_rooms = !scene.rooms.empty();
   for (const Room& r : scene.rooms) {
     const Level& l = scene.levels[r.level];

@@ -39,9 +39,12 @@ class Simulator {
   const RayCaster& ray_caster() const { return *caster_; }
   std::size_t num_triangles() const { return num_triangles_; }
 
-  /// One scan every 1 / rate_hz seconds from t = 0 to the end of the path.
+  /// One scan every 1 / rate_hz seconds from t = 0 to the end of the path: the last scan is
+  /// taken at the path's end, the motion running at the scene's speed times time_scale().
   std::size_t num_scans() const { return times_.size(); }
   const std::vector<double>& times() const { return times_; }
+  /// Path time per scan time, within half a scan period over the path's duration of 1.
+  double time_scale() const { return time_scale_; }
   /// True sensor poses (with mount height and tilt), one per scan.
   const std::vector<Pose3>& true_poses() const { return truth_; }
   /// Drifting odometry poses, one per scan; the first equals the truth.
@@ -61,6 +64,7 @@ class Simulator {
   BeamPattern beams_;
   std::size_t num_triangles_ = 0;
   std::vector<double> times_;
+  double time_scale_ = 1.0;
   std::vector<Pose3> truth_;
   std::vector<Pose3> odom_;
 };
