@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -11,7 +12,12 @@
 
 #include "progress.hpp"
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/eval/run_evaluation.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
+#include "tsgraphs/io/sequence_folder.hpp"
+#include "tsgraphs/pipeline/pipeline_config.hpp"
+#include "tsgraphs/pipeline/run_outputs.hpp"
+#include "tsgraphs/pipeline/sequence_runner.hpp"
 #include "tsgraphs/report/scene_svg.hpp"
 #include "tsgraphs/sim/builtin_scenes.hpp"
 #include "tsgraphs/sim/scene_loader.hpp"
@@ -30,6 +36,8 @@ struct Options {
   long long seed = -1;
   int laps = 0;
   int seeds = 1;
+  std::string seq;
+  std::string config;
 };
 
 // A scene file, or the name of a built-in scene (office, atrium, long_corridor, two_storeys).
@@ -78,6 +86,43 @@ void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet) {
   if (!quiet) std::fprintf(stderr, "draw-scene: wrote %s\n", out.c_str());
 }
 
+// `run`: a sequence folder through the pipeline into a run folder, written whole or not at all.
+void run(const std::string& seq_dir, const std::string& out, const std::string& config_file, bool quiet) {
+  const auto start = std::chrono::steady_clock::now();
+  const pipeline::PipelineConfig config =
+      config_file.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(config_file);
+  const io::SequenceReader sequence(seq_dir);
+  io::AtomicDirectory dir(out, pipeline::run_files::kSceneGraph);
+  if (!quiet) std::fprintf(stderr, "run: %s, %zu scans\n", seq_dir.c_str(), sequence.size());
+  pipeline::Pipeline slam(config);
+  app::Progress progress("run", quiet);
+  pipeline::RunCallbacks callbacks;
+  callbacks.progress = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
+  callbacks.warning = [](const std::string& w) { std::fprintf(stderr, "tsgraphs: warning: %s\n", w.c_str()); };
+  pipeline::RunInfo info = pipeline::run_sequence(sequence, slam, callbacks);
+  info.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  pipeline::write_run_outputs(slam, info, dir.path());
+  dir.commit();
+  if (!quiet) {
+    std::fprintf(stderr, "run: %zu keyframes, %zu planes, %zu loop closures, %zu optimisations; %.1f s (%.1fx real time)\n",
+                 slam.graph().keyframes().size(), slam.graph().planes().size(), slam.graph().loop_edges().size(),
+                 slam.optimizations().size(), info.wall_time_s,
+                 info.wall_time_s > 0 ? info.sequence_duration_s / info.wall_time_s : 0.0);
+    std::fprintf(stderr, "run: wrote %s\n", out.c_str());
+  }
+}
+
+// `eval`: metrics.json in the run folder and the table on stdout.
+void evaluate(const std::string& run_dir, const std::string& seq_dir, bool quiet) {
+  eval::EvalOptions options;
+  options.run_dir = run_dir;
+  options.seq_dir = seq_dir;
+  const eval::Metrics metrics = eval::evaluate_run(options);
+  io::write_file_atomic((fs::path(run_dir) / pipeline::run_files::kMetrics).string(), eval::metrics_json(metrics));
+  std::printf("%s", eval::metrics_table(metrics).c_str());
+  if (!quiet) std::fprintf(stderr, "eval: wrote %s\n", (fs::path(run_dir) / pipeline::run_files::kMetrics).c_str());
+}
+
 std::uint64_t seed_for(const sim::Scene& scene, long long cli_seed) {
   return cli_seed >= 0 ? static_cast<std::uint64_t>(cli_seed) : scene.seed;
 }
@@ -103,7 +148,16 @@ int main(int argc, char** argv) {
   draw_cmd->add_option("SCENE", opt.scene, "scene YAML file or built-in scene name")->required();
   draw_cmd->add_option("--out", opt.out, "SVG file to write")->required();
 
-  auto* demo_cmd = app.add_subcommand("demo", "simulate the built-in atrium scene and draw it");
+  auto* run_cmd = app.add_subcommand("run", "the SLAM pipeline: a sequence folder in, a run folder out");
+  run_cmd->add_option("SEQ_DIR", opt.seq, "sequence folder (docs/scene-format.md)")->required();
+  run_cmd->add_option("--out", opt.out, "run folder to write")->required();
+  run_cmd->add_option("--config", opt.config, "parameter file (config/params.yaml lists every key)");
+
+  auto* eval_cmd = app.add_subcommand("eval", "metrics of a run: metrics.json and a table");
+  eval_cmd->add_option("RUN_DIR", opt.out, "run folder written by `tsgraphs run`")->required();
+  eval_cmd->add_option("--seq", opt.seq, "the sequence folder it ran on (ground truth)");
+
+  auto* demo_cmd = app.add_subcommand("demo", "simulate the built-in atrium scene, draw it, run the pipeline on it and evaluate");
   opt.out = "";
   demo_cmd->add_option("--out", opt.out, "output folder (default: tsgraphs-demo)");
   demo_cmd->add_option("--seeds", opt.seeds, "number of seeds to simulate (1..N)")->check(CLI::PositiveNumber);
@@ -124,14 +178,20 @@ int main(int argc, char** argv) {
       simulate(scene, opt.out, seed_for(scene, opt.seed), opt.laps, opt.quiet);
     } else if (*draw_cmd) {
       draw_scene(load_and_warn(opt.scene), opt.out, opt.quiet);
+    } else if (*run_cmd) {
+      run(opt.seq, opt.out, opt.config, opt.quiet);
+    } else if (*eval_cmd) {
+      evaluate(opt.out, opt.seq, opt.quiet);
     } else if (*demo_cmd) {
       const std::string out = opt.out.empty() ? "tsgraphs-demo" : opt.out;
       fs::create_directories(out);
       const sim::Scene scene = resolve_scene("atrium");
       draw_scene(scene, (fs::path(out) / "atrium.svg").string(), opt.quiet);
       for (int s = 1; s <= opt.seeds; ++s) {
-        simulate(scene, (fs::path(out) / ("atrium_seed" + std::to_string(s))).string(), static_cast<std::uint64_t>(s), 0,
-                 opt.quiet);
+        const std::string seq = (fs::path(out) / ("atrium_seed" + std::to_string(s))).string();
+        simulate(scene, seq, static_cast<std::uint64_t>(s), 0, opt.quiet);
+        run(seq, seq + "_run", "", opt.quiet);
+        evaluate(seq + "_run", seq, opt.quiet);
       }
     }
   } catch (const InputError& e) {

@@ -1,0 +1,219 @@
+#include "tsgraphs/eval/run_evaluation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <vector>
+
+#include "tsgraphs/core/error.hpp"
+#include "tsgraphs/eval/trajectory_metrics.hpp"
+#include "tsgraphs/io/sequence_folder.hpp"
+#include "tsgraphs/io/tum.hpp"
+#include "tsgraphs/sim/scene_loader.hpp"
+
+namespace tsgraphs::eval {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+json read_json(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw input_error(path, 0, "cannot open (is this a run folder written by `tsgraphs run`?)");
+  try {
+    return json::parse(in);
+  } catch (const json::exception& e) {
+    throw input_error(path, 0, std::string("malformed JSON: ") + e.what());
+  }
+}
+
+Pose3 pose_of(const json& j, const std::string& file) {
+  try {
+    const auto t = j.at("t").get<std::vector<double>>();
+    const auto q = j.at("q").get<std::vector<double>>();
+    if (t.size() != 3 || q.size() != 4) throw input_error(file, 0, "pose needs t[3] and q[4]");
+    Pose3 T = Pose3::Identity();
+    T.linear() = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
+    T.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
+    return T;
+  } catch (const json::exception& e) {
+    throw input_error(file, 0, std::string("malformed pose: ") + e.what());
+  }
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t i = std::min(v.size() - 1, static_cast<std::size_t>(std::ceil(q * v.size())) - 1);
+  return v[i];
+}
+
+double mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / v.size();
+}
+
+// timings.csv: per-scan front-end times and per-optimisation times and sizes.
+void read_timings(const std::string& path, Metrics* m) {
+  std::ifstream in(path);
+  if (!in) throw input_error(path, 0, "cannot open");
+  std::string line;
+  std::getline(in, line);  // header
+  std::vector<double> frontend, pgo;
+  double n_var = 0, n_fac = 0;
+  int line_no = 1;
+  while (std::getline(in, line)) {
+    ++line_no;
+    std::vector<std::string> cols;
+    std::stringstream ss(line);
+    std::string c;
+    while (std::getline(ss, c, ',')) cols.push_back(c);
+    try {
+      if (cols.size() >= 9 && cols[0] == "scan") {
+        frontend.push_back(std::stod(cols[8]));
+      } else if (cols.size() >= 13 && cols[0] == "optimization") {
+        pgo.push_back(std::stod(cols[9]));
+        n_var = std::stod(cols[11]);
+        n_fac = std::stod(cols[12]);
+      } else {
+        throw input_error(path, line_no, "expected a scan or optimization row");
+      }
+    } catch (const std::logic_error&) {
+      throw input_error(path, line_no, "malformed number");
+    }
+  }
+  if (!frontend.empty()) {
+    m->speed.frontend_ms_mean = mean(frontend);
+    m->speed.frontend_ms_p95 = percentile(frontend, 0.95);
+  }
+  double total = 0;
+  for (double t : pgo) total += t;
+  m->pgo.t_pgo_s = total;
+  m->pgo.n_optimisations = static_cast<double>(pgo.size());
+  if (!pgo.empty()) {
+    m->pgo.t_pgo_mean_s = mean(pgo);
+    m->pgo.t_pgo_p95_s = percentile(pgo, 0.95);
+    m->pgo.n_variables = n_var;
+    m->pgo.n_factors = n_fac;
+  }
+}
+
+std::vector<Pose3> poses_of(const std::vector<io::StampedPose>& stamped) {
+  std::vector<Pose3> out;
+  out.reserve(stamped.size());
+  for (const auto& s : stamped) out.push_back(s.pose);
+  return out;
+}
+
+}  // namespace
+
+Metrics evaluate_run(const EvalOptions& options) {
+  Metrics m;
+  const std::string dir = options.run_dir;
+  if (!fs::is_directory(dir)) throw input_error(dir, 0, "not a run folder");
+  const std::vector<Pose3> estimate = poses_of(io::read_tum(dir + "/trajectory.txt"));
+  m.trajectory.ate_loop = ate_loop(estimate);
+  read_timings(dir + "/timings.csv", &m);
+  const json info = read_json(dir + "/run_info.json");
+  if (info.contains("rtf") && info["rtf"].is_number()) m.speed.rtf = info["rtf"].get<double>();
+  if (info.contains("peak_rss_mb") && info["peak_rss_mb"].is_number())
+    m.speed.peak_rss_mb = info["peak_rss_mb"].get<double>();
+
+  const std::string graph_file = dir + "/scene_graph.json";
+  const json graph = read_json(graph_file);
+  std::vector<std::size_t> kf_scan;
+  std::vector<Pose3> kf_pose;
+  std::vector<MappedWall> walls;
+  try {
+    for (const json& k : graph.at("keyframes")) {
+      kf_scan.push_back(k.at("scan_index").get<std::size_t>());
+      kf_pose.push_back(pose_of(k.at("pose"), graph_file));
+    }
+    for (const json& p : graph.at("planes")) {
+      if (p.at("kind") != "wall" || !p.contains("segment")) continue;
+      MappedWall w;
+      w.id = p.at("id").get<int>();
+      const auto n = p.at("n").get<std::vector<double>>();
+      w.plane.n = Eigen::Vector3d(n.at(0), n.at(1), n.at(2));
+      w.plane.d = p.at("d").get<double>();
+      const auto seg = p.at("segment").get<std::vector<std::vector<double>>>();
+      w.a = Eigen::Vector2d(seg.at(0).at(0), seg.at(0).at(1));
+      w.b = Eigen::Vector2d(seg.at(1).at(0), seg.at(1).at(1));
+      const auto z = p.at("z_range").get<std::vector<double>>();
+      w.z0 = z.at(0);
+      w.z1 = z.at(1);
+      walls.push_back(w);
+    }
+  } catch (const json::exception& e) {
+    throw input_error(graph_file, 0, std::string("malformed scene graph: ") + e.what());
+  }
+  std::vector<std::pair<int, int>> loops;
+  std::vector<Pose3> loop_meas;
+  for (const json& e : graph.at("edges")) {
+    if (e.at("type") != "loop") continue;
+    loops.emplace_back(e.at("from").get<int>(), e.at("to").get<int>());
+    loop_meas.push_back(pose_of(e.at("measurement"), graph_file));
+  }
+  m.loops.n_loops = static_cast<double>(loops.size());
+
+  if (options.seq_dir.empty()) return m;
+  const io::SequenceReader seq(options.seq_dir);
+  const io::SequenceInfo& si = seq.info();
+  if (si.odometry.size() != estimate.size())
+    throw input_error(dir + "/trajectory.txt", 0,
+                      std::to_string(estimate.size()) + " poses but the sequence has " +
+                          std::to_string(si.odometry.size()) + " scans: not a run of " + options.seq_dir);
+  if (si.groundtruth.empty()) return m;
+  m.trajectory.ate_rmse = ate_rmse(estimate, si.groundtruth);
+  m.trajectory.odom_ate_rmse = ate_rmse(si.odometry, si.groundtruth);
+
+  // Loop closures against the true relative poses of their keyframes.
+  double max_err_m = 0, max_err_deg = 0;
+  int correct = 0;
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    const auto [from, to] = loops[i];
+    if (from < 0 || to < 0 || static_cast<std::size_t>(std::max(from, to)) >= kf_scan.size())
+      throw input_error(graph_file, 0, "loop edge names an unknown keyframe");
+    const Pose3 truth = si.groundtruth[kf_scan[from]].inverse() * si.groundtruth[kf_scan[to]];
+    const Pose3 err = truth.inverse() * loop_meas[i];
+    const double em = err.translation().norm();
+    const double ed = Eigen::AngleAxisd(err.linear()).angle() * 180.0 / M_PI;
+    max_err_m = std::max(max_err_m, em);
+    max_err_deg = std::max(max_err_deg, ed);
+    if (em <= options.loop_tolerance_m && ed <= options.loop_tolerance_deg) ++correct;
+  }
+  m.loops.n_loops_correct = correct;
+  if (!loops.empty()) {
+    m.loops.max_loop_err_m = max_err_m;
+    m.loops.max_loop_err_deg = max_err_deg;
+  }
+
+  // Walls: faces seen from the keyframes (true poses, labelled points) against the mapped planes.
+  const std::string scene_file = seq.scene_path();
+  if (scene_file.empty() || kf_scan.empty()) return m;
+  const sim::Scene scene = sim::load_scene(scene_file);
+  const std::vector<WallFaceTruth> faces = wall_faces(scene);
+  std::vector<FaceHits> hits(faces.size());
+  for (std::size_t k = 0; k < kf_scan.size(); ++k) {
+    if (kf_scan[k] >= seq.size()) throw input_error(graph_file, 0, "keyframe scan index beyond the sequence");
+    count_face_hits(faces, seq.scan(kf_scan[k]), si.groundtruth[kf_scan[k]], options.walls, &hits);
+  }
+  const Pose3 T_world_map = si.groundtruth[kf_scan[0]] * kf_pose[0].inverse();
+  const WallErrors we = wall_errors(faces, hits, walls, T_world_map, options.walls);
+  m.walls.n_faces_seen = we.n_faces_seen;
+  m.walls.n_faces_mapped = we.n_faces_mapped;
+  m.walls.n_duplicates = we.n_duplicates;
+  if (we.n_faces_mapped > 0) {
+    m.walls.mean_dist_err = we.mean_dist_err;
+    m.walls.max_dist_err = we.max_dist_err;
+    m.walls.mean_angle_err_deg = we.mean_angle_err_deg;
+    m.walls.max_angle_err_deg = we.max_angle_err_deg;
+  }
+  return m;
+}
+
+}  // namespace tsgraphs::eval

@@ -1,0 +1,77 @@
+#pragma once
+/// Ceres back-end of the situational graph. Keyframes are SE(3) (translation + unit
+/// quaternion), planes have a minimal 3-dof parameterisation (unit normal on S^2 + offset).
+/// A local solve frees only the last keyframes and the planes they see, holding the rest
+/// fixed, so its cost does not grow with the run; a full solve frees everything but the
+/// anchor (after a loop closure). Estimates are warm-started from the graph's values.
+#include <string>
+
+#include "tsgraphs/graph/situational_graph.hpp"
+
+namespace tsgraphs::graph {
+
+struct GraphOptimizerConfig {
+  double odometry_sigma_trans = 0.05;   ///< std of odometry translation between keyframes (m)
+  double odometry_sigma_rot_deg = 0.5;  ///< std of odometry rotation between keyframes (deg)
+  double loop_sigma_trans = 0.05;       ///< std of a loop closure's translation (m)
+  double loop_sigma_rot_deg = 0.5;      ///< std of a loop closure's rotation (deg)
+  double plane_sigma_angle_deg = 1.0;   ///< std of a measured plane's normal (deg)
+  double plane_sigma_distance = 0.02;   ///< std of a measured plane's offset (m)
+  double huber_plane = 1.0;             ///< Huber delta on keyframe-plane factors (whitened units)
+  double huber_loop = 1.0;              ///< Huber delta on loop factors (whitened units)
+  int local_window = 10;                ///< keyframes freed by a local solve
+  int max_iterations = 20;              ///< Ceres iterations per local solve
+  int max_iterations_full = 50;         ///< Ceres iterations per full solve
+  std::string linear_solver = "sparse_normal_cholesky";  ///< or dense_schur, sparse_schur, iterative_schur
+  /// Sparse solvers' back-end, or suite_sparse, cx_sparse: Eigen's and CXSparse were the fastest
+  /// on bench_graph (2000 keyframes), SuiteSparse 10-100% slower there.
+  std::string sparse_library = "eigen_sparse";
+  int num_threads = 1;                  ///< Ceres threads (1 keeps runs byte-identical)
+
+  template <class V>
+  void visit(V& v) {
+    v("odometry_sigma_trans", odometry_sigma_trans);
+    v("odometry_sigma_rot_deg", odometry_sigma_rot_deg);
+    v("loop_sigma_trans", loop_sigma_trans);
+    v("loop_sigma_rot_deg", loop_sigma_rot_deg);
+    v("plane_sigma_angle_deg", plane_sigma_angle_deg);
+    v("plane_sigma_distance", plane_sigma_distance);
+    v("huber_plane", huber_plane);
+    v("huber_loop", huber_loop);
+    v("local_window", local_window);
+    v("max_iterations", max_iterations);
+    v("max_iterations_full", max_iterations_full);
+    v("linear_solver", linear_solver);
+    v("sparse_library", sparse_library);
+    v("num_threads", num_threads);
+  }
+};
+
+/// What one optimisation did (one row of timings.csv; T_PGO is the sum of wall_time_s).
+struct OptimizationStats {
+  bool full = false;
+  double wall_time_s = 0.0;
+  int n_variables = 0;          ///< parameter blocks freed
+  int n_factors = 0;            ///< residual blocks in the problem
+  int iterations = 0;
+  double initial_cost = 0.0, final_cost = 0.0;
+};
+
+class GraphOptimizer {
+ public:
+  /// Throws std::invalid_argument for an unknown linear_solver or sparse_library, or a sigma,
+  /// Huber delta or local_window that is not positive.
+  explicit GraphOptimizer(GraphOptimizerConfig config = {});
+  /// Optimises `graph` in place (keyframe poses and planes). With `full` false, only the last
+  /// `local_window` keyframes and the planes they observe move. Needs at least one keyframe;
+  /// throws std::invalid_argument for an edge to an unknown node (or a keyframe to itself) and
+  /// std::runtime_error when Ceres gives no usable solution. A measured plane must share its map
+  /// plane's sign convention (the factor compares normals, so a flipped one is an outlier).
+  OptimizationStats optimize(SituationalGraph& graph, bool full);
+  const GraphOptimizerConfig& config() const { return config_; }
+
+ private:
+  GraphOptimizerConfig config_;
+};
+
+}  // namespace tsgraphs::graph

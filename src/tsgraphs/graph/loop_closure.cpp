@@ -1,0 +1,67 @@
+#include "tsgraphs/graph/loop_closure.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace tsgraphs::graph {
+namespace {
+
+const KeyframeNode& keyframe_at(const SituationalGraph& graph, int id) {
+  if (id < 0 || id >= static_cast<int>(graph.keyframes().size()))
+    throw std::out_of_range("LoopDetector: no keyframe " + std::to_string(id));
+  return graph.keyframes()[static_cast<std::size_t>(id)];
+}
+
+}  // namespace
+
+LoopDetector::LoopDetector(LoopClosureConfig config) : config_(std::move(config)) {}
+
+std::vector<int> LoopDetector::candidates(const SituationalGraph& graph, int id) const {
+  const KeyframeNode& current = keyframe_at(graph, id);
+  std::vector<std::pair<double, int>> near;  // (distance, id)
+  for (int k = 0; k < id; ++k) {
+    const KeyframeNode& earlier = graph.keyframes()[static_cast<std::size_t>(k)];
+    // Far back in travel: odometry alone has had time to drift, so a match is worth a factor.
+    if (std::abs(current.accum_distance - earlier.accum_distance) < config_.min_travel) continue;
+    const double distance = (current.pose.translation() - earlier.pose.translation()).norm();
+    if (distance < config_.max_distance) near.emplace_back(distance, k);
+  }
+  // Nearest first; equal distances by id, so the order never depends on the sort.
+  std::sort(near.begin(), near.end());
+  const std::size_t n = std::min(near.size(), static_cast<std::size_t>(std::max(config_.max_candidates, 0)));
+  std::vector<int> ids;
+  ids.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) ids.push_back(near[i].second);
+  return ids;
+}
+
+std::optional<BetweenEdge> LoopDetector::detect(const SituationalGraph& graph, int id,
+                                                const std::function<const PointCloud&(int)>& cloud_of) {
+  const KeyframeNode& current = keyframe_at(graph, id);
+  if (current.accum_distance - last_loop_travel_ < config_.min_loop_interval) return std::nullopt;
+
+  for (const int k : candidates(graph, id)) {
+    const KeyframeNode& earlier = graph.keyframes()[static_cast<std::size_t>(k)];
+    const Pose3 guess = earlier.pose.inverse() * current.pose;  // T_k_id from the current estimates
+    const registration::RegistrationResult r =
+        registration::register_clouds(cloud_of(id), cloud_of(k), guess, config_.registration);
+    if (!r.converged || r.fitness > config_.max_fitness || r.inlier_ratio < config_.min_inlier_ratio) continue;
+    // A large correction means GICP slid to another optimum (a corridor's length, a twin room).
+    const double correction = (r.T_target_source.translation() - guess.translation()).norm();
+    if (correction > config_.max_correction) continue;
+
+    last_loop_travel_ = current.accum_distance;
+    BetweenEdge edge;
+    edge.from = k;
+    edge.to = id;
+    edge.measurement = r.T_target_source;
+    edge.fitness = r.fitness;
+    return edge;
+  }
+  return std::nullopt;
+}
+
+}  // namespace tsgraphs::graph

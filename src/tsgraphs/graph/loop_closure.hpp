@@ -1,0 +1,55 @@
+#pragma once
+/// Loop closure: candidates near in space and far in accumulated travel (hdl_graph_slam's
+/// rule), each verified by registering the keyframes' clouds with a fitness check.
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "tsgraphs/core/point_cloud.hpp"
+#include "tsgraphs/graph/situational_graph.hpp"
+#include "tsgraphs/registration/registration.hpp"
+
+namespace tsgraphs::graph {
+
+struct LoopClosureConfig {
+  double max_distance = 5.0;       ///< candidates closer than this to the new keyframe (m, current estimates)
+  double min_travel = 8.0;         ///< ...and at least this far back in accumulated travel (m)
+  double min_loop_interval = 5.0;  ///< travel since the last accepted loop before trying again (m)
+  int max_candidates = 3;          ///< nearest candidates registered per keyframe
+  double max_fitness = 0.03;       ///< accept when fitness (mean squared distance, m^2) is below this...
+  double min_inlier_ratio = 0.7;   ///< ...and this share of points found a close match (the figure that
+                                   ///< tells a wrong place: floor and ceiling match anywhere indoors)
+  double max_correction = 2.0;     ///< reject when registration moves the guess by more than this (m)
+  registration::RegistrationConfig registration;  ///< GICP settings for the check
+
+  template <class V>
+  void visit(V& v) {
+    v("max_distance", max_distance);
+    v("min_travel", min_travel);
+    v("min_loop_interval", min_loop_interval);
+    v("max_candidates", max_candidates);
+    v("max_fitness", max_fitness);
+    v("min_inlier_ratio", min_inlier_ratio);
+    v("max_correction", max_correction);
+    v.section("registration", registration);
+  }
+};
+
+class LoopDetector {
+ public:
+  explicit LoopDetector(LoopClosureConfig config = {});
+  /// Keyframe ids that may close a loop with keyframe `id`, nearest first.
+  std::vector<int> candidates(const SituationalGraph& graph, int id) const;
+  /// Tries the candidates of keyframe `id`; returns the verified loop edge (from = the older
+  /// keyframe, to = `id`, measurement T_from_to) or nothing. `cloud_of(k)` gives keyframe k's
+  /// cloud in its own frame.
+  std::optional<BetweenEdge> detect(const SituationalGraph& graph, int id,
+                                    const std::function<const PointCloud&(int)>& cloud_of);
+  const LoopClosureConfig& config() const { return config_; }
+
+ private:
+  LoopClosureConfig config_;
+  double last_loop_travel_ = -1e18;
+};
+
+}  // namespace tsgraphs::graph

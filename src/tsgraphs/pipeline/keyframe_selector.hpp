@@ -1,0 +1,33 @@
+#pragma once
+/// Step 3: a new keyframe after enough motion since the last one.
+#include <optional>
+
+#include "tsgraphs/core/pose.hpp"
+
+namespace tsgraphs::pipeline {
+
+struct KeyframeConfig {
+  double delta_trans = 1.0;      ///< new keyframe after this much translation (m); S-Graphs uses 2.0
+  double delta_angle_deg = 20.0; ///< ...or this much rotation (deg); S-Graphs uses 2 rad, too coarse for turns indoors
+
+  template <class V>
+  void visit(V& v) {
+    v("delta_trans", delta_trans);
+    v("delta_angle_deg", delta_angle_deg);
+  }
+};
+
+class KeyframeSelector {
+ public:
+  explicit KeyframeSelector(KeyframeConfig config = {}) : config_(config) {}
+  /// True for the first pose and whenever `odom` has moved or turned enough since the last
+  /// accepted keyframe; the caller then calls accept(odom).
+  bool is_keyframe(const Pose3& odom) const;
+  void accept(const Pose3& odom) { last_ = odom; }
+
+ private:
+  KeyframeConfig config_;
+  std::optional<Pose3> last_;
+};
+
+}  // namespace tsgraphs::pipeline

@@ -1,0 +1,82 @@
+#pragma once
+/// The per-scan SLAM pipeline: one scan and its odometry pose at a time (so a live source
+/// can drive it), prefilter -> keyframe selection -> walls -> graph (loop closure,
+/// optimisation). No file I/O: run_outputs.hpp writes what it holds.
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tsgraphs/core/point_cloud.hpp"
+#include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/graph/graph_optimizer.hpp"
+#include "tsgraphs/graph/situational_graph.hpp"
+#include "tsgraphs/pipeline/pipeline_config.hpp"
+#include "tsgraphs/walls/plane_mapper.hpp"
+
+namespace tsgraphs::pipeline {
+
+/// What happened to one scan (one row of timings.csv).
+struct ScanRecord {
+  std::size_t scan_index = 0;
+  double stamp = 0.0;
+  int keyframe = -1;          ///< id of the keyframe made from this scan, or -1
+  int reference_keyframe = -1;///< the keyframe this scan's pose hangs from (-1 before the first)
+  Pose3 odom = Pose3::Identity();
+  std::size_t num_points = 0;       ///< after prefiltering
+  double prefilter_ms = 0.0;
+  double walls_ms = 0.0;            ///< plane extraction and association (keyframes)
+  double loop_ms = 0.0;             ///< loop-closure search and registration (keyframes)
+  double frontend_ms = 0.0;         ///< all of the above and bookkeeping, not the back-end
+  std::string warning;              ///< why the scan was skipped or not made a keyframe
+};
+
+/// One back-end run.
+struct OptimizationRecord {
+  int after_keyframe = -1;    ///< the newest keyframe when it ran
+  std::string reason;         ///< "schedule", "loop", "periodic" or "final"
+  graph::OptimizationStats stats;
+};
+
+class Pipeline {
+ public:
+  explicit Pipeline(PipelineConfig config = {});
+
+  /// Processes one scan (sensor frame) with its odometry pose (odom <- sensor). A scan with no
+  /// usable point is recorded with a warning and only its pose is kept. A non-finite pose
+  /// throws std::invalid_argument (the reader is expected to reject it with file and line).
+  const ScanRecord& process(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom);
+  /// Final full optimisation; call once after the last scan.
+  void finish();
+
+  const PipelineConfig& config() const { return config_; }
+  const graph::SituationalGraph& graph() const { return graph_; }
+  const walls::PlaneMapper& plane_map() const { return mapper_; }
+  const std::vector<ScanRecord>& scans() const { return scans_; }
+  const std::vector<OptimizationRecord>& optimizations() const { return optimizations_; }
+  /// Keyframe `id`'s prefiltered cloud in its own frame.
+  const PointCloud& keyframe_cloud(int id) const { return keyframe_clouds_.at(id); }
+  /// The corrected pose of every scan processed so far: its reference keyframe's estimate
+  /// times the odometry motion since that keyframe.
+  std::vector<Pose3> trajectory() const;
+
+ private:
+  void add_keyframe(ScanRecord& record, PointCloud cloud);
+  void optimize(bool full, const std::string& reason);
+
+  PipelineConfig config_;
+  KeyframeSelector selector_;
+  walls::PlaneMapper mapper_;
+  graph::SituationalGraph graph_;
+  graph::GraphOptimizer optimizer_;
+  graph::LoopDetector loop_detector_;
+  std::vector<PointCloud> keyframe_clouds_;
+  std::vector<ScanRecord> scans_;
+  std::vector<OptimizationRecord> optimizations_;
+  double accum_distance_ = 0.0;
+  std::optional<Pose3> last_odom_;
+  int keyframes_since_solve_ = 0;
+  int keyframes_since_full_ = 0;
+};
+
+}  // namespace tsgraphs::pipeline

@@ -1,0 +1,129 @@
+#include "tsgraphs/pipeline/pipeline_config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "tsgraphs/core/yaml_map.hpp"
+
+namespace tsgraphs::pipeline {
+namespace {
+
+// Reads each visited field from a YAML mapping, keeping the default when the key is absent.
+struct Reader {
+  const YamlMap& map;
+  std::vector<std::string> keys;
+
+  template <class T>
+  void operator()(const char* key, T& field) {
+    keys.emplace_back(key);
+    field = map.get<T>(key, field);
+  }
+  template <class S>
+  void section(const char* key, S& sub) {
+    keys.emplace_back(key);
+    Reader inner{map.map(key), {}};
+    sub.visit(inner);
+    inner.map.check_keys(inner.keys);
+  }
+};
+
+// Emits each visited field.
+struct Writer {
+  YAML::Emitter& out;
+
+  template <class T>
+  void operator()(const char* key, const T& field) {
+    out << YAML::Key << key << YAML::Value;
+    if constexpr (std::is_floating_point_v<T>) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.10g", field);
+      std::string s = buf;
+      if (s.find_first_of(".eEn") == std::string::npos) s += ".0";  // keep it a float when read back
+      out << s;
+    } else {
+      out << field;
+    }
+  }
+  template <class S>
+  void section(const char* key, S& sub) {
+    out << YAML::Key << key << YAML::Value << YAML::BeginMap;
+    sub.visit(*this);
+    out << YAML::EndMap;
+  }
+};
+
+void check_positive(const YamlMap& root, const char* section, const char* key, double value) {
+  if (!(value > 0.0)) throw root.map(section).error(key, std::string(key) + " must be > 0");
+}
+
+void validate(const YamlMap& root, const PipelineConfig& c) {
+  check_positive(root, "prefilter", "max_range", c.prefilter.max_range);
+  if (c.prefilter.min_range < 0.0 || c.prefilter.min_range >= c.prefilter.max_range)
+    throw root.map("prefilter").error("min_range", "min_range must be >= 0 and below max_range");
+  if (c.prefilter.voxel_size < 0.0) throw root.map("prefilter").error("voxel_size", "voxel_size must be >= 0");
+  check_positive(root, "keyframes", "delta_trans", c.keyframes.delta_trans);
+  check_positive(root, "keyframes", "delta_angle_deg", c.keyframes.delta_angle_deg);
+  check_positive(root, "plane_extraction", "distance_threshold", c.plane_extraction.distance_threshold);
+  check_positive(root, "plane_extraction", "min_inliers", c.plane_extraction.min_inliers);
+  check_positive(root, "plane_mapping", "sigma_distance", c.plane_mapping.sigma_distance);
+  check_positive(root, "plane_mapping", "sigma_angle_deg", c.plane_mapping.sigma_angle_deg);
+  check_positive(root, "optimizer", "odometry_sigma_trans", c.optimizer.odometry_sigma_trans);
+  check_positive(root, "optimizer", "odometry_sigma_rot_deg", c.optimizer.odometry_sigma_rot_deg);
+  check_positive(root, "optimizer", "loop_sigma_trans", c.optimizer.loop_sigma_trans);
+  check_positive(root, "optimizer", "loop_sigma_rot_deg", c.optimizer.loop_sigma_rot_deg);
+  check_positive(root, "optimizer", "plane_sigma_angle_deg", c.optimizer.plane_sigma_angle_deg);
+  check_positive(root, "optimizer", "plane_sigma_distance", c.optimizer.plane_sigma_distance);
+  check_positive(root, "optimizer", "local_window", c.optimizer.local_window);
+  const std::string& ls = c.optimizer.linear_solver;
+  if (ls != "sparse_normal_cholesky" && ls != "dense_schur" && ls != "sparse_schur" && ls != "iterative_schur" &&
+      ls != "dense_qr" && ls != "dense_normal_cholesky")
+    throw root.map("optimizer").error("linear_solver",
+                                      "unknown linear_solver '" + ls +
+                                          "' (sparse_normal_cholesky, sparse_schur, dense_schur, iterative_schur, "
+                                          "dense_qr, dense_normal_cholesky)");
+  const std::string& sl = c.optimizer.sparse_library;
+  if (sl != "eigen_sparse" && sl != "suite_sparse" && sl != "cx_sparse")
+    throw root.map("optimizer").error("sparse_library",
+                                      "unknown sparse_library '" + sl + "' (eigen_sparse, suite_sparse, cx_sparse)");
+  try {
+    graph::GraphOptimizer check(c.optimizer);
+  } catch (const std::invalid_argument& e) {
+    throw root.map("optimizer").error_here(e.what());
+  }
+  check_positive(root, "schedule", "optimize_every_keyframes", c.schedule.optimize_every_keyframes);
+  if (c.schedule.full_every_keyframes < 0)
+    throw root.map("schedule").error("full_every_keyframes", "full_every_keyframes must be >= 0");
+}
+
+PipelineConfig read(const YamlMap& root) {
+  PipelineConfig config;
+  Reader reader{root, {}};
+  config.visit(reader);
+  root.check_keys(reader.keys);
+  validate(root, config);
+  return config;
+}
+
+}  // namespace
+
+PipelineConfig load_pipeline_config(const std::string& file) { return read(YamlMap::load_file(file)); }
+
+PipelineConfig parse_pipeline_config(const std::string& text, const std::string& name) {
+  return read(YamlMap::load_string(text, name));
+}
+
+std::string dump_pipeline_config(const PipelineConfig& config) {
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  Writer writer{out};
+  PipelineConfig copy = config;
+  copy.visit(writer);
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace tsgraphs::pipeline

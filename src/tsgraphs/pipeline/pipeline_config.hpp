@@ -1,0 +1,59 @@
+#pragma once
+/// Every parameter of the pipeline, one section per module, and the YAML file that sets
+/// them (config/params.yaml lists every key with its default). Unknown keys are errors.
+#include <string>
+
+#include "tsgraphs/graph/graph_optimizer.hpp"
+#include "tsgraphs/graph/loop_closure.hpp"
+#include "tsgraphs/pipeline/keyframe_selector.hpp"
+#include "tsgraphs/pipeline/prefilter.hpp"
+#include "tsgraphs/walls/plane_extraction.hpp"
+#include "tsgraphs/walls/plane_mapper.hpp"
+
+namespace tsgraphs::pipeline {
+
+/// When the back-end runs.
+struct ScheduleConfig {
+  int optimize_every_keyframes = 5;  ///< a local solve after this many new keyframes
+  int full_every_keyframes = 50;     ///< a full solve after this many (0 = only after loops and at the end)
+  bool merge_duplicate_planes = true;///< merge landmarks found to be one face after each solve
+
+  template <class V>
+  void visit(V& v) {
+    v("optimize_every_keyframes", optimize_every_keyframes);
+    v("full_every_keyframes", full_every_keyframes);
+    v("merge_duplicate_planes", merge_duplicate_planes);
+  }
+};
+
+struct PipelineConfig {
+  PrefilterConfig prefilter;
+  KeyframeConfig keyframes;
+  walls::PlaneExtractionConfig plane_extraction;
+  walls::PlaneMapperConfig plane_mapping;
+  graph::GraphOptimizerConfig optimizer;
+  graph::LoopClosureConfig loop_closure;
+  ScheduleConfig schedule;
+
+  template <class V>
+  void visit(V& v) {
+    v.section("prefilter", prefilter);
+    v.section("keyframes", keyframes);
+    v.section("plane_extraction", plane_extraction);
+    v.section("plane_mapping", plane_mapping);
+    v.section("optimizer", optimizer);
+    v.section("loop_closure", loop_closure);
+    v.section("schedule", schedule);
+  }
+};
+
+/// Reads a parameter file over the defaults: every key optional, unknown or duplicate keys,
+/// wrong types and non-finite numbers are InputErrors naming the file, line and key.
+/// Also checks values (ranges) and throws InputError for impossible ones.
+PipelineConfig load_pipeline_config(const std::string& file);
+/// The same from text (for tests); `name` is used in messages.
+PipelineConfig parse_pipeline_config(const std::string& text, const std::string& name);
+/// The whole configuration as YAML, every key, in the order of the sections.
+std::string dump_pipeline_config(const PipelineConfig& config);
+
+}  // namespace tsgraphs::pipeline

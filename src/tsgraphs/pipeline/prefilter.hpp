@@ -1,0 +1,27 @@
+#pragma once
+/// Step 1 of every scan: drop non-finite points, crop by range, voxel-downsample.
+#include <cstddef>
+
+#include "tsgraphs/core/point_cloud.hpp"
+
+namespace tsgraphs::pipeline {
+
+struct PrefilterConfig {
+  double min_range = 0.5;   ///< points nearer the sensor are dropped: the platform itself (m)
+  double max_range = 30.0;  ///< points farther are dropped: sparse and noisy indoors (m)
+  double voxel_size = 0.1;  ///< one point (the centroid) per voxel of this size (m); 0 = no downsampling
+
+  template <class V>
+  void visit(V& v) {
+    v("min_range", min_range);
+    v("max_range", max_range);
+    v("voxel_size", voxel_size);
+  }
+};
+
+/// Returns the filtered cloud, in the order the voxels were first hit (deterministic). Each
+/// voxel keeps the centroid of its points, the mean intensity and the first point's label.
+/// `num_non_finite`, when given, receives the number of NaN/inf points dropped.
+PointCloud prefilter(const PointCloud& scan, const PrefilterConfig& config, std::size_t* num_non_finite = nullptr);
+
+}  // namespace tsgraphs::pipeline

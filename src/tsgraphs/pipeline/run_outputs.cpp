@@ -1,0 +1,214 @@
+#include "tsgraphs/pipeline/run_outputs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <unordered_set>
+
+#include "tsgraphs/io/atomic_write.hpp"
+#include "tsgraphs/io/tum.hpp"
+
+namespace tsgraphs::pipeline {
+namespace {
+
+using nlohmann::json;
+
+json pose_json(const Pose3& T) {
+  const Eigen::Quaterniond q(T.linear());
+  const Eigen::Vector3d& t = T.translation();
+  return {{"t", {t.x(), t.y(), t.z()}}, {"q", {q.x(), q.y(), q.z(), q.w()}}};
+}
+
+struct Rgb {
+  unsigned char r, g, b;
+};
+
+// Distinct colours for neighbouring wall ids; the map's other layers use fixed colours.
+Rgb wall_colour(int id) {
+  static constexpr Rgb kPalette[] = {{230, 25, 75},  {60, 180, 75},  {0, 130, 200}, {245, 130, 48},
+                                     {145, 30, 180}, {70, 240, 240}, {240, 50, 230}, {210, 245, 60},
+                                     {0, 128, 128},  {170, 110, 40}, {128, 0, 0},    {0, 0, 128}};
+  return kPalette[static_cast<std::size_t>(id) % (sizeof kPalette / sizeof kPalette[0])];
+}
+constexpr Rgb kKeyframePoint{150, 150, 150};
+constexpr Rgb kHorizontalPlane{222, 200, 160};
+// Keyframe points are thinned to this grid in the map, so map.ply stays small on long runs.
+constexpr double kMapVoxel = 0.1;
+
+}  // namespace
+
+PlaneExtent plane_extent(const Plane& plane, const std::vector<Eigen::Vector3f>& points) {
+  PlaneExtent e;
+  for (const Eigen::Vector3f& p : points) e.centroid += p.cast<double>();
+  e.centroid /= static_cast<double>(points.size());
+  e.centroid -= plane.signed_distance(e.centroid) * plane.n;  // onto the plane
+  Eigen::Vector2d u(-plane.n.y(), plane.n.x());
+  if (u.norm() > 0) u.normalize();
+  double s0 = 0, s1 = 0;
+  e.z0 = e.z1 = e.centroid.z();
+  for (const Eigen::Vector3f& p : points) {
+    const double s = u.dot(p.head<2>().cast<double>() - e.centroid.head<2>());
+    s0 = std::min(s0, s);
+    s1 = std::max(s1, s);
+    e.z0 = std::min(e.z0, static_cast<double>(p.z()));
+    e.z1 = std::max(e.z1, static_cast<double>(p.z()));
+  }
+  e.a = e.centroid.head<2>() + s0 * u;
+  e.b = e.centroid.head<2>() + s1 * u;
+  return e;
+}
+
+std::string scene_graph_json(const Pipeline& pipeline) {
+  const graph::SituationalGraph& g = pipeline.graph();
+  json keyframes = json::array();
+  for (const graph::KeyframeNode& k : g.keyframes()) {
+    keyframes.push_back({{"id", k.id},
+                         {"scan_index", k.scan_index},
+                         {"stamp", k.stamp},
+                         {"accum_distance", k.accum_distance},
+                         {"pose", pose_json(k.pose)},
+                         {"odom", pose_json(k.odom)}});
+  }
+  std::map<int, std::vector<int>> observers;
+  for (const graph::PlaneEdge& e : g.plane_edges()) observers[e.plane].push_back(e.keyframe);
+  json planes = json::array();
+  for (const auto& [id, p] : g.planes()) {
+    std::vector<int> kfs = observers[id];
+    std::sort(kfs.begin(), kfs.end());
+    kfs.erase(std::unique(kfs.begin(), kfs.end()), kfs.end());
+    json plane = {{"id", id},
+                  {"kind", p.vertical ? "wall" : "horizontal"},
+                  {"n", {p.plane.n.x(), p.plane.n.y(), p.plane.n.z()}},
+                  {"d", p.plane.d},
+                  {"keyframes", kfs}};
+    const auto lm = pipeline.plane_map().landmarks().find(id);
+    if (lm != pipeline.plane_map().landmarks().end() && !lm->second.points.empty()) {
+      const PlaneExtent e = plane_extent(p.plane, lm->second.points);
+      plane["num_points"] = lm->second.points.size();
+      plane["centroid"] = {e.centroid.x(), e.centroid.y(), e.centroid.z()};
+      if (p.vertical) plane["segment"] = {{e.a.x(), e.a.y()}, {e.b.x(), e.b.y()}};
+      plane["z_range"] = {e.z0, e.z1};
+    }
+    planes.push_back(plane);
+  }
+  json edges = json::array();
+  for (const graph::BetweenEdge& e : g.odometry_edges())
+    edges.push_back({{"type", "odometry"}, {"from", e.from}, {"to", e.to}, {"measurement", pose_json(e.measurement)}});
+  for (const graph::BetweenEdge& e : g.loop_edges())
+    edges.push_back({{"type", "loop"},
+                     {"from", e.from},
+                     {"to", e.to},
+                     {"fitness", e.fitness},
+                     {"measurement", pose_json(e.measurement)}});
+  for (const graph::PlaneEdge& e : g.plane_edges())
+    edges.push_back({{"type", "keyframe_plane"},
+                     {"keyframe", e.keyframe},
+                     {"plane", e.plane},
+                     {"measurement", {e.measurement.n.x(), e.measurement.n.y(), e.measurement.n.z(), e.measurement.d}}});
+  const json doc = {{"format", "tsgraphs-scene-graph"},
+                    {"version", 1},
+                    {"frame", "map"},
+                    {"keyframes", keyframes},
+                    {"planes", planes},
+                    {"edges", edges}};
+  return doc.dump(1) + "\n";
+}
+
+std::string timings_csv(const Pipeline& pipeline) {
+  std::string out =
+      "kind,index,stamp,keyframe,num_points,prefilter_ms,walls_ms,loop_ms,frontend_ms,"
+      "optimization_s,full,n_variables,n_factors,iterations,reason\n";
+  char line[512];
+  for (const ScanRecord& s : pipeline.scans()) {
+    std::snprintf(line, sizeof line, "scan,%zu,%.6f,%d,%zu,%.3f,%.3f,%.3f,%.3f,,,,,,%s\n", s.scan_index, s.stamp,
+                  s.keyframe, s.num_points, s.prefilter_ms, s.walls_ms, s.loop_ms, s.frontend_ms,
+                  s.warning.empty() ? "" : ("\"" + s.warning + "\"").c_str());
+    out += line;
+  }
+  for (std::size_t i = 0; i < pipeline.optimizations().size(); ++i) {
+    const OptimizationRecord& o = pipeline.optimizations()[i];
+    std::snprintf(line, sizeof line, "optimization,%zu,%.6f,%d,,,,,,%.6f,%d,%d,%d,%d,%s\n", i,
+                  pipeline.graph().keyframes()[o.after_keyframe].stamp, o.after_keyframe, o.stats.wall_time_s,
+                  o.stats.full ? 1 : 0, o.stats.n_variables, o.stats.n_factors, o.stats.iterations, o.reason.c_str());
+    out += line;
+  }
+  return out;
+}
+
+std::string map_ply(const Pipeline& pipeline) {
+  struct Vertex {
+    Eigen::Vector3f p;
+    Rgb c;
+  };
+  std::vector<Vertex> vertices;
+  // Keyframe points, thinned on a global grid (first come, first kept).
+  std::unordered_set<std::uint64_t> occupied;
+  const auto key = [](const Eigen::Vector3f& p) {
+    const auto axis = [](float v) {
+      return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / kMapVoxel)) + (1 << 20)) & 0x1FFFFF;
+    };
+    return axis(p.x()) | (axis(p.y()) << 21) | (axis(p.z()) << 42);
+  };
+  const auto& keyframes = pipeline.graph().keyframes();
+  for (const graph::KeyframeNode& k : keyframes) {
+    const Eigen::Isometry3f T = k.pose.cast<float>();
+    for (const Eigen::Vector3f& p : pipeline.keyframe_cloud(k.id).points) {
+      const Eigen::Vector3f q = T * p;
+      if (occupied.insert(key(q)).second) vertices.push_back({q, kKeyframePoint});
+    }
+  }
+  for (const auto& [id, lm] : pipeline.plane_map().landmarks()) {
+    const Rgb c = lm.vertical ? wall_colour(id) : kHorizontalPlane;
+    for (const Eigen::Vector3f& p : lm.points) vertices.push_back({p, c});
+  }
+  std::string out = "ply\nformat binary_little_endian 1.0\ncomment tsgraphs map: grey keyframe points, "
+                    "coloured wall faces, beige floors and ceilings\nelement vertex " +
+                    std::to_string(vertices.size()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\n"
+                    "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
+  const std::size_t header = out.size();
+  constexpr std::size_t kVertexBytes = 3 * sizeof(float) + 3;
+  out.resize(header + vertices.size() * kVertexBytes);
+  char* dst = out.data() + header;
+  for (const Vertex& v : vertices) {
+    std::memcpy(dst, v.p.data(), 3 * sizeof(float));  // x86 and ARM are little-endian
+    dst[12] = static_cast<char>(v.c.r);
+    dst[13] = static_cast<char>(v.c.g);
+    dst[14] = static_cast<char>(v.c.b);
+    dst += kVertexBytes;
+  }
+  return out;
+}
+
+void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std::string& dir) {
+  const std::vector<Pose3> poses = pipeline.trajectory();
+  std::vector<io::StampedPose> stamped;
+  stamped.reserve(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) stamped.push_back({pipeline.scans()[i].stamp, poses[i]});
+  io::write_file_atomic(dir + "/" + run_files::kTrajectory, io::format_tum(stamped));
+  io::write_file_atomic(dir + "/" + run_files::kSceneGraph, scene_graph_json(pipeline));
+  io::write_file_atomic(dir + "/" + run_files::kMap, map_ply(pipeline));
+  io::write_file_atomic(dir + "/" + run_files::kTimings, timings_csv(pipeline));
+  io::write_file_atomic(dir + "/" + run_files::kParams, dump_pipeline_config(pipeline.config()));
+
+  double t_pgo = 0.0;
+  for (const OptimizationRecord& o : pipeline.optimizations()) t_pgo += o.stats.wall_time_s;
+  const json summary = {{"sequence", info.sequence},
+                        {"num_scans", info.num_scans},
+                        {"num_skipped", info.num_skipped},
+                        {"num_keyframes", pipeline.graph().keyframes().size()},
+                        {"num_planes", pipeline.graph().planes().size()},
+                        {"num_loops", pipeline.graph().loop_edges().size()},
+                        {"num_optimizations", pipeline.optimizations().size()},
+                        {"t_pgo_s", t_pgo},
+                        {"sequence_duration_s", info.sequence_duration_s},
+                        {"wall_time_s", info.wall_time_s},
+                        {"rtf", info.wall_time_s > 0 ? info.sequence_duration_s / info.wall_time_s : 0.0},
+                        {"peak_rss_mb", info.peak_rss_mb}};
+  io::write_file_atomic(dir + "/" + run_files::kRunInfo, summary.dump(1) + "\n");
+}
+
+}  // namespace tsgraphs::pipeline

@@ -1,0 +1,46 @@
+#pragma once
+/// Pairwise scan registration (generalised ICP, PCL), used by loop closure to measure the
+/// relative pose of two keyframes and to check that the match is good.
+#include "tsgraphs/core/point_cloud.hpp"
+#include "tsgraphs/core/pose.hpp"
+
+namespace tsgraphs::registration {
+
+struct RegistrationConfig {
+  double voxel_size = 0.2;                   ///< both clouds are voxel-downsampled to this (m); 0 = keep all
+  double max_correspondence_distance = 1.0;  ///< GICP correspondence gate (m): the capture range
+  double fine_correspondence_distance = 0.5; ///< gate of a second GICP pass from the first one's result (m), so that
+                                             ///< far pairs do not bias the final pose; 0 = one pass
+  int max_iterations = 64;                   ///< GICP outer iterations
+  int k_correspondences = 20;                ///< neighbours for each point's covariance
+  double transformation_epsilon = 1e-4;      ///< convergence: change of the transform between iterations
+  double fitness_distance = 0.3;             ///< only correspondences closer than this count in `fitness` (m)
+
+  template <class V>
+  void visit(V& v) {
+    v("voxel_size", voxel_size);
+    v("max_correspondence_distance", max_correspondence_distance);
+    v("fine_correspondence_distance", fine_correspondence_distance);
+    v("max_iterations", max_iterations);
+    v("k_correspondences", k_correspondences);
+    v("transformation_epsilon", transformation_epsilon);
+    v("fitness_distance", fitness_distance);
+  }
+};
+
+struct RegistrationResult {
+  Pose3 T_target_source = Pose3::Identity();  ///< maps source points into the target frame
+  double fitness = 0.0;       ///< mean squared distance (m^2) of source points to their nearest target point, over those within fitness_distance
+  double inlier_ratio = 0.0;  ///< share of source points within fitness_distance of the target after alignment
+  bool converged = false;
+};
+
+/// Aligns `source` to `target` starting from `initial_guess` (T_target_source). Non-finite
+/// points are dropped. Clouds with fewer than k_correspondences points after downsampling, or a
+/// non-finite guess, give converged = false (T = the guess, inlier_ratio 0), never an exception;
+/// a config out of range (negative sizes, k < 3) is a std::invalid_argument. `converged` is
+/// PCL's: the iterations stopped (by epsilon or by max_iterations) without a numerical failure.
+RegistrationResult register_clouds(const PointCloud& source, const PointCloud& target, const Pose3& initial_guess,
+                                   const RegistrationConfig& config);
+
+}  // namespace tsgraphs::registration

@@ -1,0 +1,61 @@
+#pragma once
+/// Wall (vertical) and floor/ceiling (horizontal) planes from one keyframe cloud: point normals
+/// (PCA over k neighbours), a class per point from its normal in the map frame, region growing
+/// per class for plane hypotheses, an inlier sweep and least-squares refit per hypothesis, then
+/// Euclidean clustering of the inliers so that one plane is one wall face (two walls in line
+/// across a doorway are two faces only if the gap is wider than cluster_tolerance).
+#include <vector>
+
+#include "tsgraphs/core/plane.hpp"
+#include "tsgraphs/core/point_cloud.hpp"
+
+namespace tsgraphs::walls {
+
+struct PlaneExtractionConfig {
+  int normal_neighbours = 10;           ///< k nearest neighbours for point normals
+  double max_vertical_normal_z = 0.15;  ///< |n_z| (map frame) at most this: a wall candidate
+  double min_horizontal_normal_z = 0.95;///< |n_z| at least this: a floor/ceiling candidate
+  double distance_threshold = 0.05;     ///< inlier distance to a plane (m)
+  double normal_angle_threshold_deg = 15.0;  ///< inlier normals within this of the plane's
+  int min_inliers = 150;                ///< smallest face kept (points after prefiltering)
+  double min_extent = 1.0;              ///< smallest horizontal length of a wall face (m)
+  double cluster_tolerance = 0.4;       ///< Euclidean clustering gap that splits one plane into faces (m; <= 0: no split)
+  int max_planes = 30;                  ///< at most this many planes per keyframe
+  double max_range = 15.0;              ///< points farther from the sensor are not used (m)
+  double point_voxel = 0.2;             ///< inlier points kept per face are downsampled to this (m)
+
+  template <class V>
+  void visit(V& v) {
+    v("normal_neighbours", normal_neighbours);
+    v("max_vertical_normal_z", max_vertical_normal_z);
+    v("min_horizontal_normal_z", min_horizontal_normal_z);
+    v("distance_threshold", distance_threshold);
+    v("normal_angle_threshold_deg", normal_angle_threshold_deg);
+    v("min_inliers", min_inliers);
+    v("min_extent", min_extent);
+    v("cluster_tolerance", cluster_tolerance);
+    v("max_planes", max_planes);
+    v("max_range", max_range);
+    v("point_voxel", point_voxel);
+  }
+};
+
+/// One plane seen from one keyframe, in the keyframe (sensor) frame.
+struct PlaneObservation {
+  /// n.x + d = 0 with the S-Graphs sign convention: n points towards the sensor that saw the
+  /// face, so d > 0 in the keyframe frame; the two faces of a wall are two planes.
+  Plane plane;
+  bool vertical = true;                 ///< wall face; false: floor or ceiling
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< of the inliers, keyframe frame
+  int num_inliers = 0;
+  double fit_rms = 0.0;                 ///< RMS distance of inliers to the plane (m)
+  std::vector<Eigen::Vector3f> points;  ///< inliers downsampled to point_voxel, keyframe frame
+};
+
+/// Extracts planes from `cloud` (keyframe frame). `R_map_keyframe` rotates keyframe-frame
+/// vectors into the gravity-aligned map frame; it decides which planes are vertical.
+/// Deterministic: the same cloud and config give the same planes in the same order.
+std::vector<PlaneObservation> extract_planes(const PointCloud& cloud, const Eigen::Matrix3d& R_map_keyframe,
+                                             const PlaneExtractionConfig& config);
+
+}  // namespace tsgraphs::walls

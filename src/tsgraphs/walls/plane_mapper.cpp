@@ -1,0 +1,230 @@
+#include "tsgraphs/walls/plane_mapper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <optional>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace tsgraphs::walls {
+namespace {
+
+// 21 bits per axis: +-1e6 cells, far beyond any building at useful cell sizes.
+std::uint64_t cell_key(std::int64_t a, std::int64_t b, std::int64_t c) {
+  constexpr std::int64_t kOffset = 1 << 20;
+  constexpr std::uint64_t kMask = (1u << 21) - 1;
+  auto axis = [](std::int64_t v) { return static_cast<std::uint64_t>(v + kOffset) & kMask; };
+  return axis(a) | (axis(b) << 21) | (axis(c) << 42);
+}
+
+Eigen::Array3i cell_of(const Eigen::Vector3f& p, double inv_size) {
+  return (p.cast<double>() * inv_size).array().floor().cast<int>();
+}
+
+std::uint64_t key_of(const Eigen::Vector3f& p, double inv_size) {
+  const Eigen::Array3i c = cell_of(p, inv_size);
+  return cell_key(c.x(), c.y(), c.z());
+}
+
+// Smallest cell of a hash (m): keeps cell keys finite for a zero radius or voxel.
+constexpr double kMinCell = 1e-3;
+
+// Points hashed on cells of edge `radius`: "is any point within radius of q" looks at 27 cells.
+class PointHash {
+ public:
+  PointHash(const std::vector<Eigen::Vector3f>& pts, double radius)
+      : inv_(1.0 / std::max(radius, kMinCell)), r2_(static_cast<float>(radius * radius)) {
+    for (const Eigen::Vector3f& p : pts) cells_[key_of(p, inv_)].push_back(p);
+  }
+  bool any_within(const Eigen::Vector3f& q) const {
+    const Eigen::Array3i c = cell_of(q, inv_);
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find(cell_key(c.x() + dx, c.y() + dy, c.z() + dz));
+          if (it == cells_.end()) continue;
+          for (const Eigen::Vector3f& p : it->second) {
+            if ((p - q).squaredNorm() <= r2_) return true;
+          }
+        }
+      }
+    }
+    return false;
+  }
+
+ private:
+  double inv_;
+  float r2_;
+  std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3f>> cells_;
+};
+
+// Angle between two unit normals, robust near zero (acos is not).
+double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+Eigen::Vector3d centroid_of(const std::vector<Eigen::Vector3f>& pts) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3f& p : pts) c += p.cast<double>();
+  return pts.empty() ? c : Eigen::Vector3d(c / static_cast<double>(pts.size()));
+}
+
+std::vector<Eigen::Vector3f> transform_points(const std::vector<Eigen::Vector3f>& pts, const Pose3& T) {
+  const Eigen::Isometry3f Tf = T.cast<float>();
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(pts.size());
+  for (const Eigen::Vector3f& p : pts) out.push_back(Tf * p);
+  return out;
+}
+
+// Adds `pts` to the voxel-downsampled set `dst` (one point per voxel of edge `voxel`, the
+// first one that fell in it), so a landmark's point set grows with the area seen, not with
+// the number of visits.
+void add_downsampled(const std::vector<Eigen::Vector3f>& pts, double voxel, std::vector<Eigen::Vector3f>* dst) {
+  const double inv = 1.0 / std::max(voxel, kMinCell);
+  std::unordered_set<std::uint64_t> occupied;
+  occupied.reserve(dst->size() + pts.size());
+  for (const Eigen::Vector3f& p : *dst) occupied.insert(key_of(p, inv));
+  for (const Eigen::Vector3f& p : pts) {
+    if (occupied.insert(key_of(p, inv)).second) dst->push_back(p);
+  }
+}
+
+// A landmark's map-frame point set from its observations and the keyframes' poses.
+void rebuild_points(const std::function<Pose3(int)>& keyframe_pose, double voxel, PlaneLandmark* lm) {
+  lm->points.clear();
+  for (const auto& [kf, pts] : lm->observations) {
+    add_downsampled(transform_points(pts, keyframe_pose(kf)), voxel, &lm->points);
+  }
+}
+
+// Share of `pts` that lie within the hash's radius of one of its points.
+double overlap_ratio(const std::vector<Eigen::Vector3f>& pts, const PointHash& hash) {
+  if (pts.empty()) return 0.0;
+  std::size_t hits = 0;
+  for (const Eigen::Vector3f& p : pts) hits += hash.any_within(p) ? 1 : 0;
+  return static_cast<double>(hits) / static_cast<double>(pts.size());
+}
+
+bool any_within(const std::vector<Eigen::Vector3f>& pts, const PointHash& hash) {
+  return std::any_of(pts.begin(), pts.end(), [&](const Eigen::Vector3f& p) { return hash.any_within(p); });
+}
+
+}  // namespace
+
+PlaneMapper::PlaneMapper(PlaneMapperConfig config) : config_(config) {}
+
+int PlaneMapper::associate(const PlaneObservation& obs, const Pose3& T_map_keyframe) const {
+  const Plane plane = obs.plane.transformed(T_map_keyframe);
+  const Eigen::Vector3d centroid = T_map_keyframe * obs.centroid;
+  const double sigma_angle = config_.sigma_angle_deg * M_PI / 180.0;
+  std::vector<Eigen::Vector3f> pts;  // map frame, made once a landmark passes the gate
+  int best = -1;
+  double best_mahalanobis = config_.max_mahalanobis;
+  for (const auto& [id, lm] : landmarks_) {
+    if (lm.vertical != obs.vertical || lm.plane.n.dot(plane.n) <= 0.0) continue;
+    // The offset difference at the observation, not at the origin: the raw d of two planes
+    // that differ by a small angle differs by that angle times the distance to the origin.
+    const double da = angle_between(lm.plane.n, plane.n) / sigma_angle;
+    const double dd = lm.plane.signed_distance(centroid) / config_.sigma_distance;
+    const double mahalanobis = std::sqrt(da * da + dd * dd);
+    if (mahalanobis > best_mahalanobis || (best >= 0 && mahalanobis == best_mahalanobis)) continue;
+    if (pts.empty()) pts = transform_points(obs.points, T_map_keyframe);
+    const PointHash hash(lm.points, config_.overlap_distance);
+    if (overlap_ratio(pts, hash) < config_.min_overlap_ratio) continue;
+    best = id;
+    best_mahalanobis = mahalanobis;
+  }
+  return best;
+}
+
+void PlaneMapper::add_landmark(int id, const PlaneObservation& obs, const Pose3& T_map_keyframe, int keyframe_id) {
+  PlaneLandmark lm;
+  lm.id = id;
+  lm.plane = obs.plane.transformed(T_map_keyframe);
+  lm.vertical = obs.vertical;
+  landmarks_[id] = std::move(lm);
+  add_observation(id, obs, T_map_keyframe, keyframe_id);
+}
+
+void PlaneMapper::add_observation(int id, const PlaneObservation& obs, const Pose3& T_map_keyframe, int keyframe_id) {
+  const auto it = landmarks_.find(id);
+  if (it == landmarks_.end()) return;
+  PlaneLandmark& lm = it->second;
+  // One keyframe may see a face as two pieces (a door near the sensor): keep both.
+  std::vector<Eigen::Vector3f>& seen = lm.observations[keyframe_id];
+  seen.insert(seen.end(), obs.points.begin(), obs.points.end());
+  add_downsampled(transform_points(obs.points, T_map_keyframe), config_.landmark_voxel, &lm.points);
+}
+
+void PlaneMapper::update(const std::map<int, Plane>& planes, const std::function<Pose3(int)>& keyframe_pose) {
+  for (const auto& [id, plane] : planes) {
+    const auto it = landmarks_.find(id);
+    if (it != landmarks_.end()) it->second.plane = plane;
+  }
+  for (auto& [id, lm] : landmarks_) rebuild_points(keyframe_pose, config_.landmark_voxel, &lm);
+}
+
+std::vector<std::pair<int, int>> PlaneMapper::find_duplicates() const {
+  const double cos_merge = std::cos(config_.merge_angle_deg * M_PI / 180.0);
+  std::vector<int> ids;
+  std::vector<const PlaneLandmark*> lms;
+  std::vector<Eigen::Vector3d> centroids;
+  for (const auto& [id, lm] : landmarks_) {
+    ids.push_back(id);
+    lms.push_back(&lm);
+    centroids.push_back(centroid_of(lm.points));
+  }
+  // Union-find over duplicate pairs, so that three pieces of one face become one group.
+  std::vector<std::size_t> parent(lms.size());
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  auto find = [&](std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (std::size_t a = 0; a < lms.size(); ++a) {
+    if (lms[a]->points.empty()) continue;
+    std::optional<PointHash> hash;  // made when a pair first passes the plane tests
+    for (std::size_t b = a + 1; b < lms.size(); ++b) {
+      const PlaneLandmark& A = *lms[a];
+      const PlaneLandmark& B = *lms[b];
+      if (A.vertical != B.vertical || B.points.empty()) continue;
+      if (A.plane.n.dot(B.plane.n) < cos_merge) continue;
+      if (std::abs(A.plane.signed_distance(centroids[b])) > config_.merge_distance) continue;
+      if (std::abs(B.plane.signed_distance(centroids[a])) > config_.merge_distance) continue;
+      if (find(a) == find(b)) continue;
+      if (!hash) hash.emplace(A.points, config_.merge_overlap_distance);
+      if (!any_within(B.points, *hash)) continue;
+      parent[std::max(find(a), find(b))] = std::min(find(a), find(b));
+    }
+  }
+  // Per group: keep the landmark with the most observations (lowest id on a tie).
+  std::map<std::size_t, std::size_t> keep_of_root;
+  for (std::size_t a = 0; a < lms.size(); ++a) {
+    const auto [it, fresh] = keep_of_root.emplace(find(a), a);
+    if (!fresh && lms[a]->observations.size() > lms[it->second]->observations.size()) it->second = a;
+  }
+  std::vector<std::pair<int, int>> pairs;
+  for (std::size_t a = 0; a < lms.size(); ++a) {
+    const std::size_t keep = keep_of_root.at(find(a));
+    if (keep != a) pairs.emplace_back(ids[keep], ids[a]);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+void PlaneMapper::merge(int keep, int drop, const std::function<Pose3(int)>& keyframe_pose) {
+  const auto k = landmarks_.find(keep);
+  const auto d = landmarks_.find(drop);
+  if (k == landmarks_.end() || d == landmarks_.end() || keep == drop) return;
+  for (auto& [kf, pts] : d->second.observations) {
+    std::vector<Eigen::Vector3f>& seen = k->second.observations[kf];
+    seen.insert(seen.end(), pts.begin(), pts.end());
+  }
+  landmarks_.erase(d);
+  rebuild_points(keyframe_pose, config_.landmark_voxel, &k->second);
+}
+
+}  // namespace tsgraphs::walls

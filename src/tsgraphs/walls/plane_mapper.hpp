@@ -1,0 +1,79 @@
+#pragma once
+/// Plane landmarks of the map: associating a keyframe's plane observations with mapped
+/// planes (Mahalanobis distance of the plane difference plus a point-overlap check), and
+/// finding duplicate landmarks of one face so they can be merged.
+#include <functional>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/walls/plane_extraction.hpp"
+
+namespace tsgraphs::walls {
+
+struct PlaneMapperConfig {
+  double sigma_angle_deg = 2.0;        ///< std of a plane's normal direction, for association
+  double sigma_distance = 0.05;        ///< std of a plane's offset (m), for association
+  double max_mahalanobis = 3.0;        ///< association gate on the Mahalanobis distance
+  double overlap_distance = 0.5;       ///< an observation point within this of a landmark point overlaps it (m)
+  double min_overlap_ratio = 0.05;     ///< share of observation points that must overlap
+  double merge_angle_deg = 3.0;        ///< duplicates: normals within this angle...
+  double merge_distance = 0.08;        ///< ...offsets within this (m)...
+  double merge_overlap_distance = 0.5; ///< ...and point sets within this of each other (m)
+  double landmark_voxel = 0.25;        ///< landmark point sets are downsampled to this (m)
+
+  template <class V>
+  void visit(V& v) {
+    v("sigma_angle_deg", sigma_angle_deg);
+    v("sigma_distance", sigma_distance);
+    v("max_mahalanobis", max_mahalanobis);
+    v("overlap_distance", overlap_distance);
+    v("min_overlap_ratio", min_overlap_ratio);
+    v("merge_angle_deg", merge_angle_deg);
+    v("merge_distance", merge_distance);
+    v("merge_overlap_distance", merge_overlap_distance);
+    v("landmark_voxel", landmark_voxel);
+  }
+};
+
+/// A mapped plane: its current value (set by the back-end) and the points seen on it.
+struct PlaneLandmark {
+  int id = -1;
+  Plane plane;                          ///< map frame, normal towards the observers
+  bool vertical = true;
+  /// Observations: keyframe id -> inlier points in that keyframe's frame.
+  std::map<int, std::vector<Eigen::Vector3f>> observations;
+  std::vector<Eigen::Vector3f> points;  ///< map frame, from observations and keyframe poses, downsampled
+};
+
+class PlaneMapper {
+ public:
+  explicit PlaneMapper(PlaneMapperConfig config = {});
+
+  /// Id of the landmark `obs` (seen from a keyframe at T_map_keyframe) belongs to, or -1.
+  /// Only landmarks of the same class (vertical/horizontal) and facing the same way match.
+  int associate(const PlaneObservation& obs, const Pose3& T_map_keyframe) const;
+  /// Creates landmark `id` from its first observation (plane set from it, in the map frame).
+  void add_landmark(int id, const PlaneObservation& obs, const Pose3& T_map_keyframe, int keyframe_id);
+  /// Records another observation of landmark `id`.
+  void add_observation(int id, const PlaneObservation& obs, const Pose3& T_map_keyframe, int keyframe_id);
+  /// After optimisation: sets each listed landmark's plane and rebuilds every point set from
+  /// the keyframes' new poses.
+  void update(const std::map<int, Plane>& planes, const std::function<Pose3(int)>& keyframe_pose);
+  /// Pairs (keep, drop) of landmarks that are one face; keep is the one with more observations
+  /// (the lower id on a tie). Landmarks linked by a chain of such pairs form one group with one
+  /// keep, so every pair can be merged in turn; sorted by (keep, drop).
+  std::vector<std::pair<int, int>> find_duplicates() const;
+  /// Moves drop's observations into keep and removes drop.
+  void merge(int keep, int drop, const std::function<Pose3(int)>& keyframe_pose);
+
+  const std::map<int, PlaneLandmark>& landmarks() const { return landmarks_; }
+  const PlaneMapperConfig& config() const { return config_; }
+
+ private:
+  PlaneMapperConfig config_;
+  std::map<int, PlaneLandmark> landmarks_;
+};
+
+}  // namespace tsgraphs::walls

@@ -1,0 +1,166 @@
+// `tsgraphs run` and `tsgraphs eval` as a user calls them: the outputs, and bad input
+// (a missing odometry line, a truncated scan, NaN points, an empty scan, a bad parameter file).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "test_support.hpp"
+#include "tsgraphs/io/tum.hpp"
+
+namespace fs = std::filesystem;
+using namespace tsgraphs;
+
+namespace {
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+int cli(const std::string& args, std::string* err) {
+  const fs::path log = fs::path(::testing::TempDir()) / ("tsgraphs_run_stderr_" + std::to_string(::getpid()) + ".txt");
+  const int status =
+      std::system((std::string(TSGRAPHS_BINARY) + " " + args + " 2> " + log.string() + " > /dev/null").c_str());
+  *err = read_file(log);
+  fs::remove(log);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// A small room walked once round: a few hundred VLP-16 scans, quick to simulate and run.
+const char* kScene = R"(
+name: small_room
+seed: 5
+sensor: {preset: vlp-16, mount_height: 0.55}
+odometry: {trans_noise_per_m: 0.01, yaw_noise_per_rad: 0.01, yaw_noise_per_m: 0.002}
+levels:
+  - {name: L0, elevation: 0.0, ceiling: 2.8, slab: [[0, 0], [8, 0], [8, 6], [0, 6]]}
+walls:
+  - {level: L0, from: [-0.1, 0], to: [8.1, 0]}
+  - {level: L0, from: [-0.1, 6], to: [8.1, 6]}
+  - {level: L0, from: [0, 0], to: [0, 6]}
+  - {level: L0, from: [8, 0], to: [8, 6]}
+  - {level: L0, from: [4, 0], to: [4, 2.5]}
+trajectory:
+  level: L0
+  speed: 1.0
+  laps: 1
+  waypoints: [[1.5, 1.5], [6.5, 1.5], [6.5, 4.5], [1.5, 4.5]]
+)";
+
+class RunCli : public test::TempDirTest {
+ protected:
+  // One simulated sequence shared by the tests of this file (copied where a test damages it).
+  static void SetUpTestSuite() {
+    base_ = test::fresh_temp_dir("run_cli_base");
+    std::ofstream(base_ / "room.yaml") << kScene;
+    std::string err;
+    ASSERT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --out " + (base_ / "seq").string(), &err), 0)
+        << err;
+  }
+  static void TearDownTestSuite() { fs::remove_all(base_); }
+
+  fs::path copy_sequence() const {
+    const fs::path seq = dir_ / "seq";
+    fs::copy(base_ / "seq", seq, fs::copy_options::recursive);
+    return seq;
+  }
+  static fs::path base_;
+};
+fs::path RunCli::base_;
+
+}  // namespace
+
+TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
+  const fs::path seq = base_ / "seq", out = dir_ / "run";
+  std::string err;
+  ASSERT_EQ(cli("-q run " + seq.string() + " --out " + out.string(), &err), 0) << err;
+  for (const char* f : {"trajectory.txt", "scene_graph.json", "map.ply", "timings.csv", "params.yaml", "run_info.json"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const auto traj = io::read_tum((out / "trajectory.txt").string());
+  const auto gt = io::read_tum((seq / "groundtruth.txt").string());
+  ASSERT_EQ(traj.size(), gt.size());
+  const auto graph = nlohmann::json::parse(read_file(out / "scene_graph.json"));
+  EXPECT_GE(graph["keyframes"].size(), 10u);
+  EXPECT_GE(graph["planes"].size(), 4u);
+  EXPECT_EQ(read_file(out / "map.ply").rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
+
+  ASSERT_EQ(cli("-q eval " + out.string() + " --seq " + seq.string(), &err), 0) << err;
+  const auto m = nlohmann::json::parse(read_file(out / "metrics.json"));
+  ASSERT_TRUE(m["trajectory"]["ate_rmse"].is_number());
+  EXPECT_LE(m["trajectory"]["ate_rmse"].get<double>(), m["trajectory"]["odom_ate_rmse"].get<double>());
+  EXPECT_TRUE(m["pgo"]["t_pgo_s"].is_number());
+  EXPECT_GE(m["pgo"]["n_optimisations"].get<double>(), 1.0);
+  EXPECT_TRUE(m["walls"]["mean_dist_err"].is_number());
+  EXPECT_TRUE(m["consistency"]["f_re"].is_null());  // rooms come with a later layer
+  EXPECT_TRUE(m["speed"]["rtf"].is_number());
+
+  // The same input and config give the same outputs, byte for byte (timings aside).
+  const fs::path out2 = dir_ / "run2";
+  ASSERT_EQ(cli("-q run " + seq.string() + " --out " + out2.string(), &err), 0) << err;
+  EXPECT_EQ(read_file(out / "trajectory.txt"), read_file(out2 / "trajectory.txt"));
+  EXPECT_EQ(read_file(out / "scene_graph.json"), read_file(out2 / "scene_graph.json"));
+}
+
+TEST_F(RunCli, MissingOdometryLineIsAnErrorNamingTheFileAndNoOutput) {
+  const fs::path seq = copy_sequence();
+  std::string odom = read_file(seq / "odom.txt");
+  odom.erase(odom.rfind('\n', odom.size() - 2) + 1);  // drop the last line
+  std::ofstream(seq / "odom.txt") << odom;
+  std::string err;
+  EXPECT_EQ(cli("-q run " + seq.string() + " --out " + (dir_ / "run").string(), &err), 2);
+  EXPECT_NE(err.find("odom.txt"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "run"));
+}
+
+TEST_F(RunCli, TruncatedNaNAndEmptyScansAreSkippedWithWarningsAndNoNaNPose) {
+  const fs::path seq = copy_sequence();
+  // Scan 3: truncated mid-point. Scan 0 (a keyframe): every point NaN. Scan 20: empty.
+  {
+    const fs::path p = seq / "scans" / "000003.bin";
+    fs::resize_file(p, fs::file_size(p) - 6);
+  }
+  {
+    const fs::path p = seq / "scans" / "000000.bin";
+    std::string bin = read_file(p);
+    const float nan = std::nanf("");
+    for (std::size_t i = 0; i + 16 <= bin.size(); i += 16) std::memcpy(&bin[i], &nan, sizeof nan);
+    std::ofstream(p, std::ios::binary) << bin;
+  }
+  std::ofstream(seq / "scans" / "000020.bin", std::ios::binary | std::ios::trunc);
+  fs::remove(seq / "scans" / "000020.label");
+  const fs::path out = dir_ / "run";
+  std::string err;
+  ASSERT_EQ(cli("-q run " + seq.string() + " --out " + out.string(), &err), 0) << err;
+  EXPECT_NE(err.find("000003.bin"), std::string::npos) << err;
+  EXPECT_NE(err.find("scan 0:"), std::string::npos) << err;
+  EXPECT_NE(err.find("scan 20:"), std::string::npos) << err;
+  const auto traj = io::read_tum((out / "trajectory.txt").string());  // read_tum rejects non-finite values
+  EXPECT_EQ(traj.size(), io::read_tum((seq / "odom.txt").string()).size());
+}
+
+TEST_F(RunCli, BadParameterFileAndUnrelatedOutputFolderAreRefused) {
+  std::string err;
+  const std::string params = write_file("p.yaml", "keyframes:\n  delta_trans: 1.0\n  delta_trns: 2.0\n");
+  EXPECT_EQ(cli("-q run " + (base_ / "seq").string() + " --out " + (dir_ / "run").string() + " --config " + params, &err), 2);
+  EXPECT_NE(err.find("p.yaml:3: unknown key 'keyframes.delta_trns'"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "run"));
+
+  fs::create_directories(dir_ / "mine");
+  write_file("mine/notes.txt", "keep me");
+  EXPECT_EQ(cli("-q run " + (base_ / "seq").string() + " --out " + (dir_ / "mine").string(), &err), 2);
+  EXPECT_EQ(read_file(dir_ / "mine" / "notes.txt"), "keep me");
+
+  EXPECT_EQ(cli("-q eval " + (dir_ / "nothing").string(), &err), 2);
+  EXPECT_NE(err.find("nothing"), std::string::npos) << err;
+}

@@ -1,0 +1,124 @@
+// The SLAM spine end to end on simulated scenes with drifting odometry, driven scan by scan
+// from the simulator (no files): trajectory, loop closures and wall planes against ground truth.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "tsgraphs/eval/trajectory_metrics.hpp"
+#include "tsgraphs/eval/wall_metrics.hpp"
+#include "tsgraphs/pipeline/pipeline.hpp"
+#include "tsgraphs/pipeline/run_outputs.hpp"
+#include "tsgraphs/sim/builtin_scenes.hpp"
+#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/sim/simulator.hpp"
+
+using namespace tsgraphs;
+
+namespace {
+
+struct Outcome {
+  double ate_rmse = 0, odom_ate_rmse = 0, ate_loop = 0;
+  std::size_t n_loops = 0, n_loops_correct = 0, n_keyframes = 0;
+  eval::WallErrors walls;
+};
+
+sim::Scene builtin(const std::string& name) {
+  return sim::parse_scene(*sim::builtin_scene_text(name), "builtin:" + name, ".");
+}
+
+Outcome run_scene(const sim::Scene& scene, std::uint64_t seed) {
+  sim::Simulator sim(scene, seed);
+  pipeline::Pipeline slam;
+  const auto faces = eval::wall_faces(scene);
+  std::vector<eval::FaceHits> hits(faces.size());
+  for (std::size_t k = 0; k < sim.num_scans(); ++k) {
+    const PointCloud scan = sim.scan(k);
+    const auto& rec = slam.process(k, sim.times()[k], scan, sim.odometry_poses()[k]);
+    if (rec.keyframe >= 0) eval::count_face_hits(faces, scan, sim.true_poses()[k], {}, &hits);
+  }
+  slam.finish();
+
+  Outcome o;
+  const std::vector<Pose3> est = slam.trajectory();
+  o.ate_rmse = eval::ate_rmse(est, sim.true_poses());
+  o.odom_ate_rmse = eval::ate_rmse(sim.odometry_poses(), sim.true_poses());
+  o.ate_loop = eval::ate_loop(est);
+  const auto& kfs = slam.graph().keyframes();
+  o.n_keyframes = kfs.size();
+  for (const graph::BetweenEdge& e : slam.graph().loop_edges()) {
+    ++o.n_loops;
+    const Pose3 truth = sim.true_poses()[kfs[e.from].scan_index].inverse() * sim.true_poses()[kfs[e.to].scan_index];
+    const Pose3 err = truth.inverse() * e.measurement;
+    if (err.translation().norm() <= 0.10 && Eigen::AngleAxisd(err.linear()).angle() <= M_PI / 180.0) ++o.n_loops_correct;
+  }
+  std::vector<eval::MappedWall> mapped;
+  for (const auto& [id, lm] : slam.plane_map().landmarks()) {
+    if (!lm.vertical || lm.points.empty()) continue;
+    const auto& node = slam.graph().planes().at(id);
+    const pipeline::PlaneExtent e = pipeline::plane_extent(node.plane, lm.points);
+    mapped.push_back({id, node.plane, e.a, e.b, e.z0, e.z1});
+  }
+  // The map frame is the odometry frame, which starts at the true first pose.
+  const Pose3 T_world_map = sim.true_poses()[kfs[0].scan_index] * kfs[0].pose.inverse();
+  o.walls = eval::wall_errors(faces, hits, mapped, T_world_map, {});
+  return o;
+}
+
+void expect_must_show(const Outcome& o) {
+  EXPECT_LE(o.ate_rmse, 0.5 * o.odom_ate_rmse) << "ATE_rmse " << o.ate_rmse << " vs odometry " << o.odom_ate_rmse;
+  EXPECT_LE(o.ate_loop, 0.10);
+  EXPECT_GE(o.n_loops, 1u);
+  EXPECT_EQ(o.n_loops_correct, o.n_loops);
+  EXPECT_GT(o.walls.n_faces_seen, 10);
+  EXPECT_EQ(o.walls.n_faces_mapped, o.walls.n_faces_seen);
+  EXPECT_LE(o.walls.max_dist_err, 0.03);
+  EXPECT_LE(o.walls.max_angle_err_deg, 1.0);
+  EXPECT_EQ(o.walls.n_duplicates, 0);
+  std::printf("ATE_rmse %.3f (odometry %.3f), ATE_loop %.3f, %zu keyframes, loops %zu/%zu correct, "
+              "walls %d/%d mapped, dist err mean %.4f max %.4f, angle err mean %.3f max %.3f deg, %d duplicates\n",
+              o.ate_rmse, o.odom_ate_rmse, o.ate_loop, o.n_keyframes, o.n_loops_correct, o.n_loops,
+              o.walls.n_faces_mapped, o.walls.n_faces_seen, o.walls.mean_dist_err, o.walls.max_dist_err,
+              o.walls.mean_angle_err_deg, o.walls.max_angle_err_deg, o.walls.n_duplicates);
+}
+
+}  // namespace
+
+TEST(EndToEnd, OfficeTwoLaps) { expect_must_show(run_scene(builtin("office"), 1)); }
+
+TEST(EndToEnd, AtriumTwoLaps) { expect_must_show(run_scene(builtin("atrium"), 1)); }
+
+TEST(EndToEnd, StraightCorridorWithoutRevisitHasNoLoopClosure) {
+  sim::Scene scene = sim::parse_scene(R"(
+name: straight
+sensor: {preset: os1-64, mount_height: 0.55}
+odometry: {trans_noise_per_m: 0.01, yaw_noise_per_rad: 0.01, yaw_noise_per_m: 0.002}
+levels:
+  - {name: L0, elevation: 0.0, ceiling: 2.8, slab: [[0, 0], [40, 0], [40, 2.4], [0, 2.4]]}
+walls:
+  - {level: L0, from: [-0.1, 0], to: [40.1, 0]}
+  - {level: L0, from: [-0.1, 2.4], to: [40.1, 2.4]}
+  - {level: L0, from: [0, 0], to: [0, 2.4]}
+  - {level: L0, from: [40, 0], to: [40, 2.4]}
+trajectory:
+  level: L0
+  speed: 1.5
+  closed: false
+  laps: 1
+  waypoints: [[1, 1.2], [38, 1.2]]
+)",
+                                      "straight.yaml", ".");
+  sim::Simulator sim(scene, 3);
+  pipeline::Pipeline slam;
+  for (std::size_t k = 0; k < sim.num_scans(); ++k) slam.process(k, sim.times()[k], sim.scan(k), sim.odometry_poses()[k]);
+  slam.finish();
+  EXPECT_GE(slam.graph().keyframes().size(), 30u);
+  EXPECT_TRUE(slam.graph().loop_edges().empty());
+  // The corridor's two long faces: one landmark each, however often they were seen.
+  int long_faces = 0;
+  for (const auto& [id, lm] : slam.plane_map().landmarks()) {
+    if (!lm.vertical) continue;
+    const pipeline::PlaneExtent e = pipeline::plane_extent(slam.graph().planes().at(id).plane, lm.points);
+    if ((e.b - e.a).norm() > 20.0) ++long_faces;
+  }
+  EXPECT_EQ(long_faces, 2);
+}
