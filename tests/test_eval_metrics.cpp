@@ -53,12 +53,18 @@ trajectory:
 TEST(WallMetrics, FacesOfAWallAreItsTwoSidesFacingOut) {
   const sim::Scene scene = sim::parse_scene(kScene, "two_rooms.yaml", ".");
   const auto faces = wall_faces(scene);
-  ASSERT_EQ(faces.size(), 4u);
+  // Wall 1 ends on the north side of wall 0 at x = 5: that side is two faces, its south side one.
+  ASSERT_EQ(faces.size(), 5u);
   // Wall 0 runs along x at y = 0, 0.2 thick: faces at y = +0.1 (normal +y) and y = -0.1 (normal -y).
   EXPECT_NEAR(faces[0].plane.signed_distance({3, 0.1, 1}), 0.0, 1e-12);
   EXPECT_NEAR(faces[0].plane.n.y(), 1.0, 1e-12);
-  EXPECT_NEAR(faces[1].plane.signed_distance({3, -0.1, 1}), 0.0, 1e-12);
-  EXPECT_NEAR(faces[1].plane.n.y(), -1.0, 1e-12);
+  EXPECT_NEAR(faces[0].a.x(), 0.0, 1e-12);
+  EXPECT_NEAR(faces[0].b.x(), 4.9, 1e-12);
+  EXPECT_NEAR(faces[1].a.x(), 5.1, 1e-12);
+  EXPECT_NEAR(faces[1].b.x(), 10.0, 1e-12);
+  EXPECT_NEAR(faces[2].plane.signed_distance({3, -0.1, 1}), 0.0, 1e-12);
+  EXPECT_NEAR(faces[2].plane.n.y(), -1.0, 1e-12);
+  EXPECT_NEAR(faces[2].b.x() - faces[2].a.x(), 10.0, 1e-12);
   EXPECT_NEAR(faces[0].z1 - faces[0].z0, 2.8, 1e-12);
 }
 
@@ -76,8 +82,8 @@ TEST(WallMetrics, ErrorsOfMappedPlanesAndDuplicates) {
   std::vector<FaceHits> hits;
   count_face_hits(faces, scan, sensor, cfg, &hits);
   ASSERT_EQ(hits.size(), faces.size());
-  EXPECT_EQ(hits[0].count, 200);
-  EXPECT_EQ(hits[1].count, 0);  // the far side is not visible from the sensor
+  EXPECT_EQ(hits[0].count, 200);  // x 2.5 .. 4.49: the face west of the junction
+  EXPECT_EQ(hits[2].count, 0);    // the far side is not visible from the sensor
 
   // A mapped plane 2 cm off and tilted by 0.5 degrees; a second one covering the same stretch.
   const double tilt = 0.5 * M_PI / 180.0;

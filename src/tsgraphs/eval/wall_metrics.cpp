@@ -19,6 +19,8 @@ double overlap_along(const Eigen::Vector2d& u, const Eigen::Vector2d& a0, const 
 }  // namespace
 
 std::vector<WallFaceTruth> wall_faces(const sim::Scene& scene) {
+  // Pieces shorter than this (m) between two junctions are not faces anyone would map.
+  constexpr double kMinPiece = 0.3;
   std::vector<WallFaceTruth> faces;
   for (std::size_t i = 0; i < scene.walls.size(); ++i) {
     const sim::Wall& w = scene.walls[i];
@@ -29,17 +31,40 @@ std::vector<WallFaceTruth> wall_faces(const sim::Scene& scene) {
     const double end = d.norm() + (w.joined_to ? 0.5 * w.thickness : 0.0);
     const double z0 = scene.levels[w.level].elevation;
     for (const int side : {1, -1}) {
-      WallFaceTruth f;
-      f.wall = static_cast<int>(i);
-      f.side = side;
-      const Eigen::Vector2d offset = side * 0.5 * w.thickness * n;
-      f.a = w.from + start * u + offset;
-      f.b = w.from + end * u + offset;
-      f.z0 = z0;
-      f.z1 = z0 + w.height;
-      f.plane = Plane::from_point_normal(Eigen::Vector3d(f.a.x(), f.a.y(), z0),
-                                         Eigen::Vector3d(side * n.x(), side * n.y(), 0.0));
-      faces.push_back(f);
+      // Walls that end on this side of w split its face: one face per stretch between them.
+      std::vector<std::pair<double, double>> cuts;  // [s0, s1] along w taken by another wall
+      for (std::size_t j = 0; j < scene.walls.size(); ++j) {
+        const sim::Wall& x = scene.walls[j];
+        if (j == i || x.level != w.level) continue;
+        for (const auto& [e, other] : {std::pair{x.from, x.to}, std::pair{x.to, x.from}}) {
+          const double across = n.dot(e - w.from), along = u.dot(e - w.from);
+          if (std::abs(across) > 0.5 * (w.thickness + x.thickness) + 1e-6) continue;
+          if (side * n.dot(other - e) <= 0.0 || along < start || along > end) continue;
+          cuts.emplace_back(along - 0.5 * x.thickness, along + 0.5 * x.thickness);
+        }
+      }
+      std::sort(cuts.begin(), cuts.end());
+      std::vector<std::pair<double, double>> pieces;
+      double s = start;
+      for (const auto& [c0, c1] : cuts) {
+        if (c0 > s) pieces.emplace_back(s, c0);
+        s = std::max(s, c1);
+      }
+      if (end > s) pieces.emplace_back(s, end);
+      for (const auto& [s0, s1] : pieces) {
+        if (s1 - s0 < kMinPiece) continue;
+        WallFaceTruth f;
+        f.wall = static_cast<int>(i);
+        f.side = side;
+        const Eigen::Vector2d offset = side * 0.5 * w.thickness * n;
+        f.a = w.from + s0 * u + offset;
+        f.b = w.from + s1 * u + offset;
+        f.z0 = z0;
+        f.z1 = z0 + w.height;
+        f.plane = Plane::from_point_normal(Eigen::Vector3d(f.a.x(), f.a.y(), z0),
+                                           Eigen::Vector3d(side * n.x(), side * n.y(), 0.0));
+        faces.push_back(f);
+      }
     }
   }
   return faces;

@@ -12,7 +12,8 @@
 
 namespace tsgraphs::eval {
 
-/// One side of a scene wall: a vertical rectangle in the world frame.
+/// A face of a scene wall: one side of it between the walls that meet it there (a vertical
+/// rectangle in the world frame).
 struct WallFaceTruth {
   int wall = -1;                 ///< index into Scene::walls
   int side = 0;                  ///< +1 or -1: which side of the centre line
@@ -21,7 +22,8 @@ struct WallFaceTruth {
   double z0 = 0, z1 = 0;         ///< world heights of its bottom and top
 };
 
-/// Both faces of every wall of the scene (openings ignored: a face is one plane).
+/// The faces of every wall of the scene: each side, split where another wall ends on it
+/// (openings are not splits: across a door the face is one plane).
 std::vector<WallFaceTruth> wall_faces(const sim::Scene& scene);
 
 /// A mapped vertical plane as scene_graph.json gives it.

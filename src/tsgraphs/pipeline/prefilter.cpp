@@ -2,7 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
+#include <vector>
 
 namespace tsgraphs::pipeline {
 namespace {
@@ -23,6 +23,42 @@ std::uint64_t voxel_key(const Eigen::Vector3f& p, double inv_size) {
   };
   return axis(p.x()) | (axis(p.y()) << 21) | (axis(p.z()) << 42);
 }
+
+// Open-addressing voxel -> slot table, reused between calls: a node-based map costs one
+// allocation per voxel, which dominated the prefilter on 64k-point scans.
+class VoxelTable {
+ public:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  void reset(std::size_t num_points) {
+    std::size_t capacity = 16;
+    while (capacity < 2 * num_points) capacity *= 2;
+    keys_.assign(capacity, kEmpty);
+    slots_.resize(capacity);
+    mask_ = capacity - 1;
+  }
+  /// The slot of `key`, or `fresh` (inserted) when it is new; `inserted` says which.
+  std::uint32_t find_or_insert(std::uint64_t key, std::uint32_t fresh, bool* inserted) {
+    std::size_t i = (key * 0x9E3779B97F4A7C15ULL) >> 20 & mask_;
+    while (true) {
+      if (keys_[i] == key) {
+        *inserted = false;
+        return slots_[i];
+      }
+      if (keys_[i] == kEmpty) {
+        keys_[i] = key;
+        slots_[i] = fresh;
+        *inserted = true;
+        return fresh;
+      }
+      i = (i + 1) & mask_;
+    }
+  }
+
+ private:
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::uint32_t> slots_;
+  std::size_t mask_ = 0;
+};
 
 }  // namespace
 
@@ -45,8 +81,8 @@ PointCloud prefilter(const PointCloud& scan, const PrefilterConfig& config, std:
     }
   } else {
     const double inv = 1.0 / config.voxel_size;
-    std::unordered_map<std::uint64_t, std::uint32_t> index;  // voxel -> slot in `voxels`
-    index.reserve(scan.size() / 2);
+    thread_local VoxelTable index;  // voxel -> slot in `voxels`
+    index.reset(scan.size());
     std::vector<VoxelSum> voxels;
     voxels.reserve(scan.size() / 2);
     for (std::size_t i = 0; i < scan.size(); ++i) {
@@ -54,12 +90,14 @@ PointCloud prefilter(const PointCloud& scan, const PrefilterConfig& config, std:
       if (!p.allFinite()) { ++non_finite; continue; }
       const double r2 = p.squaredNorm();
       if (r2 < min2 || r2 > max2) continue;
-      const auto [it, fresh] = index.emplace(voxel_key(p, inv), static_cast<std::uint32_t>(voxels.size()));
+      bool fresh = false;
+      const std::uint32_t slot =
+          index.find_or_insert(voxel_key(p, inv), static_cast<std::uint32_t>(voxels.size()), &fresh);
       if (fresh) {
         voxels.emplace_back();
         if (with_labels) voxels.back().label = scan.labels[i];
       }
-      VoxelSum& v = voxels[it->second];
+      VoxelSum& v = voxels[slot];
       v.sum += p.cast<double>();
       if (with_intensity) v.intensity += scan.intensity[i];
       ++v.count;

@@ -82,24 +82,6 @@ std::vector<Eigen::Vector3f> transform_points(const std::vector<Eigen::Vector3f>
 // Adds `pts` to the voxel-downsampled set `dst` (one point per voxel of edge `voxel`, the
 // first one that fell in it), so a landmark's point set grows with the area seen, not with
 // the number of visits.
-void add_downsampled(const std::vector<Eigen::Vector3f>& pts, double voxel, std::vector<Eigen::Vector3f>* dst) {
-  const double inv = 1.0 / std::max(voxel, kMinCell);
-  std::unordered_set<std::uint64_t> occupied;
-  occupied.reserve(dst->size() + pts.size());
-  for (const Eigen::Vector3f& p : *dst) occupied.insert(key_of(p, inv));
-  for (const Eigen::Vector3f& p : pts) {
-    if (occupied.insert(key_of(p, inv)).second) dst->push_back(p);
-  }
-}
-
-// A landmark's map-frame point set from its observations and the keyframes' poses.
-void rebuild_points(const std::function<Pose3(int)>& keyframe_pose, double voxel, PlaneLandmark* lm) {
-  lm->points.clear();
-  for (const auto& [kf, pts] : lm->observations) {
-    add_downsampled(transform_points(pts, keyframe_pose(kf)), voxel, &lm->points);
-  }
-}
-
 // Share of `pts` that lie within the hash's radius of one of its points.
 double overlap_ratio(const std::vector<Eigen::Vector3f>& pts, const PointHash& hash) {
   if (pts.empty()) return 0.0;
@@ -146,6 +128,7 @@ void PlaneMapper::add_landmark(int id, const PlaneObservation& obs, const Pose3&
   lm.plane = obs.plane.transformed(T_map_keyframe);
   lm.vertical = obs.vertical;
   landmarks_[id] = std::move(lm);
+  index_[id] = {};
   add_observation(id, obs, T_map_keyframe, keyframe_id);
 }
 
@@ -156,7 +139,25 @@ void PlaneMapper::add_observation(int id, const PlaneObservation& obs, const Pos
   // One keyframe may see a face as two pieces (a door near the sensor): keep both.
   std::vector<Eigen::Vector3f>& seen = lm.observations[keyframe_id];
   seen.insert(seen.end(), obs.points.begin(), obs.points.end());
-  add_downsampled(transform_points(obs.points, T_map_keyframe), config_.landmark_voxel, &lm.points);
+  add_points(lm, obs.points, T_map_keyframe, keyframe_id);
+}
+
+void PlaneMapper::add_points(PlaneLandmark& lm, const std::vector<Eigen::Vector3f>& pts_keyframe,
+                             const Pose3& T_map_keyframe, int keyframe_id) {
+  PointIndex& index = index_[lm.id];
+  index.poses[keyframe_id] = T_map_keyframe;
+  const double inv = 1.0 / std::max(config_.landmark_voxel, kMinCell);
+  for (const Eigen::Vector3f& p : transform_points(pts_keyframe, T_map_keyframe)) {
+    if (index.occupied.insert(key_of(p, inv)).second) lm.points.push_back(p);
+  }
+}
+
+void PlaneMapper::rebuild(PlaneLandmark& lm, const std::function<Pose3(int)>& keyframe_pose) {
+  PointIndex& index = index_[lm.id];
+  index.occupied.clear();
+  index.poses.clear();
+  lm.points.clear();
+  for (const auto& [kf, pts] : lm.observations) add_points(lm, pts, keyframe_pose(kf), kf);
 }
 
 void PlaneMapper::update(const std::map<int, Plane>& planes, const std::function<Pose3(int)>& keyframe_pose) {
@@ -164,7 +165,16 @@ void PlaneMapper::update(const std::map<int, Plane>& planes, const std::function
     const auto it = landmarks_.find(id);
     if (it != landmarks_.end()) it->second.plane = plane;
   }
-  for (auto& [id, lm] : landmarks_) rebuild_points(keyframe_pose, config_.landmark_voxel, &lm);
+  for (auto& [id, lm] : landmarks_) {
+    const PointIndex& index = index_[id];
+    bool moved = false;
+    for (const auto& [kf, pts] : lm.observations) {
+      const auto used = index.poses.find(kf);
+      moved = used == index.poses.end() || !(used->second.matrix() == keyframe_pose(kf).matrix());
+      if (moved) break;
+    }
+    if (moved) rebuild(lm, keyframe_pose);
+  }
 }
 
 std::vector<std::pair<int, int>> PlaneMapper::find_duplicates() const {
@@ -224,7 +234,8 @@ void PlaneMapper::merge(int keep, int drop, const std::function<Pose3(int)>& key
     seen.insert(seen.end(), pts.begin(), pts.end());
   }
   landmarks_.erase(d);
-  rebuild_points(keyframe_pose, config_.landmark_voxel, &k->second);
+  index_.erase(drop);
+  rebuild(k->second, keyframe_pose);
 }
 
 }  // namespace tsgraphs::walls

@@ -2,7 +2,9 @@
 /// Plane landmarks of the map: associating a keyframe's plane observations with mapped
 /// planes (Mahalanobis distance of the plane difference plus a point-overlap check), and
 /// finding duplicate landmarks of one face so they can be merged.
+#include <cstdint>
 #include <functional>
+#include <unordered_set>
 #include <map>
 #include <utility>
 #include <vector>
@@ -72,8 +74,19 @@ class PlaneMapper {
   const PlaneMapperConfig& config() const { return config_; }
 
  private:
+  /// Per landmark: the voxels its points occupy and the keyframe poses they were placed with,
+  /// so that adding an observation is cheap and update() redoes only landmarks that moved.
+  struct PointIndex {
+    std::unordered_set<std::uint64_t> occupied;
+    std::map<int, Pose3> poses;
+  };
+  void add_points(PlaneLandmark& lm, const std::vector<Eigen::Vector3f>& pts_keyframe, const Pose3& T_map_keyframe,
+                  int keyframe_id);
+  void rebuild(PlaneLandmark& lm, const std::function<Pose3(int)>& keyframe_pose);
+
   PlaneMapperConfig config_;
   std::map<int, PlaneLandmark> landmarks_;
+  std::map<int, PointIndex> index_;
 };
 
 }  // namespace tsgraphs::walls
