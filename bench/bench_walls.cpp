@@ -10,6 +10,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "tsgraphs/pipeline/prefilter.hpp"
 #include "tsgraphs/sim/builtin_scenes.hpp"
 #include "tsgraphs/sim/lidar_model.hpp"
 #include "tsgraphs/sim/scene_loader.hpp"
@@ -23,27 +24,11 @@ namespace {
 constexpr double kVoxel = 0.1;          // the pipeline's default prefilter voxel (m)
 constexpr std::size_t kNumScans = 24;   // keyframes per scene, spread over the whole path
 
-// Voxel-centroid downsampling (the pipeline's prefilter is its own module).
+// The pipeline's own prefilter (NaN drop, range crop, one centroid per voxel).
 PointCloud voxel_filter(const PointCloud& in, double voxel) {
-  std::unordered_map<std::uint64_t, std::size_t> slot;
-  std::vector<Eigen::Vector3d> sum;
-  std::vector<int> count;
-  const double inv = 1.0 / voxel;
-  for (const Eigen::Vector3f& p : in.points) {
-    if (!p.allFinite()) continue;
-    auto axis = [&](float v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv)) + (1 << 20)); };
-    const std::uint64_t key = axis(p.x()) | (axis(p.y()) << 21) | (axis(p.z()) << 42);
-    const auto [it, fresh] = slot.emplace(key, sum.size());
-    if (fresh) {
-      sum.emplace_back(Eigen::Vector3d::Zero());
-      count.push_back(0);
-    }
-    sum[it->second] += p.cast<double>();
-    ++count[it->second];
-  }
-  PointCloud out;
-  for (std::size_t i = 0; i < sum.size(); ++i) out.points.push_back((sum[i] / count[i]).cast<float>());
-  return out;
+  pipeline::PrefilterConfig config;
+  config.voxel_size = voxel;
+  return pipeline::prefilter(in, config);
 }
 
 struct Keyframe {

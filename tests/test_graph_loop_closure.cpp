@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 
+#include "tsgraphs/pipeline/prefilter.hpp"
 #include "tsgraphs/graph/loop_closure.hpp"
 #include "tsgraphs/sim/builtin_scenes.hpp"
 #include "tsgraphs/sim/scene_loader.hpp"
@@ -34,18 +35,11 @@ PoseError pose_error(const Pose3& estimate, const Pose3& truth) {
   return {d.translation().norm(), Eigen::AngleAxisd(d.linear()).angle() / kDeg};
 }
 
-// One point per occupied voxel (the first), as a simple prefilter.
+// The pipeline's own prefilter (NaN drop, range crop, one centroid per voxel).
 PointCloud voxel_prefilter(const PointCloud& cloud, double voxel) {
-  std::map<std::tuple<long, long, long>, std::size_t> first;
-  PointCloud out;
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const Eigen::Vector3f& p = cloud.points[i];
-    const auto key = std::make_tuple(static_cast<long>(std::floor(p.x() / voxel)),
-                                     static_cast<long>(std::floor(p.y() / voxel)),
-                                     static_cast<long>(std::floor(p.z() / voxel)));
-    if (first.emplace(key, i).second) out.points.push_back(p);
-  }
-  return out;
+  pipeline::PrefilterConfig config;
+  config.voxel_size = voxel;
+  return pipeline::prefilter(cloud, config);
 }
 
 const sim::Simulator& office() {

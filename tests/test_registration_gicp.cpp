@@ -14,6 +14,7 @@
 #include <string>
 #include <tuple>
 
+#include "tsgraphs/pipeline/prefilter.hpp"
 #include "tsgraphs/graph/loop_closure.hpp"
 #include "tsgraphs/io/pcd.hpp"
 #include "tsgraphs/registration/registration.hpp"
@@ -49,18 +50,11 @@ Pose3 read_matrix(const std::string& path) {
   return Pose3(m);
 }
 
-// One point per occupied voxel (the first), as a simple prefilter.
+// The pipeline's own prefilter (NaN drop, range crop, one centroid per voxel).
 PointCloud voxel_prefilter(const PointCloud& cloud, double voxel) {
-  std::map<std::tuple<long, long, long>, std::size_t> first;
-  PointCloud out;
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const Eigen::Vector3f& p = cloud.points[i];
-    const auto key = std::make_tuple(static_cast<long>(std::floor(p.x() / voxel)),
-                                     static_cast<long>(std::floor(p.y() / voxel)),
-                                     static_cast<long>(std::floor(p.z() / voxel)));
-    if (first.emplace(key, i).second) out.points.push_back(p);
-  }
-  return out;
+  pipeline::PrefilterConfig config;
+  config.voxel_size = voxel;
+  return pipeline::prefilter(cloud, config);
 }
 
 // Wall time and this thread's CPU time (the machine may be shared; CPU time is what one core spends).

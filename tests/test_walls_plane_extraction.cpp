@@ -14,6 +14,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "tsgraphs/pipeline/prefilter.hpp"
 #include "tsgraphs/core/polygon.hpp"
 #include "tsgraphs/io/pcd.hpp"
 #include "tsgraphs/sim/builtin_scenes.hpp"
@@ -37,30 +38,11 @@ constexpr double kMaxAngleErrDeg = 0.5;   // wall faces
 constexpr double kMaxOffsetErr = 0.02;    // at the observation's centroid (m)
 constexpr std::uint32_t kWall = static_cast<std::uint32_t>(PointLabel::kWall);
 
-// Voxel-centroid downsampling, standing in for the pipeline's prefilter; a voxel keeps the
-// label of its first point.
+// The pipeline's own prefilter (NaN drop, range crop, one centroid per voxel).
 PointCloud voxel_filter(const PointCloud& in, double voxel) {
-  std::unordered_map<std::uint64_t, std::size_t> slot;
-  std::vector<Eigen::Vector3d> sum;
-  std::vector<int> count;
-  PointCloud out;
-  const double inv = 1.0 / voxel;
-  auto axis = [&](float v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv)) + (1 << 20)); };
-  for (std::size_t i = 0; i < in.size(); ++i) {
-    const Eigen::Vector3f& p = in.points[i];
-    if (!p.allFinite()) continue;
-    const std::uint64_t key = axis(p.x()) | (axis(p.y()) << 21) | (axis(p.z()) << 42);
-    const auto [it, fresh] = slot.emplace(key, sum.size());
-    if (fresh) {
-      sum.emplace_back(Eigen::Vector3d::Zero());
-      count.push_back(0);
-      out.labels.push_back(in.has_labels() ? in.labels[i] : 0u);
-    }
-    sum[it->second] += p.cast<double>();
-    ++count[it->second];
-  }
-  for (std::size_t i = 0; i < sum.size(); ++i) out.points.push_back((sum[i] / count[i]).cast<float>());
-  return out;
+  pipeline::PrefilterConfig config;
+  config.voxel_size = voxel;
+  return pipeline::prefilter(in, config);
 }
 
 // One vertical face of the scene in the world frame (a side of a wall, box, railing or void

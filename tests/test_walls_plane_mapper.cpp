@@ -15,6 +15,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "tsgraphs/pipeline/prefilter.hpp"
 #include "tsgraphs/sim/builtin_scenes.hpp"
 #include "tsgraphs/sim/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
@@ -234,26 +235,11 @@ TEST(PlaneMapper, UpdateMovesPointsWithKeyframesAndRevisitsDoNotGrowThem) {
 
 // ---- An office lap from simulated scans, scored against the scene's wall faces ----
 
-// Voxel-centroid downsampling, standing in for the pipeline's prefilter.
+// The pipeline's own prefilter (NaN drop, range crop, one centroid per voxel).
 PointCloud voxel_filter(const PointCloud& in, double voxel) {
-  std::unordered_map<std::uint64_t, std::size_t> slot;
-  std::vector<Eigen::Vector3d> sum;
-  std::vector<int> count;
-  const double inv = 1.0 / voxel;
-  auto axis = [&](float v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv)) + (1 << 20)); };
-  for (const Eigen::Vector3f& p : in.points) {
-    const std::uint64_t key = axis(p.x()) | (axis(p.y()) << 21) | (axis(p.z()) << 42);
-    const auto [it, fresh] = slot.emplace(key, sum.size());
-    if (fresh) {
-      sum.emplace_back(Eigen::Vector3d::Zero());
-      count.push_back(0);
-    }
-    sum[it->second] += p.cast<double>();
-    ++count[it->second];
-  }
-  PointCloud out;
-  for (std::size_t i = 0; i < sum.size(); ++i) out.points.push_back((sum[i] / count[i]).cast<float>());
-  return out;
+  pipeline::PrefilterConfig config;
+  config.voxel_size = voxel;
+  return pipeline::prefilter(in, config);
 }
 
 // A piece of one side of a wall, between the walls that abut it (a partition between two
