@@ -13,7 +13,10 @@
 #include <sstream>
 
 #include "test_support.hpp"
+#include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
+#include "tsgraphs/pipeline/pipeline.hpp"
+#include "tsgraphs/pipeline/run_outputs.hpp"
 
 namespace fs = std::filesystem;
 using namespace tsgraphs;
@@ -92,6 +95,7 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
   const auto graph = nlohmann::json::parse(read_file(out / "scene_graph.json"));
   EXPECT_GE(graph["keyframes"].size(), 10u);
   EXPECT_GE(graph["planes"].size(), 4u);
+  EXPECT_GE(graph["traversable_nodes"].size(), 50u);
   EXPECT_EQ(read_file(out / "map.ply").rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
 
   ASSERT_EQ(cli("-q eval " + out.string() + " --seq " + seq.string(), &err), 0) << err;
@@ -101,6 +105,9 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
   EXPECT_TRUE(m["pgo"]["t_pgo_s"].is_number());
   EXPECT_GE(m["pgo"]["n_optimisations"].get<double>(), 1.0);
   EXPECT_TRUE(m["walls"]["mean_dist_err"].is_number());
+  ASSERT_TRUE(m["ground"]["precision"].is_number());
+  EXPECT_GE(m["ground"]["precision"].get<double>(), 0.9);
+  EXPECT_GE(m["ground"]["recall"].get<double>(), 0.9);
   EXPECT_TRUE(m["consistency"]["f_re"].is_null());  // rooms come with a later layer
   EXPECT_TRUE(m["speed"]["rtf"].is_number());
 
@@ -109,6 +116,24 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
   ASSERT_EQ(cli("-q run " + seq.string() + " --out " + out2.string(), &err), 0) << err;
   EXPECT_EQ(read_file(out / "trajectory.txt"), read_file(out2 / "trajectory.txt"));
   EXPECT_EQ(read_file(out / "scene_graph.json"), read_file(out2 / "scene_graph.json"));
+}
+
+TEST_F(RunCli, ParallelRunEqualsOneScanAtATime) {
+  // `run` reads and prepares scans on several threads; feeding them one by one must agree.
+  const fs::path seq = base_ / "seq", out = dir_ / "run";
+  std::string err;
+  ASSERT_EQ(cli("-q --threads 2 run " + seq.string() + " --out " + out.string(), &err), 0) << err;
+  const io::SequenceReader reader(seq.string());
+  pipeline::Pipeline slam;
+  for (std::size_t i = 0; i < reader.size(); ++i)
+    slam.process(i, reader.info().times[i], reader.scan(i), reader.info().odometry[i]);
+  slam.finish();
+  const auto traj = io::read_tum((out / "trajectory.txt").string());
+  const std::vector<Pose3> mine = slam.trajectory();
+  ASSERT_EQ(traj.size(), mine.size());
+  for (std::size_t i = 0; i < mine.size(); ++i)
+    ASSERT_TRUE(traj[i].pose.isApprox(mine[i], 1e-12)) << "scan " << i;
+  EXPECT_EQ(read_file(out / "scene_graph.json"), pipeline::scene_graph_json(slam));
 }
 
 TEST_F(RunCli, MissingOdometryLineIsAnErrorNamingTheFileAndNoOutput) {

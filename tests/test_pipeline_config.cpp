@@ -80,3 +80,12 @@ TEST(PipelineConfig, ErrorsNameFileLineAndKey) {
   EXPECT_NE(input_error_of([] { load_pipeline_config("/nonexistent/params.yaml"); }).find("/nonexistent/params.yaml"),
             std::string::npos);
 }
+
+TEST(PipelineConfig, SensorFilesMatchTheGroundPresets) {
+  for (const std::string preset : {"vlp-16", "hesai-xt32"}) {
+    const PipelineConfig c = load_pipeline_config(std::string(TSGRAPHS_SOURCE_DIR) + "/config/sensors/" + preset + ".yaml");
+    PipelineConfig expected;
+    expected.ground = ground::per_sensor_preset(preset);
+    EXPECT_EQ(dump_pipeline_config(c), dump_pipeline_config(expected)) << preset;
+  }
+}

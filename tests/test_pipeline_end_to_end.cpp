@@ -2,8 +2,10 @@
 // from the simulator (no files): trajectory, loop closures and wall planes against ground truth.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 
+#include "tsgraphs/core/polygon.hpp"
 #include "tsgraphs/eval/trajectory_metrics.hpp"
 #include "tsgraphs/eval/wall_metrics.hpp"
 #include "tsgraphs/pipeline/pipeline.hpp"
@@ -19,11 +21,23 @@ namespace {
 struct Outcome {
   double ate_rmse = 0, odom_ate_rmse = 0, ate_loop = 0;
   std::size_t n_loops = 0, n_loops_correct = 0, n_keyframes = 0;
+  double ground_precision = 0, ground_recall = 0;
+  std::size_t n_ground_nodes = 0, n_nodes_in_voids = 0;
   eval::WallErrors walls;
 };
 
 sim::Scene builtin(const std::string& name) {
   return sim::parse_scene(*sim::builtin_scene_text(name), "builtin:" + name, ".");
+}
+
+// Nodes are centred on their ground points; at a void's edge range noise (1.5 cm) and the
+// pose error (about 1 cm) put some a few centimetres over it.
+constexpr double kVoidEdgeTolerance = 0.05;
+
+double distance_to_boundary(const Polygon2& poly, const Vec2& p) {
+  double d = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < poly.size(); ++i) d = std::min(d, distance_to_segment(p, poly[i], poly[(i + 1) % poly.size()]));
+  return d;
 }
 
 Outcome run_scene(const sim::Scene& scene, std::uint64_t seed) {
@@ -61,6 +75,25 @@ Outcome run_scene(const sim::Scene& scene, std::uint64_t seed) {
   // The map frame is the odometry frame, which starts at the true first pose.
   const Pose3 T_world_map = sim.true_poses()[kfs[0].scan_index] * kfs[0].pose.inverse();
   o.walls = eval::wall_errors(faces, hits, mapped, T_world_map, {});
+
+  // Ground: every scan scored against its labels; the global node map against the voids.
+  long tp = 0, fp = 0, fn = 0;
+  for (const pipeline::ScanRecord& s : slam.scans()) {
+    tp += s.ground_tp;
+    fp += s.ground_fp;
+    fn += s.ground_fn;
+  }
+  o.ground_precision = static_cast<double>(tp) / (tp + fp);
+  o.ground_recall = static_cast<double>(tp) / (tp + fn);
+  for (const ground::GlobalNode* n : slam.node_map().nodes()) {
+    ++o.n_ground_nodes;
+    const Eigen::Vector3d p = T_world_map * n->position;
+    for (const sim::Level& level : scene.levels) {
+      if (std::abs(p.z() - level.elevation) > 0.5) continue;
+      for (const Polygon2& v : level.voids)
+        if (contains(v, p.head<2>()) && distance_to_boundary(v, p.head<2>()) > kVoidEdgeTolerance) ++o.n_nodes_in_voids;
+    }
+  }
   return o;
 }
 
@@ -74,6 +107,12 @@ void expect_must_show(const Outcome& o) {
   EXPECT_LE(o.walls.max_dist_err, 0.03);
   EXPECT_LE(o.walls.max_angle_err_deg, 1.0);
   EXPECT_EQ(o.walls.n_duplicates, 0);
+  EXPECT_GE(o.ground_precision, 0.97);
+  EXPECT_GE(o.ground_recall, 0.95);
+  EXPECT_GT(o.n_ground_nodes, 100u);
+  EXPECT_EQ(o.n_nodes_in_voids, 0u);
+  std::printf("ground precision %.4f recall %.4f, %zu global traversable nodes, %zu in voids\n", o.ground_precision,
+              o.ground_recall, o.n_ground_nodes, o.n_nodes_in_voids);
   std::printf("ATE_rmse %.3f (odometry %.3f), ATE_loop %.3f, %zu keyframes, loops %zu/%zu correct, "
               "walls %d/%d mapped, dist err mean %.4f max %.4f, angle err mean %.3f max %.3f deg, %d duplicates\n",
               o.ate_rmse, o.odom_ate_rmse, o.ate_loop, o.n_keyframes, o.n_loops_correct, o.n_loops,

@@ -78,6 +78,9 @@ std::string metrics_table(const Metrics& m) {
       cell(m.pgo.t_pgo_mean_s ? Figure(*m.pgo.t_pgo_mean_s * 1e3) : Figure{}, "%.1f") + " / " +
           cell(m.pgo.t_pgo_p95_s ? Figure(*m.pgo.t_pgo_p95_s * 1e3) : Figure{}, "%.1f"));
   row("variables / factors (last)", cell(m.pgo.n_variables, "%.0f") + " / " + cell(m.pgo.n_factors, "%.0f"));
+  out += "ground\n";
+  row("precision / recall / F1",
+      cell(m.ground.precision, "%.3f") + " / " + cell(m.ground.recall, "%.3f") + " / " + cell(m.ground.f1, "%.3f"));
   out += "walls\n";
   row("faces seen / mapped", cell(m.walls.n_faces_seen, "%.0f") + " / " + cell(m.walls.n_faces_mapped, "%.0f"));
   row("distance err mean / max (m)",

@@ -64,6 +64,8 @@ void read_timings(const std::string& path, Metrics* m) {
   std::string line;
   std::getline(in, line);  // header
   std::vector<double> frontend, pgo;
+  long tp = 0, fp = 0, fn = 0;
+  bool labelled = false;
   double n_var = 0, n_fac = 0;
   int line_no = 1;
   while (std::getline(in, line)) {
@@ -75,6 +77,13 @@ void read_timings(const std::string& path, Metrics* m) {
     try {
       if (cols.size() >= 9 && cols[0] == "scan") {
         frontend.push_back(std::stod(cols[8]));
+        // Ground counts (columns 17-19) are -1 for scans without labels.
+        if (cols.size() >= 20 && std::stol(cols[17]) >= 0) {
+          labelled = true;
+          tp += std::stol(cols[17]);
+          fp += std::stol(cols[18]);
+          fn += std::stol(cols[19]);
+        }
       } else if (cols.size() >= 13 && cols[0] == "optimization") {
         pgo.push_back(std::stod(cols[9]));
         n_var = std::stod(cols[11]);
@@ -89,6 +98,12 @@ void read_timings(const std::string& path, Metrics* m) {
   if (!frontend.empty()) {
     m->speed.frontend_ms_mean = mean(frontend);
     m->speed.frontend_ms_p95 = percentile(frontend, 0.95);
+  }
+  if (labelled) {
+    if (tp + fp > 0) m->ground.precision = static_cast<double>(tp) / (tp + fp);
+    if (tp + fn > 0) m->ground.recall = static_cast<double>(tp) / (tp + fn);
+    if (m->ground.precision && m->ground.recall && *m->ground.precision + *m->ground.recall > 0)
+      m->ground.f1 = 2 * *m->ground.precision * *m->ground.recall / (*m->ground.precision + *m->ground.recall);
   }
   double total = 0;
   for (double t : pgo) total += t;

@@ -20,36 +20,87 @@ Pipeline::Pipeline(PipelineConfig config)
     : config_(std::move(config)),
       selector_(config_.keyframes),
       mapper_(config_.plane_mapping),
+      node_map_(config_.node_map),
       optimizer_(config_.optimizer),
       loop_detector_(config_.loop_closure) {}
 
-const ScanRecord& Pipeline::process(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom) {
+PreparedScan Pipeline::prepare(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom,
+                               bool keyframe_candidate) const {
   if (!odom.matrix().allFinite() || !std::isfinite(stamp))
     throw std::invalid_argument("scan " + std::to_string(scan_index) + ": non-finite pose or time");
-  const auto start = std::chrono::steady_clock::now();
-  ScanRecord record;
+  PreparedScan out;
+  ScanRecord& record = out.record;
   record.scan_index = scan_index;
   record.stamp = stamp;
   record.odom = odom;
-  if (last_odom_) accum_distance_ += (last_odom_->translation() - odom.translation()).norm();
-  last_odom_ = odom;
-
-  PointCloud cloud = prefilter(scan, config_.prefilter);
-  record.num_points = cloud.size();
+  out.input_empty = scan.empty();
+  const auto start = std::chrono::steady_clock::now();
+  out.cloud = prefilter(scan, config_.prefilter);
+  record.num_points = out.cloud.size();
   record.prefilter_ms = ms_since(start);
+
+  const auto ground_start = std::chrono::steady_clock::now();
+  out.ground = ground::segment_ground(scan, odom.linear(), config_.ground);
+  for (const ground::GroundNode& n : out.ground.nodes) record.num_ground_nodes += n.traversable ? 1 : 0;
+  record.ground_ms = ms_since(ground_start);
+  if (scan.has_labels()) score_ground(scan, out.ground, &record);
+  if (keyframe_candidate && !out.cloud.empty()) {
+    const auto walls_start = std::chrono::steady_clock::now();
+    out.planes = walls::extract_planes(out.cloud, odom.linear(), config_.plane_extraction);
+    record.walls_ms = ms_since(walls_start);
+  }
+  return out;
+}
+
+void Pipeline::score_ground(const PointCloud& scan, const ground::GroundScan& ground, ScanRecord* record) const {
+  // Scored over the points the ground layer looks at (its range). Floor more than
+  // kOtherStorey below the robot's floor is another storey seen through a void: not this
+  // robot's ground, and not scored.
+  constexpr double kOtherStorey = 1.0;
+  record->ground_tp = record->ground_fp = record->ground_fn = 0;
+  const Eigen::Vector3d up = ground.R_level_sensor.transpose().col(2);  // level z in the sensor frame
+  const double lowest = -config_.ground.sensor_height - kOtherStorey;
+  const double min2 = config_.ground.min_range * config_.ground.min_range;
+  const double max2 = config_.ground.max_range * config_.ground.max_range;
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    const Eigen::Vector3f& p = scan.points[i];
+    if (!p.allFinite()) continue;
+    const double r2 = p.squaredNorm();
+    if (r2 < min2 || r2 > max2) continue;
+    const bool floor = scan.labels[i] == static_cast<std::uint32_t>(PointLabel::kFloor) ||
+                       scan.labels[i] == static_cast<std::uint32_t>(PointLabel::kRamp);
+    if (floor && up.dot(p.cast<double>()) < lowest) continue;
+    const bool ground_point = ground.labels[i] == ground::GroundLabel::kGround;
+    record->ground_tp += floor && ground_point;
+    record->ground_fp += !floor && ground_point;
+    record->ground_fn += floor && !ground_point;
+  }
+}
+
+const ScanRecord& Pipeline::process(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom) {
+  return process(prepare(scan_index, stamp, scan, odom, false));
+}
+
+const ScanRecord& Pipeline::process(PreparedScan prepared) {
+  const auto start = std::chrono::steady_clock::now();
+  ScanRecord record = prepared.record;
+  const double prepared_walls_ms = record.walls_ms;
+  last_ground_ = std::move(prepared.ground);
+  if (last_odom_) accum_distance_ += (last_odom_->translation() - record.odom.translation()).norm();
+  last_odom_ = record.odom;
   record.reference_keyframe = graph_.keyframes().empty() ? -1 : static_cast<int>(graph_.keyframes().size()) - 1;
 
-  if (selector_.is_keyframe(odom)) {
-    if (cloud.empty()) {
-      record.warning = scan.empty() ? "empty scan: skipped" : "no point left after prefiltering: skipped";
+  if (selector_.is_keyframe(record.odom)) {
+    if (prepared.cloud.empty()) {
+      record.warning = prepared.input_empty ? "empty scan: skipped" : "no point left after prefiltering: skipped";
     } else {
-      selector_.accept(odom);
-      add_keyframe(record, std::move(cloud));
+      selector_.accept(record.odom);
+      add_keyframe(record, std::move(prepared.cloud), std::move(prepared.planes));
     }
-  } else if (scan.empty()) {
+  } else if (prepared.input_empty) {
     record.warning = "empty scan: skipped";
   }
-  record.frontend_ms = ms_since(start);
+  record.frontend_ms = record.prefilter_ms + record.ground_ms + prepared_walls_ms + ms_since(start);
   scans_.push_back(record);
   // The back-end runs after the front-end bookkeeping so that frontend_ms excludes it.
   if (record.keyframe >= 0) {
@@ -68,7 +119,8 @@ const ScanRecord& Pipeline::process(std::size_t scan_index, double stamp, const 
   return scans_.back();
 }
 
-void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud) {
+void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud,
+                            std::optional<std::vector<walls::PlaneObservation>> planes) {
   graph::KeyframeNode node;
   node.scan_index = record.scan_index;
   node.stamp = record.stamp;
@@ -89,10 +141,23 @@ void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud) {
   record.reference_keyframe = id;
   keyframe_clouds_.push_back(std::move(cloud));
 
+  // The scan's traversable nodes join the global node map, held in this keyframe's frame.
+  std::vector<ground::NodeObservation> nodes;
+  const Eigen::Matrix3d R_sensor_level = last_ground_.R_level_sensor.transpose();
+  for (const ground::GroundNode& n : last_ground_.nodes) {
+    if (!n.traversable) continue;
+    nodes.push_back({R_sensor_level * n.centre.cast<double>(), R_sensor_level * n.normal.cast<double>(),
+                     static_cast<double>(n.probability)});
+  }
+  node_map_.fuse(id, graph_.keyframes()[id].pose, nodes);
+
   // Walls (and floor/ceiling planes): extract, associate or create, add the factors.
   const auto walls_start = std::chrono::steady_clock::now();
   const Pose3& T = graph_.keyframes()[id].pose;
-  const auto observations = walls::extract_planes(keyframe_clouds_.back(), T.linear(), config_.plane_extraction);
+  // Only the gravity direction of the rotation matters to the extraction, so planes
+  // prepared ahead from the odometry's rotation are the same as those from T's.
+  if (!planes) planes = walls::extract_planes(keyframe_clouds_.back(), record.odom.linear(), config_.plane_extraction);
+  const std::vector<walls::PlaneObservation>& observations = *planes;
   for (const walls::PlaneObservation& obs : observations) {
     int plane_id = mapper_.associate(obs, T);
     if (plane_id < 0) {
@@ -103,7 +168,7 @@ void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud) {
     }
     graph_.add_plane_edge({id, plane_id, obs.plane, obs.num_inliers});
   }
-  record.walls_ms = ms_since(walls_start);
+  record.walls_ms += ms_since(walls_start);
 
   const auto loop_start = std::chrono::steady_clock::now();
   if (auto loop = loop_detector_.detect(graph_, id, [this](int k) -> const PointCloud& { return keyframe_clouds_[k]; }))
@@ -125,6 +190,7 @@ void Pipeline::optimize(bool full, const std::string& reason) {
   for (const auto& [id, node] : graph_.planes()) planes.emplace(id, node.plane);
   const auto pose_of = [this](int k) { return graph_.keyframes().at(k).pose; };
   mapper_.update(planes, pose_of);
+  node_map_.update(pose_of);
   if (config_.schedule.merge_duplicate_planes) {
     for (const auto& [keep, drop] : mapper_.find_duplicates()) {
       if (!graph_.planes().count(keep) || !graph_.planes().count(drop)) continue;

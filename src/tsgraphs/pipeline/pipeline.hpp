@@ -12,6 +12,7 @@
 #include "tsgraphs/graph/graph_optimizer.hpp"
 #include "tsgraphs/graph/situational_graph.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
+#include "tsgraphs/walls/plane_extraction.hpp"
 #include "tsgraphs/walls/plane_mapper.hpp"
 
 namespace tsgraphs::pipeline {
@@ -25,10 +26,25 @@ struct ScanRecord {
   Pose3 odom = Pose3::Identity();
   std::size_t num_points = 0;       ///< after prefiltering
   double prefilter_ms = 0.0;
+  double ground_ms = 0.0;           ///< traversable ground of the scan (every scan)
+  std::size_t num_ground_nodes = 0; ///< traversable nodes of the scan
+  /// Ground points against the input's labels (1 floor, 2 ramp), over the points within the
+  /// ground layer's range: true positives, false positives, false negatives; -1 without labels.
+  long ground_tp = -1, ground_fp = -1, ground_fn = -1;
   double walls_ms = 0.0;            ///< plane extraction and association (keyframes)
   double loop_ms = 0.0;             ///< loop-closure search and registration (keyframes)
-  double frontend_ms = 0.0;         ///< all of the above and bookkeeping, not the back-end
+  double frontend_ms = 0.0;         ///< all of the above and bookkeeping, not the back-end (thread time summed)
   std::string warning;              ///< why the scan was skipped or not made a keyframe
+};
+
+/// A scan after the steps that need nothing but the scan and its odometry (prefilter,
+/// ground): made by Pipeline::prepare, which may run on other threads, ahead of process().
+struct PreparedScan {
+  ScanRecord record;          ///< with the prepare-time fields filled
+  PointCloud cloud;           ///< prefiltered
+  ground::GroundScan ground;
+  std::optional<std::vector<walls::PlaneObservation>> planes;  ///< extracted ahead for keyframe candidates
+  bool input_empty = false;
 };
 
 /// One back-end run.
@@ -46,12 +62,23 @@ class Pipeline {
   /// usable point is recorded with a warning and only its pose is kept. A non-finite pose
   /// throws std::invalid_argument (the reader is expected to reject it with file and line).
   const ScanRecord& process(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom);
+  /// The same in two halves: prepare() is const and thread-safe (prefilter, ground, scoring
+  /// against labels, and the wall planes when `keyframe_candidate`), so a reader can run it
+  /// for the next scans while process() takes the prepared scans in order. Results are the
+  /// same as process() above. KeyframeSelector, run over the odometry alone, says which
+  /// scans are candidates; a wrong guess only costs time.
+  PreparedScan prepare(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom,
+                       bool keyframe_candidate) const;
+  const ScanRecord& process(PreparedScan prepared);
   /// Final full optimisation; call once after the last scan.
   void finish();
 
   const PipelineConfig& config() const { return config_; }
   const graph::SituationalGraph& graph() const { return graph_; }
   const walls::PlaneMapper& plane_map() const { return mapper_; }
+  const ground::TraversableNodeMap& node_map() const { return node_map_; }
+  /// The ground of the newest scan (level frame of that scan), for callers that draw it.
+  const ground::GroundScan& last_ground() const { return last_ground_; }
   const std::vector<ScanRecord>& scans() const { return scans_; }
   const std::vector<OptimizationRecord>& optimizations() const { return optimizations_; }
   /// Keyframe `id`'s prefiltered cloud in its own frame.
@@ -61,12 +88,15 @@ class Pipeline {
   std::vector<Pose3> trajectory() const;
 
  private:
-  void add_keyframe(ScanRecord& record, PointCloud cloud);
+  void add_keyframe(ScanRecord& record, PointCloud cloud, std::optional<std::vector<walls::PlaneObservation>> planes);
+  void score_ground(const PointCloud& scan, const ground::GroundScan& ground, ScanRecord* record) const;
   void optimize(bool full, const std::string& reason);
 
   PipelineConfig config_;
   KeyframeSelector selector_;
   walls::PlaneMapper mapper_;
+  ground::TraversableNodeMap node_map_;
+  ground::GroundScan last_ground_;
   graph::SituationalGraph graph_;
   graph::GraphOptimizer optimizer_;
   graph::LoopDetector loop_detector_;

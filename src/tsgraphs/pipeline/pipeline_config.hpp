@@ -4,6 +4,8 @@
 #include <string>
 
 #include "tsgraphs/graph/graph_optimizer.hpp"
+#include "tsgraphs/ground/ground_segmentation.hpp"
+#include "tsgraphs/ground/traversable_node_map.hpp"
 #include "tsgraphs/graph/loop_closure.hpp"
 #include "tsgraphs/pipeline/keyframe_selector.hpp"
 #include "tsgraphs/pipeline/prefilter.hpp"
@@ -29,6 +31,8 @@ struct ScheduleConfig {
 struct PipelineConfig {
   PrefilterConfig prefilter;
   KeyframeConfig keyframes;
+  ground::GroundConfig ground;
+  ground::NodeMapConfig node_map;
   walls::PlaneExtractionConfig plane_extraction;
   walls::PlaneMapperConfig plane_mapping;
   graph::GraphOptimizerConfig optimizer;
@@ -39,6 +43,8 @@ struct PipelineConfig {
   void visit(V& v) {
     v.section("prefilter", prefilter);
     v.section("keyframes", keyframes);
+    v.section("ground", ground);
+    v.section("node_map", node_map);
     v.section("plane_extraction", plane_extraction);
     v.section("plane_mapping", plane_mapping);
     v.section("optimizer", optimizer);

@@ -35,6 +35,7 @@ Rgb wall_colour(int id) {
 }
 constexpr Rgb kKeyframePoint{150, 150, 150};
 constexpr Rgb kHorizontalPlane{222, 200, 160};
+constexpr Rgb kTraversableNode{255, 0, 255};  // magenta, as DESIGN.md's outputs say
 // Keyframe points are thinned to this grid in the map, so map.ply stays small on long runs.
 constexpr double kMapVoxel = 0.1;
 
@@ -108,11 +109,22 @@ std::string scene_graph_json(const Pipeline& pipeline) {
                      {"keyframe", e.keyframe},
                      {"plane", e.plane},
                      {"measurement", {e.measurement.n.x(), e.measurement.n.y(), e.measurement.n.z(), e.measurement.d}}});
+  json ground_nodes = json::array();
+  for (const ground::GlobalNode* n : pipeline.node_map().nodes()) {
+    ground_nodes.push_back({{"id", n->id},
+                            {"position", {n->position.x(), n->position.y(), n->position.z()}},
+                            {"normal", {n->normal.x(), n->normal.y(), n->normal.z()}},
+                            {"probability", n->probability},
+                            {"observations", n->observations},
+                            {"anchor_keyframe", n->anchor_keyframe},
+                            {"keyframes", n->keyframes}});
+  }
   const json doc = {{"format", "tsgraphs-scene-graph"},
                     {"version", 1},
                     {"frame", "map"},
                     {"keyframes", keyframes},
                     {"planes", planes},
+                    {"traversable_nodes", ground_nodes},
                     {"edges", edges}};
   return doc.dump(1) + "\n";
 }
@@ -120,17 +132,19 @@ std::string scene_graph_json(const Pipeline& pipeline) {
 std::string timings_csv(const Pipeline& pipeline) {
   std::string out =
       "kind,index,stamp,keyframe,num_points,prefilter_ms,walls_ms,loop_ms,frontend_ms,"
-      "optimization_s,full,n_variables,n_factors,iterations,reason\n";
+      "optimization_s,full,n_variables,n_factors,iterations,reason,"
+      "ground_ms,ground_nodes,ground_tp,ground_fp,ground_fn\n";
   char line[512];
   for (const ScanRecord& s : pipeline.scans()) {
-    std::snprintf(line, sizeof line, "scan,%zu,%.6f,%d,%zu,%.3f,%.3f,%.3f,%.3f,,,,,,%s\n", s.scan_index, s.stamp,
-                  s.keyframe, s.num_points, s.prefilter_ms, s.walls_ms, s.loop_ms, s.frontend_ms,
-                  s.warning.empty() ? "" : ("\"" + s.warning + "\"").c_str());
+    std::snprintf(line, sizeof line, "scan,%zu,%.6f,%d,%zu,%.3f,%.3f,%.3f,%.3f,,,,,,%s,%.3f,%zu,%ld,%ld,%ld\n",
+                  s.scan_index, s.stamp, s.keyframe, s.num_points, s.prefilter_ms, s.walls_ms, s.loop_ms,
+                  s.frontend_ms, s.warning.empty() ? "" : ("\"" + s.warning + "\"").c_str(), s.ground_ms,
+                  s.num_ground_nodes, s.ground_tp, s.ground_fp, s.ground_fn);
     out += line;
   }
   for (std::size_t i = 0; i < pipeline.optimizations().size(); ++i) {
     const OptimizationRecord& o = pipeline.optimizations()[i];
-    std::snprintf(line, sizeof line, "optimization,%zu,%.6f,%d,,,,,,%.6f,%d,%d,%d,%d,%s\n", i,
+    std::snprintf(line, sizeof line, "optimization,%zu,%.6f,%d,,,,,,%.6f,%d,%d,%d,%d,%s,,,,,\n", i,
                   pipeline.graph().keyframes()[o.after_keyframe].stamp, o.after_keyframe, o.stats.wall_time_s,
                   o.stats.full ? 1 : 0, o.stats.n_variables, o.stats.n_factors, o.stats.iterations, o.reason.c_str());
     out += line;
@@ -164,8 +178,10 @@ std::string map_ply(const Pipeline& pipeline) {
     const Rgb c = lm.vertical ? wall_colour(id) : kHorizontalPlane;
     for (const Eigen::Vector3f& p : lm.points) vertices.push_back({p, c});
   }
+  for (const ground::GlobalNode* n : pipeline.node_map().nodes())
+    vertices.push_back({n->position.cast<float>(), kTraversableNode});
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment tsgraphs map: grey keyframe points, "
-                    "coloured wall faces, beige floors and ceilings\nelement vertex " +
+                    "coloured wall faces, beige floors and ceilings, magenta traversable nodes\nelement vertex " +
                     std::to_string(vertices.size()) +
                     "\nproperty float x\nproperty float y\nproperty float z\n"
                     "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
@@ -201,6 +217,7 @@ void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std:
                         {"num_skipped", info.num_skipped},
                         {"num_keyframes", pipeline.graph().keyframes().size()},
                         {"num_planes", pipeline.graph().planes().size()},
+                        {"num_traversable_nodes", pipeline.node_map().size()},
                         {"num_loops", pipeline.graph().loop_edges().size()},
                         {"num_optimizations", pipeline.optimizations().size()},
                         {"t_pgo_s", t_pgo},

@@ -47,7 +47,7 @@ std::string scene_graph_json(const Pipeline& pipeline);
 /// The timings table as CSV text: one row per scan, then one per optimisation.
 std::string timings_csv(const Pipeline& pipeline);
 /// Binary little-endian PLY of the map: keyframe points in grey, wall faces coloured per plane,
-/// floors and ceilings in beige.
+/// floors and ceilings in beige, traversable nodes in magenta.
 std::string map_ply(const Pipeline& pipeline);
 
 }  // namespace tsgraphs::pipeline

@@ -1,70 +1,25 @@
 #include "tsgraphs/pipeline/sequence_runner.hpp"
 
 #include <sys/resource.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_pipeline.h>
 
+#include <algorithm>
 #include <chrono>
-#include <condition_variable>
-#include <deque>
-#include <mutex>
-#include <thread>
 
 #include "tsgraphs/core/error.hpp"
 
 namespace tsgraphs::pipeline {
 namespace {
 
-// Scans read ahead of the pipeline; enough to hide disk latency, small in memory (~1 MB each).
-constexpr std::size_t kReadAhead = 8;
+// Scans in flight at once: each holds a raw scan (about 1 MB) while it is read and prepared.
+constexpr std::size_t kTokensPerThread = 2;
 
-struct LoadedScan {
-  PointCloud cloud;
-  std::string error;  ///< why it could not be read
-};
-
-// Reads scans in order on its own thread into a bounded queue.
-class ScanPrefetcher {
- public:
-  explicit ScanPrefetcher(const io::SequenceReader& seq) : seq_(seq), thread_([this] { loop(); }) {}
-  ~ScanPrefetcher() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
-    }
-    cv_.notify_all();
-    thread_.join();
-  }
-  LoadedScan next() {
-    std::unique_lock<std::mutex> lock(mutex_);
-    cv_.wait(lock, [&] { return !queue_.empty(); });
-    LoadedScan s = std::move(queue_.front());
-    queue_.pop_front();
-    cv_.notify_all();
-    return s;
-  }
-
- private:
-  void loop() {
-    for (std::size_t i = 0; i < seq_.size(); ++i) {
-      LoadedScan s;
-      try {
-        s.cloud = seq_.scan(i);
-      } catch (const std::exception& e) {
-        s.error = e.what();
-      }
-      std::unique_lock<std::mutex> lock(mutex_);
-      cv_.wait(lock, [&] { return stop_ || queue_.size() < kReadAhead; });
-      if (stop_) return;
-      queue_.push_back(std::move(s));
-      cv_.notify_all();
-    }
-  }
-
-  const io::SequenceReader& seq_;
-  std::mutex mutex_;
-  std::condition_variable cv_;
-  std::deque<LoadedScan> queue_;
-  bool stop_ = false;
-  std::thread thread_;  // last: started once the members above exist
+struct Loaded {
+  std::size_t index = 0;
+  bool keyframe_candidate = false;
+  PreparedScan prepared;
+  std::string error;  ///< why the scan file could not be read
 };
 
 }  // namespace
@@ -81,21 +36,51 @@ RunInfo run_sequence(const io::SequenceReader& sequence, Pipeline& pipeline, con
   RunInfo run;
   run.sequence = sequence.dir();
   run.num_scans = sequence.size();
-  {
-    ScanPrefetcher prefetcher(sequence);
-    for (std::size_t i = 0; i < sequence.size(); ++i) {
-      LoadedScan scan = prefetcher.next();
-      const ScanRecord& rec = pipeline.process(i, info.times[i], scan.cloud, info.odometry[i]);
-      if (!scan.error.empty()) {
-        ++run.num_skipped;
-        if (callbacks.warning) callbacks.warning(scan.error + ": scan skipped, its pose taken from odometry");
-      } else if (!rec.warning.empty()) {
-        ++run.num_skipped;
-        if (callbacks.warning) callbacks.warning("scan " + std::to_string(i) + ": " + rec.warning);
-      }
-      if (callbacks.progress) callbacks.progress(i + 1, sequence.size());
-    }
-  }
+  // Reading and the per-scan steps (prefilter, ground) run in parallel on the next scans;
+  // the pipeline takes them in order, so the result is the same as one scan at a time.
+  const std::size_t tokens = kTokensPerThread * static_cast<std::size_t>(std::max(
+      1, static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))));
+  std::size_t next = 0;
+  KeyframeSelector candidates(pipeline.config().keyframes);  // guesses the keyframes from odometry alone
+  tbb::parallel_pipeline(
+      tokens,
+      tbb::make_filter<void, Loaded>(tbb::filter_mode::serial_in_order,
+                                     [&](tbb::flow_control& fc) {
+                                       Loaded l;
+                                       if (next >= sequence.size()) {
+                                         fc.stop();
+                                         return l;
+                                       }
+                                       l.index = next++;
+                                       l.keyframe_candidate = candidates.is_keyframe(info.odometry[l.index]);
+                                       if (l.keyframe_candidate) candidates.accept(info.odometry[l.index]);
+                                       return l;
+                                     }) &
+          tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::parallel,
+                                           [&](Loaded l) {
+                                             const std::size_t i = l.index;
+                                             PointCloud scan;
+                                             try {
+                                               scan = sequence.scan(i);
+                                             } catch (const std::exception& e) {
+                                               l.error = e.what();
+                                             }
+                                             l.prepared =
+                                                 pipeline.prepare(i, info.times[i], scan, info.odometry[i], l.keyframe_candidate);
+                                             return l;
+                                           }) &
+          tbb::make_filter<Loaded, void>(tbb::filter_mode::serial_in_order, [&](Loaded l) {
+            const std::size_t i = l.index;
+            const ScanRecord& rec = pipeline.process(std::move(l.prepared));
+            if (!l.error.empty()) {
+              ++run.num_skipped;
+              if (callbacks.warning) callbacks.warning(l.error + ": scan skipped, its pose taken from odometry");
+            } else if (!rec.warning.empty()) {
+              ++run.num_skipped;
+              if (callbacks.warning) callbacks.warning("scan " + std::to_string(i) + ": " + rec.warning);
+            }
+            if (callbacks.progress) callbacks.progress(i + 1, sequence.size());
+          }));
   pipeline.finish();
   if (info.times.size() >= 2) {
     const double period = (info.times.back() - info.times.front()) / static_cast<double>(info.times.size() - 1);

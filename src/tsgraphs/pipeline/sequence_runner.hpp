@@ -1,6 +1,7 @@
 #pragma once
-/// Drives a Pipeline over a sequence folder, scan by scan, reading ahead on a second thread
-/// so that disk and processing overlap.
+/// Drives a Pipeline over a sequence folder: scans are read and prepared (prefilter, ground)
+/// in parallel ahead of the pipeline, which takes them in order (TBB pipeline; --threads
+/// bounds it). The result is the same as feeding the scans one at a time.
 #include <functional>
 #include <string>
 

@@ -1,0 +1,54 @@
+#pragma once
+/// Breadth-first search of the traversable ground from the robot (TRAVEL's graph search, less
+/// its restarts): it starts at ground-like nodes near the robot whose plane passes under the
+/// robot at the sensor height, and accepts a linked node only when both are ground-like and
+/// the local convexity/concavity test passes. Ground not reached from the robot (a storey
+/// seen through a void, a bench top, a floor patch below) is never traversable.
+#include <cstdint>
+#include <vector>
+
+#include "tsgraphs/ground/ground_segmentation.hpp"
+#include "tsgraphs/ground/tri_grid_ground.hpp"
+
+namespace tsgraphs::ground {
+
+/// The links of the node graph: nodes sharing an edge, and, since far from the sensor the
+/// floor is seen only on scan rings metres apart, nodes joined by a run of empty or unknown
+/// (unmodelled) nodes that stays within max_gap of the start. Walls stop runs: their nodes
+/// have points.
+class NodeLinker {
+ public:
+  NodeLinker(const TriGridField& field, double max_gap);
+  /// The non-empty nodes linked to `node`, in a fixed order (replaces the content of `out`);
+  /// returns how many of them, first in `out`, share an edge with `node`.
+  int links(int node, std::vector<int>* out);
+  /// False for a link across empty nodes (position >= the count links() returned) from or to
+  /// a face's foot: such a line is only ground when the ground beside it reaches it.
+  static bool usable(const TriGridNode& a, const TriGridNode& b, bool adjacent) {
+    return adjacent || (!a.face_foot && !b.face_foot);
+  }
+
+ private:
+  const TriGridField& field_;
+  double max_gap_sq_;
+  std::vector<std::uint32_t> stamp_;  ///< last call that visited each node
+  std::uint32_t call_ = 0;
+  std::vector<int> queue_;
+};
+
+/// Ground-like nodes within seed_radius (horizontal) of the robot whose plane, at the robot's
+/// (x, y), is within seed_height_tolerance of -sensor_height. Ascending node order.
+std::vector<int> find_seed_nodes(const TriGridField& field, const GroundConfig& config);
+
+/// TRAVEL's local convexity/concavity test between two modelled nodes with centres c_a, c_b
+/// (dmu = |c_b - c_a|): normals agree within 1 - sin(dmu th_lcc_normal), and each centre is
+/// within min(dmu sin(th_lcc_planar), th_dist) of the other's plane (the cap keeps a long link
+/// across empty nodes from climbing a step).
+bool locally_convex(const TriGridNode& a, const TriGridNode& b, const GroundConfig& config);
+
+/// Reached flags, one per node: the seeds and every ground-like node reached from them over
+/// links that pass the local convexity/concavity test.
+std::vector<std::uint8_t> search_traversable(const TriGridField& field, const std::vector<int>& seeds,
+                                             const GroundConfig& config);
+
+}  // namespace tsgraphs::ground

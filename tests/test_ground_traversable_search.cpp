@@ -1,0 +1,173 @@
+// The breadth-first traversable search on constructed input: the local convexity/concavity
+// test; the seeds under the robot; a 0.45 m step's top is not reached, a 7 degree ramp is, and
+// a floor patch 1 m lower across a gap is never traversable, not even after smoothing.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "tsgraphs/ground/ground_segmentation.hpp"
+#include "tsgraphs/ground/traversable_search.hpp"
+#include "tsgraphs/ground/tri_grid_ground.hpp"
+
+using namespace tsgraphs;
+using namespace tsgraphs::ground;
+
+namespace {
+
+constexpr double kSensorHeight = 0.55;  // the robot's floor is at z = -0.55 (m)
+constexpr double kSpacing = 0.04;       // of the constructed points (m)
+constexpr double kBlind = 1.3;          // no points nearer than this (as with a real sensor's lowest beam) (m)
+constexpr double kHalfSide = 6.0;       // the constructed ground covers [-6, 6] x [-6, 6] (m)
+constexpr double kDeg = M_PI / 180.0;
+
+// Points on the surface z = height(x, y) over the square, where height returns a number (NaN: no surface).
+template <class Height>
+PointCloud make_ground(Height height) {
+  PointCloud cloud;
+  for (double x = -kHalfSide; x <= kHalfSide; x += kSpacing) {
+    for (double y = -kHalfSide; y <= kHalfSide; y += kSpacing) {
+      if (std::hypot(x, y) < kBlind) continue;
+      const double z = height(x, y);
+      if (std::isfinite(z)) cloud.points.emplace_back(x, y, z);
+    }
+  }
+  return cloud;
+}
+
+TriGridNode plane_node(const Eigen::Vector3f& centre, const Eigen::Vector3f& normal) {
+  TriGridNode n;
+  n.state = NodeState::kModelled;
+  n.ground_like = true;
+  n.centre = centre;
+  n.normal = normal.normalized();
+  return n;
+}
+
+struct Searched {
+  TriGridField field;
+  std::vector<int> seeds;
+  std::vector<std::uint8_t> reached;
+};
+
+Searched search(const PointCloud& cloud, const GroundConfig& config) {
+  Searched s;
+  s.field = build_tri_grid_field(cloud, Eigen::Matrix3d::Identity(), config);
+  s.seeds = find_seed_nodes(s.field, config);
+  s.reached = search_traversable(s.field, s.seeds, config);
+  return s;
+}
+
+TEST(LocalConvexity, CoplanarNodesPassAStepOrAKinkFails) {
+  const GroundConfig config;
+  const Eigen::Vector3f up = Eigen::Vector3f::UnitZ();
+  const TriGridNode a = plane_node({0.0f, 0.0f, -0.55f}, up);
+  EXPECT_TRUE(locally_convex(a, plane_node({0.17f, 0.0f, -0.55f}, up), config));
+  EXPECT_TRUE(locally_convex(a, plane_node({0.17f, 0.0f, -0.545f}, up), config));   // noise
+  EXPECT_FALSE(locally_convex(a, plane_node({0.17f, 0.0f, -0.10f}, up), config));   // 0.45 m step
+  EXPECT_FALSE(locally_convex(a, plane_node({0.17f, 0.0f, -0.55f}, {std::sin(30 * kDeg), 0.0f, std::cos(30 * kDeg)}), config));
+  // A long link (across empty nodes) may bend more, but not climb more than th_dist.
+  EXPECT_TRUE(locally_convex(a, plane_node({1.5f, 0.0f, -0.52f}, up), config));
+  EXPECT_FALSE(locally_convex(a, plane_node({1.5f, 0.0f, -0.40f}, up), config));
+}
+
+TEST(SeedNodes, FloorNodesNearTheRobotButNotAPlatform) {
+  GroundConfig config;
+  const PointCloud cloud = make_ground([](double x, double) { return x > 2.0 ? -0.10 : -kSensorHeight; });
+  const TriGridField field = build_tri_grid_field(cloud, Eigen::Matrix3d::Identity(), config);
+  const std::vector<int> seeds = find_seed_nodes(field, config);
+  ASSERT_GT(seeds.size(), 100u);
+  for (int s : seeds) {
+    EXPECT_LE(field.nodes[s].centre.head<2>().norm(), config.seed_radius);
+    EXPECT_NEAR(field.nodes[s].centre.z(), -kSensorHeight, 0.01);
+  }
+}
+
+TEST(TraversableSearch, TheTopOfA45cmStepIsNotReached) {
+  const GroundConfig config;
+  constexpr double kStepX = 3.0, kStepTop = -kSensorHeight + 0.45;
+  PointCloud cloud = make_ground([](double x, double) { return x >= kStepX ? kStepTop : -kSensorHeight; });
+  for (double y = -kHalfSide; y <= kHalfSide; y += kSpacing)  // the step's face
+    for (double z = -kSensorHeight; z < kStepTop; z += kSpacing) cloud.points.emplace_back(kStepX, y, z);
+  const Searched s = search(cloud, config);
+  int floor_nodes = 0, floor_reached = 0, top_reached = 0;
+  for (std::size_t n = 0; n < s.field.nodes.size(); ++n) {
+    const TriGridNode& node = s.field.nodes[n];
+    if (node.state != NodeState::kModelled) continue;
+    if (node.centre.x() < kStepX - config.resolution) {
+      ++floor_nodes;
+      floor_reached += s.reached[n];
+    }
+    if (s.reached[n] && node.centre.z() > -0.3) ++top_reached;
+  }
+  EXPECT_GT(floor_reached, 0.95 * floor_nodes);
+  EXPECT_EQ(top_reached, 0);
+
+  // The whole segmentation: no point of the step's top is ground.
+  const GroundScan result = segment_ground(cloud, Eigen::Matrix3d::Identity(), config);
+  int top_ground = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (result.labels[i] == GroundLabel::kGround && cloud.points[i].z() > -0.3f) ++top_ground;
+  EXPECT_EQ(top_ground, 0);
+}
+
+TEST(TraversableSearch, ASevenDegreeRampIsReached) {
+  const GroundConfig config;
+  constexpr double kFoot = 1.5;  // the ramp rises along x from here
+  const double slope = std::tan(7.0 * kDeg);
+  const PointCloud cloud = make_ground([&](double x, double) { return -kSensorHeight + std::max(0.0, x - kFoot) * slope; });
+  const Searched s = search(cloud, config);
+  int ramp_nodes = 0, ramp_reached = 0;
+  for (std::size_t n = 0; n < s.field.nodes.size(); ++n) {
+    const TriGridNode& node = s.field.nodes[n];
+    if (node.state != NodeState::kModelled || node.centre.x() < kFoot + config.resolution) continue;
+    ++ramp_nodes;
+    ramp_reached += s.reached[n];
+  }
+  ASSERT_GT(ramp_nodes, 500);
+  EXPECT_GE(ramp_reached, 0.98 * ramp_nodes);
+
+  const GroundScan result = segment_ground(cloud, Eigen::Matrix3d::Identity(), config);
+  int ramp_points = 0, ramp_ground = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (cloud.points[i].x() < kFoot + 0.1f) continue;
+    ++ramp_points;
+    ramp_ground += result.labels[i] == GroundLabel::kGround;
+  }
+  EXPECT_GE(ramp_ground, 0.97 * ramp_points);
+}
+
+TEST(TraversableSearch, AFloorPatchOneMetreLowerAcrossAGapIsNeverTraversable) {
+  const GroundConfig config;
+  constexpr double kGapFrom = 3.0, kGapTo = 4.0;  // no returns in between (less than max_gap)
+  const PointCloud cloud = make_ground([](double x, double) {
+    if (x < kGapFrom) return -kSensorHeight;
+    if (x < kGapTo) return std::nan("");
+    return -kSensorHeight - 1.0;
+  });
+  const Searched s = search(cloud, config);
+  int low_ground_like = 0, low_reached = 0;
+  for (std::size_t n = 0; n < s.field.nodes.size(); ++n) {
+    if (s.field.nodes[n].centre.x() < kGapTo || s.field.nodes[n].state != NodeState::kModelled) continue;
+    low_ground_like += s.field.nodes[n].ground_like;
+    low_reached += s.reached[n];
+  }
+  EXPECT_GT(low_ground_like, 300);  // flat, so ground-like...
+  EXPECT_EQ(low_reached, 0);        // ...but not reached from the robot
+
+  const GroundScan result = segment_ground(cloud, Eigen::Matrix3d::Identity(), config);
+  int low_traversable = 0, high_traversable = 0, low_ground = 0;
+  for (const GroundNode& node : result.nodes) {
+    if (!node.traversable) continue;
+    (node.centre.z() < -1.0f ? low_traversable : high_traversable)++;
+  }
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (result.labels[i] == GroundLabel::kGround && cloud.points[i].z() < -1.0f) ++low_ground;
+  EXPECT_GT(high_traversable, 500);
+  EXPECT_EQ(low_traversable, 0);
+  EXPECT_EQ(low_ground, 0);
+}
+
+}  // namespace
