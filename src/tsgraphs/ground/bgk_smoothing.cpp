@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cmath>
-#include <deque>
 
 #include "tsgraphs/ground/traversable_search.hpp"
 
@@ -100,27 +99,8 @@ std::vector<std::uint8_t> decide_traversable(const TriGridField& field, const st
     candidate[i] = 1;
   }
   // Only what is linked to the robot's seeds stays.
-  std::vector<std::uint8_t> traversable(n, 0);
-  std::deque<int> queue;
-  for (int s : seeds) {
-    if (!candidate[s] || traversable[s]) continue;
-    traversable[s] = 1;
-    queue.push_back(s);
-  }
-  NodeLinker linker(field, config.max_gap);
-  std::vector<int> links;
-  while (!queue.empty()) {
-    const int current = queue.front();
-    queue.pop_front();
-    const int num_adjacent = linker.links(current, &links);
-    for (int k = 0; k < static_cast<int>(links.size()); ++k) {
-      const int b = links[k];
-      if (!candidate[b] || traversable[b]) continue;
-      if (!NodeLinker::usable(field.nodes[current], field.nodes[b], k < num_adjacent)) continue;
-      traversable[b] = 1;
-      queue.push_back(b);
-    }
-  }
+  const std::vector<std::uint8_t> traversable =
+      flood_from(field, seeds, config.max_gap, [&](int i) { return candidate[i] != 0; }, [](int, int) { return true; });
   return traversable;
 }
 

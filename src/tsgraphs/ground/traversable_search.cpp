@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <deque>
 
 namespace tsgraphs::ground {
 
@@ -60,29 +59,9 @@ bool locally_convex(const TriGridNode& a, const TriGridNode& b, const GroundConf
 
 std::vector<std::uint8_t> search_traversable(const TriGridField& field, const std::vector<int>& seeds,
                                              const GroundConfig& config) {
-  std::vector<std::uint8_t> reached(field.nodes.size(), 0);
-  std::deque<int> queue;
-  for (int s : seeds) {
-    if (reached[s] || !field.nodes[s].ground_like) continue;
-    reached[s] = 1;
-    queue.push_back(s);
-  }
-  NodeLinker linker(field, config.max_gap);
-  std::vector<int> links;
-  while (!queue.empty()) {
-    const int current = queue.front();
-    queue.pop_front();
-    const int num_adjacent = linker.links(current, &links);
-    for (int k = 0; k < static_cast<int>(links.size()); ++k) {
-      const int b = links[k];
-      if (reached[b] || !field.nodes[b].ground_like) continue;
-      if (!NodeLinker::usable(field.nodes[current], field.nodes[b], k < num_adjacent)) continue;
-      if (!locally_convex(field.nodes[current], field.nodes[b], config)) continue;
-      reached[b] = 1;
-      queue.push_back(b);
-    }
-  }
-  return reached;
+  return flood_from(
+      field, seeds, config.max_gap, [&](int i) { return field.nodes[i].ground_like; },
+      [&](int a, int b) { return locally_convex(field.nodes[a], field.nodes[b], config); });
 }
 
 }  // namespace tsgraphs::ground

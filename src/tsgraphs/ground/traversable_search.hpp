@@ -5,6 +5,7 @@
 /// the local convexity/concavity test passes. Ground not reached from the robot (a storey
 /// seen through a void, a bench top, a floor patch below) is never traversable.
 #include <cstdint>
+#include <deque>
 #include <vector>
 
 #include "tsgraphs/ground/ground_segmentation.hpp"
@@ -35,6 +36,37 @@ class NodeLinker {
   std::uint32_t call_ = 0;
   std::vector<int> queue_;
 };
+
+/// Flags, one per node, of the nodes reached from `seeds` over usable links: a node joins when
+/// `accept(node)` and the link from a reached node passes `link_ok(from, to)`. The one flood
+/// fill of the search and of BGK's connectivity step.
+template <class Accept, class LinkOk>
+std::vector<std::uint8_t> flood_from(const TriGridField& field, const std::vector<int>& seeds, double max_gap,
+                                     Accept accept, LinkOk link_ok) {
+  std::vector<std::uint8_t> reached(field.nodes.size(), 0);
+  std::deque<int> queue;
+  for (int s : seeds) {
+    if (reached[s] || !accept(s)) continue;
+    reached[s] = 1;
+    queue.push_back(s);
+  }
+  NodeLinker linker(field, max_gap);
+  std::vector<int> links;
+  while (!queue.empty()) {
+    const int current = queue.front();
+    queue.pop_front();
+    const int num_adjacent = linker.links(current, &links);
+    for (int k = 0; k < static_cast<int>(links.size()); ++k) {
+      const int b = links[k];
+      if (reached[b] || !accept(b)) continue;
+      if (!NodeLinker::usable(field.nodes[current], field.nodes[b], k < num_adjacent)) continue;
+      if (!link_ok(current, b)) continue;
+      reached[b] = 1;
+      queue.push_back(b);
+    }
+  }
+  return reached;
+}
 
 /// Ground-like nodes within seed_radius (horizontal) of the robot whose plane, at the robot's
 /// (x, y), is within seed_height_tolerance of -sensor_height. Ascending node order.
