@@ -4,12 +4,14 @@
 #include <ceres/product_manifold.h>
 #include <ceres/sphere_manifold.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <vector>
 
 namespace tsgraphs::graph {
 namespace {
@@ -23,8 +25,12 @@ constexpr int kQuaternionOffset = 3;
 constexpr int kPlaneSize = 4;
 constexpr int kOffsetIndex = 3;
 
+// Room and floor blocks: the centre, map x-y.
+constexpr int kCenterSize = 2;
+
 using PoseBlock = std::array<double, kPoseSize>;
 using PlaneBlock = std::array<double, kPlaneSize>;
+using CenterBlock = std::array<double, kCenterSize>;
 using PoseManifold =
     ceres::ProductManifold<ceres::EuclideanManifold<3>, ceres::EigenQuaternionManifold>;
 using PlaneManifold = ceres::ProductManifold<ceres::SphereManifold<3>, ceres::EuclideanManifold<1>>;
@@ -96,6 +102,104 @@ struct PlaneResidual {
   double inv_sigma_angle, inv_sigma_distance;
 };
 
+// Signed distance of the x-y point c from a vertical plane's trace on the x-y plane (the
+// horizontal part of its normal renormalised, so a slight tilt does not scale it).
+template <class T>
+T horizontal_distance(const T* plane, const Eigen::Matrix<T, 2, 1>& c) {
+  const Eigen::Matrix<T, 2, 1> n(plane[0], plane[1]);
+  return (n.dot(c) + plane[kOffsetIndex]) / n.norm();
+}
+
+// Offset of c from the mid-plane of two facing walls (normals into the room), along the first
+// wall's normal: half the difference of its distances to them, zero halfway between.
+template <class T>
+T midplane_offset(const T* wall_a, const T* wall_b, const Eigen::Matrix<T, 2, 1>& c) {
+  return T(0.5) * (horizontal_distance(wall_a, c) - horizontal_distance(wall_b, c));
+}
+
+// Room-4-planes: the centre's offset from the mid-plane of each facing pair.
+struct RoomResidual {
+  explicit RoomResidual(double sigma) : inv_sigma(1.0 / sigma) {}
+
+  template <class T>
+  bool operator()(const T* center, const T* a1, const T* a2, const T* b1, const T* b2,
+                  T* residual) const {
+    const Eigen::Matrix<T, 2, 1> c(center[0], center[1]);
+    residual[0] = midplane_offset(a1, a2, c) * T(inv_sigma);
+    residual[1] = midplane_offset(b1, b2, c) * T(inv_sigma);
+    return true;
+  }
+
+  static ceres::CostFunction* create(double sigma) {
+    return new ceres::AutoDiffCostFunction<RoomResidual, 2, kCenterSize, kPlaneSize, kPlaneSize,
+                                           kPlaneSize, kPlaneSize>(new RoomResidual(sigma));
+  }
+
+  double inv_sigma;
+};
+
+// Room-2-planes (a corridor): the centre's offset from the midline of its walls, and its offset
+// from the measured cluster centre along the corridor (the walls do not fix that direction).
+struct CorridorResidual {
+  CorridorResidual(const Eigen::Vector2d& cluster_center, double sigma, double along_sigma)
+      : cluster(cluster_center), inv_sigma(1.0 / sigma), inv_along_sigma(1.0 / along_sigma) {}
+
+  template <class T>
+  bool operator()(const T* center, const T* a, const T* b, T* residual) const {
+    const Eigen::Matrix<T, 2, 1> c(center[0], center[1]);
+    const Eigen::Matrix<T, 2, 1> n_a(a[0], a[1]), n_b(b[0], b[1]);
+    const Eigen::Matrix<T, 2, 1> across = n_a / n_a.norm() - n_b / n_b.norm();
+    const Eigen::Matrix<T, 2, 1> along = Eigen::Matrix<T, 2, 1>(-across.y(), across.x()) /
+                                         across.norm();
+    residual[0] = midplane_offset(a, b, c) * T(inv_sigma);
+    residual[1] = along.dot(c - cluster.template cast<T>()) * T(inv_along_sigma);
+    return true;
+  }
+
+  static ceres::CostFunction* create(const Eigen::Vector2d& cluster_center, double sigma,
+                                     double along_sigma) {
+    return new ceres::AutoDiffCostFunction<CorridorResidual, 2, kCenterSize, kPlaneSize,
+                                           kPlaneSize>(
+        new CorridorResidual(cluster_center, sigma, along_sigma));
+  }
+
+  Eigen::Vector2d cluster;
+  double inv_sigma, inv_along_sigma;
+};
+
+// The floor's centre minus the mean of its rooms' centres. Blocks: the floor, then its rooms.
+// Linear, so the Jacobians are constant: I / sigma for the floor, -I / (n sigma) per room.
+class FloorResidual : public ceres::CostFunction {
+ public:
+  FloorResidual(int num_rooms, double sigma) : num_rooms_(num_rooms), inv_sigma_(1.0 / sigma) {
+    set_num_residuals(kCenterSize);
+    mutable_parameter_block_sizes()->assign(static_cast<std::size_t>(num_rooms) + 1, kCenterSize);
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const double room_weight = 1.0 / num_rooms_;
+    for (int i = 0; i < kCenterSize; ++i) {
+      double mean = 0.0;
+      for (int r = 1; r <= num_rooms_; ++r) mean += parameters[r][i];
+      residuals[i] = (parameters[0][i] - mean * room_weight) * inv_sigma_;
+    }
+    if (!jacobians) return true;
+    for (int b = 0; b <= num_rooms_; ++b) {
+      if (!jacobians[b]) continue;
+      const double diagonal = b == 0 ? inv_sigma_ : -inv_sigma_ * room_weight;
+      Eigen::Map<Eigen::Matrix<double, kCenterSize, kCenterSize, Eigen::RowMajor>> jacobian(
+          jacobians[b]);
+      jacobian = Eigen::Matrix2d::Identity() * diagonal;
+    }
+    return true;
+  }
+
+ private:
+  int num_rooms_;
+  double inv_sigma_;
+};
+
 ceres::Solver::Options solver_options(const GraphOptimizerConfig& config, bool full) {
   ceres::Solver::Options options;
   if (!ceres::StringToLinearSolverType(config.linear_solver, &options.linear_solver_type))
@@ -121,7 +225,10 @@ void check_config(const GraphOptimizerConfig& c) {
   const bool positive = c.odometry_sigma_trans > 0 && c.odometry_sigma_rot_deg > 0 &&
                         c.loop_sigma_trans > 0 && c.loop_sigma_rot_deg > 0 &&
                         c.plane_sigma_angle_deg > 0 && c.plane_sigma_distance > 0 &&
-                        c.huber_plane > 0 && c.huber_loop > 0 && c.local_window > 0;
+                        c.huber_plane > 0 && c.huber_loop > 0 && c.room_sigma > 0 &&
+                        c.corridor_sigma > 0 && c.corridor_along_sigma > 0 &&
+                        c.floor_sigma > 0 && c.huber_room > 0 && c.huber_floor > 0 &&
+                        c.local_window > 0;
   if (!positive)
     throw std::invalid_argument(
         "GraphOptimizer: sigmas, Huber deltas and local_window must be > 0");
@@ -172,11 +279,15 @@ class GraphProblem {
       : graph_(graph),
         loop_loss_(config.huber_loop),
         plane_loss_(config.huber_plane),
+        room_loss_(config.huber_room),
+        floor_loss_(config.huber_floor),
         problem_(problem_options()) {}
 
   ceres::Problem& problem() { return problem_; }
   ceres::LossFunction* loop_loss() { return &loop_loss_; }
   ceres::LossFunction* plane_loss() { return &plane_loss_; }
+  ceres::LossFunction* room_loss() { return &room_loss_; }
+  ceres::LossFunction* floor_loss() { return &floor_loss_; }
 
   double* pose(int id, bool free) {
     auto [it, inserted] = poses_.try_emplace(id);
@@ -196,6 +307,14 @@ class GraphProblem {
     return it->second.data();
   }
 
+  double* room(int id, bool free) {
+    return center(rooms_, id, graph_.rooms().at(id).center, free);
+  }
+
+  double* floor(int id, bool free) {
+    return center(floors_, id, graph_.floors().at(id).center, free);
+  }
+
   int num_free() const { return num_free_; }
 
   // Copies the free blocks' estimates into the graph.
@@ -208,6 +327,12 @@ class GraphProblem {
       Plane& plane = graph_.planes().at(id).plane;
       plane = from_block(block, plane);
     }
+    for (const auto& [id, block] : rooms_)
+      if (!problem_.IsParameterBlockConstant(block.data()))
+        graph_.rooms().at(id).center = Eigen::Vector2d(block[0], block[1]);
+    for (const auto& [id, block] : floors_)
+      if (!problem_.IsParameterBlockConstant(block.data()))
+        graph_.floors().at(id).center = Eigen::Vector2d(block[0], block[1]);
   }
 
  private:
@@ -216,6 +341,16 @@ class GraphProblem {
     options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     return options;
+  }
+
+  double* center(std::map<int, CenterBlock>& blocks, int id, const Eigen::Vector2d& value,
+                 bool free) {
+    auto [it, inserted] = blocks.try_emplace(id);
+    if (inserted) {
+      it->second = {value.x(), value.y()};
+      add(it->second.data(), kCenterSize, nullptr, free);
+    }
+    return it->second.data();
   }
 
   void add(double* block, int size, ceres::Manifold* manifold, bool free) {
@@ -227,11 +362,12 @@ class GraphProblem {
   }
 
   SituationalGraph& graph_;
-  ceres::HuberLoss loop_loss_, plane_loss_;
+  ceres::HuberLoss loop_loss_, plane_loss_, room_loss_, floor_loss_;
   PoseManifold pose_manifold_;
   PlaneManifold plane_manifold_;
   std::map<int, PoseBlock> poses_;
   std::map<int, PlaneBlock> planes_;
+  std::map<int, CenterBlock> rooms_, floors_;
   int num_free_ = 0;
   ceres::Problem problem_;  // last: destroyed first
 };
@@ -239,6 +375,27 @@ class GraphProblem {
 void check_between(const BetweenEdge& e, int num_keyframes) {
   if (e.from < 0 || e.to < 0 || e.from >= num_keyframes || e.to >= num_keyframes || e.from == e.to)
     throw std::invalid_argument("GraphOptimizer: pose edge with unknown or equal keyframes");
+}
+
+// A room edge names distinct, known, vertical planes, in pairs that face each other (normals
+// into the room: opposite sides of it). Ceres also refuses a block named twice in one factor.
+void check_room_edge(const RoomPlanesEdge& e, const SituationalGraph& graph) {
+  if (!graph.rooms().count(e.room) || e.planes.size() != planes_of(e.kind))
+    throw std::invalid_argument("GraphOptimizer: room edge with an unknown room or a plane count "
+                                "that does not fit its kind");
+  for (int id : e.planes) {
+    const auto it = graph.planes().find(id);
+    if (it == graph.planes().end() || !it->second.vertical)
+      throw std::invalid_argument("GraphOptimizer: room edge with an unknown or horizontal plane");
+  }
+  if (std::set<int>(e.planes.begin(), e.planes.end()).size() != e.planes.size())
+    throw std::invalid_argument("GraphOptimizer: room edge naming a plane twice");
+  for (std::size_t i = 0; i < e.planes.size(); i += 2) {
+    const Eigen::Vector3d& n_a = graph.planes().at(e.planes[i]).plane.n;
+    const Eigen::Vector3d& n_b = graph.planes().at(e.planes[i + 1]).plane.n;
+    if (n_a.head<2>().dot(n_b.head<2>()) >= 0.0)
+      throw std::invalid_argument("GraphOptimizer: room edge with a pair that does not face");
+  }
 }
 
 }  // namespace
@@ -264,6 +421,22 @@ OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {
   }
   const auto plane_free = [&free_planes](int id) { return free_planes.count(id) > 0; };
 
+  // A room moves with its walls: free when one of them is (always in a full solve).
+  std::set<int> free_rooms;
+  for (const RoomPlanesEdge& e : graph.room_edges()) {
+    check_room_edge(e, graph);
+    if (full || std::any_of(e.planes.begin(), e.planes.end(), plane_free))
+      free_rooms.insert(e.room);
+  }
+  const auto room_free = [&free_rooms](int id) { return free_rooms.count(id) > 0; };
+  // A floor follows its rooms: free when one of them is (always in a full solve).
+  std::map<int, std::set<int>> rooms_of_floor;
+  for (const FloorRoomEdge& e : graph.floor_room_edges()) {
+    if (!graph.floors().count(e.floor) || !graph.rooms().count(e.room))
+      throw std::invalid_argument("GraphOptimizer: floor edge with unknown floor or room");
+    rooms_of_floor[e.floor].insert(e.room);
+  }
+
   GraphProblem graph_problem(graph, config_);
   ceres::Problem& problem = graph_problem.problem();
 
@@ -288,6 +461,27 @@ OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {
                               config_.plane_sigma_distance),
         graph_problem.plane_loss(), graph_problem.pose(e.keyframe, keyframe_free(e.keyframe)),
         graph_problem.plane(e.plane, plane_free(e.plane)));
+  }
+
+  for (const RoomPlanesEdge& e : graph.room_edges()) {
+    if (!room_free(e.room)) continue;
+    std::vector<double*> walls;
+    for (int id : e.planes) walls.push_back(graph_problem.plane(id, plane_free(id)));
+    double* center = graph_problem.room(e.room, true);
+    if (e.kind == RoomNodeKind::room)
+      problem.AddResidualBlock(RoomResidual::create(config_.room_sigma), graph_problem.room_loss(),
+                               center, walls[0], walls[1], walls[2], walls[3]);
+    else
+      problem.AddResidualBlock(CorridorResidual::create(e.cluster_center, config_.corridor_sigma,
+                                                        config_.corridor_along_sigma),
+                               graph_problem.room_loss(), center, walls[0], walls[1]);
+  }
+  for (const auto& [floor, rooms] : rooms_of_floor) {
+    if (!full && std::none_of(rooms.begin(), rooms.end(), room_free)) continue;
+    std::vector<double*> blocks{graph_problem.floor(floor, true)};
+    for (int room : rooms) blocks.push_back(graph_problem.room(room, room_free(room)));
+    problem.AddResidualBlock(new FloorResidual(static_cast<int>(rooms.size()), config_.floor_sigma),
+                             graph_problem.floor_loss(), blocks);
   }
 
   stats.n_variables = graph_problem.num_free();

@@ -1,9 +1,17 @@
 #pragma once
 /// Ceres back-end of the situational graph. Keyframes are SE(3) (translation + unit
-/// quaternion), planes have a minimal 3-dof parameterisation (unit normal on S^2 + offset).
-/// A local solve frees only the last keyframes and the planes they see, holding the rest
-/// fixed, so its cost does not grow with the run; a full solve frees everything but the
-/// anchor (after a loop closure). Estimates are warm-started from the graph's values.
+/// quaternion), planes have a minimal 3-dof parameterisation (unit normal on S^2 + offset),
+/// rooms and floors are 2-D centres. A local solve frees only the last keyframes, the planes
+/// they see and the rooms (and their floors) with such a plane, holding the rest fixed, so its
+/// cost does not grow with the run; a full solve frees everything but the anchor (after a loop
+/// closure). Estimates are warm-started from the graph's values.
+///
+/// Room factors (S-Graphs' room-4-planes and room-2-planes): for each facing pair of a room's
+/// walls, the centre's offset from the pair's mid-plane along the pair's normal (for a room with
+/// perpendicular pairs, the centre minus the midpoint of the walls); a corridor adds its centre
+/// minus the measured cluster centre, along the corridor. Floor factor: the floor's centre minus
+/// the mean of its rooms' centres, one residual per floor, so a floor never pulls its rooms
+/// together.
 #include <string>
 
 #include "tsgraphs/graph/situational_graph.hpp"
@@ -19,6 +27,12 @@ struct GraphOptimizerConfig {
   double plane_sigma_distance = 0.02;   ///< std of a measured plane's offset (m)
   double huber_plane = 1.0;             ///< Huber delta on keyframe-plane factors (whitened units)
   double huber_loop = 1.0;              ///< Huber delta on loop factors (whitened units)
+  double room_sigma = 0.05;             ///< std of a room centre off its walls' mid-planes (m)
+  double corridor_sigma = 0.05;         ///< std of a corridor centre from its walls' midline (m)
+  double corridor_along_sigma = 0.5;    ///< std of a corridor centre along it, from the cluster (m)
+  double floor_sigma = 0.5;             ///< std of a floor centre from its rooms' mean centre (m)
+  double huber_room = 1.0;              ///< Huber delta on room/corridor factors (whitened units)
+  double huber_floor = 1.0;             ///< Huber delta on floor factors (whitened units)
   int local_window = 10;                ///< keyframes freed by a local solve
   int max_iterations = 20;              ///< Ceres iterations per local solve
   int max_iterations_full = 50;         ///< Ceres iterations per full solve
@@ -38,6 +52,12 @@ struct GraphOptimizerConfig {
     v("plane_sigma_distance", plane_sigma_distance);
     v("huber_plane", huber_plane);
     v("huber_loop", huber_loop);
+    v("room_sigma", room_sigma);
+    v("corridor_sigma", corridor_sigma);
+    v("corridor_along_sigma", corridor_along_sigma);
+    v("floor_sigma", floor_sigma);
+    v("huber_room", huber_room);
+    v("huber_floor", huber_floor);
     v("local_window", local_window);
     v("max_iterations", max_iterations);
     v("max_iterations_full", max_iterations_full);
@@ -62,11 +82,14 @@ class GraphOptimizer {
   /// Throws std::invalid_argument for an unknown linear_solver or sparse_library, or a sigma,
   /// Huber delta or local_window that is not positive.
   explicit GraphOptimizer(GraphOptimizerConfig config = {});
-  /// Optimises `graph` in place (keyframe poses and planes). With `full` false, only the last
-  /// `local_window` keyframes and the planes they observe move. Needs at least one keyframe;
-  /// throws std::invalid_argument for an edge to an unknown node (or a keyframe to itself) and
-  /// std::runtime_error when Ceres gives no usable solution. A measured plane must share its map
-  /// plane's sign convention (the factor compares normals, so a flipped one is an outlier).
+  /// Optimises `graph` in place (keyframe poses, planes, rooms, floors). With `full` false, only
+  /// the last `local_window` keyframes, the planes they observe, the rooms with one of those
+  /// planes and the floors of those rooms move. Needs at least one keyframe; throws
+  /// std::invalid_argument for an edge to an unknown node (or a keyframe to itself), a room edge
+  /// with a plane count that does not fit its kind, a horizontal plane or a pair whose normals do
+  /// not face each other, and std::runtime_error when Ceres gives no usable solution. A measured
+  /// plane must share its map plane's sign convention (the factor compares normals, so a flipped
+  /// one is an outlier).
   OptimizationStats optimize(SituationalGraph& graph, bool full);
   const GraphOptimizerConfig& config() const { return config_; }
 

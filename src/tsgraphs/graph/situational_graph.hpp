@@ -1,7 +1,7 @@
 #pragma once
 /// The situational graph's variables and factors as plain data (no solver types): keyframes,
-/// plane landmarks, odometry, keyframe-plane and loop-closure edges. Rooms and floors join in
-/// later layers. GraphOptimizer solves it in place.
+/// plane landmarks, rooms and corridor segments, floors; odometry, keyframe-plane, loop-closure,
+/// room-planes and floor-room edges. GraphOptimizer solves it in place.
 #include <Eigen/Core>
 #include <cstddef>
 #include <map>
@@ -41,6 +41,42 @@ struct PlaneEdge {
   int num_inliers = 0;
 };
 
+/// A room (four walls, two facing pairs) or a corridor segment (one facing pair).
+enum class RoomNodeKind { room, corridor };
+
+/// Planes a room-planes edge of this kind names: 4 for a room, 2 for a corridor.
+inline std::size_t planes_of(RoomNodeKind kind) { return kind == RoomNodeKind::room ? 4 : 2; }
+
+struct RoomNode {
+  int id = -1;
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();  ///< current estimate, map x-y (m)
+  int level = 0;                                     ///< storey index
+  RoomNodeKind kind = RoomNodeKind::room;
+};
+
+/// One per storey, at the mean of its rooms' centres.
+struct FloorNode {
+  int id = -1;
+  int level = 0;                                     ///< storey index
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();  ///< current estimate, map x-y (m)
+};
+
+/// A room's walls (S-Graphs' room-4-planes / room-2-planes factor): the centre lies on the
+/// mid-plane of each facing pair. Planes are vertical, normals into the room.
+struct RoomPlanesEdge {
+  int room = -1;
+  RoomNodeKind kind = RoomNodeKind::room;
+  /// room: 4 ids, the first pair then the second pair; corridor: 2 ids, the one pair.
+  std::vector<int> planes;
+  /// Corridor only: the measured centre (the free-space cluster's), map x-y; only its position
+  /// along the corridor counts, the midline fixes the rest.
+  Eigen::Vector2d cluster_center = Eigen::Vector2d::Zero();
+};
+
+struct FloorRoomEdge {
+  int floor = -1, room = -1;
+};
+
 class SituationalGraph {
  public:
   /// Adds a keyframe; its id is its index. The first keyframe is the anchor (held fixed).
@@ -50,8 +86,30 @@ class SituationalGraph {
   void add_odometry_edge(const BetweenEdge& edge) { odometry_.push_back(edge); }
   void add_loop_edge(const BetweenEdge& edge) { loops_.push_back(edge); }
   void add_plane_edge(const PlaneEdge& edge) { plane_edges_.push_back(edge); }
-  /// Removes plane `drop`, re-pointing its edges at `keep`.
+  /// Removes plane `drop`, re-pointing its edges at `keep`. A room edge that would then name one
+  /// plane twice no longer describes a room and is removed.
   void merge_planes(int keep, int drop);
+
+  /// Adds a room with the next free id (ids are never reused).
+  int add_room(const RoomNode& room);
+  /// Adds the floor of `floor.level` with the next free id; throws std::invalid_argument when
+  /// that level has one.
+  int add_floor(const FloorNode& floor);
+  /// Id of the floor of `level`, -1 if none.
+  int floor_of_level(int level) const;
+  /// Throws std::invalid_argument for an unknown room or plane, a plane count that does not fit
+  /// the kind (4 or 2), or a plane named twice.
+  void add_room_edge(const RoomPlanesEdge& edge);
+  /// Joins a room to a floor (once: a repeated pair is ignored); throws std::invalid_argument
+  /// for an unknown floor or room.
+  void add_floor_room_edge(const FloorRoomEdge& edge);
+  /// Removes a room and every edge to it.
+  void remove_room(int id);
+  /// Removes a floor and its floor-room edges.
+  void remove_floor(int id);
+  /// Removes room `drop`, re-pointing its edges at `keep` (a floor edge `keep` already has is
+  /// not repeated).
+  void merge_rooms(int keep, int drop);
 
   std::vector<KeyframeNode>& keyframes() { return keyframes_; }
   const std::vector<KeyframeNode>& keyframes() const { return keyframes_; }
@@ -60,6 +118,12 @@ class SituationalGraph {
   const std::vector<BetweenEdge>& odometry_edges() const { return odometry_; }
   const std::vector<BetweenEdge>& loop_edges() const { return loops_; }
   const std::vector<PlaneEdge>& plane_edges() const { return plane_edges_; }
+  std::map<int, RoomNode>& rooms() { return rooms_; }
+  const std::map<int, RoomNode>& rooms() const { return rooms_; }
+  std::map<int, FloorNode>& floors() { return floors_; }
+  const std::map<int, FloorNode>& floors() const { return floors_; }
+  const std::vector<RoomPlanesEdge>& room_edges() const { return room_edges_; }
+  const std::vector<FloorRoomEdge>& floor_room_edges() const { return floor_room_edges_; }
 
  private:
   std::vector<KeyframeNode> keyframes_;
@@ -68,6 +132,11 @@ class SituationalGraph {
   std::vector<BetweenEdge> odometry_;
   std::vector<BetweenEdge> loops_;
   std::vector<PlaneEdge> plane_edges_;
+  std::map<int, RoomNode> rooms_;
+  std::map<int, FloorNode> floors_;
+  int next_room_id_ = 0, next_floor_id_ = 0;
+  std::vector<RoomPlanesEdge> room_edges_;
+  std::vector<FloorRoomEdge> floor_room_edges_;
 };
 
 }  // namespace tsgraphs::graph

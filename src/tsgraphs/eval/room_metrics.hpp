@@ -1,0 +1,96 @@
+#pragma once
+/// Room figures of docs/metrics.md: the lines of rooms_events.jsonl ("Room extraction events"),
+/// the consistency of the rooms extracted on two traversals ("Consistency across two traversals",
+/// the paper's Table 1) and detected rooms against rooms_gt.json ("Against ground truth").
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tsgraphs/core/rect.hpp"
+#include "tsgraphs/io/sequence_folder.hpp"
+
+namespace tsgraphs::eval {
+
+/// Two footprints pair as one room only with at least this Dice score (metrics.md).
+constexpr double kPairMinDice = 0.5;
+/// A detection matches a ground-truth room only with at least this IoU (metrics.md).
+constexpr double kMatchMinIou = 0.5;
+/// Under- and over-segmentation count an overlap of at least this fraction of the
+/// ground-truth room's area (metrics.md).
+constexpr double kSegmentMinCover = 0.25;
+
+/// One line of rooms_events.jsonl: one room extraction.
+struct RoomEvent {
+  double t = 0.0;            ///< time of the extraction, s
+  int lap = 1;               ///< traversal it happened in, from 1
+  int room_id = -1;          ///< the room node it created or was associated with
+  bool is_new = true;        ///< key "new": false for a re-detection of an existing room node
+  int level = 0;             ///< index of the level
+  Vec2 center = Vec2::Zero();
+  OrientedRect rect;         ///< footprint in the map frame at the time of extraction
+  std::vector<int> walls;    ///< ids of the wall planes that bound it
+  std::string kind = "room"; ///< "room" or "corridor"
+};
+
+/// The event as one line of JSON (keys as in metrics.md, in its order), without the newline.
+/// Numbers round-trip exactly through read_room_events.
+std::string format_room_event(const RoomEvent& event);
+
+/// Every event of a rooms_events.jsonl file, in file order; blank lines are skipped. Throws
+/// InputError naming the file and line for a missing file or a malformed line.
+std::vector<RoomEvent> read_room_events(const std::string& path);
+
+/// A room footprint with the name of its level (the caller maps level indices to names).
+struct DetectedRoom {
+  OrientedRect rect;
+  std::string level;
+};
+
+/// A pair of footprints taken as the same room.
+struct RoomPair {
+  std::size_t a = 0, b = 0;  ///< indices into the first and second list
+  double dice = 0.0;
+  double center_distance = 0.0;  ///< m
+};
+
+/// The Table 1 figures; dcs and d_center are empty when nothing pairs.
+struct Consistency {
+  int N1st = 0, N2nd = 0, N_re = 0;
+  double f_re = 0.0;                ///< N_re / N1st, 0 when N1st = 0
+  std::optional<double> dcs;        ///< mean Dice over the pairs
+  std::optional<double> d_center;   ///< mean distance between paired centres, m
+  std::vector<RoomPair> pairs;      ///< in the order they were taken (highest Dice first)
+};
+
+/// Pairs rooms of `first` with rooms of `second` one-to-one, greedily by the highest Dice score
+/// first (ties: lower index in `first`, then in `second`); a pair needs Dice >= kPairMinDice and
+/// the same level. N1st = |first|, N2nd = |second|. Also compares two runs (`eval --against`).
+Consistency consistency_between(const std::vector<DetectedRoom>& first, const std::vector<DetectedRoom>& second);
+
+/// consistency_between the footprints of every lap-1 event and of every lap-2 event (new or
+/// associated); events of later laps are not used.
+Consistency consistency(const std::vector<RoomEvent>& events);
+
+/// Detected rooms against the ground-truth rooms; figures that cannot be computed are empty.
+struct RoomsVsTruth {
+  std::optional<double> precision;  ///< matched / detected; empty without detections
+  std::optional<double> recall;     ///< matched / ground-truth rooms; empty without them
+  std::optional<double> f1;         ///< empty unless both precision and recall exist
+  std::optional<double> mean_iou;   ///< over the matched pairs; empty without a match
+  int n_matched = 0;                ///< pairs with IoU >= kMatchMinIou
+  int under_segmented = 0;          ///< detections covering >= kSegmentMinCover of two or more truth rooms
+  int over_segmented = 0;           ///< truth rooms covered >= kSegmentMinCover by two or more detections
+  int n_rooms_final = 0;            ///< detections
+};
+
+/// Area shared by a footprint and a (possibly non-convex) simple polygon.
+double intersection_area(const OrientedRect& rect, const Polygon2& polygon);
+/// Intersection over union of a footprint and a simple polygon; 0 when both are empty.
+double iou(const OrientedRect& rect, const Polygon2& polygon);
+
+/// Matches detections one-to-one to ground-truth rooms of the same level (level name), greedily
+/// by the highest IoU first (ties: lower detection index, then lower truth index), keeping pairs
+/// with IoU >= kMatchMinIou, and counts under- and over-segmentation (metrics.md).
+RoomsVsTruth rooms_vs_truth(const std::vector<DetectedRoom>& detected, const std::vector<io::RoomTruth>& truth);
+
+}  // namespace tsgraphs::eval

@@ -1,0 +1,37 @@
+#include "tsgraphs/freespace/obstacle_points.hpp"
+
+#include "tsgraphs/freespace/planar_index.hpp"
+
+namespace tsgraphs::freespace {
+
+std::vector<Eigen::Vector3d> select_obstacles(const std::vector<Eigen::Vector3d>& points, const GroundHeight& ground_height,
+                                              const TraversableFreeSpaceConfig& config) {
+  std::vector<Eigen::Vector3d> out;
+  for (const auto& p : points) {
+    if (!p.allFinite()) continue;
+    const std::optional<double> ground = ground_height(p);
+    if (!ground) continue;
+    const double h = p.z() - *ground;
+    if (h > config.obstacle_min_height && h <= config.obstacle_max_height) out.push_back(p);
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector3d> select_obstacles(const std::vector<Eigen::Vector3d>& points,
+                                              const std::vector<Eigen::Vector3d>& nodes,
+                                              const TraversableFreeSpaceConfig& config) {
+  const PlanarIndex index(nodes);
+  std::vector<int> near;
+  const GroundHeight highest_node_below = [&](const Eigen::Vector3d& p) -> std::optional<double> {
+    index.within(p, config.ground_search_radius, near);
+    std::optional<double> ground;
+    for (const int i : near) {
+      const double z = nodes[static_cast<std::size_t>(i)].z();
+      if (z <= p.z() && (!ground || z > *ground)) ground = z;
+    }
+    return ground;
+  };
+  return select_obstacles(points, highest_node_below, config);
+}
+
+}  // namespace tsgraphs::freespace

@@ -1,0 +1,73 @@
+#pragma once
+/// The map of rooms: a new extraction that matches a mapped room of the same level (Dice of the
+/// footprints >= min_dice, or centres within room_dist_threshold) is a re-detection of it, not a
+/// new room; mapped rooms that have come to match each other are duplicates and are merged.
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "tsgraphs/core/rect.hpp"
+#include "tsgraphs/rooms/room_extraction.hpp"
+
+namespace tsgraphs::rooms {
+
+struct RoomAssociationConfig {
+  double min_dice = 0.5;             ///< footprints with at least this Dice score are one room
+  double room_dist_threshold = 1.0;  ///< ...or centres within this distance (m)
+  bool update_rect = false;          ///< a re-detection replaces the mapped footprint (else keeps the first)
+
+  template <class V>
+  void visit(V& v) {
+    v("min_dice", min_dice);
+    v("room_dist_threshold", room_dist_threshold);
+    v("update_rect", update_rect);
+  }
+};
+
+struct MappedRoom {
+  int id = -1;
+  OrientedRect rect;
+  int level = 0;
+  RoomKind kind = RoomKind::room;
+  std::vector<int> wall_ids;
+  int extraction_count = 0;  ///< extractions associated with it, the first one included
+};
+
+struct RoomAssociation {
+  int id = -1;
+  bool is_new = false;  ///< false: a re-detection of mapped room `id`
+};
+
+class RoomMap {
+ public:
+  explicit RoomMap(RoomAssociationConfig config = {});
+
+  /// Id of the mapped room of `level` the footprint matches (the highest Dice; on a tie the
+  /// nearer centre, then the lower id), or -1.
+  int match(const OrientedRect& rect, int level) const;
+  /// Associates an extraction with its mapped room (its count goes up; its footprint is replaced
+  /// only with update_rect) or adds it as a new room with the next id.
+  RoomAssociation add_extraction(const ExtractedRoom& room, int level);
+  /// Pairs (keep, drop) of mapped rooms of one level that match each other; keep is the one with
+  /// more extractions (the lower id on a tie). Rooms linked by a chain of matches form one group
+  /// with one keep, so every pair can be merged in turn; sorted by (keep, drop).
+  std::vector<std::pair<int, int>> find_duplicates() const;
+  /// Adds drop's extraction count and wall ids to keep and removes drop.
+  void merge(int keep, int drop);
+  /// Moves mapped room `id` (after optimisation the back-end moves the room nodes).
+  void set_rect(int id, const OrientedRect& rect);
+  /// find_duplicates() then merge() of every pair; returns the pairs merged.
+  std::vector<std::pair<int, int>> merge_duplicates();
+
+  const std::map<int, MappedRoom>& rooms() const { return rooms_; }
+  const RoomAssociationConfig& config() const { return config_; }
+
+ private:
+  bool matches(const OrientedRect& a, const OrientedRect& b) const;
+
+  RoomAssociationConfig config_;
+  std::map<int, MappedRoom> rooms_;
+  int next_id_ = 0;
+};
+
+}  // namespace tsgraphs::rooms

@@ -1,0 +1,82 @@
+#pragma once
+/// The flush rule (TS-graphs, DESIGN step 7): lower-layer data are accumulated while the aisle
+/// the robot is in keeps its width and direction; when the width changes by more than a ratio,
+/// the aisle turns by more than an angle, or the robot passes a doorway, the accumulated
+/// segment is extracted as one room and the accumulator is flushed.
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "tsgraphs/core/polygon.hpp"
+
+namespace tsgraphs::rooms {
+
+struct AisleMeasureConfig {
+  double neighbourhood_radius = 3.0;  ///< cluster points within this of the robot give the aisle direction (m)
+  double min_anisotropy = 1.5;        ///< principal std ratio below this: no defined direction (an open room)
+  double slice_half_width = 0.3;      ///< cross-section: cluster points within this of the line through the robot (m)
+  double max_gap = 0.5;               ///< the cross-section ends at a gap wider than this between points (m)
+  int min_points = 5;                 ///< fewer neighbourhood points: no measurement
+
+  template <class V>
+  void visit(V& v) {
+    v("neighbourhood_radius", neighbourhood_radius);
+    v("min_anisotropy", min_anisotropy);
+    v("slice_half_width", slice_half_width);
+    v("max_gap", max_gap);
+    v("min_points", min_points);
+  }
+};
+
+/// The aisle at the robot: its width and (undirected) direction.
+struct AisleMeasurement {
+  bool valid = false;            ///< false when too few cluster points are near the robot
+  double width = 0.0;            ///< cross-section of the cluster through the robot, perpendicular to `direction` (m)
+  Vec2 direction = Vec2::UnitX();///< unit principal axis of the cluster near the robot, map x-y
+  bool direction_defined = false;///< false when the cluster near the robot has no dominant axis
+};
+
+/// Measures the aisle from the free-space cluster (map frame) and the robot's position. Without
+/// a dominant axis the width is still measured across the neighbourhood's first principal axis,
+/// and `direction_defined` is false so that turns are not judged from it.
+AisleMeasurement measure_aisle(const std::vector<Eigen::Vector3d>& cluster, const Eigen::Vector3d& robot,
+                               const AisleMeasureConfig& config = {});
+
+struct RoomFlushConfig {
+  double width_change_ratio = 0.3;    ///< flush when |width - median| > ratio * median of the segment
+  double direction_change_deg = 30.0; ///< flush when the aisle turns by more than this from the segment's axis
+
+  template <class V>
+  void visit(V& v) {
+    v("width_change_ratio", width_change_ratio);
+    v("direction_change_deg", direction_change_deg);
+  }
+};
+
+enum class FlushReason { none, width_change, direction_change, doorway };
+
+class RoomFlushTrigger {
+ public:
+  explicit RoomFlushTrigger(RoomFlushConfig config = {});
+
+  /// Feeds one keyframe's aisle. Returns the reason to flush the segment accumulated so far
+  /// (this keyframe not included) or FlushReason::none; after a flush this keyframe starts the
+  /// next segment. An invalid measurement (no cluster near the robot) changes nothing.
+  FlushReason update(const AisleMeasurement& aisle, bool passed_doorway);
+  /// Forgets the accumulated segment.
+  void reset();
+
+  int segment_keyframes() const { return static_cast<int>(widths_.size()); }
+  /// Median width of the accumulated segment; 0 when it is empty.
+  double segment_median_width() const;
+
+ private:
+  void start_segment(const AisleMeasurement& aisle);
+  void accumulate(const AisleMeasurement& aisle);
+
+  RoomFlushConfig config_;
+  std::vector<double> widths_;
+  Vec2 axis_sum_ = Vec2::Zero();  ///< sign-aligned sum of the defined directions of the segment
+};
+
+}  // namespace tsgraphs::rooms

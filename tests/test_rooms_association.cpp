@@ -1,0 +1,89 @@
+// Room association: re-detections by Dice or centre distance, new rooms, duplicate merging.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "tsgraphs/rooms/room_association.hpp"
+
+namespace tsgraphs::rooms {
+namespace {
+
+ExtractedRoom room(Vec2 center, Vec2 size, std::vector<int> walls = {}) {
+  ExtractedRoom r;
+  r.rect.center = center;
+  r.rect.size = size;
+  r.wall_ids = std::move(walls);
+  return r;
+}
+
+TEST(RoomAssociation, DiceOfPointEightAssociates) {
+  RoomMap map;  // min_dice 0.5, room_dist_threshold 1.0
+  const ExtractedRoom first = room({0, 0}, {10, 4}, {0, 1, 2, 3});
+  EXPECT_EQ(map.add_extraction(first, 0).id, 0);
+  const ExtractedRoom again = room({2, 0}, {10, 4});  // centre 2 m away: only the Dice can match
+  ASSERT_NEAR(dice(first.rect, again.rect), 0.8, 1e-9);
+  const RoomAssociation a = map.add_extraction(again, 0);
+  EXPECT_FALSE(a.is_new);
+  EXPECT_EQ(a.id, 0);
+  ASSERT_EQ(map.rooms().size(), 1u);
+  const MappedRoom& mapped = map.rooms().at(0);
+  EXPECT_EQ(mapped.extraction_count, 2);
+  EXPECT_EQ(mapped.rect.center, Vec2(0, 0));  // footprint kept without update_rect
+  EXPECT_EQ(mapped.wall_ids, (std::vector<int>{0, 1, 2, 3}));
+}
+
+TEST(RoomAssociation, DiceOfPointTwoThreeMetresAwayIsANewRoom) {
+  RoomMap map;
+  const ExtractedRoom first = room({0, 0}, {5, 4});
+  map.add_extraction(first, 0);
+  const ExtractedRoom other = room({3, 0}, {2.5, 4});
+  ASSERT_NEAR(dice(first.rect, other.rect), 0.2, 1e-9);
+  const RoomAssociation a = map.add_extraction(other, 0);
+  EXPECT_TRUE(a.is_new);
+  EXPECT_EQ(a.id, 1);
+  EXPECT_EQ(map.rooms().size(), 2u);
+}
+
+TEST(RoomAssociation, CentreWithinThresholdAssociatesAndLevelsAreSeparate) {
+  RoomMap map;
+  map.add_extraction(room({0, 0}, {5, 4}), 0);
+  // A much smaller footprint (Dice 0.33) whose centre is 0.8 m away: the centre rule matches.
+  EXPECT_FALSE(map.add_extraction(room({0.8, 0}, {2, 2}), 0).is_new);
+  // The same footprint one level up is another room.
+  EXPECT_TRUE(map.add_extraction(room({0, 0}, {5, 4}), 1).is_new);
+  EXPECT_EQ(map.match(room({0, 0}, {5, 4}).rect, 1), 1);
+}
+
+TEST(RoomAssociation, UpdateRectReplacesTheFootprint) {
+  RoomAssociationConfig config;
+  config.update_rect = true;
+  RoomMap map(config);
+  map.add_extraction(room({0, 0}, {5, 4}), 0);
+  map.add_extraction(room({0.3, 0.1}, {5.2, 4}), 0);
+  EXPECT_EQ(map.rooms().at(0).rect.center, Vec2(0.3, 0.1));
+  EXPECT_EQ(map.rooms().at(0).extraction_count, 2);
+}
+
+TEST(RoomAssociation, DuplicatesMergeIntoTheMostExtracted) {
+  RoomMap map;
+  map.add_extraction(room({0, 0}, {5, 4}, {0, 1}), 0);    // id 0
+  map.add_extraction(room({10, 0}, {5, 4}, {2, 3}), 0);   // id 1
+  map.add_extraction(room({10.2, 0}, {5, 4}), 0);         // re-detects 1
+  map.add_extraction(room({20, 0}, {5, 4}, {4}), 0);      // id 2
+  map.add_extraction(room({0, 0}, {5, 4}), 1);            // id 3, another level
+  EXPECT_TRUE(map.find_duplicates().empty());
+  // Optimisation moves rooms 0 and 2 onto room 1: a chain of three footprints of one room.
+  map.set_rect(0, room({9.5, 0}, {5, 4}).rect);
+  map.set_rect(2, room({10.6, 0}, {5, 4}).rect);
+  const auto pairs = map.merge_duplicates();
+  EXPECT_EQ(pairs, (std::vector<std::pair<int, int>>{{1, 0}, {1, 2}}));
+  ASSERT_EQ(map.rooms().size(), 2u);
+  const MappedRoom& kept = map.rooms().at(1);
+  EXPECT_EQ(kept.extraction_count, 4);
+  EXPECT_EQ(kept.wall_ids, (std::vector<int>{2, 3, 0, 1, 4}));
+  EXPECT_EQ(map.rooms().count(3), 1u);  // the other level's room is untouched
+  EXPECT_TRUE(map.find_duplicates().empty());
+}
+
+}  // namespace
+}  // namespace tsgraphs::rooms

@@ -1,0 +1,170 @@
+// Room extraction on constructed rooms: four walls, a corridor, a railing side, a bookshelf.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "tsgraphs/rooms/room_extraction.hpp"
+
+namespace tsgraphs::rooms {
+namespace {
+
+constexpr double kStep = 0.1;  // spacing of the constructed free-space nodes (m)
+
+WallCandidate wall(int id, Vec2 point, Vec2 normal, Vec2 a, Vec2 b) {
+  WallCandidate w;
+  w.id = id;
+  w.plane = Plane::from_point_normal(Eigen::Vector3d(point.x(), point.y(), 0.0),
+                                     Eigen::Vector3d(normal.x(), normal.y(), 0.0));
+  w.end_a = a;
+  w.end_b = b;
+  return w;
+}
+
+/// Free-space nodes on a grid over [x0, x1] x [y0, y1], at 0.3 m above the floor.
+std::vector<Eigen::Vector3d> grid(double x0, double x1, double y0, double y1) {
+  std::vector<Eigen::Vector3d> out;
+  for (int i = 0; x0 + i * kStep <= x1 + 1e-9; ++i) {
+    for (int j = 0; y0 + j * kStep <= y1 + 1e-9; ++j) out.emplace_back(x0 + i * kStep, y0 + j * kStep, 0.3);
+  }
+  return out;
+}
+
+/// The four walls of the room [0, 5] x [0, 4], ids 0..3, normals into the room.
+std::vector<WallCandidate> room_walls() {
+  return {wall(0, {0, 0}, {1, 0}, {0, 0}, {0, 4}), wall(1, {5, 0}, {-1, 0}, {5, 0}, {5, 4}),
+          wall(2, {0, 0}, {0, 1}, {0, 0}, {5, 0}), wall(3, {0, 4}, {0, -1}, {0, 4}, {5, 4})};
+}
+
+struct Bounds {
+  double x0, x1, y0, y1;
+};
+
+Bounds bounds(const OrientedRect& r) {
+  Bounds b{1e9, -1e9, 1e9, -1e9};
+  for (const Vec2& c : r.corners()) {
+    b.x0 = std::min(b.x0, c.x());
+    b.x1 = std::max(b.x1, c.x());
+    b.y0 = std::min(b.y0, c.y());
+    b.y1 = std::max(b.y1, c.y());
+  }
+  return b;
+}
+
+std::vector<int> sorted(std::vector<int> v) {
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+TEST(RoomExtraction, FourWallRoomIsBoundedByItsWalls) {
+  std::vector<WallCandidate> walls = room_walls();
+  walls.push_back(wall(4, {8, 0}, {-1, 0}, {8, 0}, {8, 4}));  // next room's wall, behind wall 1
+  walls.push_back(wall(5, {2, 0}, {1, 0}, {2, -3}, {2, 6}));  // a plane the cluster crosses
+  const auto room = extract_room(grid(0.5, 4.5, 0.5, 3.5), walls);
+  ASSERT_TRUE(room.has_value());
+  EXPECT_EQ(room->kind, RoomKind::room);
+  EXPECT_EQ(sorted(room->wall_ids), (std::vector<int>{0, 1, 2, 3}));
+  const Bounds b = bounds(room->rect);
+  EXPECT_NEAR(b.x0, 0.0, 0.02);
+  EXPECT_NEAR(b.x1, 5.0, 0.02);
+  EXPECT_NEAR(b.y0, 0.0, 0.02);
+  EXPECT_NEAR(b.y1, 4.0, 0.02);
+}
+
+TEST(RoomExtraction, RotatedRoomMatchesItsWalls) {
+  const double yaw = 30.0 * M_PI / 180.0;
+  const Eigen::Rotation2Dd R(yaw);
+  const Vec2 t(3.0, -2.0);
+  std::vector<WallCandidate> walls;
+  for (const WallCandidate& w : room_walls()) {
+    const Vec2 n = R * w.plane.n.head<2>();
+    walls.push_back(wall(w.id, R * w.end_a + t, n, R * w.end_a + t, R * w.end_b + t));
+  }
+  std::vector<Eigen::Vector3d> cluster = grid(0.5, 4.5, 0.5, 3.5);
+  for (Eigen::Vector3d& p : cluster) p.head<2>() = R * p.head<2>() + t;
+  const auto room = extract_room(cluster, walls);
+  ASSERT_TRUE(room.has_value());
+  EXPECT_EQ(room->kind, RoomKind::room);
+  OrientedRect truth;
+  truth.center = R * Vec2(2.5, 2.0) + t;
+  truth.size = Vec2(5.0, 4.0);
+  truth.yaw = yaw;
+  EXPECT_LT((room->rect.center - truth.center).norm(), 0.02);
+  EXPECT_GT(dice(room->rect, truth), 0.99);
+}
+
+TEST(RoomExtraction, CorridorOpenEndsComeFromTheCluster) {
+  const std::vector<WallCandidate> walls = {wall(0, {0, 0}, {0, 1}, {0, 0}, {10, 0}),
+                                            wall(1, {0, 2}, {0, -1}, {0, 2}, {10, 2})};
+  const auto room = extract_room(grid(2.0, 8.0, 0.4, 1.6), walls);
+  ASSERT_TRUE(room.has_value());
+  EXPECT_EQ(room->kind, RoomKind::corridor);
+  EXPECT_EQ(sorted(room->wall_ids), (std::vector<int>{0, 1}));
+  EXPECT_TRUE(room->end_wall_ids.empty());
+  const Bounds b = bounds(room->rect);
+  EXPECT_NEAR(b.y1 - b.y0, 2.0, 0.02);  // width from the planes
+  EXPECT_NEAR(b.x1 - b.x0, 6.0, 0.1);   // length from the cluster, not the 10 m walls
+  EXPECT_NEAR(room->rect.center.x(), 5.0, 0.05);
+}
+
+TEST(RoomExtraction, RailingSideIsBoundedByTheCluster) {
+  // Room [0, 5] x [0, 4] whose side x = 5 is a railing (no plane); beyond it a void and the
+  // atrium's far wall at x = 12, which must not be taken as the room's fourth wall.
+  std::vector<WallCandidate> walls = room_walls();
+  walls.erase(walls.begin() + 1);
+  walls.push_back(wall(6, {12, 0}, {-1, 0}, {12, -1}, {12, 5}));
+  const auto room = extract_room(grid(0.5, 4.6, 0.5, 3.5), walls);
+  ASSERT_TRUE(room.has_value());
+  EXPECT_EQ(room->kind, RoomKind::corridor);
+  EXPECT_EQ(sorted(room->wall_ids), (std::vector<int>{2, 3}));
+  EXPECT_EQ(room->end_wall_ids, (std::vector<int>{0}));
+  const Bounds b = bounds(room->rect);
+  EXPECT_NEAR(b.x0, 0.0, 0.02);   // the wall
+  EXPECT_NEAR(b.x1, 4.6, 0.05);   // the cluster's edge at the railing
+  EXPECT_NEAR(b.y0, 0.0, 0.02);
+  EXPECT_NEAR(b.y1, 4.0, 0.02);
+}
+
+TEST(RoomExtraction, SpaceBetweenWallAndBookshelfIsItsOwnRoom) {
+  std::vector<WallCandidate> walls = room_walls();
+  walls.push_back(wall(4, {1.5, 0}, {-1, 0}, {1.5, 0.5}, {1.5, 3.5}));  // shelf front, facing wall 0
+  const auto room = extract_room(grid(0.4, 1.1, 0.4, 3.6), walls);
+  ASSERT_TRUE(room.has_value());
+  EXPECT_EQ(room->kind, RoomKind::room);
+  EXPECT_EQ(sorted(room->wall_ids), (std::vector<int>{0, 2, 3, 4}));
+  const Bounds b = bounds(room->rect);
+  EXPECT_NEAR(b.x0, 0.0, 0.02);
+  EXPECT_NEAR(b.x1, 1.5, 0.02);
+  EXPECT_NEAR(b.y0, 0.0, 0.02);
+  EXPECT_NEAR(b.y1, 4.0, 0.02);
+}
+
+TEST(RoomExtraction, ShelfTheClusterGoesAroundDoesNotCutTheRoom) {
+  std::vector<WallCandidate> walls = room_walls();
+  walls.push_back(wall(4, {1.5, 0}, {-1, 0}, {1.5, 1.0}, {1.5, 3.0}));
+  std::vector<Eigen::Vector3d> cluster;
+  for (const Eigen::Vector3d& p : grid(0.4, 4.6, 0.4, 3.6)) {
+    const bool at_shelf = p.x() > 1.2 && p.x() < 2.1 && p.y() > 0.7 && p.y() < 3.3;
+    if (!at_shelf) cluster.push_back(p);
+  }
+  const auto room = extract_room(cluster, walls);
+  ASSERT_TRUE(room.has_value());
+  EXPECT_EQ(sorted(room->wall_ids), (std::vector<int>{0, 1, 2, 3}));
+  const Bounds b = bounds(room->rect);
+  EXPECT_NEAR(b.x1 - b.x0, 5.0, 0.02);
+  EXPECT_NEAR(b.y1 - b.y0, 4.0, 0.02);
+}
+
+TEST(RoomExtraction, NothingWithoutAFacingPair) {
+  const std::vector<Eigen::Vector3d> cluster = grid(0.5, 4.5, 0.5, 3.5);
+  EXPECT_FALSE(extract_room(cluster, {room_walls()[0], room_walls()[2]}).has_value());
+  EXPECT_FALSE(extract_room({}, room_walls()).has_value());
+  // A pair whose segments lie beside the cluster, not along it, does not bound it.
+  const std::vector<WallCandidate> beside = {wall(0, {0, 0}, {1, 0}, {0, 10}, {0, 14}),
+                                             wall(1, {5, 0}, {-1, 0}, {5, 10}, {5, 14})};
+  EXPECT_FALSE(extract_room(cluster, beside).has_value());
+}
+
+}  // namespace
+}  // namespace tsgraphs::rooms
