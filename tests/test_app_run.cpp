@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "test_support.hpp"
+#include "tsgraphs/eval/room_metrics.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
 #include "tsgraphs/pipeline/pipeline.hpp"
@@ -108,7 +109,10 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
   ASSERT_TRUE(m["ground"]["precision"].is_number());
   EXPECT_GE(m["ground"]["precision"].get<double>(), 0.9);
   EXPECT_GE(m["ground"]["recall"].get<double>(), 0.9);
-  EXPECT_TRUE(m["consistency"]["f_re"].is_null());  // rooms come with a later layer
+  EXPECT_TRUE(m["consistency"]["N1st"].is_number());
+  const auto events = eval::read_room_events((out / "rooms_events.jsonl").string());
+  EXPECT_GE(events.size(), 1u);
+  for (const auto& e : events) EXPECT_GT(e.rect.size.x() * e.rect.size.y(), 1.0);
   EXPECT_TRUE(m["speed"]["rtf"].is_number());
 
   // The same input and config give the same outputs, byte for byte (timings aside).

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "tsgraphs/core/polygon.hpp"
+#include "tsgraphs/eval/room_metrics.hpp"
 #include "tsgraphs/eval/trajectory_metrics.hpp"
 #include "tsgraphs/eval/wall_metrics.hpp"
 #include "tsgraphs/pipeline/pipeline.hpp"
@@ -22,6 +23,8 @@ struct Outcome {
   double ate_rmse = 0, odom_ate_rmse = 0, ate_loop = 0;
   std::size_t n_loops = 0, n_loops_correct = 0, n_keyframes = 0;
   double ground_precision = 0, ground_recall = 0;
+  eval::Consistency rooms_consistency;
+  eval::RoomsVsTruth rooms_truth;
   std::size_t n_ground_nodes = 0, n_nodes_in_voids = 0;
   eval::WallErrors walls;
 };
@@ -76,6 +79,38 @@ Outcome run_scene(const sim::Scene& scene, std::uint64_t seed) {
   const Pose3 T_world_map = sim.true_poses()[kfs[0].scan_index] * kfs[0].pose.inverse();
   o.walls = eval::wall_errors(faces, hits, mapped, T_world_map, {});
 
+  // Rooms: the two-lap consistency of the extraction events and the final rooms vs the truth.
+  std::vector<double> lap_starts = sim.trajectory().lap_starts();
+  for (double& t : lap_starts) t /= sim.time_scale();
+  std::vector<double> stamps;
+  for (const pipeline::ScanRecord& s : slam.scans()) stamps.push_back(s.stamp);
+  const std::vector<int> laps = pipeline::laps_of(stamps, est, lap_starts);
+  std::vector<eval::RoomEvent> events;
+  for (const pipeline::RoomEventRecord& e : slam.room_events()) {
+    eval::RoomEvent ev;
+    ev.t = e.stamp;
+    ev.lap = laps[kfs[e.keyframe].scan_index];
+    ev.room_id = e.room_id;
+    ev.is_new = e.is_new;
+    ev.level = e.level;
+    ev.rect = e.rect;
+    ev.center = e.rect.center;
+    events.push_back(ev);
+  }
+  o.rooms_consistency = eval::consistency(events);
+  std::vector<io::RoomTruth> truth;
+  for (const sim::Room& r : scene.rooms) truth.push_back({r.name, scene.levels[r.level].name, r.polygon, scene.levels[r.level].elevation});
+  std::vector<eval::DetectedRoom> detected;
+  for (const auto& [id, r] : slam.room_map().rooms()) {
+    const double floor_z = slam.room_layer().levels().at(r.level);
+    std::string level;
+    double best = 1e9;
+    for (const sim::Level& l : scene.levels)
+      if (std::abs(l.elevation - floor_z) < best) best = std::abs(l.elevation - floor_z), level = l.name;
+    detected.push_back({r.rect, level});
+  }
+  o.rooms_truth = eval::rooms_vs_truth(detected, truth);
+
   // Ground: every scan scored against its labels; the global node map against the voids.
   long tp = 0, fp = 0, fn = 0;
   for (const pipeline::ScanRecord& s : slam.scans()) {
@@ -111,6 +146,12 @@ void expect_must_show(const Outcome& o) {
   EXPECT_GE(o.ground_recall, 0.95);
   EXPECT_GT(o.n_ground_nodes, 100u);
   EXPECT_EQ(o.n_nodes_in_voids, 0u);
+  std::printf("rooms: N1st %d N2nd %d N_re %d f_re %.2f DCS %.2f d_center %.2f; vs truth P %.2f R %.2f F1 %.2f, "
+              "under %d over %d, %d final\n",
+              o.rooms_consistency.N1st, o.rooms_consistency.N2nd, o.rooms_consistency.N_re, o.rooms_consistency.f_re,
+              o.rooms_consistency.dcs.value_or(0), o.rooms_consistency.d_center.value_or(0),
+              o.rooms_truth.precision.value_or(0), o.rooms_truth.recall.value_or(0), o.rooms_truth.f1.value_or(0),
+              o.rooms_truth.under_segmented, o.rooms_truth.over_segmented, o.rooms_truth.n_rooms_final);
   std::printf("ground precision %.4f recall %.4f, %zu global traversable nodes, %zu in voids\n", o.ground_precision,
               o.ground_recall, o.n_ground_nodes, o.n_nodes_in_voids);
   std::printf("ATE_rmse %.3f (odometry %.3f), ATE_loop %.3f, %zu keyframes, loops %zu/%zu correct, "
@@ -122,9 +163,23 @@ void expect_must_show(const Outcome& o) {
 
 }  // namespace
 
-TEST(EndToEnd, OfficeTwoLaps) { expect_must_show(run_scene(builtin("office"), 1)); }
+// The room layer is being tuned (issue 5 asks for f_re >= 0.95, DCS >= 0.85, F1 >= 0.9); these
+// floors guard what it reaches today (office F1 0.77, atrium f_re 0.88, F1 0.50) from regressing.
+TEST(EndToEnd, OfficeTwoLaps) {
+  const Outcome o = run_scene(builtin("office"), 1);
+  expect_must_show(o);
+  EXPECT_GE(o.rooms_truth.f1.value_or(0), 0.7);
+  EXPECT_GE(o.rooms_consistency.dcs.value_or(0), 0.85);
+}
 
-TEST(EndToEnd, AtriumTwoLaps) { expect_must_show(run_scene(builtin("atrium"), 1)); }
+TEST(EndToEnd, AtriumTwoLaps) {
+  const Outcome o = run_scene(builtin("atrium"), 1);
+  expect_must_show(o);
+  EXPECT_GE(o.rooms_consistency.f_re, 0.8);
+  EXPECT_GE(o.rooms_consistency.dcs.value_or(0), 0.85);
+  EXPECT_GE(o.rooms_truth.f1.value_or(0), 0.45);
+  EXPECT_EQ(o.rooms_truth.under_segmented, 0);  // no room spans the void or crosses a railing
+}
 
 TEST(EndToEnd, StraightCorridorWithoutRevisitHasNoLoopClosure) {
   sim::Scene scene = sim::parse_scene(R"(

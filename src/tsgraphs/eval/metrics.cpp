@@ -78,6 +78,17 @@ std::string metrics_table(const Metrics& m) {
       cell(m.pgo.t_pgo_mean_s ? Figure(*m.pgo.t_pgo_mean_s * 1e3) : Figure{}, "%.1f") + " / " +
           cell(m.pgo.t_pgo_p95_s ? Figure(*m.pgo.t_pgo_p95_s * 1e3) : Figure{}, "%.1f"));
   row("variables / factors (last)", cell(m.pgo.n_variables, "%.0f") + " / " + cell(m.pgo.n_factors, "%.0f"));
+  out += "rooms\n";
+  row("N1st / N2nd / N_re", cell(m.consistency.N1st, "%.0f") + " / " + cell(m.consistency.N2nd, "%.0f") + " / " +
+                                 cell(m.consistency.N_re, "%.0f"));
+  row("f_re / DCS / d_center (m)", cell(m.consistency.f_re, "%.2f") + " / " + cell(m.consistency.dcs, "%.2f") +
+                                       " / " + cell(m.consistency.d_center, "%.2f"));
+  row("vs truth P / R / F1", cell(m.rooms_gt.precision, "%.2f") + " / " + cell(m.rooms_gt.recall, "%.2f") + " / " +
+                                 cell(m.rooms_gt.f1, "%.2f"));
+  row("mean IoU, under / over-seg.", cell(m.rooms_gt.mean_iou, "%.2f") + ", " +
+                                         cell(m.rooms_gt.under_segmented, "%.0f") + " / " +
+                                         cell(m.rooms_gt.over_segmented, "%.0f"));
+  row("final rooms", cell(m.rooms_gt.n_rooms_final, "%.0f"));
   out += "ground\n";
   row("precision / recall / F1",
       cell(m.ground.precision, "%.3f") + " / " + cell(m.ground.recall, "%.3f") + " / " + cell(m.ground.f1, "%.3f"));

@@ -4,11 +4,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <vector>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/eval/room_metrics.hpp"
 #include "tsgraphs/eval/trajectory_metrics.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
@@ -175,6 +177,36 @@ Metrics evaluate_run(const EvalOptions& options) {
   }
   m.loops.n_loops = static_cast<double>(loops.size());
 
+  // Rooms: the two-lap consistency from the events; the final rooms for the ground truth.
+  const std::string events_file = dir + "/rooms_events.jsonl";
+  if (fs::exists(events_file)) {
+    const Consistency c = consistency(read_room_events(events_file));
+    m.consistency.N1st = c.N1st;
+    m.consistency.N2nd = c.N2nd;
+    m.consistency.N_re = c.N_re;
+    m.consistency.f_re = c.f_re;
+    if (c.dcs) m.consistency.dcs = *c.dcs;
+    if (c.d_center) m.consistency.d_center = *c.d_center;
+  }
+  std::vector<std::pair<OrientedRect, int>> final_rooms;
+  std::vector<double> level_heights;
+  try {
+    if (graph.contains("levels")) level_heights = graph.at("levels").get<std::vector<double>>();
+    if (graph.contains("rooms")) {
+      for (const json& r : graph.at("rooms")) {
+        OrientedRect rect;
+        const auto c = r.at("rect").at("center").get<std::vector<double>>();
+        const auto s = r.at("rect").at("size").get<std::vector<double>>();
+        rect.center = Vec2(c.at(0), c.at(1));
+        rect.size = Vec2(s.at(0), s.at(1));
+        rect.yaw = r.at("rect").at("yaw").get<double>();
+        final_rooms.emplace_back(rect, r.at("level").get<int>());
+      }
+    }
+  } catch (const json::exception& e) {
+    throw input_error(graph_file, 0, std::string("malformed rooms: ") + e.what());
+  }
+
   if (options.seq_dir.empty()) return m;
   const io::SequenceReader seq(options.seq_dir);
   const io::SequenceInfo& si = seq.info();
@@ -182,6 +214,35 @@ Metrics evaluate_run(const EvalOptions& options) {
     throw input_error(dir + "/trajectory.txt", 0,
                       std::to_string(estimate.size()) + " poses but the sequence has " +
                           std::to_string(si.odometry.size()) + " scans: not a run of " + options.seq_dir);
+  if (si.has_rooms && !kf_pose.empty() && !si.groundtruth.empty()) {
+    // Run levels are floor heights in the map frame; name each after the nearest true level.
+    const Pose3 T = si.groundtruth[kf_scan.at(0)] * kf_pose[0].inverse();
+    std::vector<DetectedRoom> detected;
+    for (const auto& [rect, level] : final_rooms) {
+      DetectedRoom d;
+      const Eigen::Vector3d c = T * Eigen::Vector3d(rect.center.x(), rect.center.y(),
+                                                    level < static_cast<int>(level_heights.size()) ? level_heights[level] : 0.0);
+      d.rect = rect;
+      d.rect.center = c.head<2>();
+      d.rect.yaw = rect.yaw + std::atan2(T.linear()(1, 0), T.linear()(0, 0));
+      double best = std::numeric_limits<double>::infinity();
+      for (const io::RoomTruth& t : si.rooms) {
+        if (std::abs(t.elevation - c.z()) < best) {
+          best = std::abs(t.elevation - c.z());
+          d.level = t.level;
+        }
+      }
+      detected.push_back(d);
+    }
+    const RoomsVsTruth r = rooms_vs_truth(detected, si.rooms);
+    if (r.precision) m.rooms_gt.precision = *r.precision;
+    if (r.recall) m.rooms_gt.recall = *r.recall;
+    if (r.f1) m.rooms_gt.f1 = *r.f1;
+    if (r.mean_iou) m.rooms_gt.mean_iou = *r.mean_iou;
+    m.rooms_gt.under_segmented = r.under_segmented;
+    m.rooms_gt.over_segmented = r.over_segmented;
+    m.rooms_gt.n_rooms_final = r.n_rooms_final;
+  }
   if (si.groundtruth.empty()) return m;
   m.trajectory.ate_rmse = ate_rmse(estimate, si.groundtruth);
   m.trajectory.odom_ate_rmse = ate_rmse(si.odometry, si.groundtruth);

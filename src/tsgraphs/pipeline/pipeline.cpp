@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
+#include "tsgraphs/pipeline/run_outputs.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
 
 namespace tsgraphs::pipeline {
@@ -21,6 +23,8 @@ Pipeline::Pipeline(PipelineConfig config)
       selector_(config_.keyframes),
       mapper_(config_.plane_mapping),
       node_map_(config_.node_map),
+      rooms_(config_.room_layer, config_.free_space, config_.aisle, config_.room_flush, config_.room_extraction,
+             config_.room_association),
       optimizer_(config_.optimizer),
       loop_detector_(config_.loop_closure) {}
 
@@ -170,6 +174,10 @@ void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud,
   }
   record.walls_ms += ms_since(walls_start);
 
+  const auto rooms_start = std::chrono::steady_clock::now();
+  for (const RoomEventRecord& e : rooms_.update(room_input(id))) room_events_.push_back(e);
+  record.rooms_ms = ms_since(rooms_start);
+
   const auto loop_start = std::chrono::steady_clock::now();
   if (auto loop = loop_detector_.detect(graph_, id, [this](int k) -> const PointCloud& { return keyframe_clouds_[k]; }))
     graph_.add_loop_edge(*loop);
@@ -202,6 +210,44 @@ void Pipeline::optimize(bool full, const std::string& reason) {
 
 void Pipeline::finish() {
   if (graph_.keyframes().size() >= 2) optimize(true, "final");
+  if (!graph_.keyframes().empty()) {
+    for (const RoomEventRecord& e : rooms_.finish(room_input(static_cast<int>(graph_.keyframes().size()) - 1)))
+      room_events_.push_back(e);
+  }
+}
+
+RoomLayerInput Pipeline::room_input(int keyframe) const {
+  const graph::KeyframeNode& kf = graph_.keyframes()[keyframe];
+  RoomLayerInput in;
+  in.stamp = kf.stamp;
+  in.keyframe = keyframe;
+  in.pose = kf.pose;
+  in.sensor_height = config_.ground.sensor_height;
+  in.nodes = &node_map_;
+  // Obstacle candidates: the latest keyframes' clouds in the map, near the robot, thinned.
+  const double radius = config_.room_layer.free_space_radius + config_.free_space.lambda_th;
+  PointCloud near;
+  const int first = std::max(0, keyframe + 1 - config_.room_layer.obstacle_keyframes);
+  for (int k = first; k <= keyframe; ++k) {
+    const Eigen::Isometry3f T = graph_.keyframes()[k].pose.cast<float>();
+    for (const Eigen::Vector3f& p : keyframe_clouds_[k].points) {
+      const Eigen::Vector3f q = T * p;
+      if ((q.head<2>() - kf.pose.translation().head<2>().cast<float>()).norm() <= radius) near.points.push_back(q);
+    }
+  }
+  PrefilterConfig thin;
+  thin.min_range = 0.0;
+  thin.max_range = std::numeric_limits<double>::max();
+  thin.voxel_size = config_.room_layer.obstacle_voxel;
+  for (const Eigen::Vector3f& p : prefilter(near, thin).points) in.obstacle_candidates.push_back(p.cast<double>());
+  // Walls: the mapped vertical planes with their extents.
+  for (const auto& [id, lm] : mapper_.landmarks()) {
+    if (!lm.vertical || lm.points.empty()) continue;
+    const PlaneExtent e = plane_extent(graph_.planes().at(id).plane, lm.points);
+    if ((e.centroid.head<2>() - kf.pose.translation().head<2>()).norm() > radius + (e.b - e.a).norm()) continue;
+    in.walls.push_back({id, graph_.planes().at(id).plane, e.a, e.b});
+  }
+  return in;
 }
 
 std::vector<Pose3> Pipeline::trajectory() const {

@@ -28,6 +28,7 @@ struct ScanRecord {
   double prefilter_ms = 0.0;
   double ground_ms = 0.0;           ///< traversable ground of the scan (every scan)
   std::size_t num_ground_nodes = 0; ///< traversable nodes of the scan
+  double rooms_ms = 0.0;            ///< free space, flush rule and room extraction (keyframes)
   /// Ground points against the input's labels (1 floor, 2 ramp), over the points within the
   /// ground layer's range: true positives, false positives, false negatives; -1 without labels.
   long ground_tp = -1, ground_fp = -1, ground_fn = -1;
@@ -77,6 +78,10 @@ class Pipeline {
   const graph::SituationalGraph& graph() const { return graph_; }
   const walls::PlaneMapper& plane_map() const { return mapper_; }
   const ground::TraversableNodeMap& node_map() const { return node_map_; }
+  const rooms::RoomMap& room_map() const { return rooms_.room_map(); }
+  const RoomLayer& room_layer() const { return rooms_; }
+  /// Every room extraction so far, in time order.
+  const std::vector<RoomEventRecord>& room_events() const { return room_events_; }
   /// The ground of the newest scan (level frame of that scan), for callers that draw it.
   const ground::GroundScan& last_ground() const { return last_ground_; }
   const std::vector<ScanRecord>& scans() const { return scans_; }
@@ -89,6 +94,7 @@ class Pipeline {
 
  private:
   void add_keyframe(ScanRecord& record, PointCloud cloud, std::optional<std::vector<walls::PlaneObservation>> planes);
+  RoomLayerInput room_input(int keyframe) const;
   void score_ground(const PointCloud& scan, const ground::GroundScan& ground, ScanRecord* record) const;
   void optimize(bool full, const std::string& reason);
 
@@ -96,6 +102,8 @@ class Pipeline {
   KeyframeSelector selector_;
   walls::PlaneMapper mapper_;
   ground::TraversableNodeMap node_map_;
+  RoomLayer rooms_;
+  std::vector<RoomEventRecord> room_events_;
   ground::GroundScan last_ground_;
   graph::SituationalGraph graph_;
   graph::GraphOptimizer optimizer_;

@@ -9,6 +9,7 @@
 #include "tsgraphs/graph/loop_closure.hpp"
 #include "tsgraphs/pipeline/keyframe_selector.hpp"
 #include "tsgraphs/pipeline/prefilter.hpp"
+#include "tsgraphs/pipeline/room_layer.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
 #include "tsgraphs/walls/plane_mapper.hpp"
 
@@ -38,6 +39,12 @@ struct PipelineConfig {
   graph::GraphOptimizerConfig optimizer;
   graph::LoopClosureConfig loop_closure;
   ScheduleConfig schedule;
+  RoomLayerConfig room_layer;
+  freespace::TraversableFreeSpaceConfig free_space;
+  rooms::AisleMeasureConfig aisle;
+  rooms::RoomFlushConfig room_flush;
+  rooms::RoomExtractionConfig room_extraction;
+  rooms::RoomAssociationConfig room_association;
 
   template <class V>
   void visit(V& v) {
@@ -50,6 +57,12 @@ struct PipelineConfig {
     v.section("optimizer", optimizer);
     v.section("loop_closure", loop_closure);
     v.section("schedule", schedule);
+    v.section("room_layer", room_layer);
+    v.section("free_space", free_space);
+    v.section("aisle", aisle);
+    v.section("room_flush", room_flush);
+    v.section("room_extraction", room_extraction);
+    v.section("room_association", room_association);
   }
 };
 

@@ -119,32 +119,98 @@ std::string scene_graph_json(const Pipeline& pipeline) {
                             {"anchor_keyframe", n->anchor_keyframe},
                             {"keyframes", n->keyframes}});
   }
+  json rooms = json::array();
+  for (const auto& [id, r] : pipeline.room_map().rooms()) {
+    rooms.push_back({{"id", id},
+                     {"kind", rooms::to_string(r.kind)},
+                     {"level", r.level},
+                     {"rect",
+                      {{"center", {r.rect.center.x(), r.rect.center.y()}},
+                       {"size", {r.rect.size.x(), r.rect.size.y()}},
+                       {"yaw", r.rect.yaw}}},
+                     {"walls", r.wall_ids},
+                     {"extractions", r.extraction_count}});
+  }
   const json doc = {{"format", "tsgraphs-scene-graph"},
                     {"version", 1},
                     {"frame", "map"},
                     {"keyframes", keyframes},
                     {"planes", planes},
                     {"traversable_nodes", ground_nodes},
+                    {"rooms", rooms},
+                    {"levels", pipeline.room_layer().levels()},
                     {"edges", edges}};
   return doc.dump(1) + "\n";
+}
+
+std::vector<int> laps_of(const std::vector<double>& stamps, const std::vector<Pose3>& poses,
+                         const std::vector<double>& lap_starts) {
+  constexpr double kLapRadius = 1.5;     // m, docs/metrics.md
+  constexpr double kLapMinTravel = 20.0; // m
+  std::vector<int> laps(stamps.size(), 1);
+  if (!lap_starts.empty()) {
+    for (std::size_t i = 0; i < stamps.size(); ++i)
+      laps[i] = std::max<int>(1, static_cast<int>(std::upper_bound(lap_starts.begin(), lap_starts.end(), stamps[i]) -
+                                                  lap_starts.begin()));
+    return laps;
+  }
+  int lap = 1;
+  double travel = 0.0;
+  bool away = false;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (i > 0) travel += (poses[i].translation() - poses[i - 1].translation()).norm();
+    const double from_start = (poses[i].translation() - poses.front().translation()).norm();
+    if (travel > kLapMinTravel && from_start > kLapRadius) away = true;
+    if (away && from_start <= kLapRadius) {
+      ++lap;
+      travel = 0.0;
+      away = false;
+    }
+    laps[i] = lap;
+  }
+  return laps;
+}
+
+std::string room_events_jsonl(const Pipeline& pipeline, const std::vector<double>& lap_starts) {
+  std::vector<double> stamps;
+  for (const ScanRecord& s : pipeline.scans()) stamps.push_back(s.stamp);
+  const std::vector<int> laps = laps_of(stamps, pipeline.trajectory(), lap_starts);
+  std::string out;
+  for (const RoomEventRecord& e : pipeline.room_events()) {
+    const std::size_t scan = pipeline.graph().keyframes()[e.keyframe].scan_index;
+    const json line = {{"t", e.stamp},
+                       {"lap", laps.empty() ? 1 : laps[std::min(scan, laps.size() - 1)]},
+                       {"room_id", e.room_id},
+                       {"new", e.is_new},
+                       {"level", e.level},
+                       {"center", {e.rect.center.x(), e.rect.center.y()}},
+                       {"rect",
+                        {{"center", {e.rect.center.x(), e.rect.center.y()}},
+                         {"size", {e.rect.size.x(), e.rect.size.y()}},
+                         {"yaw", e.rect.yaw}}},
+                       {"walls", e.walls},
+                       {"kind", rooms::to_string(e.kind)}};
+    out += line.dump() + "\n";
+  }
+  return out;
 }
 
 std::string timings_csv(const Pipeline& pipeline) {
   std::string out =
       "kind,index,stamp,keyframe,num_points,prefilter_ms,walls_ms,loop_ms,frontend_ms,"
       "optimization_s,full,n_variables,n_factors,iterations,reason,"
-      "ground_ms,ground_nodes,ground_tp,ground_fp,ground_fn\n";
+      "ground_ms,ground_nodes,ground_tp,ground_fp,ground_fn,rooms_ms\n";
   char line[512];
   for (const ScanRecord& s : pipeline.scans()) {
-    std::snprintf(line, sizeof line, "scan,%zu,%.6f,%d,%zu,%.3f,%.3f,%.3f,%.3f,,,,,,%s,%.3f,%zu,%ld,%ld,%ld\n",
+    std::snprintf(line, sizeof line, "scan,%zu,%.6f,%d,%zu,%.3f,%.3f,%.3f,%.3f,,,,,,%s,%.3f,%zu,%ld,%ld,%ld,%.3f\n",
                   s.scan_index, s.stamp, s.keyframe, s.num_points, s.prefilter_ms, s.walls_ms, s.loop_ms,
                   s.frontend_ms, s.warning.empty() ? "" : ("\"" + s.warning + "\"").c_str(), s.ground_ms,
-                  s.num_ground_nodes, s.ground_tp, s.ground_fp, s.ground_fn);
+                  s.num_ground_nodes, s.ground_tp, s.ground_fp, s.ground_fn, s.rooms_ms);
     out += line;
   }
   for (std::size_t i = 0; i < pipeline.optimizations().size(); ++i) {
     const OptimizationRecord& o = pipeline.optimizations()[i];
-    std::snprintf(line, sizeof line, "optimization,%zu,%.6f,%d,,,,,,%.6f,%d,%d,%d,%d,%s,,,,,\n", i,
+    std::snprintf(line, sizeof line, "optimization,%zu,%.6f,%d,,,,,,%.6f,%d,%d,%d,%d,%s,,,,,,\n", i,
                   pipeline.graph().keyframes()[o.after_keyframe].stamp, o.after_keyframe, o.stats.wall_time_s,
                   o.stats.full ? 1 : 0, o.stats.n_variables, o.stats.n_factors, o.stats.iterations, o.reason.c_str());
     out += line;
@@ -208,6 +274,7 @@ void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std:
   io::write_file_atomic(dir + "/" + run_files::kSceneGraph, scene_graph_json(pipeline));
   io::write_file_atomic(dir + "/" + run_files::kMap, map_ply(pipeline));
   io::write_file_atomic(dir + "/" + run_files::kTimings, timings_csv(pipeline));
+  io::write_file_atomic(dir + "/" + run_files::kRoomEvents, room_events_jsonl(pipeline, info.lap_starts));
   io::write_file_atomic(dir + "/" + run_files::kParams, dump_pipeline_config(pipeline.config()));
 
   double t_pgo = 0.0;
@@ -218,6 +285,8 @@ void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std:
                         {"num_keyframes", pipeline.graph().keyframes().size()},
                         {"num_planes", pipeline.graph().planes().size()},
                         {"num_traversable_nodes", pipeline.node_map().size()},
+                        {"num_rooms", pipeline.room_map().rooms().size()},
+                        {"num_room_events", pipeline.room_events().size()},
                         {"num_loops", pipeline.graph().loop_edges().size()},
                         {"num_optimizations", pipeline.optimizations().size()},
                         {"t_pgo_s", t_pgo},

@@ -16,6 +16,7 @@ struct RunInfo {
   double peak_rss_mb = 0;
   std::size_t num_scans = 0;
   std::size_t num_skipped = 0;   ///< scans with a warning
+  std::vector<double> lap_starts;///< the sequence's laps.txt (empty: laps found from the trajectory)
 };
 
 /// File names inside a run folder.
@@ -27,6 +28,7 @@ inline constexpr const char* kTimings = "timings.csv";
 inline constexpr const char* kParams = "params.yaml";
 inline constexpr const char* kRunInfo = "run_info.json";
 inline constexpr const char* kMetrics = "metrics.json";
+inline constexpr const char* kRoomEvents = "rooms_events.jsonl";
 }  // namespace run_files
 
 /// Where a mapped plane's points lie (map frame): their centroid projected on the plane, for a
@@ -44,6 +46,13 @@ void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std:
 
 /// The scene graph as JSON text (keyframes, planes, edges).
 std::string scene_graph_json(const Pipeline& pipeline);
+/// Lap (1, 2, ...) of each scan: from `lap_starts` when given, else a lap ends when the sensor
+/// comes back within kLapRadius of its start after travelling more than kLapMinTravel
+/// (docs/metrics.md).
+std::vector<int> laps_of(const std::vector<double>& stamps, const std::vector<Pose3>& poses,
+                         const std::vector<double>& lap_starts);
+/// rooms_events.jsonl (docs/metrics.md): one JSON object per room extraction, in time order.
+std::string room_events_jsonl(const Pipeline& pipeline, const std::vector<double>& lap_starts);
 /// The timings table as CSV text: one row per scan, then one per optimisation.
 std::string timings_csv(const Pipeline& pipeline);
 /// Binary little-endian PLY of the map: keyframe points in grey, wall faces coloured per plane,

@@ -36,6 +36,7 @@ RunInfo run_sequence(const io::SequenceReader& sequence, Pipeline& pipeline, con
   RunInfo run;
   run.sequence = sequence.dir();
   run.num_scans = sequence.size();
+  run.lap_starts = info.lap_starts;
   // Reading and the per-scan steps (prefilter, ground) run in parallel on the next scans;
   // the pipeline takes them in order, so the result is the same as one scan at a time.
   const std::size_t tokens = kTokensPerThread * static_cast<std::size_t>(std::max(
