@@ -31,6 +31,19 @@ struct Reader {
   }
 };
 
+// Collects the names of the visited fields.
+struct KeyNames {
+  std::vector<std::string> keys;
+  template <class T>
+  void operator()(const char* key, const T&) {
+    keys.emplace_back(key);
+  }
+  template <class S>
+  void section(const char* key, S&) {
+    keys.emplace_back(key);
+  }
+};
+
 // Emits each visited field.
 struct Writer {
   YAML::Emitter& out;
@@ -77,22 +90,26 @@ void validate(const YamlMap& root, const PipelineConfig& c) {
   check_positive(root, "optimizer", "loop_sigma_rot_deg", c.optimizer.loop_sigma_rot_deg);
   check_positive(root, "optimizer", "plane_sigma_angle_deg", c.optimizer.plane_sigma_angle_deg);
   check_positive(root, "optimizer", "plane_sigma_distance", c.optimizer.plane_sigma_distance);
+  check_positive(root, "optimizer", "huber_plane", c.optimizer.huber_plane);
+  check_positive(root, "optimizer", "huber_loop", c.optimizer.huber_loop);
+  check_positive(root, "optimizer", "room_sigma", c.optimizer.room_sigma);
+  check_positive(root, "optimizer", "corridor_sigma", c.optimizer.corridor_sigma);
+  check_positive(root, "optimizer", "corridor_along_sigma", c.optimizer.corridor_along_sigma);
+  check_positive(root, "optimizer", "floor_sigma", c.optimizer.floor_sigma);
+  check_positive(root, "optimizer", "huber_room", c.optimizer.huber_room);
+  check_positive(root, "optimizer", "huber_floor", c.optimizer.huber_floor);
   check_positive(root, "optimizer", "local_window", c.optimizer.local_window);
-  const std::string& ls = c.optimizer.linear_solver;
-  if (ls != "sparse_normal_cholesky" && ls != "dense_schur" && ls != "sparse_schur" && ls != "iterative_schur" &&
-      ls != "dense_qr" && ls != "dense_normal_cholesky")
-    throw root.map("optimizer").error("linear_solver",
-                                      "unknown linear_solver '" + ls +
-                                          "' (sparse_normal_cholesky, sparse_schur, dense_schur, iterative_schur, "
-                                          "dense_qr, dense_normal_cholesky)");
-  const std::string& sl = c.optimizer.sparse_library;
-  if (sl != "eigen_sparse" && sl != "suite_sparse" && sl != "cx_sparse")
-    throw root.map("optimizer").error("sparse_library",
-                                      "unknown sparse_library '" + sl + "' (eigen_sparse, suite_sparse, cx_sparse)");
+  // The optimiser checks its solver names itself; its message is placed at the key it names.
   try {
     graph::GraphOptimizer check(c.optimizer);
   } catch (const std::invalid_argument& e) {
-    throw root.map("optimizer").error_here(e.what());
+    const YamlMap section = root.map("optimizer");
+    KeyNames names;
+    graph::GraphOptimizerConfig copy = c.optimizer;
+    copy.visit(names);
+    for (const std::string& key : names.keys)
+      if (std::string(e.what()).find(key) != std::string::npos) throw section.error(key, e.what());
+    throw section.error_here(e.what());
   }
   check_positive(root, "schedule", "optimize_every_keyframes", c.schedule.optimize_every_keyframes);
   if (c.schedule.full_every_keyframes < 0)
