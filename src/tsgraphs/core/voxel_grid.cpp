@@ -1,10 +1,10 @@
-#include "tsgraphs/pipeline/prefilter.hpp"
+#include "tsgraphs/core/voxel_grid.hpp"
 
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
-namespace tsgraphs::pipeline {
+namespace tsgraphs {
 namespace {
 
 struct VoxelSum {
@@ -13,16 +13,6 @@ struct VoxelSum {
   std::uint32_t label = 0;
   std::uint32_t count = 0;
 };
-
-// 21 bits per axis: +-1e6 voxels, far beyond any LiDAR range at useful voxel sizes.
-std::uint64_t voxel_key(const Eigen::Vector3f& p, double inv_size) {
-  constexpr std::int64_t kOffset = 1 << 20;
-  constexpr std::uint64_t kMask = (1u << 21) - 1;
-  auto axis = [&](float v) {
-    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv_size)) + kOffset) & kMask;
-  };
-  return axis(p.x()) | (axis(p.y()) << 21) | (axis(p.z()) << 42);
-}
 
 // Open-addressing voxel -> slot table, reused between calls: a node-based map costs one
 // allocation per voxel, which dominated the prefilter on 64k-point scans.
@@ -62,13 +52,23 @@ class VoxelTable {
 
 }  // namespace
 
-PointCloud prefilter(const PointCloud& scan, const PrefilterConfig& config, std::size_t* num_non_finite) {
+std::uint64_t voxel_key(const Eigen::Vector3f& p, double inv_size) {
+  constexpr std::int64_t kOffset = 1 << 20;
+  constexpr std::uint64_t kMask = (1u << 21) - 1;
+  auto axis = [&](float v) {
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv_size)) + kOffset) & kMask;
+  };
+  return axis(p.x()) | (axis(p.y()) << 21) | (axis(p.z()) << 42);
+}
+
+PointCloud voxel_downsample(const PointCloud& scan, double voxel_size, double min_range, double max_range,
+                            std::size_t* num_non_finite) {
   const bool with_intensity = scan.has_intensity(), with_labels = scan.has_labels();
-  const double min2 = config.min_range * config.min_range, max2 = config.max_range * config.max_range;
+  const double min2 = min_range * min_range, max2 = max_range * max_range;
   std::size_t non_finite = 0;
 
   PointCloud out;
-  if (config.voxel_size <= 0.0) {
+  if (voxel_size <= 0.0) {
     out.reserve(scan.size(), with_intensity, with_labels);
     for (std::size_t i = 0; i < scan.size(); ++i) {
       const Eigen::Vector3f& p = scan.points[i];
@@ -80,7 +80,7 @@ PointCloud prefilter(const PointCloud& scan, const PrefilterConfig& config, std:
       if (with_labels) out.labels.push_back(scan.labels[i]);
     }
   } else {
-    const double inv = 1.0 / config.voxel_size;
+    const double inv = 1.0 / voxel_size;
     thread_local VoxelTable index;  // voxel -> slot in `voxels`
     index.reset(scan.size());
     std::vector<VoxelSum> voxels;
@@ -113,4 +113,4 @@ PointCloud prefilter(const PointCloud& scan, const PrefilterConfig& config, std:
   return out;
 }
 
-}  // namespace tsgraphs::pipeline
+}  // namespace tsgraphs

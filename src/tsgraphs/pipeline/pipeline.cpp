@@ -2,10 +2,10 @@
 
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <stdexcept>
 
+#include "tsgraphs/core/voxel_grid.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
 
@@ -235,11 +235,8 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
       if ((q.head<2>() - kf.pose.translation().head<2>().cast<float>()).norm() <= radius) near.points.push_back(q);
     }
   }
-  PrefilterConfig thin;
-  thin.min_range = 0.0;
-  thin.max_range = std::numeric_limits<double>::max();
-  thin.voxel_size = config_.room_layer.obstacle_voxel;
-  for (const Eigen::Vector3f& p : prefilter(near, thin).points) in.obstacle_candidates.push_back(p.cast<double>());
+  for (const Eigen::Vector3f& p : voxel_downsample(near, config_.room_layer.obstacle_voxel).points)
+    in.obstacle_candidates.push_back(p.cast<double>());
   // Walls: the mapped vertical planes with their extents.
   for (const auto& [id, lm] : mapper_.landmarks()) {
     if (!lm.vertical || lm.points.empty()) continue;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <unordered_set>
 
+#include "tsgraphs/core/voxel_grid.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/io/tum.hpp"
 
@@ -226,18 +227,12 @@ std::string map_ply(const Pipeline& pipeline) {
   std::vector<Vertex> vertices;
   // Keyframe points, thinned on a global grid (first come, first kept).
   std::unordered_set<std::uint64_t> occupied;
-  const auto key = [](const Eigen::Vector3f& p) {
-    const auto axis = [](float v) {
-      return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / kMapVoxel)) + (1 << 20)) & 0x1FFFFF;
-    };
-    return axis(p.x()) | (axis(p.y()) << 21) | (axis(p.z()) << 42);
-  };
   const auto& keyframes = pipeline.graph().keyframes();
   for (const graph::KeyframeNode& k : keyframes) {
     const Eigen::Isometry3f T = k.pose.cast<float>();
     for (const Eigen::Vector3f& p : pipeline.keyframe_cloud(k.id).points) {
       const Eigen::Vector3f q = T * p;
-      if (occupied.insert(key(q)).second) vertices.push_back({q, kKeyframePoint});
+      if (occupied.insert(voxel_key(q, 1.0 / kMapVoxel)).second) vertices.push_back({q, kKeyframePoint});
     }
   }
   for (const auto& [id, lm] : pipeline.plane_map().landmarks()) {

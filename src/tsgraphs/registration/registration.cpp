@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "tsgraphs/core/voxel_grid.hpp"
+
 namespace tsgraphs::registration {
 namespace {
 
@@ -39,46 +41,10 @@ void check_config(const RegistrationConfig& c) {
 }
 
 /// The finite points of `cloud`, each voxel of edge `voxel_size` replaced by the centroid of
-/// its points (0: every finite point). Voxels come out in the order of their integer
-/// coordinates, so the result depends on the point set only, not on hashing.
+/// its points (0: every finite point), as a PCL cloud.
 PclCloud::Ptr downsample(const PointCloud& cloud, double voxel_size) {
   auto out = pcl::make_shared<PclCloud>();
-  if (voxel_size <= 0.0) {
-    for (const Eigen::Vector3f& p : cloud.points)
-      if (p.allFinite()) out->push_back(PclPoint(p.x(), p.y(), p.z()));
-    return out;
-  }
-  struct Cell {
-    std::int64_t x, y, z;
-    std::uint32_t index;
-    bool operator<(const Cell& o) const {
-      if (x != o.x) return x < o.x;
-      if (y != o.y) return y < o.y;
-      if (z != o.z) return z < o.z;
-      return index < o.index;
-    }
-    bool same_voxel(const Cell& o) const { return x == o.x && y == o.y && z == o.z; }
-  };
-  std::vector<Cell> cells;
-  cells.reserve(cloud.size());
-  const double inv = 1.0 / voxel_size;
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const Eigen::Vector3f& p = cloud.points[i];
-    if (!p.allFinite()) continue;
-    cells.push_back({static_cast<std::int64_t>(std::floor(p.x() * inv)),
-                     static_cast<std::int64_t>(std::floor(p.y() * inv)),
-                     static_cast<std::int64_t>(std::floor(p.z() * inv)), static_cast<std::uint32_t>(i)});
-  }
-  std::sort(cells.begin(), cells.end());
-  for (std::size_t begin = 0; begin < cells.size();) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    std::size_t end = begin;
-    for (; end < cells.size() && cells[end].same_voxel(cells[begin]); ++end)
-      sum += cloud.points[cells[end].index].cast<double>();
-    const Eigen::Vector3f c = (sum / static_cast<double>(end - begin)).cast<float>();
-    out->push_back(PclPoint(c.x(), c.y(), c.z()));
-    begin = end;
-  }
+  for (const Eigen::Vector3f& p : voxel_downsample(cloud, voxel_size).points) out->push_back(PclPoint(p.x(), p.y(), p.z()));
   return out;
 }
 
