@@ -38,6 +38,8 @@ struct Options {
   int seeds = 1;
   std::string seq;
   std::string config;
+  std::string free_space;    ///< overrides room_layer.free_space_method when set
+  std::string room_trigger;  ///< overrides room_layer.room_trigger when set
 };
 
 // A scene file, or the name of a built-in scene (office, atrium, long_corridor, two_storeys).
@@ -87,10 +89,13 @@ void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet) {
 }
 
 // `run`: a sequence folder through the pipeline into a run folder, written whole or not at all.
-void run(const std::string& seq_dir, const std::string& out, const std::string& config_file, bool quiet) {
+void run(const std::string& seq_dir, const std::string& out, const Options& opt) {
   const auto start = std::chrono::steady_clock::now();
-  const pipeline::PipelineConfig config =
-      config_file.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(config_file);
+  const bool quiet = opt.quiet;
+  pipeline::PipelineConfig config =
+      opt.config.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(opt.config);
+  if (!opt.free_space.empty()) config.rooms.layer.free_space_method = opt.free_space;
+  if (!opt.room_trigger.empty()) config.rooms.layer.room_trigger = opt.room_trigger;
   const io::SequenceReader sequence(seq_dir);
   io::AtomicDirectory dir(out, pipeline::run_files::kSceneGraph);
   if (!quiet) std::fprintf(stderr, "run: %s, %zu scans\n", seq_dir.c_str(), sequence.size());
@@ -152,6 +157,12 @@ int main(int argc, char** argv) {
   run_cmd->add_option("SEQ_DIR", opt.seq, "sequence folder (docs/scene-format.md)")->required();
   run_cmd->add_option("--out", opt.out, "run folder to write")->required();
   run_cmd->add_option("--config", opt.config, "parameter file (config/params.yaml lists every key)");
+  run_cmd->add_option("--free-space", opt.free_space,
+                      "traversable (TS-graphs, default) or esdf (S-Graphs+); overrides room_layer.free_space_method")
+      ->check(CLI::IsMember({"traversable", "esdf"}));
+  run_cmd->add_option("--room-trigger", opt.room_trigger,
+                      "flush (TS-graphs, default) or timer (S-Graphs+); overrides room_layer.room_trigger")
+      ->check(CLI::IsMember({"flush", "timer"}));
 
   auto* eval_cmd = app.add_subcommand("eval", "metrics of a run: metrics.json and a table");
   eval_cmd->add_option("RUN_DIR", opt.out, "run folder written by `tsgraphs run`")->required();
@@ -179,7 +190,7 @@ int main(int argc, char** argv) {
     } else if (*draw_cmd) {
       draw_scene(load_and_warn(opt.scene), opt.out, opt.quiet);
     } else if (*run_cmd) {
-      run(opt.seq, opt.out, opt.config, opt.quiet);
+      run(opt.seq, opt.out, opt);
     } else if (*eval_cmd) {
       evaluate(opt.out, opt.seq, opt.quiet);
     } else if (*demo_cmd) {
@@ -190,7 +201,9 @@ int main(int argc, char** argv) {
       for (int s = 1; s <= opt.seeds; ++s) {
         const std::string seq = (fs::path(out) / ("atrium_seed" + std::to_string(s))).string();
         simulate(scene, seq, static_cast<std::uint64_t>(s), 0, opt.quiet);
-        run(seq, seq + "_run", "", opt.quiet);
+        Options defaults;
+        defaults.quiet = opt.quiet;
+        run(seq, seq + "_run", defaults);
         evaluate(seq + "_run", seq, opt.quiet);
       }
     }

@@ -79,6 +79,23 @@ TEST(PipelineConfig, ErrorsNameFileLineAndKey) {
             std::string::npos);
   EXPECT_NE(input_error_of([] { load_pipeline_config("/nonexistent/params.yaml"); }).find("/nonexistent/params.yaml"),
             std::string::npos);
+  EXPECT_NE(input_error_of([] { parse_pipeline_config("room_layer:\n  free_space_method: voxblox\n", "p.yaml"); })
+                .find("p.yaml:2: room_layer.free_space_method: free_space_method must be traversable or esdf"),
+            std::string::npos);
+  EXPECT_NE(input_error_of([] { parse_pipeline_config("room_layer:\n\n  room_trigger: often\n", "p.yaml"); })
+                .find("p.yaml:3: room_layer.room_trigger"),
+            std::string::npos);
+  EXPECT_NE(input_error_of([] { parse_pipeline_config("room_association:\n  footprint: big\n", "p.yaml"); })
+                .find("p.yaml:2: room_association.footprint"),
+            std::string::npos);
+}
+
+TEST(PipelineConfig, BaselineModeIsTwoKeys) {
+  const PipelineConfig c =
+      parse_pipeline_config("room_layer:\n  free_space_method: esdf\n  room_trigger: timer\n", "p.yaml");
+  EXPECT_EQ(c.rooms.layer.free_space_method, "esdf");
+  EXPECT_EQ(c.rooms.layer.room_trigger, "timer");
+  EXPECT_DOUBLE_EQ(c.rooms.timer.period_s, 1.0);
 }
 
 TEST(PipelineConfig, SensorFilesMatchTheGroundPresets) {

@@ -109,7 +109,7 @@ Outcome run_scene(const sim::Scene& scene, std::uint64_t seed) {
       if (std::abs(l.elevation - floor_z) < best) best = std::abs(l.elevation - floor_z), level = l.name;
     detected.push_back({r.rect, level});
   }
-  o.rooms_truth = eval::rooms_vs_truth(detected, truth);
+  o.rooms_truth = eval::rooms_vs_truth(detected, eval::visited_rooms(truth, sim.true_poses()));
 
   // Ground: every scan scored against its labels; the global node map against the voids.
   long tp = 0, fp = 0, fn = 0;
@@ -163,22 +163,29 @@ void expect_must_show(const Outcome& o) {
 
 }  // namespace
 
-// The room layer is being tuned (issue 5 asks for f_re >= 0.95, DCS >= 0.85, F1 >= 0.9); these
-// floors guard what it reaches today (office F1 0.77, atrium f_re 0.88, F1 0.50) from regressing.
+// Issue 5 asks for f_re >= 0.95, DCS >= 0.85, d_center <= 0.3 m, F1 >= 0.9, no under-segmented
+// room and no duplicate final room. Asserted: what holds today (office f_re 1.00, DCS 0.95,
+// F1 1.00; atrium f_re 0.89, DCS 1.00, d_center 0.02, F1 1.00); office d_center (0.68 m, the
+// corridor seen in pieces during the first lap) and atrium f_re are short of the issue's figures.
+void expect_rooms(const Outcome& o, double min_f_re, double max_d_center) {
+  EXPECT_GE(o.rooms_consistency.f_re, min_f_re);
+  EXPECT_GE(o.rooms_consistency.dcs.value_or(0), 0.85);
+  EXPECT_LE(o.rooms_consistency.d_center.value_or(1e9), max_d_center);
+  EXPECT_GE(o.rooms_truth.f1.value_or(0), 0.9);
+  EXPECT_EQ(o.rooms_truth.under_segmented, 0);  // no room spans the void or crosses a railing
+  EXPECT_EQ(o.rooms_truth.over_segmented, 0);   // no two final rooms for one true room
+}
+
 TEST(EndToEnd, OfficeTwoLaps) {
   const Outcome o = run_scene(builtin("office"), 1);
   expect_must_show(o);
-  EXPECT_GE(o.rooms_truth.f1.value_or(0), 0.7);
-  EXPECT_GE(o.rooms_consistency.dcs.value_or(0), 0.85);
+  expect_rooms(o, 0.95, 0.8);
 }
 
 TEST(EndToEnd, AtriumTwoLaps) {
   const Outcome o = run_scene(builtin("atrium"), 1);
   expect_must_show(o);
-  EXPECT_GE(o.rooms_consistency.f_re, 0.8);
-  EXPECT_GE(o.rooms_consistency.dcs.value_or(0), 0.85);
-  EXPECT_GE(o.rooms_truth.f1.value_or(0), 0.45);
-  EXPECT_EQ(o.rooms_truth.under_segmented, 0);  // no room spans the void or crosses a railing
+  expect_rooms(o, 0.85, 0.3);
 }
 
 TEST(EndToEnd, StraightCorridorWithoutRevisitHasNoLoopClosure) {

@@ -1,6 +1,8 @@
 // Room association: re-detections by Dice or centre distance, new rooms, duplicate merging.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "tsgraphs/rooms/room_association.hpp"
@@ -28,7 +30,7 @@ TEST(RoomAssociation, DiceOfPointEightAssociates) {
   ASSERT_EQ(map.rooms().size(), 1u);
   const MappedRoom& mapped = map.rooms().at(0);
   EXPECT_EQ(mapped.extraction_count, 2);
-  EXPECT_EQ(mapped.rect.center, Vec2(0, 0));  // footprint kept without update_rect
+  EXPECT_EQ(mapped.rect.center, Vec2(0, 0));  // the same size: the first footprint is kept
   EXPECT_EQ(mapped.wall_ids, (std::vector<int>{0, 1, 2, 3}));
 }
 
@@ -54,14 +56,30 @@ TEST(RoomAssociation, CentreWithinThresholdAssociatesAndLevelsAreSeparate) {
   EXPECT_EQ(map.match(room({0, 0}, {5, 4}).rect, 1), 1);
 }
 
-TEST(RoomAssociation, UpdateRectReplacesTheFootprint) {
+TEST(RoomAssociation, FootprintPolicyDecidesWhatARedetectionKeeps) {
+  const auto after = [](const std::string& policy, Vec2 size) {
+    RoomAssociationConfig config;
+    config.footprint = policy;
+    RoomMap map(config);
+    map.add_extraction(room({0, 0}, {5, 4}), 0);
+    map.add_extraction(room({0.3, 0.1}, size), 0);
+    EXPECT_EQ(map.rooms().at(0).extraction_count, 2);
+    return map.rooms().at(0).rect.center;
+  };
+  EXPECT_EQ(after("first", {5.2, 4}), Vec2(0, 0));
+  EXPECT_EQ(after("latest", {4.8, 4}), Vec2(0.3, 0.1));
+  EXPECT_EQ(after("largest", {5.2, 4}), Vec2(0.3, 0.1));  // seen more completely
+  EXPECT_EQ(after("largest", {4.8, 4}), Vec2(0, 0));
+  EXPECT_THROW(after("biggest", {5, 4}), std::invalid_argument);
+}
+
+TEST(RoomAssociation, CentresOnlyIgnoresTheDice) {
   RoomAssociationConfig config;
-  config.update_rect = true;
+  config.match_by_dice = false;  // S-Graphs+
   RoomMap map(config);
-  map.add_extraction(room({0, 0}, {5, 4}), 0);
-  map.add_extraction(room({0.3, 0.1}, {5.2, 4}), 0);
-  EXPECT_EQ(map.rooms().at(0).rect.center, Vec2(0.3, 0.1));
-  EXPECT_EQ(map.rooms().at(0).extraction_count, 2);
+  map.add_extraction(room({0, 0}, {10, 4}), 0);
+  EXPECT_TRUE(map.add_extraction(room({2, 0}, {10, 4}), 0).is_new);  // Dice 0.8, centres 2 m apart
+  EXPECT_FALSE(map.add_extraction(room({0.9, 0}, {6, 4}), 0).is_new);
 }
 
 TEST(RoomAssociation, DuplicatesMergeIntoTheMostExtracted) {

@@ -61,7 +61,7 @@ TEST(RoomExtraction, FourWallRoomIsBoundedByItsWalls) {
   std::vector<WallCandidate> walls = room_walls();
   walls.push_back(wall(4, {8, 0}, {-1, 0}, {8, 0}, {8, 4}));  // next room's wall, behind wall 1
   walls.push_back(wall(5, {2, 0}, {1, 0}, {2, -3}, {2, 6}));  // a plane the cluster crosses
-  const auto room = extract_room(grid(0.5, 4.5, 0.5, 3.5), walls);
+  const auto room = extract_room(grid(0.5, 4.5, 0.5, 3.5), {}, walls);
   ASSERT_TRUE(room.has_value());
   EXPECT_EQ(room->kind, RoomKind::room);
   EXPECT_EQ(sorted(room->wall_ids), (std::vector<int>{0, 1, 2, 3}));
@@ -83,7 +83,7 @@ TEST(RoomExtraction, RotatedRoomMatchesItsWalls) {
   }
   std::vector<Eigen::Vector3d> cluster = grid(0.5, 4.5, 0.5, 3.5);
   for (Eigen::Vector3d& p : cluster) p.head<2>() = R * p.head<2>() + t;
-  const auto room = extract_room(cluster, walls);
+  const auto room = extract_room(cluster, {}, walls);
   ASSERT_TRUE(room.has_value());
   EXPECT_EQ(room->kind, RoomKind::room);
   OrientedRect truth;
@@ -97,7 +97,7 @@ TEST(RoomExtraction, RotatedRoomMatchesItsWalls) {
 TEST(RoomExtraction, CorridorOpenEndsComeFromTheCluster) {
   const std::vector<WallCandidate> walls = {wall(0, {0, 0}, {0, 1}, {0, 0}, {10, 0}),
                                             wall(1, {0, 2}, {0, -1}, {0, 2}, {10, 2})};
-  const auto room = extract_room(grid(2.0, 8.0, 0.4, 1.6), walls);
+  const auto room = extract_room(grid(2.0, 8.0, 0.4, 1.6), {}, walls);
   ASSERT_TRUE(room.has_value());
   EXPECT_EQ(room->kind, RoomKind::corridor);
   EXPECT_EQ(sorted(room->wall_ids), (std::vector<int>{0, 1}));
@@ -114,7 +114,7 @@ TEST(RoomExtraction, RailingSideIsBoundedByTheCluster) {
   std::vector<WallCandidate> walls = room_walls();
   walls.erase(walls.begin() + 1);
   walls.push_back(wall(6, {12, 0}, {-1, 0}, {12, -1}, {12, 5}));
-  const auto room = extract_room(grid(0.5, 4.6, 0.5, 3.5), walls);
+  const auto room = extract_room(grid(0.5, 4.6, 0.5, 3.5), {}, walls);
   ASSERT_TRUE(room.has_value());
   EXPECT_EQ(room->kind, RoomKind::corridor);
   EXPECT_EQ(sorted(room->wall_ids), (std::vector<int>{2, 3}));
@@ -129,7 +129,7 @@ TEST(RoomExtraction, RailingSideIsBoundedByTheCluster) {
 TEST(RoomExtraction, SpaceBetweenWallAndBookshelfIsItsOwnRoom) {
   std::vector<WallCandidate> walls = room_walls();
   walls.push_back(wall(4, {1.5, 0}, {-1, 0}, {1.5, 0.5}, {1.5, 3.5}));  // shelf front, facing wall 0
-  const auto room = extract_room(grid(0.4, 1.1, 0.4, 3.6), walls);
+  const auto room = extract_room(grid(0.4, 1.1, 0.4, 3.6), {}, walls);
   ASSERT_TRUE(room.has_value());
   EXPECT_EQ(room->kind, RoomKind::room);
   EXPECT_EQ(sorted(room->wall_ids), (std::vector<int>{0, 2, 3, 4}));
@@ -148,7 +148,7 @@ TEST(RoomExtraction, ShelfTheClusterGoesAroundDoesNotCutTheRoom) {
     const bool at_shelf = p.x() > 1.2 && p.x() < 2.1 && p.y() > 0.7 && p.y() < 3.3;
     if (!at_shelf) cluster.push_back(p);
   }
-  const auto room = extract_room(cluster, walls);
+  const auto room = extract_room(cluster, {}, walls);
   ASSERT_TRUE(room.has_value());
   EXPECT_EQ(sorted(room->wall_ids), (std::vector<int>{0, 1, 2, 3}));
   const Bounds b = bounds(room->rect);
@@ -156,14 +156,94 @@ TEST(RoomExtraction, ShelfTheClusterGoesAroundDoesNotCutTheRoom) {
   EXPECT_NEAR(b.y1 - b.y0, 4.0, 0.02);
 }
 
+TEST(RoomExtraction, OneWallAndARailingMakeACorridorCarriedToItsEndWalls) {
+  // Corridor [0, 14] x [0, 3]: a wall at y = 0, a railing at y = 3 (no plane; the free space
+  // stops lambda_th = 0.4 short of it), end walls at x = 0 and x = 14. Walked: x 5..8 only.
+  const std::vector<WallCandidate> walls = {wall(0, {0, 0}, {0, 1}, {0, 0}, {14, 0}),
+                                            wall(1, {0, 0}, {1, 0}, {0, -5}, {0, 3}),
+                                            wall(2, {14, 0}, {-1, 0}, {14, -5}, {14, 3})};
+  const auto room = extract_room(grid(5.0, 8.0, 0.4, 2.6), grid(0.4, 13.6, 0.4, 2.6), walls);
+  ASSERT_TRUE(room.has_value());
+  EXPECT_EQ(room->kind, RoomKind::corridor);
+  EXPECT_TRUE(room->one_sided);
+  EXPECT_EQ(room->wall_ids, (std::vector<int>{0}));
+  EXPECT_EQ(sorted(room->end_wall_ids), (std::vector<int>{1, 2}));
+  const Bounds b = bounds(room->rect);
+  EXPECT_NEAR(b.x0, 0.0, 0.02);
+  EXPECT_NEAR(b.x1, 14.0, 0.02);
+  EXPECT_NEAR(b.y0, 0.0, 0.02);
+  EXPECT_NEAR(b.y1, 3.0, 0.05);  // the free space's edge plus lambda_th: the railing
+}
+
+TEST(RoomExtraction, OpenSideCorridorStopsWhereACrossingAisleOpens) {
+  // As above, but at x < 3 a second aisle leaves the corridor beyond its open side (y > 3).
+  const std::vector<WallCandidate> walls = {wall(0, {0, 0}, {0, 1}, {0, 0}, {14, 0}),
+                                            wall(2, {14, 0}, {-1, 0}, {14, -5}, {14, 3})};
+  std::vector<Eigen::Vector3d> context = grid(0.4, 13.6, 0.4, 2.6);
+  for (const Eigen::Vector3d& p : grid(0.4, 2.6, 2.7, 9.0)) context.push_back(p);
+  const auto room = extract_room(grid(5.0, 8.0, 0.4, 2.6), context, walls);
+  ASSERT_TRUE(room.has_value());
+  const Bounds b = bounds(room->rect);
+  EXPECT_NEAR(b.x0, 2.7, 0.3);  // where the crossing aisle begins
+  EXPECT_NEAR(b.x1, 14.0, 0.02);
+}
+
+TEST(RoomExtraction, CorridorIsCarriedAlongItsWallsButNotThroughADoor) {
+  // Corridor [0, 20] x [0, 2] walked at x 8..12; at x = 16 a wall across it, and through a door
+  // a 0.4 m wide, 1 m deep strip of free space (the wall and lambda_th on both sides) leads on.
+  const std::vector<WallCandidate> walls = {wall(0, {0, 0}, {0, 1}, {0, 0}, {20, 0}),
+                                            wall(1, {0, 2}, {0, -1}, {0, 2}, {20, 2})};
+  std::vector<Eigen::Vector3d> context = grid(0.4, 15.6, 0.4, 1.6);
+  for (const Eigen::Vector3d& p : grid(15.7, 16.7, 0.8, 1.2)) context.push_back(p);  // the door
+  for (const Eigen::Vector3d& p : grid(16.8, 19.6, 0.4, 1.6)) context.push_back(p);
+  const auto room = extract_room(grid(8.0, 12.0, 0.4, 1.6), context, walls);
+  ASSERT_TRUE(room.has_value());
+  const Bounds b = bounds(room->rect);
+  EXPECT_NEAR(b.x0, 0.4, 0.05);  // the context's end (no end wall)
+  EXPECT_NEAR(b.x1, 15.6, 0.15); // the door stops it (within a 0.25 m bin)
+}
+
+TEST(RoomExtraction, WallCrossedOnlyThroughADoorStillBoundsTheRoom) {
+  // The segment of a room walked out through a door at x 2..3 in the wall y = 4 reaches 1 m
+  // into the corridor beyond: the wall still bounds the room.
+  std::vector<Eigen::Vector3d> segment = grid(0.5, 4.5, 0.5, 3.5);
+  for (const Eigen::Vector3d& p : grid(2.1, 2.9, 3.6, 5.0)) segment.push_back(p);
+  const auto room = extract_room(segment, {}, room_walls());
+  ASSERT_TRUE(room.has_value());
+  EXPECT_EQ(room->kind, RoomKind::room);
+  EXPECT_EQ(sorted(room->wall_ids), (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_NEAR(bounds(room->rect).y1, 4.0, 0.02);
+}
+
+TEST(RoomExtraction, LowFurnitureIsNotAWallButABookshelfIs) {
+  // A sideboard along x = 4 facing the room; the free space stops in front of it.
+  RoomExtractionConfig config;
+  config.max_wall_clearance = 1.5;  // so that the room's own wall at x = 5 is reached
+  std::vector<WallCandidate> walls = room_walls();
+  WallCandidate front = wall(4, {4, 0}, {-1, 0}, {4, 0}, {4, 4});
+  front.height = 0.9;
+  walls.push_back(front);
+  const auto low = extract_room(grid(0.5, 3.6, 0.5, 3.5), {}, walls, config);
+  ASSERT_TRUE(low.has_value());
+  EXPECT_EQ(sorted(low->wall_ids), (std::vector<int>{0, 1, 2, 3}));
+  walls.back().height = 2.0;
+  const auto shelf = extract_room(grid(0.5, 3.6, 0.5, 3.5), {}, walls, config);
+  ASSERT_TRUE(shelf.has_value());
+  EXPECT_EQ(sorted(shelf->wall_ids), (std::vector<int>{0, 2, 3, 4}));
+}
+
 TEST(RoomExtraction, NothingWithoutAFacingPair) {
   const std::vector<Eigen::Vector3d> cluster = grid(0.5, 4.5, 0.5, 3.5);
-  EXPECT_FALSE(extract_room(cluster, {room_walls()[0], room_walls()[2]}).has_value());
-  EXPECT_FALSE(extract_room({}, room_walls()).has_value());
+  EXPECT_FALSE(extract_room(cluster, {}, {room_walls()[0], room_walls()[2]}).has_value());
+  // One wall beside an open hall: its far side is no railing but more free space.
+  EXPECT_FALSE(extract_room(grid(2.0, 8.0, 0.4, 2.0), grid(0.0, 10.0, 0.4, 9.0),
+                            {wall(0, {0, 0}, {0, 1}, {0, 0}, {10, 0})})
+                   .has_value());
+  EXPECT_FALSE(extract_room({}, {}, room_walls()).has_value());
   // A pair whose segments lie beside the cluster, not along it, does not bound it.
   const std::vector<WallCandidate> beside = {wall(0, {0, 0}, {1, 0}, {0, 10}, {0, 14}),
                                              wall(1, {5, 0}, {-1, 0}, {5, 10}, {5, 14})};
-  EXPECT_FALSE(extract_room(cluster, beside).has_value());
+  EXPECT_FALSE(extract_room(cluster, {}, beside).has_value());
 }
 
 }  // namespace

@@ -28,16 +28,30 @@ void add_grid(std::vector<Eigen::Vector3d>& out, double x0, double x1, double y0
   }
 }
 
-TEST(RoomFlushTrigger, WidthChangeOfHalfFlushesAndFivePercentDoesNot) {
-  RoomFlushTrigger trigger;  // width_change_ratio 0.3
+TEST(RoomFlushTrigger, WidthChangeOfHalfFlushesOnceConfirmedAndFivePercentDoesNot) {
+  RoomFlushTrigger trigger;  // width_change_ratio 0.3, confirm_keyframes 2
   for (int k = 0; k < 5; ++k) EXPECT_EQ(trigger.update(aisle(2.0, 0.0), false), FlushReason::none);
   EXPECT_EQ(trigger.update(aisle(2.1, 0.0), false), FlushReason::none);  // +5 %
   EXPECT_EQ(trigger.segment_keyframes(), 6);
   EXPECT_DOUBLE_EQ(trigger.segment_median_width(), 2.0);
-  EXPECT_EQ(trigger.update(aisle(3.0, 0.0), false), FlushReason::width_change);  // +50 %
-  EXPECT_EQ(trigger.segment_keyframes(), 1);  // the new segment starts with this keyframe
-  EXPECT_DOUBLE_EQ(trigger.segment_median_width(), 3.0);
-  EXPECT_EQ(trigger.update(aisle(1.5, 0.0), false), FlushReason::width_change);  // -50 %
+  EXPECT_EQ(trigger.update(aisle(3.0, 0.0), false), FlushReason::none);  // +50 %: held
+  EXPECT_EQ(trigger.pending_keyframes(), 1);
+  EXPECT_EQ(trigger.update(aisle(3.1, 0.0), false), FlushReason::width_change);  // confirmed
+  EXPECT_EQ(trigger.starting_keyframes(), 2);  // both changed keyframes start the new segment...
+  EXPECT_EQ(trigger.segment_keyframes(), 1);   // ...which is measured from the latest
+  EXPECT_DOUBLE_EQ(trigger.segment_median_width(), 3.1);
+  EXPECT_EQ(trigger.update(aisle(1.5, 0.0), false), FlushReason::none);  // -50 %
+  EXPECT_EQ(trigger.update(aisle(1.5, 0.0), false), FlushReason::width_change);
+}
+
+TEST(RoomFlushTrigger, OneKeyframeBlipJoinsTheSegment) {
+  RoomFlushTrigger trigger;
+  for (int k = 0; k < 4; ++k) trigger.update(aisle(2.0, 0.0), false);
+  EXPECT_EQ(trigger.update(aisle(0.3, 0.0), false), FlushReason::none);  // the map filling in, say
+  EXPECT_EQ(trigger.pending_keyframes(), 1);
+  EXPECT_EQ(trigger.update(aisle(2.0, 0.0), false), FlushReason::none);
+  EXPECT_EQ(trigger.pending_keyframes(), 0);
+  EXPECT_EQ(trigger.segment_keyframes(), 6);
 }
 
 TEST(RoomFlushTrigger, TurnOfNinetyDegreesFlushesAndTwentyDoesNot) {
@@ -45,11 +59,19 @@ TEST(RoomFlushTrigger, TurnOfNinetyDegreesFlushesAndTwentyDoesNot) {
   for (int k = 0; k < 5; ++k) EXPECT_EQ(trigger.update(aisle(2.0, 0.0), false), FlushReason::none);
   EXPECT_EQ(trigger.update(aisle(2.0, 20.0), false), FlushReason::none);
   EXPECT_EQ(trigger.update(aisle(2.0, 180.0), false), FlushReason::none);  // the same axis, walked back
+  EXPECT_EQ(trigger.update(aisle(2.0, 90.0), false), FlushReason::none);
   EXPECT_EQ(trigger.update(aisle(2.0, 90.0), false), FlushReason::direction_change);
   // A keyframe without a dominant direction (an open room) is not judged by its direction.
   AisleMeasurement open = aisle(2.0, 0.0);
   open.direction_defined = false;
   EXPECT_EQ(trigger.update(open, false), FlushReason::none);
+  EXPECT_EQ(trigger.pending_keyframes(), 0);
+}
+
+TEST(RoomFlushTrigger, TurningInARoomWiderThanAnAisleDoesNotFlush) {
+  RoomFlushTrigger trigger;  // max_aisle_width 4 m
+  for (int k = 0; k < 3; ++k) trigger.update(aisle(5.0, 0.0), false);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(trigger.update(aisle(5.0, 90.0), false), FlushReason::none);
 }
 
 TEST(RoomFlushTrigger, DoorwayFlushesAndInvalidMeasurementsAreIgnored) {
@@ -76,6 +98,17 @@ TEST(MeasureAisle, CorridorWidthAndDirection) {
   EXPECT_FALSE(measure_aisle(hall, Eigen::Vector3d(4.0, 4.0, 0.0)).direction_defined);
   // Nobody near the robot: no measurement.
   EXPECT_FALSE(measure_aisle(cluster, Eigen::Vector3d(30.0, 1.0, 0.0)).valid);
+}
+
+TEST(MeasureAisle, WidthOfARoomIsItsShorterSideWhicheverItsAxis) {
+  std::vector<Eigen::Vector3d> room;
+  add_grid(room, 0.0, 7.0, 0.0, 5.0);
+  for (const Eigen::Vector3d& robot : {Eigen::Vector3d(2.0, 2.5, 0.0), Eigen::Vector3d(3.5, 1.0, 0.0),
+                                       Eigen::Vector3d(5.5, 3.5, 0.0)}) {
+    const AisleMeasurement a = measure_aisle(room, robot);
+    ASSERT_TRUE(a.valid);
+    EXPECT_NEAR(a.width, 5.0, 0.25);  // near a corner a diagonal is a little shorter; never the 7 m side
+  }
 }
 
 TEST(MeasureAisle, WalkFromCorridorIntoWiderHallFlushesOnceAtTheHall) {

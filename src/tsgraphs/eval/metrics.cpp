@@ -37,7 +37,9 @@ std::string metrics_json(const Metrics& m) {
                    {"mean_iou", value(r.mean_iou)},
                    {"under_segmented", value(r.under_segmented)},
                    {"over_segmented", value(r.over_segmented)},
-                   {"n_rooms_final", value(r.n_rooms_final)}};
+                   {"n_rooms_final", value(r.n_rooms_final)},
+                   {"n_truth", value(r.n_truth)},
+                   {"n_truth_visited", value(r.n_truth_visited)}};
   j["ground"] = {{"precision", value(m.ground.precision)}, {"recall", value(m.ground.recall)},
                  {"f1", value(m.ground.f1)}};
   const auto& w = m.walls;
@@ -89,6 +91,7 @@ std::string metrics_table(const Metrics& m) {
                                          cell(m.rooms_gt.under_segmented, "%.0f") + " / " +
                                          cell(m.rooms_gt.over_segmented, "%.0f"));
   row("final rooms", cell(m.rooms_gt.n_rooms_final, "%.0f"));
+  row("truth rooms visited / all", cell(m.rooms_gt.n_truth_visited, "%.0f") + " / " + cell(m.rooms_gt.n_truth, "%.0f"));
   out += "ground\n";
   row("precision / recall / F1",
       cell(m.ground.precision, "%.3f") + " / " + cell(m.ground.recall, "%.3f") + " / " + cell(m.ground.f1, "%.3f"));

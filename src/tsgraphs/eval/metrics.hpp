@@ -20,6 +20,7 @@ struct Metrics {
   } pgo;
   struct {
     Figure precision, recall, f1, mean_iou, under_segmented, over_segmented, n_rooms_final;
+    Figure n_truth, n_truth_visited;  ///< ground-truth rooms, and those the path enters (recall's base)
   } rooms_gt;
   struct {
     Figure precision, recall, f1;

@@ -245,4 +245,20 @@ RoomsVsTruth rooms_vs_truth(const std::vector<DetectedRoom>& detected, const std
   return r;
 }
 
+std::vector<io::RoomTruth> visited_rooms(const std::vector<io::RoomTruth>& truth, const std::vector<Pose3>& poses) {
+  std::vector<bool> visited(truth.size(), false);
+  for (const Pose3& pose : poses) {
+    const Eigen::Vector3d p = pose.translation();
+    double floor = -std::numeric_limits<double>::infinity();
+    for (const io::RoomTruth& t : truth)
+      if (t.elevation <= p.z()) floor = std::max(floor, t.elevation);
+    for (std::size_t i = 0; i < truth.size(); ++i)
+      if (!visited[i] && truth[i].elevation == floor && contains(truth[i].polygon, p.head<2>())) visited[i] = true;
+  }
+  std::vector<io::RoomTruth> out;
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    if (visited[i]) out.push_back(truth[i]);
+  return out;
+}
+
 }  // namespace tsgraphs::eval

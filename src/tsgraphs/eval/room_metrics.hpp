@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/core/rect.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 
@@ -87,6 +88,11 @@ struct RoomsVsTruth {
 double intersection_area(const OrientedRect& rect, const Polygon2& polygon);
 /// Intersection over union of a footprint and a simple polygon; 0 when both are empty.
 double iou(const OrientedRect& rect, const Polygon2& polygon);
+
+/// The ground-truth rooms the sensor's path enters: a pose inside the polygon, on the room's
+/// level (the highest level elevation at or below the pose). A method that extracts rooms from
+/// the free space it walks can find only these, so recall is counted over them (metrics.md).
+std::vector<io::RoomTruth> visited_rooms(const std::vector<io::RoomTruth>& truth, const std::vector<Pose3>& poses);
 
 /// Matches detections one-to-one to ground-truth rooms of the same level (level name), greedily
 /// by the highest IoU first (ties: lower detection index, then lower truth index), keeping pairs

@@ -234,7 +234,10 @@ Metrics evaluate_run(const EvalOptions& options) {
       }
       detected.push_back(d);
     }
-    const RoomsVsTruth r = rooms_vs_truth(detected, si.rooms);
+    const std::vector<io::RoomTruth> visited = visited_rooms(si.rooms, si.groundtruth);
+    m.rooms_gt.n_truth = static_cast<double>(si.rooms.size());
+    m.rooms_gt.n_truth_visited = static_cast<double>(visited.size());
+    const RoomsVsTruth r = rooms_vs_truth(detected, visited);
     if (r.precision) m.rooms_gt.precision = *r.precision;
     if (r.recall) m.rooms_gt.recall = *r.recall;
     if (r.f1) m.rooms_gt.f1 = *r.f1;

@@ -226,4 +226,11 @@ std::vector<const GlobalNode*> TraversableNodeMap::nodes() const {
   return out;
 }
 
+const GlobalNode* TraversableNodeMap::node(int id) const {
+  // nodes_ is in id order: binary search.
+  const auto it = std::lower_bound(nodes_.begin(), nodes_.end(), id,
+                                   [](const GlobalNode& n, int value) { return n.id < value; });
+  return it != nodes_.end() && it->id == id ? &*it : nullptr;
+}
+
 }  // namespace tsgraphs::ground

@@ -74,6 +74,8 @@ class TraversableNodeMap {
   std::vector<const GlobalNode*> nodes_in_height_range(double z_min, double z_max) const;
   /// Every node, in id order.
   std::vector<const GlobalNode*> nodes() const;
+  /// The node with this id, or nullptr (never made, or merged away).
+  const GlobalNode* node(int id) const;
   std::size_t size() const { return nodes_.size(); }
   const NodeMapConfig& config() const { return config_; }
 

@@ -1,5 +1,6 @@
 #include "tsgraphs/pipeline/pipeline.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -23,8 +24,7 @@ Pipeline::Pipeline(PipelineConfig config)
       selector_(config_.keyframes),
       mapper_(config_.plane_mapping),
       node_map_(config_.node_map),
-      rooms_(config_.room_layer, config_.free_space, config_.aisle, config_.room_flush, config_.room_extraction,
-             config_.room_association),
+      rooms_(config_.rooms),
       optimizer_(config_.optimizer),
       loop_detector_(config_.loop_closure) {}
 
@@ -175,7 +175,7 @@ void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud,
   record.walls_ms += ms_since(walls_start);
 
   const auto rooms_start = std::chrono::steady_clock::now();
-  for (const RoomEventRecord& e : rooms_.update(room_input(id))) room_events_.push_back(e);
+  add_room_events(rooms_.update(room_input(id)));
   record.rooms_ms = ms_since(rooms_start);
 
   const auto loop_start = std::chrono::steady_clock::now();
@@ -199,6 +199,7 @@ void Pipeline::optimize(bool full, const std::string& reason) {
   const auto pose_of = [this](int k) { return graph_.keyframes().at(k).pose; };
   mapper_.update(planes, pose_of);
   node_map_.update(pose_of);
+  move_rooms_with_graph();
   if (config_.schedule.merge_duplicate_planes) {
     for (const auto& [keep, drop] : mapper_.find_duplicates()) {
       if (!graph_.planes().count(keep) || !graph_.planes().count(drop)) continue;
@@ -211,8 +212,7 @@ void Pipeline::optimize(bool full, const std::string& reason) {
 void Pipeline::finish() {
   if (graph_.keyframes().size() >= 2) optimize(true, "final");
   if (!graph_.keyframes().empty()) {
-    for (const RoomEventRecord& e : rooms_.finish(room_input(static_cast<int>(graph_.keyframes().size()) - 1)))
-      room_events_.push_back(e);
+    add_room_events(rooms_.finish(room_input(static_cast<int>(graph_.keyframes().size()) - 1)));
   }
 }
 
@@ -225,9 +225,9 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
   in.sensor_height = config_.ground.sensor_height;
   in.nodes = &node_map_;
   // Obstacle candidates: the latest keyframes' clouds in the map, near the robot, thinned.
-  const double radius = config_.room_layer.free_space_radius + config_.free_space.lambda_th;
+  const double radius = config_.rooms.layer.free_space_radius + config_.rooms.free_space.lambda_th;
   PointCloud near;
-  const int first = std::max(0, keyframe + 1 - config_.room_layer.obstacle_keyframes);
+  const int first = std::max(0, keyframe + 1 - config_.rooms.layer.obstacle_keyframes);
   for (int k = first; k <= keyframe; ++k) {
     const Eigen::Isometry3f T = graph_.keyframes()[k].pose.cast<float>();
     for (const Eigen::Vector3f& p : keyframe_clouds_[k].points) {
@@ -235,16 +235,64 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
       if ((q.head<2>() - kf.pose.translation().head<2>().cast<float>()).norm() <= radius) near.points.push_back(q);
     }
   }
-  for (const Eigen::Vector3f& p : voxel_downsample(near, config_.room_layer.obstacle_voxel).points)
+  for (const Eigen::Vector3f& p : voxel_downsample(near, config_.rooms.layer.obstacle_voxel).points)
     in.obstacle_candidates.push_back(p.cast<double>());
   // Walls: the mapped vertical planes with their extents.
   for (const auto& [id, lm] : mapper_.landmarks()) {
     if (!lm.vertical || lm.points.empty()) continue;
     const PlaneExtent e = plane_extent(graph_.planes().at(id).plane, lm.points);
     if ((e.centroid.head<2>() - kf.pose.translation().head<2>()).norm() > radius + (e.b - e.a).norm()) continue;
-    in.walls.push_back({id, graph_.planes().at(id).plane, e.a, e.b});
+    in.walls.push_back({id, graph_.planes().at(id).plane, e.a, e.b, e.z1 - e.z0});
   }
+  for (const graph::PlaneEdge& edge : graph_.plane_edges())
+    if (edge.keyframe == keyframe) in.keyframe_planes.push_back(edge.plane);
   return in;
+}
+
+void Pipeline::add_room_events(const std::vector<RoomEventRecord>& events) {
+  for (const RoomEventRecord& e : events) {
+    room_events_.push_back(e);
+    // Duplicates merged in the room map are merged in the graph.
+    for (const auto& [keep, drop] : e.merged) {
+      const auto d = room_nodes_.find(drop);
+      if (d == room_nodes_.end()) continue;
+      const auto k = room_nodes_.find(keep);
+      if (k == room_nodes_.end()) {
+        room_nodes_[keep] = d->second;
+      } else {
+        graph_.merge_rooms(k->second.node, d->second.node);
+      }
+      room_nodes_.erase(drop);
+    }
+    // A new room with walls on facing sides becomes a room node with its room-planes factor and
+    // a floor-room factor (a one-sided corridor has no pair of planes to make one).
+    if (!e.is_new || e.factor_walls.empty() || room_nodes_.count(e.room_id)) continue;
+    const bool walls_mapped = std::all_of(e.factor_walls.begin(), e.factor_walls.end(),
+                                          [this](int w) { return graph_.planes().count(w) > 0; });
+    if (!walls_mapped) continue;
+    graph::RoomNode node;
+    node.center = e.rect.center;
+    node.level = e.level;
+    node.kind = e.factor_walls.size() == graph::planes_of(rooms::RoomKind::room) ? rooms::RoomKind::room
+                                                                                : rooms::RoomKind::corridor;
+    const int id = graph_.add_room(node);
+    graph_.add_room_edge({id, node.kind, e.factor_walls, e.rect.center});
+    int floor = graph_.floor_of_level(e.level);
+    if (floor < 0) floor = graph_.add_floor({-1, e.level, e.rect.center});
+    graph_.add_floor_room_edge({floor, id});
+    room_nodes_[e.room_id] = {id, node.center};
+  }
+}
+
+void Pipeline::move_rooms_with_graph() {
+  // A mapped room moves by as much as its node moved in the optimisation.
+  for (auto& [room_id, link] : room_nodes_) {
+    const auto it = graph_.rooms().find(link.node);
+    if (it == graph_.rooms().end() || !rooms_.room_map().rooms().count(room_id)) continue;
+    const Vec2 moved = it->second.center - link.center;
+    link.center = it->second.center;
+    rooms_.move_room(room_id, rooms_.room_map().rooms().at(room_id).rect.center + moved);
+  }
 }
 
 std::vector<Pose3> Pipeline::trajectory() const {

@@ -3,6 +3,7 @@
 /// can drive it), prefilter -> keyframe selection -> walls -> graph (loop closure,
 /// optimisation). No file I/O: run_outputs.hpp writes what it holds.
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -95,6 +96,9 @@ class Pipeline {
  private:
   void add_keyframe(ScanRecord& record, PointCloud cloud, std::optional<std::vector<walls::PlaneObservation>> planes);
   RoomLayerInput room_input(int keyframe) const;
+  /// Records room events and puts new rooms, and merges, into the graph.
+  void add_room_events(const std::vector<RoomEventRecord>& events);
+  void move_rooms_with_graph();
   void score_ground(const PointCloud& scan, const ground::GroundScan& ground, ScanRecord* record) const;
   void optimize(bool full, const std::string& reason);
 
@@ -104,6 +108,11 @@ class Pipeline {
   ground::TraversableNodeMap node_map_;
   RoomLayer rooms_;
   std::vector<RoomEventRecord> room_events_;
+  struct RoomNodeLink {
+    int node = -1;                      ///< graph room id
+    Vec2 center = Vec2::Zero();         ///< its centre when the room map last followed it
+  };
+  std::map<int, RoomNodeLink> room_nodes_;  ///< room map id -> graph room node
   ground::GroundScan last_ground_;
   graph::SituationalGraph graph_;
   graph::GraphOptimizer optimizer_;

@@ -111,6 +111,14 @@ void validate(const YamlMap& root, const PipelineConfig& c) {
       if (std::string(e.what()).find(key) != std::string::npos) throw section.error(key, e.what());
     throw section.error_here(e.what());
   }
+  // The room layer checks its method names itself; each message starts with the key it names.
+  try {
+    RoomLayer check(c.rooms);
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    const std::string key = what.substr(0, what.find(' '));
+    throw root.map(key == "footprint" ? "room_association" : "room_layer").error(key, what);
+  }
   check_positive(root, "schedule", "optimize_every_keyframes", c.schedule.optimize_every_keyframes);
   if (c.schedule.full_every_keyframes < 0)
     throw root.map("schedule").error("full_every_keyframes", "full_every_keyframes must be >= 0");

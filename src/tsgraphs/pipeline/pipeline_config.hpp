@@ -39,12 +39,7 @@ struct PipelineConfig {
   graph::GraphOptimizerConfig optimizer;
   graph::LoopClosureConfig loop_closure;
   ScheduleConfig schedule;
-  RoomLayerConfig room_layer;
-  freespace::TraversableFreeSpaceConfig free_space;
-  rooms::AisleMeasureConfig aisle;
-  rooms::RoomFlushConfig room_flush;
-  rooms::RoomExtractionConfig room_extraction;
-  rooms::RoomAssociationConfig room_association;
+  RoomLayerSettings rooms;  ///< free space, triggers, extraction and association (room_layer.hpp)
 
   template <class V>
   void visit(V& v) {
@@ -57,12 +52,15 @@ struct PipelineConfig {
     v.section("optimizer", optimizer);
     v.section("loop_closure", loop_closure);
     v.section("schedule", schedule);
-    v.section("room_layer", room_layer);
-    v.section("free_space", free_space);
-    v.section("aisle", aisle);
-    v.section("room_flush", room_flush);
-    v.section("room_extraction", room_extraction);
-    v.section("room_association", room_association);
+    v.section("room_layer", rooms.layer);
+    v.section("free_space", rooms.free_space);
+    v.section("esdf_free_space", rooms.esdf);
+    v.section("aisle", rooms.aisle);
+    v.section("room_flush", rooms.flush);
+    v.section("room_timer", rooms.timer);
+    v.section("room_extraction", rooms.extraction);
+    v.section("sgraphs_room_extraction", rooms.sgraphs_extraction);
+    v.section("room_association", rooms.association);
   }
 };
 

@@ -2,14 +2,20 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 #include <tuple>
+#include <utility>
 
 namespace tsgraphs::rooms {
 
-RoomMap::RoomMap(RoomAssociationConfig config) : config_(config) {}
+RoomMap::RoomMap(RoomAssociationConfig config) : config_(std::move(config)) {
+  if (config_.footprint != "first" && config_.footprint != "latest" && config_.footprint != "largest")
+    throw std::invalid_argument("footprint must be first, latest or largest, not '" + config_.footprint + "'");
+}
 
 bool RoomMap::matches(const OrientedRect& a, const OrientedRect& b) const {
-  return dice(a, b) >= config_.min_dice || (a.center - b.center).norm() <= config_.room_dist_threshold;
+  return (config_.match_by_dice && dice(a, b) >= config_.min_dice) ||
+         (a.center - b.center).norm() <= config_.room_dist_threshold;
 }
 
 int RoomMap::match(const OrientedRect& rect, int level) const {
@@ -34,7 +40,8 @@ RoomAssociation RoomMap::add_extraction(const ExtractedRoom& room, int level) {
   if (id >= 0) {
     MappedRoom& mapped = rooms_.at(id);
     ++mapped.extraction_count;
-    if (config_.update_rect) mapped.rect = room.rect;
+    const bool larger = room.rect.size.prod() > mapped.rect.size.prod();
+    if (config_.footprint == "latest" || (config_.footprint == "largest" && larger)) mapped.rect = room.rect;
     return {id, false};
   }
   MappedRoom mapped;

@@ -3,6 +3,7 @@
 /// footprints >= min_dice, or centres within room_dist_threshold) is a re-detection of it, not a
 /// new room; mapped rooms that have come to match each other are duplicates and are merged.
 #include <map>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -12,15 +13,18 @@
 namespace tsgraphs::rooms {
 
 struct RoomAssociationConfig {
-  double min_dice = 0.5;             ///< footprints with at least this Dice score are one room
+  double min_dice = 0.5;             ///< footprints with at least this Dice score are one room...
   double room_dist_threshold = 1.0;  ///< ...or centres within this distance (m)
-  bool update_rect = false;          ///< a re-detection replaces the mapped footprint (else keeps the first)
+  bool match_by_dice = true;         ///< false: centres only (S-Graphs+); set by the room layer from its mode, not a file key
+  /// What a re-detection does to the mapped footprint: "first" keeps it, "latest" replaces it,
+  /// "largest" replaces it when the new one is larger (a room seen more completely).
+  std::string footprint = "largest";
 
   template <class V>
   void visit(V& v) {
     v("min_dice", min_dice);
     v("room_dist_threshold", room_dist_threshold);
-    v("update_rect", update_rect);
+    v("footprint", footprint);
   }
 };
 
@@ -40,13 +44,14 @@ struct RoomAssociation {
 
 class RoomMap {
  public:
+  /// Throws std::invalid_argument for an unknown config.footprint.
   explicit RoomMap(RoomAssociationConfig config = {});
 
   /// Id of the mapped room of `level` the footprint matches (the highest Dice; on a tie the
   /// nearer centre, then the lower id), or -1.
   int match(const OrientedRect& rect, int level) const;
-  /// Associates an extraction with its mapped room (its count goes up; its footprint is replaced
-  /// only with update_rect) or adds it as a new room with the next id.
+  /// Associates an extraction with its mapped room (its count goes up; its footprint follows
+  /// config.footprint) or adds it as a new room with the next id.
   RoomAssociation add_extraction(const ExtractedRoom& room, int level);
   /// Pairs (keep, drop) of mapped rooms of one level that match each other; keep is the one with
   /// more extractions (the lower id on a tie). Rooms linked by a chain of matches form one group

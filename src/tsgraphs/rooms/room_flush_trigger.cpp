@@ -5,6 +5,7 @@
 #include <utility>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 
 namespace tsgraphs::rooms {
 
@@ -53,14 +54,25 @@ AisleMeasurement measure_aisle(const std::vector<Eigen::Vector3d>& cluster, cons
   out.direction = dir;
   out.direction_defined = major > 0.0 && std::sqrt(major) >= config.min_anisotropy * std::sqrt(minor);
 
-  const Vec2 across(-dir.y(), dir.x());
-  std::vector<double> section;
-  for (const Eigen::Vector3d& p : cluster) {
-    const Vec2 q = p.head<2>() - r;
-    if (std::abs(q.dot(dir)) <= config.slice_half_width) section.push_back(q.dot(across));
+  // The shortest cross-section through the robot; a slice is the cluster points within
+  // slice_half_width of the line through the robot across it.
+  const int directions = std::max(1, config.width_directions);
+  bool measured = false;
+  for (int k = 0; k < directions; ++k) {
+    const double angle = M_PI * static_cast<double>(k) / static_cast<double>(directions);
+    const Vec2 across = Eigen::Rotation2Dd(angle) * Vec2(-dir.y(), dir.x());
+    const Vec2 along(across.y(), -across.x());
+    std::vector<double> section;
+    for (const Eigen::Vector3d& p : cluster) {
+      const Vec2 q = p.head<2>() - r;
+      if (std::abs(q.dot(along)) <= config.slice_half_width) section.push_back(q.dot(across));
+    }
+    if (section.empty()) continue;
+    const double width = run_through_zero(std::move(section), config.max_gap);
+    out.width = measured ? std::min(out.width, width) : width;
+    measured = true;
   }
-  if (section.empty()) return out;
-  out.width = run_through_zero(std::move(section), config.max_gap);
+  if (!measured) return out;
   out.valid = true;
   return out;
 }
@@ -69,30 +81,50 @@ RoomFlushTrigger::RoomFlushTrigger(RoomFlushConfig config) : config_(config) {}
 
 FlushReason RoomFlushTrigger::update(const AisleMeasurement& aisle, bool passed_doorway) {
   if (!aisle.valid) return FlushReason::none;
-  if (widths_.empty()) {
-    start_segment(aisle);
+  carried_ = 1;
+  if (widths_.empty() || passed_doorway) {
+    const bool flush = !widths_.empty();
+    reset();
+    accumulate(aisle);
+    return flush ? FlushReason::doorway : FlushReason::none;
+  }
+  const FlushReason reason = judge(aisle);
+  if (reason == FlushReason::none) {
+    for (const AisleMeasurement& held : pending_) accumulate(held);  // a blip, not a change
+    pending_.clear();
+    accumulate(aisle);
     return FlushReason::none;
   }
-  FlushReason reason = FlushReason::none;
+  if (pending_.empty()) pending_reason_ = reason;
+  pending_.push_back(aisle);
+  if (static_cast<int>(pending_.size()) < config_.confirm_keyframes) return FlushReason::none;
+  // The new segment is measured from its latest keyframe: the earlier pending ones may be a
+  // doorway or a corner between the two aisles.
+  const AisleMeasurement latest = pending_.back();
+  const int starting = static_cast<int>(pending_.size());
+  const FlushReason fired = pending_reason_;
+  reset();
+  accumulate(latest);
+  carried_ = starting;
+  return fired;
+}
+
+FlushReason RoomFlushTrigger::judge(const AisleMeasurement& aisle) const {
   const double median = segment_median_width();
-  if (passed_doorway) {
-    reason = FlushReason::doorway;
-  } else if (std::abs(aisle.width - median) > config_.width_change_ratio * median) {
-    reason = FlushReason::width_change;
-  } else if (aisle.direction_defined && axis_sum_.norm() > 0.0) {
+  if (std::abs(aisle.width - median) > config_.width_change_ratio * median) return FlushReason::width_change;
+  const bool narrow = median < config_.max_aisle_width && aisle.width < config_.max_aisle_width;
+  if (narrow && aisle.direction_defined && axis_sum_.norm() > 0.0) {
     const double c = std::min(1.0, std::abs(aisle.direction.dot(axis_sum_.normalized())));
-    if (std::acos(c) * kRadToDeg > config_.direction_change_deg) reason = FlushReason::direction_change;
+    if (std::acos(c) * kRadToDeg > config_.direction_change_deg) return FlushReason::direction_change;
   }
-  if (reason == FlushReason::none) {
-    accumulate(aisle);
-  } else {
-    start_segment(aisle);
-  }
-  return reason;
+  return FlushReason::none;
 }
 
 void RoomFlushTrigger::reset() {
+  carried_ = 1;
   widths_.clear();
+  pending_.clear();
+  pending_reason_ = FlushReason::none;
   axis_sum_ = Vec2::Zero();
 }
 
@@ -102,11 +134,6 @@ double RoomFlushTrigger::segment_median_width() const {
   std::sort(sorted.begin(), sorted.end());
   const std::size_t mid = sorted.size() / 2;
   return sorted.size() % 2 == 1 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
-}
-
-void RoomFlushTrigger::start_segment(const AisleMeasurement& aisle) {
-  reset();
-  accumulate(aisle);
 }
 
 void RoomFlushTrigger::accumulate(const AisleMeasurement& aisle) {

@@ -16,7 +16,9 @@ struct AisleMeasureConfig {
   double min_anisotropy = 1.5;        ///< principal std ratio below this: no defined direction (an open room)
   double slice_half_width = 0.3;      ///< cross-section: cluster points within this of the line through the robot (m)
   double max_gap = 0.5;               ///< the cross-section ends at a gap wider than this between points (m)
-  int min_points = 5;                 ///< fewer neighbourhood points: no measurement
+  int min_points = 40;                ///< fewer neighbourhood points: no measurement (the map near the robot is still filling in)
+  int width_directions = 4;           ///< the width is the shortest cross-section over this many directions, evenly
+                                      ///< spaced from across the axis: a room's width does not flip with its axis
 
   template <class V>
   void visit(V& v) {
@@ -25,31 +27,37 @@ struct AisleMeasureConfig {
     v("slice_half_width", slice_half_width);
     v("max_gap", max_gap);
     v("min_points", min_points);
+    v("width_directions", width_directions);
   }
 };
 
 /// The aisle at the robot: its width and (undirected) direction.
 struct AisleMeasurement {
   bool valid = false;            ///< false when too few cluster points are near the robot
-  double width = 0.0;            ///< cross-section of the cluster through the robot, perpendicular to `direction` (m)
+  double width = 0.0;            ///< shortest cross-section of the cluster through the robot (m)
   Vec2 direction = Vec2::UnitX();///< unit principal axis of the cluster near the robot, map x-y
   bool direction_defined = false;///< false when the cluster near the robot has no dominant axis
 };
 
-/// Measures the aisle from the free-space cluster (map frame) and the robot's position. Without
-/// a dominant axis the width is still measured across the neighbourhood's first principal axis,
-/// and `direction_defined` is false so that turns are not judged from it.
+/// Measures the aisle from the free-space cluster (map frame) and the robot's position: its axis
+/// is the principal axis of the cluster near the robot (`direction_defined` false without a
+/// dominant one, so that turns are not judged from it), its width the shortest cross-section
+/// through the robot over `width_directions` directions, the first across the axis.
 AisleMeasurement measure_aisle(const std::vector<Eigen::Vector3d>& cluster, const Eigen::Vector3d& robot,
                                const AisleMeasureConfig& config = {});
 
 struct RoomFlushConfig {
   double width_change_ratio = 0.3;    ///< flush when |width - median| > ratio * median of the segment
-  double direction_change_deg = 30.0; ///< flush when the aisle turns by more than this from the segment's axis
+  double direction_change_deg = 30.0; ///< flush when the aisle turns by more than this from the segment's axis...
+  double max_aisle_width = 4.0;       ///< ...where it is narrower than this (m); turning in a wider space is walking a room
+  int confirm_keyframes = 2;          ///< a change must hold for this many keyframes in a row (a map still filling in is not one)
 
   template <class V>
   void visit(V& v) {
     v("width_change_ratio", width_change_ratio);
     v("direction_change_deg", direction_change_deg);
+    v("max_aisle_width", max_aisle_width);
+    v("confirm_keyframes", confirm_keyframes);
   }
 };
 
@@ -59,23 +67,34 @@ class RoomFlushTrigger {
  public:
   explicit RoomFlushTrigger(RoomFlushConfig config = {});
 
-  /// Feeds one keyframe's aisle. Returns the reason to flush the segment accumulated so far
-  /// (this keyframe not included) or FlushReason::none; after a flush this keyframe starts the
-  /// next segment. An invalid measurement (no cluster near the robot) changes nothing.
+  /// Feeds one keyframe's aisle. A keyframe that differs from the segment (width or turn) is
+  /// held pending; when confirm_keyframes in a row differ, returns the reason to flush the
+  /// segment accumulated so far, and the pending keyframes start the next segment. A pending
+  /// keyframe followed by one that does not differ joins the segment after all. Passing a
+  /// doorway flushes at once (this keyframe starts the next segment). An invalid measurement
+  /// (no cluster near the robot) changes nothing.
   FlushReason update(const AisleMeasurement& aisle, bool passed_doorway);
   /// Forgets the accumulated segment.
   void reset();
 
+  /// Keyframes measured in the current segment.
   int segment_keyframes() const { return static_cast<int>(widths_.size()); }
+  /// After a flush: how many of the latest keyframes start the new segment (the confirming ones).
+  int starting_keyframes() const { return carried_; }
+  /// Latest keyframes held pending, not (yet) in the segment.
+  int pending_keyframes() const { return static_cast<int>(pending_.size()); }
   /// Median width of the accumulated segment; 0 when it is empty.
   double segment_median_width() const;
 
  private:
-  void start_segment(const AisleMeasurement& aisle);
+  FlushReason judge(const AisleMeasurement& aisle) const;
   void accumulate(const AisleMeasurement& aisle);
 
   RoomFlushConfig config_;
   std::vector<double> widths_;
+  std::vector<AisleMeasurement> pending_;
+  FlushReason pending_reason_ = FlushReason::none;
+  int carried_ = 1;
   Vec2 axis_sum_ = Vec2::Zero();  ///< sign-aligned sum of the defined directions of the segment
 };
 
