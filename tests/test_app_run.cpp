@@ -98,6 +98,13 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
   EXPECT_GE(graph["planes"].size(), 4u);
   EXPECT_GE(graph["traversable_nodes"].size(), 50u);
   EXPECT_EQ(read_file(out / "map.ply").rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
+  // Rooms are graph nodes with their wall factors, on the one floor.
+  ASSERT_GE(graph["room_nodes"].size(), 1u);
+  EXPECT_EQ(graph["floors"].size(), 1u);
+  const auto& graph_edges = graph["edges"];
+  EXPECT_TRUE(std::any_of(graph_edges.begin(), graph_edges.end(), [](const auto& e) { return e["type"] == "room_planes"; }));
+  EXPECT_TRUE(std::any_of(graph_edges.begin(), graph_edges.end(), [](const auto& e) { return e["type"] == "floor_room"; }));
+  EXPECT_TRUE(std::any_of(graph["rooms"].begin(), graph["rooms"].end(), [](const auto& r) { return r["node"].is_number(); }));
 
   ASSERT_EQ(cli("-q eval " + out.string() + " --seq " + seq.string(), &err), 0) << err;
   const auto m = nlohmann::json::parse(read_file(out / "metrics.json"));
@@ -120,6 +127,25 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
   ASSERT_EQ(cli("-q run " + seq.string() + " --out " + out2.string(), &err), 0) << err;
   EXPECT_EQ(read_file(out / "trajectory.txt"), read_file(out2 / "trajectory.txt"));
   EXPECT_EQ(read_file(out / "scene_graph.json"), read_file(out2 / "scene_graph.json"));
+}
+
+TEST_F(RunCli, BaselineModeExtractsOnTheTimerAndIsRecordedInParams) {
+  const fs::path seq = base_ / "seq", out = dir_ / "run";
+  std::string err;
+  ASSERT_EQ(cli("-q run " + seq.string() + " --out " + out.string() + " --free-space esdf --room-trigger timer", &err),
+            0)
+      << err;
+  const std::string params = read_file(out / "params.yaml");
+  EXPECT_NE(params.find("free_space_method: esdf"), std::string::npos);
+  EXPECT_NE(params.find("room_trigger: timer"), std::string::npos);
+  const auto events = eval::read_room_events((out / "rooms_events.jsonl").string());
+  ASSERT_GE(events.size(), 2u);
+  // At most one extraction per period of the 1 s grid that starts at the first keyframe (t = 0).
+  for (std::size_t i = 1; i < events.size(); ++i)
+    EXPECT_GT(std::floor(events[i].t + 1e-9), std::floor(events[i - 1].t + 1e-9));
+  for (const auto& e : events) EXPECT_NEAR(std::remainder(e.rect.yaw, M_PI / 2), 0.0, 1e-9);  // map axes only
+  EXPECT_EQ(cli("-q run " + seq.string() + " --out " + (dir_ / "bad").string() + " --free-space voxblox", &err), 2);
+  EXPECT_FALSE(fs::exists(dir_ / "bad"));
 }
 
 TEST_F(RunCli, ParallelRunEqualsOneScanAtATime) {

@@ -81,6 +81,11 @@ class Pipeline {
   const ground::TraversableNodeMap& node_map() const { return node_map_; }
   const rooms::RoomMap& room_map() const { return rooms_.room_map(); }
   const RoomLayer& room_layer() const { return rooms_; }
+  /// The graph room node of mapped room `room_id`, -1 if it has none (a one-sided corridor).
+  int room_node_of(int room_id) const {
+    const auto it = room_nodes_.find(room_id);
+    return it == room_nodes_.end() ? -1 : it->second.node;
+  }
   /// Every room extraction so far, in time order.
   const std::vector<RoomEventRecord>& room_events() const { return room_events_; }
   /// The ground of the newest scan (level frame of that scan), for callers that draw it.

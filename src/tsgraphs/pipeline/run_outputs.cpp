@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <cstring>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <unordered_set>
 
@@ -37,6 +37,10 @@ Rgb wall_colour(int id) {
 constexpr Rgb kKeyframePoint{150, 150, 150};
 constexpr Rgb kHorizontalPlane{222, 200, 160};
 constexpr Rgb kTraversableNode{255, 0, 255};  // magenta, as DESIGN.md's outputs say
+constexpr Rgb kRoomOutline{0, 200, 255};
+constexpr Rgb kCorridorOutline{255, 150, 0};
+constexpr double kOutlineLift = 0.05;  // room outlines this far above their floor (m)
+constexpr double kOutlineStep = 0.05;  // one outline point per this length (m)
 // Keyframe points are thinned to this grid in the map, so map.ply stays small on long runs.
 constexpr double kMapVoxel = 0.1;
 
@@ -120,6 +124,25 @@ std::string scene_graph_json(const Pipeline& pipeline) {
                             {"anchor_keyframe", n->anchor_keyframe},
                             {"keyframes", n->keyframes}});
   }
+  for (const graph::RoomPlanesEdge& e : g.room_edges())
+    edges.push_back({{"type", "room_planes"},
+                     {"room", e.room},
+                     {"kind", rooms::to_string(e.kind)},
+                     {"planes", e.planes},
+                     {"cluster_center", {e.cluster_center.x(), e.cluster_center.y()}}});
+  for (const graph::FloorRoomEdge& e : g.floor_room_edges())
+    edges.push_back({{"type", "floor_room"}, {"floor", e.floor}, {"room", e.room}});
+  // Graph nodes of rooms and floors (optimised centres); "rooms" below are the room map's
+  // footprints, each naming its graph node when it has one.
+  json room_nodes = json::array();
+  for (const auto& [id, r] : g.rooms())
+    room_nodes.push_back({{"id", id},
+                          {"kind", rooms::to_string(r.kind)},
+                          {"level", r.level},
+                          {"center", {r.center.x(), r.center.y()}}});
+  json floors = json::array();
+  for (const auto& [id, f] : g.floors())
+    floors.push_back({{"id", id}, {"level", f.level}, {"center", {f.center.x(), f.center.y()}}});
   json rooms = json::array();
   for (const auto& [id, r] : pipeline.room_map().rooms()) {
     rooms.push_back({{"id", id},
@@ -130,7 +153,8 @@ std::string scene_graph_json(const Pipeline& pipeline) {
                        {"size", {r.rect.size.x(), r.rect.size.y()}},
                        {"yaw", r.rect.yaw}}},
                      {"walls", r.wall_ids},
-                     {"extractions", r.extraction_count}});
+                     {"extractions", r.extraction_count},
+                     {"node", pipeline.room_node_of(id) >= 0 ? json(pipeline.room_node_of(id)) : json(nullptr)}});
   }
   const json doc = {{"format", "tsgraphs-scene-graph"},
                     {"version", 1},
@@ -139,6 +163,8 @@ std::string scene_graph_json(const Pipeline& pipeline) {
                     {"planes", planes},
                     {"traversable_nodes", ground_nodes},
                     {"rooms", rooms},
+                    {"room_nodes", room_nodes},
+                    {"floors", floors},
                     {"levels", pipeline.room_layer().levels()},
                     {"edges", edges}};
   return doc.dump(1) + "\n";
@@ -241,8 +267,25 @@ std::string map_ply(const Pipeline& pipeline) {
   }
   for (const ground::GlobalNode* n : pipeline.node_map().nodes())
     vertices.push_back({n->position.cast<float>(), kTraversableNode});
+  // Room and corridor footprints: their outlines just above their level's floor.
+  for (const auto& [id, r] : pipeline.room_map().rooms()) {
+    const auto& levels = pipeline.room_layer().levels();
+    const float z = static_cast<float>(levels.at(static_cast<std::size_t>(r.level)) + kOutlineLift);
+    const Rgb c = r.kind == rooms::RoomKind::room ? kRoomOutline : kCorridorOutline;
+    const Polygon2 corners = r.rect.corners();
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      const Vec2& a = corners[i];
+      const Vec2& b = corners[(i + 1) % corners.size()];
+      const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / kOutlineStep)));
+      for (int k = 0; k < steps; ++k) {
+        const Vec2 q = a + (b - a) * (static_cast<double>(k) / steps);
+        vertices.push_back({Eigen::Vector3f(static_cast<float>(q.x()), static_cast<float>(q.y()), z), c});
+      }
+    }
+  }
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment tsgraphs map: grey keyframe points, "
-                    "coloured wall faces, beige floors and ceilings, magenta traversable nodes\nelement vertex " +
+                    "coloured wall faces, beige floors and ceilings, magenta traversable nodes, cyan room and orange "
+                    "corridor outlines\nelement vertex " +
                     std::to_string(vertices.size()) +
                     "\nproperty float x\nproperty float y\nproperty float z\n"
                     "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
