@@ -165,7 +165,7 @@ void expect_must_show(const Outcome& o) {
 
 // Issue 5 asks for f_re >= 0.95, DCS >= 0.85, d_center <= 0.3 m, F1 >= 0.9, no under-segmented
 // room and no duplicate final room. Asserted: what holds today (office f_re 1.00, DCS 0.95,
-// F1 1.00; atrium f_re 0.89, DCS 1.00, d_center 0.02, F1 1.00); office d_center (0.68 m, the
+// F1 1.00; atrium f_re 0.89, DCS 1.00, d_center 0.02, F1 1.00); office d_center (0.55 m, the
 // corridor seen in pieces during the first lap) and atrium f_re are short of the issue's figures.
 void expect_rooms(const Outcome& o, double min_f_re, double max_d_center) {
   EXPECT_GE(o.rooms_consistency.f_re, min_f_re);
@@ -179,7 +179,7 @@ void expect_rooms(const Outcome& o, double min_f_re, double max_d_center) {
 TEST(EndToEnd, OfficeTwoLaps) {
   const Outcome o = run_scene(builtin("office"), 1);
   expect_must_show(o);
-  expect_rooms(o, 0.95, 0.8);
+  expect_rooms(o, 0.95, 0.7);
 }
 
 TEST(EndToEnd, AtriumTwoLaps) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "rooms_test_support.hpp"
 #include "tsgraphs/rooms/room_extraction.hpp"
 
 namespace tsgraphs::rooms {
@@ -12,44 +13,14 @@ namespace {
 
 constexpr double kStep = 0.1;  // spacing of the constructed free-space nodes (m)
 
-WallCandidate wall(int id, Vec2 point, Vec2 normal, Vec2 a, Vec2 b) {
-  WallCandidate w;
-  w.id = id;
-  w.plane = Plane::from_point_normal(Eigen::Vector3d(point.x(), point.y(), 0.0),
-                                     Eigen::Vector3d(normal.x(), normal.y(), 0.0));
-  w.end_a = a;
-  w.end_b = b;
-  return w;
-}
+using test::bounds;
+using test::Bounds;
+using test::room_walls;
+using test::wall;
 
-/// Free-space nodes on a grid over [x0, x1] x [y0, y1], at 0.3 m above the floor.
+/// Free-space points on the grid of this file's spacing.
 std::vector<Eigen::Vector3d> grid(double x0, double x1, double y0, double y1) {
-  std::vector<Eigen::Vector3d> out;
-  for (int i = 0; x0 + i * kStep <= x1 + 1e-9; ++i) {
-    for (int j = 0; y0 + j * kStep <= y1 + 1e-9; ++j) out.emplace_back(x0 + i * kStep, y0 + j * kStep, 0.3);
-  }
-  return out;
-}
-
-/// The four walls of the room [0, 5] x [0, 4], ids 0..3, normals into the room.
-std::vector<WallCandidate> room_walls() {
-  return {wall(0, {0, 0}, {1, 0}, {0, 0}, {0, 4}), wall(1, {5, 0}, {-1, 0}, {5, 0}, {5, 4}),
-          wall(2, {0, 0}, {0, 1}, {0, 0}, {5, 0}), wall(3, {0, 4}, {0, -1}, {0, 4}, {5, 4})};
-}
-
-struct Bounds {
-  double x0, x1, y0, y1;
-};
-
-Bounds bounds(const OrientedRect& r) {
-  Bounds b{1e9, -1e9, 1e9, -1e9};
-  for (const Vec2& c : r.corners()) {
-    b.x0 = std::min(b.x0, c.x());
-    b.x1 = std::max(b.x1, c.x());
-    b.y0 = std::min(b.y0, c.y());
-    b.y1 = std::max(b.y1, c.y());
-  }
-  return b;
+  return test::grid(kStep, x0, x1, y0, y1);
 }
 
 std::vector<int> sorted(std::vector<int> v) {
@@ -76,11 +47,7 @@ TEST(RoomExtraction, RotatedRoomMatchesItsWalls) {
   const double yaw = 30.0 * M_PI / 180.0;
   const Eigen::Rotation2Dd R(yaw);
   const Vec2 t(3.0, -2.0);
-  std::vector<WallCandidate> walls;
-  for (const WallCandidate& w : room_walls()) {
-    const Vec2 n = R * w.plane.n.head<2>();
-    walls.push_back(wall(w.id, R * w.end_a + t, n, R * w.end_a + t, R * w.end_b + t));
-  }
+  const std::vector<WallCandidate> walls = test::moved_room_walls(R, t);
   std::vector<Eigen::Vector3d> cluster = grid(0.5, 4.5, 0.5, 3.5);
   for (Eigen::Vector3d& p : cluster) p.head<2>() = R * p.head<2>() + t;
   const auto room = extract_room(cluster, {}, walls);

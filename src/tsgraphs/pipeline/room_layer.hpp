@@ -34,7 +34,7 @@ namespace tsgraphs::pipeline {
 struct RoomLayerConfig {
   std::string free_space_method = "traversable";  ///< "traversable" (TS-graphs) or "esdf" (S-Graphs+)
   std::string room_trigger = "flush";             ///< "flush" (TS-graphs) or "timer" (S-Graphs+)
-  double free_space_radius = 12.0; ///< free space is computed within this of the robot (m)
+  double free_space_radius = 8.0;  ///< free space is computed within this of the robot (m)
   int obstacle_keyframes = 5;      ///< obstacle points come from the clouds of this many latest keyframes
   double level_tolerance = 1.5;    ///< floors within this height of a known level belong to it (m)
   double obstacle_voxel = 0.2;     ///< obstacle candidate points are thinned to this (m)
