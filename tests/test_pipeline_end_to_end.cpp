@@ -164,9 +164,10 @@ void expect_must_show(const Outcome& o) {
 }  // namespace
 
 // Issue 5 asks for f_re >= 0.95, DCS >= 0.85, d_center <= 0.3 m, F1 >= 0.9, no under-segmented
-// room and no duplicate final room. Asserted: what holds today (office f_re 1.00, DCS 0.95,
-// F1 1.00; atrium f_re 0.89, DCS 1.00, d_center 0.02, F1 1.00); office d_center (0.55 m, the
-// corridor seen in pieces during the first lap) and atrium f_re are short of the issue's figures.
+// room and no duplicate final room. Today: office f_re 1.00, DCS 0.97, d_center 0.53, F1 1.00;
+// atrium f_re 1.00, DCS 0.99, d_center 0.13, F1 1.00. The office's d_center is short of the
+// issue's figure: in the first lap its 24 m corridor is extracted as far as the map reaches
+// then (15.6 m, 21.9 m), in the second whole.
 void expect_rooms(const Outcome& o, double min_f_re, double max_d_center) {
   EXPECT_GE(o.rooms_consistency.f_re, min_f_re);
   EXPECT_GE(o.rooms_consistency.dcs.value_or(0), 0.85);
@@ -179,13 +180,13 @@ void expect_rooms(const Outcome& o, double min_f_re, double max_d_center) {
 TEST(EndToEnd, OfficeTwoLaps) {
   const Outcome o = run_scene(builtin("office"), 1);
   expect_must_show(o);
-  expect_rooms(o, 0.95, 0.7);
+  expect_rooms(o, 0.95, 0.6);
 }
 
 TEST(EndToEnd, AtriumTwoLaps) {
   const Outcome o = run_scene(builtin("atrium"), 1);
   expect_must_show(o);
-  expect_rooms(o, 0.85, 0.3);
+  expect_rooms(o, 0.95, 0.3);
 }
 
 TEST(EndToEnd, StraightCorridorWithoutRevisitHasNoLoopClosure) {

@@ -120,9 +120,12 @@ std::vector<RoomEventRecord> RoomLayer::update_flush(const RoomLayerInput& input
     const std::size_t starting =
         std::min(pending_.size(), static_cast<std::size_t>(flush_trigger_.starting_keyframes()));
     for (std::size_t k = 0; k + starting < pending_.size(); ++k) commit(pending_[k]);
-    if (!segment_.empty() && segment_length_ >= settings_.layer.min_segment_length)
-      events = extract(input, segment_, context_, segment_level_);
-    clear_segment();
+    // A segment walked less than min_segment_length (a corner, a doorway) is no room of its
+    // own: it is carried into the next one.
+    if (segment_length_ >= settings_.layer.min_segment_length) {
+      if (!segment_.empty()) events = extract(input, segment_, context_, segment_level_);
+      clear_segment();
+    }
     // Of the keyframes that confirmed the change only the latest starts the new segment: the
     // earlier ones stood between the two spaces (in a doorway, at a corner) and see both.
     if (starting > 0) pending_.erase(pending_.begin(), pending_.end() - 1);
@@ -188,7 +191,12 @@ std::vector<RoomEventRecord> RoomLayer::extract(const RoomLayerInput& input, con
       }
       return points;
     };
-    room = rooms::extract_room(now(segment), now(context), input.walls, settings_.extraction);
+    // The context also holds the mapped ground farther along the aisle than the clusters reached.
+    std::vector<Eigen::Vector3d> around = now(context);
+    const Eigen::Vector3d floor = input.pose.translation() - input.sensor_height * Eigen::Vector3d::UnitZ();
+    for (const ground::GlobalNode* n : input.nodes->nodes_near(floor, settings_.layer.context_radius))
+      around.push_back(n->position);
+    room = rooms::extract_room(now(segment), around, input.walls, settings_.extraction);
   }
   if (!room) return events;
   const rooms::RoomAssociation a = map_.add_extraction(*room, level);

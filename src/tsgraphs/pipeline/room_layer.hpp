@@ -40,8 +40,9 @@ struct RoomLayerConfig {
   double obstacle_voxel = 0.2;     ///< obstacle candidate points are thinned to this (m)
   double segment_radius = 2.5;     ///< flush: only the cluster's vertices this near the robot join the segment (m):
                                    ///< the aisle it walks, not everything in view
-  double min_segment_length = 2.0; ///< flush: a segment walked less than this is not extracted: a corner or a
-                                   ///< doorway passed through, not a room (m)
+  double context_radius = 20.0;    ///< flush: mapped ground within this of the robot also carries a corridor on (m)
+  double min_segment_length = 2.0; ///< flush: a segment walked less than this (a corner, a doorway passed
+                                   ///< through) is not extracted but carried into the next one (m)
 
   template <class V>
   void visit(V& v) {
@@ -52,6 +53,7 @@ struct RoomLayerConfig {
     v("level_tolerance", level_tolerance);
     v("obstacle_voxel", obstacle_voxel);
     v("segment_radius", segment_radius);
+    v("context_radius", context_radius);
     v("min_segment_length", min_segment_length);
   }
 };
