@@ -264,9 +264,10 @@ void Pipeline::add_room_events(const std::vector<RoomEventRecord>& events) {
       }
       room_nodes_.erase(drop);
     }
-    // A new room with walls on facing sides becomes a room node with its room-planes factor and
-    // a floor-room factor (a one-sided corridor has no pair of planes to make one).
-    if (!e.is_new || e.factor_walls.empty() || room_nodes_.count(e.room_id)) continue;
+    // A room extracted with walls on facing sides (the first time, or a re-detection of one
+    // first seen one-sided) becomes a room node with its room-planes factor and a floor-room
+    // factor; a one-sided corridor has no pair of planes to make one.
+    if (e.factor_walls.empty() || room_nodes_.count(e.room_id)) continue;
     const bool walls_mapped = std::all_of(e.factor_walls.begin(), e.factor_walls.end(),
                                           [this](int w) { return graph_.planes().count(w) > 0; });
     if (!walls_mapped) continue;

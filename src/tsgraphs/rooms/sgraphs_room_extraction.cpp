@@ -36,8 +36,16 @@ int class_of(const Vec2& n) {
 /// Coordinate along `axis` where the line crosses the line through `c` along `axis`.
 double position_along(const Trace& t, int axis, const Vec2& c) { return c[axis] - (t.n.dot(c) + t.d) / t.n[axis]; }
 
-/// Per class, the plane with the most cluster points within point_distance (either side);
-/// ties go to the lower id.
+/// Distance from q to the segment a-b (a point when a == b).
+double segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((q - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (q - (a + t * ab)).norm();
+}
+
+/// Per class, the plane with the most cluster points within point_distance of its face (either
+/// side: S-Graphs measures to the plane's nearest point); ties go to the lower id.
 std::array<Winner, 4> class_winners(const std::vector<Vec2>& points, double mean_z,
                                     const std::vector<WallCandidate>& walls, const SgraphsRoomExtractionConfig& cfg) {
   std::array<Winner, 4> winners;
@@ -51,7 +59,7 @@ std::array<Winner, 4> class_winners(const std::vector<Vec2>& points, double mean
     t.d = (w.plane.d + w.plane.n.z() * mean_z) / len;
     int near = 0;
     for (const Vec2& q : points) {
-      if (std::abs(t.n.dot(q) + t.d) < cfg.point_distance) ++near;
+      if (segment_distance(q, w.end_a, w.end_b) < cfg.point_distance) ++near;
     }
     Winner& best = winners[static_cast<std::size_t>(class_of(t.n))];
     if (!best.found || near > best.points || (near == best.points && t.id < best.trace.id)) best = {true, t, near};

@@ -5,8 +5,8 @@
 /// S-Graphs+ takes one free-space cluster (ESDF slice cells) and the vertical planes seen by the
 /// last keyframe. Each plane is an x-plane or a y-plane by the larger of |n.x|, |n.y| in the map
 /// frame, and falls in one of four classes by the sign of that component (x+, x-, y+, y-). Per
-/// class the plane with the most cluster points within `point_distance` of it, on either side,
-/// wins. Two winners of one axis that face each other and are far enough apart make a pair; two
+/// class the plane with the most cluster points within `point_distance` of its face (the
+/// segment of its points, on either side; S-Graphs measures to the plane's nearest point) wins. Two winners of one axis that face each other and are far enough apart make a pair; two
 /// pairs make a room, one pair a corridor whose length is the cluster's extent along it.
 ///
 /// Where it differs from TS-graphs' extract_room: the classes are the map axes, so a room rotated
