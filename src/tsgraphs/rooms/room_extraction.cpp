@@ -14,6 +14,9 @@ namespace tsgraphs::rooms {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
+/// A one-sided corridor's open side is bounded when free space lies beyond it along less than
+/// this share of the walked stretch (a railing with gaps, a corner), not along most of it (a hall).
+constexpr double kMaxBeyondOpenSide = 0.5;
 
 /// A wall plane reduced to a 2-D line n.q + d = 0 that bounds the cluster on one side.
 struct Side {
@@ -220,7 +223,7 @@ bool open_side_bounded(const std::vector<Vec2>& context, const Vec2& u, const Ve
       beyond.insert(std::lround(std::floor(b / cfg.band_bin)));
   }
   const double bins = std::max(1.0, std::ceil((walked.second - walked.first) / cfg.band_bin));
-  return static_cast<double>(beyond.size()) < 0.5 * bins;
+  return static_cast<double>(beyond.size()) < kMaxBeyondOpenSide * bins;
 }
 
 /// Shortens [lo, hi] along v to the nearest wall across the band lo_u..hi_u beyond the segment's
