@@ -47,7 +47,7 @@ TEST(RoomFlushTrigger, WidthChangeOfHalfFlushesOnceConfirmedAndFivePercentDoesNo
 TEST(RoomFlushTrigger, OneKeyframeBlipJoinsTheSegment) {
   RoomFlushTrigger trigger;
   for (int k = 0; k < 4; ++k) trigger.update(aisle(2.0, 0.0), false);
-  EXPECT_EQ(trigger.update(aisle(0.3, 0.0), false), FlushReason::none);  // the map filling in, say
+  EXPECT_EQ(trigger.update(aisle(1.0, 0.0), false), FlushReason::none);  // the map filling in, say
   EXPECT_EQ(trigger.pending_keyframes(), 1);
   EXPECT_EQ(trigger.update(aisle(2.0, 0.0), false), FlushReason::none);
   EXPECT_EQ(trigger.pending_keyframes(), 0);
@@ -66,6 +66,29 @@ TEST(RoomFlushTrigger, TurnOfNinetyDegreesFlushesAndTwentyDoesNot) {
   open.direction_defined = false;
   EXPECT_EQ(trigger.update(open, false), FlushReason::none);
   EXPECT_EQ(trigger.pending_keyframes(), 0);
+}
+
+TEST(RoomFlushTrigger, WidthsBothWiderThanAnAisleAreOneOpenSpace) {
+  RoomFlushTrigger trigger;  // max_aisle_width 4 m
+  for (int k = 0; k < 3; ++k) trigger.update(aisle(5.9, 0.0), false);
+  // Standing where the cross-section reaches through a door: 40 % wider, still the room.
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(trigger.update(aisle(8.3, 0.0), false), FlushReason::none);
+  EXPECT_EQ(trigger.pending_keyframes(), 0);
+  // From the room into a 2 m corridor is a change.
+  trigger.update(aisle(2.0, 0.0), false);
+  EXPECT_EQ(trigger.update(aisle(2.0, 0.0), false), FlushReason::width_change);
+}
+
+TEST(RoomFlushTrigger, NarrowBlipBetweenTwoRoomsIsADoorway) {
+  RoomFlushTrigger trigger;
+  for (int k = 0; k < 3; ++k) trigger.update(aisle(6.0, 0.0), false);
+  EXPECT_EQ(trigger.update(aisle(0.3, 0.0), false), FlushReason::none);  // in the door
+  EXPECT_EQ(trigger.update(aisle(5.0, 0.0), false), FlushReason::doorway);
+  EXPECT_EQ(trigger.segment_keyframes(), 1);
+  // A blip of half the width (furniture near the robot) is not a doorway.
+  for (int k = 0; k < 3; ++k) trigger.update(aisle(5.0, 0.0), false);
+  EXPECT_EQ(trigger.update(aisle(2.5, 0.0), false), FlushReason::none);
+  EXPECT_EQ(trigger.update(aisle(5.0, 0.0), false), FlushReason::none);
 }
 
 TEST(RoomFlushTrigger, TurningInARoomWiderThanAnAisleDoesNotFlush) {

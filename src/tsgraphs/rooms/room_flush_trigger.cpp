@@ -90,7 +90,18 @@ FlushReason RoomFlushTrigger::update(const AisleMeasurement& aisle, bool passed_
   }
   const FlushReason reason = judge(aisle);
   if (reason == FlushReason::none) {
-    for (const AisleMeasurement& held : pending_) accumulate(held);  // a blip, not a change
+    // A blip much narrower than the space on both sides of it is a doorway between two spaces
+    // (two rooms, too wide for their width change to count); any other blip joins the segment.
+    const double around = std::min(segment_median_width(), aisle.width);
+    const bool doorway = !pending_.empty() && std::all_of(pending_.begin(), pending_.end(), [&](const AisleMeasurement& a) {
+      return a.width < config_.doorway_ratio * around;
+    });
+    if (doorway) {
+      reset();
+      accumulate(aisle);
+      return FlushReason::doorway;
+    }
+    for (const AisleMeasurement& held : pending_) accumulate(held);
     pending_.clear();
     accumulate(aisle);
     return FlushReason::none;
@@ -111,7 +122,11 @@ FlushReason RoomFlushTrigger::update(const AisleMeasurement& aisle, bool passed_
 
 FlushReason RoomFlushTrigger::judge(const AisleMeasurement& aisle) const {
   const double median = segment_median_width();
-  if (std::abs(aisle.width - median) > config_.width_change_ratio * median) return FlushReason::width_change;
+  // Two cross-sections wider than an aisle are both open space (a room, a hall): how wide
+  // varies with where the robot stands, furniture and doors, and is no change of space.
+  const bool open = median >= config_.max_aisle_width && aisle.width >= config_.max_aisle_width;
+  if (!open && std::abs(aisle.width - median) > config_.width_change_ratio * median)
+    return FlushReason::width_change;
   const bool narrow = median < config_.max_aisle_width && aisle.width < config_.max_aisle_width;
   if (narrow && aisle.direction_defined && axis_sum_.norm() > 0.0) {
     const double c = std::min(1.0, std::abs(aisle.direction.dot(axis_sum_.normalized())));

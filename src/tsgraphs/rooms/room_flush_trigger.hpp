@@ -49,8 +49,10 @@ AisleMeasurement measure_aisle(const std::vector<Eigen::Vector3d>& cluster, cons
 struct RoomFlushConfig {
   double width_change_ratio = 0.3;    ///< flush when |width - median| > ratio * median of the segment
   double direction_change_deg = 30.0; ///< flush when the aisle turns by more than this from the segment's axis...
-  double max_aisle_width = 4.0;       ///< ...where it is narrower than this (m); turning in a wider space is walking a room
+  double max_aisle_width = 4.0;       ///< ...where it is narrower than this (m); turning in a wider space is walking a room,
+                                      ///< and widths both above it are both open space (no width change)
   int confirm_keyframes = 2;          ///< a change must hold for this many keyframes in a row (a map still filling in is not one)
+  double doorway_ratio = 0.3;         ///< a blip narrower than this share of the space on both sides is a doorway (flush)
 
   template <class V>
   void visit(V& v) {
@@ -58,6 +60,7 @@ struct RoomFlushConfig {
     v("direction_change_deg", direction_change_deg);
     v("max_aisle_width", max_aisle_width);
     v("confirm_keyframes", confirm_keyframes);
+    v("doorway_ratio", doorway_ratio);
   }
 };
 
