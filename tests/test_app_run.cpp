@@ -105,6 +105,19 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
   EXPECT_TRUE(std::any_of(graph_edges.begin(), graph_edges.end(), [](const auto& e) { return e["type"] == "room_planes"; }));
   EXPECT_TRUE(std::any_of(graph_edges.begin(), graph_edges.end(), [](const auto& e) { return e["type"] == "floor_room"; }));
   EXPECT_TRUE(std::any_of(graph["rooms"].begin(), graph["rooms"].end(), [](const auto& r) { return r["node"].is_number(); }));
+  // map.ply draws the rooms (cyan or orange outlines) and the floor node (a yellow cross).
+  const std::string ply = read_file(out / "map.ply");
+  const std::size_t body = ply.find("end_header\n") + std::strlen("end_header\n");
+  constexpr std::size_t kVertexBytes = 15;  // 3 floats and 3 colour bytes
+  int outline = 0, floor_cross = 0;
+  for (std::size_t at = body; at + kVertexBytes <= ply.size(); at += kVertexBytes) {
+    const auto r = static_cast<unsigned char>(ply[at + 12]), g = static_cast<unsigned char>(ply[at + 13]),
+               b = static_cast<unsigned char>(ply[at + 14]);
+    if ((r == 0 && g == 200 && b == 255) || (r == 255 && g == 150 && b == 0)) ++outline;
+    if (r == 255 && g == 255 && b == 0) ++floor_cross;
+  }
+  EXPECT_GE(outline, 100);  // 0.05 m apart round rooms metres wide
+  EXPECT_GE(floor_cross, 20);
 
   ASSERT_EQ(cli("-q eval " + out.string() + " --seq " + seq.string(), &err), 0) << err;
   const auto m = nlohmann::json::parse(read_file(out / "metrics.json"));

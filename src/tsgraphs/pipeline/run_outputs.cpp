@@ -41,6 +41,8 @@ constexpr Rgb kRoomOutline{0, 200, 255};
 constexpr Rgb kCorridorOutline{255, 150, 0};
 constexpr double kOutlineLift = 0.05;  // room outlines this far above their floor (m)
 constexpr double kOutlineStep = 0.05;  // one outline point per this length (m)
+constexpr Rgb kFloorNode{255, 255, 0};
+constexpr double kFloorCross = 0.5;    // half the arm of a floor node's cross (m)
 // Keyframe points are thinned to this grid in the map, so map.ply stays small on long runs.
 constexpr double kMapVoxel = 0.1;
 
@@ -267,6 +269,18 @@ std::string map_ply(const Pipeline& pipeline) {
   }
   for (const ground::GlobalNode* n : pipeline.node_map().nodes())
     vertices.push_back({n->position.cast<float>(), kTraversableNode});
+  // Floor nodes: a cross at their centre, on their level.
+  for (const auto& [id, f] : pipeline.graph().floors()) {
+    const auto& levels = pipeline.room_layer().levels();
+    if (f.level < 0 || static_cast<std::size_t>(f.level) >= levels.size()) continue;
+    const float z = static_cast<float>(levels[static_cast<std::size_t>(f.level)] + kOutlineLift);
+    for (double t = -kFloorCross; t <= kFloorCross; t += kOutlineStep) {
+      vertices.push_back({Eigen::Vector3f(static_cast<float>(f.center.x() + t), static_cast<float>(f.center.y()), z),
+                          kFloorNode});
+      vertices.push_back({Eigen::Vector3f(static_cast<float>(f.center.x()), static_cast<float>(f.center.y() + t), z),
+                          kFloorNode});
+    }
+  }
   // Room and corridor footprints: their outlines just above their level's floor.
   for (const auto& [id, r] : pipeline.room_map().rooms()) {
     const auto& levels = pipeline.room_layer().levels();
@@ -285,7 +299,7 @@ std::string map_ply(const Pipeline& pipeline) {
   }
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment tsgraphs map: grey keyframe points, "
                     "coloured wall faces, beige floors and ceilings, magenta traversable nodes, cyan room and orange "
-                    "corridor outlines\nelement vertex " +
+                    "corridor outlines, yellow floor-node crosses\nelement vertex " +
                     std::to_string(vertices.size()) +
                     "\nproperty float x\nproperty float y\nproperty float z\n"
                     "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
