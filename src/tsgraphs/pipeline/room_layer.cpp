@@ -191,12 +191,13 @@ std::vector<RoomEventRecord> RoomLayer::extract(const RoomLayerInput& input, con
       }
       return points;
     };
-    // The context also holds the mapped ground farther along the aisle than the clusters reached.
-    std::vector<Eigen::Vector3d> around = now(context);
+    // The context also holds the mapped ground farther along the aisle than the clusters
+    // reached (each node once).
+    Vertices around = context;
     const Eigen::Vector3d floor = input.pose.translation() - input.sensor_height * Eigen::Vector3d::UnitZ();
     for (const ground::GlobalNode* n : input.nodes->nodes_near(floor, settings_.layer.context_radius))
-      around.push_back(n->position);
-    room = rooms::extract_room(now(segment), around, input.walls, settings_.extraction);
+      around.emplace(n->id, n->position);
+    room = rooms::extract_room(now(segment), now(around), input.walls, settings_.extraction);
   }
   if (!room) return events;
   const rooms::RoomAssociation a = map_.add_extraction(*room, level);
