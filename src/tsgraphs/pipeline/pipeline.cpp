@@ -244,8 +244,11 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
     if ((e.centroid.head<2>() - kf.pose.translation().head<2>()).norm() > radius + (e.b - e.a).norm()) continue;
     in.walls.push_back({id, graph_.planes().at(id).plane, e.a, e.b, e.z1 - e.z0});
   }
-  for (const graph::PlaneEdge& edge : graph_.plane_edges())
-    if (edge.keyframe == keyframe) in.keyframe_planes.push_back(edge.plane);
+  // The keyframe's plane edges were appended with it, after every older keyframe's: read them
+  // from the back instead of scanning the whole list at every keyframe.
+  const auto& edges = graph_.plane_edges();
+  for (auto it = edges.rbegin(); it != edges.rend() && it->keyframe >= keyframe; ++it)
+    if (it->keyframe == keyframe) in.keyframe_planes.push_back(it->plane);
   return in;
 }
 
