@@ -61,9 +61,10 @@ TEST(RoomExtraction, RotatedRoomMatchesItsWalls) {
   EXPECT_GT(dice(room->rect, truth), 0.99);
 }
 
-TEST(RoomExtraction, CorridorOpenEndsComeFromTheCluster) {
+TEST(RoomExtraction, CorridorRunsAsFarAsBothItsWalls) {
+  // Walls along y = 0 (x 0..10) and y = 2 (x 1..9); the free space walked covers x 2..8 only.
   const std::vector<WallCandidate> walls = {wall(0, {0, 0}, {0, 1}, {0, 0}, {10, 0}),
-                                            wall(1, {0, 2}, {0, -1}, {0, 2}, {10, 2})};
+                                            wall(1, {0, 2}, {0, -1}, {1, 2}, {9, 2})};
   const auto room = extract_room(grid(2.0, 8.0, 0.4, 1.6), {}, walls);
   ASSERT_TRUE(room.has_value());
   EXPECT_EQ(room->kind, RoomKind::corridor);
@@ -71,8 +72,25 @@ TEST(RoomExtraction, CorridorOpenEndsComeFromTheCluster) {
   EXPECT_TRUE(room->end_wall_ids.empty());
   const Bounds b = bounds(room->rect);
   EXPECT_NEAR(b.y1 - b.y0, 2.0, 0.02);  // width from the planes
-  EXPECT_NEAR(b.x1 - b.x0, 6.0, 0.1);   // length from the cluster, not the 10 m walls
-  EXPECT_NEAR(room->rect.center.x(), 5.0, 0.05);
+  EXPECT_NEAR(b.x0, 1.0, 0.02);         // length: where both walls run, not the cluster's 6 m
+  EXPECT_NEAR(b.x1, 9.0, 0.02);
+}
+
+TEST(RoomExtraction, CorridorIsCarriedAlongItsWallsPastUnmappedGroundToAWallAcross) {
+  // Corridor [0, 24] x [0, 2] closed by a wall at x = 24; walked at x 3..13, its ground mapped
+  // densely to x = 15, sparsely (a strip down the middle, holes) to x = 18, not beyond.
+  const std::vector<WallCandidate> walls = {wall(0, {0, 0}, {0, 1}, {0, 0}, {24, 0}),
+                                            wall(1, {0, 2}, {0, -1}, {0, 2}, {24, 2}),
+                                            wall(2, {24, 0}, {-1, 0}, {24, -3}, {24, 5})};
+  std::vector<Eigen::Vector3d> context = grid(0.4, 15.2, 0.4, 1.6);
+  for (const Eigen::Vector3d& p : grid(0.8, 18.0, 0.8, 1.2))
+    if (p.x() > 15.5 && std::fmod(p.x(), 2.0) > 0.5) context.push_back(p);
+  const auto room = extract_room(grid(3.0, 13.0, 0.4, 1.6), context, walls);
+  ASSERT_TRUE(room.has_value());
+  EXPECT_EQ(room->kind, RoomKind::corridor);
+  const Bounds b = bounds(room->rect);
+  EXPECT_NEAR(b.x0, 0.0, 0.02);
+  EXPECT_NEAR(b.x1, 24.0, 0.02);
 }
 
 TEST(RoomExtraction, RailingSideIsBoundedByTheCluster) {
@@ -88,7 +106,7 @@ TEST(RoomExtraction, RailingSideIsBoundedByTheCluster) {
   EXPECT_EQ(room->end_wall_ids, (std::vector<int>{0}));
   const Bounds b = bounds(room->rect);
   EXPECT_NEAR(b.x0, 0.0, 0.02);   // the wall
-  EXPECT_NEAR(b.x1, 4.6, 0.05);   // the cluster's edge at the railing
+  EXPECT_NEAR(b.x1, 5.0, 0.02);   // as far as both side walls run: to the railing
   EXPECT_NEAR(b.y0, 0.0, 0.02);
   EXPECT_NEAR(b.y1, 4.0, 0.02);
 }
@@ -159,15 +177,17 @@ TEST(RoomExtraction, CorridorIsCarriedAlongItsWallsButNotThroughADoor) {
   // Corridor [0, 20] x [0, 2] walked at x 8..12; at x = 16 a wall across it, and through a door
   // a 0.4 m wide, 1 m deep strip of free space (the wall and lambda_th on both sides) leads on.
   const std::vector<WallCandidate> walls = {wall(0, {0, 0}, {0, 1}, {0, 0}, {20, 0}),
-                                            wall(1, {0, 2}, {0, -1}, {0, 2}, {20, 2})};
+                                            wall(1, {0, 2}, {0, -1}, {0, 2}, {20, 2}),
+                                            wall(2, {16, 0}, {-1, 0}, {16, 0}, {16, 2})};
   std::vector<Eigen::Vector3d> context = grid(0.4, 15.6, 0.4, 1.6);
   for (const Eigen::Vector3d& p : grid(15.7, 16.7, 0.8, 1.2)) context.push_back(p);  // the door
   for (const Eigen::Vector3d& p : grid(16.8, 19.6, 0.4, 1.6)) context.push_back(p);
   const auto room = extract_room(grid(8.0, 12.0, 0.4, 1.6), context, walls);
   ASSERT_TRUE(room.has_value());
+  EXPECT_EQ(room->kind, RoomKind::corridor);
   const Bounds b = bounds(room->rect);
-  EXPECT_NEAR(b.x0, 0.4, 0.05);  // the context's end (no end wall)
-  EXPECT_NEAR(b.x1, 15.6, 0.15); // the door stops it (within a 0.25 m bin)
+  EXPECT_NEAR(b.x0, 0.0, 0.02);   // where the walls begin (no end wall)
+  EXPECT_NEAR(b.x1, 16.0, 0.02);  // the door's wall stops it
 }
 
 TEST(RoomExtraction, WallCrossedOnlyThroughADoorStillBoundsTheRoom) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <tuple>
@@ -246,6 +247,24 @@ void stop_at_crossing_walls(const std::vector<WallCandidate>& walls, const Vec2&
   }
 }
 
+/// Carries a two-walled corridor's [lo, hi] along v as far as both its walls run: ground far
+/// down an aisle is mapped late and sparse, its walls early (they face the sensor), so the
+/// free space alone ends a corridor short of where it ends. Walls across it (an end wall, a
+/// door's wall) stop it afterwards, as they stop the free space.
+void carry_along_walls(const std::vector<WallCandidate>& walls, const std::vector<int>& pair, const Vec2& v,
+                       double& lo, double& hi) {
+  double common_lo = -std::numeric_limits<double>::infinity();
+  double common_hi = std::numeric_limits<double>::infinity();
+  for (const WallCandidate& w : walls) {
+    if (std::find(pair.begin(), pair.end(), w.id) == pair.end()) continue;
+    common_lo = std::max(common_lo, std::min(v.dot(w.end_a), v.dot(w.end_b)));
+    common_hi = std::min(common_hi, std::max(v.dot(w.end_a), v.dot(w.end_b)));
+  }
+  if (common_hi - common_lo <= 0.0) return;
+  lo = std::min(lo, common_lo);
+  hi = std::max(hi, common_hi);
+}
+
 /// The nearest side facing along +v (low end) and along -v (high end), each may be null.
 std::pair<const Side*, const Side*> end_walls(const std::vector<Side>& sides, const Vec2& v,
                                               const RoomExtractionConfig& cfg) {
@@ -347,6 +366,7 @@ std::optional<ExtractedRoom> extract_room(const std::vector<Eigen::Vector3d>& se
   const std::pair<double, double> walked = robust_range(project(points, v), config.extent_percentile);
   if (out.one_sided && !open_side_bounded(around, u, v, hi_u, walked, config)) return std::nullopt;
   auto [lo_v, hi_v] = band_extent(around, u, v, lo_u, hi_u, out.one_sided, walked, config);
+  if (!out.one_sided) carry_along_walls(walls, out.wall_ids, v, lo_v, hi_v);
   stop_at_crossing_walls(walls, u, v, lo_u, hi_u, walked, config, lo_v, hi_v);
   std::vector<Vec2> run;
   for (const Vec2& q : around) {
