@@ -19,6 +19,7 @@ PACKAGES=(
   libroscpp-core-dev   # ROS1 bags without a ROS runtime
   libgtest-dev libgmock-dev   # tests
   libbenchmark-dev     # benchmarks
+  chromium             # headless, to check that the HTML reports render (tests)
 )
 
 missing=()

@@ -105,6 +105,14 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
   EXPECT_TRUE(std::any_of(graph_edges.begin(), graph_edges.end(), [](const auto& e) { return e["type"] == "room_planes"; }));
   EXPECT_TRUE(std::any_of(graph_edges.begin(), graph_edges.end(), [](const auto& e) { return e["type"] == "floor_room"; }));
   EXPECT_TRUE(std::any_of(graph["rooms"].begin(), graph["rooms"].end(), [](const auto& r) { return r["node"].is_number(); }));
+  // Each room carries the free space it was extracted from, near its footprint.
+  for (const auto& r : graph["rooms"]) {
+    ASSERT_GE(r["free_space"].size(), 10u) << r.dump();
+    const auto& c = r["rect"]["center"];
+    const auto& p = r["free_space"][0];
+    EXPECT_LT(std::hypot(p[0].get<double>() - c[0].get<double>(), p[1].get<double>() - c[1].get<double>()),
+              std::hypot(r["rect"]["size"][0].get<double>(), r["rect"]["size"][1].get<double>()));
+  }
   // map.ply draws the rooms (cyan or orange outlines) and the floor node (a yellow cross).
   const std::string ply = read_file(out / "map.ply");
   const std::size_t body = ply.find("end_header\n") + std::strlen("end_header\n");

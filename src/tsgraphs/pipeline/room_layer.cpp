@@ -173,13 +173,15 @@ std::vector<RoomEventRecord> RoomLayer::extract(const RoomLayerInput& input, con
                                                 const Vertices& context, int level) {
   std::vector<RoomEventRecord> events;
   std::optional<rooms::ExtractedRoom> room;
+  std::vector<Eigen::Vector3d> free_space;
   if (esdf()) {
     // S-Graphs+ pairs the planes the last keyframe sees.
     std::vector<rooms::WallCandidate> seen;
     for (const rooms::WallCandidate& w : input.walls)
       if (std::find(input.keyframe_planes.begin(), input.keyframe_planes.end(), w.id) != input.keyframe_planes.end())
         seen.push_back(w);
-    room = rooms::extract_room_sgraphs(points_of(segment), seen, settings_.sgraphs_extraction);
+    free_space = points_of(segment);
+    room = rooms::extract_room_sgraphs(free_space, seen, settings_.sgraphs_extraction);
   } else {
     // Traversable nodes move with their keyframes: take them where they are now.
     const auto now = [&input](const Vertices& vertices) {
@@ -197,7 +199,8 @@ std::vector<RoomEventRecord> RoomLayer::extract(const RoomLayerInput& input, con
     const Eigen::Vector3d floor = input.pose.translation() - input.sensor_height * Eigen::Vector3d::UnitZ();
     for (const ground::GlobalNode* n : input.nodes->nodes_near(floor, settings_.layer.context_radius))
       around.emplace(n->id, n->position);
-    room = rooms::extract_room(now(segment), now(around), input.walls, settings_.extraction);
+    free_space = now(segment);
+    room = rooms::extract_room(free_space, now(around), input.walls, settings_.extraction);
   }
   if (!room) return events;
   const rooms::RoomAssociation a = map_.add_extraction(*room, level);
@@ -213,6 +216,7 @@ std::vector<RoomEventRecord> RoomLayer::extract(const RoomLayerInput& input, con
   e.kind = room->kind;
   e.rect = room->rect;
   e.walls = room->wall_ids;
+  e.free_space = std::move(free_space);
   if (!room->one_sided) e.factor_walls = room->wall_ids;
   e.walls.insert(e.walls.end(), room->end_wall_ids.begin(), room->end_wall_ids.end());
   events.push_back(e);

@@ -83,6 +83,7 @@ struct RoomEventRecord {
   std::vector<int> walls;                 ///< every plane that bounds it
   std::vector<int> factor_walls;          ///< the planes of its room-planes factor (4, 2, or none)
   std::vector<std::pair<int, int>> merged;///< (keep, drop) room ids merged as duplicates after it
+  std::vector<Eigen::Vector3d> free_space;///< the free-space vertices it was extracted from (map frame)
 };
 
 /// What the layer needs of the rest of the map at a keyframe.

@@ -145,8 +145,14 @@ std::string scene_graph_json(const Pipeline& pipeline) {
   json floors = json::array();
   for (const auto& [id, f] : g.floors())
     floors.push_back({{"id", id}, {"level", f.level}, {"center", {f.center.x(), f.center.y()}}});
+  // Each room's free space: the vertices of its latest extraction (for drawing).
+  std::map<int, const std::vector<Eigen::Vector3d>*> free_space;
+  for (const RoomEventRecord& e : pipeline.room_events()) free_space[e.room_id] = &e.free_space;
   json rooms = json::array();
   for (const auto& [id, r] : pipeline.room_map().rooms()) {
+    json space = json::array();
+    if (const auto it = free_space.find(id); it != free_space.end())
+      for (const Eigen::Vector3d& p : *it->second) space.push_back({p.x(), p.y(), p.z()});
     rooms.push_back({{"id", id},
                      {"kind", rooms::to_string(r.kind)},
                      {"level", r.level},
@@ -156,7 +162,8 @@ std::string scene_graph_json(const Pipeline& pipeline) {
                        {"yaw", r.rect.yaw}}},
                      {"walls", r.wall_ids},
                      {"extractions", r.extraction_count},
-                     {"node", pipeline.room_node_of(id) >= 0 ? json(pipeline.room_node_of(id)) : json(nullptr)}});
+                     {"node", pipeline.room_node_of(id) >= 0 ? json(pipeline.room_node_of(id)) : json(nullptr)},
+                     {"free_space", space}});
   }
   const json doc = {{"format", "tsgraphs-scene-graph"},
                     {"version", 1},
