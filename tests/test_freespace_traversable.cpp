@@ -120,6 +120,32 @@ TEST(FreespaceTraversable, DoorwayCutsWhenLambdaExceedsHalfTheDoorWidth) {
   }
 }
 
+TEST(FreespaceTraversable, PathDistanceGoesRoundTheWallThroughTheDoor) {
+  // lambda_th 0.4 leaves the 1 m doorway open: one cluster. A vertex 1 m behind the wall,
+  // 2.5 m east of the door, is 2.5 m from the robot in a straight line, and a detour via the
+  // door away along the free space.
+  const DoorwayScene s = doorway_scene(1.0);
+  const Eigen::Vector3d robot(2.5, -1.5, kSensorHeight);
+  const FreeSpace fs = traversable_free_space(s.nodes, s.obstacles, robot, with_lambda(0.4));
+  ASSERT_EQ(fs.clusters.size(), 1u);
+  ASSERT_EQ(fs.robot_path_distance.size(), s.nodes.size());
+  const auto index_of = [&](double x, double y) {
+    for (std::size_t i = 0; i < s.nodes.size(); ++i)
+      if ((s.nodes[i].head<2>() - Eigen::Vector2d(x, y)).norm() < 1e-9) return i;
+    return s.nodes.size();
+  };
+  const std::size_t at_robot = index_of(2.5, -1.5), behind_wall = index_of(2.5, 1.0), along = index_of(0.0, -1.5);
+  ASSERT_LT(behind_wall, s.nodes.size());
+  EXPECT_NEAR(fs.robot_path_distance[at_robot], 0.0, 1e-9);
+  EXPECT_NEAR(fs.robot_path_distance[along], 2.5, 1e-6);  // straight along the corridor
+  // Via the doorway's centre (0, 0): at least |robot - door| + |door - vertex|.
+  const double detour = Eigen::Vector2d(2.5, 1.5).norm() + Eigen::Vector2d(2.5, 1.0).norm();
+  EXPECT_GE(fs.robot_path_distance[behind_wall], detour - 1e-6);
+  EXPECT_LE(fs.robot_path_distance[behind_wall], 1.15 * detour);  // 8-neighbour lattice steps: a little longer
+  // A removed vertex (next to the wall) is not reached.
+  EXPECT_TRUE(std::isinf(fs.robot_path_distance[index_of(2.5, -0.25)]));
+}
+
 TEST(FreespaceTraversable, RobotClusterIsTheOneUnderTheRobot) {
   const DoorwayScene s = doorway_scene(1.0);
   const TraversableFreeSpaceConfig config = with_lambda(0.6);

@@ -151,6 +151,7 @@ EsdfFreeSpace esdf_free_space(const std::vector<Eigen::Vector3d>& occupied, doub
   }
   out.free_space = connected_components(positions, kept, neighbours);
   identify_robot_cluster(out.free_space, positions, robot, config.robot_radius, config.robot_height_tolerance);
+  compute_robot_path_distance(out.free_space, positions, kept, neighbours);
   return out;
 }
 

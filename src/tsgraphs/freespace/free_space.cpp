@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <queue>
+#include <utility>
 
 namespace tsgraphs::freespace {
 
@@ -55,6 +58,32 @@ void identify_robot_cluster(FreeSpace& free_space, const std::vector<Eigen::Vect
   }
   if (free_space.robot_vertex >= 0)
     free_space.robot_cluster = free_space.cluster_of[static_cast<std::size_t>(free_space.robot_vertex)];
+}
+
+void compute_robot_path_distance(FreeSpace& free_space, const std::vector<Eigen::Vector3d>& positions,
+                                 const std::vector<bool>& kept, const std::vector<std::vector<int>>& neighbours) {
+  std::vector<double>& dist = free_space.robot_path_distance;
+  dist.assign(positions.size(), std::numeric_limits<double>::infinity());
+  if (free_space.robot_vertex < 0) return;
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  dist[static_cast<std::size_t>(free_space.robot_vertex)] = 0.0;
+  queue.emplace(0.0, free_space.robot_vertex);
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    const auto vi = static_cast<std::size_t>(v);
+    if (d > dist[vi]) continue;
+    for (const int w : neighbours[vi]) {
+      const auto wi = static_cast<std::size_t>(w);
+      if (!kept[wi]) continue;
+      const double through = d + (positions[wi] - positions[vi]).norm();
+      if (through < dist[wi]) {
+        dist[wi] = through;
+        queue.emplace(through, w);
+      }
+    }
+  }
 }
 
 }  // namespace tsgraphs::freespace

@@ -18,6 +18,10 @@ struct FreeSpace {
   std::vector<int> cluster_of;             ///< per candidate vertex: its cluster, -1 if removed (or not free)
   int robot_vertex = -1;                   ///< the kept vertex identified as the robot's, -1 if none near it
   int robot_cluster = -1;                  ///< the cluster containing robot_vertex, -1 if none
+  /// Per candidate vertex: the length of the shortest path to it from robot_vertex through kept
+  /// vertices (m), infinity where there is none. Unlike straight-line distance it does not
+  /// reach through a wall into the next room, only round it, through the door.
+  std::vector<double> robot_path_distance;
 
   /// The robot's cluster, or nullptr.
   const FreeSpaceCluster* robot() const {
@@ -35,5 +39,10 @@ FreeSpace connected_components(const std::vector<Eigen::Vector3d>& positions, co
 /// `robot` and within `height_tolerance` of its height, the one nearest in 3-D (ties: lowest index).
 void identify_robot_cluster(FreeSpace& free_space, const std::vector<Eigen::Vector3d>& positions,
                             const Eigen::Vector3d& robot, double radius, double height_tolerance);
+
+/// Fills robot_path_distance (Dijkstra over the edges of `neighbours` between kept vertices,
+/// each as long as the distance between its ends); all infinity without a robot vertex.
+void compute_robot_path_distance(FreeSpace& free_space, const std::vector<Eigen::Vector3d>& positions,
+                                 const std::vector<bool>& kept, const std::vector<std::vector<int>>& neighbours);
 
 }  // namespace tsgraphs::freespace

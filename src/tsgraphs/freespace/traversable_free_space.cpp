@@ -49,6 +49,7 @@ FreeSpace traversable_free_space(const std::vector<Eigen::Vector3d>& nodes, cons
 
   FreeSpace out = connected_components(nodes, kept, neighbours);
   identify_robot_cluster(out, nodes, robot, config.robot_radius, config.robot_height_tolerance);
+  compute_robot_path_distance(out, nodes, kept, neighbours);
   return out;
 }
 

@@ -52,9 +52,11 @@ int RoomLayer::level_of(double floor_z) {
 
 bool RoomLayer::robot_space(const RoomLayerInput& input, const Eigen::Vector3d& floor, KeyframeSpace& out) {
   out.position = floor;
-  const auto add = [&](std::int64_t key, const Eigen::Vector3d& p) {
+  // The segment is the free space within segment_radius of the robot along the free space,
+  // so that it does not take in the next room through the wall, only what a door lets in.
+  const auto add = [&](std::int64_t key, const Eigen::Vector3d& p, double path_distance) {
     out.cluster.emplace(key, p);
-    if ((p - floor).head<2>().norm() <= settings_.layer.segment_radius) out.near.emplace(key, p);
+    if (path_distance <= settings_.layer.segment_radius) out.near.emplace(key, p);
   };
   if (esdf()) {
     const freespace::EsdfFreeSpace space =
@@ -65,7 +67,7 @@ bool RoomLayer::robot_space(const RoomLayerInput& input, const Eigen::Vector3d& 
     for (std::size_t k = 0; k < cluster->vertices.size(); ++k) {
       const int cell = cluster->vertices[k];
       add(cell_key(space.slice.min_i + cell % space.slice.width, space.slice.min_j + cell / space.slice.width),
-          cluster->points[k]);
+          cluster->points[k], space.free_space.robot_path_distance[static_cast<std::size_t>(cell)]);
     }
     return true;
   }
@@ -83,7 +85,8 @@ bool RoomLayer::robot_space(const RoomLayerInput& input, const Eigen::Vector3d& 
   last_cluster_size_ = cluster ? cluster->points.size() : 0;
   if (!cluster) return false;
   for (std::size_t k = 0; k < cluster->vertices.size(); ++k)
-    add(ids[static_cast<std::size_t>(cluster->vertices[k])], cluster->points[k]);
+    add(ids[static_cast<std::size_t>(cluster->vertices[k])], cluster->points[k],
+        space.robot_path_distance[static_cast<std::size_t>(cluster->vertices[k])]);
   return true;
 }
 

@@ -38,7 +38,7 @@ struct RoomLayerConfig {
   int obstacle_keyframes = 5;      ///< obstacle points come from the clouds of this many latest keyframes
   double level_tolerance = 1.5;    ///< floors within this height of a known level belong to it (m)
   double obstacle_voxel = 0.2;     ///< obstacle candidate points are thinned to this (m)
-  double segment_radius = 2.5;     ///< flush: only the cluster's vertices this near the robot join the segment (m):
+  double segment_radius = 2.5;     ///< flush: only the cluster's vertices this near the robot along the free space join the segment (m):
                                    ///< the aisle it walks, not everything in view
   double context_radius = 20.0;    ///< flush: mapped ground within this of the robot also carries a corridor on (m)
   double min_segment_length = 2.0; ///< flush: a segment walked less than this (a corner, a doorway passed

@@ -128,8 +128,11 @@ std::vector<Pair> facing_pairs(const std::vector<Side>& sides, const RoomExtract
 
 /// The one wall a one-sided corridor runs along: among the sides, the nearest whose normal is
 /// perpendicular (within tolerance) to the segment's principal axis.
-const Side* along_wall(const std::vector<Vec2>& points, const Vec2& centre, const std::vector<Side>& sides,
+const Side* along_wall(const std::vector<Vec2>& points, const std::vector<Side>& sides,
                        const RoomExtractionConfig& cfg) {
+  Vec2 centre = Vec2::Zero();
+  for (const Vec2& q : points) centre += q;
+  centre /= static_cast<double>(points.size());
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
   for (const Vec2& q : points) cov += (q - centre) * (q - centre).transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
@@ -286,10 +289,19 @@ std::vector<Vec2> flat(const std::vector<Eigen::Vector3d>& points) {
   return out;
 }
 
-Vec2 mean_of(const std::vector<Vec2>& points) {
-  Vec2 m = Vec2::Zero();
-  for (const Vec2& q : points) m += q;
-  return m / static_cast<double>(points.size());
+/// The coordinate-wise median: where most of the free space is. Free space that leaks through
+/// a door into the next room pulls the mean towards it, past the wall between them.
+Vec2 median_of(const std::vector<Vec2>& points) {
+  Vec2 m;
+  for (int axis = 0; axis < 2; ++axis) {
+    std::vector<double> values;
+    values.reserve(points.size());
+    for (const Vec2& q : points) values.push_back(q[axis]);
+    const auto mid = values.begin() + static_cast<long>(values.size() / 2);
+    std::nth_element(values.begin(), mid, values.end());
+    m[axis] = *mid;
+  }
+  return m;
 }
 
 OrientedRect rect_of(const Vec2& u, const Vec2& v, double lo_u, double hi_u, double lo_v, double hi_v) {
@@ -310,7 +322,7 @@ std::optional<ExtractedRoom> extract_room(const std::vector<Eigen::Vector3d>& se
                                           const RoomExtractionConfig& config) {
   if (segment.empty() || static_cast<int>(segment.size()) < config.min_cluster_points) return std::nullopt;
   const std::vector<Vec2> points = flat(segment);
-  const Vec2 centre = mean_of(points);
+  const Vec2 centre = median_of(points);
   double mean_z = 0.0;
   for (const Eigen::Vector3d& p : segment) mean_z += p.z();
   mean_z /= static_cast<double>(segment.size());
@@ -330,7 +342,7 @@ std::optional<ExtractedRoom> extract_room(const std::vector<Eigen::Vector3d>& se
     lo_u = position_along(sides[first.a], u, centre);
     hi_u = position_along(sides[first.b], u, centre);
   } else {
-    const Side* wall = along_wall(points, centre, sides, config);
+    const Side* wall = along_wall(points, sides, config);
     if (wall == nullptr) return std::nullopt;
     u = wall->n;
     out.one_sided = true;
@@ -376,7 +388,7 @@ std::optional<ExtractedRoom> extract_room(const std::vector<Eigen::Vector3d>& se
       run.push_back(q);
   }
   if (run.empty()) run = points;
-  const std::vector<Side> run_sides = bounding_sides(run, mean_of(run), mean_z, walls, config);
+  const std::vector<Side> run_sides = bounding_sides(run, median_of(run), mean_z, walls, config);
   const auto [low_end, high_end] = end_walls(run_sides, v, config);
   if (low_end != nullptr) lo_v = position_along(*low_end, v, centre);
   if (high_end != nullptr) hi_v = position_along(*high_end, v, centre);
