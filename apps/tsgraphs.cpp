@@ -4,27 +4,16 @@
 #include <tbb/global_control.h>
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <memory>
 #include <thread>
 
-#include "progress.hpp"
+#include "commands.hpp"
+#include "demo.hpp"
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/eval/run_evaluation.hpp"
-#include "tsgraphs/io/atomic_write.hpp"
-#include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
-#include "tsgraphs/pipeline/run_outputs.hpp"
-#include "tsgraphs/pipeline/sequence_runner.hpp"
-#include "tsgraphs/report/scene_svg.hpp"
-#include "tsgraphs/sim/builtin_scenes.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
-#include "tsgraphs/sim/simulator.hpp"
 
-namespace fs = std::filesystem;
 using namespace tsgraphs;
+using namespace tsgraphs::app;
 
 namespace {
 
@@ -35,98 +24,13 @@ struct Options {
   std::string out;
   long long seed = -1;
   int laps = 0;
-  int seeds = 1;
   std::string seq;
   std::string config;
   std::string free_space;    ///< overrides room_layer.free_space_method when set
   std::string room_trigger;  ///< overrides room_layer.room_trigger when set
+  std::string against;       ///< eval: the run to compare with
+  DemoOptions demo;
 };
-
-// A scene file, or the name of a built-in scene (office, atrium, long_corridor, two_storeys).
-sim::Scene resolve_scene(const std::string& arg) {
-  if (!fs::exists(arg)) {
-    if (const auto text = sim::builtin_scene_text(arg)) return sim::parse_scene(*text, "builtin:" + arg, ".");
-    std::string names;
-    for (const std::string& n : sim::builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
-    throw input_error(arg, 0, "no such scene file (built-in scenes: " + names + ")");
-  }
-  return sim::load_scene(arg);
-}
-
-// Warnings are shown even with --quiet: they say the output may not be what was meant.
-void print_warnings(const std::string& where, const std::vector<std::string>& warnings) {
-  for (const std::string& w : warnings) std::fprintf(stderr, "tsgraphs: warning: %s%s\n", where.c_str(), w.c_str());
-}
-
-sim::Scene load_and_warn(const std::string& arg) {
-  sim::Scene scene = resolve_scene(arg);
-  print_warnings("", scene.warnings);
-  return scene;
-}
-
-void simulate(const sim::Scene& scene_in, const std::string& out, std::uint64_t seed, int laps, bool quiet) {
-  sim::Scene scene = scene_in;
-  if (laps > 0) scene.trajectory.laps = laps;
-  sim::Simulator simulator(scene, seed);
-  print_warnings(scene.file + ": trajectory: ", simulator.trajectory().warnings());
-  if (!quiet) {
-    std::fprintf(stderr, "simulate: %s, %s %dx%d, %zu scans over %.1f m (%d lap%s), %zu triangles, seed %llu\n",
-                 scene.name.c_str(), scene.sensor.preset.empty() ? "custom sensor" : scene.sensor.preset.c_str(),
-                 scene.sensor.channels, scene.sensor.columns, simulator.num_scans(), simulator.trajectory().length(),
-                 scene.trajectory.laps, scene.trajectory.laps == 1 ? "" : "s", simulator.num_triangles(),
-                 static_cast<unsigned long long>(seed));
-  }
-  app::Progress progress("simulate", quiet);
-  sim::write_sequence(simulator, out, [&](std::size_t done, std::size_t total) { progress.update(done, total); });
-  if (!quiet) std::fprintf(stderr, "simulate: wrote %s\n", out.c_str());
-}
-
-void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet) {
-  const sim::Trajectory trajectory(scene);
-  print_warnings(scene.file + ": trajectory: ", trajectory.warnings());
-  io::write_file_atomic(out, report::scene_svg(scene, trajectory));
-  if (!quiet) std::fprintf(stderr, "draw-scene: wrote %s\n", out.c_str());
-}
-
-// `run`: a sequence folder through the pipeline into a run folder, written whole or not at all.
-void run(const std::string& seq_dir, const std::string& out, const Options& opt) {
-  const auto start = std::chrono::steady_clock::now();
-  const bool quiet = opt.quiet;
-  pipeline::PipelineConfig config =
-      opt.config.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(opt.config);
-  if (!opt.free_space.empty()) config.rooms.layer.free_space_method = opt.free_space;
-  if (!opt.room_trigger.empty()) config.rooms.layer.room_trigger = opt.room_trigger;
-  const io::SequenceReader sequence(seq_dir);
-  io::AtomicDirectory dir(out, pipeline::run_files::kSceneGraph);
-  if (!quiet) std::fprintf(stderr, "run: %s, %zu scans\n", seq_dir.c_str(), sequence.size());
-  pipeline::Pipeline slam(config);
-  app::Progress progress("run", quiet);
-  pipeline::RunCallbacks callbacks;
-  callbacks.progress = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
-  callbacks.warning = [](const std::string& w) { std::fprintf(stderr, "tsgraphs: warning: %s\n", w.c_str()); };
-  pipeline::RunInfo info = pipeline::run_sequence(sequence, slam, callbacks);
-  info.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  pipeline::write_run_outputs(slam, info, dir.path());
-  dir.commit();
-  if (!quiet) {
-    std::fprintf(stderr, "run: %zu keyframes, %zu planes, %zu loop closures, %zu optimisations; %.1f s (%.1fx real time)\n",
-                 slam.graph().keyframes().size(), slam.graph().planes().size(), slam.graph().loop_edges().size(),
-                 slam.optimizations().size(), info.wall_time_s,
-                 info.wall_time_s > 0 ? info.sequence_duration_s / info.wall_time_s : 0.0);
-    std::fprintf(stderr, "run: wrote %s\n", out.c_str());
-  }
-}
-
-// `eval`: metrics.json in the run folder and the table on stdout.
-void evaluate(const std::string& run_dir, const std::string& seq_dir, bool quiet) {
-  eval::EvalOptions options;
-  options.run_dir = run_dir;
-  options.seq_dir = seq_dir;
-  const eval::Metrics metrics = eval::evaluate_run(options);
-  io::write_file_atomic((fs::path(run_dir) / pipeline::run_files::kMetrics).string(), eval::metrics_json(metrics));
-  std::printf("%s", eval::metrics_table(metrics).c_str());
-  if (!quiet) std::fprintf(stderr, "eval: wrote %s\n", (fs::path(run_dir) / pipeline::run_files::kMetrics).c_str());
-}
 
 std::uint64_t seed_for(const sim::Scene& scene, long long cli_seed) {
   return cli_seed >= 0 ? static_cast<std::uint64_t>(cli_seed) : scene.seed;
@@ -164,14 +68,23 @@ int main(int argc, char** argv) {
                       "flush (TS-graphs, default) or timer (S-Graphs+); overrides room_layer.room_trigger")
       ->check(CLI::IsMember({"flush", "timer"}));
 
-  auto* eval_cmd = app.add_subcommand("eval", "metrics of a run: metrics.json and a table");
+  auto* eval_cmd = app.add_subcommand("eval", "metrics of a run: metrics.json and a table; or two runs' rooms compared");
   eval_cmd->add_option("RUN_DIR", opt.out, "run folder written by `tsgraphs run`")->required();
-  eval_cmd->add_option("--seq", opt.seq, "the sequence folder it ran on (ground truth)");
+  auto* seq_opt = eval_cmd->add_option("--seq", opt.seq, "the sequence folder it ran on (ground truth)");
+  eval_cmd->add_option("--against", opt.against,
+                       "another run folder: pair its final rooms with RUN_DIR's (f_re, DCS, d_center) into "
+                       "RUN_DIR/comparison.json")
+      ->excludes(seq_opt);
 
-  auto* demo_cmd = app.add_subcommand("demo", "simulate the built-in atrium scene, draw it, run the pipeline on it and evaluate");
-  opt.out = "";
-  demo_cmd->add_option("--out", opt.out, "output folder (default: tsgraphs-demo)");
-  demo_cmd->add_option("--seeds", opt.seeds, "number of seeds to simulate (1..N)")->check(CLI::PositiveNumber);
+  auto* demo_cmd = app.add_subcommand(
+      "demo", "TS-graphs, S-Graphs+ and the ablations on simulated atrium and office: Table 1 and a report");
+  demo_cmd->add_option("--out", opt.demo.out, "output folder")->capture_default_str();
+  demo_cmd->add_option("--seeds", opt.demo.seeds, "seeds 1..N per scene")->check(CLI::PositiveNumber)->capture_default_str();
+  demo_cmd->add_option("--scenes", opt.demo.scenes, "built-in scene names or scene files")->capture_default_str();
+  demo_cmd->add_option("--platform-height", opt.demo.platform_height,
+                       "sensor height of the second platform compared on the first scene (m; 0: no comparison)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
 
   try {
     app.parse(argc, argv);
@@ -190,22 +103,20 @@ int main(int argc, char** argv) {
     } else if (*draw_cmd) {
       draw_scene(load_and_warn(opt.scene), opt.out, opt.quiet);
     } else if (*run_cmd) {
-      run(opt.seq, opt.out, opt);
+      pipeline::PipelineConfig config =
+          opt.config.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(opt.config);
+      if (!opt.free_space.empty()) config.rooms.layer.free_space_method = opt.free_space;
+      if (!opt.room_trigger.empty()) config.rooms.layer.room_trigger = opt.room_trigger;
+      run(opt.seq, opt.out, config, opt.quiet);
     } else if (*eval_cmd) {
-      evaluate(opt.out, opt.seq, opt.quiet);
-    } else if (*demo_cmd) {
-      const std::string out = opt.out.empty() ? "tsgraphs-demo" : opt.out;
-      fs::create_directories(out);
-      const sim::Scene scene = resolve_scene("atrium");
-      draw_scene(scene, (fs::path(out) / "atrium.svg").string(), opt.quiet);
-      for (int s = 1; s <= opt.seeds; ++s) {
-        const std::string seq = (fs::path(out) / ("atrium_seed" + std::to_string(s))).string();
-        simulate(scene, seq, static_cast<std::uint64_t>(s), 0, opt.quiet);
-        Options defaults;
-        defaults.quiet = opt.quiet;
-        run(seq, seq + "_run", defaults);
-        evaluate(seq + "_run", seq, opt.quiet);
+      if (opt.against.empty()) {
+        evaluate(opt.out, opt.seq, opt.quiet);
+      } else {
+        compare(opt.out, opt.against, opt.quiet);
       }
+    } else if (*demo_cmd) {
+      opt.demo.quiet = opt.quiet;
+      demo(opt.demo);
     }
   } catch (const InputError& e) {
     std::fprintf(stderr, "tsgraphs: error: %s\n", e.what());

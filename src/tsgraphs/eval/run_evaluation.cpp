@@ -126,7 +126,60 @@ std::vector<Pose3> poses_of(const std::vector<io::StampedPose>& stamped) {
   return out;
 }
 
+/// The room map's footprints in a scene graph document (map frame).
+std::vector<FinalRoom> final_rooms_of(const json& graph, const std::string& graph_file) {
+  std::vector<FinalRoom> rooms;
+  try {
+    if (!graph.contains("rooms")) return rooms;
+    for (const json& r : graph.at("rooms")) {
+      FinalRoom room;
+      const auto c = r.at("rect").at("center").get<std::vector<double>>();
+      const auto s = r.at("rect").at("size").get<std::vector<double>>();
+      room.rect.center = Vec2(c.at(0), c.at(1));
+      room.rect.size = Vec2(s.at(0), s.at(1));
+      room.rect.yaw = r.at("rect").at("yaw").get<double>();
+      room.level = r.at("level").get<int>();
+      rooms.push_back(room);
+    }
+  } catch (const json::exception& e) {
+    throw input_error(graph_file, 0, std::string("malformed rooms: ") + e.what());
+  }
+  return rooms;
+}
+
 }  // namespace
+
+std::vector<FinalRoom> read_final_rooms(const std::string& run_dir) {
+  const std::string graph_file = run_dir + "/scene_graph.json";
+  return final_rooms_of(read_json(graph_file), graph_file);
+}
+
+Consistency compare_runs(const std::string& run_a, const std::string& run_b) {
+  const auto detected = [](const std::string& dir) {
+    if (!fs::is_directory(dir)) throw input_error(dir, 0, "not a run folder");
+    std::vector<DetectedRoom> out;
+    for (const FinalRoom& r : read_final_rooms(dir)) out.push_back({r.rect, std::to_string(r.level)});
+    return out;
+  };
+  return consistency_between(detected(run_a), detected(run_b));
+}
+
+std::string comparison_json(const Consistency& c, const std::string& run_a, const std::string& run_b) {
+  const auto figure = [](const std::optional<double>& v) { return v ? json(*v) : json(nullptr); };
+  json pairs = json::array();
+  for (const RoomPair& p : c.pairs)
+    pairs.push_back({{"a", p.a}, {"b", p.b}, {"dice", p.dice}, {"center_distance", p.center_distance}});
+  const json doc = {{"run", run_a},
+                    {"against", run_b},
+                    {"N_a", c.N1st},
+                    {"N_b", c.N2nd},
+                    {"N_re", c.N_re},
+                    {"f_re", c.f_re},
+                    {"dcs", figure(c.dcs)},
+                    {"d_center", figure(c.d_center)},
+                    {"pairs", pairs}};
+  return doc.dump(2) + "\n";
+}
 
 Metrics evaluate_run(const EvalOptions& options) {
   Metrics m;
@@ -188,23 +241,12 @@ Metrics evaluate_run(const EvalOptions& options) {
     if (c.dcs) m.consistency.dcs = *c.dcs;
     if (c.d_center) m.consistency.d_center = *c.d_center;
   }
-  std::vector<std::pair<OrientedRect, int>> final_rooms;
+  const std::vector<FinalRoom> final_rooms = final_rooms_of(graph, graph_file);
   std::vector<double> level_heights;
   try {
     if (graph.contains("levels")) level_heights = graph.at("levels").get<std::vector<double>>();
-    if (graph.contains("rooms")) {
-      for (const json& r : graph.at("rooms")) {
-        OrientedRect rect;
-        const auto c = r.at("rect").at("center").get<std::vector<double>>();
-        const auto s = r.at("rect").at("size").get<std::vector<double>>();
-        rect.center = Vec2(c.at(0), c.at(1));
-        rect.size = Vec2(s.at(0), s.at(1));
-        rect.yaw = r.at("rect").at("yaw").get<double>();
-        final_rooms.emplace_back(rect, r.at("level").get<int>());
-      }
-    }
   } catch (const json::exception& e) {
-    throw input_error(graph_file, 0, std::string("malformed rooms: ") + e.what());
+    throw input_error(graph_file, 0, std::string("malformed levels: ") + e.what());
   }
 
   if (options.seq_dir.empty()) return m;

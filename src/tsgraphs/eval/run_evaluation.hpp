@@ -2,8 +2,11 @@
 /// `tsgraphs eval`: the figures of docs/metrics.md from the files of a run folder and, when
 /// given, the sequence folder it ran on (ground truth).
 #include <string>
+#include <vector>
 
+#include "tsgraphs/core/rect.hpp"
 #include "tsgraphs/eval/metrics.hpp"
+#include "tsgraphs/eval/room_metrics.hpp"
 #include "tsgraphs/eval/wall_metrics.hpp"
 
 namespace tsgraphs::eval {
@@ -19,5 +22,22 @@ struct EvalOptions {
 /// Reads the run (and sequence) and computes every figure it can; the rest stay null.
 /// Missing or malformed files are InputErrors naming the file.
 Metrics evaluate_run(const EvalOptions& options);
+
+/// A footprint of the room map at the end of a run (scene_graph.json "rooms"), map frame.
+struct FinalRoom {
+  OrientedRect rect;
+  int level = 0;  ///< index into the run's levels
+};
+
+/// The final rooms of a run folder. Missing or malformed scene_graph.json: InputError.
+std::vector<FinalRoom> read_final_rooms(const std::string& run_dir);
+
+/// `eval RUN_A --against RUN_B`: the final rooms of two runs paired one-to-one by Dice as the
+/// two laps of one run are (consistency_between; N1st counts run A's rooms, N2nd run B's),
+/// e.g. the same scene from two platforms. The runs' map frames must coincide (the same start).
+Consistency compare_runs(const std::string& run_a, const std::string& run_b);
+
+/// The comparison as JSON: run, against, N_a, N_b, N_re, f_re, dcs, d_center, pairs.
+std::string comparison_json(const Consistency& c, const std::string& run_a, const std::string& run_b);
 
 }  // namespace tsgraphs::eval

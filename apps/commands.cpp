@@ -1,0 +1,120 @@
+// The commands of the `tsgraphs` program (commands.hpp).
+#include "commands.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "progress.hpp"
+#include "tsgraphs/core/error.hpp"
+#include "tsgraphs/eval/run_evaluation.hpp"
+#include "tsgraphs/io/atomic_write.hpp"
+#include "tsgraphs/io/sequence_folder.hpp"
+#include "tsgraphs/pipeline/run_outputs.hpp"
+#include "tsgraphs/pipeline/sequence_runner.hpp"
+#include "tsgraphs/report/scene_svg.hpp"
+#include "tsgraphs/sim/builtin_scenes.hpp"
+#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/sim/simulator.hpp"
+
+namespace tsgraphs::app {
+
+namespace fs = std::filesystem;
+
+sim::Scene resolve_scene(const std::string& arg) {
+  if (!fs::exists(arg)) {
+    if (const auto text = sim::builtin_scene_text(arg)) return sim::parse_scene(*text, "builtin:" + arg, ".");
+    std::string names;
+    for (const std::string& n : sim::builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
+    throw input_error(arg, 0, "no such scene file (built-in scenes: " + names + ")");
+  }
+  return sim::load_scene(arg);
+}
+
+void print_warnings(const std::string& where, const std::vector<std::string>& warnings) {
+  for (const std::string& w : warnings) std::fprintf(stderr, "tsgraphs: warning: %s%s\n", where.c_str(), w.c_str());
+}
+
+sim::Scene load_and_warn(const std::string& arg) {
+  sim::Scene scene = resolve_scene(arg);
+  print_warnings("", scene.warnings);
+  return scene;
+}
+
+void simulate(const sim::Scene& scene_in, const std::string& out, std::uint64_t seed, int laps, bool quiet) {
+  sim::Scene scene = scene_in;
+  if (laps > 0) scene.trajectory.laps = laps;
+  sim::Simulator simulator(scene, seed);
+  print_warnings(scene.file + ": trajectory: ", simulator.trajectory().warnings());
+  if (!quiet) {
+    std::fprintf(stderr, "simulate: %s, %s %dx%d, %zu scans over %.1f m (%d lap%s), %zu triangles, seed %llu\n",
+                 scene.name.c_str(), scene.sensor.preset.empty() ? "custom sensor" : scene.sensor.preset.c_str(),
+                 scene.sensor.channels, scene.sensor.columns, simulator.num_scans(), simulator.trajectory().length(),
+                 scene.trajectory.laps, scene.trajectory.laps == 1 ? "" : "s", simulator.num_triangles(),
+                 static_cast<unsigned long long>(seed));
+  }
+  app::Progress progress("simulate", quiet);
+  sim::write_sequence(simulator, out, [&](std::size_t done, std::size_t total) { progress.update(done, total); });
+  if (!quiet) std::fprintf(stderr, "simulate: wrote %s\n", out.c_str());
+}
+
+void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet) {
+  const sim::Trajectory trajectory(scene);
+  print_warnings(scene.file + ": trajectory: ", trajectory.warnings());
+  io::write_file_atomic(out, report::scene_svg(scene, trajectory));
+  if (!quiet) std::fprintf(stderr, "draw-scene: wrote %s\n", out.c_str());
+}
+
+void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config, bool quiet) {
+  const auto start = std::chrono::steady_clock::now();
+  const io::SequenceReader sequence(seq_dir);
+  io::AtomicDirectory dir(out, pipeline::run_files::kSceneGraph);
+  if (!quiet) std::fprintf(stderr, "run: %s, %zu scans\n", seq_dir.c_str(), sequence.size());
+  pipeline::Pipeline slam(config);
+  app::Progress progress("run", quiet);
+  pipeline::RunCallbacks callbacks;
+  callbacks.progress = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
+  callbacks.warning = [](const std::string& w) { std::fprintf(stderr, "tsgraphs: warning: %s\n", w.c_str()); };
+  pipeline::RunInfo info = pipeline::run_sequence(sequence, slam, callbacks);
+  info.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  pipeline::write_run_outputs(slam, info, dir.path());
+  dir.commit();
+  if (!quiet) {
+    std::fprintf(stderr, "run: %zu keyframes, %zu planes, %zu loop closures, %zu optimisations; %.1f s (%.1fx real time)\n",
+                 slam.graph().keyframes().size(), slam.graph().planes().size(), slam.graph().loop_edges().size(),
+                 slam.optimizations().size(), info.wall_time_s,
+                 info.wall_time_s > 0 ? info.sequence_duration_s / info.wall_time_s : 0.0);
+    std::fprintf(stderr, "run: wrote %s\n", out.c_str());
+  }
+}
+
+eval::Metrics evaluate(const std::string& run_dir, const std::string& seq_dir, bool quiet, bool print) {
+  eval::EvalOptions options;
+  options.run_dir = run_dir;
+  options.seq_dir = seq_dir;
+  const eval::Metrics metrics = eval::evaluate_run(options);
+  io::write_file_atomic((fs::path(run_dir) / pipeline::run_files::kMetrics).string(), eval::metrics_json(metrics));
+  if (print) std::printf("%s", eval::metrics_table(metrics).c_str());
+  if (!quiet) std::fprintf(stderr, "eval: wrote %s\n", (fs::path(run_dir) / pipeline::run_files::kMetrics).c_str());
+  return metrics;
+}
+
+eval::Consistency compare(const std::string& run_a, const std::string& run_b, bool quiet, bool print) {
+  const eval::Consistency c = eval::compare_runs(run_a, run_b);
+  const std::string out = (fs::path(run_a) / "comparison.json").string();
+  io::write_file_atomic(out, eval::comparison_json(c, run_a, run_b));
+  const auto figure = [](const std::optional<double>& v) {
+    if (!v) return std::string("-");
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.2f", *v);
+    return std::string(text);
+  };
+  if (print)
+    std::printf("rooms of %s against %s: %d / %d rooms, %d paired, f_re %.2f, DCS %s, d_center %s m\n", run_a.c_str(),
+                run_b.c_str(), c.N1st, c.N2nd, c.N_re, c.f_re, figure(c.dcs).c_str(), figure(c.d_center).c_str());
+  if (!quiet) std::fprintf(stderr, "eval: wrote %s\n", out.c_str());
+  return c;
+}
+
+}  // namespace tsgraphs::app

@@ -1,0 +1,32 @@
+#pragma once
+/// The commands of the `tsgraphs` program, each one call over the library; the demo chains them.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tsgraphs/eval/metrics.hpp"
+#include "tsgraphs/eval/room_metrics.hpp"
+#include "tsgraphs/pipeline/pipeline_config.hpp"
+#include "tsgraphs/sim/scene.hpp"
+
+namespace tsgraphs::app {
+
+/// A scene file, or the name of a built-in scene (office, atrium, long_corridor, two_storeys).
+sim::Scene resolve_scene(const std::string& arg);
+/// resolve_scene, with the scene's warnings printed.
+sim::Scene load_and_warn(const std::string& arg);
+/// Warnings are shown even with --quiet: they say the output may not be what was meant.
+void print_warnings(const std::string& where, const std::vector<std::string>& warnings);
+
+/// `simulate`: the scene's sequence folder at `out` (laps <= 0: the scene's).
+void simulate(const sim::Scene& scene, const std::string& out, std::uint64_t seed, int laps, bool quiet);
+/// `draw-scene`: the bird's-eye SVG of the scene and its path.
+void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet);
+/// `run`: a sequence folder through the pipeline into a run folder, written whole or not at all.
+void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config, bool quiet);
+/// `eval`: metrics.json in the run folder (and the table on stdout when `print`).
+eval::Metrics evaluate(const std::string& run_dir, const std::string& seq_dir, bool quiet, bool print = true);
+/// `eval --against`: comparison.json in `run_a` (and the figures on stdout when `print`).
+eval::Consistency compare(const std::string& run_a, const std::string& run_b, bool quiet, bool print = true);
+
+}  // namespace tsgraphs::app

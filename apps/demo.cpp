@@ -1,0 +1,152 @@
+// `tsgraphs demo` (demo.hpp).
+#include "demo.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <thread>
+
+#include "commands.hpp"
+#include "tsgraphs/eval/method_table.hpp"
+#include "tsgraphs/io/atomic_write.hpp"
+
+namespace tsgraphs::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A room-layer mode of the comparison: TS-graphs, S-Graphs+, or one of the two ablations.
+struct Method {
+  const char* name;
+  const char* slug;  ///< run folder suffix
+  const char* free_space;
+  const char* room_trigger;
+};
+
+constexpr Method kMethods[] = {
+    {"TS-graphs", "ts-graphs", "traversable", "flush"},
+    {"S-Graphs+", "s-graphs-plus", "esdf", "timer"},
+    {"ablation: traversable + timer", "traversable-timer", "traversable", "timer"},
+    {"ablation: esdf + flush", "esdf-flush", "esdf", "flush"},
+};
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+/// "2026-11-22 08:10 UTC".
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%d %H:%M UTC", &tm);
+  return text;
+}
+
+/// "2 cores, <model name>" from /proc/cpuinfo where there is one.
+std::string machine() {
+  std::string model;
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; model.empty() && std::getline(cpuinfo, line);) {
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) model = line.substr(line.find(':') + 2);
+  }
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  return std::to_string(cores) + (cores == 1 ? " core" : " cores") + (model.empty() ? "" : ", " + model);
+}
+
+std::string fixed(double v, int decimals) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, v);
+  return text;
+}
+
+std::string figure(const std::optional<double>& v) { return v ? fixed(*v, 2) : "-"; }
+
+}  // namespace
+
+void demo(const DemoOptions& options) {
+  const auto start = Clock::now();
+  const fs::path out = options.out;
+  fs::create_directories(out);
+  const bool quiet = options.quiet;
+  const auto step = [&](const std::string& what) {
+    if (!quiet) std::fprintf(stderr, "demo: %6.1f s  %s\n", seconds_since(start), what.c_str());
+  };
+
+  std::vector<eval::MethodResult> results;
+  std::string platforms;
+  for (std::size_t si = 0; si < options.scenes.size(); ++si) {
+    const sim::Scene scene = load_and_warn(options.scenes[si]);
+    draw_scene(scene, (out / (scene.name + ".svg")).string(), true);
+    const std::size_t first_row = results.size();
+    for (const Method& m : kMethods) results.push_back({scene.name, m.name, {}});
+    for (int seed = 1; seed <= options.seeds; ++seed) {
+      const std::string tag = scene.name + "_seed" + std::to_string(seed);
+      const std::string seq = (out / tag).string();
+      step("simulate " + tag);
+      simulate(scene, seq, static_cast<std::uint64_t>(seed), 0, true);
+      for (std::size_t k = 0; k < std::size(kMethods); ++k) {
+        const Method& m = kMethods[k];
+        pipeline::PipelineConfig config;
+        config.rooms.layer.free_space_method = m.free_space;
+        config.rooms.layer.room_trigger = m.room_trigger;
+        const std::string run_dir = (out / (tag + "_" + m.slug)).string();
+        step("run " + tag + ", " + m.name);
+        run(seq, run_dir, config, true);
+        results[first_row + k].seeds.push_back(evaluate(run_dir, seq, true, false));
+      }
+    }
+
+    // Two platforms on the first scene, seed 1: the same path with the sensor higher (a
+    // person carrying it rather than a robot), TS-graphs on both, their rooms paired.
+    if (si != 0 || options.platform_height <= 0.0) continue;
+    sim::Scene raised = scene;
+    raised.sensor.mount_height = options.platform_height;
+    const std::string tag = scene.name + "_seed1_sensor" + fixed(options.platform_height, 2);
+    const std::string seq = (out / tag).string();
+    step("simulate " + tag);
+    simulate(raised, seq, 1, 0, true);
+    pipeline::PipelineConfig config;
+    config.ground.sensor_height = options.platform_height;
+    config.ground.seed_radius = options.platform_seed_radius;
+    const std::string low_run = (out / (scene.name + "_seed1_" + kMethods[0].slug)).string();
+    const std::string high_run = (out / (tag + "_" + kMethods[0].slug)).string();
+    step("run " + tag + ", TS-graphs");
+    run(seq, high_run, config, true);
+    const eval::Metrics high = evaluate(high_run, seq, true, false);
+    const eval::Consistency c = compare(low_run, high_run, true, false);
+    platforms = "Platforms (" + scene.name + ", seed 1, TS-graphs): the sensor at " +
+                fixed(scene.sensor.mount_height, 2) + " m against " + fixed(options.platform_height, 2) +
+                " m: " + std::to_string(c.N1st) + " / " + std::to_string(c.N2nd) + " rooms, " +
+                std::to_string(c.N_re) + " paired, f_re " + fixed(c.f_re, 2) + ", DCS " + figure(c.dcs) +
+                ", d_center " + figure(c.d_center) + " m; at " + fixed(options.platform_height, 2) +
+                " m: rooms F1 " + figure(high.rooms_gt.f1) + ", ATE_rmse " +
+                (high.trajectory.ate_rmse ? fixed(*high.trajectory.ate_rmse, 3) : std::string("-")) + " m.\n";
+  }
+
+  const double elapsed = seconds_since(start);
+  const std::string seeds_text = std::to_string(options.seeds) + (options.seeds == 1 ? " seed" : " seeds");
+  std::string md = "Measured " + utc_now() + " on " + machine() + "; " + seeds_text +
+                   (options.seeds > 1 ? " (mean ± standard deviation)" : "") + "; the demo took " +
+                   fixed(elapsed, 0) + " s.\n\n";
+  md += "Table 1 (the paper's layout; ATE is ATE_loop, the distance between the first and last pose):\n\n";
+  md += eval::markdown_table(results, eval::table1_columns());
+  md += "\nAgainst the simulator's ground truth, and speed:\n\n";
+  md += eval::markdown_table(results, eval::truth_columns());
+  if (!platforms.empty()) md += "\n" + platforms;
+
+  std::vector<eval::TableColumn> all = eval::table1_columns();
+  for (eval::TableColumn& c : eval::truth_columns()) all.push_back(std::move(c));
+  io::write_file_atomic((out / "table.md").string(), md);
+  io::write_file_atomic((out / "table.csv").string(), eval::csv_table(results, all));
+  std::printf("%s", md.c_str());
+  step("wrote " + (out / "table.md").string() + ", table.csv");
+}
+
+}  // namespace tsgraphs::app
