@@ -11,18 +11,17 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <set>
 #include <string>
-#include <string_view>
 #include <tuple>
 #include <utility>
 #include <vector>
 
 #include "tsgraphs/io/pcd.hpp"
+#include "tsgraphs/report/svg_writer.hpp"
 #include "tsgraphs/sim/scene_geometry.hpp"
 
 namespace tsgraphs::report {
@@ -130,74 +129,12 @@ constexpr std::array<ColourStop, 5> kPathRamp = {{{0.00, 0x2b, 0x3a, 0x9e},
                                                   {1.00, 0xd7, 0x26, 0x2b}}};
 
 // ---------------------------------------------------------------------------------------
-// Text and numbers
+// Text and numbers (svg_writer.hpp)
 
-/// Fixed two-decimal number, independent of the C locale; never "-0.00".
-std::string num(double v) {
-  if (!std::isfinite(v)) v = 0.0;
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 2);
-  std::string s(buf, r.ptr);
-  if (s == "-0.00") s = "0.00";
-  return s;
-}
-
-/// As `num`, without trailing zeros: for numbers in prose ("every 3 m").
-std::string short_num(double v) {
-  std::string s = num(v);
-  while (s.back() == '0') s.pop_back();
-  if (s.back() == '.') s.pop_back();
-  return s;
-}
-
-/// Length of the valid UTF-8 sequence starting at s[i], or 0.
-std::size_t utf8_length(std::string_view s, std::size_t i) {
-  const auto c = static_cast<unsigned char>(s[i]);
-  std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
-  if (n == 0 || i + n > s.size()) return 0;
-  for (std::size_t k = 1; k < n; ++k) {
-    if ((static_cast<unsigned char>(s[i + k]) >> 6) != 0x2) return 0;
-  }
-  return n;
-}
-
-/// Text safe inside an element or an attribute: markup characters escaped, characters XML
-/// forbids (control codes, broken UTF-8) replaced by '?'.
-std::string xml_escape(std::string_view text) {
-  std::string out;
-  for (std::size_t i = 0; i < text.size();) {
-    const char c = text[i];
-    switch (c) {
-      case '&': out += "&amp;"; ++i; continue;
-      case '<': out += "&lt;"; ++i; continue;
-      case '>': out += "&gt;"; ++i; continue;
-      case '"': out += "&quot;"; ++i; continue;
-      case '\'': out += "&apos;"; ++i; continue;
-      default: break;
-    }
-    const std::size_t n = utf8_length(text, i);
-    const bool control = n == 1 && static_cast<unsigned char>(c) < 0x20 && c != '\t';
-    if (n == 0 || control) {
-      out += '?';
-      ++i;
-    } else {
-      out.append(text.substr(i, n));
-      i += n;
-    }
-  }
-  return out;
-}
-
-std::string hex_colour(double r, double g, double b) {
-  static const char* kDigits = "0123456789abcdef";
-  std::string s = "#";
-  for (double v : {r, g, b}) {
-    const int i = std::clamp(static_cast<int>(std::lround(v)), 0, 255);
-    s += kDigits[i >> 4];
-    s += kDigits[i & 15];
-  }
-  return s;
-}
+using svg::hex_colour;
+using svg::num;
+using svg::short_num;
+using svg::xml_escape;
 
 /// Colour of the path at fraction u in [0, 1] of the lap.
 std::string path_colour(double u) {
@@ -215,38 +152,13 @@ std::string path_colour(double u) {
 
 /// Distinct colour of the i-th room: hues a golden angle apart.
 std::string room_colour(std::size_t i) {
-  const double h = std::fmod(kRoomHueStartDeg + kGoldenAngleDeg * static_cast<double>(i), 360.0) / 60.0;
-  const double c = (1.0 - std::abs(2.0 * kRoomLightness - 1.0)) * kRoomSaturation;
-  const double x = c * (1.0 - std::abs(std::fmod(h, 2.0) - 1.0));
-  const double m = kRoomLightness - 0.5 * c;
-  double r = 0, g = 0, b = 0;
-  switch (static_cast<int>(h)) {
-    case 0: r = c, g = x; break;
-    case 1: r = x, g = c; break;
-    case 2: g = c, b = x; break;
-    case 3: g = x, b = c; break;
-    case 4: r = x, b = c; break;
-    default: r = c, b = x; break;
-  }
-  return hex_colour(255.0 * (r + m), 255.0 * (g + m), 255.0 * (b + m));
+  return svg::hsl_colour(kRoomHueStartDeg + kGoldenAngleDeg * static_cast<double>(i), kRoomSaturation, kRoomLightness);
 }
 
 // ---------------------------------------------------------------------------------------
 // Geometry helpers
 
-/// Axis-aligned extent in metres.
-struct Extent {
-  double min_x = std::numeric_limits<double>::infinity(), min_y = min_x;
-  double max_x = -min_x, max_y = -min_x;
-  void add(const Vec2& p) {
-    min_x = std::min(min_x, p.x()), max_x = std::max(max_x, p.x());
-    min_y = std::min(min_y, p.y()), max_y = std::max(max_y, p.y());
-  }
-  void add(const Polygon2& poly) {
-    for (const Vec2& p : poly) add(p);
-  }
-  bool empty() const { return !(min_x <= max_x); }
-};
+using svg::Extent;
 
 /// World metres to the pixels of one panel, y up.
 struct Frame {
@@ -874,18 +786,15 @@ class SceneDrawer {
 
   /// kScaleBarMetres long, alternating dark and light metres, labelled 0, 1 and the length.
   void draw_scale_bar(double x, double y) {
-    out_ += "<g class=\"scale-bar\">\n";
-    const int metres = static_cast<int>(kScaleBarMetres);
-    for (int m = 0; m < metres; ++m) {
-      out_ += "<rect x=\"" + num(x + m * kPxPerMetre) + "\" y=\"" + num(y) + "\" width=\"" + num(kPxPerMetre) +
-              "\" height=\"" + num(kScaleBarThickness) + "\" fill=\"" + (m % 2 == 0 ? kInk : kBackground) +
-              "\" stroke=\"" + kInk + "\" stroke-width=\"0.8\"/>\n";
-    }
-    const double ty = y + kScaleBarThickness + kScaleTextGap;
-    out_ += text(x - kScaleTextShift, ty, "scale-text", "0");
-    out_ += text(x + kPxPerMetre - kScaleTextShift, ty, "scale-text", "1");
-    out_ += text(x + metres * kPxPerMetre - kScaleTextShift, ty, "scale-text", std::to_string(metres) + " m");
-    out_ += "</g>\n";
+    svg::ScaleBarStyle style;
+    style.px_per_metre = kPxPerMetre;
+    style.metres = static_cast<int>(kScaleBarMetres);
+    style.thickness = kScaleBarThickness;
+    style.text_gap = kScaleTextGap;
+    style.text_shift = kScaleTextShift;
+    style.ink = kInk;
+    style.paper = kBackground;
+    out_ += svg::scale_bar(x, y, style);
   }
 
   // --- legend ----------------------------------------------------------------------------
@@ -947,7 +856,7 @@ class SceneDrawer {
   }
 
   static std::string text(double x, double y, const std::string& cls, const std::string& what) {
-    return "<text class=\"" + cls + "\" x=\"" + num(x) + "\" y=\"" + num(y) + "\">" + xml_escape(what) + "</text>\n";
+    return svg::text(x, y, cls, what);
   }
 
   const Scene& scene_;
