@@ -13,6 +13,7 @@
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
 #include "tsgraphs/pipeline/sequence_runner.hpp"
+#include "tsgraphs/report/report_html.hpp"
 #include "tsgraphs/report/scene_svg.hpp"
 #include "tsgraphs/sim/builtin_scenes.hpp"
 #include "tsgraphs/sim/scene_loader.hpp"
@@ -79,6 +80,7 @@ void run(const std::string& seq_dir, const std::string& out, const pipeline::Pip
   pipeline::RunInfo info = pipeline::run_sequence(sequence, slam, callbacks);
   info.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   pipeline::write_run_outputs(slam, info, dir.path());
+  report::write_run_report(dir.path(), seq_dir, fs::path(out).filename().string());
   dir.commit();
   if (!quiet) {
     std::fprintf(stderr, "run: %zu keyframes, %zu planes, %zu loop closures, %zu optimisations; %.1f s (%.1fx real time)\n",
@@ -95,6 +97,8 @@ eval::Metrics evaluate(const std::string& run_dir, const std::string& seq_dir, b
   options.seq_dir = seq_dir;
   const eval::Metrics metrics = eval::evaluate_run(options);
   io::write_file_atomic((fs::path(run_dir) / pipeline::run_files::kMetrics).string(), eval::metrics_json(metrics));
+  // The report gets the metrics table (and the ground truth when the sequence is given).
+  report::write_run_report(run_dir, seq_dir, fs::weakly_canonical(run_dir).filename().string());
   if (print) std::printf("%s", eval::metrics_table(metrics).c_str());
   if (!quiet) std::fprintf(stderr, "eval: wrote %s\n", (fs::path(run_dir) / pipeline::run_files::kMetrics).c_str());
   return metrics;

@@ -13,6 +13,8 @@
 #include "commands.hpp"
 #include "tsgraphs/eval/method_table.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
+#include "tsgraphs/report/report_html.hpp"
+#include "tsgraphs/report/run_view.hpp"
 
 namespace tsgraphs::app {
 
@@ -145,8 +147,35 @@ void demo(const DemoOptions& options) {
   for (eval::TableColumn& c : eval::truth_columns()) all.push_back(std::move(c));
   io::write_file_atomic((out / "table.md").string(), md);
   io::write_file_atomic((out / "table.csv").string(), eval::csv_table(results, all));
+
+  // The page: the tables, then each scene's seed-1 runs side by side.
+  step("report");
+  std::vector<report::DemoSection> sections;
+  for (std::size_t row = 0; row < results.size(); row += std::size(kMethods)) {
+    const std::string& scene = results[row].scene;
+    report::DemoSection section{scene + ", seed 1", {}};
+    for (const Method& m : kMethods) {
+      report::RunView run = report::read_run_view((out / (scene + "_seed1_" + m.slug)).string(),
+                                                  (out / (scene + "_seed1")).string());
+      run.label = m.name;
+      section.runs.push_back(std::move(run));
+    }
+    sections.push_back(std::move(section));
+  }
+  const std::string intro = "<p>" + report::html_escape("Measured " + utc_now() + " on " + machine() + "; " + seeds_text +
+                                              (options.seeds > 1 ? " (mean ± standard deviation)" : "") +
+                                              "; the demo took " + fixed(elapsed, 0) + " s.") +
+                            "</p>\n" + (platforms.empty() ? "" : "<p>" + report::html_escape(platforms) + "</p>\n");
+  const std::string tables = "<h2>Table 1</h2>\n<p>The paper's layout; ATE is ATE_loop, the distance between the "
+                             "first and last pose.</p>\n" +
+                             report::method_table_html(results, eval::table1_columns()) +
+                             "<h2>Against the simulator's ground truth, and speed</h2>\n" +
+                             report::method_table_html(results, eval::truth_columns());
+  io::write_file_atomic((out / "report.html").string(),
+                        report::demo_report_html("tsgraphs demo: TS-graphs, S-Graphs+ and the ablations", intro,
+                                                 tables, sections));
   std::printf("%s", md.c_str());
-  step("wrote " + (out / "table.md").string() + ", table.csv");
+  step("wrote " + (out / "table.md").string() + ", table.csv, report.html");
 }
 
 }  // namespace tsgraphs::app

@@ -105,6 +105,21 @@ void check_files(const fs::path& demo, const std::string& printed) {
     const auto metrics = nlohmann::json::parse(read_file(run / "metrics.json"));
     EXPECT_TRUE(metrics["trajectory"]["ate_rmse"].is_number()) << method;
   }
+  // The page: both tables, and a bird's-eye of each method's seed-1 run captioned with its name.
+  const std::string page = read_file(demo / "report.html");
+  EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_EQ(page.find("<script"), std::string::npos);
+  std::size_t tables = 0;
+  for (std::size_t at = page.find("<table class=\"metrics\">"); at != std::string::npos;
+       at = page.find("<table class=\"metrics\">", at + 1))
+    ++tables;
+  EXPECT_EQ(tables, 2u);
+  for (const char* name : {"TS-graphs", "S-Graphs+", "ablation: traversable + timer", "ablation: esdf + flush"})
+    EXPECT_NE(page.find("<figcaption>" + std::string(name)), std::string::npos) << name;
+  // Every run has its own report and bird's-eye.
+  EXPECT_TRUE(fs::exists(demo / "two_rooms_seed1_ts-graphs" / "report.html"));
+  EXPECT_NE(read_file(demo / "two_rooms_seed1_ts-graphs" / "birdseye.svg").find("class=\"room\""), std::string::npos);
+
   const auto comparison = nlohmann::json::parse(read_file(demo / "two_rooms_seed1_ts-graphs" / "comparison.json"));
   EXPECT_EQ(comparison["N_a"], 3);
   EXPECT_GE(comparison["N_re"].get<int>(), 2);  // the same rooms from a sensor 0.45 m higher

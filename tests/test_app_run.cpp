@@ -88,7 +88,8 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
   const fs::path seq = base_ / "seq", out = dir_ / "run";
   std::string err;
   ASSERT_EQ(cli("-q run " + seq.string() + " --out " + out.string(), &err), 0) << err;
-  for (const char* f : {"trajectory.txt", "scene_graph.json", "map.ply", "timings.csv", "params.yaml", "run_info.json"})
+  for (const char* f : {"trajectory.txt", "scene_graph.json", "map.ply", "timings.csv", "params.yaml", "run_info.json",
+                        "report.html", "birdseye.svg"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   const auto traj = io::read_tum((out / "trajectory.txt").string());
   const auto gt = io::read_tum((seq / "groundtruth.txt").string());

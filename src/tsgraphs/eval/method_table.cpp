@@ -15,20 +15,6 @@ std::string fixed(double v, int decimals) {
   return buf;
 }
 
-std::string html_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 /// A CSV field, quoted when it holds a separator or a quote.
 std::string csv_field(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
@@ -105,18 +91,6 @@ std::string markdown_table(const std::vector<MethodResult>& results, const std::
     out += "\n";
   }
   return out;
-}
-
-std::string html_table(const std::vector<MethodResult>& results, const std::vector<TableColumn>& columns) {
-  std::string out = "<table class=\"metrics\">\n<thead><tr><th>scene</th><th>method</th>";
-  for (const TableColumn& c : columns) out += "<th>" + html_escape(c.header) + "</th>";
-  out += "</tr></thead>\n<tbody>\n";
-  for (const MethodResult& r : results) {
-    out += "<tr><td>" + html_escape(r.scene) + "</td><td>" + html_escape(r.method) + "</td>";
-    for (const TableColumn& c : columns) out += "<td>" + html_escape(cell_text(spread(r, c), c.decimals)) + "</td>";
-    out += "</tr>\n";
-  }
-  return out + "</tbody>\n</table>\n";
 }
 
 std::string csv_table(const std::vector<MethodResult>& results, const std::vector<TableColumn>& columns) {

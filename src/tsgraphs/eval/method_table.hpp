@@ -44,8 +44,6 @@ std::string cell_text(const Spread& s, int decimals);
 
 /// Markdown table: scene, method, then one cell per column.
 std::string markdown_table(const std::vector<MethodResult>& results, const std::vector<TableColumn>& columns);
-/// HTML <table> of the same cells (text escaped), class "metrics".
-std::string html_table(const std::vector<MethodResult>& results, const std::vector<TableColumn>& columns);
 /// CSV: scene, method, seeds, then <key>_mean and <key>_sd per column (empty when missing).
 std::string csv_table(const std::vector<MethodResult>& results, const std::vector<TableColumn>& columns);
 
