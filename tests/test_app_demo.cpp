@@ -19,24 +19,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using tsgraphs::test::read_file;
 
 /// Runs the tsgraphs binary; stdout and stderr into `out` and `err`; returns the exit status.
-int cli(const std::string& args, std::string* out, std::string* err) {
-  const fs::path base = fs::path(::testing::TempDir()) / ("tsgraphs_demo_" + std::to_string(::getpid()));
-  const std::string o = base.string() + ".out", e = base.string() + ".err";
-  const int status = std::system((std::string(TSGRAPHS_BINARY) + " " + args + " > " + o + " 2> " + e).c_str());
-  *out = read_file(o);
-  *err = read_file(e);
-  fs::remove(o);
-  fs::remove(e);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+int cli(const std::string& args, std::string* out, std::string* err) { return tsgraphs::test::run_tsgraphs(args, out, err); }
 
 std::vector<std::string> split(const std::string& text, char sep) {
   std::vector<std::string> out;

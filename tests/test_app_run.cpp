@@ -24,21 +24,9 @@ using namespace tsgraphs;
 
 namespace {
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test::read_file;
 
-int cli(const std::string& args, std::string* err) {
-  const fs::path log = fs::path(::testing::TempDir()) / ("tsgraphs_run_stderr_" + std::to_string(::getpid()) + ".txt");
-  const int status =
-      std::system((std::string(TSGRAPHS_BINARY) + " " + args + " 2> " + log.string() + " > /dev/null").c_str());
-  *err = read_file(log);
-  fs::remove(log);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+int cli(const std::string& args, std::string* err) { return test::run_tsgraphs(args, nullptr, err); }
 
 // A small room walked once round: a few hundred VLP-16 scans, quick to simulate and run.
 const char* kScene = R"(

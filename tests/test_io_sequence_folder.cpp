@@ -35,12 +35,7 @@ std::uint32_t bits(float f) {
   return u;
 }
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::read_file;
 
 // Writes text to any path (TempDirTest::write_file writes to a name in dir_).
 void write_text(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }

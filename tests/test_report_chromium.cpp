@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "report_test_support.hpp"
 #include "test_support.hpp"
 #include "tsgraphs/report/report_html.hpp"
 #include "tsgraphs/report/run_view.hpp"
@@ -28,12 +29,7 @@ std::size_t count(const std::string& s, const std::string& what) {
   return n;
 }
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test::read_file;
 
 /// The DOM Chromium builds for `page` (stdout of --dump-dom); its stderr goes to `err`.
 std::string dump_dom(const fs::path& page, const fs::path& err) {
@@ -50,35 +46,10 @@ std::string dump_dom(const fs::path& page, const fs::path& err) {
   return out;
 }
 
-RunView::Room room(int id, const std::string& kind, int level, const Vec2& center, int first_lap) {
-  RunView::Room r;
-  r.id = id;
-  r.kind = kind;
-  r.level = level;
-  r.rect.center = center;
-  r.rect.size = Vec2(3.0, 2.0);
-  r.first_lap = first_lap;
-  r.free_space = {Eigen::Vector3d(center.x(), center.y(), level * 3.0)};
-  return r;
-}
-
-/// Two levels, both walked: level 0 has 2 rooms, a corridor and 3 walls, level 1 a room
-/// and 1 wall. Metrics with a null figure, a label that needs escaping.
+/// test::two_level_run with a label that needs escaping and metrics with a null figure.
 RunView two_level_run() {
-  RunView run;
+  RunView run = test::two_level_run();
   run.label = "run <A> & \"B\"";
-  run.levels = {0.0, 3.0};
-  run.walls = {{1, {0, 0}, {9, 0}, 0.0, 2.8}, {2, {0, 0}, {0, 7}, 0.05, 2.9}, {4, {9, 0}, {9, 7}, -0.1, 2.5},
-               {7, {1, 1}, {1, 6}, 3.0, 5.5}};
-  for (int i = 0; i < 4; ++i) run.nodes.push_back({Eigen::Vector3d(1.0 + i, 1.0, 0.02)});
-  for (int i = 0; i < 2; ++i) run.nodes.push_back({Eigen::Vector3d(2.0 + i, 6.0, 3.01)});
-  run.rooms = {room(0, "room", 0, {2, 2}, 1), room(1, "corridor", 0, {6, 2}, 2), room(2, "room", 0, {2, 6}, 1),
-               room(7, "room", 1, {7, 6}, 1)};
-  run.truth_rooms = {{"hall", "ground", {{0, 0}, {5, 0}, {5, 4}, {0, 4}}, 0.0}};
-  for (int i = 0; i <= 20; ++i) run.estimated.push_back({0.1 * i, Eigen::Vector3d(1.0 + 0.4 * i, 1.0, 0.55)});
-  for (int i = 0; i <= 10; ++i) run.estimated.push_back({2.1 + 0.1 * i, Eigen::Vector3d(8.0 - 0.5 * i, 6.0, 3.55)});
-  for (int i = 0; i < 32; ++i) run.scans.push_back({0.1 * i, 10.0 + (i % 5)});
-  run.solves = {{0.5, 0.002, false}, {1.5, 0.004, false}, {2.5, 0.020, true}};
   run.metrics_json = R"({"consistency": {"N1st": 3, "N2nd": 3, "N_re": 2, "f_re": 0.6667, "dcs": null},
                          "trajectory": {"ate_rmse": 0.0123}, "speed": {"rtf": 9.5}})";
   return run;

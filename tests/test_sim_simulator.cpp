@@ -61,12 +61,7 @@ trajectory:
   laps: 1
 )";
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::read_file;
 
 using Cli = TempDirTest;
 
@@ -177,13 +172,7 @@ TEST(Simulator, WritesIdenticalSequencesForTheSameSeed) {
 
 namespace {
 
-int run(const std::string& args, std::string* err) {
-  const fs::path log = fs::path(::testing::TempDir()) / ("tsgraphs_cli_stderr_" + std::to_string(::getpid()) + ".txt");
-  const int status = std::system((std::string(TSGRAPHS_BINARY) + " " + args + " 2> " + log.string() + " > /dev/null").c_str());
-  *err = read_file(log);
-  fs::remove(log);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+int run(const std::string& args, std::string* err) { return test::run_tsgraphs(args, nullptr, err); }
 
 }  // namespace
 

@@ -1,13 +1,16 @@
 #pragma once
-/// Scaffolding shared by the test executables: a fresh temporary folder per test, and the message
-/// of the InputError a piece of code throws. Header only: tests/CMakeLists.txt makes an executable
+/// Scaffolding shared by the test executables: a fresh temporary folder per test, a file's bytes,
+/// and the message of the InputError a piece of code throws. Header only: tests/CMakeLists.txt makes an executable
 /// of every tests/test_*.cpp, so this file must not become one.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <system_error>
 
@@ -55,6 +58,30 @@ class TempDirTest : public ::testing::Test {
 
   std::filesystem::path dir_;
 };
+
+/// The bytes of the file at `p` ("" when it cannot be read).
+inline std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+#ifdef TSGRAPHS_BINARY
+/// Runs the tsgraphs program with `args` (shell words); its stdout into `out` and its stderr into
+/// `err` when not null. Returns the exit status (-1 when it did not exit).
+inline int run_tsgraphs(const std::string& args, std::string* out, std::string* err) {
+  const std::filesystem::path base =
+      std::filesystem::path(::testing::TempDir()) / ("tsgraphs_cli_" + std::to_string(::getpid()));
+  const std::string o = base.string() + ".out", e = base.string() + ".err";
+  const int status = std::system((std::string(TSGRAPHS_BINARY) + " " + args + " > " + o + " 2> " + e).c_str());
+  if (out != nullptr) *out = read_file(o);
+  if (err != nullptr) *err = read_file(e);
+  std::filesystem::remove(o);
+  std::filesystem::remove(e);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+#endif
 
 /// The message of the tsgraphs::InputError that calling `f` throws; a test failure (and "") when it
 /// throws nothing or another exception.
