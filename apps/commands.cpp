@@ -67,9 +67,23 @@ void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet) {
   if (!quiet) std::fprintf(stderr, "draw-scene: wrote %s\n", out.c_str());
 }
 
+std::unique_ptr<io::ScanSequence> open_sequence(const io::ScanFolderOptions& options) {
+  if (options.scans.empty() && io::is_sequence_folder(options.folder)) {
+    if (!options.poses.empty() || !options.times.empty() || options.pose_format != "auto")
+      throw input_error(options.folder, 0, "a sequence folder has its own poses and times: --poses, --times and "
+                                           "--pose-format are for folders of scans");
+    return std::make_unique<io::SequenceReader>(options.folder);
+  }
+  return std::make_unique<io::ScanFolderReader>(options);
+}
+
 void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config, bool quiet) {
+  run(io::SequenceReader(seq_dir), out, config, quiet);
+}
+
+void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config, bool quiet) {
   const auto start = std::chrono::steady_clock::now();
-  const io::SequenceReader sequence(seq_dir);
+  const std::string& seq_dir = sequence.dir();
   io::AtomicDirectory dir(out, pipeline::run_files::kSceneGraph);
   if (!quiet) std::fprintf(stderr, "run: %s, %zu scans\n", seq_dir.c_str(), sequence.size());
   pipeline::Pipeline slam(config);
@@ -80,7 +94,9 @@ void run(const std::string& seq_dir, const std::string& out, const pipeline::Pip
   pipeline::RunInfo info = pipeline::run_sequence(sequence, slam, callbacks);
   info.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   pipeline::write_run_outputs(slam, info, dir.path());
-  report::write_run_report(dir.path(), seq_dir, fs::path(out).filename().string());
+  // Ground truth for the report comes with a sequence folder only.
+  const bool has_truth = dynamic_cast<const io::SequenceReader*>(&sequence) != nullptr;
+  report::write_run_report(dir.path(), has_truth ? seq_dir : "", fs::path(out).filename().string());
   dir.commit();
   if (!quiet) {
     std::fprintf(stderr, "run: %zu keyframes, %zu planes, %zu loop closures, %zu optimisations; %.1f s (%.1fx real time)\n",

@@ -1,11 +1,13 @@
 #pragma once
 /// The commands of the `tsgraphs` program, each one call over the library; the demo chains them.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "tsgraphs/eval/metrics.hpp"
 #include "tsgraphs/eval/room_metrics.hpp"
+#include "tsgraphs/io/scan_folder.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
 #include "tsgraphs/sim/scene.hpp"
 
@@ -22,7 +24,12 @@ void print_warnings(const std::string& where, const std::vector<std::string>& wa
 void simulate(const sim::Scene& scene, const std::string& out, std::uint64_t seed, int laps, bool quiet);
 /// `draw-scene`: the bird's-eye SVG of the scene and its path.
 void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet);
-/// `run`: a sequence folder through the pipeline into a run folder, written whole or not at all.
+/// What `run` reads: a sequence folder (docs/scene-format.md) when `options.folder` is one and
+/// no scan glob is given, else a folder of PCD / KITTI scans with a pose file.
+std::unique_ptr<io::ScanSequence> open_sequence(const io::ScanFolderOptions& options);
+/// `run`: a sequence through the pipeline into a run folder, written whole or not at all.
+void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config, bool quiet);
+/// `run` on a sequence folder.
 void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config, bool quiet);
 /// `eval`: metrics.json in the run folder (and the table on stdout when `print`).
 eval::Metrics evaluate(const std::string& run_dir, const std::string& seq_dir, bool quiet, bool print = true);

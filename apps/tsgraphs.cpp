@@ -29,6 +29,7 @@ struct Options {
   std::string free_space;    ///< overrides room_layer.free_space_method when set
   std::string room_trigger;  ///< overrides room_layer.room_trigger when set
   std::string against;       ///< eval: the run to compare with
+  io::ScanFolderOptions folder;  ///< run: a folder of scans instead of a sequence folder
   DemoOptions demo;
 };
 
@@ -58,7 +59,17 @@ int main(int argc, char** argv) {
   draw_cmd->add_option("--out", opt.out, "SVG file to write")->required();
 
   auto* run_cmd = app.add_subcommand("run", "the SLAM pipeline: a sequence folder in, a run folder out");
-  run_cmd->add_option("SEQ_DIR", opt.seq, "sequence folder (docs/scene-format.md)")->required();
+  run_cmd->add_option("SEQ_DIR", opt.seq,
+                      "sequence folder (docs/scene-format.md), or a folder of .pcd / KITTI .bin scans with a pose file");
+  run_cmd->add_option("--scans", opt.folder.scans, "glob of scan files (.pcd or KITTI .bin) instead of SEQ_DIR");
+  run_cmd->add_option("--poses", opt.folder.poses, "pose file of the scans, one per scan (default: poses.txt or odom.txt beside them)");
+  run_cmd->add_option("--pose-format", opt.folder.pose_format, "tum, kitti (3x4 rows) or auto (by the field count)")
+      ->check(CLI::IsMember({"tum", "kitti", "auto"}))
+      ->capture_default_str();
+  run_cmd->add_option("--times", opt.folder.times, "times of the scans, one a line (default: times.txt beside them, or the TUM stamps)");
+  run_cmd->add_option("--scan-period", opt.folder.scan_period, "s between scans when nothing gives their times")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   run_cmd->add_option("--out", opt.out, "run folder to write")->required();
   run_cmd->add_option("--config", opt.config, "parameter file (config/params.yaml lists every key)");
   run_cmd->add_option("--free-space", opt.free_space,
@@ -107,7 +118,10 @@ int main(int argc, char** argv) {
           opt.config.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(opt.config);
       if (!opt.free_space.empty()) config.rooms.layer.free_space_method = opt.free_space;
       if (!opt.room_trigger.empty()) config.rooms.layer.room_trigger = opt.room_trigger;
-      run(opt.seq, opt.out, config, opt.quiet);
+      if (opt.seq.empty() == opt.folder.scans.empty())
+        throw input_error("run", 0, "give either SEQ_DIR or --scans GLOB");
+      opt.folder.folder = opt.seq;
+      run(*open_sequence(opt.folder), opt.out, config, opt.quiet);
     } else if (*eval_cmd) {
       if (opt.against.empty()) {
         evaluate(opt.out, opt.seq, opt.quiet);

@@ -176,6 +176,49 @@ TEST_F(RunCli, ParallelRunEqualsOneScanAtATime) {
   EXPECT_EQ(read_file(out / "scene_graph.json"), pipeline::scene_graph_json(slam));
 }
 
+TEST_F(RunCli, KittiFolderOfTheSameScansGivesTheSameTrajectory) {
+  // The sequence as a KITTI odometry folder: velodyne/NNNNNN.bin, poses.txt (3x4 rows), times.txt.
+  const fs::path seq = base_ / "seq", kitti = dir_ / "kitti";
+  fs::create_directories(kitti / "velodyne");
+  const io::SequenceReader reader(seq.string());
+  std::ofstream poses(kitti / "poses.txt"), times(kitti / "times.txt");
+  poses.precision(17);
+  times.precision(17);
+  for (std::size_t i = 0; i < reader.size(); ++i) {
+    fs::copy_file(seq / "scans" / (io::scan_stem(i) + ".bin"), kitti / "velodyne" / (io::scan_stem(i) + ".bin"));
+    const Pose3& T = reader.info().odometry[i];
+    for (int r = 0; r < 3; ++r)
+      poses << T.linear()(r, 0) << " " << T.linear()(r, 1) << " " << T.linear()(r, 2) << " " << T.translation()(r)
+            << (r < 2 ? " " : "\n");
+    times << reader.info().times[i] << "\n";
+  }
+  poses.close();
+  times.close();
+  std::string err;
+  ASSERT_EQ(cli("-q run " + seq.string() + " --out " + (dir_ / "a").string(), &err), 0) << err;
+  ASSERT_EQ(cli("-q run " + kitti.string() + " --out " + (dir_ / "b").string(), &err), 0) << err;
+  const auto a = io::read_tum((dir_ / "a" / "trajectory.txt").string());
+  const auto b = io::read_tum((dir_ / "b" / "trajectory.txt").string());
+  ASSERT_EQ(a.size(), b.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_NEAR(a[i].t, b[i].t, 1e-9);
+    worst = std::max(worst, (a[i].pose.translation() - b[i].pose.translation()).norm());
+  }
+  EXPECT_LT(worst, 1e-6);
+  const auto ga = nlohmann::json::parse(read_file(dir_ / "a" / "scene_graph.json"));
+  const auto gb = nlohmann::json::parse(read_file(dir_ / "b" / "scene_graph.json"));
+  EXPECT_EQ(ga["rooms"].size(), gb["rooms"].size());
+  EXPECT_TRUE(fs::exists(dir_ / "b" / "report.html"));
+
+  // Neither a folder nor --scans; folder options on a sequence folder: one clear error each.
+  EXPECT_EQ(cli("-q run --out " + (dir_ / "c").string(), &err), 2);
+  EXPECT_NE(err.find("either SEQ_DIR or --scans"), std::string::npos) << err;
+  EXPECT_EQ(cli("-q run " + seq.string() + " --poses x.txt --out " + (dir_ / "c").string(), &err), 2);
+  EXPECT_NE(err.find("sequence folder has its own poses"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "c"));
+}
+
 TEST_F(RunCli, MissingOdometryLineIsAnErrorNamingTheFileAndNoOutput) {
   const fs::path seq = copy_sequence();
   std::string odom = read_file(seq / "odom.txt");

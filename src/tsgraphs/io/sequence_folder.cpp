@@ -10,6 +10,7 @@
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
+#include "tsgraphs/io/kitti.hpp"
 
 namespace fs = std::filesystem;
 
@@ -32,26 +33,6 @@ std::string read_all(const fs::path& path) {
   return s.str();
 }
 
-std::vector<double> read_numbers(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw input_error(path.string(), 0, "cannot open file");
-  std::vector<double> values;
-  std::string text;
-  int line = 0;
-  while (std::getline(in, text)) {
-    ++line;
-    if (text.find_first_not_of(" \t\r") == std::string::npos || text[0] == '#') continue;
-    char* end = nullptr;
-    const double v = std::strtod(text.c_str(), &end);
-    if (end == text.c_str() || text.find_first_not_of(" \t\r", end - text.c_str()) != std::string::npos) {
-      throw input_error(path.string(), line, "expected one number per line");
-    }
-    if (!std::isfinite(v)) throw input_error(path.string(), line, "non-finite value");
-    if (!values.empty() && v < values.back()) throw input_error(path.string(), line, "times go backwards");
-    values.push_back(v);
-  }
-  return values;
-}
 
 std::string format_times(const std::vector<double>& times) {
   std::string out;
@@ -132,7 +113,7 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
   const fs::path d(dir);
   if (!fs::is_directory(d)) throw input_error(dir, 0, "not a folder");
   if (!fs::exists(d / "times.txt")) throw input_error((d / "times.txt").string(), 0, "missing: not a sequence folder");
-  info_.times = read_numbers(d / "times.txt");
+  info_.times = read_times((d / "times.txt").string());
   if (info_.times.empty()) throw input_error((d / "times.txt").string(), 0, "no timestamps");
   const std::size_t n = info_.times.size();
   auto poses_of = [&](const fs::path& p) {
@@ -153,7 +134,7 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
   if (!fs::exists(d / "odom.txt")) throw input_error((d / "odom.txt").string(), 0, "missing");
   info_.odometry = poses_of(d / "odom.txt");
   if (fs::exists(d / "groundtruth.txt")) info_.groundtruth = poses_of(d / "groundtruth.txt");
-  if (fs::exists(d / "laps.txt")) info_.lap_starts = read_numbers(d / "laps.txt");
+  if (fs::exists(d / "laps.txt")) info_.lap_starts = read_times((d / "laps.txt").string());
   for (std::size_t i = 0; i < n; ++i) {
     const fs::path bin = d / "scans" / (scan_stem(i) + ".bin");
     if (!fs::exists(bin)) throw input_error(bin.string(), 0, "missing scan (times.txt lists " + std::to_string(n) + ")");
@@ -187,19 +168,8 @@ std::string SequenceReader::scene_path() const {
 
 PointCloud SequenceReader::scan(std::size_t index) const {
   const fs::path stem = fs::path(dir_) / "scans" / scan_stem(index);
-  const std::string bin = read_all(stem.string() + ".bin");
-  if (bin.size() % (4 * sizeof(float)) != 0) {
-    throw input_error(stem.string() + ".bin", 0, "size is not a multiple of 16 bytes (x y z intensity float32)");
-  }
-  const std::size_t n = bin.size() / (4 * sizeof(float));
-  std::vector<float> data(4 * n);
-  std::memcpy(data.data(), bin.data(), bin.size());
-  PointCloud cloud;
-  cloud.reserve(n, true, false);
-  for (std::size_t i = 0; i < n; ++i) {
-    cloud.points.emplace_back(data[4 * i], data[4 * i + 1], data[4 * i + 2]);
-    cloud.intensity.push_back(data[4 * i + 3]);
-  }
+  PointCloud cloud = read_kitti_bin(stem.string() + ".bin");
+  const std::size_t n = cloud.size();
   const std::string label_path = stem.string() + ".label";
   if (fs::exists(label_path)) {
     const std::string raw = read_all(label_path);

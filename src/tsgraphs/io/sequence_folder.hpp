@@ -6,29 +6,11 @@
 #include <vector>
 
 #include "tsgraphs/core/point_cloud.hpp"
-#include "tsgraphs/core/polygon.hpp"
+#include "tsgraphs/io/scan_sequence.hpp"
+#include "tsgraphs/io/sequence_info.hpp"
 #include "tsgraphs/io/tum.hpp"
 
 namespace tsgraphs::io {
-
-/// A ground-truth room of rooms_gt.json.
-struct RoomTruth {
-  std::string name;
-  std::string level;       ///< the level's name
-  Polygon2 polygon;
-  double elevation = 0.0;  ///< the level's floor height
-};
-
-/// Everything of a sequence but the scans.
-struct SequenceInfo {
-  std::vector<double> times;                 ///< one per scan
-  std::vector<Pose3> odometry;               ///< one per scan, sensor in odom frame
-  std::vector<Pose3> groundtruth;            ///< empty, or one per scan
-  std::vector<double> lap_starts;            ///< empty, or the start time of each lap
-  bool has_rooms = false;                    ///< write / found rooms_gt.json
-  std::vector<RoomTruth> rooms;
-  std::string scene_yaml;                    ///< copied to scene.yaml when not empty
-};
 
 /// Writes a sequence folder under a temporary name; `commit` renames it into place, so a
 /// killed run leaves nothing that looks like a complete sequence.
@@ -48,17 +30,17 @@ class SequenceWriter {
 };
 
 /// Reads a sequence folder, checking that the files agree with each other.
-class SequenceReader {
+class SequenceReader : public ScanSequence {
  public:
   /// Throws InputError naming the file and line for a missing or inconsistent folder.
   explicit SequenceReader(const std::string& dir);
-  std::size_t size() const { return info_.times.size(); }
-  const SequenceInfo& info() const { return info_; }
-  const std::string& dir() const { return dir_; }
+  std::size_t size() const override { return info_.times.size(); }
+  const SequenceInfo& info() const override { return info_; }
+  const std::string& dir() const override { return dir_; }
   /// Path of scene.yaml, "" for real data.
-  std::string scene_path() const;
+  std::string scene_path() const override;
   /// Reads scan `index` with intensity, and labels when the .label file exists.
-  PointCloud scan(std::size_t index) const;
+  PointCloud scan(std::size_t index) const override;
 
  private:
   std::string dir_;

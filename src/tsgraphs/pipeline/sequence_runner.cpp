@@ -30,7 +30,7 @@ double peak_rss_mb() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
 }
 
-RunInfo run_sequence(const io::SequenceReader& sequence, Pipeline& pipeline, const RunCallbacks& callbacks) {
+RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const RunCallbacks& callbacks) {
   const auto start = std::chrono::steady_clock::now();
   const io::SequenceInfo& info = sequence.info();
   RunInfo run;

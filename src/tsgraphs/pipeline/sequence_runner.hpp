@@ -5,7 +5,7 @@
 #include <functional>
 #include <string>
 
-#include "tsgraphs/io/sequence_folder.hpp"
+#include "tsgraphs/io/scan_sequence.hpp"
 #include "tsgraphs/pipeline/pipeline.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
 
@@ -19,7 +19,7 @@ struct RunCallbacks {
 /// Feeds every scan of `sequence` with its odometry pose to `pipeline`, then finishes it.
 /// A scan file that cannot be read (truncated, wrong label count) is skipped with a warning;
 /// its pose still comes from the odometry. Returns the run's facts for run_info.json.
-RunInfo run_sequence(const io::SequenceReader& sequence, Pipeline& pipeline, const RunCallbacks& callbacks = {});
+RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const RunCallbacks& callbacks = {});
 
 /// Peak resident memory of this process so far, MB.
 double peak_rss_mb();

@@ -1,0 +1,114 @@
+#include "tsgraphs/io/kitti.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "tsgraphs/core/error.hpp"
+
+namespace tsgraphs::io {
+
+namespace {
+
+constexpr std::size_t kFloatsPerPoint = 4;  // x y z intensity
+constexpr int kPoseFields = 12;             // row-major 3x4
+
+bool is_data_line(const std::string& text) {
+  const std::size_t first = text.find_first_not_of(" \t\r");
+  return first != std::string::npos && text[first] != '#';
+}
+
+}  // namespace
+
+PointCloud read_kitti_bin(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw input_error(path, 0, "cannot open scan");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  const std::string bytes = ss.str();
+  constexpr std::size_t kRecord = kFloatsPerPoint * sizeof(float);
+  if (bytes.size() % kRecord != 0)
+    throw input_error(path, 0, "size is not a multiple of 16 bytes (x y z intensity float32)");
+  const std::size_t n = bytes.size() / kRecord;
+  std::vector<float> data(kFloatsPerPoint * n);
+  std::memcpy(data.data(), bytes.data(), bytes.size());
+  PointCloud cloud;
+  cloud.reserve(n, true, false);
+  for (std::size_t i = 0; i < n; ++i) {
+    cloud.points.emplace_back(data[4 * i], data[4 * i + 1], data[4 * i + 2]);
+    cloud.intensity.push_back(data[4 * i + 3]);
+  }
+  return cloud;
+}
+
+std::vector<Pose3> read_kitti_poses(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw input_error(path, 0, "cannot open pose file");
+  std::vector<Pose3> poses;
+  std::string text;
+  int line = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    if (!is_data_line(text)) continue;
+    std::istringstream fields(text);
+    double v[kPoseFields + 1];
+    int count = 0;
+    for (std::string f; fields >> f;) {
+      if (count == kPoseFields) throw input_error(path, line, "more than 12 numbers (KITTI poses: a 3x4 matrix a line)");
+      char* end = nullptr;
+      v[count] = std::strtod(f.c_str(), &end);
+      if (end == f.c_str() || *end != '\0') throw input_error(path, line, "'" + f + "' is not a number");
+      if (!std::isfinite(v[count])) throw input_error(path, line, "non-finite value");
+      ++count;
+    }
+    if (count != kPoseFields)
+      throw input_error(path, line, std::to_string(count) + " numbers, expected 12 (KITTI poses: a 3x4 matrix a line)");
+    Pose3 T = Pose3::Identity();
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) T.linear()(r, c) = v[4 * r + c];
+      T.translation()(r) = v[4 * r + 3];
+    }
+    // Rows printed with few digits are not exactly orthonormal: take the nearest rotation.
+    const Eigen::Quaterniond q(T.linear());
+    T.linear() = q.normalized().toRotationMatrix();
+    poses.push_back(T);
+  }
+  return poses;
+}
+
+std::vector<double> read_times(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw input_error(path, 0, "cannot open file");
+  std::vector<double> values;
+  std::string text;
+  int line = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    if (text.find_first_not_of(" \t\r") == std::string::npos || text[0] == '#') continue;
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (end == text.c_str() || text.find_first_not_of(" \t\r", end - text.c_str()) != std::string::npos) {
+      throw input_error(path, line, "expected one number per line");
+    }
+    if (!std::isfinite(v)) throw input_error(path, line, "non-finite value");
+    if (!values.empty() && v < values.back()) throw input_error(path, line, "times go backwards");
+    values.push_back(v);
+  }
+  return values;
+}
+
+int fields_on_first_line(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw input_error(path, 0, "cannot open file");
+  for (std::string text; std::getline(in, text);) {
+    if (!is_data_line(text)) continue;
+    std::istringstream fields(text);
+    int count = 0;
+    for (std::string f; fields >> f;) ++count;
+    return count;
+  }
+  return 0;
+}
+
+}  // namespace tsgraphs::io

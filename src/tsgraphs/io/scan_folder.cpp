@@ -1,0 +1,140 @@
+#include "tsgraphs/io/scan_folder.hpp"
+
+#include <glob.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "tsgraphs/core/error.hpp"
+#include "tsgraphs/io/kitti.hpp"
+#include "tsgraphs/io/pcd.hpp"
+#include "tsgraphs/io/tum.hpp"
+
+namespace tsgraphs::io {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kTumFields = 8;     // t x y z qx qy qz qw
+constexpr int kKittiFields = 12;  // a 3x4 matrix
+
+/// The .pcd and .bin files directly in `dir`, in name order.
+std::vector<std::string> scan_files_in(const fs::path& dir) {
+  std::vector<std::string> files;
+  if (!fs::is_directory(dir)) return files;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
+    const std::string ext = e.path().extension().string();
+    if (e.is_regular_file() && (ext == ".pcd" || ext == ".bin")) files.push_back(e.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::vector<std::string> glob_files(const std::string& pattern) {
+  glob_t g{};
+  std::vector<std::string> files;
+  if (::glob(pattern.c_str(), 0, nullptr, &g) == 0) {
+    for (std::size_t i = 0; i < g.gl_pathc; ++i)
+      if (fs::is_regular_file(g.gl_pathv[i])) files.emplace_back(g.gl_pathv[i]);
+  }
+  ::globfree(&g);
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+/// The first of `names` that exists in one of `dirs`, or "".
+std::string find_beside(const std::vector<fs::path>& dirs, const std::vector<std::string>& names) {
+  for (const fs::path& d : dirs)
+    for (const std::string& n : names)
+      if (fs::is_regular_file(d / n)) return (d / n).string();
+  return "";
+}
+
+}  // namespace
+
+bool is_sequence_folder(const std::string& dir) {
+  const fs::path d(dir);
+  return fs::is_regular_file(d / "times.txt") && fs::is_regular_file(d / "odom.txt") && fs::is_directory(d / "scans");
+}
+
+ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
+  // The scans.
+  if (!options.scans.empty()) {
+    name_ = options.scans;
+    files_ = glob_files(options.scans);
+    if (files_.empty()) throw input_error(options.scans, 0, "no scan file matches");
+  } else {
+    name_ = options.folder;
+    if (!fs::is_directory(options.folder)) throw input_error(options.folder, 0, "not a folder");
+    files_ = scan_files_in(options.folder);
+    if (files_.empty()) files_ = scan_files_in(fs::path(options.folder) / "velodyne");
+    if (files_.empty())
+      throw input_error(options.folder, 0,
+                        "no scans: neither a sequence folder (times.txt, odom.txt, scans/) nor .pcd or .bin files "
+                        "(in it or in velodyne/)");
+  }
+  const auto is_pcd = [](const std::string& f) { return fs::path(f).extension() == ".pcd"; };
+  pcd_ = is_pcd(files_.front());
+  for (const std::string& f : files_) {
+    if (is_pcd(f) != pcd_) throw input_error(f, 0, std::string("a ") + (pcd_ ? ".bin" : ".pcd") + " scan among " +
+                                                       (pcd_ ? ".pcd" : ".bin") + " scans: pass --scans GLOB");
+    if (!is_pcd(f) && fs::path(f).extension() != ".bin")
+      throw input_error(f, 0, "not a scan (.pcd or KITTI .bin): narrow --scans");
+  }
+  const fs::path scan_dir = fs::path(files_.front()).parent_path();
+  const std::vector<fs::path> beside = {scan_dir, scan_dir.parent_path()};
+  const std::size_t n = files_.size();
+
+  // The poses.
+  const std::string poses = options.poses.empty() ? find_beside(beside, {"poses.txt", "odom.txt"}) : options.poses;
+  if (poses.empty())
+    throw input_error(name_, 0,
+                      "no pose file: pass --poses FILE (TUM, or KITTI 3x4 rows); poses.txt or odom.txt beside the "
+                      "scans is found by itself");
+  std::string format = options.pose_format;
+  if (format == "auto") {
+    const int fields = fields_on_first_line(poses);
+    if (fields == kTumFields) format = "tum";
+    else if (fields == kKittiFields) format = "kitti";
+    else
+      throw input_error(poses, 0, std::to_string(fields) + " fields on the first line: neither TUM (8) nor KITTI (12); "
+                                                            "set --pose-format");
+  }
+  std::vector<double> pose_stamps;
+  if (format == "tum") {
+    for (const StampedPose& p : read_tum(poses)) {
+      pose_stamps.push_back(p.t);
+      info_.odometry.push_back(p.pose);
+    }
+  } else if (format == "kitti") {
+    info_.odometry = read_kitti_poses(poses);
+  } else {
+    throw input_error(poses, 0, "pose format '" + format + "': expected tum, kitti or auto");
+  }
+  if (info_.odometry.size() != n)
+    throw input_error(poses, 0, "has " + std::to_string(info_.odometry.size()) + " poses for " + std::to_string(n) +
+                                    " scans (one pose per scan, in scan order)");
+
+  // The times.
+  const std::string times = options.times.empty() ? find_beside(beside, {"times.txt"}) : options.times;
+  if (!times.empty()) {
+    info_.times = read_times(times);
+    if (info_.times.size() != n)
+      throw input_error(times, 0, "has " + std::to_string(info_.times.size()) + " times for " + std::to_string(n) + " scans");
+  } else if (!pose_stamps.empty()) {
+    for (std::size_t i = 1; i < n; ++i)
+      if (pose_stamps[i] < pose_stamps[i - 1]) throw input_error(poses, static_cast<int>(i) + 1, "times go backwards");
+    info_.times = pose_stamps;
+  } else {
+    if (!(options.scan_period > 0.0)) throw input_error(name_, 0, "scan period must be positive");
+    for (std::size_t i = 0; i < n; ++i) info_.times.push_back(static_cast<double>(i) * options.scan_period);
+  }
+}
+
+PointCloud ScanFolderReader::scan(std::size_t index) const {
+  const std::string& file = files_.at(index);
+  return pcd_ ? read_pcd(file) : read_kitti_bin(file);
+}
+
+}  // namespace tsgraphs::io

@@ -1,0 +1,28 @@
+#pragma once
+/// What `run` reads: timestamped scans with an odometry pose each, from a sequence folder
+/// (SequenceReader) or a folder of PCD / KITTI scans with a pose file (ScanFolderReader).
+#include <cstddef>
+#include <string>
+
+#include "tsgraphs/core/point_cloud.hpp"
+#include "tsgraphs/io/sequence_info.hpp"
+
+namespace tsgraphs::io {
+
+class ScanSequence {
+ public:
+  virtual ~ScanSequence() = default;
+  /// Number of scans.
+  virtual std::size_t size() const = 0;
+  /// Times and odometry (one per scan), and ground truth where the source has it.
+  virtual const SequenceInfo& info() const = 0;
+  /// Where it was read from, for messages and run_info.json.
+  virtual const std::string& dir() const = 0;
+  /// Scan `index` in the sensor frame. Safe to call from several threads at once. A scan that
+  /// cannot be read is an InputError naming its file.
+  virtual PointCloud scan(std::size_t index) const = 0;
+  /// Path of the simulator's scene.yaml, "" for real data.
+  virtual std::string scene_path() const { return ""; }
+};
+
+}  // namespace tsgraphs::io
