@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <unistd.h>
 
 #include "progress.hpp"
 #include "tsgraphs/core/error.hpp"
@@ -60,6 +61,24 @@ void simulate(const sim::Scene& scene_in, const std::string& out, std::uint64_t 
   if (!quiet) std::fprintf(stderr, "simulate: wrote %s\n", out.c_str());
 }
 
+void simulate_bag(const sim::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
+                  int laps, io::BagCompression compression, bool quiet) {
+  // The LiDAR 0.3 m above and 0.1 m ahead of base_link, so that /tf_static is not the identity.
+  const Pose3 sensor_to_base = make_pose(Eigen::Vector3d(0.1, 0.0, 0.3), 0.0);
+  const std::string folder = seq_dir.empty() ? bag + ".sequence-tmp-" + std::to_string(::getpid()) : seq_dir;
+  simulate(scene, folder, seed, laps, quiet);
+  try {
+    io::write_bag(io::SequenceReader(folder), bag, compression, sensor_to_base);
+  } catch (...) {
+    if (seq_dir.empty()) fs::remove_all(folder);
+    throw;
+  }
+  if (seq_dir.empty()) fs::remove_all(folder);
+  if (!quiet) std::fprintf(stderr, "simulate: wrote %s\n", bag.c_str());
+}
+
+void print_bag_info(const std::string& bag) { std::printf("%s", io::bag_info(bag).c_str()); }
+
 void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet) {
   const sim::Trajectory trajectory(scene);
   print_warnings(scene.file + ": trajectory: ", trajectory.warnings());
@@ -75,6 +94,14 @@ std::unique_ptr<io::ScanSequence> open_sequence(const io::ScanFolderOptions& opt
     return std::make_unique<io::SequenceReader>(options.folder);
   }
   return std::make_unique<io::ScanFolderReader>(options);
+}
+
+std::unique_ptr<io::ScanSequence> open_bag(const io::BagOptions& options, bool quiet) {
+  auto bag = std::make_unique<io::BagSequence>(options);
+  if (!quiet && bag->dropped_scans() > 0)
+    std::fprintf(stderr, "run: %zu scans of %s lie outside the odometry's time span and are left out\n",
+                 bag->dropped_scans(), options.bag.c_str());
+  return bag;
 }
 
 void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config, bool quiet) {

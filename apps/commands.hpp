@@ -7,6 +7,7 @@
 
 #include "tsgraphs/eval/metrics.hpp"
 #include "tsgraphs/eval/room_metrics.hpp"
+#include "tsgraphs/io/ros_bag.hpp"
 #include "tsgraphs/io/scan_folder.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
 #include "tsgraphs/sim/scene.hpp"
@@ -22,11 +23,20 @@ void print_warnings(const std::string& where, const std::vector<std::string>& wa
 
 /// `simulate`: the scene's sequence folder at `out` (laps <= 0: the scene's).
 void simulate(const sim::Scene& scene, const std::string& out, std::uint64_t seed, int laps, bool quiet);
+/// `simulate --bag`: the simulated sequence as a ROS1 bag (io::write_bag), through a sequence
+/// folder at `seq_dir` (kept) or, when it is empty, a temporary one.
+void simulate_bag(const sim::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
+                  int laps, io::BagCompression compression, bool quiet);
+/// `bag-info`: the bag's topics, types, counts and rates on stdout.
+void print_bag_info(const std::string& bag);
 /// `draw-scene`: the bird's-eye SVG of the scene and its path.
 void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet);
 /// What `run` reads: a sequence folder (docs/scene-format.md) when `options.folder` is one and
 /// no scan glob is given, else a folder of PCD / KITTI scans with a pose file.
 std::unique_ptr<io::ScanSequence> open_sequence(const io::ScanFolderOptions& options);
+/// What `run --bag` reads: the bag's scans with their odometry; says how many scans lay
+/// outside the odometry's time span unless quiet.
+std::unique_ptr<io::ScanSequence> open_bag(const io::BagOptions& options, bool quiet);
 /// `run`: a sequence through the pipeline into a run folder, written whole or not at all.
 void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config, bool quiet);
 /// `run` on a sequence folder.

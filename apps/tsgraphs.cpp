@@ -30,6 +30,10 @@ struct Options {
   std::string room_trigger;  ///< overrides room_layer.room_trigger when set
   std::string against;       ///< eval: the run to compare with
   io::ScanFolderOptions folder;  ///< run: a folder of scans instead of a sequence folder
+  io::BagOptions bag;            ///< run: a ROS1 bag instead of a sequence folder
+  std::vector<double> sensor_to_base;  ///< run --bag: x y z qx qy qz qw
+  std::string bag_out;           ///< simulate: write a bag
+  std::string compression = "lz4";
   DemoOptions demo;
 };
 
@@ -50,7 +54,11 @@ int main(int argc, char** argv) {
 
   auto* simulate_cmd = app.add_subcommand("simulate", "turn a scene into a LiDAR sequence folder");
   simulate_cmd->add_option("SCENE", opt.scene, "scene YAML file or built-in scene name")->required();
-  simulate_cmd->add_option("--out", opt.out, "sequence folder to write")->required();
+  simulate_cmd->add_option("--out", opt.out, "sequence folder to write (with --bag: kept beside the bag)");
+  simulate_cmd->add_option("--bag", opt.bag_out, "write the sequence as a ROS1 bag: /points, /odom, /tf_static, /groundtruth");
+  simulate_cmd->add_option("--compression", opt.compression, "bag compression: none, bz2 or lz4")
+      ->check(CLI::IsMember({"none", "bz2", "lz4"}))
+      ->capture_default_str();
   simulate_cmd->add_option("--seed", opt.seed, "random seed (default: the scene's)")->check(CLI::NonNegativeNumber);
   simulate_cmd->add_option("--laps", opt.laps, "laps of the path (default: the scene's)")->check(CLI::PositiveNumber);
 
@@ -66,6 +74,13 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--pose-format", opt.folder.pose_format, "tum, kitti (3x4 rows) or auto (by the field count)")
       ->check(CLI::IsMember({"tum", "kitti", "auto"}))
       ->capture_default_str();
+  run_cmd->add_option("--bag", opt.bag.bag, "a ROS1 bag instead of SEQ_DIR (see bag-info for its topics)");
+  run_cmd->add_option("--points-topic", opt.bag.points_topic, "bag: the sensor_msgs/PointCloud2 topic");
+  run_cmd->add_option("--odom-topic", opt.bag.odom_topic, "bag: the nav_msgs/Odometry or geometry_msgs/PoseStamped topic");
+  run_cmd->add_option("--odom-tum", opt.bag.odom_tum, "bag: odometry of the base from a TUM file instead");
+  run_cmd->add_option("--sensor-to-base", opt.sensor_to_base, "bag: x y z qx qy qz qw of the sensor in the base frame "
+                                                              "(default: /tf_static, else identity)")
+      ->expected(7);
   run_cmd->add_option("--times", opt.folder.times, "times of the scans, one a line (default: times.txt beside them, or the TUM stamps)");
   run_cmd->add_option("--scan-period", opt.folder.scan_period, "s between scans when nothing gives their times")
       ->check(CLI::PositiveNumber)
@@ -86,6 +101,9 @@ int main(int argc, char** argv) {
                        "another run folder: pair its final rooms with RUN_DIR's (f_re, DCS, d_center) into "
                        "RUN_DIR/comparison.json")
       ->excludes(seq_opt);
+
+  auto* bag_info_cmd = app.add_subcommand("bag-info", "topics of a ROS1 bag: types, message counts, rates");
+  bag_info_cmd->add_option("BAG", opt.bag.bag, "the .bag file")->required();
 
   auto* demo_cmd = app.add_subcommand(
       "demo", "TS-graphs, S-Graphs+ and the ablations on simulated atrium and office: Table 1 and a report");
@@ -110,7 +128,17 @@ int main(int argc, char** argv) {
   try {
     if (*simulate_cmd) {
       const sim::Scene scene = load_and_warn(opt.scene);
-      simulate(scene, opt.out, seed_for(scene, opt.seed), opt.laps, opt.quiet);
+      if (opt.bag_out.empty()) {
+        if (opt.out.empty()) throw input_error("simulate", 0, "give --out SEQ_DIR or --bag FILE.bag");
+        simulate(scene, opt.out, seed_for(scene, opt.seed), opt.laps, opt.quiet);
+      } else {
+        const io::BagCompression c = opt.compression == "bz2"   ? io::BagCompression::bz2
+                                     : opt.compression == "lz4" ? io::BagCompression::lz4
+                                                                : io::BagCompression::none;
+        simulate_bag(scene, opt.bag_out, opt.out, seed_for(scene, opt.seed), opt.laps, c, opt.quiet);
+      }
+    } else if (*bag_info_cmd) {
+      print_bag_info(opt.bag.bag);
     } else if (*draw_cmd) {
       draw_scene(load_and_warn(opt.scene), opt.out, opt.quiet);
     } else if (*run_cmd) {
@@ -118,10 +146,21 @@ int main(int argc, char** argv) {
           opt.config.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(opt.config);
       if (!opt.free_space.empty()) config.rooms.layer.free_space_method = opt.free_space;
       if (!opt.room_trigger.empty()) config.rooms.layer.room_trigger = opt.room_trigger;
-      if (opt.seq.empty() == opt.folder.scans.empty())
-        throw input_error("run", 0, "give either SEQ_DIR or --scans GLOB");
-      opt.folder.folder = opt.seq;
-      run(*open_sequence(opt.folder), opt.out, config, opt.quiet);
+      const int sources = int(!opt.seq.empty()) + int(!opt.folder.scans.empty()) + int(!opt.bag.bag.empty());
+      if (sources != 1) throw input_error("run", 0, "give one of SEQ_DIR, --scans GLOB or --bag FILE");
+      if (!opt.bag.bag.empty()) {
+        if (!opt.sensor_to_base.empty()) {
+          const auto& v = opt.sensor_to_base;
+          Pose3 T = Pose3::Identity();
+          T.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+          T.linear() = Eigen::Quaterniond(v[6], v[3], v[4], v[5]).normalized().toRotationMatrix();
+          opt.bag.sensor_to_base = T;
+        }
+        run(*open_bag(opt.bag, opt.quiet), opt.out, config, opt.quiet);
+      } else {
+        opt.folder.folder = opt.seq;
+        run(*open_sequence(opt.folder), opt.out, config, opt.quiet);
+      }
     } else if (*eval_cmd) {
       if (opt.against.empty()) {
         evaluate(opt.out, opt.seq, opt.quiet);

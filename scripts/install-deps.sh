@@ -15,7 +15,7 @@ PACKAGES=(
   libcli11-dev         # command line
   nlohmann-json3-dev   # JSON outputs
   libspdlog-dev        # logging
-  librosbag-storage-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev
+  librosbag-storage-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libtf2-msgs-dev
   libroscpp-core-dev   # ROS1 bags without a ROS runtime
   libgtest-dev libgmock-dev   # tests
   libbenchmark-dev     # benchmarks

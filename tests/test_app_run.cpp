@@ -14,6 +14,7 @@
 
 #include "test_support.hpp"
 #include "tsgraphs/eval/room_metrics.hpp"
+#include "tsgraphs/io/ros_bag.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
 #include "tsgraphs/pipeline/pipeline.hpp"
@@ -213,10 +214,76 @@ TEST_F(RunCli, KittiFolderOfTheSameScansGivesTheSameTrajectory) {
 
   // Neither a folder nor --scans; folder options on a sequence folder: one clear error each.
   EXPECT_EQ(cli("-q run --out " + (dir_ / "c").string(), &err), 2);
-  EXPECT_NE(err.find("either SEQ_DIR or --scans"), std::string::npos) << err;
+  EXPECT_NE(err.find("give one of SEQ_DIR, --scans GLOB or --bag FILE"), std::string::npos) << err;
   EXPECT_EQ(cli("-q run " + seq.string() + " --poses x.txt --out " + (dir_ / "c").string(), &err), 2);
   EXPECT_NE(err.find("sequence folder has its own poses"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir_ / "c"));
+}
+
+TEST_F(RunCli, BagOfTheSequenceInEachCompressionGivesTheSameRun) {
+  const fs::path seq = base_ / "seq";
+  std::string err;
+  ASSERT_EQ(cli("-q run " + seq.string() + " --out " + (dir_ / "folder").string(), &err), 0) << err;
+  const auto folder = io::read_tum((dir_ / "folder" / "trajectory.txt").string());
+  const auto folder_graph = nlohmann::json::parse(read_file(dir_ / "folder" / "scene_graph.json"));
+  // The sensor 0.3 m above and 0.1 m ahead of the base: /odom is the base, /tf_static the offset.
+  const Pose3 sensor_to_base = make_pose(Eigen::Vector3d(0.1, 0.0, 0.3), 0.2);
+  const io::SequenceReader reader(seq.string());
+  for (const auto& [name, compression] : {std::pair{"none", io::BagCompression::none},
+                                          std::pair{"bz2", io::BagCompression::bz2},
+                                          std::pair{"lz4", io::BagCompression::lz4}}) {
+    SCOPED_TRACE(name);
+    const fs::path bag = dir_ / (std::string(name) + ".bag"), out = dir_ / (std::string("bag_") + name);
+    io::write_bag(reader, bag.string(), compression, sensor_to_base);
+    ASSERT_EQ(cli("-q run --bag " + bag.string() + " --points-topic /points --odom-topic /odom --out " + out.string(), &err),
+              0)
+        << err;
+    const auto from_bag = io::read_tum((out / "trajectory.txt").string());
+    ASSERT_EQ(from_bag.size(), folder.size());
+    double worst = 0.0;
+    for (std::size_t i = 0; i < folder.size(); ++i) {
+      EXPECT_NEAR(from_bag[i].t, folder[i].t, 1e-6);
+      worst = std::max(worst, (from_bag[i].pose.translation() - folder[i].pose.translation()).norm());
+    }
+    EXPECT_LT(worst, 1e-6);  // the tf_static offset undone exactly, up to floating-point noise
+    const auto graph = nlohmann::json::parse(read_file(out / "scene_graph.json"));
+    EXPECT_EQ(graph["rooms"].size(), folder_graph["rooms"].size());
+    EXPECT_EQ(graph["planes"].size(), folder_graph["planes"].size());
+  }
+
+  // bag-info lists the topics; the ground truth rides along as PoseStamped.
+  std::string out;
+  ASSERT_EQ(test::run_tsgraphs("bag-info " + (dir_ / "lz4.bag").string(), &out, &err), 0) << err;
+  EXPECT_NE(out.find("/points"), std::string::npos) << out;
+  EXPECT_NE(out.find("sensor_msgs/PointCloud2"), std::string::npos) << out;
+  EXPECT_NE(out.find("nav_msgs/Odometry"), std::string::npos) << out;
+  EXPECT_NE(out.find("geometry_msgs/PoseStamped"), std::string::npos) << out;
+
+  // PoseStamped odometry (the ground truth) and an explicit --sensor-to-base work too.
+  ASSERT_EQ(cli("-q run --bag " + (dir_ / "lz4.bag").string() +
+                    " --points-topic /points --odom-topic /groundtruth --sensor-to-base 0 0 0 0 0 0 1 --out " +
+                    (dir_ / "gt").string(),
+                &err),
+            0)
+      << err;
+  const auto gt = io::read_tum((dir_ / "gt" / "trajectory.txt").string());
+  EXPECT_NEAR((gt.back().pose.translation() - reader.info().groundtruth.back().translation()).norm(), 0.0, 0.05);
+
+  // A missing topic, a topic of another type, a truncated bag: one error line, exit 2, no run folder.
+  const std::string bag = (dir_ / "none.bag").string();
+  EXPECT_EQ(cli("-q run --bag " + bag + " --points-topic /velodyne_points --odom-topic /odom --out " + (dir_ / "x").string(), &err), 2);
+  EXPECT_NE(err.find("no topic /velodyne_points (topics: /groundtruth, /odom, /points, /tf_static)"), std::string::npos) << err;
+  EXPECT_EQ(cli("-q run --bag " + bag + " --points-topic /odom --odom-topic /odom --out " + (dir_ / "x").string(), &err), 2);
+  EXPECT_NE(err.find("/odom is nav_msgs/Odometry, expected sensor_msgs/PointCloud2"), std::string::npos) << err;
+  const std::string bytes = read_file(bag);
+  std::ofstream(dir_ / "cut.bag", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  EXPECT_EQ(cli("-q run --bag " + (dir_ / "cut.bag").string() + " --points-topic /points --odom-topic /odom --out " +
+                    (dir_ / "x").string(),
+                &err),
+            2);
+  EXPECT_NE(err.find("cut.bag"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "x"));
 }
 
 TEST_F(RunCli, MissingOdometryLineIsAnErrorNamingTheFileAndNoOutput) {

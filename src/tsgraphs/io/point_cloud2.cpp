@@ -1,0 +1,92 @@
+#include "tsgraphs/io/point_cloud2.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <optional>
+
+#include "tsgraphs/core/error.hpp"
+
+namespace tsgraphs::io {
+
+namespace {
+
+std::size_t size_of(std::uint8_t datatype) {
+  switch (static_cast<FieldType>(datatype)) {
+    case FieldType::int8:
+    case FieldType::uint8: return 1;
+    case FieldType::int16:
+    case FieldType::uint16: return 2;
+    case FieldType::int32:
+    case FieldType::uint32:
+    case FieldType::float32: return 4;
+    case FieldType::float64: return 8;
+  }
+  return 0;
+}
+
+template <class T>
+double load(const std::uint8_t* p) {
+  T v;
+  std::memcpy(&v, p, sizeof(T));
+  return static_cast<double>(v);
+}
+
+/// The value of a field of any datatype as a double.
+double value_of(const PointField2& f, const std::uint8_t* point) {
+  const std::uint8_t* p = point + f.offset;
+  switch (static_cast<FieldType>(f.datatype)) {
+    case FieldType::int8: return load<std::int8_t>(p);
+    case FieldType::uint8: return load<std::uint8_t>(p);
+    case FieldType::int16: return load<std::int16_t>(p);
+    case FieldType::uint16: return load<std::uint16_t>(p);
+    case FieldType::int32: return load<std::int32_t>(p);
+    case FieldType::uint32: return load<std::uint32_t>(p);
+    case FieldType::float32: return load<float>(p);
+    case FieldType::float64: return load<double>(p);
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+PointCloud decode_point_cloud2(const PointCloud2Layout& layout, const std::uint8_t* data, std::size_t size,
+                               const std::string& where) {
+  if (layout.is_bigendian) throw input_error(where, 0, "big-endian point data is not supported");
+  std::optional<PointField2> x, y, z, intensity;
+  for (const PointField2& f : layout.fields) {
+    const std::size_t bytes = size_of(f.datatype);
+    if (bytes == 0) throw input_error(where, 0, "field '" + f.name + "' has unknown datatype " + std::to_string(f.datatype));
+    if (f.offset + bytes * std::max<std::uint32_t>(f.count, 1) > layout.point_step)
+      throw input_error(where, 0, "field '" + f.name + "' ends past point_step " + std::to_string(layout.point_step));
+    if (f.name == "x") x = f;
+    if (f.name == "y") y = f;
+    if (f.name == "z") z = f;
+    if (f.name == "intensity") intensity = f;
+  }
+  if (!x || !y || !z) throw input_error(where, 0, "no x, y and z fields");
+  for (const PointField2* f : {&*x, &*y, &*z}) {
+    if (f->datatype != static_cast<std::uint8_t>(FieldType::float32) &&
+        f->datatype != static_cast<std::uint8_t>(FieldType::float64))
+      throw input_error(where, 0, "coordinate '" + f->name + "' is neither float32 nor float64");
+  }
+  const std::size_t rows = layout.height, columns = layout.width;
+  if (layout.row_step < columns * layout.point_step)
+    throw input_error(where, 0, "row_step " + std::to_string(layout.row_step) + " shorter than width x point_step");
+  if (size < rows * layout.row_step)
+    throw input_error(where, 0, "data has " + std::to_string(size) + " bytes, height x row_step needs " +
+                                    std::to_string(rows * layout.row_step));
+  PointCloud cloud;
+  cloud.reserve(rows * columns, intensity.has_value(), false);
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t c = 0; c < columns; ++c) {
+      const std::uint8_t* point = data + r * layout.row_step + c * layout.point_step;
+      const double px = value_of(*x, point), py = value_of(*y, point), pz = value_of(*z, point);
+      if (!std::isfinite(px) || !std::isfinite(py) || !std::isfinite(pz)) continue;  // no return
+      cloud.points.emplace_back(static_cast<float>(px), static_cast<float>(py), static_cast<float>(pz));
+      if (intensity) cloud.intensity.push_back(static_cast<float>(value_of(*intensity, point)));
+    }
+  }
+  return cloud;
+}
+
+}  // namespace tsgraphs::io

@@ -1,0 +1,38 @@
+#pragma once
+/// Decoding sensor_msgs/PointCloud2 data without ROS types: any field layout (x, y, z as
+/// float32 or float64, at any offset, padding between fields or points, extra fields ignored,
+/// organised or not); intensity taken when present; points with a non-finite coordinate dropped.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tsgraphs/core/point_cloud.hpp"
+
+namespace tsgraphs::io {
+
+/// sensor_msgs/PointField datatypes.
+enum class FieldType : std::uint8_t { int8 = 1, uint8 = 2, int16 = 3, uint16 = 4, int32 = 5, uint32 = 6, float32 = 7, float64 = 8 };
+
+struct PointField2 {
+  std::string name;
+  std::uint32_t offset = 0;  ///< bytes from the start of a point
+  std::uint8_t datatype = 7;
+  std::uint32_t count = 1;
+};
+
+/// The fields of a PointCloud2 message that say where the points are.
+struct PointCloud2Layout {
+  std::uint32_t height = 1, width = 0;
+  std::uint32_t point_step = 0, row_step = 0;
+  bool is_bigendian = false;
+  std::vector<PointField2> fields;
+};
+
+/// The points of `data` (row_step x height bytes). A layout without x, y and z, with a
+/// coordinate that is not float32 or float64, a field past point_step, big-endian data or
+/// too little data is an InputError naming `where` (e.g. "run.bag: /points, message 12").
+PointCloud decode_point_cloud2(const PointCloud2Layout& layout, const std::uint8_t* data, std::size_t size,
+                               const std::string& where);
+
+}  // namespace tsgraphs::io
