@@ -259,6 +259,16 @@ TEST_F(RunCli, BagOfTheSequenceInEachCompressionGivesTheSameRun) {
   EXPECT_NE(out.find("nav_msgs/Odometry"), std::string::npos) << out;
   EXPECT_NE(out.find("geometry_msgs/PoseStamped"), std::string::npos) << out;
 
+  // simulate --bag writes the same scans straight from the scene (and no sequence folder).
+  ASSERT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --bag " + (dir_ / "sim.bag").string() +
+                    " --compression none",
+                &err),
+            0)
+      << err;
+  ASSERT_EQ(test::run_tsgraphs("bag-info " + (dir_ / "sim.bag").string(), &out, &err), 0) << err;
+  EXPECT_NE(out.find(std::to_string(reader.size()) + " msgs"), std::string::npos) << out;
+  for (const auto& e : fs::directory_iterator(dir_)) EXPECT_EQ(e.path().string().find("sequence-tmp"), std::string::npos);
+
   // PoseStamped odometry (the ground truth) and an explicit --sensor-to-base work too.
   ASSERT_EQ(cli("-q run --bag " + (dir_ / "lz4.bag").string() +
                     " --points-topic /points --odom-topic /groundtruth --sensor-to-base 0 0 0 0 0 0 1 --out " +
