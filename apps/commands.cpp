@@ -77,6 +77,17 @@ void simulate_bag(const sim::Scene& scene, const std::string& bag, const std::st
   if (!quiet) std::fprintf(stderr, "simulate: wrote %s\n", bag.c_str());
 }
 
+void convert(const io::ScanSequence& sequence, const std::string& out, bool quiet) {
+  io::SequenceWriter writer(out);
+  app::Progress progress("convert", quiet);
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    writer.write_scan(i, sequence.scan(i));
+    progress.update(i + 1, sequence.size());
+  }
+  writer.commit(sequence.info());
+  if (!quiet) std::fprintf(stderr, "convert: wrote %s (%zu scans)\n", out.c_str(), sequence.size());
+}
+
 void print_bag_info(const std::string& bag) { std::printf("%s", io::bag_info(bag).c_str()); }
 
 void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet) {

@@ -27,6 +27,9 @@ void simulate(const sim::Scene& scene, const std::string& out, std::uint64_t see
 /// folder at `seq_dir` (kept) or, when it is empty, a temporary one.
 void simulate_bag(const sim::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
                   int laps, io::BagCompression compression, bool quiet);
+/// `convert`: `sequence` (a folder of scans, a bag) written as a sequence folder at `out`:
+/// scans/NNNNNN.bin, times.txt, odom.txt (and groundtruth.txt when it has ground truth).
+void convert(const io::ScanSequence& sequence, const std::string& out, bool quiet);
 /// `bag-info`: the bag's topics, types, counts and rates on stdout.
 void print_bag_info(const std::string& bag);
 /// `draw-scene`: the bird's-eye SVG of the scene and its path.

@@ -66,25 +66,29 @@ int main(int argc, char** argv) {
   draw_cmd->add_option("SCENE", opt.scene, "scene YAML file or built-in scene name")->required();
   draw_cmd->add_option("--out", opt.out, "SVG file to write")->required();
 
-  auto* run_cmd = app.add_subcommand("run", "the SLAM pipeline: a sequence folder in, a run folder out");
-  run_cmd->add_option("SEQ_DIR", opt.seq,
-                      "sequence folder (docs/scene-format.md), or a folder of .pcd / KITTI .bin scans with a pose file");
-  run_cmd->add_option("--scans", opt.folder.scans, "glob of scan files (.pcd or KITTI .bin) instead of SEQ_DIR");
-  run_cmd->add_option("--poses", opt.folder.poses, "pose file of the scans, one per scan (default: poses.txt or odom.txt beside them)");
-  run_cmd->add_option("--pose-format", opt.folder.pose_format, "tum, kitti (3x4 rows) or auto (by the field count)")
-      ->check(CLI::IsMember({"tum", "kitti", "auto"}))
-      ->capture_default_str();
-  run_cmd->add_option("--bag", opt.bag.bag, "a ROS1 bag instead of SEQ_DIR (see bag-info for its topics)");
-  run_cmd->add_option("--points-topic", opt.bag.points_topic, "bag: the sensor_msgs/PointCloud2 topic");
-  run_cmd->add_option("--odom-topic", opt.bag.odom_topic, "bag: the nav_msgs/Odometry or geometry_msgs/PoseStamped topic");
-  run_cmd->add_option("--odom-tum", opt.bag.odom_tum, "bag: odometry of the base from a TUM file instead");
-  run_cmd->add_option("--sensor-to-base", opt.sensor_to_base, "bag: x y z qx qy qz qw of the sensor in the base frame "
-                                                              "(default: /tf_static, else identity)")
-      ->expected(7);
-  run_cmd->add_option("--times", opt.folder.times, "times of the scans, one a line (default: times.txt beside them, or the TUM stamps)");
-  run_cmd->add_option("--scan-period", opt.folder.scan_period, "s between scans when nothing gives their times")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  // The scan sources `run` and `convert` read: a sequence folder, a folder of scans, or a bag.
+  const auto add_source_options = [&opt](CLI::App* cmd) {
+    cmd->add_option("SEQ_DIR", opt.seq,
+                    "sequence folder (docs/scene-format.md), or a folder of .pcd / KITTI .bin scans with a pose file");
+    cmd->add_option("--scans", opt.folder.scans, "glob of scan files (.pcd or KITTI .bin) instead of SEQ_DIR");
+    cmd->add_option("--poses", opt.folder.poses, "pose file of the scans, one per scan (default: poses.txt or odom.txt beside them)");
+    cmd->add_option("--pose-format", opt.folder.pose_format, "tum, kitti (3x4 rows) or auto (by the field count)")
+        ->check(CLI::IsMember({"tum", "kitti", "auto"}))
+        ->capture_default_str();
+    cmd->add_option("--times", opt.folder.times, "times of the scans, one a line (default: times.txt beside them, or the TUM stamps)");
+    cmd->add_option("--scan-period", opt.folder.scan_period, "s between scans when nothing gives their times")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    cmd->add_option("--bag", opt.bag.bag, "a ROS1 bag instead of SEQ_DIR (see bag-info for its topics)");
+    cmd->add_option("--points-topic", opt.bag.points_topic, "bag: the sensor_msgs/PointCloud2 topic");
+    cmd->add_option("--odom-topic", opt.bag.odom_topic, "bag: the nav_msgs/Odometry or geometry_msgs/PoseStamped topic");
+    cmd->add_option("--odom-tum", opt.bag.odom_tum, "bag: odometry of the base from a TUM file instead");
+    cmd->add_option("--sensor-to-base", opt.sensor_to_base,
+                    "bag: x y z qx qy qz qw of the sensor in the base frame (default: /tf_static, else identity)")
+        ->expected(7);
+  };
+  auto* run_cmd = app.add_subcommand("run", "the SLAM pipeline: a sequence folder, a folder of scans or a bag in, a run folder out");
+  add_source_options(run_cmd);
   run_cmd->add_option("--out", opt.out, "run folder to write")->required();
   run_cmd->add_option("--config", opt.config, "parameter file (config/params.yaml lists every key)");
   run_cmd->add_option("--free-space", opt.free_space,
@@ -93,6 +97,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--room-trigger", opt.room_trigger,
                       "flush (TS-graphs, default) or timer (S-Graphs+); overrides room_layer.room_trigger")
       ->check(CLI::IsMember({"flush", "timer"}));
+
+  auto* convert_cmd = app.add_subcommand("convert", "a folder of scans or a bag to a sequence folder (docs/scene-format.md)");
+  add_source_options(convert_cmd);
+  convert_cmd->add_option("--out", opt.out, "sequence folder to write")->required();
 
   auto* eval_cmd = app.add_subcommand("eval", "metrics of a run: metrics.json and a table; or two runs' rooms compared");
   eval_cmd->add_option("RUN_DIR", opt.out, "run folder written by `tsgraphs run`")->required();
@@ -141,13 +149,10 @@ int main(int argc, char** argv) {
       print_bag_info(opt.bag.bag);
     } else if (*draw_cmd) {
       draw_scene(load_and_warn(opt.scene), opt.out, opt.quiet);
-    } else if (*run_cmd) {
-      pipeline::PipelineConfig config =
-          opt.config.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(opt.config);
-      if (!opt.free_space.empty()) config.rooms.layer.free_space_method = opt.free_space;
-      if (!opt.room_trigger.empty()) config.rooms.layer.room_trigger = opt.room_trigger;
+    } else if (*run_cmd || *convert_cmd) {
       const int sources = int(!opt.seq.empty()) + int(!opt.folder.scans.empty()) + int(!opt.bag.bag.empty());
-      if (sources != 1) throw input_error("run", 0, "give one of SEQ_DIR, --scans GLOB or --bag FILE");
+      if (sources != 1) throw input_error(*run_cmd ? "run" : "convert", 0, "give one of SEQ_DIR, --scans GLOB or --bag FILE");
+      std::unique_ptr<io::ScanSequence> sequence;
       if (!opt.bag.bag.empty()) {
         if (!opt.sensor_to_base.empty()) {
           const auto& v = opt.sensor_to_base;
@@ -156,10 +161,19 @@ int main(int argc, char** argv) {
           T.linear() = Eigen::Quaterniond(v[6], v[3], v[4], v[5]).normalized().toRotationMatrix();
           opt.bag.sensor_to_base = T;
         }
-        run(*open_bag(opt.bag, opt.quiet), opt.out, config, opt.quiet);
+        sequence = open_bag(opt.bag, opt.quiet);
       } else {
         opt.folder.folder = opt.seq;
-        run(*open_sequence(opt.folder), opt.out, config, opt.quiet);
+        sequence = open_sequence(opt.folder);
+      }
+      if (*convert_cmd) {
+        convert(*sequence, opt.out, opt.quiet);
+      } else {
+        pipeline::PipelineConfig config =
+            opt.config.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(opt.config);
+        if (!opt.free_space.empty()) config.rooms.layer.free_space_method = opt.free_space;
+        if (!opt.room_trigger.empty()) config.rooms.layer.room_trigger = opt.room_trigger;
+        run(*sequence, opt.out, config, opt.quiet);
       }
     } else if (*eval_cmd) {
       if (opt.against.empty()) {

@@ -259,6 +259,17 @@ TEST_F(RunCli, BagOfTheSequenceInEachCompressionGivesTheSameRun) {
   EXPECT_NE(out.find("nav_msgs/Odometry"), std::string::npos) << out;
   EXPECT_NE(out.find("geometry_msgs/PoseStamped"), std::string::npos) << out;
 
+  // convert: the bag back to a sequence folder, which runs as the original did.
+  ASSERT_EQ(cli("-q convert --bag " + (dir_ / "lz4.bag").string() + " --points-topic /points --odom-topic /odom --out " +
+                    (dir_ / "converted").string(),
+                &err),
+            0)
+      << err;
+  ASSERT_EQ(cli("-q run " + (dir_ / "converted").string() + " --out " + (dir_ / "converted_run").string(), &err), 0) << err;
+  const auto converted = io::read_tum((dir_ / "converted_run" / "trajectory.txt").string());
+  ASSERT_EQ(converted.size(), folder.size());
+  EXPECT_LT((converted.back().pose.translation() - folder.back().pose.translation()).norm(), 1e-6);
+
   // simulate --bag writes the same scans straight from the scene (and no sequence folder).
   ASSERT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --bag " + (dir_ / "sim.bag").string() +
                     " --compression none",
