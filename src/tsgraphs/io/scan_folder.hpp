@@ -21,6 +21,9 @@ struct ScanFolderOptions {
   std::string pose_format = "auto";  ///< "tum", "kitti", or "auto" (by the first line's field count)
   std::string times;               ///< a times file (one number a line), or "" to detect
   double scan_period = 0.1;        ///< s between scans when no times are given (a 10 Hz LiDAR)
+  /// Without a pose file: an error when true; else the odometry is left empty for the caller
+  /// to estimate from the scans (set_odometry).
+  bool require_poses = true;
 };
 
 /// Whether `dir` is a sequence folder of docs/scene-format.md (times.txt, odom.txt, scans/).
@@ -38,6 +41,10 @@ class ScanFolderReader : public ScanSequence {
   PointCloud scan(std::size_t index) const override;
   /// The scan files, in order.
   const std::vector<std::string>& files() const { return files_; }
+  /// Whether a pose file gave the odometry.
+  bool has_poses() const { return !info_.odometry.empty(); }
+  /// Sets the odometry estimated from the scans (one pose per scan; std::invalid_argument else).
+  void set_odometry(std::vector<Pose3> poses);
 
  private:
   std::string name_;

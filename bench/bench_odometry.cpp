@@ -1,0 +1,124 @@
+// LiDAR odometry over a whole sequence folder: drift against groundtruth.txt and speed.
+//   bench_odometry SEQ_DIR [--threads N] [--voxel-size M] [--out-tum FILE]
+// Drift: the estimate is anchored at the first ground-truth pose; the position error is given
+// as a share of the path length travelled so far (at the end of lap 1, and its maximum over the
+// run once the path is at least kMinPathForRatio long, so the first metres do not divide by ~0).
+// Speed: wall time of the whole run (reading included) against the scans' time span.
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tsgraphs/io/sequence_folder.hpp"
+#include "tsgraphs/odometry/lidar_odometry_sequence.hpp"
+
+using namespace tsgraphs;
+
+namespace {
+constexpr double kMinPathForRatio = 10.0;  // m
+constexpr double kRadToDeg = 180.0 / M_PI;
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s SEQ_DIR [--threads N] [--voxel-size M] [--out-tum FILE]\n", argv[0]);
+    return 2;
+  }
+  const std::string dir = argv[1];
+  int threads = 0;
+  std::string out_tum;
+  odometry::LidarOdometryConfig config;
+  for (int i = 2; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    if (a == "--threads") threads = std::atoi(argv[i + 1]);
+    else if (a == "--voxel-size") config.voxel_size = std::atof(argv[i + 1]);
+    else if (a == "--out-tum") out_tum = argv[i + 1];
+    else {
+      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      return 2;
+    }
+  }
+  std::unique_ptr<tbb::global_control> limit;
+  if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+
+  const io::SequenceReader seq(dir);
+  const auto& info = seq.info();
+  const bool has_truth = info.groundtruth.size() == seq.size();
+  const Pose3 anchor = has_truth ? info.groundtruth.front() : Pose3::Identity();
+
+  using Clock = std::chrono::steady_clock;
+  std::vector<double> scan_ms;
+  auto last = Clock::now();
+  const auto start = last;
+  const std::vector<Pose3> poses = odometry::estimate_odometry(
+      seq, config,
+      [&](std::size_t, std::size_t) {
+        const auto now = Clock::now();
+        scan_ms.push_back(std::chrono::duration<double, std::milli>(now - last).count());
+        last = now;
+      },
+      anchor);
+  const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
+  const double span_s = info.times.back() - info.times.front();
+
+  std::vector<double> sorted = scan_ms;
+  std::sort(sorted.begin(), sorted.end());
+  double mean_ms = 0.0;
+  for (double v : scan_ms) mean_ms += v;
+  mean_ms /= static_cast<double>(scan_ms.size());
+  const double p95_ms = sorted[static_cast<std::size_t>(0.95 * static_cast<double>(sorted.size() - 1))];
+
+  std::printf("sequence        %s\n", dir.c_str());
+  std::printf("scans           %zu over %.1f s\n", seq.size(), span_s);
+  std::printf("threads         %s\n", threads > 0 ? std::to_string(threads).c_str() : "all");
+  std::printf("wall time       %.2f s  (%.1f ms/scan mean, %.1f p95)\n", wall_s, mean_ms, p95_ms);
+  std::printf("odometry RTF    %.1f\n", span_s / wall_s);
+
+  if (!out_tum.empty()) {
+    std::ofstream out(out_tum);
+    out << std::setprecision(17);
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+      const Eigen::Quaterniond q(poses[k].linear());
+      const Eigen::Vector3d t = poses[k].translation();
+      out << info.times[k] << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' ' << q.y() << ' '
+          << q.z() << ' ' << q.w() << '\n';
+    }
+  }
+  if (!has_truth) return 0;
+
+  double path = 0.0, max_ratio = 0.0, max_ratio_at = 0.0;
+  double lap1_ratio = -1.0, lap1_err = 0.0, lap1_path = 0.0;
+  const double lap2_start = info.lap_starts.size() >= 2 ? info.lap_starts[1] : -1.0;
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    if (k > 0) path += (info.groundtruth[k].translation() - info.groundtruth[k - 1].translation()).norm();
+    const double err = (poses[k].translation() - info.groundtruth[k].translation()).norm();
+    if (path >= kMinPathForRatio && err / path > max_ratio) {
+      max_ratio = err / path;
+      max_ratio_at = path;
+    }
+    // The last scan of lap 1: the next one is at or after lap 2's start.
+    if (lap2_start > 0.0 && lap1_ratio < 0.0 && k + 1 < poses.size() && info.times[k + 1] >= lap2_start) {
+      lap1_err = err;
+      lap1_path = path;
+      lap1_ratio = err / path;
+    }
+  }
+  const double final_err = (poses.back().translation() - info.groundtruth.back().translation()).norm();
+  const double final_yaw = std::abs(wrap_angle(yaw_of(poses.back()) - yaw_of(info.groundtruth.back()))) * kRadToDeg;
+  std::printf("path length     %.1f m\n", path);
+  if (lap1_ratio >= 0.0) {
+    std::printf("end of lap 1    %.3f m over %.1f m = %.3f %%\n", lap1_err, lap1_path, 100.0 * lap1_ratio);
+  }
+  std::printf("max drift       %.3f %% (at %.1f m; ratios from %.0f m on)\n", 100.0 * max_ratio, max_ratio_at,
+              kMinPathForRatio);
+  std::printf("final error     %.3f m = %.3f %%, yaw %.3f deg\n", final_err, 100.0 * final_err / path, final_yaw);
+  return 0;
+}

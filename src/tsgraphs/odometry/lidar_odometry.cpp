@@ -1,0 +1,239 @@
+#include "tsgraphs/odometry/lidar_odometry.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <unordered_set>
+
+
+namespace tsgraphs::odometry {
+namespace {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+// Below this rotation angle the series of exp's coefficients avoids 0/0.
+constexpr double kSmallAngle = 1e-10;
+
+const LidarOdometryConfig& validated(const LidarOdometryConfig& c) {
+  c.validate();
+  return c;
+}
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
+/// SE(3) exponential of (translation part rho, rotation part phi).
+Pose3 se3_exp(const Vector6d& xi) {
+  const Eigen::Vector3d rho = xi.head<3>();
+  const Eigen::Vector3d phi = xi.tail<3>();
+  const double theta = phi.norm();
+  const Eigen::Matrix3d K = skew(phi);
+  Eigen::Matrix3d R;
+  Eigen::Matrix3d V;
+  if (theta < kSmallAngle) {
+    R = Eigen::Matrix3d::Identity() + K;
+    V = Eigen::Matrix3d::Identity() + 0.5 * K;
+  } else {
+    const double t2 = theta * theta;
+    R = Eigen::AngleAxisd(theta, phi / theta).toRotationMatrix();
+    V = Eigen::Matrix3d::Identity() + (1.0 - std::cos(theta)) / t2 * K + (theta - std::sin(theta)) / (t2 * theta) * K * K;
+  }
+  Pose3 T = Pose3::Identity();
+  T.linear() = R;
+  T.translation() = V * rho;
+  return T;
+}
+
+/// Normal equations of one Gauss-Newton step, summed over correspondences.
+struct NormalEquations {
+  Matrix6d JtJ = Matrix6d::Zero();
+  Vector6d Jtr = Vector6d::Zero();
+  std::size_t count = 0;
+
+  void join(const NormalEquations& o) {
+    JtJ += o.JtJ;
+    Jtr += o.Jtr;
+    count += o.count;
+  }
+};
+
+/// 21 bits per voxel axis, offset to be non-negative: +-1e6 voxels, far beyond any range used.
+std::uint64_t pack_voxel(const Eigen::Vector3d& p, double inv_size) {
+  constexpr std::int64_t kOffset = std::int64_t{1} << 20;
+  constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
+  auto axis = [&](double v) {
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv_size)) + kOffset) & kMask;
+  };
+  return axis(p.x()) | axis(p.y()) << 21 | axis(p.z()) << 42;
+}
+
+/// The first point of each voxel of edge `voxel_size`, in input order. Measured points rather
+/// than centroids: centroids of sensor-frame voxels sit on a lattice that moves with the
+/// sensor, which pulls point-to-point ICP towards "no motion" (on the simulated office,
+/// centroids lost track in the corridor where first points did not).
+std::vector<Eigen::Vector3d> first_point_per_voxel(const std::vector<Eigen::Vector3d>& points, double voxel_size) {
+  const double inv = 1.0 / voxel_size;
+  std::unordered_set<std::uint64_t> seen;
+  seen.reserve(points.size());
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) {
+    if (seen.insert(pack_voxel(p, inv)).second) out.push_back(p);
+  }
+  return out;
+}
+
+/// The finite points of `cloud` with a range in [min_range, max_range].
+std::vector<Eigen::Vector3d> crop(const PointCloud& cloud, double min_range, double max_range) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(cloud.size());
+  const double min_sq = min_range * min_range, max_sq = max_range * max_range;
+  for (const Eigen::Vector3f& pf : cloud.points) {
+    const Eigen::Vector3d p = pf.cast<double>();
+    if (!p.allFinite()) continue;
+    const double r_sq = p.squaredNorm();
+    if (r_sq >= min_sq && r_sq <= max_sq) out.push_back(p);
+  }
+  return out;
+}
+
+}  // namespace
+
+void LidarOdometryConfig::validate() const {
+  auto fail = [](const std::string& what) { throw std::invalid_argument("LidarOdometryConfig: " + what); };
+  if (!(min_range >= 0.0)) fail("min_range must be >= 0");
+  if (!(max_range > min_range) || !std::isfinite(max_range)) fail("max_range must be finite and > min_range");
+  if (!(voxel_size > 0.0) || !std::isfinite(voxel_size)) fail("voxel_size must be positive and finite");
+  if (!(map_voxel_factor > 0.0)) fail("map_voxel_factor must be > 0");
+  if (!(registration_voxel_factor > 0.0)) fail("registration_voxel_factor must be > 0");
+  if (max_points_per_voxel < 1) fail("max_points_per_voxel must be >= 1");
+  if (!(initial_threshold > 0.0)) fail("initial_threshold must be > 0");
+  if (!(min_threshold >= 0.0)) fail("min_threshold must be >= 0");
+  if (!(min_motion >= 0.0)) fail("min_motion must be >= 0");
+  if (!(correspondence_factor > 0.0)) fail("correspondence_factor must be > 0");
+  if (!(kernel_scale_factor > 0.0)) fail("kernel_scale_factor must be > 0");
+  if (max_iterations < 1) fail("max_iterations must be >= 1");
+  if (!(convergence_criterion > 0.0)) fail("convergence_criterion must be > 0");
+  if (min_correspondences < 6) fail("min_correspondences must be >= 6 (six unknowns)");
+  if (reduction_grain < 1) fail("reduction_grain must be >= 1");
+}
+
+IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map, const Pose3& initial_guess,
+                       double max_correspondence_distance, double kernel_scale, const LidarOdometryConfig& config) {
+  IcpResult result;
+  result.pose = initial_guess;
+  if (source.empty() || map.empty()) return result;
+  const double kernel_sq = kernel_scale * kernel_scale;
+  const std::size_t grain = static_cast<std::size_t>(config.reduction_grain);
+
+  Pose3 T = initial_guess;
+  for (int iteration = 1; iteration <= config.max_iterations; ++iteration) {
+    // parallel_deterministic_reduce splits the range the same way every time and joins the
+    // blocks in a fixed tree, so the floating-point sums (and the poses) do not depend on the
+    // number of threads or on scheduling.
+    const NormalEquations eq = tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<std::size_t>(0, source.size(), grain), NormalEquations{},
+        [&](const tbb::blocked_range<std::size_t>& range, NormalEquations acc) {
+          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            const Eigen::Vector3d p = T * source[i];
+            const Neighbour nb = map.nearest(p);
+            if (!nb.found || nb.distance > max_correspondence_distance) continue;
+            const Eigen::Vector3d r = p - nb.point;
+            // Geman-McClure: the weight falls as 1 / e^4 far beyond the kernel scale, so
+            // the pairs of moved objects and wrong neighbours barely pull.
+            const double denom = kernel_sq + r.squaredNorm();
+            const double w = kernel_sq * kernel_sq / (denom * denom);
+            // Residual r(xi) = exp(xi) * p - q: d r / d xi = [I, -[p]x] at xi = 0.
+            Eigen::Matrix<double, 3, 6> J;
+            J.leftCols<3>().setIdentity();
+            J.rightCols<3>() = -skew(p);
+            acc.JtJ.noalias() += w * J.transpose() * J;
+            acc.Jtr.noalias() += w * J.transpose() * r;
+            ++acc.count;
+          }
+          return acc;
+        },
+        [](NormalEquations a, const NormalEquations& b) {
+          a.join(b);
+          return a;
+        });
+    result.iterations = iteration;
+    result.num_correspondences = eq.count;
+    if (eq.count < static_cast<std::size_t>(config.min_correspondences)) {
+      result.pose = initial_guess;  // too little overlap to trust any update
+      result.converged = false;
+      return result;
+    }
+    const Vector6d dx = eq.JtJ.ldlt().solve(-eq.Jtr);
+    if (!dx.allFinite()) break;
+    T = se3_exp(dx) * T;
+    if (dx.norm() < config.convergence_criterion) {
+      result.converged = true;
+      break;
+    }
+  }
+  // Keep the rotation orthonormal after many small updates.
+  T.linear() = Eigen::Quaterniond(T.linear()).normalized().toRotationMatrix();
+  result.pose = T;
+  return result;
+}
+
+LidarOdometry::LidarOdometry(LidarOdometryConfig config)
+    : config_(validated(config)),
+      map_(config_.voxel_size, static_cast<std::size_t>(config_.max_points_per_voxel)),
+      threshold_(config_.initial_threshold, config_.min_motion, config_.max_range) {}
+
+double LidarOdometry::threshold() const { return std::max(threshold_.threshold(), config_.min_threshold); }
+
+Pose3 LidarOdometry::predict() const {
+  if (poses_.empty()) return Pose3::Identity();
+  if (poses_.size() == 1) return poses_.back();
+  const Pose3& last = poses_.back();
+  const Pose3& before = poses_[poses_.size() - 2];
+  return last * (before.inverse() * last);  // constant velocity: repeat the last motion
+}
+
+Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
+  const Pose3 prediction = predict();
+  last_icp_ = IcpResult{};
+  last_icp_.pose = prediction;
+
+  // Two resolutions: a finer one keeps the map detailed, a coarser one makes ICP cheap.
+  const std::vector<Eigen::Vector3d> frame = first_point_per_voxel(
+      crop(scan, config_.min_range, config_.max_range), config_.voxel_size * config_.map_voxel_factor);
+  if (frame.empty()) {
+    poses_.push_back(prediction);
+    return prediction;
+  }
+  const std::vector<Eigen::Vector3d> source =
+      first_point_per_voxel(frame, config_.voxel_size * config_.registration_voxel_factor);
+
+  Pose3 pose = prediction;
+  if (!map_.empty()) {
+    const double sigma = threshold();
+    last_icp_ = align_to_map(source, map_, prediction, config_.correspondence_factor * sigma,
+                             config_.kernel_scale_factor * sigma, config_);
+    pose = last_icp_.pose;
+    const Pose3 motion = poses_.back().inverse() * pose;
+    threshold_.update(prediction.inverse() * pose, motion);
+  }
+
+  std::vector<Eigen::Vector3d> world = frame;
+  for (Eigen::Vector3d& p : world) p = pose * p;
+  map_.add_points(world);
+  map_.remove_far(pose.translation(), config_.max_range);
+  poses_.push_back(pose);
+  return pose;
+}
+
+}  // namespace tsgraphs::odometry

@@ -1,0 +1,35 @@
+#include "tsgraphs/odometry/lidar_odometry_sequence.hpp"
+
+#include <tbb/task_group.h>
+
+namespace tsgraphs::odometry {
+
+std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, const LidarOdometryConfig& config,
+                                     const std::function<void(std::size_t, std::size_t)>& progress,
+                                     const Pose3& initial_pose) {
+  LidarOdometry odometry(config);
+  const std::size_t n = sequence.size();
+  std::vector<Pose3> poses;
+  poses.reserve(n);
+  if (n == 0) return poses;
+  // Read the next scan while this one registers: reading and parsing a scan file is a fair
+  // share of the per-scan time, and ScanSequence::scan may be called from another thread.
+  PointCloud current = sequence.scan(0);
+  for (std::size_t k = 0; k < n; ++k) {
+    PointCloud next;
+    tbb::task_group reader;
+    if (k + 1 < n) reader.run([&] { next = sequence.scan(k + 1); });
+    try {
+      poses.push_back(initial_pose * odometry.register_scan(current));
+    } catch (...) {
+      reader.wait();
+      throw;
+    }
+    reader.wait();  // rethrows a read error
+    current = std::move(next);
+    if (progress) progress(k + 1, n);
+  }
+  return poses;
+}
+
+}  // namespace tsgraphs::odometry

@@ -1,0 +1,21 @@
+#pragma once
+/// LiDAR odometry over a whole scan sequence (sequence folder, scan folder, bag).
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/io/scan_sequence.hpp"
+#include "tsgraphs/odometry/lidar_odometry.hpp"
+
+namespace tsgraphs::odometry {
+
+/// Registers every scan of `sequence` in order and returns one sensor pose per scan:
+/// `initial_pose` * (the odometry pose, identity at the first scan), so that a caller can
+/// anchor the odometry frame, e.g. at the first ground-truth pose or the sensor's mount tilt.
+/// `progress(done, total)` after each scan. Input errors of the sequence propagate.
+std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, const LidarOdometryConfig& config,
+                                     const std::function<void(std::size_t, std::size_t)>& progress = {},
+                                     const Pose3& initial_pose = Pose3::Identity());
+
+}  // namespace tsgraphs::odometry
