@@ -12,6 +12,7 @@
 #include "tsgraphs/eval/run_evaluation.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
+#include "tsgraphs/odometry/lidar_odometry.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
 #include "tsgraphs/pipeline/sequence_runner.hpp"
 #include "tsgraphs/report/report_html.hpp"
@@ -77,15 +78,26 @@ void simulate_bag(const sim::Scene& scene, const std::string& bag, const std::st
   if (!quiet) std::fprintf(stderr, "simulate: wrote %s\n", bag.c_str());
 }
 
-void convert(const io::ScanSequence& sequence, const std::string& out, bool quiet) {
+void convert(const io::ScanSequence& sequence, const std::string& out, const pipeline::OdometryOptions& odometry,
+             const odometry::LidarOdometryConfig& lidar, bool quiet) {
   io::SequenceWriter writer(out);
+  io::SequenceInfo info = sequence.info();
+  std::optional<odometry::LidarOdometry> lidar_odometry;
+  if (odometry.estimate) {
+    lidar_odometry.emplace(lidar);
+    info.odometry.clear();
+  }
   app::Progress progress("convert", quiet);
   for (std::size_t i = 0; i < sequence.size(); ++i) {
-    writer.write_scan(i, sequence.scan(i));
+    const PointCloud scan = sequence.scan(i);
+    writer.write_scan(i, scan);
+    if (lidar_odometry) info.odometry.push_back(odometry.initial_pose * lidar_odometry->register_scan(scan));
     progress.update(i + 1, sequence.size());
   }
-  writer.commit(sequence.info());
-  if (!quiet) std::fprintf(stderr, "convert: wrote %s (%zu scans)\n", out.c_str(), sequence.size());
+  writer.commit(info);
+  if (!quiet)
+    std::fprintf(stderr, "convert: wrote %s (%zu scans%s)\n", out.c_str(), sequence.size(),
+                 lidar_odometry ? ", odom.txt from LiDAR odometry" : "");
 }
 
 void print_bag_info(const std::string& bag) { std::printf("%s", io::bag_info(bag).c_str()); }
@@ -107,7 +119,7 @@ std::unique_ptr<io::ScanSequence> open_sequence(const io::ScanFolderOptions& opt
   return std::make_unique<io::ScanFolderReader>(options);
 }
 
-std::unique_ptr<io::ScanSequence> open_bag(const io::BagOptions& options, bool quiet) {
+std::unique_ptr<io::BagSequence> open_bag(const io::BagOptions& options, bool quiet) {
   auto bag = std::make_unique<io::BagSequence>(options);
   if (!quiet && bag->dropped_scans() > 0)
     std::fprintf(stderr, "run: %zu scans of %s lie outside the odometry's time span and are left out\n",
@@ -115,21 +127,42 @@ std::unique_ptr<io::ScanSequence> open_bag(const io::BagOptions& options, bool q
   return bag;
 }
 
+pipeline::OdometryOptions choose_odometry(const io::ScanSequence& sequence, const std::string& mode,
+                                          const Pose3& sensor_to_base) {
+  const std::vector<Pose3>& input = sequence.info().odometry;
+  pipeline::OdometryOptions options;
+  if (mode == "input") {
+    if (input.empty())
+      throw input_error(sequence.dir(), 0,
+                        "has no odometry: give poses (--poses, --odom-topic or --odom-tum), or --odometry lidar to "
+                        "estimate them from the scans");
+    return options;
+  }
+  if (mode != "lidar" && mode != "auto") throw input_error("--odometry", 0, "'" + mode + "': expected auto, input or lidar");
+  if (mode == "auto" && !input.empty()) return options;
+  options.estimate = true;
+  options.initial_pose = input.empty() ? sensor_to_base : input.front();
+  return options;
+}
+
 void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config, bool quiet) {
   run(io::SequenceReader(seq_dir), out, config, quiet);
 }
 
-void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config, bool quiet) {
+void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config, bool quiet,
+         const pipeline::OdometryOptions& odometry) {
   const auto start = std::chrono::steady_clock::now();
   const std::string& seq_dir = sequence.dir();
   io::AtomicDirectory dir(out, pipeline::run_files::kSceneGraph);
-  if (!quiet) std::fprintf(stderr, "run: %s, %zu scans\n", seq_dir.c_str(), sequence.size());
+  if (!quiet)
+    std::fprintf(stderr, "run: %s, %zu scans, %s\n", seq_dir.c_str(), sequence.size(),
+                 odometry.estimate ? "LiDAR odometry from the scans" : "the input's odometry");
   pipeline::Pipeline slam(config);
   app::Progress progress("run", quiet);
   pipeline::RunCallbacks callbacks;
   callbacks.progress = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
   callbacks.warning = [](const std::string& w) { std::fprintf(stderr, "tsgraphs: warning: %s\n", w.c_str()); };
-  pipeline::RunInfo info = pipeline::run_sequence(sequence, slam, callbacks);
+  pipeline::RunInfo info = pipeline::run_sequence(sequence, slam, callbacks, odometry);
   info.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   pipeline::write_run_outputs(slam, info, dir.path());
   // Ground truth for the report comes with a sequence folder only.

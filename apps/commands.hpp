@@ -10,6 +10,7 @@
 #include "tsgraphs/io/ros_bag.hpp"
 #include "tsgraphs/io/scan_folder.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
+#include "tsgraphs/pipeline/sequence_runner.hpp"
 #include "tsgraphs/sim/scene.hpp"
 
 namespace tsgraphs::app {
@@ -28,8 +29,10 @@ void simulate(const sim::Scene& scene, const std::string& out, std::uint64_t see
 void simulate_bag(const sim::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
                   int laps, io::BagCompression compression, bool quiet);
 /// `convert`: `sequence` (a folder of scans, a bag) written as a sequence folder at `out`:
-/// scans/NNNNNN.bin, times.txt, odom.txt (and groundtruth.txt when it has ground truth).
-void convert(const io::ScanSequence& sequence, const std::string& out, bool quiet);
+/// scans/NNNNNN.bin, times.txt, odom.txt (and groundtruth.txt when it has ground truth). With
+/// `odometry.estimate`, odom.txt is LiDAR odometry (`lidar`) from the scans, in the same pass.
+void convert(const io::ScanSequence& sequence, const std::string& out, const pipeline::OdometryOptions& odometry,
+             const odometry::LidarOdometryConfig& lidar, bool quiet);
 /// `bag-info`: the bag's topics, types, counts and rates on stdout.
 void print_bag_info(const std::string& bag);
 /// `draw-scene`: the bird's-eye SVG of the scene and its path.
@@ -39,10 +42,17 @@ void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet);
 std::unique_ptr<io::ScanSequence> open_sequence(const io::ScanFolderOptions& options);
 /// What `run --bag` reads: the bag's scans with their odometry; says how many scans lay
 /// outside the odometry's time span unless quiet.
-std::unique_ptr<io::ScanSequence> open_bag(const io::BagOptions& options, bool quiet);
+std::unique_ptr<io::BagSequence> open_bag(const io::BagOptions& options, bool quiet);
+/// `--odometry`: where the poses come from. "input": the sequence's own (an InputError when it
+/// has none); "lidar": LiDAR odometry from the scans; "auto": the input's when it has them,
+/// else LiDAR odometry. Estimated poses start at the input's first pose when it has one, else
+/// at `sensor_to_base` (the sensor's mount on a level base: the map is then level).
+pipeline::OdometryOptions choose_odometry(const io::ScanSequence& sequence, const std::string& mode,
+                                          const Pose3& sensor_to_base);
 /// `run`: a sequence through the pipeline into a run folder, written whole or not at all.
-void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config, bool quiet);
-/// `run` on a sequence folder.
+void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config, bool quiet,
+         const pipeline::OdometryOptions& odometry = {});
+/// `run` on a sequence folder, with its own odometry.
 void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config, bool quiet);
 /// `eval`: metrics.json in the run folder (and the table on stdout when `print`).
 eval::Metrics evaluate(const std::string& run_dir, const std::string& seq_dir, bool quiet, bool print = true);

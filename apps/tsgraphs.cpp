@@ -31,7 +31,8 @@ struct Options {
   std::string against;       ///< eval: the run to compare with
   io::ScanFolderOptions folder;  ///< run: a folder of scans instead of a sequence folder
   io::BagOptions bag;            ///< run: a ROS1 bag instead of a sequence folder
-  std::vector<double> sensor_to_base;  ///< run --bag: x y z qx qy qz qw
+  std::vector<double> sensor_to_base;  ///< run: x y z qx qy qz qw
+  std::string odometry = "auto";       ///< run, convert: auto, input or lidar
   std::string bag_out;           ///< simulate: write a bag
   std::string compression = "lz4";
   DemoOptions demo;
@@ -84,13 +85,18 @@ int main(int argc, char** argv) {
     cmd->add_option("--odom-topic", opt.bag.odom_topic, "bag: the nav_msgs/Odometry or geometry_msgs/PoseStamped topic");
     cmd->add_option("--odom-tum", opt.bag.odom_tum, "bag: odometry of the base from a TUM file instead");
     cmd->add_option("--sensor-to-base", opt.sensor_to_base,
-                    "bag: x y z qx qy qz qw of the sensor in the base frame (default: /tf_static, else identity)")
+                    "x y z qx qy qz qw of the sensor in the base frame: a bag's (default: /tf_static, else identity), "
+                    "or the first pose of scans without poses (the base level at the origin)")
         ->expected(7);
+    cmd->add_option("--odometry", opt.odometry,
+                    "auto: the input's poses, or LiDAR odometry from the scans when it has none; input; lidar")
+        ->check(CLI::IsMember({"auto", "input", "lidar"}))
+        ->capture_default_str();
+    cmd->add_option("--config", opt.config, "parameter file (config/params.yaml lists every key)");
   };
   auto* run_cmd = app.add_subcommand("run", "the SLAM pipeline: a sequence folder, a folder of scans or a bag in, a run folder out");
   add_source_options(run_cmd);
   run_cmd->add_option("--out", opt.out, "run folder to write")->required();
-  run_cmd->add_option("--config", opt.config, "parameter file (config/params.yaml lists every key)");
   run_cmd->add_option("--free-space", opt.free_space,
                       "traversable (TS-graphs, default) or esdf (S-Graphs+); overrides room_layer.free_space_method")
       ->check(CLI::IsMember({"traversable", "esdf"}));
@@ -152,28 +158,34 @@ int main(int argc, char** argv) {
     } else if (*run_cmd || *convert_cmd) {
       const int sources = int(!opt.seq.empty()) + int(!opt.folder.scans.empty()) + int(!opt.bag.bag.empty());
       if (sources != 1) throw input_error(*run_cmd ? "run" : "convert", 0, "give one of SEQ_DIR, --scans GLOB or --bag FILE");
+      Pose3 mount = Pose3::Identity();
+      if (!opt.sensor_to_base.empty()) {
+        const auto& v = opt.sensor_to_base;
+        mount.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+        mount.linear() = Eigen::Quaterniond(v[6], v[3], v[4], v[5]).normalized().toRotationMatrix();
+      }
       std::unique_ptr<io::ScanSequence> sequence;
       if (!opt.bag.bag.empty()) {
-        if (!opt.sensor_to_base.empty()) {
-          const auto& v = opt.sensor_to_base;
-          Pose3 T = Pose3::Identity();
-          T.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
-          T.linear() = Eigen::Quaterniond(v[6], v[3], v[4], v[5]).normalized().toRotationMatrix();
-          opt.bag.sensor_to_base = T;
-        }
-        sequence = open_bag(opt.bag, opt.quiet);
+        if (!opt.sensor_to_base.empty()) opt.bag.sensor_to_base = mount;
+        auto bag = open_bag(opt.bag, opt.quiet);
+        mount = bag->sensor_to_base();
+        sequence = std::move(bag);
       } else {
         opt.folder.folder = opt.seq;
         sequence = open_sequence(opt.folder);
+        if (!opt.sensor_to_base.empty() && !sequence->info().odometry.empty())
+          throw input_error(sequence->dir(), 0,
+                            "has poses of the sensor: --sensor-to-base is for bags and for scans without poses");
       }
+      pipeline::PipelineConfig config =
+          opt.config.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(opt.config);
+      const pipeline::OdometryOptions odometry = choose_odometry(*sequence, opt.odometry, mount);
       if (*convert_cmd) {
-        convert(*sequence, opt.out, opt.quiet);
+        convert(*sequence, opt.out, odometry, config.lidar_odometry, opt.quiet);
       } else {
-        pipeline::PipelineConfig config =
-            opt.config.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(opt.config);
         if (!opt.free_space.empty()) config.rooms.layer.free_space_method = opt.free_space;
         if (!opt.room_trigger.empty()) config.rooms.layer.room_trigger = opt.room_trigger;
-        run(*sequence, opt.out, config, opt.quiet);
+        run(*sequence, opt.out, config, opt.quiet, odometry);
       }
     } else if (*eval_cmd) {
       if (opt.against.empty()) {

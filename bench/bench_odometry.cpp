@@ -1,5 +1,6 @@
 // LiDAR odometry over a whole sequence folder: drift against groundtruth.txt and speed.
-//   bench_odometry SEQ_DIR [--threads N] [--voxel-size M] [--out-tum FILE]
+//   bench_odometry SEQ_DIR [--threads N] [--voxel-size M] [--convergence X] [--max-iterations N]
+//                  [--point-to-point 1] [--out-tum FILE]
 // Drift: the estimate is anchored at the first ground-truth pose; the position error is given
 // as a share of the path length travelled so far (at the end of lap 1, and its maximum over the
 // run once the path is at least kMinPathForRatio long, so the first metres do not divide by ~0).
@@ -29,7 +30,10 @@ constexpr double kRadToDeg = 180.0 / M_PI;
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s SEQ_DIR [--threads N] [--voxel-size M] [--out-tum FILE]\n", argv[0]);
+    std::fprintf(stderr,
+                 "usage: %s SEQ_DIR [--threads N] [--voxel-size M] [--convergence X] [--max-iterations N] "
+                 "[--point-to-point 1] [--out-tum FILE]\n",
+                 argv[0]);
     return 2;
   }
   const std::string dir = argv[1];
@@ -40,6 +44,9 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--threads") threads = std::atoi(argv[i + 1]);
     else if (a == "--voxel-size") config.voxel_size = std::atof(argv[i + 1]);
+    else if (a == "--convergence") config.convergence_criterion = std::atof(argv[i + 1]);
+    else if (a == "--max-iterations") config.max_iterations = std::atoi(argv[i + 1]);
+    else if (a == "--point-to-point") config.point_to_plane = std::atoi(argv[i + 1]) == 0;
     else if (a == "--out-tum") out_tum = argv[i + 1];
     else {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());

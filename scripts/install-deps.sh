@@ -9,6 +9,7 @@ PACKAGES=(
   libpcl-dev           # point-cloud filters, kd-trees, registration, PCD I/O
   libceres-dev         # factor-graph back-end
   libnanoflann-dev     # small kd-trees
+  robin-map-dev        # the LiDAR odometry's voxel hash map (tsl::robin_map, as KISS-ICP)
   libtbb-dev           # parallel loops (ray casting)
   libembree-dev        # ray casting in the simulator (Embree 3)
   libyaml-cpp-dev      # scene and parameter files

@@ -1,13 +1,15 @@
 // The odometry's local voxel map: nearest neighbour against brute force, the per-voxel cap,
-// and remove_far.
+// remove_far, and the shape of each voxel's points (flat, scattered, a line).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <random>
 #include <stdexcept>
 
 #include "tsgraphs/odometry/voxel_hash_map.hpp"
 
+using tsgraphs::odometry::Surface;
 using tsgraphs::odometry::VoxelHashMap;
 using tsgraphs::odometry::VoxelIndex;
 
@@ -109,4 +111,72 @@ TEST(VoxelHashMap, RejectsBadParameters) {
   EXPECT_THROW(VoxelHashMap(0.0, 3), std::invalid_argument);
   EXPECT_THROW(VoxelHashMap(-1.0, 3), std::invalid_argument);
   EXPECT_THROW(VoxelHashMap(0.5, 0), std::invalid_argument);
+  EXPECT_THROW(VoxelHashMap(0.5, 3, {2, 0.15, 0.3}), std::invalid_argument);
+  EXPECT_THROW(VoxelHashMap(0.5, 3, {4, 0.0, 0.3}), std::invalid_argument);
+  EXPECT_THROW(VoxelHashMap(0.5, 3, {4, 0.15, -1.0}), std::invalid_argument);
+}
+
+namespace {
+
+// `n` points spread over the voxel [0, 1)^3 by `f(u, v)` for u, v uniform in [0.05, 0.95]
+// (`f` returns an Eigen::Vector3d, not an expression of temporaries).
+template <class F>
+std::vector<Eigen::Vector3d> sample(std::size_t n, std::uint32_t seed, F f) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.05, 0.95);
+  std::vector<Eigen::Vector3d> pts;
+  for (std::size_t i = 0; i < n; ++i) pts.push_back(f(u(rng), u(rng)));
+  return pts;
+}
+
+}  // namespace
+
+TEST(VoxelHashMap, AFlatPatchIsPlanarWithItsNormal) {
+  VoxelHashMap map(1.0, 20);
+  // A wall tilted 30 degrees about z, with 1 cm of noise across it.
+  const Eigen::Vector3d n(std::cos(0.5236), std::sin(0.5236), 0.0);
+  const Eigen::Vector3d along(-n.y(), n.x(), 0.0);
+  std::mt19937 noise_rng(9);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  map.add_points(sample(20, 1, [&](double a, double b) -> Eigen::Vector3d {
+    return Eigen::Vector3d(0.5, 0.5, 0.5) + (a - 0.5) * 0.8 * along + Eigen::Vector3d(0, 0, (b - 0.5) * 0.8) +
+           noise(noise_rng) * n;
+  }));
+  Eigen::Vector3d normal;
+  ASSERT_EQ(map.surface_of(VoxelIndex(0, 0, 0), &normal), Surface::planar);
+  EXPECT_GT(std::abs(normal.dot(n)), 0.99);
+  // nearest() hands the voxel's shape and normal over with the point.
+  const auto nb = map.nearest(Eigen::Vector3d(0.6, 0.5, 0.5));
+  ASSERT_TRUE(nb.found);
+  EXPECT_EQ(nb.surface, Surface::planar);
+  EXPECT_GT(std::abs(nb.normal.dot(n)), 0.99);
+}
+
+TEST(VoxelHashMap, ALineIsUnknownACornerIsScattered) {
+  // One ring of a scan on the floor: points along a line. Its normal could be any direction
+  // across it, and matching along the wrong one pulls the odometry towards standing still.
+  VoxelHashMap line(1.0, 20);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.005);
+  line.add_points(sample(20, 2, [&](double a, double) -> Eigen::Vector3d {
+    return Eigen::Vector3d(a, 0.5 + noise(rng), 0.2 + noise(rng));
+  }));
+  EXPECT_EQ(line.surface_of(VoxelIndex(0, 0, 0)), Surface::unknown);
+
+  // Two faces meeting at a corner.
+  VoxelHashMap corner(1.0, 20);
+  std::vector<Eigen::Vector3d> pts = sample(10, 4, [](double a, double b) { return Eigen::Vector3d(0.5, a, b); });
+  const auto other = sample(10, 5, [](double a, double b) { return Eigen::Vector3d(a, 0.5, b); });
+  pts.insert(pts.end(), other.begin(), other.end());
+  corner.add_points(pts);
+  EXPECT_EQ(corner.surface_of(VoxelIndex(0, 0, 0)), Surface::scattered);
+
+  // Too few points to tell.
+  VoxelHashMap sparse(1.0, 20);
+  sparse.add_points({{0.1, 0.1, 0.5}, {0.9, 0.1, 0.5}, {0.5, 0.9, 0.5}});
+  EXPECT_EQ(sparse.surface_of(VoxelIndex(0, 0, 0)), Surface::unknown);
+  // A fourth point makes it a plane: the shape follows the points added.
+  sparse.add_points({{0.5, 0.4, 0.5}});
+  EXPECT_EQ(sparse.surface_of(VoxelIndex(0, 0, 0)), Surface::planar);
+  EXPECT_EQ(sparse.surface_of(VoxelIndex(5, 5, 5)), Surface::unknown);  // an empty voxel
 }

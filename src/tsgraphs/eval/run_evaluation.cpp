@@ -290,7 +290,14 @@ Metrics evaluate_run(const EvalOptions& options) {
   }
   if (si.groundtruth.empty()) return m;
   m.trajectory.ate_rmse = ate_rmse(estimate, si.groundtruth);
-  m.trajectory.odom_ate_rmse = ate_rmse(si.odometry, si.groundtruth);
+  // The odometry the run started from: its own odometry.txt (LiDAR odometry, or a copy of the
+  // input's), or the sequence's for run folders written before it existed.
+  const std::string odometry_file = dir + "/odometry.txt";
+  const std::vector<Pose3> odometry = fs::exists(odometry_file) ? poses_of(io::read_tum(odometry_file)) : si.odometry;
+  if (odometry.size() != si.groundtruth.size())
+    throw input_error(odometry_file, 0, std::to_string(odometry.size()) + " poses but the sequence has " +
+                                            std::to_string(si.groundtruth.size()) + " scans");
+  m.trajectory.odom_ate_rmse = ate_rmse(odometry, si.groundtruth);
 
   // Loop closures against the true relative poses of their keyframes.
   double max_err_m = 0, max_err_deg = 0;

@@ -84,8 +84,6 @@ BagSequence::BagSequence(const BagOptions& options) : impl_(std::make_unique<Imp
   const std::string& path = options.bag;
   if (!fs::is_regular_file(path)) throw input_error(path, 0, "no such bag");
   if (options.points_topic.empty()) throw input_error(path, 0, "no points topic given (--points-topic; see bag-info)");
-  if (options.odom_topic.empty() && options.odom_tum.empty())
-    throw input_error(path, 0, "no odometry given: --odom-topic TOPIC or --odom-tum FILE");
   try {
     impl_->bag.open(path, rosbag::bagmode::Read);
     rosbag::View all(impl_->bag);
@@ -116,11 +114,13 @@ BagSequence::BagSequence(const BagOptions& options) : impl_(std::make_unique<Imp
         else if (const auto p = m.instantiate<geometry_msgs::PoseStamped>())
           odom.push_back({p->header.stamp.toSec(), pose_of(p->pose)});
       }
-    } else {
+    } else if (!options.odom_tum.empty()) {
       for (const StampedPose& p : read_tum(options.odom_tum)) odom.push_back({p.t, p.pose});
     }
     std::stable_sort(odom.begin(), odom.end(), [](const StampedBase& a, const StampedBase& b) { return a.t < b.t; });
-    if (odom.empty()) throw input_error(path, 0, "no odometry messages on " + options.odom_topic);
+    const bool has_odometry = !options.odom_topic.empty() || !options.odom_tum.empty();
+    if (has_odometry && odom.empty())
+      throw input_error(path, 0, "no odometry messages on " + (options.odom_topic.empty() ? options.odom_tum : options.odom_topic));
 
     // The clouds, in stamp order; their frame finds the sensor-to-base transform.
     struct Cloud {
@@ -161,10 +161,16 @@ BagSequence::BagSequence(const BagOptions& options) : impl_(std::make_unique<Imp
       }
     }
 
-    // Each scan's sensor pose, the odometry interpolated to its stamp.
+    // Each scan's sensor pose, the odometry interpolated to its stamp (none without odometry:
+    // run estimates it from the scans).
     std::size_t k = 0;
     for (const std::size_t i : order) {
       const Cloud& c = clouds[i];
+      if (!has_odometry) {
+        info_.times.push_back(c.t);
+        impl_->clouds.push_back(c.message);
+        continue;
+      }
       if (c.t < odom.front().t || c.t > odom.back().t) {
         ++dropped_;
         continue;

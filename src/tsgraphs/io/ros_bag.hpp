@@ -15,7 +15,8 @@ struct BagOptions {
   std::string bag;            ///< the .bag file
   std::string points_topic;   ///< sensor_msgs/PointCloud2
   std::string odom_topic;     ///< nav_msgs/Odometry or geometry_msgs/PoseStamped: the base in a fixed frame
-  std::string odom_tum;       ///< or a TUM file of the same (used when odom_topic is empty)
+  std::string odom_tum;       ///< or a TUM file of the same (used when odom_topic is empty); with
+                              ///< neither, the scans come without odometry (run estimates it)
   /// T_base_sensor; when empty, the /tf_static transform whose child is the clouds' frame (one
   /// hop), else identity.
   std::optional<Pose3> sensor_to_base;
@@ -26,7 +27,8 @@ struct BagOptions {
 class BagSequence : public ScanSequence {
  public:
   /// InputError naming the bag (and topic) for a bag that cannot be read (missing, truncated),
-  /// a topic that is missing or of another type, no odometry, or no scan inside its time span.
+  /// a topic that is missing or of another type, an odometry topic or file with no pose, or no
+  /// scan inside the odometry's time span.
   explicit BagSequence(const BagOptions& options);
   ~BagSequence() override;
   std::size_t size() const override { return info_.times.size(); }

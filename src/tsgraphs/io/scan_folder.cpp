@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <stdexcept>
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/kitti.hpp"
@@ -89,10 +88,6 @@ ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
 
   // The poses.
   const std::string poses = options.poses.empty() ? find_beside(beside, {"poses.txt", "odom.txt"}) : options.poses;
-  if (poses.empty() && options.require_poses)
-    throw input_error(name_, 0,
-                      "no pose file: pass --poses FILE (TUM, or KITTI 3x4 rows); poses.txt or odom.txt beside the "
-                      "scans is found by itself");
   std::string format = poses.empty() ? "none" : options.pose_format;
   if (format == "auto") {
     const int fields = fields_on_first_line(poses);
@@ -131,13 +126,6 @@ ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
     if (!(options.scan_period > 0.0)) throw input_error(name_, 0, "scan period must be positive");
     for (std::size_t i = 0; i < n; ++i) info_.times.push_back(static_cast<double>(i) * options.scan_period);
   }
-}
-
-void ScanFolderReader::set_odometry(std::vector<Pose3> poses) {
-  if (poses.size() != files_.size())
-    throw std::invalid_argument("set_odometry: " + std::to_string(poses.size()) + " poses for " +
-                                std::to_string(files_.size()) + " scans");
-  info_.odometry = std::move(poses);
 }
 
 PointCloud ScanFolderReader::scan(std::size_t index) const {

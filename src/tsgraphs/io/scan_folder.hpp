@@ -1,6 +1,7 @@
 #pragma once
 /// A folder of scans as recordings come: PCD files (any of PCL's layouts: ASCII, binary,
-/// binary_compressed) or KITTI .bin files, with a pose file (TUM, or KITTI 3x4 rows).
+/// binary_compressed) or KITTI .bin files, with a pose file (TUM, or KITTI 3x4 rows) or none
+/// (the odometry is then empty, for `run` to estimate from the scans).
 ///
 /// Layout detection when only the folder is given: the scans are the .pcd or the .bin files
 /// in it, or in its `velodyne/` subfolder (the KITTI odometry layout), in name order; the
@@ -21,9 +22,6 @@ struct ScanFolderOptions {
   std::string pose_format = "auto";  ///< "tum", "kitti", or "auto" (by the first line's field count)
   std::string times;               ///< a times file (one number a line), or "" to detect
   double scan_period = 0.1;        ///< s between scans when no times are given (a 10 Hz LiDAR)
-  /// Without a pose file: an error when true; else the odometry is left empty for the caller
-  /// to estimate from the scans (set_odometry).
-  bool require_poses = true;
 };
 
 /// Whether `dir` is a sequence folder of docs/scene-format.md (times.txt, odom.txt, scans/).
@@ -41,10 +39,6 @@ class ScanFolderReader : public ScanSequence {
   PointCloud scan(std::size_t index) const override;
   /// The scan files, in order.
   const std::vector<std::string>& files() const { return files_; }
-  /// Whether a pose file gave the odometry.
-  bool has_poses() const { return !info_.odometry.empty(); }
-  /// Sets the odometry estimated from the scans (one pose per scan; std::invalid_argument else).
-  void set_odometry(std::vector<Pose3> poses);
 
  private:
   std::string name_;

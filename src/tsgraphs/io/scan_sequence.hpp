@@ -1,6 +1,7 @@
 #pragma once
-/// What `run` reads: timestamped scans with an odometry pose each, from a sequence folder
-/// (SequenceReader) or a folder of PCD / KITTI scans with a pose file (ScanFolderReader).
+/// What `run` reads: timestamped scans, with an odometry pose each where the source has one,
+/// from a sequence folder (SequenceReader), a folder of PCD / KITTI scans (ScanFolderReader)
+/// or a ROS1 bag (BagSequence).
 #include <cstddef>
 #include <string>
 
@@ -14,7 +15,8 @@ class ScanSequence {
   virtual ~ScanSequence() = default;
   /// Number of scans.
   virtual std::size_t size() const = 0;
-  /// Times and odometry (one per scan), and ground truth where the source has it.
+  /// Times (one per scan), odometry (one per scan, or none when the source has none: `run`
+  /// then estimates it from the scans), and ground truth where the source has it.
   virtual const SequenceInfo& info() const = 0;
   /// Where it was read from, for messages and run_info.json.
   virtual const std::string& dir() const = 0;

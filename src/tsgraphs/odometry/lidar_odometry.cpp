@@ -2,6 +2,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
+#include <tsl/robin_set.h>
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -9,8 +10,8 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
-#include <unordered_set>
 
+#include "tsgraphs/core/voxel_grid.hpp"
 
 namespace tsgraphs::odometry {
 namespace {
@@ -67,28 +68,18 @@ struct NormalEquations {
   }
 };
 
-/// 21 bits per voxel axis, offset to be non-negative: +-1e6 voxels, far beyond any range used.
-std::uint64_t pack_voxel(const Eigen::Vector3d& p, double inv_size) {
-  constexpr std::int64_t kOffset = std::int64_t{1} << 20;
-  constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
-  auto axis = [&](double v) {
-    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv_size)) + kOffset) & kMask;
-  };
-  return axis(p.x()) | axis(p.y()) << 21 | axis(p.z()) << 42;
-}
-
 /// The first point of each voxel of edge `voxel_size`, in input order. Measured points rather
 /// than centroids: centroids of sensor-frame voxels sit on a lattice that moves with the
 /// sensor, which pulls point-to-point ICP towards "no motion" (on the simulated office,
 /// centroids lost track in the corridor where first points did not).
 std::vector<Eigen::Vector3d> first_point_per_voxel(const std::vector<Eigen::Vector3d>& points, double voxel_size) {
   const double inv = 1.0 / voxel_size;
-  std::unordered_set<std::uint64_t> seen;
+  tsl::robin_set<std::uint64_t, VoxelKeyHash> seen;
   seen.reserve(points.size());
   std::vector<Eigen::Vector3d> out;
   out.reserve(points.size());
   for (const Eigen::Vector3d& p : points) {
-    if (seen.insert(pack_voxel(p, inv)).second) out.push_back(p);
+    if (seen.insert(voxel_key(p.cast<float>(), inv)).second) out.push_back(p);
   }
   return out;
 }
@@ -117,11 +108,14 @@ void LidarOdometryConfig::validate() const {
   if (!(map_voxel_factor > 0.0)) fail("map_voxel_factor must be > 0");
   if (!(registration_voxel_factor > 0.0)) fail("registration_voxel_factor must be > 0");
   if (max_points_per_voxel < 1) fail("max_points_per_voxel must be >= 1");
+  if (plane_min_points < 3) fail("plane_min_points must be >= 3");
+  if (!(plane_min_spread_factor > 0.0)) fail("plane_min_spread_factor must be > 0");
+  if (!(plane_max_thickness_ratio > 0.0)) fail("plane_max_thickness_ratio must be > 0");
   if (!(initial_threshold > 0.0)) fail("initial_threshold must be > 0");
   if (!(min_threshold >= 0.0)) fail("min_threshold must be >= 0");
   if (!(min_motion >= 0.0)) fail("min_motion must be >= 0");
   if (!(correspondence_factor > 0.0)) fail("correspondence_factor must be > 0");
-  if (!(kernel_scale_factor > 0.0)) fail("kernel_scale_factor must be > 0");
+  if (!(kernel_divisor > 0.0)) fail("kernel_divisor must be > 0");
   if (max_iterations < 1) fail("max_iterations must be >= 1");
   if (!(convergence_criterion > 0.0)) fail("convergence_criterion must be > 0");
   if (min_correspondences < 6) fail("min_correspondences must be >= 6 (six unknowns)");
@@ -151,14 +145,30 @@ IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHa
             const Eigen::Vector3d r = p - nb.point;
             // Geman-McClure: the weight falls as 1 / e^4 far beyond the kernel scale, so
             // the pairs of moved objects and wrong neighbours barely pull.
-            const double denom = kernel_sq + r.squaredNorm();
-            const double w = kernel_sq * kernel_sq / (denom * denom);
-            // Residual r(xi) = exp(xi) * p - q: d r / d xi = [I, -[p]x] at xi = 0.
-            Eigen::Matrix<double, 3, 6> J;
-            J.leftCols<3>().setIdentity();
-            J.rightCols<3>() = -skew(p);
-            acc.JtJ.noalias() += w * J.transpose() * J;
-            acc.Jtr.noalias() += w * J.transpose() * r;
+            const auto weight = [&](double e_sq) {
+              const double denom = kernel_sq + e_sq;
+              return kernel_sq * kernel_sq / (denom * denom);
+            };
+            if (config.point_to_plane && nb.surface == Surface::planar) {
+              // Residual e(xi) = n . (exp(xi) * p - q): d e / d xi = [n, p x n] at xi = 0.
+              const double e = nb.normal.dot(r);
+              Vector6d J;
+              J.head<3>() = nb.normal;
+              J.tail<3>() = p.cross(nb.normal);
+              const double w = weight(e * e);
+              acc.JtJ.noalias() += w * J * J.transpose();
+              acc.Jtr.noalias() += w * e * J;
+            } else if (!config.point_to_plane || nb.surface == Surface::scattered) {
+              // Residual r(xi) = exp(xi) * p - q: d r / d xi = [I, -[p]x] at xi = 0.
+              Eigen::Matrix<double, 3, 6> J;
+              J.leftCols<3>().setIdentity();
+              J.rightCols<3>() = -skew(p);
+              const double w = weight(r.squaredNorm());
+              acc.JtJ.noalias() += w * J.transpose() * J;
+              acc.Jtr.noalias() += w * J.transpose() * r;
+            } else {
+              continue;  // a line or too few points: no direction to trust
+            }
             ++acc.count;
           }
           return acc;
@@ -190,7 +200,7 @@ IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHa
 
 LidarOdometry::LidarOdometry(LidarOdometryConfig config)
     : config_(validated(config)),
-      map_(config_.voxel_size, static_cast<std::size_t>(config_.max_points_per_voxel)),
+      map_(config_.voxel_size, static_cast<std::size_t>(config_.max_points_per_voxel), config_.surface()),
       threshold_(config_.initial_threshold, config_.min_motion, config_.max_range) {}
 
 double LidarOdometry::threshold() const { return std::max(threshold_.threshold(), config_.min_threshold); }
@@ -222,7 +232,7 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
   if (!map_.empty()) {
     const double sigma = threshold();
     last_icp_ = align_to_map(source, map_, prediction, config_.correspondence_factor * sigma,
-                             config_.kernel_scale_factor * sigma, config_);
+                             sigma / config_.kernel_divisor, config_);
     pose = last_icp_.pose;
     const Pose3 motion = poses_.back().inverse() * pose;
     threshold_.update(prediction.inverse() * pose, motion);

@@ -7,6 +7,7 @@
 #include "tsgraphs/ground/ground_segmentation.hpp"
 #include "tsgraphs/ground/traversable_node_map.hpp"
 #include "tsgraphs/graph/loop_closure.hpp"
+#include "tsgraphs/odometry/lidar_odometry.hpp"
 #include "tsgraphs/pipeline/keyframe_selector.hpp"
 #include "tsgraphs/pipeline/prefilter.hpp"
 #include "tsgraphs/pipeline/room_layer.hpp"
@@ -30,6 +31,7 @@ struct ScheduleConfig {
 };
 
 struct PipelineConfig {
+  odometry::LidarOdometryConfig lidar_odometry;  ///< step 2 when the input has no odometry (or `run --odometry lidar`)
   PrefilterConfig prefilter;
   KeyframeConfig keyframes;
   ground::GroundConfig ground;
@@ -44,6 +46,7 @@ struct PipelineConfig {
   template <class V>
   void visit(V& v) {
     v.section("prefilter", prefilter);
+    v.section("lidar_odometry", lidar_odometry);
     v.section("keyframes", keyframes);
     v.section("ground", ground);
     v.section("node_map", node_map);

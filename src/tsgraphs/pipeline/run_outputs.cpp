@@ -330,6 +330,10 @@ void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std:
   stamped.reserve(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) stamped.push_back({pipeline.scans()[i].stamp, poses[i]});
   io::write_file_atomic(dir + "/" + run_files::kTrajectory, io::format_tum(stamped));
+  std::vector<io::StampedPose> odometry;
+  odometry.reserve(pipeline.scans().size());
+  for (const ScanRecord& r : pipeline.scans()) odometry.push_back({r.stamp, r.odom});
+  io::write_file_atomic(dir + "/" + run_files::kOdometry, io::format_tum(odometry));
   io::write_file_atomic(dir + "/" + run_files::kSceneGraph, scene_graph_json(pipeline));
   io::write_file_atomic(dir + "/" + run_files::kMap, map_ply(pipeline));
   io::write_file_atomic(dir + "/" + run_files::kTimings, timings_csv(pipeline));
@@ -341,6 +345,7 @@ void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std:
   const json summary = {{"sequence", info.sequence},
                         {"num_scans", info.num_scans},
                         {"num_skipped", info.num_skipped},
+                        {"odometry", info.estimated_odometry ? "lidar" : "input"},
                         {"num_keyframes", pipeline.graph().keyframes().size()},
                         {"num_planes", pipeline.graph().planes().size()},
                         {"num_traversable_nodes", pipeline.node_map().size()},

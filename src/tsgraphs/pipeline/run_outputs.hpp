@@ -1,6 +1,6 @@
 #pragma once
-/// What `tsgraphs run` writes into its output folder (docs/outputs.md): the trajectory of
-/// every scan (TUM), the scene graph (JSON), the map (PLY, coloured by layer), the timings
+/// What `tsgraphs run` writes into its output folder (docs/run.md): the trajectory of every
+/// scan and the odometry it started from (TUM), the scene graph (JSON), the map (PLY, coloured by layer), the timings
 /// (CSV), the parameters actually used and a run summary.
 #include <string>
 
@@ -17,11 +17,13 @@ struct RunInfo {
   std::size_t num_scans = 0;
   std::size_t num_skipped = 0;   ///< scans with a warning
   std::vector<double> lap_starts;///< the sequence's laps.txt (empty: laps found from the trajectory)
+  bool estimated_odometry = false;///< the poses came from LiDAR odometry, not the input
 };
 
 /// File names inside a run folder.
 namespace run_files {
 inline constexpr const char* kTrajectory = "trajectory.txt";
+inline constexpr const char* kOdometry = "odometry.txt";
 inline constexpr const char* kSceneGraph = "scene_graph.json";
 inline constexpr const char* kMap = "map.ply";
 inline constexpr const char* kTimings = "timings.csv";

@@ -6,8 +6,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
+#include <stdexcept>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/odometry/lidar_odometry.hpp"
 
 namespace tsgraphs::pipeline {
 namespace {
@@ -18,8 +21,10 @@ constexpr std::size_t kTokensPerThread = 2;
 struct Loaded {
   std::size_t index = 0;
   bool keyframe_candidate = false;
+  Pose3 odom = Pose3::Identity();
+  PointCloud scan;      ///< as read, until prepared
   PreparedScan prepared;
-  std::string error;  ///< why the scan file could not be read
+  std::string error;    ///< why the scan file could not be read
 };
 
 }  // namespace
@@ -30,15 +35,23 @@ double peak_rss_mb() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
 }
 
-RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const RunCallbacks& callbacks) {
+RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const RunCallbacks& callbacks,
+                     const OdometryOptions& odometry) {
   const auto start = std::chrono::steady_clock::now();
   const io::SequenceInfo& info = sequence.info();
+  if (!odometry.estimate && info.odometry.size() != sequence.size())
+    throw std::invalid_argument("run_sequence: " + sequence.dir() + " has " + std::to_string(info.odometry.size()) +
+                                " odometry poses for " + std::to_string(sequence.size()) + " scans; estimate them");
   RunInfo run;
   run.sequence = sequence.dir();
   run.num_scans = sequence.size();
   run.lap_starts = info.lap_starts;
+  run.estimated_odometry = odometry.estimate;
+  std::optional<odometry::LidarOdometry> lidar_odometry;
+  if (odometry.estimate) lidar_odometry.emplace(pipeline.config().lidar_odometry);
   // Reading and the per-scan steps (prefilter, ground) run in parallel on the next scans;
-  // the pipeline takes them in order, so the result is the same as one scan at a time.
+  // the odometry and the pipeline take them in order, so the result is the same as one scan
+  // at a time.
   const std::size_t tokens = kTokensPerThread * static_cast<std::size_t>(std::max(
       1, static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))));
   std::size_t next = 0;
@@ -53,21 +66,33 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
                                          return l;
                                        }
                                        l.index = next++;
-                                       l.keyframe_candidate = candidates.is_keyframe(info.odometry[l.index]);
-                                       if (l.keyframe_candidate) candidates.accept(info.odometry[l.index]);
                                        return l;
                                      }) &
           tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::parallel,
                                            [&](Loaded l) {
-                                             const std::size_t i = l.index;
-                                             PointCloud scan;
                                              try {
-                                               scan = sequence.scan(i);
+                                               l.scan = sequence.scan(l.index);
                                              } catch (const std::exception& e) {
                                                l.error = e.what();
                                              }
-                                             l.prepared =
-                                                 pipeline.prepare(i, info.times[i], scan, info.odometry[i], l.keyframe_candidate);
+                                             return l;
+                                           }) &
+          tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::serial_in_order,
+                                           [&](Loaded l) {
+                                             // An unreadable scan is empty here: the odometry keeps its prediction.
+                                             l.odom = lidar_odometry
+                                                          ? odometry.initial_pose * lidar_odometry->register_scan(l.scan)
+                                                          : info.odometry[l.index];
+                                             l.keyframe_candidate = candidates.is_keyframe(l.odom);
+                                             if (l.keyframe_candidate) candidates.accept(l.odom);
+                                             return l;
+                                           }) &
+          tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::parallel,
+                                           [&](Loaded l) {
+                                             const std::size_t i = l.index;
+                                             l.prepared = pipeline.prepare(i, info.times[i], l.scan, l.odom,
+                                                                           l.keyframe_candidate);
+                                             l.scan = PointCloud{};
                                              return l;
                                            }) &
           tbb::make_filter<Loaded, void>(tbb::filter_mode::serial_in_order, [&](Loaded l) {

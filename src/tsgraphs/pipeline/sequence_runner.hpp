@@ -1,7 +1,8 @@
 #pragma once
-/// Drives a Pipeline over a sequence folder: scans are read and prepared (prefilter, ground)
-/// in parallel ahead of the pipeline, which takes them in order (TBB pipeline; --threads
-/// bounds it). The result is the same as feeding the scans one at a time.
+/// Drives a Pipeline over a sequence: scans are read and prepared (prefilter, ground) in
+/// parallel ahead of the pipeline, which takes them in order (TBB pipeline; --threads bounds
+/// it); between the two, in order, the LiDAR odometry when the poses are estimated. The result
+/// is the same as feeding the scans one at a time.
 #include <functional>
 #include <string>
 
@@ -16,10 +17,23 @@ struct RunCallbacks {
   std::function<void(const std::string&)> warning;                    ///< one line per skipped scan
 };
 
+/// Where the scans' poses come from.
+struct OdometryOptions {
+  /// Estimate them from the scans (LiDAR odometry, the pipeline config's `lidar_odometry`)
+  /// instead of taking the sequence's own; needed when the sequence has none.
+  bool estimate = false;
+  /// The first scan's pose in the map frame when estimated: the sequence's first odometry pose
+  /// keeps its frame; the sensor's mount on a level base makes the map level.
+  Pose3 initial_pose = Pose3::Identity();
+};
+
 /// Feeds every scan of `sequence` with its odometry pose to `pipeline`, then finishes it.
 /// A scan file that cannot be read (truncated, wrong label count) is skipped with a warning;
-/// its pose still comes from the odometry. Returns the run's facts for run_info.json.
-RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const RunCallbacks& callbacks = {});
+/// its pose still comes from the odometry (estimated: the constant-velocity prediction).
+/// Returns the run's facts for run_info.json. A sequence without odometry and
+/// `odometry.estimate` false is std::invalid_argument.
+RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const RunCallbacks& callbacks = {},
+                     const OdometryOptions& odometry = {});
 
 /// Peak resident memory of this process so far, MB.
 double peak_rss_mb();

@@ -1,0 +1,195 @@
+// `tsgraphs run` and `convert` on scans that come without poses: LiDAR odometry from the scans
+// (a folder of KITTI scans, a bag with no odometry topic, or `--odometry lidar`), against the
+// simulator's ground truth; and the errors of the odometry options.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "test_support.hpp"
+#include "tsgraphs/io/ros_bag.hpp"
+#include "tsgraphs/io/sequence_folder.hpp"
+#include "tsgraphs/io/tum.hpp"
+
+namespace fs = std::filesystem;
+using namespace tsgraphs;
+
+namespace {
+
+using test::read_file;
+
+int cli(const std::string& args, std::string* err) { return test::run_tsgraphs(args, nullptr, err); }
+
+// Two rooms joined by a door, walked once round: quick to simulate and run.
+const char* kScene = R"(
+name: two_rooms_walk
+seed: 8
+sensor: {preset: vlp-16, mount_height: 0.55}
+odometry: {trans_noise_per_m: 0.02, yaw_noise_per_rad: 0.02, yaw_noise_per_m: 0.004}
+levels:
+  - {name: L0, elevation: 0.0, ceiling: 2.8, slab: [[0, 0], [12, 0], [12, 6], [0, 6]]}
+walls:
+  - {level: L0, from: [-0.1, 0], to: [12.1, 0]}
+  - {level: L0, from: [-0.1, 6], to: [12.1, 6]}
+  - {level: L0, from: [0, 0], to: [0, 6]}
+  - {level: L0, from: [12, 0], to: [12, 6]}
+  - {level: L0, from: [6, 0], to: [6, 6], openings: [{at: 3.0, width: 1.0, height: 2.1}]}
+boxes:
+  - {level: L0, min: [2, 4.5, 0], max: [3.5, 5.5, 1.2], label: shelf}
+trajectory:
+  level: L0
+  speed: 1.0
+  laps: 1
+  waypoints: [[1.5, 1.5], [4.5, 1.5], [4.5, 3.0], [9.0, 3.0], [9.0, 1.5], [10.5, 1.5], [10.5, 4.5], [7.5, 4.5],
+              [7.5, 3.0], [1.5, 3.0]]
+)";
+
+// Position error of `estimate` against `truth` after aligning their first poses (eval's ATE).
+double ate_first_aligned(const std::vector<Pose3>& estimate, const std::vector<Pose3>& truth) {
+  const Pose3 align = truth.front() * estimate.front().inverse();
+  double sum = 0.0;
+  for (std::size_t i = 0; i < estimate.size(); ++i)
+    sum += ((align * estimate[i]).translation() - truth[i].translation()).squaredNorm();
+  return std::sqrt(sum / static_cast<double>(estimate.size()));
+}
+
+std::vector<Pose3> poses_of(const std::vector<io::StampedPose>& stamped) {
+  std::vector<Pose3> out;
+  for (const auto& s : stamped) out.push_back(s.pose);
+  return out;
+}
+
+class OdometryCli : public test::TempDirTest {
+ protected:
+  // The sequence folder, and its scans as a KITTI folder with times but no poses.
+  static void SetUpTestSuite() {
+    base_ = test::fresh_temp_dir("odometry_cli_base");
+    std::ofstream(base_ / "rooms.yaml") << kScene;
+    std::string err;
+    ASSERT_EQ(cli("-q simulate " + (base_ / "rooms.yaml").string() + " --out " + (base_ / "seq").string(), &err), 0)
+        << err;
+    const io::SequenceReader reader((base_ / "seq").string());
+    fs::create_directories(base_ / "kitti" / "velodyne");
+    std::ofstream times(base_ / "kitti" / "times.txt");
+    times.precision(17);
+    for (std::size_t i = 0; i < reader.size(); ++i) {
+      fs::copy_file(base_ / "seq" / "scans" / (io::scan_stem(i) + ".bin"),
+                    base_ / "kitti" / "velodyne" / (io::scan_stem(i) + ".bin"));
+      times << reader.info().times[i] << "\n";
+    }
+    truth_ = reader.info().groundtruth;
+    odometry_ = reader.info().odometry;
+  }
+  static void TearDownTestSuite() { fs::remove_all(base_); }
+
+  static fs::path base_;
+  static std::vector<Pose3> truth_, odometry_;
+};
+fs::path OdometryCli::base_;
+std::vector<Pose3> OdometryCli::truth_, OdometryCli::odometry_;
+
+}  // namespace
+
+TEST_F(OdometryCli, FolderWithoutPosesRunsOnLidarOdometryAndBeatsTheDriftingOdometry) {
+  const fs::path kitti = base_ / "kitti", out = dir_ / "run";
+  std::string err;
+  ASSERT_EQ(test::run_tsgraphs("run " + kitti.string() + " --out " + out.string(), nullptr, &err), 0) << err;
+  EXPECT_NE(err.find("LiDAR odometry from the scans"), std::string::npos) << err;
+  const auto info = nlohmann::json::parse(read_file(out / "run_info.json"));
+  EXPECT_EQ(info["odometry"], "lidar");
+
+  // odometry.txt holds the estimate, one pose per scan, the first at the origin (no poses, no
+  // --sensor-to-base).
+  const auto odometry = poses_of(io::read_tum((out / "odometry.txt").string()));
+  ASSERT_EQ(odometry.size(), truth_.size());
+  EXPECT_TRUE(odometry.front().isApprox(Pose3::Identity(), 1e-9));
+  const double lidar_ate = ate_first_aligned(odometry, truth_);
+  const double input_ate = ate_first_aligned(odometry_, truth_);
+  std::printf("odometry ATE: LiDAR %.4f m, the simulated drifting odometry %.4f m\n", lidar_ate, input_ate);
+  EXPECT_LT(lidar_ate, 0.05);
+  EXPECT_LT(lidar_ate, input_ate);
+  const auto trajectory = poses_of(io::read_tum((out / "trajectory.txt").string()));
+  EXPECT_LT(ate_first_aligned(trajectory, truth_), 0.05);
+
+  // eval against the sequence takes the odometry figure from the run's odometry.txt.
+  ASSERT_EQ(cli("-q eval " + out.string() + " --seq " + (base_ / "seq").string(), &err), 0) << err;
+  const auto m = nlohmann::json::parse(read_file(out / "metrics.json"));
+  EXPECT_NEAR(m["trajectory"]["odom_ate_rmse"].get<double>(), lidar_ate, 1e-3);
+
+  // The same walls as the run on the input's odometry.
+  ASSERT_EQ(cli("-q run " + (base_ / "seq").string() + " --out " + (dir_ / "input").string(), &err), 0) << err;
+  const auto mine = nlohmann::json::parse(read_file(out / "scene_graph.json"));
+  const auto theirs = nlohmann::json::parse(read_file(dir_ / "input" / "scene_graph.json"));
+  EXPECT_EQ(mine["planes"].size(), theirs["planes"].size());
+  EXPECT_EQ(mine["rooms"].size(), theirs["rooms"].size());
+}
+
+TEST_F(OdometryCli, LidarOdometryOnASequenceStartsAtItsFirstPoseAndIsDeterministic) {
+  const fs::path seq = base_ / "seq";
+  std::string err;
+  ASSERT_EQ(cli("-q --threads 2 run " + seq.string() + " --odometry lidar --out " + (dir_ / "a").string(), &err), 0)
+      << err;
+  ASSERT_EQ(cli("-q --threads 1 run " + seq.string() + " --odometry lidar --out " + (dir_ / "b").string(), &err), 0)
+      << err;
+  const auto odometry = poses_of(io::read_tum((dir_ / "a" / "odometry.txt").string()));
+  ASSERT_EQ(odometry.size(), odometry_.size());
+  EXPECT_LT((odometry.front().translation() - odometry_.front().translation()).norm(), 1e-6);
+  EXPECT_LT(ate_first_aligned(odometry, truth_), 0.05);
+  // The same input, config and seed give the same output, whatever the threads.
+  EXPECT_EQ(read_file(dir_ / "a" / "odometry.txt"), read_file(dir_ / "b" / "odometry.txt"));
+  EXPECT_EQ(read_file(dir_ / "a" / "trajectory.txt"), read_file(dir_ / "b" / "trajectory.txt"));
+  EXPECT_EQ(read_file(dir_ / "a" / "scene_graph.json"), read_file(dir_ / "b" / "scene_graph.json"));
+  EXPECT_EQ(nlohmann::json::parse(read_file(dir_ / "a" / "run_info.json"))["odometry"], "lidar");
+}
+
+TEST_F(OdometryCli, BagWithoutAnOdometryTopicStartsAtTheSensorsMount) {
+  // The sensor 0.3 m above and 0.1 m ahead of base_link (/tf_static); no --odom-topic.
+  const Pose3 sensor_to_base = make_pose(Eigen::Vector3d(0.1, 0.0, 0.3), 0.0);
+  const fs::path bag = dir_ / "scans.bag", out = dir_ / "run";
+  io::write_bag(io::SequenceReader((base_ / "seq").string()), bag.string(), io::BagCompression::lz4, sensor_to_base);
+  std::string err;
+  ASSERT_EQ(cli("-q run --bag " + bag.string() + " --points-topic /points --out " + out.string(), &err), 0) << err;
+  const auto odometry = poses_of(io::read_tum((out / "odometry.txt").string()));
+  ASSERT_EQ(odometry.size(), truth_.size());
+  EXPECT_TRUE(odometry.front().isApprox(sensor_to_base, 1e-9));  // the base at the origin
+  EXPECT_LT(ate_first_aligned(odometry, truth_), 0.05);
+  EXPECT_EQ(nlohmann::json::parse(read_file(out / "run_info.json"))["odometry"], "lidar");
+}
+
+TEST_F(OdometryCli, ConvertWritesLidarOdometryThatRunsAsTheFolderDid) {
+  const fs::path kitti = base_ / "kitti", converted = dir_ / "converted";
+  std::string err;
+  ASSERT_EQ(cli("-q convert " + kitti.string() + " --out " + converted.string(), &err), 0) << err;
+  const io::SequenceReader reader(converted.string());
+  ASSERT_EQ(reader.size(), truth_.size());
+  EXPECT_LT(ate_first_aligned(reader.info().odometry, truth_), 0.05);
+  // Running on the converted folder (its odom.txt) and on the poseless folder (LiDAR odometry
+  // in the run) agree, up to the precision odom.txt is written with.
+  ASSERT_EQ(cli("-q run " + converted.string() + " --out " + (dir_ / "a").string(), &err), 0) << err;
+  ASSERT_EQ(cli("-q run " + kitti.string() + " --out " + (dir_ / "b").string(), &err), 0) << err;
+  const auto a = poses_of(io::read_tum((dir_ / "a" / "trajectory.txt").string()));
+  const auto b = poses_of(io::read_tum((dir_ / "b" / "trajectory.txt").string()));
+  ASSERT_EQ(a.size(), b.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, (a[i].translation() - b[i].translation()).norm());
+  EXPECT_LT(worst, 1e-4);
+  EXPECT_EQ(nlohmann::json::parse(read_file(dir_ / "a" / "run_info.json"))["odometry"], "input");
+}
+
+TEST_F(OdometryCli, OdometryOptionsThatCannotBeMetAreOneLineErrorsAndNoOutput) {
+  const fs::path kitti = base_ / "kitti", seq = base_ / "seq", out = dir_ / "run";
+  std::string err;
+  EXPECT_EQ(cli("-q run " + kitti.string() + " --odometry input --out " + out.string(), &err), 2);
+  EXPECT_NE(err.find("has no odometry"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_EQ(cli("-q run " + seq.string() + " --sensor-to-base 0 0 0.5 0 0 0 1 --out " + out.string(), &err), 2);
+  EXPECT_NE(err.find("--sensor-to-base is for bags and for scans without poses"), std::string::npos) << err;
+  EXPECT_EQ(cli("-q run " + kitti.string() + " --odometry gps --out " + out.string(), &err), 2);
+  const std::string params = write_file("p.yaml", "lidar_odometry:\n  voxel_size: 0.25\n  max_range: -3.0\n");
+  EXPECT_EQ(cli("-q run " + kitti.string() + " --config " + params + " --out " + out.string(), &err), 2);
+  EXPECT_NE(err.find("p.yaml:3"), std::string::npos) << err;
+  EXPECT_NE(err.find("max_range"), std::string::npos) << err;
+  EXPECT_EQ(cli("-q convert " + kitti.string() + " --config " + params + " --out " + out.string(), &err), 2);
+  EXPECT_FALSE(fs::exists(out));
+}
