@@ -12,6 +12,7 @@
 #include "tsgraphs/eval/run_evaluation.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
+#include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
 #include "tsgraphs/pipeline/sequence_runner.hpp"
@@ -128,7 +129,8 @@ std::unique_ptr<io::BagSequence> open_bag(const io::BagOptions& options, bool qu
 }
 
 pipeline::OdometryOptions choose_odometry(const io::ScanSequence& sequence, const std::string& mode,
-                                          const Pose3& sensor_to_base) {
+                                          const std::optional<Pose3>& sensor_to_base,
+                                          const odometry::FloorLevellingConfig& levelling, bool quiet) {
   const std::vector<Pose3>& input = sequence.info().odometry;
   pipeline::OdometryOptions options;
   if (mode == "input") {
@@ -141,7 +143,27 @@ pipeline::OdometryOptions choose_odometry(const io::ScanSequence& sequence, cons
   if (mode != "lidar" && mode != "auto") throw input_error("--odometry", 0, "'" + mode + "': expected auto, input or lidar");
   if (mode == "auto" && !input.empty()) return options;
   options.estimate = true;
-  options.initial_pose = input.empty() ? sensor_to_base : input.front();
+  if (!input.empty()) {
+    options.initial_pose = input.front();
+  } else if (sensor_to_base) {
+    options.initial_pose = *sensor_to_base;
+  } else if (sequence.size() > 0) {
+    odometry::FloorLevel level;
+    try {
+      level = odometry::level_from_floor(sequence.scan(0), levelling);
+    } catch (const InputError&) {
+      // An unreadable first scan: run skips it with its own warning; no floor to level on.
+    }
+    if (level.found) {
+      options.initial_pose = level.sensor_pose;
+      if (!quiet)
+        std::fprintf(stderr, "odometry: the map is level with the floor under the first scan (sensor %.2f m above it, "
+                             "tilted %.1f deg)\n", level.height, level.tilt_deg);
+    } else {
+      print_warnings(sequence.dir() + ": ", {"no floor found under the first scan: the map frame is the first scan's "
+                                             "(give --sensor-to-base if the sensor is tilted)"});
+    }
+  }
   return options;
 }
 

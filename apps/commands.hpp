@@ -2,6 +2,7 @@
 /// The commands of the `tsgraphs` program, each one call over the library; the demo chains them.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,9 +47,11 @@ std::unique_ptr<io::BagSequence> open_bag(const io::BagOptions& options, bool qu
 /// `--odometry`: where the poses come from. "input": the sequence's own (an InputError when it
 /// has none); "lidar": LiDAR odometry from the scans; "auto": the input's when it has them,
 /// else LiDAR odometry. Estimated poses start at the input's first pose when it has one, else
-/// at `sensor_to_base` (the sensor's mount on a level base: the map is then level).
+/// at `sensor_to_base` (the sensor's mount on a level base), else level with the floor under
+/// the first scan (a warning when none is found: the first scan's frame, then).
 pipeline::OdometryOptions choose_odometry(const io::ScanSequence& sequence, const std::string& mode,
-                                          const Pose3& sensor_to_base);
+                                          const std::optional<Pose3>& sensor_to_base,
+                                          const odometry::FloorLevellingConfig& levelling, bool quiet);
 /// `run`: a sequence through the pipeline into a run folder, written whole or not at all.
 void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config, bool quiet,
          const pipeline::OdometryOptions& odometry = {});

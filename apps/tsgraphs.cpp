@@ -158,17 +158,18 @@ int main(int argc, char** argv) {
     } else if (*run_cmd || *convert_cmd) {
       const int sources = int(!opt.seq.empty()) + int(!opt.folder.scans.empty()) + int(!opt.bag.bag.empty());
       if (sources != 1) throw input_error(*run_cmd ? "run" : "convert", 0, "give one of SEQ_DIR, --scans GLOB or --bag FILE");
-      Pose3 mount = Pose3::Identity();
+      std::optional<Pose3> mount;
       if (!opt.sensor_to_base.empty()) {
         const auto& v = opt.sensor_to_base;
-        mount.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
-        mount.linear() = Eigen::Quaterniond(v[6], v[3], v[4], v[5]).normalized().toRotationMatrix();
+        mount = Pose3::Identity();
+        mount->translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+        mount->linear() = Eigen::Quaterniond(v[6], v[3], v[4], v[5]).normalized().toRotationMatrix();
       }
       std::unique_ptr<io::ScanSequence> sequence;
       if (!opt.bag.bag.empty()) {
-        if (!opt.sensor_to_base.empty()) opt.bag.sensor_to_base = mount;
+        opt.bag.sensor_to_base = mount;
         auto bag = open_bag(opt.bag, opt.quiet);
-        mount = bag->sensor_to_base();
+        if (bag->sensor_to_base_known()) mount = bag->sensor_to_base();
         sequence = std::move(bag);
       } else {
         opt.folder.folder = opt.seq;
@@ -179,7 +180,8 @@ int main(int argc, char** argv) {
       }
       pipeline::PipelineConfig config =
           opt.config.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(opt.config);
-      const pipeline::OdometryOptions odometry = choose_odometry(*sequence, opt.odometry, mount);
+      const pipeline::OdometryOptions odometry =
+          choose_odometry(*sequence, opt.odometry, mount, config.floor_levelling, opt.quiet);
       if (*convert_cmd) {
         convert(*sequence, opt.out, odometry, config.lidar_odometry, opt.quiet);
       } else {

@@ -144,6 +144,7 @@ BagSequence::BagSequence(const BagOptions& options) : impl_(std::make_unique<Imp
 
     if (options.sensor_to_base) {
       sensor_to_base_ = *options.sensor_to_base;
+      sensor_to_base_known_ = true;
     } else if (types.count(kTfStaticTopic)) {
       rosbag::View tf(impl_->bag, rosbag::TopicQuery(kTfStaticTopic));
       for (const rosbag::MessageInstance& m : tf) {
@@ -157,6 +158,7 @@ BagSequence::BagSequence(const BagOptions& options) : impl_(std::make_unique<Imp
           p.position.z = t.transform.translation.z;
           p.orientation = t.transform.rotation;
           sensor_to_base_ = pose_of(p);
+          sensor_to_base_known_ = true;
         }
       }
     }

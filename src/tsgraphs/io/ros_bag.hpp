@@ -38,6 +38,8 @@ class BagSequence : public ScanSequence {
   std::size_t dropped_scans() const { return dropped_; }
   /// The sensor-to-base transform used.
   const Pose3& sensor_to_base() const { return sensor_to_base_; }
+  /// Whether it came from the options or /tf_static (else it is the identity by default).
+  bool sensor_to_base_known() const { return sensor_to_base_known_; }
 
  private:
   struct Impl;
@@ -45,6 +47,7 @@ class BagSequence : public ScanSequence {
   std::string name_;
   SequenceInfo info_;
   Pose3 sensor_to_base_ = Pose3::Identity();
+  bool sensor_to_base_known_ = false;
   std::size_t dropped_ = 0;
 };
 

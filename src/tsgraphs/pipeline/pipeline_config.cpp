@@ -78,14 +78,19 @@ void validate(const YamlMap& root, const PipelineConfig& c) {
   if (c.prefilter.min_range < 0.0 || c.prefilter.min_range >= c.prefilter.max_range)
     throw root.map("prefilter").error("min_range", "min_range must be >= 0 and below max_range");
   if (c.prefilter.voxel_size < 0.0) throw root.map("prefilter").error("voxel_size", "voxel_size must be >= 0");
-  // The odometry checks its fields itself; its message names the key after the struct's name.
-  try {
-    c.lidar_odometry.validate();
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what();
-    const std::size_t from = what.find(": ") + 2;
-    throw root.map("lidar_odometry").error(what.substr(from, what.find(' ', from) - from), what.substr(from));
-  }
+  // The odometry's configs check their fields themselves; a message names the key after the
+  // struct's name ("LidarOdometryConfig: max_range must be ...").
+  const auto check_at_key = [&root](const char* section, const auto& config) {
+    try {
+      config.validate();
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      const std::size_t from = what.find(": ") + 2;
+      throw root.map(section).error(what.substr(from, what.find(' ', from) - from), what.substr(from));
+    }
+  };
+  check_at_key("lidar_odometry", c.lidar_odometry);
+  check_at_key("floor_levelling", c.floor_levelling);
   check_positive(root, "keyframes", "delta_trans", c.keyframes.delta_trans);
   check_positive(root, "keyframes", "delta_angle_deg", c.keyframes.delta_angle_deg);
   check_positive(root, "plane_extraction", "distance_threshold", c.plane_extraction.distance_threshold);

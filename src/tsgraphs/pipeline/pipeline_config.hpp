@@ -7,6 +7,7 @@
 #include "tsgraphs/ground/ground_segmentation.hpp"
 #include "tsgraphs/ground/traversable_node_map.hpp"
 #include "tsgraphs/graph/loop_closure.hpp"
+#include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
 #include "tsgraphs/pipeline/keyframe_selector.hpp"
 #include "tsgraphs/pipeline/prefilter.hpp"
@@ -32,6 +33,7 @@ struct ScheduleConfig {
 
 struct PipelineConfig {
   odometry::LidarOdometryConfig lidar_odometry;  ///< step 2 when the input has no odometry (or `run --odometry lidar`)
+  odometry::FloorLevellingConfig floor_levelling;///< step 2: the map's first pose when nothing gives the sensor's mount
   PrefilterConfig prefilter;
   KeyframeConfig keyframes;
   ground::GroundConfig ground;
@@ -47,6 +49,7 @@ struct PipelineConfig {
   void visit(V& v) {
     v.section("prefilter", prefilter);
     v.section("lidar_odometry", lidar_odometry);
+    v.section("floor_levelling", floor_levelling);
     v.section("keyframes", keyframes);
     v.section("ground", ground);
     v.section("node_map", node_map);

@@ -1,0 +1,59 @@
+#pragma once
+/// Where the map frame starts when nothing gives the sensor's mount: level with the floor under
+/// the first scan. The pipeline takes z as up (walls are vertical planes, the ground's normals
+/// point up); a handheld or tilted sensor's own frame would tilt the whole map.
+#include <cstddef>
+
+#include "tsgraphs/core/point_cloud.hpp"
+#include "tsgraphs/core/pose.hpp"
+
+namespace tsgraphs::odometry {
+
+struct FloorLevellingConfig {
+  double min_range = 1.0;           ///< floor points nearer than this are not used (m): the platform, the operator's feet
+  double max_range = 10.0;          ///< nor farther ones (m): sparse rings, other rooms
+  double min_depth = 0.2;           ///< the floor lies at least this far below the sensor (m, along its z)
+  double max_tilt_deg = 30.0;       ///< the floor's normal is within this of the sensor's z axis
+  double distance_threshold = 0.05; ///< RANSAC inlier distance (m)
+  int min_inliers = 200;            ///< fewer inliers: no floor found
+  double cell_size = 0.25;          ///< grid cell of the lowest points the floor is fitted to (m)
+  int min_cells = 50;               ///< fewer cells on the floor: no floor found
+  double below_margin = 0.3;        ///< returns this far below a plane count as beneath it (m); a floor has fewer
+                                    ///< of them than it holds itself
+  int max_iterations = 1000;        ///< RANSAC iterations
+
+  template <class V>
+  void visit(V& v) {
+    v("min_range", min_range);
+    v("max_range", max_range);
+    v("min_depth", min_depth);
+    v("max_tilt_deg", max_tilt_deg);
+    v("distance_threshold", distance_threshold);
+    v("min_inliers", min_inliers);
+    v("cell_size", cell_size);
+    v("min_cells", min_cells);
+    v("below_margin", below_margin);
+    v("max_iterations", max_iterations);
+  }
+  /// Throws std::invalid_argument naming the first field out of range ("FloorLevellingConfig: key ...").
+  void validate() const;
+};
+
+/// The floor under a scan, and the sensor's pose in a frame level with it.
+struct FloorLevel {
+  bool found = false;
+  /// Level frame <- sensor: the rotation that makes the floor's normal z (no turn about z),
+  /// and the sensor's height above the floor, so the floor is at z = 0. Identity when not found.
+  Pose3 sensor_pose = Pose3::Identity();
+  double height = 0.0;         ///< the sensor above the floor (m)
+  double tilt_deg = 0.0;       ///< the angle between the sensor's z and the floor's normal
+  std::size_t num_inliers = 0;
+};
+
+/// The floor below the sensor: a plane whose normal is within max_tilt_deg of the sensor's z,
+/// fitted (RANSAC with a fixed seed: the same scan gives the same answer, then least squares)
+/// to the lowest point of each grid cell, so that a scanner's ring traces on walls above the
+/// floor do not tilt it.
+FloorLevel level_from_floor(const PointCloud& scan, const FloorLevellingConfig& config = {});
+
+}  // namespace tsgraphs::odometry
