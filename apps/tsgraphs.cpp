@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
   // The scan sources `run` and `convert` read: a sequence folder, a folder of scans, or a bag.
   const auto add_source_options = [&opt](CLI::App* cmd) {
     cmd->add_option("SEQ_DIR", opt.seq,
-                    "sequence folder (docs/scene-format.md), or a folder of .pcd / KITTI .bin scans with a pose file");
+                    "sequence folder (docs/scene-format.md), or a folder of .pcd / KITTI .bin scans (with a pose file, or none)");
     cmd->add_option("--scans", opt.folder.scans, "glob of scan files (.pcd or KITTI .bin) instead of SEQ_DIR");
     cmd->add_option("--poses", opt.folder.poses, "pose file of the scans, one per scan (default: poses.txt or odom.txt beside them)");
     cmd->add_option("--pose-format", opt.folder.pose_format, "tum, kitti (3x4 rows) or auto (by the field count)")
@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
     cmd->add_option("--odom-tum", opt.bag.odom_tum, "bag: odometry of the base from a TUM file instead");
     cmd->add_option("--sensor-to-base", opt.sensor_to_base,
                     "x y z qx qy qz qw of the sensor in the base frame: a bag's (default: /tf_static, else identity), "
-                    "or the first pose of scans without poses (the base level at the origin)")
+                    "and the first pose of scans without poses (default: level with the floor under the first scan)")
         ->expected(7);
     cmd->add_option("--odometry", opt.odometry,
                     "auto: the input's poses, or LiDAR odometry from the scans when it has none; input; lidar")

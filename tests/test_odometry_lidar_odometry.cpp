@@ -221,7 +221,7 @@ TEST(LidarOdometry, RejectsBadConfigs) {
 }
 
 TEST(LidarOdometry, RegistersTwoRealHdl32Scans) {
-  const std::string dir = std::string(TSGRAPHS_SOURCE_DIR) + "/../shared/data/hdl32_pair/";
+  const std::string dir = std::string(TSGRAPHS_TEST_DATA_DIR) + "/hdl32_pair/";
   const PointCloud target = io::read_pcd(dir + "251370668.pcd");
   const PointCloud source = io::read_pcd(dir + "251371071.pcd");
   const Pose3 expected = read_matrix(dir + "relative.txt");  // target <- source
