@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "test_support.hpp"
+#include "tsgraphs/eval/trajectory_metrics.hpp"
 #include "tsgraphs/io/ros_bag.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
@@ -18,9 +19,8 @@ using namespace tsgraphs;
 
 namespace {
 
+using test::cli;
 using test::read_file;
-
-int cli(const std::string& args, std::string* err) { return test::run_tsgraphs(args, nullptr, err); }
 
 // Two rooms joined by a door, walked once round: quick to simulate and run.
 const char* kScene = R"(
@@ -45,15 +45,6 @@ trajectory:
   waypoints: [[1.5, 1.5], [4.5, 1.5], [4.5, 3.0], [9.0, 3.0], [9.0, 1.5], [10.5, 1.5], [10.5, 4.5], [7.5, 4.5],
               [7.5, 3.0], [1.5, 3.0]]
 )";
-
-// Position error of `estimate` against `truth` after aligning their first poses (eval's ATE).
-double ate_first_aligned(const std::vector<Pose3>& estimate, const std::vector<Pose3>& truth) {
-  const Pose3 align = truth.front() * estimate.front().inverse();
-  double sum = 0.0;
-  for (std::size_t i = 0; i < estimate.size(); ++i)
-    sum += ((align * estimate[i]).translation() - truth[i].translation()).squaredNorm();
-  return std::sqrt(sum / static_cast<double>(estimate.size()));
-}
 
 std::vector<Pose3> poses_of(const std::vector<io::StampedPose>& stamped) {
   std::vector<Pose3> out;
@@ -108,13 +99,13 @@ TEST_F(OdometryCli, FolderWithoutPosesRunsOnLidarOdometryAndBeatsTheDriftingOdom
   EXPECT_NEAR(odometry.front().translation().z(), truth_.front().translation().z(), 0.02);
   EXPECT_NEAR(odometry.front().translation().head<2>().norm(), 0.0, 1e-9);
   EXPECT_LT(Eigen::AngleAxisd(odometry.front().linear()).angle(), 0.3 * M_PI / 180.0);
-  const double lidar_ate = ate_first_aligned(odometry, truth_);
-  const double input_ate = ate_first_aligned(odometry_, truth_);
+  const double lidar_ate = eval::ate_rmse(odometry, truth_);
+  const double input_ate = eval::ate_rmse(odometry_, truth_);
   std::printf("odometry ATE: LiDAR %.4f m, the simulated drifting odometry %.4f m\n", lidar_ate, input_ate);
   EXPECT_LT(lidar_ate, 0.05);
   EXPECT_LT(lidar_ate, input_ate);
   const auto trajectory = poses_of(io::read_tum((out / "trajectory.txt").string()));
-  EXPECT_LT(ate_first_aligned(trajectory, truth_), 0.05);
+  EXPECT_LT(eval::ate_rmse(trajectory, truth_), 0.05);
 
   // eval against the sequence takes the odometry figure from the run's odometry.txt.
   ASSERT_EQ(cli("-q eval " + out.string() + " --seq " + (base_ / "seq").string(), &err), 0) << err;
@@ -139,7 +130,7 @@ TEST_F(OdometryCli, LidarOdometryOnASequenceStartsAtItsFirstPoseAndIsDeterminist
   const auto odometry = poses_of(io::read_tum((dir_ / "a" / "odometry.txt").string()));
   ASSERT_EQ(odometry.size(), odometry_.size());
   EXPECT_LT((odometry.front().translation() - odometry_.front().translation()).norm(), 1e-6);
-  EXPECT_LT(ate_first_aligned(odometry, truth_), 0.05);
+  EXPECT_LT(eval::ate_rmse(odometry, truth_), 0.05);
   // The same input, config and seed give the same output, whatever the threads.
   EXPECT_EQ(read_file(dir_ / "a" / "odometry.txt"), read_file(dir_ / "b" / "odometry.txt"));
   EXPECT_EQ(read_file(dir_ / "a" / "trajectory.txt"), read_file(dir_ / "b" / "trajectory.txt"));
@@ -157,7 +148,7 @@ TEST_F(OdometryCli, BagWithoutAnOdometryTopicStartsAtTheSensorsMount) {
   const auto odometry = poses_of(io::read_tum((out / "odometry.txt").string()));
   ASSERT_EQ(odometry.size(), truth_.size());
   EXPECT_TRUE(odometry.front().isApprox(sensor_to_base, 1e-9));  // the base at the origin
-  EXPECT_LT(ate_first_aligned(odometry, truth_), 0.05);
+  EXPECT_LT(eval::ate_rmse(odometry, truth_), 0.05);
   EXPECT_EQ(nlohmann::json::parse(read_file(out / "run_info.json"))["odometry"], "lidar");
 }
 
@@ -167,7 +158,7 @@ TEST_F(OdometryCli, ConvertWritesLidarOdometryThatRunsAsTheFolderDid) {
   ASSERT_EQ(cli("-q convert " + kitti.string() + " --out " + converted.string(), &err), 0) << err;
   const io::SequenceReader reader(converted.string());
   ASSERT_EQ(reader.size(), truth_.size());
-  EXPECT_LT(ate_first_aligned(reader.info().odometry, truth_), 0.05);
+  EXPECT_LT(eval::ate_rmse(reader.info().odometry, truth_), 0.05);
   // Running on the converted folder (its odom.txt) and on the poseless folder (LiDAR odometry
   // in the run) agree, up to the precision odom.txt is written with.
   ASSERT_EQ(cli("-q run " + converted.string() + " --out " + (dir_ / "a").string(), &err), 0) << err;
@@ -218,7 +209,7 @@ TEST_F(OdometryCli, TiltedSensorWithoutPosesIsLevelledOnTheFloor) {
   const io::SequenceReader reader(seq.string());
   const Eigen::Vector3d up_in_sensor = reader.info().groundtruth.front().linear().transpose() * Eigen::Vector3d::UnitZ();
   EXPECT_GT((odometry.front().linear() * up_in_sensor).z(), std::cos(0.5 * M_PI / 180.0));  // level within 0.5 deg
-  EXPECT_LT(ate_first_aligned(odometry, reader.info().groundtruth), 0.05);
+  EXPECT_LT(eval::ate_rmse(odometry, reader.info().groundtruth), 0.05);
   const auto graph = nlohmann::json::parse(read_file(out / "scene_graph.json"));
   ASSERT_GE(graph["traversable_nodes"].size(), 50u);
   // Nine nodes in ten within 0.06 m of z = 0 (a few at the walls' feet lie higher, as they do

@@ -25,9 +25,8 @@ using namespace tsgraphs;
 
 namespace {
 
+using test::cli;
 using test::read_file;
-
-int cli(const std::string& args, std::string* err) { return test::run_tsgraphs(args, nullptr, err); }
 
 // A small room walked once round: a few hundred VLP-16 scans, quick to simulate and run.
 const char* kScene = R"(

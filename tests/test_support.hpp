@@ -81,6 +81,8 @@ inline int run_tsgraphs(const std::string& args, std::string* out, std::string* 
   std::filesystem::remove(e);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
+/// run_tsgraphs with its stdout dropped.
+inline int cli(const std::string& args, std::string* err) { return run_tsgraphs(args, nullptr, err); }
 #endif
 
 /// The message of the tsgraphs::InputError that calling `f` throws; a test failure (and "") when it

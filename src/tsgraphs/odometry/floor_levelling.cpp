@@ -14,7 +14,6 @@
 
 namespace tsgraphs::odometry {
 namespace {
-constexpr double kProbability = 0.9999;  // RANSAC's confidence of having drawn one all-floor sample
 constexpr int kRefitRounds = 5;          // least-squares refits at most (they settle in two or three)
 }  // namespace
 
@@ -30,6 +29,7 @@ void FloorLevellingConfig::validate() const {
   if (min_cells < 3) fail("min_cells must be >= 3");
   if (!(below_margin >= 0.0)) fail("below_margin must be >= 0");
   if (max_iterations < 1) fail("max_iterations must be >= 1");
+  if (!(ransac_probability > 0.0 && ransac_probability < 1.0)) fail("ransac_probability must be in (0, 1)");
 }
 
 namespace {
@@ -56,7 +56,7 @@ std::optional<PlaneFit> ransac_plane(const Cloud::Ptr& cloud, const FloorLevelli
   // RANSAC, not MSAC: PCL's MSAC stops with an error at the first sample outside the axis
   // constraint.
   ransac.setMethodType(pcl::SAC_RANSAC);
-  ransac.setProbability(kProbability);
+  ransac.setProbability(config.ransac_probability);
   ransac.setAxis(Eigen::Vector3f::UnitZ());
   ransac.setEpsAngle(config.max_tilt_deg * M_PI / 180.0);
   ransac.setDistanceThreshold(config.distance_threshold);

@@ -20,7 +20,8 @@ struct FloorLevellingConfig {
   int min_cells = 50;               ///< fewer cells on the floor: no floor found
   double below_margin = 0.3;        ///< returns this far below a plane count as beneath it (m); a floor has fewer
                                     ///< of them than it holds itself
-  int max_iterations = 1000;        ///< RANSAC iterations
+  int max_iterations = 1000;        ///< RANSAC iterations at most
+  double ransac_probability = 0.9999;  ///< RANSAC stops once this sure to have drawn one all-floor sample
 
   template <class V>
   void visit(V& v) {
@@ -34,6 +35,7 @@ struct FloorLevellingConfig {
     v("min_cells", min_cells);
     v("below_margin", below_margin);
     v("max_iterations", max_iterations);
+    v("ransac_probability", ransac_probability);
   }
   /// Throws std::invalid_argument naming the first field out of range ("FloorLevellingConfig: key ...").
   void validate() const;

@@ -128,6 +128,12 @@ IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHa
   result.pose = initial_guess;
   if (source.empty() || map.empty()) return result;
   const double kernel_sq = kernel_scale * kernel_scale;
+  // Geman-McClure: the weight falls as 1 / e^4 far beyond the kernel scale, so the pairs of
+  // moved objects and wrong neighbours barely pull.
+  const auto weight = [kernel_sq](double e_sq) {
+    const double denom = kernel_sq + e_sq;
+    return kernel_sq * kernel_sq / (denom * denom);
+  };
   const std::size_t grain = static_cast<std::size_t>(config.reduction_grain);
 
   Pose3 T = initial_guess;
@@ -143,12 +149,6 @@ IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHa
             const Neighbour nb = map.nearest(p);
             if (!nb.found || nb.distance > max_correspondence_distance) continue;
             const Eigen::Vector3d r = p - nb.point;
-            // Geman-McClure: the weight falls as 1 / e^4 far beyond the kernel scale, so
-            // the pairs of moved objects and wrong neighbours barely pull.
-            const auto weight = [&](double e_sq) {
-              const double denom = kernel_sq + e_sq;
-              return kernel_sq * kernel_sq / (denom * denom);
-            };
             if (config.point_to_plane && nb.surface == Surface::planar) {
               // Residual e(xi) = n . (exp(xi) * p - q): d e / d xi = [n, p x n] at xi = 0.
               const double e = nb.normal.dot(r);
@@ -219,7 +219,7 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
   last_icp_.pose = prediction;
 
   // Two resolutions: a finer one keeps the map detailed, a coarser one makes ICP cheap.
-  const std::vector<Eigen::Vector3d> frame = first_point_per_voxel(
+  std::vector<Eigen::Vector3d> frame = first_point_per_voxel(
       crop(scan, config_.min_range, config_.max_range), config_.voxel_size * config_.map_voxel_factor);
   if (frame.empty()) {
     poses_.push_back(prediction);
@@ -238,9 +238,8 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
     threshold_.update(prediction.inverse() * pose, motion);
   }
 
-  std::vector<Eigen::Vector3d> world = frame;
-  for (Eigen::Vector3d& p : world) p = pose * p;
-  map_.add_points(world);
+  for (Eigen::Vector3d& p : frame) p = pose * p;  // to the world, in place: not needed after
+  map_.add_points(frame);
   map_.remove_far(pose.translation(), config_.max_range);
   poses_.push_back(pose);
   return pose;
