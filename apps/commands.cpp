@@ -18,36 +18,36 @@
 #include "tsgraphs/pipeline/sequence_runner.hpp"
 #include "tsgraphs/report/report_html.hpp"
 #include "tsgraphs/report/scene_svg.hpp"
-#include "tsgraphs/sim/builtin_scenes.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/builtin_scenes.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 namespace tsgraphs::app {
 
 namespace fs = std::filesystem;
 
-sim::Scene resolve_scene(const std::string& arg) {
+scene::Scene resolve_scene(const std::string& arg) {
   if (!fs::exists(arg)) {
-    if (const auto text = sim::builtin_scene_text(arg)) return sim::parse_scene(*text, "builtin:" + arg, ".");
+    if (const auto text = scene::builtin_scene_text(arg)) return scene::parse_scene(*text, "builtin:" + arg, ".");
     std::string names;
-    for (const std::string& n : sim::builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
+    for (const std::string& n : scene::builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
     throw input_error(arg, 0, "no such scene file (built-in scenes: " + names + ")");
   }
-  return sim::load_scene(arg);
+  return scene::load_scene(arg);
 }
 
 void print_warnings(const std::string& where, const std::vector<std::string>& warnings) {
   for (const std::string& w : warnings) std::fprintf(stderr, "tsgraphs: warning: %s%s\n", where.c_str(), w.c_str());
 }
 
-sim::Scene load_and_warn(const std::string& arg) {
-  sim::Scene scene = resolve_scene(arg);
+scene::Scene load_and_warn(const std::string& arg) {
+  scene::Scene scene = resolve_scene(arg);
   print_warnings("", scene.warnings);
   return scene;
 }
 
-void simulate(const sim::Scene& scene_in, const std::string& out, std::uint64_t seed, int laps, bool quiet) {
-  sim::Scene scene = scene_in;
+void simulate(const scene::Scene& scene_in, const std::string& out, std::uint64_t seed, int laps, bool quiet) {
+  scene::Scene scene = scene_in;
   if (laps > 0) scene.trajectory.laps = laps;
   sim::Simulator simulator(scene, seed);
   print_warnings(scene.file + ": trajectory: ", simulator.trajectory().warnings());
@@ -63,7 +63,7 @@ void simulate(const sim::Scene& scene_in, const std::string& out, std::uint64_t 
   if (!quiet) std::fprintf(stderr, "simulate: wrote %s\n", out.c_str());
 }
 
-void simulate_bag(const sim::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
+void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
                   int laps, io::BagCompression compression, bool quiet) {
   // The LiDAR 0.3 m above and 0.1 m ahead of base_link, so that /tf_static is not the identity.
   const Pose3 sensor_to_base = make_pose(Eigen::Vector3d(0.1, 0.0, 0.3), 0.0);
@@ -103,8 +103,8 @@ void convert(const io::ScanSequence& sequence, const std::string& out, const pip
 
 void print_bag_info(const std::string& bag) { std::printf("%s", io::bag_info(bag).c_str()); }
 
-void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet) {
-  const sim::Trajectory trajectory(scene);
+void draw_scene(const scene::Scene& scene, const std::string& out, bool quiet) {
+  const scene::Trajectory trajectory(scene);
   print_warnings(scene.file + ": trajectory: ", trajectory.warnings());
   io::write_file_atomic(out, report::scene_svg(scene, trajectory));
   if (!quiet) std::fprintf(stderr, "draw-scene: wrote %s\n", out.c_str());

@@ -12,22 +12,22 @@
 #include "tsgraphs/io/scan_folder.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
 #include "tsgraphs/pipeline/sequence_runner.hpp"
-#include "tsgraphs/sim/scene.hpp"
+#include "tsgraphs/scene/scene.hpp"
 
 namespace tsgraphs::app {
 
 /// A scene file, or the name of a built-in scene (office, atrium, long_corridor, two_storeys).
-sim::Scene resolve_scene(const std::string& arg);
+scene::Scene resolve_scene(const std::string& arg);
 /// resolve_scene, with the scene's warnings printed.
-sim::Scene load_and_warn(const std::string& arg);
+scene::Scene load_and_warn(const std::string& arg);
 /// Warnings are shown even with --quiet: they say the output may not be what was meant.
 void print_warnings(const std::string& where, const std::vector<std::string>& warnings);
 
 /// `simulate`: the scene's sequence folder at `out` (laps <= 0: the scene's).
-void simulate(const sim::Scene& scene, const std::string& out, std::uint64_t seed, int laps, bool quiet);
+void simulate(const scene::Scene& scene, const std::string& out, std::uint64_t seed, int laps, bool quiet);
 /// `simulate --bag`: the simulated sequence as a ROS1 bag (io::write_bag), through a sequence
 /// folder at `seq_dir` (kept) or, when it is empty, a temporary one.
-void simulate_bag(const sim::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
+void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
                   int laps, io::BagCompression compression, bool quiet);
 /// `convert`: `sequence` (a folder of scans, a bag) written as a sequence folder at `out`:
 /// scans/NNNNNN.bin, times.txt, odom.txt (and groundtruth.txt when it has ground truth). With
@@ -37,7 +37,7 @@ void convert(const io::ScanSequence& sequence, const std::string& out, const pip
 /// `bag-info`: the bag's topics, types, counts and rates on stdout.
 void print_bag_info(const std::string& bag);
 /// `draw-scene`: the bird's-eye SVG of the scene and its path.
-void draw_scene(const sim::Scene& scene, const std::string& out, bool quiet);
+void draw_scene(const scene::Scene& scene, const std::string& out, bool quiet);
 /// What `run` reads: a sequence folder (docs/scene-format.md) when `options.folder` is one and
 /// no scan glob is given, else a folder of PCD / KITTI scans with a pose file.
 std::unique_ptr<io::ScanSequence> open_sequence(const io::ScanFolderOptions& options);

@@ -84,7 +84,7 @@ void demo(const DemoOptions& options) {
   std::vector<eval::MethodResult> results;
   std::string platforms;
   for (std::size_t si = 0; si < options.scenes.size(); ++si) {
-    const sim::Scene scene = load_and_warn(options.scenes[si]);
+    const scene::Scene scene = load_and_warn(options.scenes[si]);
     draw_scene(scene, (out / (scene.name + ".svg")).string(), true);
     const std::size_t first_row = results.size();
     for (const Method& m : kMethods) results.push_back({scene.name, m.name, {}});
@@ -108,7 +108,7 @@ void demo(const DemoOptions& options) {
     // Two platforms on the first scene, seed 1: the same path with the sensor higher (a
     // person carrying it rather than a robot), TS-graphs on both, their rooms paired.
     if (si != 0 || options.platform_height <= 0.0) continue;
-    sim::Scene raised = scene;
+    scene::Scene raised = scene;
     raised.sensor.mount_height = options.platform_height;
     const std::string tag = scene.name + "_seed1_sensor" + fixed(options.platform_height, 2);
     const std::string seq = (out / tag).string();

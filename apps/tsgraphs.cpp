@@ -38,7 +38,7 @@ struct Options {
   DemoOptions demo;
 };
 
-std::uint64_t seed_for(const sim::Scene& scene, long long cli_seed) {
+std::uint64_t seed_for(const scene::Scene& scene, long long cli_seed) {
   return cli_seed >= 0 ? static_cast<std::uint64_t>(cli_seed) : scene.seed;
 }
 
@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*simulate_cmd) {
-      const sim::Scene scene = load_and_warn(opt.scene);
+      const scene::Scene scene = load_and_warn(opt.scene);
       if (opt.bag_out.empty()) {
         if (opt.out.empty()) throw input_error("simulate", 0, "give --out SEQ_DIR or --bag FILE.bag");
         simulate(scene, opt.out, seed_for(scene, opt.seed), opt.laps, opt.quiet);

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "tsgraphs/ground/ground_segmentation.hpp"
-#include "tsgraphs/sim/builtin_scenes.hpp"
-#include "tsgraphs/sim/lidar_model.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/builtin_scenes.hpp"
+#include "tsgraphs/scene/sensor_presets.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 using namespace tsgraphs;
@@ -36,9 +36,9 @@ const std::vector<Scan>& scans(const std::string& scene_name, const std::string&
   const std::string key = scene_name + "/" + preset;
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
-  sim::Scene scene = sim::parse_scene(*sim::builtin_scene_text(scene_name), "builtin:" + scene_name, ".");
-  sim::SensorSpec sensor;
-  sim::apply_preset(preset, &sensor);
+  scene::Scene scene = scene::parse_scene(*scene::builtin_scene_text(scene_name), "builtin:" + scene_name, ".");
+  scene::SensorSpec sensor;
+  scene::apply_preset(preset, &sensor);
   sensor.preset = preset;
   sensor.mount_height = scene.sensor.mount_height;
   scene.sensor = sensor;

@@ -8,9 +8,9 @@
 #include <memory>
 
 #include "tsgraphs/io/sequence_folder.hpp"
-#include "tsgraphs/sim/builtin_scenes.hpp"
-#include "tsgraphs/sim/lidar_model.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/builtin_scenes.hpp"
+#include "tsgraphs/scene/sensor_presets.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 using namespace tsgraphs;
@@ -19,9 +19,9 @@ namespace {
 
 const sim::Simulator& atrium() {
   static const std::unique_ptr<sim::Simulator> simulator = [] {
-    sim::Scene scene = sim::parse_scene(*sim::builtin_scene_text("atrium"), "builtin:atrium", ".");
-    sim::SensorSpec sensor;
-    sim::apply_preset("os1-64", &sensor);
+    scene::Scene scene = scene::parse_scene(*scene::builtin_scene_text("atrium"), "builtin:atrium", ".");
+    scene::SensorSpec sensor;
+    scene::apply_preset("os1-64", &sensor);
     sensor.mount_height = scene.sensor.mount_height;
     scene.sensor = sensor;
     return std::make_unique<sim::Simulator>(scene, 1);

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "tsgraphs/pipeline/prefilter.hpp"
-#include "tsgraphs/sim/builtin_scenes.hpp"
-#include "tsgraphs/sim/lidar_model.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/builtin_scenes.hpp"
+#include "tsgraphs/scene/sensor_presets.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
 
@@ -40,9 +40,9 @@ const std::vector<Keyframe>& keyframes(const std::string& name) {
   static std::unordered_map<std::string, std::vector<Keyframe>> cache;
   auto it = cache.find(name);
   if (it != cache.end()) return it->second;
-  sim::Scene scene = sim::parse_scene(*sim::builtin_scene_text(name), "builtin:" + name, ".");
-  sim::SensorSpec sensor;
-  sim::apply_preset("os1-64", &sensor);
+  scene::Scene scene = scene::parse_scene(*scene::builtin_scene_text(name), "builtin:" + name, ".");
+  scene::SensorSpec sensor;
+  scene::apply_preset("os1-64", &sensor);
   sensor.mount_height = scene.sensor.mount_height;
   scene.sensor = sensor;
   const sim::Simulator simulator(scene, 1);

@@ -6,7 +6,7 @@
 #include "tsgraphs/eval/metrics.hpp"
 #include "tsgraphs/eval/trajectory_metrics.hpp"
 #include "tsgraphs/eval/wall_metrics.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 
 using namespace tsgraphs;
 using namespace tsgraphs::eval;
@@ -51,7 +51,7 @@ trajectory:
 }  // namespace
 
 TEST(WallMetrics, FacesOfAWallAreItsTwoSidesFacingOut) {
-  const sim::Scene scene = sim::parse_scene(kScene, "two_rooms.yaml", ".");
+  const scene::Scene scene = scene::parse_scene(kScene, "two_rooms.yaml", ".");
   const auto faces = wall_faces(scene);
   // Wall 1 ends on the north side of wall 0 at x = 5: that side is two faces, its south side one.
   ASSERT_EQ(faces.size(), 5u);
@@ -69,7 +69,7 @@ TEST(WallMetrics, FacesOfAWallAreItsTwoSidesFacingOut) {
 }
 
 TEST(WallMetrics, ErrorsOfMappedPlanesAndDuplicates) {
-  const sim::Scene scene = sim::parse_scene(kScene, "two_rooms.yaml", ".");
+  const scene::Scene scene = scene::parse_scene(kScene, "two_rooms.yaml", ".");
   const auto faces = wall_faces(scene);
   // Wall points seen on face 0 (y = 0.1) from a sensor at (2, 2, 0.5).
   PointCloud scan;

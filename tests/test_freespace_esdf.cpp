@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "tsgraphs/freespace/esdf_free_space.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 using namespace tsgraphs;
@@ -175,7 +175,7 @@ TEST(FreespaceEsdf, OfficeRoomFromSimulatedScans) {
   // The office scene: every point of every 10th scan of the first 200 (true poses) is occupied
   // (S-Graphs+ integrates whole scans; the floor is 1 m below the slice, farther than 0.8 m);
   // the last scan is taken in room_d. Its free space is room_d's interior, doors closed off.
-  const sim::Scene scene = sim::load_scene(std::string(TSGRAPHS_SCENES_DIR) + "/office.yaml");
+  const scene::Scene scene = scene::load_scene(std::string(TSGRAPHS_SCENES_DIR) + "/office.yaml");
   const sim::Simulator sim(scene, 1);
   constexpr std::size_t kScans = 200, kStep = 10;
   Points pts;

@@ -19,7 +19,7 @@
 #include "tsgraphs/freespace/traversable_free_space.hpp"
 #include "tsgraphs/ground/ground_segmentation.hpp"
 #include "tsgraphs/ground/traversable_node_map.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 using namespace tsgraphs;
@@ -271,7 +271,7 @@ TEST(FreespaceTraversable, OfficeRoomFromSimulatedGroundNodes) {
   // The office scene: traversable nodes of every 10th scan of the first 200 fused into the
   // global node map (true poses), obstacles selected from the last of those scans, which is
   // taken in room_d. The robot's cluster must stay in room_d (ground truth polygon).
-  const sim::Scene scene = sim::load_scene(std::string(TSGRAPHS_SCENES_DIR) + "/office.yaml");
+  const scene::Scene scene = scene::load_scene(std::string(TSGRAPHS_SCENES_DIR) + "/office.yaml");
   const sim::Simulator sim(scene, 1);
   constexpr std::size_t kScans = 200, kStep = 10;
   constexpr double kRadius = 10.0;  // nodes_near radius around the robot (m)

@@ -11,8 +11,8 @@
 
 #include "tsgraphs/pipeline/prefilter.hpp"
 #include "tsgraphs/graph/loop_closure.hpp"
-#include "tsgraphs/sim/builtin_scenes.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/builtin_scenes.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 using namespace tsgraphs;
@@ -43,7 +43,7 @@ PointCloud voxel_prefilter(const PointCloud& cloud, double voxel) {
 }
 
 const sim::Simulator& office() {
-  static const sim::Simulator sim(sim::parse_scene(*sim::builtin_scene_text("office"), "office.yaml", "."), 11);
+  static const sim::Simulator sim(scene::parse_scene(*scene::builtin_scene_text("office"), "office.yaml", "."), 11);
   return sim;
 }
 

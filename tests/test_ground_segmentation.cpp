@@ -19,9 +19,9 @@
 #include <Eigen/Cholesky>
 #include "tsgraphs/ground/ground_segmentation.hpp"
 #include "tsgraphs/io/pcd.hpp"
-#include "tsgraphs/sim/builtin_scenes.hpp"
-#include "tsgraphs/sim/lidar_model.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/builtin_scenes.hpp"
+#include "tsgraphs/scene/sensor_presets.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 using namespace tsgraphs;
@@ -41,11 +41,11 @@ constexpr std::uint32_t kFloor = static_cast<std::uint32_t>(PointLabel::kFloor);
 constexpr std::uint32_t kRamp = static_cast<std::uint32_t>(PointLabel::kRamp);
 constexpr std::uint32_t kBox = static_cast<std::uint32_t>(PointLabel::kBox);
 
-sim::Scene builtin(const std::string& name) {
-  return sim::parse_scene(*sim::builtin_scene_text(name), "builtin:" + name, ".");
+scene::Scene builtin(const std::string& name) {
+  return scene::parse_scene(*scene::builtin_scene_text(name), "builtin:" + name, ".");
 }
 
-int level_index(const sim::Scene& scene, const std::string& name) {
+int level_index(const scene::Scene& scene, const std::string& name) {
   for (std::size_t i = 0; i < scene.levels.size(); ++i)
     if (scene.levels[i].name == name) return static_cast<int>(i);
   ADD_FAILURE() << "no level " << name;
@@ -109,10 +109,10 @@ class SimulatedGround : public ::testing::TestWithParam<std::pair<std::string, s
 
 TEST_P(SimulatedGround, PrecisionAndRecallOfGroundPoints) {
   const auto& [name, preset] = GetParam();
-  sim::Scene scene = builtin(name);
+  scene::Scene scene = builtin(name);
   if (scene.sensor.preset != preset) {
-    sim::SensorSpec sensor;
-    ASSERT_TRUE(sim::apply_preset(preset, &sensor));
+    scene::SensorSpec sensor;
+    ASSERT_TRUE(scene::apply_preset(preset, &sensor));
     sensor.mount_height = scene.sensor.mount_height;
     scene.sensor = sensor;
   }
@@ -136,8 +136,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, SimulatedGround,
 // ground), and no ground point on the storey below seen through it.
 TEST(AtriumGround, VoidAndStoreyBelowAreNeverGround) {
   const sim::Simulator sim(builtin("atrium"), 2);
-  const sim::Scene& scene = sim.scene();
-  const sim::Level& l1 = scene.levels[level_index(scene, "L1")];
+  const scene::Scene& scene = sim.scene();
+  const scene::Level& l1 = scene.levels[level_index(scene, "L1")];
   ASSERT_FALSE(l1.voids.empty());
   const GroundConfig config = ground::per_sensor_preset(scene.sensor.preset);
   std::size_t scans = 0, nodes_in_void = 0, traversable = 0, below = 0;
@@ -171,10 +171,10 @@ TEST(AtriumGround, VoidAndStoreyBelowAreNeverGround) {
 // scans see it well): no ground point on it, no traversable node over it at its height.
 TEST(AtriumGround, BenchTopIsNotGround) {
   const sim::Simulator sim(builtin("atrium"), 3);
-  const sim::Scene& scene = sim.scene();
+  const scene::Scene& scene = sim.scene();
   const int l0 = level_index(scene, "L0");
-  const sim::Box* bench = nullptr;
-  for (const sim::Box& b : scene.boxes)
+  const scene::Box* bench = nullptr;
+  for (const scene::Box& b : scene.boxes)
     if (b.label == "bench") bench = &b;
   ASSERT_NE(bench, nullptr);
   const double base = scene.levels[l0].elevation;
@@ -217,7 +217,7 @@ TEST(AtriumGround, BenchTopIsNotGround) {
 // two_storeys: from scans on the ramp and near it, the ramp (1:8, 7 degrees) is ground.
 TEST(TwoStoreysGround, RampIsTraversable) {
   const sim::Simulator sim(builtin("two_storeys"), 4);
-  const sim::Scene& scene = sim.scene();
+  const scene::Scene& scene = sim.scene();
   ASSERT_EQ(scene.ramps.size(), 1u);
   const Polygon2& ramp = scene.ramps[0].polygon;
   constexpr double kNear = 2.0;  // scans within this of the ramp's footprint (m)

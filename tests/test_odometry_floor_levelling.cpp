@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "tsgraphs/odometry/floor_levelling.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 using namespace tsgraphs;
@@ -48,7 +48,7 @@ Pose3 tilted(double height, double yaw_deg, double pitch_deg, double roll_deg) {
 
 class FloorLevelling : public ::testing::Test {
  protected:
-  FloorLevelling() : simulator_(sim::parse_scene(kScene, "levelling_room.yaml", "."), 1) {}
+  FloorLevelling() : simulator_(scene::parse_scene(kScene, "levelling_room.yaml", "."), 1) {}
   sim::Simulator simulator_;
 };
 

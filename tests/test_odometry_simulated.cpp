@@ -7,7 +7,7 @@
 
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/odometry/lidar_odometry_sequence.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 #include "test_support.hpp"
@@ -52,7 +52,7 @@ using OdometrySimulated = TempDirTest;
 }  // namespace
 
 TEST_F(OdometrySimulated, DriftIsBelowOnePercentOfThePath) {
-  const sim::Scene scene = sim::parse_scene(kScene, "odometry_rooms.yaml", ".");
+  const scene::Scene scene = scene::parse_scene(kScene, "odometry_rooms.yaml", ".");
   const sim::Simulator simulator(scene, 1);
   const std::string seq_dir = (dir_ / "seq").string();
   sim::write_sequence(simulator, seq_dir);

@@ -11,8 +11,8 @@
 #include "tsgraphs/eval/wall_metrics.hpp"
 #include "tsgraphs/pipeline/pipeline.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
-#include "tsgraphs/sim/builtin_scenes.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/builtin_scenes.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 using namespace tsgraphs;
@@ -29,8 +29,8 @@ struct Outcome {
   eval::WallErrors walls;
 };
 
-sim::Scene builtin(const std::string& name) {
-  return sim::parse_scene(*sim::builtin_scene_text(name), "builtin:" + name, ".");
+scene::Scene builtin(const std::string& name) {
+  return scene::parse_scene(*scene::builtin_scene_text(name), "builtin:" + name, ".");
 }
 
 // Nodes are centred on their ground points; at a void's edge range noise (1.5 cm) and the
@@ -43,7 +43,7 @@ double distance_to_boundary(const Polygon2& poly, const Vec2& p) {
   return d;
 }
 
-Outcome run_scene(const sim::Scene& scene, std::uint64_t seed) {
+Outcome run_scene(const scene::Scene& scene, std::uint64_t seed) {
   sim::Simulator sim(scene, seed);
   pipeline::Pipeline slam;
   const auto faces = eval::wall_faces(scene);
@@ -99,13 +99,13 @@ Outcome run_scene(const sim::Scene& scene, std::uint64_t seed) {
   }
   o.rooms_consistency = eval::consistency(events);
   std::vector<io::RoomTruth> truth;
-  for (const sim::Room& r : scene.rooms) truth.push_back({r.name, scene.levels[r.level].name, r.polygon, scene.levels[r.level].elevation});
+  for (const scene::Room& r : scene.rooms) truth.push_back({r.name, scene.levels[r.level].name, r.polygon, scene.levels[r.level].elevation});
   std::vector<eval::DetectedRoom> detected;
   for (const auto& [id, r] : slam.room_map().rooms()) {
     const double floor_z = slam.room_layer().levels().at(r.level);
     std::string level;
     double best = 1e9;
-    for (const sim::Level& l : scene.levels)
+    for (const scene::Level& l : scene.levels)
       if (std::abs(l.elevation - floor_z) < best) best = std::abs(l.elevation - floor_z), level = l.name;
     detected.push_back({r.rect, level});
   }
@@ -123,7 +123,7 @@ Outcome run_scene(const sim::Scene& scene, std::uint64_t seed) {
   for (const ground::GlobalNode* n : slam.node_map().nodes()) {
     ++o.n_ground_nodes;
     const Eigen::Vector3d p = T_world_map * n->position;
-    for (const sim::Level& level : scene.levels) {
+    for (const scene::Level& level : scene.levels) {
       if (std::abs(p.z() - level.elevation) > 0.5) continue;
       for (const Polygon2& v : level.voids)
         if (contains(v, p.head<2>()) && distance_to_boundary(v, p.head<2>()) > kVoidEdgeTolerance) ++o.n_nodes_in_voids;
@@ -187,7 +187,7 @@ TEST(EndToEnd, AtriumTwoLaps) {
 }
 
 TEST(EndToEnd, StraightCorridorWithoutRevisitHasNoLoopClosure) {
-  sim::Scene scene = sim::parse_scene(R"(
+  scene::Scene scene = scene::parse_scene(R"(
 name: straight
 sensor: {preset: os1-64, mount_height: 0.55}
 odometry: {trans_noise_per_m: 0.01, yaw_noise_per_rad: 0.01, yaw_noise_per_m: 0.002}

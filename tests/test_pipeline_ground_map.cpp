@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "tsgraphs/pipeline/pipeline.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 using namespace tsgraphs;
@@ -11,8 +11,8 @@ using namespace tsgraphs;
 namespace {
 
 // A 10 m x 6 m room with a partition, walked round a loop of about 19 m.
-sim::Scene room(int laps) {
-  sim::Scene scene = sim::parse_scene(R"(
+scene::Scene room(int laps) {
+  scene::Scene scene = scene::parse_scene(R"(
 name: small_room
 sensor: {preset: os1-64, mount_height: 0.55}
 odometry: {trans_noise_per_m: 0.01, yaw_noise_per_rad: 0.01, yaw_noise_per_m: 0.002}

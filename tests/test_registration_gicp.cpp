@@ -18,8 +18,8 @@
 #include "tsgraphs/graph/loop_closure.hpp"
 #include "tsgraphs/io/pcd.hpp"
 #include "tsgraphs/registration/registration.hpp"
-#include "tsgraphs/sim/builtin_scenes.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/builtin_scenes.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 using namespace tsgraphs;
@@ -73,7 +73,7 @@ struct Stopwatch {
 };
 
 sim::Simulator& office() {
-  static sim::Simulator sim(sim::parse_scene(*sim::builtin_scene_text("office"), "office.yaml", "."), 11);
+  static sim::Simulator sim(scene::parse_scene(*scene::builtin_scene_text("office"), "office.yaml", "."), 11);
   return sim;
 }
 

@@ -10,8 +10,9 @@
 
 #include "report_test_support.hpp"
 #include "tsgraphs/report/run_svg.hpp"
-#include "tsgraphs/sim/scene_geometry.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_geometry.hpp"
+#include "tsgraphs/sim/scene_mesh.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 
 namespace tsgraphs {
 namespace {
@@ -146,14 +147,14 @@ TEST(ReportRunSvg, NothingOfAnotherLevelIsDrawn) {
 
 TEST(ReportRunSvg, SceneIsDrawnOnlyOnItsLevel) {
   RunView run = two_level_run();
-  run.scene = sim::parse_scene(kScene, "two_floors.yaml", ".");
+  run.scene = scene::parse_scene(kScene, "two_floors.yaml", ".");
   const std::string lower = report::birdseye_svg(run, 0);
   const std::string upper = report::birdseye_svg(run, 1);
   // Ground: two walls, the second cut in two by its door (the header above it is not drawn).
   std::size_t pieces = 0;
-  for (const sim::Wall& w : run.scene->walls) {
+  for (const scene::Wall& w : run.scene->walls) {
     if (w.level != 0) continue;
-    for (const sim::WallPiece& p : sim::wall_pieces(w)) pieces += p.z0 > 0.0 ? 0 : 1;
+    for (const scene::WallPiece& p : scene::wall_pieces(w)) pieces += p.z0 > 0.0 ? 0 : 1;
   }
   EXPECT_EQ(pieces, 3u);
   EXPECT_EQ(count(lower, "class=\"scene-wall\""), pieces);
@@ -170,7 +171,7 @@ TEST(ReportRunSvg, SceneIsDrawnOnlyOnItsLevel) {
 
 TEST(ReportRunSvg, SameRunSameBytes) {
   RunView run = two_level_run();
-  run.scene = sim::parse_scene(kScene, "two_floors.yaml", ".");
+  run.scene = scene::parse_scene(kScene, "two_floors.yaml", ".");
   const std::string a = report::birdseye_svg(run, 0);
   EXPECT_EQ(a, report::birdseye_svg(run, 0));
   EXPECT_EQ(a, report::birdseye_svg(RunView(run), 0));
@@ -204,7 +205,7 @@ TEST(ReportRunSvg, ManyNodesStayOnePathWithTheirCount) {
 
 TEST(ReportRunSvg, SideViewShowsEveryLevelsPointsAndTheSlabsGaps) {
   RunView run = two_level_run();
-  run.scene = sim::parse_scene(kScene, "two_floors.yaml", ".");
+  run.scene = scene::parse_scene(kScene, "two_floors.yaml", ".");
   const std::string svg = report::side_view_svg(run);
   EXPECT_EQ(nesting_error(svg), "");
   EXPECT_EQ(attribute(svg, "node", "data-count"), "6");

@@ -11,12 +11,14 @@
 #include <vector>
 
 #include "tsgraphs/report/scene_svg.hpp"
-#include "tsgraphs/sim/scene_geometry.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
-#include "tsgraphs/sim/trajectory.hpp"
+#include "tsgraphs/scene/scene_geometry.hpp"
+#include "tsgraphs/sim/scene_mesh.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
+#include "tsgraphs/scene/trajectory.hpp"
 
 using namespace tsgraphs;
 using namespace tsgraphs::sim;
+using namespace tsgraphs::scene;
 
 namespace {
 

@@ -7,6 +7,7 @@
 
 using namespace tsgraphs;
 using namespace tsgraphs::sim;
+using namespace tsgraphs::scene;
 
 namespace {
 

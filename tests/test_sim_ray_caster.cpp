@@ -4,12 +4,14 @@
 #include <cmath>
 
 #include "tsgraphs/sim/ray_caster.hpp"
-#include "tsgraphs/sim/scene_geometry.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_geometry.hpp"
+#include "tsgraphs/sim/scene_mesh.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 using namespace tsgraphs;
 using namespace tsgraphs::sim;
+using namespace tsgraphs::scene;
 
 namespace {
 

@@ -16,7 +16,7 @@
 #include <sstream>
 
 #include "tsgraphs/io/sequence_folder.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 #include "test_support.hpp"
@@ -24,6 +24,7 @@
 namespace fs = std::filesystem;
 using namespace tsgraphs;
 using namespace tsgraphs::sim;
+using namespace tsgraphs::scene;
 using tsgraphs::test::fresh_temp_dir;
 using tsgraphs::test::TempDirTest;
 

@@ -6,14 +6,15 @@
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/sim/ray_caster.hpp"
-#include "tsgraphs/sim/scene_geometry.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/sim/scene_mesh.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
 using namespace tsgraphs;
 using namespace tsgraphs::sim;
+using namespace tsgraphs::scene;
 using tsgraphs::test::TempDirTest;
 
 namespace {

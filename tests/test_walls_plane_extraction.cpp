@@ -17,8 +17,8 @@
 #include "tsgraphs/pipeline/prefilter.hpp"
 #include "tsgraphs/core/polygon.hpp"
 #include "tsgraphs/io/pcd.hpp"
-#include "tsgraphs/sim/builtin_scenes.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/builtin_scenes.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
 
@@ -102,26 +102,26 @@ void add_slab_faces(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double t
   }
 }
 
-Truth truth_of(const sim::Scene& scene) {
+Truth truth_of(const scene::Scene& scene) {
   Truth t;
-  for (const sim::Wall& w : scene.walls) {
+  for (const scene::Wall& w : scene.walls) {
     const double z0 = scene.levels[w.level].elevation;
     add_slab_faces(w.from, w.to, w.thickness, w.joined_from ? 0.5 * w.thickness : 0.0,
                    w.joined_to ? 0.5 * w.thickness : 0.0, z0, z0 + w.height, PointLabel::kWall, &t.faces);
     for (std::size_t i = t.faces.size() - 2; i < t.faces.size(); ++i) {
-      for (const sim::Opening& o : w.openings) {
+      for (const scene::Opening& o : w.openings) {
         t.faces[i].openings.emplace_back(o.at - 0.5 * o.width, o.at + 0.5 * o.width, z0 + o.sill,
                                          z0 + o.sill + o.height);
       }
     }
   }
-  for (const sim::Railing& r : scene.railings) {
+  for (const scene::Railing& r : scene.railings) {
     const double z0 = scene.levels[r.level].elevation;
-    const double thickness = r.style == sim::RailingStyle::kSolid ? sim::RailingGeometry::kSolidThickness
-                                                                  : sim::RailingGeometry::kPostWidth;
+    const double thickness = r.style == scene::RailingStyle::kSolid ? scene::RailingGeometry::kSolidThickness
+                                                                  : scene::RailingGeometry::kPostWidth;
     add_slab_faces(r.from, r.to, thickness, 0.0, 0.0, z0, z0 + r.height, PointLabel::kRailing, &t.faces);
   }
-  for (const sim::Box& b : scene.boxes) {
+  for (const scene::Box& b : scene.boxes) {
     const double z0 = scene.levels[b.level].elevation;
     const Eigen::Vector2d centre = 0.5 * (b.min + b.max).head<2>();
     const Eigen::Vector2d half = 0.5 * (b.max - b.min).head<2>();
@@ -133,12 +133,12 @@ Truth truth_of(const sim::Scene& scene) {
                    z0 + b.max.z(), PointLabel::kBox, &t.faces);
     t.surfaces.push_back({z0 + b.max.z(), 1.0});
   }
-  for (const sim::Level& l : scene.levels) {
+  for (const scene::Level& l : scene.levels) {
     t.surfaces.push_back({l.elevation, 1.0});
     t.surfaces.push_back({l.elevation + l.ceiling, -1.0});
     // The edge of the slab round a void, down to the ceiling of the storey below.
     double below_ceiling = -std::numeric_limits<double>::infinity();
-    for (const sim::Level& other : scene.levels) {
+    for (const scene::Level& other : scene.levels) {
       if (other.elevation < l.elevation) below_ceiling = std::max(below_ceiling, other.elevation + other.ceiling);
     }
     if (!std::isfinite(below_ceiling) || below_ceiling >= l.elevation) continue;
@@ -155,8 +155,8 @@ Truth truth_of(const sim::Scene& scene) {
   return t;
 }
 
-sim::Scene builtin(const std::string& name) {
-  return sim::parse_scene(*sim::builtin_scene_text(name), "builtin:" + name, ".");
+scene::Scene builtin(const std::string& name) {
+  return scene::parse_scene(*scene::builtin_scene_text(name), "builtin:" + name, ".");
 }
 
 // Pieces of a face's points that no gap wider than `tolerance` separates. A sliver of wall
@@ -217,7 +217,7 @@ double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 }
 
 // Extracts planes from the scans `scan_indices` (true poses) and scores them against the truth.
-Scores score_scene(const sim::Scene& scene, const std::vector<std::size_t>& scan_indices,
+Scores score_scene(const scene::Scene& scene, const std::vector<std::size_t>& scan_indices,
                    const PlaneExtractionConfig& config) {
   const sim::Simulator sim(scene, 3);
   const Truth truth = truth_of(scene);
@@ -231,7 +231,7 @@ Scores score_scene(const sim::Scene& scene, const std::vector<std::size_t>& scan
 
     // The level the sensor stands on: the highest floor below it.
     double floor_z = -std::numeric_limits<double>::infinity();
-    for (const sim::Level& l : scene.levels) {
+    for (const scene::Level& l : scene.levels) {
       if (l.elevation < T.translation().z()) floor_z = std::max(floor_z, l.elevation);
     }
     std::vector<int> obs_per_face(faces.size(), 0);                      // by the face most of its points lie on
@@ -389,14 +389,14 @@ void expect_good(const Scores& st, int min_faces) {
 }
 
 TEST(PlaneExtraction, OfficeWallFacesFoundOnceWithSmallErrors) {
-  const sim::Scene scene = builtin("office");
+  const scene::Scene scene = builtin("office");
   const sim::Simulator probe(scene, 3);
   const Scores st = score_scene(scene, spread(probe.num_scans() / 2, 24), PlaneExtractionConfig{});  // one lap
   expect_good(st, 40);
 }
 
 TEST(PlaneExtraction, AtriumWallFacesFoundOnceWithSmallErrors) {
-  const sim::Scene scene = builtin("atrium");
+  const scene::Scene scene = builtin("atrium");
   const sim::Simulator probe(scene, 3);
   const Scores st = score_scene(scene, spread(probe.num_scans() / 2, 16), PlaneExtractionConfig{});  // one lap
   expect_good(st, 25);
@@ -404,7 +404,7 @@ TEST(PlaneExtraction, AtriumWallFacesFoundOnceWithSmallErrors) {
 
 // Two walls in line across a gap, seen square-on from 2.9 m: the gap decides whether they are
 // one face or two. The sensor heads towards the walls and may be pitched.
-sim::Scene gap_scene(double gap, double tilt_deg) {
+scene::Scene gap_scene(double gap, double tilt_deg) {
   const double a = 4.5 - 0.5 * gap, b = 4.5 + 0.5 * gap;
   const std::string text = "name: gap\nsensor: {preset: os1-64, tilt_deg: " + std::to_string(tilt_deg) +
                            "}\n"
@@ -412,7 +412,7 @@ sim::Scene gap_scene(double gap, double tilt_deg) {
                            "walls:\n  - {level: G, from: [0, 5], to: [" + std::to_string(a) + ", 5]}\n"
                            "  - {level: G, from: [" + std::to_string(b) + ", 5], to: [9, 5]}\n"
                            "trajectory:\n  level: G\n  waypoints: [[4.5, 2.0], [4.5, 3.0]]\n";
-  return sim::parse_scene(text, "gap.yaml", ".");
+  return scene::parse_scene(text, "gap.yaml", ".");
 }
 
 std::vector<PlaneObservation> walls_facing_sensor(const std::vector<PlaneObservation>& obs, const Pose3& T) {
@@ -491,7 +491,7 @@ TEST(PlaneExtraction, TooFewPointsGiveNoPlanes) {
 
 TEST(PlaneExtraction, NonFinitePointsAreIgnoredAndOutputIsDeterministic) {
   const PlaneExtractionConfig config;
-  const sim::Scene scene = builtin("office");
+  const scene::Scene scene = builtin("office");
   const sim::Simulator sim(scene, 3);
   const Pose3 T = sim.true_poses()[40];
   const PointCloud clean = voxel_filter(sim.scan(40), kPrefilterVoxel);

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "tsgraphs/pipeline/prefilter.hpp"
-#include "tsgraphs/sim/builtin_scenes.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/builtin_scenes.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 #include "tsgraphs/walls/plane_mapper.hpp"
 
@@ -257,9 +257,9 @@ struct TrueFace {
   }
 };
 
-std::vector<TrueFace> wall_faces(const sim::Scene& scene) {
+std::vector<TrueFace> wall_faces(const scene::Scene& scene) {
   std::vector<TrueFace> faces;
-  for (const sim::Wall& w : scene.walls) {
+  for (const scene::Wall& w : scene.walls) {
     const Eigen::Vector2d dir = (w.to - w.from).normalized();
     const Eigen::Vector2d side(-dir.y(), dir.x());
     for (const double sign : {1.0, -1.0}) {
@@ -273,7 +273,7 @@ std::vector<TrueFace> wall_faces(const sim::Scene& scene) {
       // Cut where another wall's end stands on this face.
       std::vector<double> cuts = {w.joined_from ? -0.5 * w.thickness : 0.0,
                                   (w.to - w.from).norm() + (w.joined_to ? 0.5 * w.thickness : 0.0)};
-      for (const sim::Wall& other : scene.walls) {
+      for (const scene::Wall& other : scene.walls) {
         for (const Eigen::Vector2d& e : {other.from, other.to}) {
           const Eigen::Vector3d e3(e.x(), e.y(), f.z0);
           const double s = f.s_of(e3);
@@ -285,7 +285,7 @@ std::vector<TrueFace> wall_faces(const sim::Scene& scene) {
       }
       // A door cuts it too: the lintel above is out of sight of a sensor 0.55 m above the floor
       // unless it is far from the wall, so the two sides are seen apart.
-      for (const sim::Opening& o : w.openings) {
+      for (const scene::Opening& o : w.openings) {
         if (o.sill == 0.0) {
           cuts.push_back(o.at - 0.5 * o.width);
           cuts.push_back(o.at + 0.5 * o.width);
@@ -320,7 +320,7 @@ bool coplanar(const TrueFace& a, const TrueFace& b) {
 }
 
 TEST(PlaneMapper, OfficeLapFromTruePosesGivesOneLandmarkPerFace) {
-  const sim::Scene scene = sim::parse_scene(*sim::builtin_scene_text("office"), "builtin:office", ".");
+  const scene::Scene scene = scene::parse_scene(*scene::builtin_scene_text("office"), "builtin:office", ".");
   const sim::Simulator sim(scene, 3);
   const std::vector<TrueFace> faces = wall_faces(scene);
   constexpr std::size_t kKeyframeStep = 15;  // scans between keyframes: 1.5 m at 1 m/s

@@ -14,7 +14,7 @@
 #include "tsgraphs/eval/trajectory_metrics.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 
 namespace tsgraphs::eval {
 namespace {
@@ -323,7 +323,7 @@ Metrics evaluate_run(const EvalOptions& options) {
   // Walls: faces seen from the keyframes (true poses, labelled points) against the mapped planes.
   const std::string scene_file = seq.scene_path();
   if (scene_file.empty() || kf_scan.empty()) return m;
-  const sim::Scene scene = sim::load_scene(scene_file);
+  const scene::Scene scene = scene::load_scene(scene_file);
   const std::vector<WallFaceTruth> faces = wall_faces(scene);
   std::vector<FaceHits> hits(faces.size());
   for (std::size_t k = 0; k < kf_scan.size(); ++k) {

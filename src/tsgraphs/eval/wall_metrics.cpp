@@ -18,12 +18,12 @@ double overlap_along(const Eigen::Vector2d& u, const Eigen::Vector2d& a0, const 
 
 }  // namespace
 
-std::vector<WallFaceTruth> wall_faces(const sim::Scene& scene) {
+std::vector<WallFaceTruth> wall_faces(const scene::Scene& scene) {
   // Pieces shorter than this (m) between two junctions are not faces anyone would map.
   constexpr double kMinPiece = 0.3;
   std::vector<WallFaceTruth> faces;
   for (std::size_t i = 0; i < scene.walls.size(); ++i) {
-    const sim::Wall& w = scene.walls[i];
+    const scene::Wall& w = scene.walls[i];
     const Eigen::Vector2d d = w.to - w.from;
     if (d.norm() <= 0.0) continue;
     const Eigen::Vector2d u = d.normalized(), n = perp(u);
@@ -34,7 +34,7 @@ std::vector<WallFaceTruth> wall_faces(const sim::Scene& scene) {
       // Walls that end on this side of w split its face: one face per stretch between them.
       std::vector<std::pair<double, double>> cuts;  // [s0, s1] along w taken by another wall
       for (std::size_t j = 0; j < scene.walls.size(); ++j) {
-        const sim::Wall& x = scene.walls[j];
+        const scene::Wall& x = scene.walls[j];
         if (j == i || x.level != w.level) continue;
         for (const auto& [e, other] : {std::pair{x.from, x.to}, std::pair{x.to, x.from}}) {
           const double across = n.dot(e - w.from), along = u.dot(e - w.from);

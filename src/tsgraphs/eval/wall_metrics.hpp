@@ -8,7 +8,7 @@
 #include "tsgraphs/core/plane.hpp"
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/core/pose.hpp"
-#include "tsgraphs/sim/scene.hpp"
+#include "tsgraphs/scene/scene.hpp"
 
 namespace tsgraphs::eval {
 
@@ -24,7 +24,7 @@ struct WallFaceTruth {
 
 /// The faces of every wall of the scene: each side, split where another wall ends on it
 /// (openings are not splits: across a door the face is one plane).
-std::vector<WallFaceTruth> wall_faces(const sim::Scene& scene);
+std::vector<WallFaceTruth> wall_faces(const scene::Scene& scene);
 
 /// A mapped vertical plane as scene_graph.json gives it.
 struct MappedWall {

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "tsgraphs/report/svg_writer.hpp"
-#include "tsgraphs/sim/scene_geometry.hpp"
+#include "tsgraphs/scene/scene_geometry.hpp"
 
 namespace tsgraphs::report {
 namespace {
@@ -405,7 +405,7 @@ class BirdseyeDrawer {
     Extent e;
     for (int l : scene_levels_) e.add(run_.scene->levels[l].slab);
     if (run_.scene) {
-      for (const sim::Wall& w : run_.scene->walls) {
+      for (const scene::Wall& w : run_.scene->walls) {
         if (on_scene_level(w.level)) e.add(w.from), e.add(w.to);
       }
     }
@@ -488,7 +488,7 @@ class BirdseyeDrawer {
 
   void draw_scene() {
     if (scene_levels_.empty()) return;
-    const sim::Scene& scene = *run_.scene;
+    const scene::Scene& scene = *run_.scene;
     out_ += "<g class=\"layer-scene\">\n";
     for (int l : scene_levels_) {
       out_ += "<polygon class=\"scene-slab\" points=\"" + points_attr(frame_, scene.levels[l].slab) + "\"/>\n";
@@ -496,19 +496,19 @@ class BirdseyeDrawer {
         out_ += "<polygon class=\"scene-void\" points=\"" + points_attr(frame_, v) + "\"/>\n";
       }
     }
-    for (const sim::Wall& w : scene.walls) {
+    for (const scene::Wall& w : scene.walls) {
       if (!on_scene_level(w.level)) continue;
       // The pieces standing on the floor: doors are gaps, windows are not.
-      for (const sim::WallPiece& piece : sim::wall_pieces(w)) {
+      for (const scene::WallPiece& piece : scene::wall_pieces(w)) {
         if (piece.z0 > 0.0) continue;
         out_ += "<polygon class=\"scene-wall\" points=\"" +
                 points_attr(frame_, strip(w.from, w.to, piece.s0, piece.s1, w.thickness)) + "\"/>\n";
       }
     }
-    for (const sim::Railing& r : scene.railings) {
+    for (const scene::Railing& r : scene.railings) {
       if (!on_scene_level(r.level)) continue;
       const Vec2 a = frame_.px(r.from), b = frame_.px(r.to);
-      out_ += std::string("<line class=\"scene-railing") + (r.style == sim::RailingStyle::kBars ? " bars" : "") +
+      out_ += std::string("<line class=\"scene-railing") + (r.style == scene::RailingStyle::kBars ? " bars" : "") +
               "\" x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) + "\" y2=\"" + num(b.y()) +
               "\"/>\n";
     }
@@ -693,7 +693,7 @@ class SideViewDrawer {
       for (const RunView::Stamped& s : *traj) e.add(xz(s.p));
     }
     if (run_.scene) {
-      for (const sim::Level& l : run_.scene->levels) {
+      for (const scene::Level& l : run_.scene->levels) {
         Extent s;
         s.add(l.slab);
         e.add(Vec2(s.min_x, l.elevation - kSlabThicknessM));
@@ -797,7 +797,7 @@ class SideViewDrawer {
   void draw_slabs() {
     if (!run_.scene) return;
     out_ += "<g class=\"layer-scene\">\n";
-    for (const sim::Level& l : run_.scene->levels) {
+    for (const scene::Level& l : run_.scene->levels) {
       Extent slab;
       slab.add(l.slab);
       std::vector<std::pair<double, double>> voids;

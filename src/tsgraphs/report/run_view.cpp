@@ -18,7 +18,7 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/eval/room_metrics.hpp"
 #include "tsgraphs/io/tum.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 
 namespace tsgraphs::report {
 namespace {
@@ -192,7 +192,7 @@ RunView read_run_view(const std::string& run_dir, const std::string& seq_dir) {
     run.truth.push_back({info.times[i], info.groundtruth[i].translation()});
   }
   run.truth_rooms = info.rooms;
-  if (!seq.scene_path().empty()) run.scene = sim::load_scene(seq.scene_path());
+  if (!seq.scene_path().empty()) run.scene = scene::load_scene(seq.scene_path());
   return run;
 }
 

@@ -11,7 +11,7 @@
 
 #include "tsgraphs/core/rect.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
-#include "tsgraphs/sim/scene.hpp"
+#include "tsgraphs/scene/scene.hpp"
 
 namespace tsgraphs::report {
 
@@ -59,7 +59,7 @@ struct RunView {
   std::vector<Stamped> estimated;           ///< trajectory.txt
   std::vector<Stamped> truth;               ///< SEQ/groundtruth.txt; empty without it
   std::vector<io::RoomTruth> truth_rooms;   ///< SEQ/rooms_gt.json; empty without it
-  std::optional<sim::Scene> scene;          ///< SEQ/scene.yaml (simulated sequences)
+  std::optional<scene::Scene> scene;          ///< SEQ/scene.yaml (simulated sequences)
   std::vector<ScanTime> scans;
   std::vector<Solve> solves;
   std::string metrics_json;                 ///< RUN/metrics.json text, "" without it

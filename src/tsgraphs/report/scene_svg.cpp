@@ -22,12 +22,12 @@
 
 #include "tsgraphs/io/pcd.hpp"
 #include "tsgraphs/report/svg_writer.hpp"
-#include "tsgraphs/sim/scene_geometry.hpp"
+#include "tsgraphs/scene/scene_geometry.hpp"
 
 namespace tsgraphs::report {
 namespace {
 
-using sim::Scene;
+using scene::Scene;
 
 // ---------------------------------------------------------------------------------------
 // Layout (pixels unless the name says metres or seconds)
@@ -191,7 +191,7 @@ Polygon2 strip(const Vec2& a, const Vec2& b, double s0, double s1, double thickn
   return {a + s0 * d - n, a + s1 * d - n, a + s1 * d + n, a + s0 * d + n};
 }
 
-Polygon2 box_corners(const sim::Box& box) {
+Polygon2 box_corners(const scene::Box& box) {
   const Vec2 c = 0.5 * (box.min.head<2>() + box.max.head<2>());
   const Vec2 h = 0.5 * (box.max.head<2>() - box.min.head<2>());
   const double yaw = box.yaw_deg * M_PI / 180.0;
@@ -229,7 +229,7 @@ Vec2 label_point(const Polygon2& poly) {
 
 /// Direction in which a ramp climbs (its axis points up from `from_level` to `to_level`;
 /// if `from_level` is the higher one the surface falls along the axis instead).
-Vec2 ramp_uphill(const Scene& scene, const sim::Ramp& ramp) {
+Vec2 ramp_uphill(const Scene& scene, const scene::Ramp& ramp) {
   const double rise = scene.levels[ramp.to_level].elevation - scene.levels[ramp.from_level].elevation;
   return rise >= 0.0 ? ramp.axis : Vec2(-ramp.axis);
 }
@@ -262,7 +262,7 @@ int level_at(const Scene& scene, double floor_z, const Vec2& p) {
 }
 
 /// The first lap, sampled every kSampleStepS seconds (and at its end).
-std::vector<PathSample> sample_first_lap(const Scene& scene, const sim::Trajectory& trajectory) {
+std::vector<PathSample> sample_first_lap(const Scene& scene, const scene::Trajectory& trajectory) {
   const std::vector<double>& laps = trajectory.lap_starts();
   const double end = laps.size() > 1 ? laps[1] : trajectory.duration();
   const auto steps = static_cast<long>(std::floor(end / kSampleStepS + kEps));
@@ -287,7 +287,7 @@ struct VoxelFootprint {
   std::set<std::pair<long, long>> cells;  // ordered: deterministic output
 };
 
-VoxelFootprint voxel_footprint(const Scene& scene, const sim::VoxelMap& vm) {
+VoxelFootprint voxel_footprint(const Scene& scene, const scene::VoxelMap& vm) {
   VoxelFootprint fp;
   fp.level = vm.level;
   fp.cell = vm.voxel_size;
@@ -297,7 +297,7 @@ VoxelFootprint voxel_footprint(const Scene& scene, const sim::VoxelMap& vm) {
   for (const Eigen::Vector3f& pf : cloud.points) {
     const Eigen::Vector3d p = pf.cast<double>();
     const double z = p.z() + vm.offset.z();
-    if (vm.label == sim::VoxelLabel::kAuto && (std::abs(z) <= vm.voxel_size || std::abs(z - ceiling) <= vm.voxel_size)) {
+    if (vm.label == scene::VoxelLabel::kAuto && (std::abs(z) <= vm.voxel_size || std::abs(z - ceiling) <= vm.voxel_size)) {
       continue;
     }
     const double x = c * p.x() - s * p.y() + vm.offset.x(), y = s * p.x() + c * p.y() + vm.offset.y();
@@ -323,9 +323,9 @@ struct Panel {
 
 class SceneDrawer {
  public:
-  SceneDrawer(const Scene& scene, const sim::Trajectory& trajectory)
+  SceneDrawer(const Scene& scene, const scene::Trajectory& trajectory)
       : scene_(scene), path_(sample_first_lap(scene, trajectory)) {
-    for (const sim::VoxelMap& vm : scene.voxel_maps) voxels_.push_back(voxel_footprint(scene, vm));
+    for (const scene::VoxelMap& vm : scene.voxel_maps) voxels_.push_back(voxel_footprint(scene, vm));
   }
 
   std::string draw() {
@@ -342,17 +342,17 @@ class SceneDrawer {
 
   Extent world_extent() const {
     Extent e;
-    for (const sim::Level& l : scene_.levels) {
+    for (const scene::Level& l : scene_.levels) {
       e.add(l.slab);
       for (const Polygon2& v : l.voids) e.add(v);
     }
-    for (const sim::Wall& w : scene_.walls) {
-      for (const sim::WallPiece& p : sim::wall_pieces(w)) e.add(strip(w.from, w.to, p.s0, p.s1, w.thickness));
+    for (const scene::Wall& w : scene_.walls) {
+      for (const scene::WallPiece& p : scene::wall_pieces(w)) e.add(strip(w.from, w.to, p.s0, p.s1, w.thickness));
     }
-    for (const sim::Railing& r : scene_.railings) e.add(r.from), e.add(r.to);
-    for (const sim::Box& b : scene_.boxes) e.add(box_corners(b));
-    for (const sim::Ramp& r : scene_.ramps) e.add(r.polygon);
-    for (const sim::Room& r : scene_.rooms) e.add(r.polygon);
+    for (const scene::Railing& r : scene_.railings) e.add(r.from), e.add(r.to);
+    for (const scene::Box& b : scene_.boxes) e.add(box_corners(b));
+    for (const scene::Ramp& r : scene_.ramps) e.add(r.polygon);
+    for (const scene::Room& r : scene_.rooms) e.add(r.polygon);
     for (const PathSample& s : path_) e.add(s.xy);
     for (const VoxelFootprint& v : voxels_) {
       for (const auto& [row, col] : v.cells) e.add(Vec2(col * v.cell, row * v.cell));
@@ -481,7 +481,7 @@ class SceneDrawer {
   // --- one panel -------------------------------------------------------------------------
 
   void draw_panel(const Panel& p) {
-    const sim::Level& level = scene_.levels[p.level];
+    const scene::Level& level = scene_.levels[p.level];
     labels_.clear();
     out_ += "<g class=\"panel\" transform=\"translate(" + num(p.x) + "," + num(p.y) + ")\">\n";
     out_ += "<rect class=\"panel-border\" x=\"0\" y=\"0\" width=\"" + num(p.width) + "\" height=\"" +
@@ -506,13 +506,13 @@ class SceneDrawer {
   /// The slab, and its voids hatched; a void's label is left out where a ramp (drawn over
   /// it) already says what the hole is for.
   void draw_slab(const Frame& f, int level) {
-    const sim::Level& l = scene_.levels[level];
+    const scene::Level& l = scene_.levels[level];
     out_ += "<g class=\"layer-slab\">\n";
     out_ += "<polygon class=\"slab\" points=\"" + points_attr(f, l.slab) + "\"/>\n";
     for (const Polygon2& v : l.voids) {
       out_ += "<polygon class=\"void\" points=\"" + points_attr(f, v) + "\"/>\n";
       const Vec2 at = label_point(v);
-      const bool under_ramp = std::any_of(scene_.ramps.begin(), scene_.ramps.end(), [&](const sim::Ramp& r) {
+      const bool under_ramp = std::any_of(scene_.ramps.begin(), scene_.ramps.end(), [&](const scene::Ramp& r) {
         return (r.from_level == level || r.to_level == level) && contains(r.polygon, at);
       });
       if (!under_ramp) labels_.push_back({at, "void", "void-name"});
@@ -523,7 +523,7 @@ class SceneDrawer {
   void draw_rooms(const Frame& f, int level) {
     out_ += "<g class=\"layer-rooms\">\n";
     for (std::size_t i = 0; i < scene_.rooms.size(); ++i) {
-      const sim::Room& r = scene_.rooms[i];
+      const scene::Room& r = scene_.rooms[i];
       if (r.level != level) continue;
       const std::string colour = room_colour(i);
       out_ += "<polygon class=\"room\" fill=\"" + colour + "\" stroke=\"" + colour + "\" points=\"" +
@@ -538,7 +538,7 @@ class SceneDrawer {
   void draw_ramps(const Frame& f, int level) {
     out_ += "<g class=\"layer-ramps\">\n";
     for (std::size_t i = 0; i < scene_.ramps.size(); ++i) {
-      const sim::Ramp& r = scene_.ramps[i];
+      const scene::Ramp& r = scene_.ramps[i];
       if (r.from_level != level && r.to_level != level) continue;
       const Vec2 up = ramp_uphill(scene_, r);
       double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -593,7 +593,7 @@ class SceneDrawer {
 
   void draw_boxes(const Frame& f, int level) {
     out_ += "<g class=\"layer-boxes\">\n";
-    for (const sim::Box& b : scene_.boxes) {
+    for (const scene::Box& b : scene_.boxes) {
       if (b.level != level) continue;
       out_ += "<polygon class=\"box\" points=\"" + points_attr(f, box_corners(b)) + "\"/>\n";
       if (!b.label.empty()) labels_.push_back({0.5 * (b.min.head<2>() + b.max.head<2>()), b.label, "box-name"});
@@ -607,29 +607,29 @@ class SceneDrawer {
   void draw_walls(const Frame& f, int level) {
     out_ += "<g class=\"layer-walls\">\n";
     for (const char* kind : {"header", "sill", "full"}) {
-      for (const sim::Wall& w : scene_.walls) {
+      for (const scene::Wall& w : scene_.walls) {
         if (w.level != level) continue;
-        for (const sim::WallPiece& piece : sim::wall_pieces(w)) {
+        for (const scene::WallPiece& piece : scene::wall_pieces(w)) {
           if (piece_kind(w, piece) != kind) continue;
           out_ += std::string("<polygon class=\"wall ") + kind + "\" points=\"" +
                   points_attr(f, strip(w.from, w.to, piece.s0, piece.s1, w.thickness)) + "\"/>\n";
         }
       }
     }
-    for (const sim::Wall& w : scene_.walls) {
+    for (const scene::Wall& w : scene_.walls) {
       if (w.level != level) continue;
-      for (const sim::Opening& o : w.openings) out_ += o.sill > 0.0 ? window(f, w, o) : door(f, w, o);
+      for (const scene::Opening& o : w.openings) out_ += o.sill > 0.0 ? window(f, w, o) : door(f, w, o);
     }
     out_ += "</g>\n";
   }
 
-  static std::string piece_kind(const sim::Wall& w, const sim::WallPiece& p) {
+  static std::string piece_kind(const scene::Wall& w, const scene::WallPiece& p) {
     if (p.z0 > kEps) return "header";
     return p.z1 < w.height - kEps ? "sill" : "full";
   }
 
   /// The door leaf, open at right angles to the wall's left, and the arc its edge sweeps.
-  static std::string door(const Frame& f, const sim::Wall& w, const sim::Opening& o) {
+  static std::string door(const Frame& f, const scene::Wall& w, const scene::Opening& o) {
     const Vec2 d = (w.to - w.from).normalized();
     const Vec2 hinge = w.from + (o.at - 0.5 * o.width) * d;
     const Vec2 open = f.px(hinge + o.width * left_normal(d));
@@ -642,7 +642,7 @@ class SceneDrawer {
            std::to_string(sweep) + " " + xy(jamb) + "\"/>\n";
   }
 
-  static std::string window(const Frame& f, const sim::Wall& w, const sim::Opening& o) {
+  static std::string window(const Frame& f, const scene::Wall& w, const scene::Opening& o) {
     const Vec2 d = (w.to - w.from).normalized();
     const Vec2 a = f.px(w.from + (o.at - 0.5 * o.width) * d), b = f.px(w.from + (o.at + 0.5 * o.width) * d);
     return "<line class=\"window\" x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) +
@@ -653,13 +653,13 @@ class SceneDrawer {
   /// as a thin top rail with a dotted line over it.
   void draw_railings(const Frame& f, int level) {
     out_ += "<g class=\"layer-railings\">\n";
-    for (const sim::Railing& r : scene_.railings) {
+    for (const scene::Railing& r : scene_.railings) {
       if (r.level != level) continue;
       const Vec2 a = f.px(r.from), b = f.px(r.to);
       const std::string ends = "x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) +
                                "\" y2=\"" + num(b.y()) + "\"";
-      if (r.style == sim::RailingStyle::kSolid) {
-        const double width = std::max(sim::RailingGeometry::kSolidThickness * kPxPerMetre, kMinRailingWidth);
+      if (r.style == scene::RailingStyle::kSolid) {
+        const double width = std::max(scene::RailingGeometry::kSolidThickness * kPxPerMetre, kMinRailingWidth);
         out_ += "<line class=\"railing solid\" " + ends + " stroke-width=\"" + num(width) + "\"/>\n";
       } else {
         out_ += "<g class=\"railing bars\">" + bars_lines(ends) + "</g>\n";
@@ -870,7 +870,7 @@ class SceneDrawer {
 
 }  // namespace
 
-std::string scene_svg(const sim::Scene& scene, const sim::Trajectory& trajectory) {
+std::string scene_svg(const scene::Scene& scene, const scene::Trajectory& trajectory) {
   return SceneDrawer(scene, trajectory).draw();
 }
 

@@ -3,13 +3,13 @@
 /// ground-truth rooms with their names, and the path with its direction; one panel per level.
 #include <string>
 
-#include "tsgraphs/sim/scene.hpp"
-#include "tsgraphs/sim/trajectory.hpp"
+#include "tsgraphs/scene/scene.hpp"
+#include "tsgraphs/scene/trajectory.hpp"
 
 namespace tsgraphs::report {
 
 /// The SVG document text for `scene`, with the planned `trajectory` drawn on the levels it
 /// crosses (its first lap, coloured along time, with arrows for the direction of travel).
-std::string scene_svg(const sim::Scene& scene, const sim::Trajectory& trajectory);
+std::string scene_svg(const scene::Scene& scene, const scene::Trajectory& trajectory);
 
 }  // namespace tsgraphs::report

@@ -5,7 +5,7 @@
 
 namespace tsgraphs::sim {
 
-std::vector<Pose3> drift_odometry(const std::vector<Pose3>& truth, const OdometryNoise& noise, std::uint64_t seed) {
+std::vector<Pose3> drift_odometry(const std::vector<Pose3>& truth, const scene::OdometryNoise& noise, std::uint64_t seed) {
   std::vector<Pose3> odom;
   if (truth.empty()) return odom;
   // A stream of its own, so that range noise and drift do not share random numbers.

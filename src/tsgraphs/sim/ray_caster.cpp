@@ -24,7 +24,7 @@ std::uint32_t label_for_direction(std::uint32_t label, float dir_z) {
 
 }  // namespace
 
-BeamPattern BeamPattern::from_sensor(const SensorSpec& sensor) {
+BeamPattern BeamPattern::from_sensor(const scene::SensorSpec& sensor) {
   BeamPattern p;
   p.rows = static_cast<int>(sensor.vertical_angles_deg.size());
   p.cols = sensor.columns;

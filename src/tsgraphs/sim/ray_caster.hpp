@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "tsgraphs/core/pose.hpp"
-#include "tsgraphs/sim/scene_geometry.hpp"
+#include "tsgraphs/sim/scene_mesh.hpp"
 
 namespace tsgraphs::sim {
 
@@ -18,7 +18,7 @@ struct BeamPattern {
   int cols = 0;
   std::vector<Eigen::Vector3f> dirs;
 
-  static BeamPattern from_sensor(const SensorSpec& sensor);
+  static BeamPattern from_sensor(const scene::SensorSpec& sensor);
 };
 
 /// Result of one ray: range < 0 means no return within range.

@@ -35,8 +35,8 @@ float Reflectivity::of(std::uint32_t label) {
   }
 }
 
-Simulator::Simulator(Scene scene, std::uint64_t seed) : scene_(std::move(scene)), seed_(seed) {
-  trajectory_ = std::make_unique<Trajectory>(scene_);
+Simulator::Simulator(scene::Scene scene, std::uint64_t seed) : scene_(std::move(scene)), seed_(seed) {
+  trajectory_ = std::make_unique<scene::Trajectory>(scene_);
   const LabelledMesh mesh = build_scene_mesh(scene_);
   num_triangles_ = mesh.triangles.size();
   caster_ = std::make_unique<RayCaster>(mesh);
@@ -66,7 +66,7 @@ Simulator::~Simulator() = default;
 PointCloud Simulator::scan(std::size_t k) const { return scan_at(truth_.at(k), k); }
 
 PointCloud Simulator::scan_at(const Pose3& sensor_pose, std::uint64_t noise_index) const {
-  const SensorSpec& s = scene_.sensor;
+  const scene::SensorSpec& s = scene_.sensor;
   std::vector<RayHit> hits;
   caster_->cast_scan(sensor_pose, beams_, static_cast<float>(s.min_range), static_cast<float>(s.max_range), &hits);
   const std::uint64_t scan_key = splitmix(seed_ ^ splitmix(noise_index + 0x5CA11ULL));
@@ -107,7 +107,7 @@ void write_sequence(const Simulator& sim, const std::string& out_dir,
     writer.write_scan(k, sim.scan(k));
     if (progress) progress(k + 1, n);
   }
-  const Scene& scene = sim.scene();
+  const scene::Scene& scene = sim.scene();
   io::SequenceInfo info;
   info.times = sim.times();
   info.odometry = sim.odometry_poses();
@@ -115,8 +115,8 @@ void write_sequence(const Simulator& sim, const std::string& out_dir,
   info.lap_starts = sim.trajectory().lap_starts();
   for (double& t : info.lap_starts) t /= sim.time_scale();  // path time -> scan time
   info.has_rooms = !scene.rooms.empty();
-  for (const Room& r : scene.rooms) {
-    const Level& l = scene.levels[r.level];
+  for (const scene::Room& r : scene.rooms) {
+    const scene::Level& l = scene.levels[r.level];
     info.rooms.push_back({r.name, l.name, r.polygon, l.elevation});
   }
   info.scene_yaml = scene.source_text;

@@ -10,8 +10,8 @@
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/sim/ray_caster.hpp"
-#include "tsgraphs/sim/scene.hpp"
-#include "tsgraphs/sim/trajectory.hpp"
+#include "tsgraphs/scene/scene.hpp"
+#include "tsgraphs/scene/trajectory.hpp"
 
 namespace tsgraphs::sim {
 
@@ -31,11 +31,11 @@ class Simulator {
  public:
   /// Builds the geometry (reading voxel maps) and plans the path. `seed` drives the range
   /// noise, the dropout and the odometry drift.
-  Simulator(Scene scene, std::uint64_t seed);
+  Simulator(scene::Scene scene, std::uint64_t seed);
   ~Simulator();
 
-  const Scene& scene() const { return scene_; }
-  const Trajectory& trajectory() const { return *trajectory_; }
+  const scene::Scene& scene() const { return scene_; }
+  const scene::Trajectory& trajectory() const { return *trajectory_; }
   const RayCaster& ray_caster() const { return *caster_; }
   std::size_t num_triangles() const { return num_triangles_; }
 
@@ -57,9 +57,9 @@ class Simulator {
   PointCloud scan_at(const Pose3& sensor_pose, std::uint64_t noise_index) const;
 
  private:
-  Scene scene_;
+  scene::Scene scene_;
   std::uint64_t seed_;
-  std::unique_ptr<Trajectory> trajectory_;
+  std::unique_ptr<scene::Trajectory> trajectory_;
   std::unique_ptr<RayCaster> caster_;
   BeamPattern beams_;
   std::size_t num_triangles_ = 0;

@@ -3,9 +3,9 @@
 #include <string>
 #include <vector>
 
-#include "tsgraphs/sim/scene.hpp"
+#include "tsgraphs/scene/scene.hpp"
 
-namespace tsgraphs::sim {
+namespace tsgraphs::scene {
 
 /// Names accepted by `sensor.preset`.
 const std::vector<std::string>& preset_names();
@@ -18,4 +18,4 @@ bool apply_preset(const std::string& name, SensorSpec* spec);
 /// `channels` elevations from `max_deg` down to `min_deg`, evenly spaced.
 std::vector<double> evenly_spaced_angles(int channels, double min_deg, double max_deg);
 
-}  // namespace tsgraphs::sim
+}  // namespace tsgraphs::scene

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "tsgraphs/core/pose.hpp"
-#include "tsgraphs/sim/scene.hpp"
+#include "tsgraphs/scene/scene.hpp"
 
-namespace tsgraphs::sim {
+namespace tsgraphs::scene {
 
 class Trajectory {
  public:
@@ -69,4 +69,4 @@ class Trajectory {
   std::vector<std::string> warnings_;
 };
 
-}  // namespace tsgraphs::sim
+}  // namespace tsgraphs::scene

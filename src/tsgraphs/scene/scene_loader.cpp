@@ -1,4 +1,4 @@
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 
 #include <algorithm>
 #include <functional>
@@ -10,10 +10,10 @@
 
 #include "tsgraphs/core/rect.hpp"
 #include "tsgraphs/core/yaml_map.hpp"
-#include "tsgraphs/sim/lidar_model.hpp"
-#include "tsgraphs/sim/scene_geometry.hpp"
+#include "tsgraphs/scene/sensor_presets.hpp"
+#include "tsgraphs/scene/scene_geometry.hpp"
 
-namespace tsgraphs::sim {
+namespace tsgraphs::scene {
 namespace {
 
 std::string fmt_point(const Vec2& p) {
@@ -517,35 +517,7 @@ class SceneParser {
 
 }  // namespace
 
-double ramp_height(const Scene& scene, const Ramp& ramp, const Vec2& xy) {
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const Vec2& p : ramp.polygon) {
-    lo = std::min(lo, p.dot(ramp.axis));
-    hi = std::max(hi, p.dot(ramp.axis));
-  }
-  // `axis` is the direction of ascent, whichever of the two levels is named first.
-  const double z_a = scene.levels[ramp.from_level].elevation;
-  const double z_b = scene.levels[ramp.to_level].elevation;
-  const double z0 = std::min(z_a, z_b), z1 = std::max(z_a, z_b);
-  const double s = std::clamp((xy.dot(ramp.axis) - lo) / std::max(hi - lo, 1e-9), 0.0, 1.0);
-  return z0 + s * (z1 - z0);
-}
 
-bool walkable_height(const Scene& scene, int level, const Vec2& xy, double* z) {
-  for (const Ramp& r : scene.ramps) {
-    if ((r.from_level == level || r.to_level == level) && contains(r.polygon, xy)) {
-      *z = ramp_height(scene, r, xy);
-      return true;
-    }
-  }
-  const Level& l = scene.levels[level];
-  if (!contains(l.slab, xy)) return false;
-  for (const Polygon2& v : l.voids) {
-    if (contains(v, xy)) return false;
-  }
-  *z = l.elevation;
-  return true;
-}
 
 Scene parse_scene(const std::string& text, const std::string& file, const std::string& base_dir) {
   const YamlMap root = YamlMap::load_string(text, file);
@@ -563,4 +535,4 @@ Scene load_scene(const std::string& file) {
   return parse_scene(text.str(), file, base.empty() ? "." : base);
 }
 
-}  // namespace tsgraphs::sim
+}  // namespace tsgraphs::scene

@@ -3,11 +3,12 @@
 
 #include <cmath>
 
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
-#include "tsgraphs/sim/trajectory.hpp"
+#include "tsgraphs/scene/trajectory.hpp"
 
 using namespace tsgraphs;
+using namespace tsgraphs::scene;
 using namespace tsgraphs::sim;
 
 namespace {

@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "tsgraphs/core/polygon.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
-#include "tsgraphs/sim/trajectory.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
+#include "tsgraphs/scene/trajectory.hpp"
 
 using namespace tsgraphs;
-using namespace tsgraphs::sim;
+using namespace tsgraphs::scene;
 
 namespace {
 

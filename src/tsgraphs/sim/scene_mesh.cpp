@@ -1,4 +1,4 @@
-#include "tsgraphs/sim/scene_geometry.hpp"
+#include "tsgraphs/sim/scene_mesh.hpp"
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/pcd.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_geometry.hpp"
 
 namespace tsgraphs::sim {
 namespace {
@@ -21,46 +21,46 @@ void add_region(LabelledMesh* mesh, const std::vector<Polygon2>& include, const 
   }
 }
 
-void add_wall(LabelledMesh* mesh, const Wall& wall, double elevation) {
+void add_wall(LabelledMesh* mesh, const scene::Wall& wall, double elevation) {
   const Vec2 dir = (wall.to - wall.from).normalized();
   const double yaw = std::atan2(dir.y(), dir.x());
-  for (const WallPiece& p : wall_pieces(wall)) {
+  for (const scene::WallPiece& p : scene::wall_pieces(wall)) {
     const Vec2 c = wall.from + 0.5 * (p.s0 + p.s1) * dir;
     mesh->add_box(c, {0.5 * (p.s1 - p.s0), 0.5 * wall.thickness}, yaw, elevation + p.z0, elevation + p.z1,
                   PointLabel::kWall);
   }
 }
 
-void add_railing(LabelledMesh* mesh, const Railing& r, double elevation) {
+void add_railing(LabelledMesh* mesh, const scene::Railing& r, double elevation) {
   const Vec2 d = r.to - r.from;
   const double length = d.norm();
   const Vec2 dir = d / length;
   const double yaw = std::atan2(dir.y(), dir.x());
   const Vec2 mid = 0.5 * (r.from + r.to);
-  if (r.style == RailingStyle::kSolid) {
-    mesh->add_box(mid, {0.5 * length, 0.5 * RailingGeometry::kSolidThickness}, yaw, elevation, elevation + r.height,
+  if (r.style == scene::RailingStyle::kSolid) {
+    mesh->add_box(mid, {0.5 * length, 0.5 * scene::RailingGeometry::kSolidThickness}, yaw, elevation, elevation + r.height,
                   PointLabel::kRailing);
     return;
   }
   const double top = elevation + r.height;
-  const double rail_bottom = top - RailingGeometry::kTopRailHeight;
-  const double half_post = 0.5 * RailingGeometry::kPostWidth;
+  const double rail_bottom = top - scene::RailingGeometry::kTopRailHeight;
+  const double half_post = 0.5 * scene::RailingGeometry::kPostWidth;
   mesh->add_box(mid, {0.5 * length, half_post}, yaw, rail_bottom, top, PointLabel::kRailing);
-  const int posts = static_cast<int>(std::floor(length / RailingGeometry::kPostSpacing + 1e-9)) + 1;
+  const int posts = static_cast<int>(std::floor(length / scene::RailingGeometry::kPostSpacing + 1e-9)) + 1;
   for (int k = 0; k < posts; ++k) {
-    const double s = std::min(k * RailingGeometry::kPostSpacing, length);
+    const double s = std::min(k * scene::RailingGeometry::kPostSpacing, length);
     mesh->add_box(r.from + s * dir, {half_post, half_post}, yaw, elevation, rail_bottom, PointLabel::kRailing);
   }
   // A last post at the far end when the spacing does not land on it.
-  if (length - (posts - 1) * RailingGeometry::kPostSpacing > half_post * 2) {
+  if (length - (posts - 1) * scene::RailingGeometry::kPostSpacing > half_post * 2) {
     mesh->add_box(r.to, {half_post, half_post}, yaw, elevation, rail_bottom, PointLabel::kRailing);
   }
 }
 
-void add_ramp(LabelledMesh* mesh, const Scene& scene, const Ramp& ramp) {
+void add_ramp(LabelledMesh* mesh, const scene::Scene& scene, const scene::Ramp& ramp) {
   for (const Triangle2& t : triangulate_region({ramp.polygon})) {
     Eigen::Vector3d v[3];
-    for (int i = 0; i < 3; ++i) v[i] = {t[i].x(), t[i].y(), ramp_height(scene, ramp, t[i])};
+    for (int i = 0; i < 3; ++i) v[i] = {t[i].x(), t[i].y(), scene::ramp_height(scene, ramp, t[i])};
     mesh->add_triangle(v[0], v[1], v[2], PointLabel::kRamp);
   }
 }
@@ -72,10 +72,10 @@ struct KeyHash {
   }
 };
 
-void add_voxel_map(LabelledMesh* mesh, const Scene& scene, const VoxelMap& vm) {
+void add_voxel_map(LabelledMesh* mesh, const scene::Scene& scene, const scene::VoxelMap& vm) {
   const PointCloud cloud = io::read_pcd(vm.file);
   if (cloud.empty()) throw InputError(vm.file + ": voxel map has no finite points");
-  const Level& level = scene.levels[vm.level];
+  const scene::Level& level = scene.levels[vm.level];
   // Snap points to the voxel grid through the first point, so voxel centres stay exact and
   // a dense cloud becomes one cube per occupied voxel.
   const Eigen::Vector3d origin = cloud.points.front().cast<double>();
@@ -97,10 +97,10 @@ void add_voxel_map(LabelledMesh* mesh, const Scene& scene, const VoxelMap& vm) {
     const double z_rel = centre.z() + vm.offset.z();
     PointLabel label = PointLabel::kWall;
     switch (vm.label) {
-      case VoxelLabel::kWall: label = PointLabel::kWall; break;
-      case VoxelLabel::kBox: label = PointLabel::kBox; break;
-      case VoxelLabel::kRailing: label = PointLabel::kRailing; break;
-      case VoxelLabel::kAuto:
+      case scene::VoxelLabel::kWall: label = PointLabel::kWall; break;
+      case scene::VoxelLabel::kBox: label = PointLabel::kBox; break;
+      case scene::VoxelLabel::kRailing: label = PointLabel::kRailing; break;
+      case scene::VoxelLabel::kAuto:
         label = std::abs(z_rel) <= s                     ? PointLabel::kFloor
                 : std::abs(z_rel - level.ceiling) <= s ? PointLabel::kCeiling
                                                          : PointLabel::kWall;
@@ -154,30 +154,14 @@ void LabelledMesh::add_box(const Eigen::Vector2d& center, const Eigen::Vector2d&
   }
 }
 
-std::vector<WallPiece> wall_pieces(const Wall& wall) {
-  const double length = (wall.to - wall.from).norm();
-  const double start = wall.joined_from ? -0.5 * wall.thickness : 0.0;
-  const double end = length + (wall.joined_to ? 0.5 * wall.thickness : 0.0);
-  std::vector<WallPiece> pieces;
-  double s = start;
-  for (const Opening& o : wall.openings) {  // sorted by `at`, not overlapping
-    const double a = o.at - 0.5 * o.width, b = o.at + 0.5 * o.width;
-    if (a > s) pieces.push_back({s, a, 0.0, wall.height});  // also a joined end's corner square
-    if (o.sill > 0.0) pieces.push_back({a, b, 0.0, o.sill});
-    if (o.sill + o.height < wall.height) pieces.push_back({a, b, o.sill + o.height, wall.height});
-    s = b;
-  }
-  if (s < end) pieces.push_back({s, end, 0.0, wall.height});
-  return pieces;
-}
 
 // The slab between two storeys has a thickness (from the lower ceiling up to the upper
 // floor); inside a void its edge is a vertical face. Labelled wall: vertical structure, not
 // walkable ground.
-static void add_void_edges(LabelledMesh* mesh, const Scene& scene, int level) {
-  const Level& l = scene.levels[level];
+static void add_void_edges(LabelledMesh* mesh, const scene::Scene& scene, int level) {
+  const scene::Level& l = scene.levels[level];
   double below_ceiling = -std::numeric_limits<double>::infinity();
-  for (const Level& other : scene.levels) {
+  for (const scene::Level& other : scene.levels) {
     if (other.elevation < l.elevation) below_ceiling = std::max(below_ceiling, other.elevation + other.ceiling);
   }
   if (!(below_ceiling < l.elevation)) return;  // no storey below, or no slab thickness
@@ -193,38 +177,26 @@ static void add_void_edges(LabelledMesh* mesh, const Scene& scene, int level) {
   }
 }
 
-std::vector<Polygon2> ceiling_holes(const Scene& scene, int level) {
-  std::vector<Polygon2> holes = scene.levels[level].voids;
-  // The next level up by elevation: its floor and this ceiling are one slab.
-  const double z = scene.levels[level].elevation;
-  int above = -1;
-  for (std::size_t i = 0; i < scene.levels.size(); ++i) {
-    const double zi = scene.levels[i].elevation;
-    if (zi > z && (above < 0 || zi < scene.levels[above].elevation)) above = static_cast<int>(i);
-  }
-  if (above >= 0) holes.insert(holes.end(), scene.levels[above].voids.begin(), scene.levels[above].voids.end());
-  return holes;
-}
 
-LabelledMesh build_scene_mesh(const Scene& scene) {
+LabelledMesh build_scene_mesh(const scene::Scene& scene) {
   LabelledMesh mesh;
   for (std::size_t i = 0; i < scene.levels.size(); ++i) {
-    const Level& l = scene.levels[i];
+    const scene::Level& l = scene.levels[i];
     add_region(&mesh, {l.slab}, l.voids, l.elevation, PointLabel::kFloor);
-    add_region(&mesh, {l.slab}, ceiling_holes(scene, static_cast<int>(i)), l.elevation + l.ceiling,
+    add_region(&mesh, {l.slab}, scene::ceiling_holes(scene, static_cast<int>(i)), l.elevation + l.ceiling,
                PointLabel::kCeiling);
     add_void_edges(&mesh, scene, static_cast<int>(i));
   }
-  for (const Wall& w : scene.walls) add_wall(&mesh, w, scene.levels[w.level].elevation);
-  for (const Railing& r : scene.railings) add_railing(&mesh, r, scene.levels[r.level].elevation);
-  for (const Box& b : scene.boxes) {
+  for (const scene::Wall& w : scene.walls) add_wall(&mesh, w, scene.levels[w.level].elevation);
+  for (const scene::Railing& r : scene.railings) add_railing(&mesh, r, scene.levels[r.level].elevation);
+  for (const scene::Box& b : scene.boxes) {
     const double e = scene.levels[b.level].elevation;
     const Vec2 c = 0.5 * (b.min.head<2>() + b.max.head<2>());
     const Vec2 half = 0.5 * (b.max.head<2>() - b.min.head<2>());
     mesh.add_box(c, half, deg2rad(b.yaw_deg), e + b.min.z(), e + b.max.z(), PointLabel::kBox);
   }
-  for (const Ramp& r : scene.ramps) add_ramp(&mesh, scene, r);
-  for (const VoxelMap& v : scene.voxel_maps) add_voxel_map(&mesh, scene, v);
+  for (const scene::Ramp& r : scene.ramps) add_ramp(&mesh, scene, r);
+  for (const scene::VoxelMap& v : scene.voxel_maps) add_voxel_map(&mesh, scene, v);
   return mesh;
 }
 

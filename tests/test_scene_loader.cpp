@@ -6,11 +6,12 @@
 #include <string>
 
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/sim/lidar_model.hpp"
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/sensor_presets.hpp"
+#include "tsgraphs/scene/scene_geometry.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 
 using namespace tsgraphs;
-using namespace tsgraphs::sim;
+using namespace tsgraphs::scene;
 using ::testing::HasSubstr;
 
 namespace {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "tsgraphs/core/point_cloud.hpp"
-#include "tsgraphs/sim/scene.hpp"
+#include "tsgraphs/scene/scene.hpp"
 
 namespace tsgraphs::sim {
 
@@ -23,16 +23,6 @@ struct LabelledMesh {
 };
 
 /// All surfaces of the scene in the world frame. Reads voxel-map PCD files.
-LabelledMesh build_scene_mesh(const Scene& scene);
-
-/// The solid pieces of a wall once its openings are cut out: boxes along the wall given by
-/// [s0, s1] along its centre line and [z0, z1] above its level.
-struct WallPiece {
-  double s0, s1, z0, z1;
-};
-std::vector<WallPiece> wall_pieces(const Wall& wall);
-
-/// Region of the ceiling of `level`: its slab minus its voids and the next level up's voids.
-std::vector<Polygon2> ceiling_holes(const Scene& scene, int level);
+LabelledMesh build_scene_mesh(const scene::Scene& scene);
 
 }  // namespace tsgraphs::sim

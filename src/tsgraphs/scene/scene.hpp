@@ -8,7 +8,7 @@
 
 #include "tsgraphs/core/polygon.hpp"
 
-namespace tsgraphs::sim {
+namespace tsgraphs::scene {
 
 /// The LiDAR model. Defaults are the scene format's (an OS1-64-like sensor).
 struct SensorSpec {
@@ -153,4 +153,4 @@ struct RailingGeometry {
   static constexpr double kTopRailHeight = 0.05;   ///< the rail on top of the posts
 };
 
-}  // namespace tsgraphs::sim
+}  // namespace tsgraphs::scene

@@ -1,6 +1,6 @@
-#include "tsgraphs/sim/lidar_model.hpp"
+#include "tsgraphs/scene/sensor_presets.hpp"
 
-namespace tsgraphs::sim {
+namespace tsgraphs::scene {
 namespace {
 
 struct Preset {
@@ -67,4 +67,4 @@ bool apply_preset(const std::string& name, SensorSpec* spec) {
   return false;
 }
 
-}  // namespace tsgraphs::sim
+}  // namespace tsgraphs::scene

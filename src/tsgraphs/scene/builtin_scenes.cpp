@@ -1,6 +1,6 @@
-#include "tsgraphs/sim/builtin_scenes.hpp"
+#include "tsgraphs/scene/builtin_scenes.hpp"
 
-namespace tsgraphs::sim {
+namespace tsgraphs::scene {
 
 std::vector<std::string> builtin_scene_names() {
   std::vector<std::string> names;
@@ -15,4 +15,4 @@ std::optional<std::string> builtin_scene_text(const std::string& name) {
   return std::nullopt;
 }
 
-}  // namespace tsgraphs::sim
+}  // namespace tsgraphs::scene

@@ -2,9 +2,9 @@
 /// Reading and validating scene files (docs/scene-format.md).
 #include <string>
 
-#include "tsgraphs/sim/scene.hpp"
+#include "tsgraphs/scene/scene.hpp"
 
-namespace tsgraphs::sim {
+namespace tsgraphs::scene {
 
 /// Loads and validates a scene file. Every problem is an InputError naming the file, the
 /// line and the key: unknown keys, missing slabs, zero-length walls, self-intersecting
@@ -16,11 +16,4 @@ Scene load_scene(const std::string& file);
 /// `base_dir`.
 Scene parse_scene(const std::string& text, const std::string& file, const std::string& base_dir);
 
-/// The walkable surface height at `xy` on `level` (the level's elevation, or a ramp's height
-/// where a ramp joining that level covers the point); false when nothing walkable is there.
-bool walkable_height(const Scene& scene, int level, const Vec2& xy, double* z);
-
-/// Height of a ramp's surface at `xy` (which need not be inside the footprint).
-double ramp_height(const Scene& scene, const Ramp& ramp, const Vec2& xy);
-
-}  // namespace tsgraphs::sim
+}  // namespace tsgraphs::scene

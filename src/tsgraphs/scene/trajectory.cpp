@@ -1,13 +1,13 @@
-#include "tsgraphs/sim/trajectory.hpp"
+#include "tsgraphs/scene/trajectory.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
-#include "tsgraphs/sim/scene_loader.hpp"
+#include "tsgraphs/scene/scene_geometry.hpp"
 
-namespace tsgraphs::sim {
+namespace tsgraphs::scene {
 namespace {
 
 constexpr double kHeightStep = 0.05;       // m of travel between samples of the surface height
@@ -192,4 +192,4 @@ double Trajectory::height_at(double s) const {
   return heights_[i] + (f - i) * (heights_[i + 1] - heights_[i]);
 }
 
-}  // namespace tsgraphs::sim
+}  // namespace tsgraphs::scene

@@ -1,0 +1,27 @@
+#pragma once
+/// Geometry queries on a scene (no ray casting): the solid pieces of walls, the ceiling's
+/// holes, and the walkable surface height.
+#include <vector>
+
+#include "tsgraphs/scene/scene.hpp"
+
+namespace tsgraphs::scene {
+
+/// The solid pieces of a wall once its openings are cut out: boxes along the wall given by
+/// [s0, s1] along its centre line and [z0, z1] above its level.
+struct WallPiece {
+  double s0, s1, z0, z1;
+};
+std::vector<WallPiece> wall_pieces(const Wall& wall);
+
+/// Region of the ceiling of `level`: its slab minus its voids and the next level up's voids.
+std::vector<Polygon2> ceiling_holes(const Scene& scene, int level);
+
+/// The walkable surface height at `xy` on `level` (the level's elevation, or a ramp's height
+/// where a ramp joining that level covers the point); false when nothing walkable is there.
+bool walkable_height(const Scene& scene, int level, const Vec2& xy, double* z);
+
+/// Height of a ramp's surface at `xy` (which need not be inside the footprint).
+double ramp_height(const Scene& scene, const Ramp& ramp, const Vec2& xy);
+
+}  // namespace tsgraphs::scene
