@@ -127,7 +127,7 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
   EXPECT_GE(m["ground"]["precision"].get<double>(), 0.9);
   EXPECT_GE(m["ground"]["recall"].get<double>(), 0.9);
   EXPECT_TRUE(m["consistency"]["N1st"].is_number());
-  const auto events = eval::read_room_events((out / "rooms_events.jsonl").string());
+  const auto events = io::read_room_events((out / "rooms_events.jsonl").string());
   EXPECT_GE(events.size(), 1u);
   for (const auto& e : events) EXPECT_GT(e.rect.size.x() * e.rect.size.y(), 1.0);
   EXPECT_TRUE(m["speed"]["rtf"].is_number());
@@ -148,7 +148,7 @@ TEST_F(RunCli, BaselineModeExtractsOnTheTimerAndIsRecordedInParams) {
   const std::string params = read_file(out / "params.yaml");
   EXPECT_NE(params.find("free_space_method: esdf"), std::string::npos);
   EXPECT_NE(params.find("room_trigger: timer"), std::string::npos);
-  const auto events = eval::read_room_events((out / "rooms_events.jsonl").string());
+  const auto events = io::read_room_events((out / "rooms_events.jsonl").string());
   ASSERT_GE(events.size(), 2u);
   // At most one extraction per period of the 1 s grid that starts at the first keyframe (t = 0).
   for (std::size_t i = 1; i < events.size(); ++i)

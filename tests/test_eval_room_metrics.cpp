@@ -1,10 +1,9 @@
-// Room figures of docs/metrics.md: rooms_events.jsonl lines, consistency across two laps, and
-// detected rooms against ground-truth rooms.
+// Room figures of docs/metrics.md: consistency across two laps, and detected rooms against
+// ground-truth rooms (rooms_events.jsonl itself: test_io_run_folder.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "test_support.hpp"
 #include "tsgraphs/eval/room_metrics.hpp"
 
 using namespace tsgraphs;
@@ -22,8 +21,8 @@ OrientedRect box(double x0, double y0, double x1, double y1) {
 
 Polygon2 box_polygon(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
 
-RoomEvent event(int lap, int level, const OrientedRect& rect, bool is_new = true) {
-  RoomEvent e;
+io::RoomEvent event(int lap, int level, const OrientedRect& rect, bool is_new = true) {
+  io::RoomEvent e;
   e.lap = lap;
   e.level = level;
   e.rect = rect;
@@ -45,97 +44,6 @@ const Polygon2 kL = {{0, 0}, {6, 0}, {6, 2}, {2, 2}, {2, 6}, {0, 6}};
 
 }  // namespace
 
-// ---- events file ------------------------------------------------------------------------------
-
-TEST(RoomEvents, FormatsTheMetricsMdExampleWithItsKeysInOrder) {
-  RoomEvent e;
-  e.t = 41.2;
-  e.lap = 1;
-  e.room_id = 5;
-  e.is_new = true;
-  e.level = 0;
-  e.center = Vec2(12.1, 3.4);
-  e.rect.center = Vec2(12.1, 3.4);
-  e.rect.size = Vec2(8.0, 2.6);
-  e.rect.yaw = 0.0;
-  e.walls = {17, 18, 22};
-  e.kind = "room";
-  EXPECT_EQ(format_room_event(e),
-            R"({"t":41.2,"lap":1,"room_id":5,"new":true,"level":0,"center":[12.1,3.4],)"
-            R"("rect":{"center":[12.1,3.4],"size":[8.0,2.6],"yaw":0.0},"walls":[17,18,22],"kind":"room"})");
-}
-
-class RoomEventsFile : public test::TempDirTest {};
-
-TEST_F(RoomEventsFile, RoundTripsExactly) {
-  RoomEvent a = event(1, 0, box(0.1, 0.2, 4.3, 3.7));
-  a.t = 0.1 + 0.2;  // not a short decimal: the text must still give back the same double
-  a.room_id = 0;
-  a.center = Vec2(1.0 / 3.0, -2.0 / 7.0);
-  a.rect.yaw = 1.0 / 3.0;
-  a.walls = {3, 4, 9, 12};
-  RoomEvent b = event(2, 1, box(-8, -2, 8, 1.25), false);
-  b.t = 1234.5678901234567;
-  b.room_id = 17;
-  b.kind = "corridor";
-  b.walls = {};
-  const std::string path =
-      write_file("rooms_events.jsonl", format_room_event(a) + "\n\n" + format_room_event(b) + "\n");
-  const std::vector<RoomEvent> back = read_room_events(path);
-  ASSERT_EQ(back.size(), 2u);
-  for (std::size_t i = 0; i < 2; ++i) {
-    const RoomEvent& in = i == 0 ? a : b;
-    const RoomEvent& out = back[i];
-    EXPECT_EQ(out.t, in.t);
-    EXPECT_EQ(out.lap, in.lap);
-    EXPECT_EQ(out.room_id, in.room_id);
-    EXPECT_EQ(out.is_new, in.is_new);
-    EXPECT_EQ(out.level, in.level);
-    EXPECT_EQ(out.center, in.center);
-    EXPECT_EQ(out.rect.center, in.rect.center);
-    EXPECT_EQ(out.rect.size, in.rect.size);
-    EXPECT_EQ(out.rect.yaw, in.rect.yaw);
-    EXPECT_EQ(out.walls, in.walls);
-    EXPECT_EQ(out.kind, in.kind);
-  }
-}
-
-TEST_F(RoomEventsFile, MalformedLinesNameTheFileAndLine) {
-  const std::string good = format_room_event(event(1, 0, box(0, 0, 4, 4)));
-  struct Case {
-    std::string line, says;
-  };
-  const std::vector<Case> cases = {
-      {"{\"t\": 1.0, \"lap\": ", "malformed JSON"},
-      {"[1, 2, 3]", "expected a JSON object"},
-      {R"({"t":1,"lap":1,"room_id":5,"new":true,"level":0,"center":[1,2],"walls":[],"kind":"room"})", "'rect'"},
-      {R"({"t":1,"lap":1,"room_id":5,"new":true,"level":0,"center":[1,2],)"
-       R"("rect":{"center":[1,2],"size":"big","yaw":0},"walls":[],"kind":"room"})",
-       "'rect.size'"},
-      {R"({"t":1,"lap":0,"room_id":5,"new":true,"level":0,"center":[1,2],)"
-       R"("rect":{"center":[1,2],"size":[1,1],"yaw":0},"walls":[],"kind":"room"})",
-       "'lap'"},
-      {R"({"t":1,"lap":1,"room_id":5,"new":1,"level":0,"center":[1,2],)"
-       R"("rect":{"center":[1,2],"size":[1,1],"yaw":0},"walls":[],"kind":"room"})",
-       "'new'"},
-      {R"({"t":1,"lap":1,"room_id":5,"new":true,"level":0.5,"center":[1,2],)"
-       R"("rect":{"center":[1,2],"size":[1,1],"yaw":0},"walls":[],"kind":"room"})",
-       "'level'"},
-      {R"({"t":1,"lap":1,"room_id":5,"new":true,"level":0,"center":[1,2],)"
-       R"("rect":{"center":[1,2],"size":[1,1],"yaw":0},"walls":[],"kind":"hall"})",
-       "'kind'"},
-  };
-  for (const Case& c : cases) {
-    // The bad line is line 3: a good line and a blank line come first.
-    const std::string path = write_file("rooms_events.jsonl", good + "\n\n" + c.line + "\n" + good + "\n");
-    const std::string msg = test::input_error_of([&] { read_room_events(path); });
-    EXPECT_EQ(msg.rfind(path + ":3: ", 0), 0u) << msg;
-    EXPECT_NE(msg.find(c.says), std::string::npos) << msg;
-  }
-  const std::string missing = (dir_ / "none.jsonl").string();
-  EXPECT_EQ(test::input_error_of([&] { read_room_events(missing); }).rfind(missing + ": ", 0), 0u);
-}
-
 // ---- consistency ------------------------------------------------------------------------------
 
 TEST(RoomConsistency, CountsPairsOfLapOneAndLapTwoRooms) {
@@ -143,7 +51,7 @@ TEST(RoomConsistency, CountsPairsOfLapOneAndLapTwoRooms) {
   // over all of B and three quarters of C, C's footprint on another level, and a lap-3 event.
   const OrientedRect A = box(0, 0, 4, 4), B = box(8, 0, 12, 4), C = box(12, 0, 16, 4);
   const OrientedRect A2 = box(0.4, 0.3, 4.4, 4.3), E = box(8, 0, 15, 4);
-  const std::vector<RoomEvent> events = {
+  const std::vector<io::RoomEvent> events = {
       event(1, 0, A), event(1, 0, B), event(1, 0, C),
       event(2, 0, A2, false), event(2, 0, E, false), event(2, 1, C),
       event(3, 0, C, false),

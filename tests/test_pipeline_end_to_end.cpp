@@ -85,9 +85,9 @@ Outcome run_scene(const scene::Scene& scene, std::uint64_t seed) {
   std::vector<double> stamps;
   for (const pipeline::ScanRecord& s : slam.scans()) stamps.push_back(s.stamp);
   const std::vector<int> laps = pipeline::laps_of(stamps, est, lap_starts);
-  std::vector<eval::RoomEvent> events;
+  std::vector<io::RoomEvent> events;
   for (const pipeline::RoomEventRecord& e : slam.room_events()) {
-    eval::RoomEvent ev;
+    io::RoomEvent ev;
     ev.t = e.stamp;
     ev.lap = laps[kfs[e.keyframe].scan_index];
     ev.room_id = e.room_id;

@@ -9,7 +9,7 @@
 
 #include "test_support.hpp"
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/eval/room_metrics.hpp"
+#include "tsgraphs/io/run_folder.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/report/run_view.hpp"
 
@@ -76,8 +76,8 @@ levels:
 trajectory: {waypoints: [[1,2],[5,2]], closed: false, laps: 1}
 )";
 
-eval::RoomEvent event(int room_id, int lap) {
-  eval::RoomEvent e;
+io::RoomEvent event(int room_id, int lap) {
+  io::RoomEvent e;
   e.room_id = room_id;
   e.lap = lap;
   e.t = 1.0 * lap;
@@ -98,7 +98,7 @@ class ReportRunView : public test::TempDirTest {
     // Room 1 is first extracted in lap 2 (and again in lap 3); room 3 in lap 1.
     std::string events;
     for (const auto& e : {event(1, 3), event(3, 1), event(1, 2), event(3, 2)}) {
-      events += eval::format_room_event(e) + "\n";
+      events += io::format_room_event(e) + "\n";
     }
     write_file("run_A/rooms_events.jsonl", events);
     write_file("run_A/metrics.json", kMetrics);
@@ -262,7 +262,7 @@ TEST_F(ReportRunView, MalformedTrajectoryAndEventsAreNamedWithTheirLine) {
   write_file("run_A/trajectory.txt", "0.0 1 2 0.55 0 0 0 1\n0.1 1 2\n");
   EXPECT_NE(test::input_error_of([&] { read_run_view(run_.string()); }).find("trajectory.txt:2"), std::string::npos);
   write_file("run_A/trajectory.txt", kTrajectory);
-  write_file("run_A/rooms_events.jsonl", eval::format_room_event(event(1, 1)) + "\n{broken\n");
+  write_file("run_A/rooms_events.jsonl", io::format_room_event(event(1, 1)) + "\n{broken\n");
   EXPECT_NE(test::input_error_of([&] { read_run_view(run_.string()); }).find("rooms_events.jsonl:2"),
             std::string::npos);
 }

@@ -2,79 +2,10 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <fstream>
 #include <limits>
-#include <nlohmann/json.hpp>
-#include <stdexcept>
-
-#include "tsgraphs/core/error.hpp"
 
 namespace tsgraphs::eval {
 namespace {
-
-using nlohmann::json;
-
-// ---- rooms_events.jsonl -------------------------------------------------------------------
-
-// What is wrong with a field of one line; read_room_events adds the file and line.
-struct FieldError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-const json& field(const json& obj, const char* key, const std::string& where) {
-  const auto it = obj.find(key);
-  if (it == obj.end()) throw FieldError("missing key '" + where + key + "'");
-  return *it;
-}
-
-double number_of(const json& obj, const char* key, const std::string& where = "") {
-  const json& v = field(obj, key, where);
-  if (!v.is_number()) throw FieldError("'" + where + key + "' must be a number");
-  return v.get<double>();
-}
-
-int int_of(const json& v, const std::string& name) {
-  if (!v.is_number_integer()) throw FieldError("'" + name + "' must be an integer");
-  const std::int64_t i = v.get<std::int64_t>();
-  if (i < std::numeric_limits<int>::min() || i > std::numeric_limits<int>::max())
-    throw FieldError("'" + name + "' is out of range");
-  return static_cast<int>(i);
-}
-
-Vec2 vec2_of(const json& obj, const char* key, const std::string& where = "") {
-  const json& v = field(obj, key, where);
-  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
-    throw FieldError("'" + where + key + "' must be [x, y]");
-  return {v[0].get<double>(), v[1].get<double>()};
-}
-
-RoomEvent event_of(const json& j) {
-  if (!j.is_object()) throw FieldError("expected a JSON object");
-  RoomEvent e;
-  e.t = number_of(j, "t");
-  e.lap = int_of(field(j, "lap", ""), "lap");
-  if (e.lap < 1) throw FieldError("'lap' counts from 1");
-  e.room_id = int_of(field(j, "room_id", ""), "room_id");
-  const json& is_new = field(j, "new", "");
-  if (!is_new.is_boolean()) throw FieldError("'new' must be true or false");
-  e.is_new = is_new.get<bool>();
-  e.level = int_of(field(j, "level", ""), "level");
-  e.center = vec2_of(j, "center");
-  const json& rect = field(j, "rect", "");
-  if (!rect.is_object()) throw FieldError("'rect' must be an object");
-  e.rect.center = vec2_of(rect, "center", "rect.");
-  e.rect.size = vec2_of(rect, "size", "rect.");
-  if (e.rect.size.x() < 0.0 || e.rect.size.y() < 0.0) throw FieldError("'rect.size' must not be negative");
-  e.rect.yaw = number_of(rect, "yaw", "rect.");
-  const json& walls = field(j, "walls", "");
-  if (!walls.is_array()) throw FieldError("'walls' must be an array of wall ids");
-  for (const json& w : walls) e.walls.push_back(int_of(w, "walls[]"));
-  const json& kind = field(j, "kind", "");
-  if (!kind.is_string() || (kind != "room" && kind != "corridor"))
-    throw FieldError("'kind' must be \"room\" or \"corridor\"");
-  e.kind = kind.get<std::string>();
-  return e;
-}
 
 // ---- pairing ------------------------------------------------------------------------------
 
@@ -101,49 +32,6 @@ std::vector<Candidate> greedy_pairs(std::vector<Candidate> candidates, std::size
 }
 
 }  // namespace
-
-std::string format_room_event(const RoomEvent& e) {
-  // ordered_json keeps the keys in metrics.md's order.
-  nlohmann::ordered_json j;
-  j["t"] = e.t;
-  j["lap"] = e.lap;
-  j["room_id"] = e.room_id;
-  j["new"] = e.is_new;
-  j["level"] = e.level;
-  j["center"] = {e.center.x(), e.center.y()};
-  nlohmann::ordered_json rect;
-  rect["center"] = {e.rect.center.x(), e.rect.center.y()};
-  rect["size"] = {e.rect.size.x(), e.rect.size.y()};
-  rect["yaw"] = e.rect.yaw;
-  j["rect"] = rect;
-  j["walls"] = e.walls;
-  j["kind"] = e.kind;
-  return j.dump();
-}
-
-std::vector<RoomEvent> read_room_events(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw input_error(path, 0, "cannot open file");
-  std::vector<RoomEvent> events;
-  std::string text;
-  int line_no = 0;
-  while (std::getline(in, text)) {
-    ++line_no;
-    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
-    json j;
-    try {
-      j = json::parse(text);
-    } catch (const json::parse_error& err) {
-      throw input_error(path, line_no, std::string("malformed JSON: ") + err.what());
-    }
-    try {
-      events.push_back(event_of(j));
-    } catch (const FieldError& err) {
-      throw input_error(path, line_no, err.what());
-    }
-  }
-  return events;
-}
 
 Consistency consistency_between(const std::vector<DetectedRoom>& first, const std::vector<DetectedRoom>& second) {
   std::vector<Candidate> candidates;
@@ -173,9 +61,9 @@ Consistency consistency_between(const std::vector<DetectedRoom>& first, const st
   return c;
 }
 
-Consistency consistency(const std::vector<RoomEvent>& events) {
+Consistency consistency(const std::vector<io::RoomEvent>& events) {
   std::vector<DetectedRoom> lap1, lap2;
-  for (const RoomEvent& e : events) {
+  for (const io::RoomEvent& e : events) {
     if (e.lap == 1) lap1.push_back({e.rect, std::to_string(e.level)});
     if (e.lap == 2) lap2.push_back({e.rect, std::to_string(e.level)});
   }

@@ -1,13 +1,14 @@
 #pragma once
-/// Room figures of docs/metrics.md: the lines of rooms_events.jsonl ("Room extraction events"),
-/// the consistency of the rooms extracted on two traversals ("Consistency across two traversals",
-/// the paper's Table 1) and detected rooms against rooms_gt.json ("Against ground truth").
+/// Room figures of docs/metrics.md: the consistency of the rooms extracted on two traversals
+/// ("Consistency across two traversals", the paper's Table 1; the events are io::RoomEvent) and
+/// detected rooms against rooms_gt.json ("Against ground truth").
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/core/rect.hpp"
+#include "tsgraphs/io/run_folder.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 
 namespace tsgraphs::eval {
@@ -19,27 +20,6 @@ constexpr double kMatchMinIou = 0.5;
 /// Under- and over-segmentation count an overlap of at least this fraction of the
 /// ground-truth room's area (metrics.md).
 constexpr double kSegmentMinCover = 0.25;
-
-/// One line of rooms_events.jsonl: one room extraction.
-struct RoomEvent {
-  double t = 0.0;            ///< time of the extraction, s
-  int lap = 1;               ///< traversal it happened in, from 1
-  int room_id = -1;          ///< the room node it created or was associated with
-  bool is_new = true;        ///< key "new": false for a re-detection of an existing room node
-  int level = 0;             ///< index of the level
-  Vec2 center = Vec2::Zero();
-  OrientedRect rect;         ///< footprint in the map frame at the time of extraction
-  std::vector<int> walls;    ///< ids of the wall planes that bound it
-  std::string kind = "room"; ///< "room" or "corridor"
-};
-
-/// The event as one line of JSON (keys as in metrics.md, in its order), without the newline.
-/// Numbers round-trip exactly through read_room_events.
-std::string format_room_event(const RoomEvent& event);
-
-/// Every event of a rooms_events.jsonl file, in file order; blank lines are skipped. Throws
-/// InputError naming the file and line for a missing file or a malformed line.
-std::vector<RoomEvent> read_room_events(const std::string& path);
 
 /// A room footprint with the name of its level (the caller maps level indices to names).
 struct DetectedRoom {
@@ -70,7 +50,7 @@ Consistency consistency_between(const std::vector<DetectedRoom>& first, const st
 
 /// consistency_between the footprints of every lap-1 event and of every lap-2 event (new or
 /// associated); events of later laps are not used.
-Consistency consistency(const std::vector<RoomEvent>& events);
+Consistency consistency(const std::vector<io::RoomEvent>& events);
 
 /// Detected rooms against the ground-truth rooms; figures that cannot be computed are empty.
 struct RoomsVsTruth {

@@ -3,15 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <vector>
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/eval/room_metrics.hpp"
 #include "tsgraphs/eval/trajectory_metrics.hpp"
+#include "tsgraphs/io/run_folder.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
@@ -21,30 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-json read_json(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw input_error(path, 0, "cannot open (is this a run folder written by `tsgraphs run`?)");
-  try {
-    return json::parse(in);
-  } catch (const json::exception& e) {
-    throw input_error(path, 0, std::string("malformed JSON: ") + e.what());
-  }
-}
-
-Pose3 pose_of(const json& j, const std::string& file) {
-  try {
-    const auto t = j.at("t").get<std::vector<double>>();
-    const auto q = j.at("q").get<std::vector<double>>();
-    if (t.size() != 3 || q.size() != 4) throw input_error(file, 0, "pose needs t[3] and q[4]");
-    Pose3 T = Pose3::Identity();
-    T.linear() = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
-    T.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
-    return T;
-  } catch (const json::exception& e) {
-    throw input_error(file, 0, std::string("malformed pose: ") + e.what());
-  }
-}
 
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
@@ -59,44 +34,22 @@ double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : s / v.size();
 }
 
-// timings.csv: per-scan front-end times and per-optimisation times and sizes.
-void read_timings(const std::string& path, Metrics* m) {
-  std::ifstream in(path);
-  if (!in) throw input_error(path, 0, "cannot open");
-  std::string line;
-  std::getline(in, line);  // header
+// Front-end, ground and back-end figures from timings.csv.
+void timing_figures(const io::Timings& timings, Metrics* m) {
   std::vector<double> frontend, pgo;
   long tp = 0, fp = 0, fn = 0;
   bool labelled = false;
-  double n_var = 0, n_fac = 0;
-  int line_no = 1;
-  while (std::getline(in, line)) {
-    ++line_no;
-    std::vector<std::string> cols;
-    std::stringstream ss(line);
-    std::string c;
-    while (std::getline(ss, c, ',')) cols.push_back(c);
-    try {
-      if (cols.size() >= 9 && cols[0] == "scan") {
-        frontend.push_back(std::stod(cols[8]));
-        // Ground counts (columns 17-19) are -1 for scans without labels.
-        if (cols.size() >= 20 && std::stol(cols[17]) >= 0) {
-          labelled = true;
-          tp += std::stol(cols[17]);
-          fp += std::stol(cols[18]);
-          fn += std::stol(cols[19]);
-        }
-      } else if (cols.size() >= 13 && cols[0] == "optimization") {
-        pgo.push_back(std::stod(cols[9]));
-        n_var = std::stod(cols[11]);
-        n_fac = std::stod(cols[12]);
-      } else {
-        throw input_error(path, line_no, "expected a scan or optimization row");
-      }
-    } catch (const std::logic_error&) {
-      throw input_error(path, line_no, "malformed number");
+  for (const io::ScanTiming& s : timings.scans) {
+    frontend.push_back(s.frontend_ms);
+    // Ground counts are -1 for scans without labels.
+    if (s.ground_tp >= 0) {
+      labelled = true;
+      tp += s.ground_tp;
+      fp += s.ground_fp;
+      fn += s.ground_fn;
     }
   }
+  for (const io::OptimizationTiming& o : timings.optimizations) pgo.push_back(o.seconds);
   if (!frontend.empty()) {
     m->speed.frontend_ms_mean = mean(frontend);
     m->speed.frontend_ms_p95 = percentile(frontend, 0.95);
@@ -114,8 +67,8 @@ void read_timings(const std::string& path, Metrics* m) {
   if (!pgo.empty()) {
     m->pgo.t_pgo_mean_s = mean(pgo);
     m->pgo.t_pgo_p95_s = percentile(pgo, 0.95);
-    m->pgo.n_variables = n_var;
-    m->pgo.n_factors = n_fac;
+    m->pgo.n_variables = timings.optimizations.back().n_variables;
+    m->pgo.n_factors = timings.optimizations.back().n_factors;
   }
 }
 
@@ -126,32 +79,17 @@ std::vector<Pose3> poses_of(const std::vector<io::StampedPose>& stamped) {
   return out;
 }
 
-/// The room map's footprints in a scene graph document (map frame).
-std::vector<FinalRoom> final_rooms_of(const json& graph, const std::string& graph_file) {
+/// The room map's footprints of a scene graph (map frame).
+std::vector<FinalRoom> final_rooms_of(const io::SceneGraph& graph) {
   std::vector<FinalRoom> rooms;
-  try {
-    if (!graph.contains("rooms")) return rooms;
-    for (const json& r : graph.at("rooms")) {
-      FinalRoom room;
-      const auto c = r.at("rect").at("center").get<std::vector<double>>();
-      const auto s = r.at("rect").at("size").get<std::vector<double>>();
-      room.rect.center = Vec2(c.at(0), c.at(1));
-      room.rect.size = Vec2(s.at(0), s.at(1));
-      room.rect.yaw = r.at("rect").at("yaw").get<double>();
-      room.level = r.at("level").get<int>();
-      rooms.push_back(room);
-    }
-  } catch (const json::exception& e) {
-    throw input_error(graph_file, 0, std::string("malformed rooms: ") + e.what());
-  }
+  for (const io::SceneGraph::Room& r : graph.rooms) rooms.push_back({r.rect, r.level});
   return rooms;
 }
 
 }  // namespace
 
 std::vector<FinalRoom> read_final_rooms(const std::string& run_dir) {
-  const std::string graph_file = run_dir + "/scene_graph.json";
-  return final_rooms_of(read_json(graph_file), graph_file);
+  return final_rooms_of(io::read_scene_graph(run_dir + "/" + io::run_files::kSceneGraph));
 }
 
 Consistency compare_runs(const std::string& run_a, const std::string& run_b) {
@@ -185,55 +123,46 @@ Metrics evaluate_run(const EvalOptions& options) {
   Metrics m;
   const std::string dir = options.run_dir;
   if (!fs::is_directory(dir)) throw input_error(dir, 0, "not a run folder");
-  const std::vector<Pose3> estimate = poses_of(io::read_tum(dir + "/trajectory.txt"));
+  const std::vector<Pose3> estimate = poses_of(io::read_tum(dir + "/" + io::run_files::kTrajectory));
   m.trajectory.ate_loop = ate_loop(estimate);
-  read_timings(dir + "/timings.csv", &m);
-  const json info = read_json(dir + "/run_info.json");
-  if (info.contains("rtf") && info["rtf"].is_number()) m.speed.rtf = info["rtf"].get<double>();
-  if (info.contains("peak_rss_mb") && info["peak_rss_mb"].is_number())
-    m.speed.peak_rss_mb = info["peak_rss_mb"].get<double>();
+  timing_figures(io::read_timings(dir + "/" + io::run_files::kTimings), &m);
+  const io::RunSummary info = io::read_run_summary(dir + "/" + io::run_files::kRunInfo);
+  m.speed.rtf = info.rtf;
+  m.speed.peak_rss_mb = info.peak_rss_mb;
 
-  const std::string graph_file = dir + "/scene_graph.json";
-  const json graph = read_json(graph_file);
+  const std::string graph_file = dir + "/" + io::run_files::kSceneGraph;
+  const io::SceneGraph graph = io::read_scene_graph(graph_file);
   std::vector<std::size_t> kf_scan;
   std::vector<Pose3> kf_pose;
+  for (const io::SceneGraph::Keyframe& k : graph.keyframes) {
+    kf_scan.push_back(k.scan_index);
+    kf_pose.push_back(k.pose.pose());
+  }
   std::vector<MappedWall> walls;
-  try {
-    for (const json& k : graph.at("keyframes")) {
-      kf_scan.push_back(k.at("scan_index").get<std::size_t>());
-      kf_pose.push_back(pose_of(k.at("pose"), graph_file));
-    }
-    for (const json& p : graph.at("planes")) {
-      if (p.at("kind") != "wall" || !p.contains("segment")) continue;
-      MappedWall w;
-      w.id = p.at("id").get<int>();
-      const auto n = p.at("n").get<std::vector<double>>();
-      w.plane.n = Eigen::Vector3d(n.at(0), n.at(1), n.at(2));
-      w.plane.d = p.at("d").get<double>();
-      const auto seg = p.at("segment").get<std::vector<std::vector<double>>>();
-      w.a = Eigen::Vector2d(seg.at(0).at(0), seg.at(0).at(1));
-      w.b = Eigen::Vector2d(seg.at(1).at(0), seg.at(1).at(1));
-      const auto z = p.at("z_range").get<std::vector<double>>();
-      w.z0 = z.at(0);
-      w.z1 = z.at(1);
-      walls.push_back(w);
-    }
-  } catch (const json::exception& e) {
-    throw input_error(graph_file, 0, std::string("malformed scene graph: ") + e.what());
+  for (const io::SceneGraph::Plane& p : graph.planes) {
+    if (p.kind != "wall" || !p.segment || !p.z_range) continue;
+    MappedWall w;
+    w.id = p.id;
+    w.plane.n = p.n;
+    w.plane.d = p.d;
+    w.a = (*p.segment)[0];
+    w.b = (*p.segment)[1];
+    w.z0 = (*p.z_range)[0];
+    w.z1 = (*p.z_range)[1];
+    walls.push_back(w);
   }
   std::vector<std::pair<int, int>> loops;
   std::vector<Pose3> loop_meas;
-  for (const json& e : graph.at("edges")) {
-    if (e.at("type") != "loop") continue;
-    loops.emplace_back(e.at("from").get<int>(), e.at("to").get<int>());
-    loop_meas.push_back(pose_of(e.at("measurement"), graph_file));
+  for (const io::SceneGraph::LoopEdge& e : graph.loop_edges) {
+    loops.emplace_back(e.from, e.to);
+    loop_meas.push_back(e.measurement.pose());
   }
   m.loops.n_loops = static_cast<double>(loops.size());
 
   // Rooms: the two-lap consistency from the events; the final rooms for the ground truth.
-  const std::string events_file = dir + "/rooms_events.jsonl";
+  const std::string events_file = dir + "/" + io::run_files::kRoomEvents;
   if (fs::exists(events_file)) {
-    const Consistency c = consistency(read_room_events(events_file));
+    const Consistency c = consistency(io::read_room_events(events_file));
     m.consistency.N1st = c.N1st;
     m.consistency.N2nd = c.N2nd;
     m.consistency.N_re = c.N_re;
@@ -241,13 +170,8 @@ Metrics evaluate_run(const EvalOptions& options) {
     if (c.dcs) m.consistency.dcs = *c.dcs;
     if (c.d_center) m.consistency.d_center = *c.d_center;
   }
-  const std::vector<FinalRoom> final_rooms = final_rooms_of(graph, graph_file);
-  std::vector<double> level_heights;
-  try {
-    if (graph.contains("levels")) level_heights = graph.at("levels").get<std::vector<double>>();
-  } catch (const json::exception& e) {
-    throw input_error(graph_file, 0, std::string("malformed levels: ") + e.what());
-  }
+  const std::vector<FinalRoom> final_rooms = final_rooms_of(graph);
+  const std::vector<double>& level_heights = graph.levels;
 
   if (options.seq_dir.empty()) return m;
   const io::SequenceReader seq(options.seq_dir);

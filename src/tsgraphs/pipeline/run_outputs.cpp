@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <unordered_set>
 
 #include "tsgraphs/core/voxel_grid.hpp"
@@ -14,14 +13,6 @@
 
 namespace tsgraphs::pipeline {
 namespace {
-
-using nlohmann::json;
-
-json pose_json(const Pose3& T) {
-  const Eigen::Quaterniond q(T.linear());
-  const Eigen::Vector3d& t = T.translation();
-  return {{"t", {t.x(), t.y(), t.z()}}, {"q", {q.x(), q.y(), q.z(), q.w()}}};
-}
 
 struct Rgb {
   unsigned char r, g, b;
@@ -69,115 +60,70 @@ PlaneExtent plane_extent(const Plane& plane, const std::vector<Eigen::Vector3f>&
   return e;
 }
 
-std::string scene_graph_json(const Pipeline& pipeline) {
+io::SceneGraph scene_graph_of(const Pipeline& pipeline) {
   const graph::SituationalGraph& g = pipeline.graph();
-  json keyframes = json::array();
-  for (const graph::KeyframeNode& k : g.keyframes()) {
-    keyframes.push_back({{"id", k.id},
-                         {"scan_index", k.scan_index},
-                         {"stamp", k.stamp},
-                         {"accum_distance", k.accum_distance},
-                         {"pose", pose_json(k.pose)},
-                         {"odom", pose_json(k.odom)}});
-  }
+  io::SceneGraph out;
+  for (const graph::KeyframeNode& k : g.keyframes())
+    out.keyframes.push_back({k.id, k.scan_index, k.stamp, k.accum_distance, io::PoseRecord::of(k.pose),
+                             io::PoseRecord::of(k.odom)});
   std::map<int, std::vector<int>> observers;
   for (const graph::PlaneEdge& e : g.plane_edges()) observers[e.plane].push_back(e.keyframe);
-  json planes = json::array();
   for (const auto& [id, p] : g.planes()) {
-    std::vector<int> kfs = observers[id];
-    std::sort(kfs.begin(), kfs.end());
-    kfs.erase(std::unique(kfs.begin(), kfs.end()), kfs.end());
-    json plane = {{"id", id},
-                  {"kind", p.vertical ? "wall" : "horizontal"},
-                  {"n", {p.plane.n.x(), p.plane.n.y(), p.plane.n.z()}},
-                  {"d", p.plane.d},
-                  {"keyframes", kfs}};
+    io::SceneGraph::Plane plane;
+    plane.id = id;
+    plane.kind = p.vertical ? "wall" : "horizontal";
+    plane.n = p.plane.n;
+    plane.d = p.plane.d;
+    plane.keyframes = observers[id];
+    std::sort(plane.keyframes.begin(), plane.keyframes.end());
+    plane.keyframes.erase(std::unique(plane.keyframes.begin(), plane.keyframes.end()), plane.keyframes.end());
     const auto lm = pipeline.plane_map().landmarks().find(id);
     if (lm != pipeline.plane_map().landmarks().end() && !lm->second.points.empty()) {
       const PlaneExtent e = plane_extent(p.plane, lm->second.points);
-      plane["num_points"] = lm->second.points.size();
-      plane["centroid"] = {e.centroid.x(), e.centroid.y(), e.centroid.z()};
-      if (p.vertical) plane["segment"] = {{e.a.x(), e.a.y()}, {e.b.x(), e.b.y()}};
-      plane["z_range"] = {e.z0, e.z1};
+      plane.num_points = lm->second.points.size();
+      plane.centroid = e.centroid;
+      if (p.vertical) plane.segment = std::array<Vec2, 2>{e.a, e.b};
+      plane.z_range = std::array<double, 2>{e.z0, e.z1};
     }
-    planes.push_back(plane);
+    out.planes.push_back(std::move(plane));
   }
-  json edges = json::array();
   for (const graph::BetweenEdge& e : g.odometry_edges())
-    edges.push_back({{"type", "odometry"}, {"from", e.from}, {"to", e.to}, {"measurement", pose_json(e.measurement)}});
+    out.odometry_edges.push_back({e.from, e.to, io::PoseRecord::of(e.measurement)});
   for (const graph::BetweenEdge& e : g.loop_edges())
-    edges.push_back({{"type", "loop"},
-                     {"from", e.from},
-                     {"to", e.to},
-                     {"fitness", e.fitness},
-                     {"measurement", pose_json(e.measurement)}});
+    out.loop_edges.push_back({e.from, e.to, e.fitness, io::PoseRecord::of(e.measurement)});
   for (const graph::PlaneEdge& e : g.plane_edges())
-    edges.push_back({{"type", "keyframe_plane"},
-                     {"keyframe", e.keyframe},
-                     {"plane", e.plane},
-                     {"measurement", {e.measurement.n.x(), e.measurement.n.y(), e.measurement.n.z(), e.measurement.d}}});
-  json ground_nodes = json::array();
-  for (const ground::GlobalNode* n : pipeline.node_map().nodes()) {
-    ground_nodes.push_back({{"id", n->id},
-                            {"position", {n->position.x(), n->position.y(), n->position.z()}},
-                            {"normal", {n->normal.x(), n->normal.y(), n->normal.z()}},
-                            {"probability", n->probability},
-                            {"observations", n->observations},
-                            {"anchor_keyframe", n->anchor_keyframe},
-                            {"keyframes", n->keyframes}});
-  }
+    out.keyframe_plane_edges.push_back(
+        {e.keyframe, e.plane, Eigen::Vector4d(e.measurement.n.x(), e.measurement.n.y(), e.measurement.n.z(), e.measurement.d)});
   for (const graph::RoomPlanesEdge& e : g.room_edges())
-    edges.push_back({{"type", "room_planes"},
-                     {"room", e.room},
-                     {"kind", rooms::to_string(e.kind)},
-                     {"planes", e.planes},
-                     {"cluster_center", {e.cluster_center.x(), e.cluster_center.y()}}});
-  for (const graph::FloorRoomEdge& e : g.floor_room_edges())
-    edges.push_back({{"type", "floor_room"}, {"floor", e.floor}, {"room", e.room}});
-  // Graph nodes of rooms and floors (optimised centres); "rooms" below are the room map's
+    out.room_planes_edges.push_back({e.room, rooms::to_string(e.kind), e.planes, e.cluster_center});
+  for (const graph::FloorRoomEdge& e : g.floor_room_edges()) out.floor_room_edges.push_back({e.floor, e.room});
+  for (const ground::GlobalNode* n : pipeline.node_map().nodes())
+    out.traversable_nodes.push_back(
+        {n->id, n->position, n->normal, n->probability, n->observations, n->anchor_keyframe, n->keyframes});
+  // Graph nodes of rooms and floors (optimised centres); "rooms" are the room map's
   // footprints, each naming its graph node when it has one.
-  json room_nodes = json::array();
-  for (const auto& [id, r] : g.rooms())
-    room_nodes.push_back({{"id", id},
-                          {"kind", rooms::to_string(r.kind)},
-                          {"level", r.level},
-                          {"center", {r.center.x(), r.center.y()}}});
-  json floors = json::array();
-  for (const auto& [id, f] : g.floors())
-    floors.push_back({{"id", id}, {"level", f.level}, {"center", {f.center.x(), f.center.y()}}});
+  for (const auto& [id, r] : g.rooms()) out.room_nodes.push_back({id, rooms::to_string(r.kind), r.level, r.center});
+  for (const auto& [id, f] : g.floors()) out.floors.push_back({id, f.level, f.center});
   // Each room's free space: the vertices of its latest extraction (for drawing).
   std::map<int, const std::vector<Eigen::Vector3d>*> free_space;
   for (const RoomEventRecord& e : pipeline.room_events()) free_space[e.room_id] = &e.free_space;
-  json rooms = json::array();
   for (const auto& [id, r] : pipeline.room_map().rooms()) {
-    json space = json::array();
-    if (const auto it = free_space.find(id); it != free_space.end())
-      for (const Eigen::Vector3d& p : *it->second) space.push_back({p.x(), p.y(), p.z()});
-    rooms.push_back({{"id", id},
-                     {"kind", rooms::to_string(r.kind)},
-                     {"level", r.level},
-                     {"rect",
-                      {{"center", {r.rect.center.x(), r.rect.center.y()}},
-                       {"size", {r.rect.size.x(), r.rect.size.y()}},
-                       {"yaw", r.rect.yaw}}},
-                     {"walls", r.wall_ids},
-                     {"extractions", r.extraction_count},
-                     {"node", pipeline.room_node_of(id) >= 0 ? json(pipeline.room_node_of(id)) : json(nullptr)},
-                     {"free_space", space}});
+    io::SceneGraph::Room room;
+    room.id = id;
+    room.kind = rooms::to_string(r.kind);
+    room.level = r.level;
+    room.rect = r.rect;
+    room.walls = r.wall_ids;
+    room.extractions = r.extraction_count;
+    if (pipeline.room_node_of(id) >= 0) room.node = pipeline.room_node_of(id);
+    if (const auto it = free_space.find(id); it != free_space.end()) room.free_space = *it->second;
+    out.rooms.push_back(std::move(room));
   }
-  const json doc = {{"format", "tsgraphs-scene-graph"},
-                    {"version", 1},
-                    {"frame", "map"},
-                    {"keyframes", keyframes},
-                    {"planes", planes},
-                    {"traversable_nodes", ground_nodes},
-                    {"rooms", rooms},
-                    {"room_nodes", room_nodes},
-                    {"floors", floors},
-                    {"levels", pipeline.room_layer().levels()},
-                    {"edges", edges}};
-  return doc.dump(1) + "\n";
+  out.levels = pipeline.room_layer().levels();
+  return out;
 }
+
+std::string scene_graph_json(const Pipeline& pipeline) { return io::format_scene_graph(scene_graph_of(pipeline)); }
 
 std::vector<int> laps_of(const std::vector<double>& stamps, const std::vector<Pose3>& poses,
                          const std::vector<double>& lap_starts) {
@@ -207,52 +153,49 @@ std::vector<int> laps_of(const std::vector<double>& stamps, const std::vector<Po
   return laps;
 }
 
-std::string room_events_jsonl(const Pipeline& pipeline, const std::vector<double>& lap_starts) {
+std::vector<io::RoomEvent> room_events_of(const Pipeline& pipeline, const std::vector<double>& lap_starts) {
   std::vector<double> stamps;
   for (const ScanRecord& s : pipeline.scans()) stamps.push_back(s.stamp);
   const std::vector<int> laps = laps_of(stamps, pipeline.trajectory(), lap_starts);
-  std::string out;
+  std::vector<io::RoomEvent> events;
   for (const RoomEventRecord& e : pipeline.room_events()) {
     const std::size_t scan = pipeline.graph().keyframes()[e.keyframe].scan_index;
-    const json line = {{"t", e.stamp},
-                       {"lap", laps.empty() ? 1 : laps[std::min(scan, laps.size() - 1)]},
-                       {"room_id", e.room_id},
-                       {"new", e.is_new},
-                       {"level", e.level},
-                       {"center", {e.rect.center.x(), e.rect.center.y()}},
-                       {"rect",
-                        {{"center", {e.rect.center.x(), e.rect.center.y()}},
-                         {"size", {e.rect.size.x(), e.rect.size.y()}},
-                         {"yaw", e.rect.yaw}}},
-                       {"walls", e.walls},
-                       {"kind", rooms::to_string(e.kind)}};
-    out += line.dump() + "\n";
+    io::RoomEvent ev;
+    ev.t = e.stamp;
+    ev.lap = laps.empty() ? 1 : laps[std::min(scan, laps.size() - 1)];
+    ev.room_id = e.room_id;
+    ev.is_new = e.is_new;
+    ev.level = e.level;
+    ev.center = e.rect.center;
+    ev.rect = e.rect;
+    ev.walls = e.walls;
+    ev.kind = rooms::to_string(e.kind);
+    events.push_back(std::move(ev));
   }
-  return out;
+  return events;
 }
 
-std::string timings_csv(const Pipeline& pipeline) {
-  std::string out =
-      "kind,index,stamp,keyframe,num_points,prefilter_ms,walls_ms,loop_ms,frontend_ms,"
-      "optimization_s,full,n_variables,n_factors,iterations,reason,"
-      "ground_ms,ground_nodes,ground_tp,ground_fp,ground_fn,rooms_ms\n";
-  char line[512];
+std::string room_events_jsonl(const Pipeline& pipeline, const std::vector<double>& lap_starts) {
+  return io::format_room_events(room_events_of(pipeline, lap_starts));
+}
+
+io::Timings timings_of(const Pipeline& pipeline) {
+  io::Timings t;
   for (const ScanRecord& s : pipeline.scans()) {
-    std::snprintf(line, sizeof line, "scan,%zu,%.6f,%d,%zu,%.3f,%.3f,%.3f,%.3f,,,,,,%s,%.3f,%zu,%ld,%ld,%ld,%.3f\n",
-                  s.scan_index, s.stamp, s.keyframe, s.num_points, s.prefilter_ms, s.walls_ms, s.loop_ms,
-                  s.frontend_ms, s.warning.empty() ? "" : ("\"" + s.warning + "\"").c_str(), s.ground_ms,
-                  s.num_ground_nodes, s.ground_tp, s.ground_fp, s.ground_fn, s.rooms_ms);
-    out += line;
+    t.scans.push_back({s.scan_index, s.stamp, s.keyframe, s.num_points, s.prefilter_ms, s.walls_ms, s.loop_ms,
+                       s.frontend_ms, s.warning, s.ground_ms, s.num_ground_nodes, s.ground_tp, s.ground_fp,
+                       s.ground_fn, s.rooms_ms});
   }
   for (std::size_t i = 0; i < pipeline.optimizations().size(); ++i) {
     const OptimizationRecord& o = pipeline.optimizations()[i];
-    std::snprintf(line, sizeof line, "optimization,%zu,%.6f,%d,,,,,,%.6f,%d,%d,%d,%d,%s,,,,,,\n", i,
-                  pipeline.graph().keyframes()[o.after_keyframe].stamp, o.after_keyframe, o.stats.wall_time_s,
-                  o.stats.full ? 1 : 0, o.stats.n_variables, o.stats.n_factors, o.stats.iterations, o.reason.c_str());
-    out += line;
+    t.optimizations.push_back({i, pipeline.graph().keyframes()[o.after_keyframe].stamp, o.after_keyframe,
+                               o.stats.wall_time_s, o.stats.full, o.stats.n_variables, o.stats.n_factors,
+                               o.stats.iterations, o.reason});
   }
-  return out;
+  return t;
 }
+
+std::string timings_csv(const Pipeline& pipeline) { return io::format_timings(timings_of(pipeline)); }
 
 std::string map_ply(const Pipeline& pipeline) {
   struct Vertex {
@@ -324,6 +267,27 @@ std::string map_ply(const Pipeline& pipeline) {
   return out;
 }
 
+io::RunSummary run_summary_of(const Pipeline& pipeline, const RunInfo& info) {
+  io::RunSummary s;
+  s.sequence = info.sequence;
+  s.num_scans = info.num_scans;
+  s.num_skipped = info.num_skipped;
+  s.odometry = info.estimated_odometry ? "lidar" : "input";
+  s.num_keyframes = pipeline.graph().keyframes().size();
+  s.num_planes = pipeline.graph().planes().size();
+  s.num_traversable_nodes = pipeline.node_map().size();
+  s.num_rooms = pipeline.room_map().rooms().size();
+  s.num_room_events = pipeline.room_events().size();
+  s.num_loops = pipeline.graph().loop_edges().size();
+  s.num_optimizations = pipeline.optimizations().size();
+  for (const OptimizationRecord& o : pipeline.optimizations()) s.t_pgo_s += o.stats.wall_time_s;
+  s.sequence_duration_s = info.sequence_duration_s;
+  s.wall_time_s = info.wall_time_s;
+  s.rtf = info.wall_time_s > 0 ? info.sequence_duration_s / info.wall_time_s : 0.0;
+  s.peak_rss_mb = info.peak_rss_mb;
+  return s;
+}
+
 void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std::string& dir) {
   const std::vector<Pose3> poses = pipeline.trajectory();
   std::vector<io::StampedPose> stamped;
@@ -340,25 +304,7 @@ void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std:
   io::write_file_atomic(dir + "/" + run_files::kRoomEvents, room_events_jsonl(pipeline, info.lap_starts));
   io::write_file_atomic(dir + "/" + run_files::kParams, dump_pipeline_config(pipeline.config()));
 
-  double t_pgo = 0.0;
-  for (const OptimizationRecord& o : pipeline.optimizations()) t_pgo += o.stats.wall_time_s;
-  const json summary = {{"sequence", info.sequence},
-                        {"num_scans", info.num_scans},
-                        {"num_skipped", info.num_skipped},
-                        {"odometry", info.estimated_odometry ? "lidar" : "input"},
-                        {"num_keyframes", pipeline.graph().keyframes().size()},
-                        {"num_planes", pipeline.graph().planes().size()},
-                        {"num_traversable_nodes", pipeline.node_map().size()},
-                        {"num_rooms", pipeline.room_map().rooms().size()},
-                        {"num_room_events", pipeline.room_events().size()},
-                        {"num_loops", pipeline.graph().loop_edges().size()},
-                        {"num_optimizations", pipeline.optimizations().size()},
-                        {"t_pgo_s", t_pgo},
-                        {"sequence_duration_s", info.sequence_duration_s},
-                        {"wall_time_s", info.wall_time_s},
-                        {"rtf", info.wall_time_s > 0 ? info.sequence_duration_s / info.wall_time_s : 0.0},
-                        {"peak_rss_mb", info.peak_rss_mb}};
-  io::write_file_atomic(dir + "/" + run_files::kRunInfo, summary.dump(1) + "\n");
+  io::write_file_atomic(dir + "/" + run_files::kRunInfo, io::format_run_summary(run_summary_of(pipeline, info)));
 }
 
 }  // namespace tsgraphs::pipeline

@@ -1,9 +1,11 @@
 #pragma once
 /// What `tsgraphs run` writes into its output folder (docs/run.md): the trajectory of every
 /// scan and the odometry it started from (TUM), the scene graph (JSON), the map (PLY, coloured by layer), the timings
-/// (CSV), the parameters actually used and a run summary.
+/// (CSV), the parameters actually used and a run summary. The files' schema is io/run_folder.hpp;
+/// this fills it from a Pipeline.
 #include <string>
 
+#include "tsgraphs/io/run_folder.hpp"
 #include "tsgraphs/pipeline/pipeline.hpp"
 
 namespace tsgraphs::pipeline {
@@ -20,18 +22,8 @@ struct RunInfo {
   bool estimated_odometry = false;///< the poses came from LiDAR odometry, not the input
 };
 
-/// File names inside a run folder.
-namespace run_files {
-inline constexpr const char* kTrajectory = "trajectory.txt";
-inline constexpr const char* kOdometry = "odometry.txt";
-inline constexpr const char* kSceneGraph = "scene_graph.json";
-inline constexpr const char* kMap = "map.ply";
-inline constexpr const char* kTimings = "timings.csv";
-inline constexpr const char* kParams = "params.yaml";
-inline constexpr const char* kRunInfo = "run_info.json";
-inline constexpr const char* kMetrics = "metrics.json";
-inline constexpr const char* kRoomEvents = "rooms_events.jsonl";
-}  // namespace run_files
+/// File names inside a run folder (io::run_files; the alias keeps the front ends' spelling).
+namespace run_files = io::run_files;
 
 /// Where a mapped plane's points lie (map frame): their centroid projected on the plane, for a
 /// wall the ends of their extent along it (x, y), and their height range.
@@ -46,17 +38,25 @@ PlaneExtent plane_extent(const Plane& plane, const std::vector<Eigen::Vector3f>&
 /// Writes every output file of `pipeline` into the existing folder `dir`.
 void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std::string& dir);
 
-/// The scene graph as JSON text (keyframes, planes, edges).
+/// Every node and edge of the pipeline's graph, its traversable nodes and its room map.
+io::SceneGraph scene_graph_of(const Pipeline& pipeline);
+/// scene_graph.json's text: format_scene_graph(scene_graph_of(pipeline)).
 std::string scene_graph_json(const Pipeline& pipeline);
 /// Lap (1, 2, ...) of each scan: from `lap_starts` when given, else a lap ends when the sensor
 /// comes back within kLapRadius of its start after travelling more than kLapMinTravel
 /// (docs/metrics.md).
 std::vector<int> laps_of(const std::vector<double>& stamps, const std::vector<Pose3>& poses,
                          const std::vector<double>& lap_starts);
+/// The room extractions in time order, each with its lap (laps_of).
+std::vector<io::RoomEvent> room_events_of(const Pipeline& pipeline, const std::vector<double>& lap_starts);
 /// rooms_events.jsonl (docs/metrics.md): one JSON object per room extraction, in time order.
 std::string room_events_jsonl(const Pipeline& pipeline, const std::vector<double>& lap_starts);
-/// The timings table as CSV text: one row per scan, then one per optimisation.
+/// One row per scan, then one per optimisation.
+io::Timings timings_of(const Pipeline& pipeline);
+/// The timings table as CSV text.
 std::string timings_csv(const Pipeline& pipeline);
+/// run_info.json's figures: the pipeline's counts and `info`.
+io::RunSummary run_summary_of(const Pipeline& pipeline, const RunInfo& info);
 /// Binary little-endian PLY of the map: keyframe points in grey, wall faces coloured per plane,
 /// floors and ceilings in beige, traversable nodes in magenta.
 std::string map_ply(const Pipeline& pipeline);

@@ -1,12 +1,8 @@
 // Reading a run folder for the report: the scene graph's walls, nodes, rooms and levels, the
-// trajectory, the timings, and the sequence's ground truth. Trajectories and room events
-// are read with the io / eval readers; the scene graph and timings.csv here, because the
-// report needs other parts of them than eval does (free space, times of each row).
+// trajectory, the timings, and the sequence's ground truth, all through the io readers.
 #include "tsgraphs/report/run_view.hpp"
 
 #include <algorithm>
-#include <charconv>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -16,7 +12,7 @@
 #include <utility>
 
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/eval/room_metrics.hpp"
+#include "tsgraphs/io/run_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
 
@@ -42,56 +38,23 @@ json parse_json(const std::string& text, const std::string& path) {
   }
 }
 
-Eigen::Vector3d vec3(const json& j) {
-  const auto v = j.get<std::vector<double>>();
-  if (v.size() != 3) throw std::out_of_range("expected [x, y, z]");
-  return {v[0], v[1], v[2]};
-}
-
-Vec2 vec2(const json& j) {
-  const auto v = j.get<std::vector<double>>();
-  if (v.size() < 2) throw std::out_of_range("expected [x, y]");
-  return {v[0], v[1]};
-}
-
 /// Walls, nodes, rooms (without first_lap) and levels of scene_graph.json.
-void read_scene_graph(const std::string& path, RunView* run) {
-  const json graph = parse_json(read_text(path), path);
-  std::string part = "planes";  // names the list in the message
-  try {
-    for (const json& p : graph.at("planes")) {
-      if (p.at("kind") != "wall" || !p.contains("segment") || !p.contains("z_range")) continue;
-      RunView::Wall w;
-      w.id = p.at("id").get<int>();
-      const json& seg = p.at("segment");
-      w.a = vec2(seg.at(0));
-      w.b = vec2(seg.at(1));
-      const auto z = p.at("z_range").get<std::vector<double>>();
-      w.z0 = z.at(0);
-      w.z1 = z.at(1);
-      run->walls.push_back(w);
-    }
-    part = "traversable_nodes";
-    for (const json& n : graph.at("traversable_nodes")) run->nodes.push_back({vec3(n.at("position"))});
-    part = "rooms";
-    for (const json& r : graph.at("rooms")) {
-      RunView::Room room;
-      room.id = r.at("id").get<int>();
-      room.kind = r.at("kind").get<std::string>();
-      room.level = r.at("level").get<int>();
-      room.rect.center = vec2(r.at("rect").at("center"));
-      room.rect.size = vec2(r.at("rect").at("size"));
-      room.rect.yaw = r.at("rect").at("yaw").get<double>();
-      if (r.contains("free_space")) {
-        for (const json& p : r.at("free_space")) room.free_space.push_back(vec3(p));
-      }
-      run->rooms.push_back(std::move(room));
-    }
-    part = "levels";
-    if (graph.contains("levels")) run->levels = graph.at("levels").get<std::vector<double>>();
-  } catch (const std::exception& e) {  // json::exception, or out_of_range from a short list
-    throw input_error(path, 0, "malformed " + part + ": " + e.what());
+void take_scene_graph(const io::SceneGraph& graph, RunView* run) {
+  for (const io::SceneGraph::Plane& p : graph.planes) {
+    if (p.kind != "wall" || !p.segment || !p.z_range) continue;
+    run->walls.push_back({p.id, (*p.segment)[0], (*p.segment)[1], (*p.z_range)[0], (*p.z_range)[1]});
   }
+  for (const io::SceneGraph::TraversableNode& n : graph.traversable_nodes) run->nodes.push_back({n.position});
+  for (const io::SceneGraph::Room& r : graph.rooms) {
+    RunView::Room room;
+    room.id = r.id;
+    room.kind = r.kind;
+    room.level = r.level;
+    room.rect = r.rect;
+    room.free_space = r.free_space;
+    run->rooms.push_back(std::move(room));
+  }
+  run->levels = graph.levels;
 }
 
 std::vector<RunView::Stamped> positions(const std::vector<io::StampedPose>& poses) {
@@ -101,58 +64,10 @@ std::vector<RunView::Stamped> positions(const std::vector<io::StampedPose>& pose
   return out;
 }
 
-/// A whole field as a number; false for anything else (empty, trailing characters).
-bool parse_double(const std::string& field, double* v) {
-  const char* end = field.data() + field.size();
-  const auto r = std::from_chars(field.data(), end, *v);
-  return r.ec == std::errc() && r.ptr == end;
-}
-
-/// The scan and optimization rows of timings.csv; columns found by the header's names.
-void read_timings(const std::string& path, RunView* run) {
-  std::istringstream in(read_text(path));
-  auto split = [](const std::string& line) {
-    std::vector<std::string> cols;
-    std::stringstream ss(line);
-    std::string c;
-    while (std::getline(ss, c, ',')) cols.push_back(c);
-    if (!line.empty() && line.back() == ',') cols.emplace_back();  // a last empty column
-    return cols;
-  };
-  std::string line;
-  if (!std::getline(in, line)) throw input_error(path, 1, "empty: expected the header line");
-  const std::vector<std::string> header = split(line);
-  auto column = [&](const std::string& name) {
-    const auto it = std::find(header.begin(), header.end(), name);
-    if (it == header.end()) throw input_error(path, 1, "header has no column '" + name + "'");
-    return static_cast<std::size_t>(it - header.begin());
-  };
-  if (header.empty() || header[0] != "kind") throw input_error(path, 1, "header must start with 'kind'");
-  const std::size_t stamp = column("stamp"), frontend = column("frontend_ms");
-  const std::size_t seconds = column("optimization_s"), full = column("full");
-  int line_no = 1;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    const std::vector<std::string> cols = split(line);
-    auto number = [&](std::size_t i, const char* name) {
-      double v = 0.0;
-      if (i >= cols.size() || !parse_double(cols[i], &v) || !std::isfinite(v)) {
-        throw input_error(path, line_no, std::string("malformed ") + name + " in a " + cols[0] + " row");
-      }
-      return v;
-    };
-    if (cols[0] == "scan") {
-      run->scans.push_back({number(stamp, "stamp"), number(frontend, "frontend_ms")});
-    } else if (cols[0] == "optimization") {
-      const double f = number(full, "full");
-      if (f != 0.0 && f != 1.0) throw input_error(path, line_no, "full must be 0 or 1");
-      run->solves.push_back({number(stamp, "stamp"), number(seconds, "optimization_s"), f == 1.0});
-    } else {
-      throw input_error(path, line_no, "expected a scan or optimization row, got '" + cols[0] + "'");
-    }
-  }
+/// The scan and optimization rows of timings.csv: when, and how long.
+void take_timings(const io::Timings& timings, RunView* run) {
+  for (const io::ScanTiming& s : timings.scans) run->scans.push_back({s.stamp, s.frontend_ms});
+  for (const io::OptimizationTiming& o : timings.optimizations) run->solves.push_back({o.stamp, o.seconds, o.full});
 }
 
 }  // namespace
@@ -162,14 +77,14 @@ RunView read_run_view(const std::string& run_dir, const std::string& seq_dir) {
   const fs::path dir(run_dir);
   RunView run;
   run.label = (dir.has_filename() ? dir.filename() : dir.parent_path().filename()).string();
-  read_scene_graph((dir / "scene_graph.json").string(), &run);
-  run.estimated = positions(io::read_tum((dir / "trajectory.txt").string()));
-  read_timings((dir / "timings.csv").string(), &run);
+  take_scene_graph(io::read_scene_graph((dir / io::run_files::kSceneGraph).string()), &run);
+  run.estimated = positions(io::read_tum((dir / io::run_files::kTrajectory).string()));
+  take_timings(io::read_timings((dir / io::run_files::kTimings).string()), &run);
 
-  const fs::path events = dir / "rooms_events.jsonl";
+  const fs::path events = dir / io::run_files::kRoomEvents;
   if (fs::exists(events)) {
     std::map<int, int> first_lap;
-    for (const eval::RoomEvent& e : eval::read_room_events(events.string())) {
+    for (const io::RoomEvent& e : io::read_room_events(events.string())) {
       const auto [it, inserted] = first_lap.emplace(e.room_id, e.lap);
       if (!inserted) it->second = std::min(it->second, e.lap);
     }
@@ -178,7 +93,7 @@ RunView read_run_view(const std::string& run_dir, const std::string& seq_dir) {
       r.first_lap = it == first_lap.end() ? 0 : it->second;
     }
   }
-  const fs::path metrics = dir / "metrics.json";
+  const fs::path metrics = dir / io::run_files::kMetrics;
   if (fs::exists(metrics)) {
     run.metrics_json = read_text(metrics.string());
     parse_json(run.metrics_json, metrics.string());  // refuse a malformed one here, not in the page

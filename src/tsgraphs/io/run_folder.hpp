@@ -1,0 +1,227 @@
+#pragma once
+/// The run folder's schema (docs/run.md, "Outputs"): the files `tsgraphs run` writes that eval
+/// and report read back, as plain structs, each with the one formatter and the one reader of
+/// its file. Readers throw InputError naming the file, the line (text files) and the key;
+/// unknown JSON keys and unknown CSV columns are ignored, so an older reader takes a newer
+/// folder.
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/core/rect.hpp"
+
+namespace tsgraphs::io {
+
+/// File names inside a run folder.
+namespace run_files {
+inline constexpr const char* kTrajectory = "trajectory.txt";
+inline constexpr const char* kOdometry = "odometry.txt";
+inline constexpr const char* kSceneGraph = "scene_graph.json";
+inline constexpr const char* kMap = "map.ply";
+inline constexpr const char* kTimings = "timings.csv";
+inline constexpr const char* kParams = "params.yaml";
+inline constexpr const char* kRunInfo = "run_info.json";
+inline constexpr const char* kMetrics = "metrics.json";
+inline constexpr const char* kRoomEvents = "rooms_events.jsonl";
+}  // namespace run_files
+
+// ---- scene_graph.json ---------------------------------------------------------------------
+
+/// A pose as the file holds it: translation and quaternion, kept as written so that the
+/// file reads back to the same text.
+struct PoseRecord {
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond q = Eigen::Quaterniond::Identity();  ///< written [x, y, z, w]
+
+  static PoseRecord of(const Pose3& pose);
+  /// The pose, the quaternion normalised.
+  Pose3 pose() const;
+};
+
+/// Every node and edge of the situational graph at the end of a run, map frame. Keys in
+/// brackets are optional when reading (older folders); everything is written.
+struct SceneGraph {
+  struct Keyframe {
+    int id = -1;
+    std::size_t scan_index = 0;  ///< index of its scan in the input sequence
+    double stamp = 0.0;
+    double accum_distance = 0.0;  ///< odometry distance from the start, m
+    PoseRecord pose;              ///< optimised, map <- keyframe
+    PoseRecord odom;              ///< the input odometry
+  };
+  /// A mapped plane; the extent fields exist when it has points (segment: walls only).
+  struct Plane {
+    int id = -1;
+    std::string kind = "wall";  ///< "wall" or "horizontal"
+    Eigen::Vector3d n = Eigen::Vector3d::UnitX();
+    double d = 0.0;
+    std::vector<int> keyframes;                   ///< observers, ascending
+    std::optional<std::size_t> num_points;        ///< [num_points]
+    std::optional<Eigen::Vector3d> centroid;      ///< [centroid], on the plane
+    std::optional<std::array<Vec2, 2>> segment;   ///< [segment]: ends of the points' extent, x-y
+    std::optional<std::array<double, 2>> z_range; ///< [z_range]: the points' heights
+  };
+  struct TraversableNode {
+    int id = -1;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+    double probability = 0.0;
+    int observations = 0;      ///< [observations]
+    int anchor_keyframe = -1;  ///< [anchor_keyframe]
+    std::vector<int> keyframes;///< [keyframes]
+  };
+  /// A footprint of the room map.
+  struct Room {
+    int id = -1;
+    std::string kind = "room";  ///< "room" or "corridor"
+    int level = 0;              ///< index into `levels`
+    OrientedRect rect;
+    std::vector<int> walls;     ///< [walls]
+    int extractions = 0;        ///< [extractions]: extractions associated with it
+    std::optional<int> node;    ///< [node]: its room node, null when it has none
+    std::vector<Eigen::Vector3d> free_space;  ///< [free_space]: vertices of its latest extraction
+  };
+  /// A room node of the graph (optimised centre).
+  struct RoomNode {
+    int id = -1;
+    std::string kind = "room";
+    int level = 0;
+    Vec2 center = Vec2::Zero();
+  };
+  struct Floor {
+    int id = -1;
+    int level = 0;
+    Vec2 center = Vec2::Zero();
+  };
+  struct OdometryEdge {
+    int from = -1, to = -1;
+    PoseRecord measurement;  ///< T_from_to
+  };
+  struct LoopEdge {
+    int from = -1, to = -1;
+    double fitness = 0.0;
+    PoseRecord measurement;  ///< T_from_to
+  };
+  struct KeyframePlaneEdge {
+    int keyframe = -1, plane = -1;
+    Eigen::Vector4d measurement = Eigen::Vector4d::Zero();  ///< n and d in the keyframe's frame
+  };
+  struct RoomPlanesEdge {
+    int room = -1;
+    std::string kind = "room";
+    std::vector<int> planes;
+    Vec2 cluster_center = Vec2::Zero();
+  };
+  struct FloorRoomEdge {
+    int floor = -1, room = -1;
+  };
+
+  std::string frame = "map";
+  std::vector<Keyframe> keyframes;
+  std::vector<Plane> planes;
+  std::vector<TraversableNode> traversable_nodes;  ///< [traversable_nodes]
+  std::vector<Room> rooms;                         ///< [rooms]
+  std::vector<RoomNode> room_nodes;                ///< [room_nodes]
+  std::vector<Floor> floors;                       ///< [floors]
+  std::vector<double> levels;                      ///< [levels]: floor height of each level index
+  /// "edges" holds them in this order, each with its "type"; unknown types are skipped.
+  std::vector<OdometryEdge> odometry_edges;
+  std::vector<LoopEdge> loop_edges;
+  std::vector<KeyframePlaneEdge> keyframe_plane_edges;
+  std::vector<RoomPlanesEdge> room_planes_edges;
+  std::vector<FloorRoomEdge> floor_room_edges;
+};
+
+/// scene_graph.json's text ("format": "tsgraphs-scene-graph", "version": 1).
+std::string format_scene_graph(const SceneGraph& graph);
+/// Reads a scene_graph.json; `keyframes`, `planes` and `edges` are required.
+SceneGraph read_scene_graph(const std::string& path);
+
+// ---- rooms_events.jsonl -------------------------------------------------------------------
+
+/// One line of rooms_events.jsonl: one room extraction (docs/metrics.md).
+struct RoomEvent {
+  double t = 0.0;            ///< time of the extraction, s
+  int lap = 1;               ///< traversal it happened in, from 1
+  int room_id = -1;          ///< the room node it created or was associated with
+  bool is_new = true;        ///< key "new": false for a re-detection of an existing room node
+  int level = 0;             ///< index of the level
+  Vec2 center = Vec2::Zero();
+  OrientedRect rect;         ///< footprint in the map frame at the time of extraction
+  std::vector<int> walls;    ///< ids of the wall planes that bound it
+  std::string kind = "room"; ///< "room" or "corridor"
+};
+
+/// The event as one line of JSON without the newline, keys in alphabetical order (as `run`
+/// has always written them). Numbers round-trip exactly through read_room_events.
+std::string format_room_event(const RoomEvent& event);
+/// The whole file: one line per event.
+std::string format_room_events(const std::vector<RoomEvent>& events);
+/// Every event of a rooms_events.jsonl file, in file order; blank lines are skipped.
+std::vector<RoomEvent> read_room_events(const std::string& path);
+
+// ---- timings.csv --------------------------------------------------------------------------
+
+/// A scan row: what the front end did with one scan.
+struct ScanTiming {
+  std::size_t index = 0;  ///< scan index
+  double stamp = 0.0;
+  int keyframe = -1;      ///< keyframe made from it, -1 for none
+  std::size_t num_points = 0;
+  double prefilter_ms = 0.0, walls_ms = 0.0, loop_ms = 0.0, frontend_ms = 0.0;
+  std::string warning;    ///< column "reason": why it was skipped, "" for none
+  double ground_ms = 0.0;
+  std::size_t ground_nodes = 0;
+  long ground_tp = -1, ground_fp = -1, ground_fn = -1;  ///< -1: the scan had no labels
+  double rooms_ms = 0.0;
+};
+
+/// An optimization row: one back-end run.
+struct OptimizationTiming {
+  std::size_t index = 0;  ///< running number
+  double stamp = 0.0;     ///< stamp of the newest keyframe
+  int keyframe = -1;      ///< the newest keyframe
+  double seconds = 0.0;   ///< column "optimization_s"
+  bool full = false;
+  int n_variables = 0, n_factors = 0, iterations = 0;
+  std::string reason;     ///< "schedule", "loop", "periodic" or "final"
+};
+
+struct Timings {
+  std::vector<ScanTiming> scans;
+  std::vector<OptimizationTiming> optimizations;
+};
+
+/// The CSV text: the header, a row per scan, then a row per optimization.
+std::string format_timings(const Timings& timings);
+/// Reads timings.csv; columns are found by the header's names (every column written today is
+/// required, others are ignored).
+Timings read_timings(const std::string& path);
+
+// ---- run_info.json ------------------------------------------------------------------------
+
+/// The run's summary.
+struct RunSummary {
+  std::string sequence;  ///< input folder or file
+  std::size_t num_scans = 0, num_skipped = 0;
+  std::string odometry = "input";  ///< "input" or "lidar": where the poses came from
+  std::size_t num_keyframes = 0, num_planes = 0, num_traversable_nodes = 0, num_rooms = 0, num_room_events = 0,
+              num_loops = 0, num_optimizations = 0;
+  double t_pgo_s = 0.0;              ///< total back-end time
+  double sequence_duration_s = 0.0;
+  double wall_time_s = 0.0;
+  double rtf = 0.0;                  ///< sequence_duration_s / wall_time_s (0 when no time passed)
+  double peak_rss_mb = 0.0;
+};
+
+std::string format_run_summary(const RunSummary& summary);
+/// Reads run_info.json; every key above is required.
+RunSummary read_run_summary(const std::string& path);
+
+}  // namespace tsgraphs::io
