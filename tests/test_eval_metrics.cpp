@@ -125,8 +125,10 @@ TEST(Metrics, JsonHasEveryKeyAndNullsForMissingFigures) {
   EXPECT_DOUBLE_EQ(j["trajectory"]["ate_loop"].get<double>(), 0.05);
   EXPECT_TRUE(j["trajectory"]["ate_rmse"].is_null());
   for (const char* key : {"t_pgo_s", "n_optimisations", "n_variables", "n_factors"}) EXPECT_TRUE(j["pgo"].contains(key));
-  for (const char* key : {"precision", "recall", "f1", "mean_iou", "under_segmented", "over_segmented", "n_rooms_final"})
-    EXPECT_TRUE(j["rooms_gt"].contains(key));
+  for (const char* key : {"precision", "recall", "f1", "mean_iou", "under_segmented", "over_segmented", "n_rooms_final",
+                          "unsupported", "unsupported_fraction_max", "ipa_precision_micro", "ipa_recall_micro",
+                          "ipa_precision_macro", "ipa_recall_macro"})
+    EXPECT_TRUE(j["rooms_gt"].contains(key) && j["rooms_gt"][key].is_null()) << key;
   for (const char* key : {"mean_dist_err", "mean_angle_err_deg"}) EXPECT_TRUE(j["walls"].contains(key));
   for (const char* key : {"rtf", "frontend_ms_mean", "frontend_ms_p95", "peak_rss_mb"}) EXPECT_TRUE(j["speed"].contains(key));
 }

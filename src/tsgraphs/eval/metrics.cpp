@@ -39,7 +39,13 @@ std::string metrics_json(const Metrics& m) {
                    {"over_segmented", value(r.over_segmented)},
                    {"n_rooms_final", value(r.n_rooms_final)},
                    {"n_truth", value(r.n_truth)},
-                   {"n_truth_visited", value(r.n_truth_visited)}};
+                   {"n_truth_visited", value(r.n_truth_visited)},
+                   {"unsupported", value(r.unsupported)},
+                   {"unsupported_fraction_max", value(r.unsupported_fraction_max)},
+                   {"ipa_precision_micro", value(r.ipa_precision_micro)},
+                   {"ipa_recall_micro", value(r.ipa_recall_micro)},
+                   {"ipa_precision_macro", value(r.ipa_precision_macro)},
+                   {"ipa_recall_macro", value(r.ipa_recall_macro)}};
   j["ground"] = {{"precision", value(m.ground.precision)}, {"recall", value(m.ground.recall)},
                  {"f1", value(m.ground.f1)}};
   const auto& w = m.walls;
@@ -92,6 +98,12 @@ std::string metrics_table(const Metrics& m) {
                                          cell(m.rooms_gt.over_segmented, "%.0f"));
   row("final rooms", cell(m.rooms_gt.n_rooms_final, "%.0f"));
   row("truth rooms visited / all", cell(m.rooms_gt.n_truth_visited, "%.0f") + " / " + cell(m.rooms_gt.n_truth, "%.0f"));
+  row("unsupported (max share)",
+      cell(m.rooms_gt.unsupported, "%.0f") + " (" + cell(m.rooms_gt.unsupported_fraction_max, "%.2f") + ")");
+  row("IPA P / R micro",
+      cell(m.rooms_gt.ipa_precision_micro, "%.3f") + " / " + cell(m.rooms_gt.ipa_recall_micro, "%.3f"));
+  row("IPA P / R macro",
+      cell(m.rooms_gt.ipa_precision_macro, "%.3f") + " / " + cell(m.rooms_gt.ipa_recall_macro, "%.3f"));
   out += "ground\n";
   row("precision / recall / F1",
       cell(m.ground.precision, "%.3f") + " / " + cell(m.ground.recall, "%.3f") + " / " + cell(m.ground.f1, "%.3f"));

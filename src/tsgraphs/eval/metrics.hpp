@@ -21,6 +21,10 @@ struct Metrics {
   struct {
     Figure precision, recall, f1, mean_iou, under_segmented, over_segmented, n_rooms_final;
     Figure n_truth, n_truth_visited;  ///< ground-truth rooms, and those the path enters (recall's base)
+    Figure unsupported;               ///< final rooms more than kMaxUnwalkableShare not walkable (room_support.hpp)
+    Figure unsupported_fraction_max;  ///< the largest non-walkable share of a final room
+    /// IPA room-segmentation figures (ipa_segmentation_metrics.hpp)
+    Figure ipa_precision_micro, ipa_recall_micro, ipa_precision_macro, ipa_recall_macro;
   } rooms_gt;
   struct {
     Figure precision, recall, f1;

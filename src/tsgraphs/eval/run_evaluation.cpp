@@ -5,10 +5,14 @@
 #include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <vector>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/eval/footprint_raster.hpp"
+#include "tsgraphs/eval/ipa_segmentation_metrics.hpp"
 #include "tsgraphs/eval/room_metrics.hpp"
+#include "tsgraphs/eval/room_support.hpp"
 #include "tsgraphs/eval/trajectory_metrics.hpp"
 #include "tsgraphs/io/run_folder.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
@@ -77,6 +81,99 @@ std::vector<Pose3> poses_of(const std::vector<io::StampedPose>& stamped) {
   out.reserve(stamped.size());
   for (const auto& s : stamped) out.push_back(s.pose);
   return out;
+}
+
+/// A final room carried into the truth frame: its footprint and the height of its floor there.
+struct TruthFrameRoom {
+  OrientedRect rect;
+  double z = 0.0;
+};
+
+/// The rooms under T_truth_map; a room's floor is its level's height (0 for an unknown level).
+std::vector<TruthFrameRoom> in_truth_frame(const std::vector<FinalRoom>& rooms, const std::vector<double>& level_heights,
+                                           const Pose3& T) {
+  std::vector<TruthFrameRoom> out;
+  for (const auto& [rect, level] : rooms) {
+    const double floor = level >= 0 && level < static_cast<int>(level_heights.size()) ? level_heights[level] : 0.0;
+    const Eigen::Vector3d c = T * Eigen::Vector3d(rect.center.x(), rect.center.y(), floor);
+    TruthFrameRoom r;
+    r.rect = rect;
+    r.rect.center = c.head<2>();
+    r.rect.yaw = rect.yaw + std::atan2(T.linear()(1, 0), T.linear()(0, 0));
+    r.z = c.z();
+    out.push_back(r);
+  }
+  return out;
+}
+
+/// The name of the level whose height is nearest `z` (ties: the first); "" without levels.
+std::string nearest_level(double z, const std::vector<std::string>& names, const std::vector<double>& heights) {
+  std::string name;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (std::abs(heights[i] - z) < best) {
+      best = std::abs(heights[i] - z);
+      name = names[i];
+    }
+  }
+  return name;
+}
+
+/// The figures of the final rooms (truth frame) against the sequence's rooms_gt.json and
+/// scene.yaml (either may be missing): room F1 and segmentation, IPA precision / recall, and
+/// unsupported rooms, judged by the scene where there is one, else by the true rooms.
+void truth_room_figures(const std::vector<TruthFrameRoom>& placed, const io::SequenceInfo& si,
+                        const scene::Scene* scene, Metrics* m) {
+  if (si.has_rooms) {
+    // Each room on the true level nearest its floor.
+    std::vector<std::string> names;
+    std::vector<double> heights;
+    for (const io::RoomTruth& t : si.rooms) {
+      names.push_back(t.level);
+      heights.push_back(t.elevation);
+    }
+    std::vector<DetectedRoom> detected;
+    std::vector<LevelFootprint> footprints;
+    for (const TruthFrameRoom& r : placed) {
+      detected.push_back({r.rect, nearest_level(r.z, names, heights)});
+      footprints.push_back({r.rect.corners(), detected.back().level});
+    }
+    const std::vector<io::RoomTruth> visited = visited_rooms(si.rooms, si.groundtruth);
+    m->rooms_gt.n_truth = static_cast<double>(si.rooms.size());
+    m->rooms_gt.n_truth_visited = static_cast<double>(visited.size());
+    const RoomsVsTruth r = rooms_vs_truth(detected, visited);
+    m->rooms_gt.precision = r.precision;
+    m->rooms_gt.recall = r.recall;
+    m->rooms_gt.f1 = r.f1;
+    m->rooms_gt.mean_iou = r.mean_iou;
+    m->rooms_gt.under_segmented = r.under_segmented;
+    m->rooms_gt.over_segmented = r.over_segmented;
+    m->rooms_gt.n_rooms_final = r.n_rooms_final;
+    const IpaFigures ipa = ipa_segmentation_metrics(footprints, si.rooms, visited);
+    m->rooms_gt.ipa_precision_micro = ipa.precision_micro;
+    m->rooms_gt.ipa_recall_micro = ipa.recall_micro;
+    m->rooms_gt.ipa_precision_macro = ipa.precision_macro;
+    m->rooms_gt.ipa_recall_macro = ipa.recall_macro;
+    if (scene == nullptr) {
+      const RoomSupport support = room_support(unwalkable_shares(footprints, si.rooms));
+      m->rooms_gt.unsupported = support.unsupported;
+      m->rooms_gt.unsupported_fraction_max = support.max_unwalkable_share;
+    }
+  }
+  if (scene != nullptr) {
+    // Walkability from the building itself: each room on the scene's level nearest its floor.
+    std::vector<std::string> names;
+    std::vector<double> heights;
+    for (const scene::Level& l : scene->levels) {
+      names.push_back(l.name);
+      heights.push_back(l.elevation);
+    }
+    std::vector<LevelFootprint> footprints;
+    for (const TruthFrameRoom& r : placed) footprints.push_back({r.rect.corners(), nearest_level(r.z, names, heights)});
+    const RoomSupport support = room_support(unwalkable_shares(footprints, *scene));
+    m->rooms_gt.unsupported = support.unsupported;
+    m->rooms_gt.unsupported_fraction_max = support.max_unwalkable_share;
+  }
 }
 
 /// The room map's footprints of a scene graph (map frame).
@@ -180,37 +277,23 @@ Metrics evaluate_run(const EvalOptions& options) {
     throw input_error(dir + "/trajectory.txt", 0,
                       std::to_string(estimate.size()) + " poses but the sequence has " +
                           std::to_string(si.odometry.size()) + " scans: not a run of " + options.seq_dir);
-  if (si.has_rooms && !kf_pose.empty() && !si.groundtruth.empty()) {
-    // Run levels are floor heights in the map frame; name each after the nearest true level.
-    const Pose3 T = si.groundtruth[kf_scan.at(0)] * kf_pose[0].inverse();
-    std::vector<DetectedRoom> detected;
-    for (const auto& [rect, level] : final_rooms) {
-      DetectedRoom d;
-      const Eigen::Vector3d c = T * Eigen::Vector3d(rect.center.x(), rect.center.y(),
-                                                    level < static_cast<int>(level_heights.size()) ? level_heights[level] : 0.0);
-      d.rect = rect;
-      d.rect.center = c.head<2>();
-      d.rect.yaw = rect.yaw + std::atan2(T.linear()(1, 0), T.linear()(0, 0));
-      double best = std::numeric_limits<double>::infinity();
-      for (const io::RoomTruth& t : si.rooms) {
-        if (std::abs(t.elevation - c.z()) < best) {
-          best = std::abs(t.elevation - c.z());
-          d.level = t.level;
-        }
-      }
-      detected.push_back(d);
+  const std::string scene_file = seq.scene_path();
+  const std::optional<scene::Scene> scene =
+      scene_file.empty() ? std::nullopt : std::optional<scene::Scene>(scene::load_scene(scene_file));
+  if (!kf_scan.empty() && !si.groundtruth.empty() && kf_scan[0] >= si.groundtruth.size())
+    throw input_error(graph_file, 0, "keyframe scan index beyond the sequence");
+  if (!kf_pose.empty() && !si.groundtruth.empty() && (si.has_rooms || scene)) {
+    const std::vector<TruthFrameRoom> placed =
+        in_truth_frame(final_rooms, level_heights, si.groundtruth[kf_scan.at(0)] * kf_pose[0].inverse());
+    for (std::size_t i = 0; i < placed.size(); ++i) {
+      if (placed[i].rect.area() > kMaxRasterCells * kRasterCell * kRasterCell)
+        throw input_error(graph_file, 0, "'rooms[" + std::to_string(i) + "].rect.size' is too large for a room");
     }
-    const std::vector<io::RoomTruth> visited = visited_rooms(si.rooms, si.groundtruth);
-    m.rooms_gt.n_truth = static_cast<double>(si.rooms.size());
-    m.rooms_gt.n_truth_visited = static_cast<double>(visited.size());
-    const RoomsVsTruth r = rooms_vs_truth(detected, visited);
-    if (r.precision) m.rooms_gt.precision = *r.precision;
-    if (r.recall) m.rooms_gt.recall = *r.recall;
-    if (r.f1) m.rooms_gt.f1 = *r.f1;
-    if (r.mean_iou) m.rooms_gt.mean_iou = *r.mean_iou;
-    m.rooms_gt.under_segmented = r.under_segmented;
-    m.rooms_gt.over_segmented = r.over_segmented;
-    m.rooms_gt.n_rooms_final = r.n_rooms_final;
+    try {
+      truth_room_figures(placed, si, scene ? &*scene : nullptr, &m);
+    } catch (const std::invalid_argument& e) {  // a ground-truth polygon too large to rasterise
+      throw input_error(options.seq_dir, 0, std::string("ground truth: ") + e.what());
+    }
   }
   if (si.groundtruth.empty()) return m;
   m.trajectory.ate_rmse = ate_rmse(estimate, si.groundtruth);
@@ -245,10 +328,8 @@ Metrics evaluate_run(const EvalOptions& options) {
   }
 
   // Walls: faces seen from the keyframes (true poses, labelled points) against the mapped planes.
-  const std::string scene_file = seq.scene_path();
-  if (scene_file.empty() || kf_scan.empty()) return m;
-  const scene::Scene scene = scene::load_scene(scene_file);
-  const std::vector<WallFaceTruth> faces = wall_faces(scene);
+  if (!scene || kf_scan.empty()) return m;
+  const std::vector<WallFaceTruth> faces = wall_faces(*scene);
   std::vector<FaceHits> hits(faces.size());
   for (std::size_t k = 0; k < kf_scan.size(); ++k) {
     if (kf_scan[k] >= seq.size()) throw input_error(graph_file, 0, "keyframe scan index beyond the sequence");
