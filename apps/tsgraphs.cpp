@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "demo.hpp"
+#include "scene_commands.hpp"
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
 
@@ -36,6 +37,7 @@ struct Options {
   std::string bag_out;           ///< simulate: write a bag
   std::string compression = "lz4";
   DemoOptions demo;
+  GenerateOptions generate;
 };
 
 std::uint64_t seed_for(const scene::Scene& scene, long long cli_seed) {
@@ -62,6 +64,14 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   simulate_cmd->add_option("--seed", opt.seed, "random seed (default: the scene's)")->check(CLI::NonNegativeNumber);
   simulate_cmd->add_option("--laps", opt.laps, "laps of the path (default: the scene's)")->check(CLI::PositiveNumber);
+
+  auto* generate_cmd = app.add_subcommand("generate", "a procedural building with ground-truth rooms and a survey path, as a scene file");
+  generate_cmd->add_option("--style", opt.generate.style, "office, atrium, library, open_plan, irregular, multi_storey or mixed")
+      ->required();
+  generate_cmd->add_option("--seed", opt.generate.seed, "the building's seed (the same seed, the same building)")
+      ->capture_default_str();
+  generate_cmd->add_option("--out", opt.generate.out, "scene file to write")->required();
+  generate_cmd->add_option("--laps", opt.generate.laps, "laps of the survey path")->check(CLI::PositiveNumber)->capture_default_str();
 
   auto* draw_cmd = app.add_subcommand("draw-scene", "bird's-eye SVG of a scene and its path");
   draw_cmd->add_option("SCENE", opt.scene, "scene YAML file or built-in scene name")->required();
@@ -151,6 +161,9 @@ int main(int argc, char** argv) {
                                                                 : io::BagCompression::none;
         simulate_bag(scene, opt.bag_out, opt.out, seed_for(scene, opt.seed), opt.laps, c, opt.quiet);
       }
+    } else if (*generate_cmd) {
+      opt.generate.quiet = opt.quiet;
+      generate(opt.generate);
     } else if (*bag_info_cmd) {
       print_bag_info(opt.bag.bag);
     } else if (*draw_cmd) {

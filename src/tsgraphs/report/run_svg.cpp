@@ -508,7 +508,9 @@ class BirdseyeDrawer {
     for (const scene::Railing& r : scene.railings) {
       if (!on_scene_level(r.level)) continue;
       const Vec2 a = frame_.px(r.from), b = frame_.px(r.to);
-      out_ += std::string("<line class=\"scene-railing") + (r.style == scene::RailingStyle::kBars ? " bars" : "") +
+      out_ += std::string("<line class=\"scene-railing") + (r.style == scene::RailingStyle::kBars    ? " bars"
+                                                      : r.style == scene::RailingStyle::kGlass ? " glass"
+                                                                                                : "") +
               "\" x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) + "\" y2=\"" + num(b.y()) +
               "\"/>\n";
     }

@@ -4,7 +4,7 @@
 //
 // Every element a reader (or a test) may want to count carries a class: "wall full",
 // "wall header" (the wall above an opening), "wall sill" (below a window), "door", "window",
-// "railing solid", "railing bars", "box", "void", "room", "ramp", "voxels", "path",
+// "railing solid", "railing bars", "railing glass", "box", "void", "room", "ramp", "voxels", "path",
 // "arrow", "start", "end", "panel", "panel-title". Numbers are printed with two decimals
 // whatever the locale, so the same scene always gives the same bytes.
 #include "tsgraphs/report/scene_svg.hpp"
@@ -54,7 +54,7 @@ constexpr double kLegendRow = 20.0;
 constexpr double kLegendSwatch = 34.0;        // width of the sample drawn before each entry
 constexpr double kLegendInset = 10.0;         // inside the legend's border
 constexpr double kLegendTitleRows = 1.5;      // the heading takes this many rows
-constexpr int kLegendFixedRows = 14;          // entries always shown (voxel maps add one)
+constexpr int kLegendFixedRows = 15;          // entries always shown (voxel maps add one)
 constexpr double kSwatchTall = 12.0;          // heights of the legend's samples: areas,
 constexpr double kSwatchThin = 6.0;           // walls,
 constexpr double kSwatchLine = 5.0;           // the path's colour bar
@@ -107,6 +107,7 @@ constexpr const char* kDoorColour = "#d2561e";
 constexpr const char* kWindowColour = "#2a86d6";
 constexpr const char* kWindowSillFill = "#b9dcf7";
 constexpr const char* kRailingColour = "#1d4fb8";
+constexpr const char* kGlassColour = "#37b6d6";     // glass railings: lighter, the LiDAR sees through them
 constexpr const char* kBoxFill = "#b9834f";
 constexpr const char* kBoxStroke = "#6b4523";
 constexpr const char* kRampLow = "#fbf0cf";
@@ -447,6 +448,7 @@ class SceneDrawer {
     out_ += std::string(".window { stroke: ") + kWindowColour + "; stroke-width: 2; }\n";
     out_ += std::string(".railing.solid { stroke: ") + kRailingColour + "; stroke-linecap: butt; }\n";
     out_ += std::string(".railing.bars line { stroke: ") + kRailingColour + "; }\n";
+    out_ += std::string(".railing.glass { stroke: ") + kGlassColour + "; stroke-linecap: butt; }\n";
     out_ += std::string(".path-casing { fill: none; stroke: ") + kPathCasing +
             "; stroke-width: 6; stroke-linejoin: round; stroke-linecap: round; }\n";
     out_ += ".path { fill: none; stroke-width: 3; stroke-linejoin: round; stroke-linecap: round; }\n";
@@ -658,9 +660,10 @@ class SceneDrawer {
       const Vec2 a = f.px(r.from), b = f.px(r.to);
       const std::string ends = "x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) +
                                "\" y2=\"" + num(b.y()) + "\"";
-      if (r.style == scene::RailingStyle::kSolid) {
+      if (r.style != scene::RailingStyle::kBars) {
         const double width = std::max(scene::RailingGeometry::kSolidThickness * kPxPerMetre, kMinRailingWidth);
-        out_ += "<line class=\"railing solid\" " + ends + " stroke-width=\"" + num(width) + "\"/>\n";
+        const char* cls = r.style == scene::RailingStyle::kGlass ? "railing glass" : "railing solid";
+        out_ += std::string("<line class=\"") + cls + "\" " + ends + " stroke-width=\"" + num(width) + "\"/>\n";
       } else {
         out_ += "<g class=\"railing bars\">" + bars_lines(ends) + "</g>\n";
       }
@@ -838,6 +841,8 @@ class SceneDrawer {
     row("<line class=\"railing solid\" " + ends() + " stroke-width=\"" + num(kMinRailingWidth) + "\"/>\n",
         "railing, solid");
     row("<g class=\"railing bars\">" + bars_lines(ends()) + "</g>\n", "railing, bars");
+    row("<line class=\"railing glass\" " + ends() + " stroke-width=\"" + num(kMinRailingWidth) + "\"/>\n",
+        "railing, glass");
     row(rect("class=\"box\"", kSwatchTall), "box (with its label)");
     row(rect("class=\"ramp\" fill=\"url(#ramp-legend)\"", kSwatchTall) + "<path class=\"ramp-arrow\" d=\"" +
             arrow_path({sx + kSwatchInset, y}, {sx + sw - kSwatchInset, y}) + "\"/>\n",

@@ -64,13 +64,15 @@ struct Wall {
   int line = 0;
 };
 
-enum class RailingStyle { kSolid, kBars };
+/// solid: a panel; bars: posts and a top rail; glass: a panel the LiDAR partly sees through.
+enum class RailingStyle { kSolid, kBars, kGlass };
 
 struct Railing {
   int level = 0;
   Vec2 from = Vec2::Zero(), to = Vec2::Zero();
   double height = 1.0;
   RailingStyle style = RailingStyle::kSolid;
+  double transmission = 0.8;          ///< glass: probability that a ray passes through (a return behind it)
   int line = 0;
 };
 

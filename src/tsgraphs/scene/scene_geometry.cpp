@@ -1,6 +1,7 @@
 #include "tsgraphs/scene/scene_geometry.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace tsgraphs::scene {
@@ -63,6 +64,33 @@ bool walkable_height(const Scene& scene, int level, const Vec2& xy, double* z) {
   }
   *z = l.elevation;
   return true;
+}
+
+void join_wall_ends(Scene* scene) {
+  constexpr double kJoinTolerance = 1e-3;  // m between two ends that count as one corner
+  for (Wall& w : scene->walls) {
+    w.joined_from = w.joined_to = false;
+    for (const Wall& o : scene->walls) {
+      if (&o == &w || o.level != w.level) continue;
+      for (const Vec2& e : {o.from, o.to}) {
+        w.joined_from = w.joined_from || (w.from - e).norm() < kJoinTolerance;
+        w.joined_to = w.joined_to || (w.to - e).norm() < kJoinTolerance;
+      }
+    }
+  }
+}
+
+int level_under(const Scene& scene, const Vec2& xy, double floor_z, double tolerance, int fallback) {
+  int best = fallback;
+  double gap = tolerance;
+  for (std::size_t l = 0; l < scene.levels.size(); ++l) {
+    double z;
+    if (walkable_height(scene, static_cast<int>(l), xy, &z) && std::abs(z - floor_z) < gap) {
+      gap = std::abs(z - floor_z);
+      best = static_cast<int>(l);
+    }
+  }
+  return best;
 }
 
 }  // namespace tsgraphs::scene

@@ -24,4 +24,13 @@ bool walkable_height(const Scene& scene, int level, const Vec2& xy, double* z);
 /// Height of a ramp's surface at `xy` (which need not be inside the footprint).
 double ramp_height(const Scene& scene, const Ramp& ramp, const Vec2& xy);
 
+/// Sets each wall's joined_from / joined_to: an end that meets an end of another wall of its
+/// level, so that the wall reaches half its thickness past it and the corner is closed. The
+/// loader calls it; so does anything that builds a scene in memory.
+void join_wall_ends(Scene* scene);
+
+/// The level whose walkable surface at `xy` is nearest to height `floor_z` and within
+/// `tolerance` of it; `fallback` when there is none (a pose between storeys, off the slab).
+int level_under(const Scene& scene, const Vec2& xy, double floor_z, double tolerance, int fallback);
+
 }  // namespace tsgraphs::scene

@@ -47,7 +47,7 @@ class SceneParser {
     for (const YamlMap& m : root_.maps("ramps")) parse_ramp(m);
     for (const YamlMap& m : root_.maps("rooms")) parse_room(m);
     parse_trajectory(root_.map("trajectory"));
-    join_wall_ends();
+    join_wall_ends(&scene_);
     warn_about_path();
     warn_about_storeys();
     return std::move(scene_);
@@ -253,7 +253,7 @@ class SceneParser {
   }
 
   void parse_railing(const YamlMap& m) {
-    m.check_keys({"level", "from", "to", "height", "style"});
+    m.check_keys({"level", "from", "to", "height", "style", "transmission"});
     Railing r;
     r.line = m.line();
     r.level = level_index(m, "level");
@@ -265,7 +265,12 @@ class SceneParser {
     const std::string style = m.get<std::string>("style", "solid");
     if (style == "solid") r.style = RailingStyle::kSolid;
     else if (style == "bars") r.style = RailingStyle::kBars;
-    else throw m.error("style", "unknown railing style '" + style + "' (solid, bars)");
+    else if (style == "glass") r.style = RailingStyle::kGlass;
+    else throw m.error("style", "unknown railing style '" + style + "' (solid, bars, glass)");
+    if (m.has("transmission") && r.style != RailingStyle::kGlass)
+      throw m.error("transmission", "only a glass railing lets rays through (style: glass)");
+    r.transmission = m.get<double>("transmission", r.transmission);
+    if (!(r.transmission >= 0.0 && r.transmission <= 1.0)) throw m.error("transmission", "must lie in [0, 1]");
     scene_.railings.push_back(r);
   }
 
@@ -405,20 +410,6 @@ class SceneParser {
         throw input_error(root_.file(), w.line,
                           where + ": " + fmt_point(w.xy) + " is inside the wall walls[" + std::to_string(i) +
                               "] (line " + std::to_string(wall.line) + ")");
-      }
-    }
-  }
-
-  // Walls whose ends meet are joined: each reaches half its thickness past the shared end.
-  void join_wall_ends() {
-    constexpr double kJoinTolerance = 1e-3;  // m between two ends that count as one corner
-    for (Wall& w : scene_.walls) {
-      for (const Wall& o : scene_.walls) {
-        if (&o == &w || o.level != w.level) continue;
-        for (const Vec2& e : {o.from, o.to}) {
-          w.joined_from = w.joined_from || (w.from - e).norm() < kJoinTolerance;
-          w.joined_to = w.joined_to || (w.to - e).norm() < kJoinTolerance;
-        }
       }
     }
   }

@@ -5,12 +5,31 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 namespace tsgraphs::sim {
 namespace {
 
 constexpr int kPacket = 16;
+constexpr int kMaxPassThrough = 4;     // glass panes one ray may pass before it counts as lost
+constexpr float kPassThroughStep = 1e-3f;  // m beyond a pane where the ray goes on
+
+// A deterministic draw in [0, 1) for a ray meeting a pane: the same scan gives the same
+// returns whatever the threads, and neighbouring rays draw independently.
+float pass_draw(const Eigen::Vector3f& origin, const Eigen::Vector3f& dir, unsigned prim, int pane) {
+  std::uint32_t bits[7];
+  std::memcpy(bits, origin.data(), 12);
+  std::memcpy(bits + 3, dir.data(), 12);
+  bits[6] = prim * 2654435761u + static_cast<std::uint32_t>(pane);
+  std::uint64_t h = 0x243F6A8885A308D3ULL;
+  for (std::uint32_t b : bits) {
+    h ^= b;
+    h *= 0x9E3779B97F4A7C15ULL;
+    h ^= h >> 29;
+  }
+  return static_cast<float>(h >> 40) * (1.0f / 16777216.0f);
+}
 
 // The floor and the ceiling are one physical slab between storeys; which face a ray meets
 // decides the class: from above it is floor, from below ceiling.
@@ -44,6 +63,8 @@ struct RayCaster::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   std::vector<std::uint32_t> labels;
+  std::vector<float> transmission;
+  bool any_glass = false;
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -80,6 +101,35 @@ struct RayCaster::Impl {
     ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcIntersect16(valid, scene, &ctx, &rh);
     for (int i = 0; i < n; ++i) {
+      // A glass pane lets some rays through: follow them to what lies behind.
+      for (int pane = 0; any_glass && pane < kMaxPassThrough && rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID; ++pane) {
+        const unsigned prim = rh.hit.primID[i];
+        if (transmission[prim] <= 0.0f || pass_draw(origin, world_dir[i], prim, pane) >= transmission[prim]) break;
+        RTCRayHit one;
+        one.ray.org_x = origin.x();
+        one.ray.org_y = origin.y();
+        one.ray.org_z = origin.z();
+        one.ray.dir_x = world_dir[i].x();
+        one.ray.dir_y = world_dir[i].y();
+        one.ray.dir_z = world_dir[i].z();
+        one.ray.tnear = rh.ray.tfar[i] + kPassThroughStep;
+        one.ray.tfar = max_range;
+        one.ray.time = 0.0f;
+        one.ray.mask = 0xFFFFFFFFu;
+        one.ray.id = 0;
+        one.ray.flags = 0;
+        one.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        one.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        RTCIntersectContext one_ctx;
+        rtcInitIntersectContext(&one_ctx);
+        rtcIntersect1(scene, &one_ctx, &one);
+        rh.hit.geomID[i] = one.hit.geomID;
+        rh.hit.primID[i] = one.hit.primID;
+        rh.ray.tfar[i] = one.ray.tfar;
+        rh.hit.Ng_x[i] = one.hit.Ng_x;
+        rh.hit.Ng_y[i] = one.hit.Ng_y;
+        rh.hit.Ng_z[i] = one.hit.Ng_z;
+      }
       RayHit& h = out[i];
       if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID || rh.ray.tfar[i] < min_range) {
         h = RayHit{};
@@ -120,6 +170,8 @@ RayCaster::RayCaster(const LabelledMesh& mesh) : impl_(std::make_unique<Impl>())
   }
   rtcCommitScene(impl_->scene);
   impl_->labels = mesh.labels;
+  impl_->transmission = mesh.transmission;
+  for (float t : mesh.transmission) impl_->any_glass = impl_->any_glass || t > 0.0f;
 }
 
 RayCaster::~RayCaster() = default;

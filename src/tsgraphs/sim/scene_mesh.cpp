@@ -37,9 +37,10 @@ void add_railing(LabelledMesh* mesh, const scene::Railing& r, double elevation) 
   const Vec2 dir = d / length;
   const double yaw = std::atan2(dir.y(), dir.x());
   const Vec2 mid = 0.5 * (r.from + r.to);
-  if (r.style == scene::RailingStyle::kSolid) {
+  if (r.style != scene::RailingStyle::kBars) {
+    const float transmission = r.style == scene::RailingStyle::kGlass ? static_cast<float>(r.transmission) : 0.0f;
     mesh->add_box(mid, {0.5 * length, 0.5 * scene::RailingGeometry::kSolidThickness}, yaw, elevation, elevation + r.height,
-                  PointLabel::kRailing);
+                  PointLabel::kRailing, transmission);
     return;
   }
   const double top = elevation + r.height;
@@ -124,17 +125,18 @@ void add_voxel_map(LabelledMesh* mesh, const scene::Scene& scene, const scene::V
 }  // namespace
 
 void LabelledMesh::add_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                                PointLabel label) {
+                                PointLabel label, float transmission_) {
   const int base = static_cast<int>(vertices.size());
   vertices.push_back(a.cast<float>());
   vertices.push_back(b.cast<float>());
   vertices.push_back(c.cast<float>());
   triangles.emplace_back(base, base + 1, base + 2);
   labels.push_back(static_cast<std::uint32_t>(label));
+  transmission.push_back(transmission_);
 }
 
 void LabelledMesh::add_box(const Eigen::Vector2d& center, const Eigen::Vector2d& half_size, double yaw, double z0,
-                           double z1, PointLabel label) {
+                           double z1, PointLabel label, float transmission_) {
   const Vec2 ax(std::cos(yaw), std::sin(yaw));
   const Vec2 ay(-ax.y(), ax.x());
   const Vec2 corners2[4] = {center - half_size.x() * ax - half_size.y() * ay,
@@ -151,6 +153,8 @@ void LabelledMesh::add_box(const Eigen::Vector2d& center, const Eigen::Vector2d&
     triangles.emplace_back(base + f[0], base + f[2], base + f[3]);
     labels.push_back(static_cast<std::uint32_t>(label));
     labels.push_back(static_cast<std::uint32_t>(label));
+    transmission.push_back(transmission_);
+    transmission.push_back(transmission_);
   }
 }
 

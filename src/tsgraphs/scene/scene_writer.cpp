@@ -1,0 +1,179 @@
+#include "tsgraphs/scene/scene_writer.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "tsgraphs/scene/sensor_presets.hpp"
+
+namespace tsgraphs::scene {
+namespace {
+
+/// A length to 0.1 mm, without trailing zeros.
+std::string num(double v) {
+  if (std::abs(v) < 5e-5) v = 0.0;
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.4f", v);
+  std::string s = text;
+  while (!s.empty() && s.back() == '0') s.pop_back();
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  return s == "-0" ? "0" : s;
+}
+
+/// A rate or a noise figure, to six significant digits.
+std::string fig(double v) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.6g", v);
+  return text;
+}
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string point(const Vec2& p) { return "[" + num(p.x()) + ", " + num(p.y()) + "]"; }
+
+std::string polygon(const Polygon2& poly) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < poly.size(); ++i) s += (i ? ", " : "") + point(poly[i]);
+  return s + "]";
+}
+
+const char* railing_style(RailingStyle s) {
+  switch (s) {
+    case RailingStyle::kSolid: return "solid";
+    case RailingStyle::kBars: return "bars";
+    case RailingStyle::kGlass: return "glass";
+  }
+  return "solid";
+}
+
+const char* voxel_label(VoxelLabel l) {
+  switch (l) {
+    case VoxelLabel::kWall: return "wall";
+    case VoxelLabel::kBox: return "box";
+    case VoxelLabel::kRailing: return "railing";
+    case VoxelLabel::kAuto: return "auto";
+  }
+  return "auto";
+}
+
+}  // namespace
+
+std::string scene_yaml(const Scene& scene, const std::string& header) {
+  std::ostringstream out;
+  if (!header.empty()) {
+    std::istringstream lines(header);
+    for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
+    out << "\n";
+  }
+  const auto level_name = [&](int i) { return quoted(scene.levels.at(i).name); };
+  out << "name: " << quoted(scene.name) << "\n";
+  out << "seed: " << scene.seed << "\n\n";
+
+  const SensorSpec& s = scene.sensor;
+  out << "sensor:\n";
+  SensorSpec preset;
+  const bool has_preset = !s.preset.empty() && apply_preset(s.preset, &preset);
+  if (has_preset) out << "  preset: " << s.preset << "\n";
+  if (!has_preset || s.vertical_angles_deg != preset.vertical_angles_deg || s.columns != preset.columns) {
+    out << "  columns: " << s.columns << "\n  vertical_angles_deg: [";
+    for (std::size_t i = 0; i < s.vertical_angles_deg.size(); ++i) out << (i ? ", " : "") << fig(s.vertical_angles_deg[i]);
+    out << "]\n";
+  }
+  if (!has_preset || s.max_range != preset.max_range) out << "  max_range: " << fig(s.max_range) << "\n";
+  if (!has_preset || s.min_range != preset.min_range) out << "  min_range: " << fig(s.min_range) << "\n";
+  if (!has_preset || s.rate_hz != preset.rate_hz) out << "  rate_hz: " << fig(s.rate_hz) << "\n";
+  if (!has_preset || s.range_noise_std != preset.range_noise_std)
+    out << "  range_noise_std: " << fig(s.range_noise_std) << "\n";
+  if (s.dropout > 0.0) out << "  dropout: " << fig(s.dropout) << "\n";
+  out << "  mount_height: " << num(s.mount_height) << "\n";
+  if (s.tilt_deg != 0.0) out << "  tilt_deg: " << fig(s.tilt_deg) << "\n";
+  out << "\nodometry:\n  trans_noise_per_m: " << fig(scene.odometry.trans_noise_per_m)
+      << "\n  yaw_noise_per_rad: " << fig(scene.odometry.yaw_noise_per_rad)
+      << "\n  yaw_noise_per_m: " << fig(scene.odometry.yaw_noise_per_m) << "\n\nlevels:\n";
+  for (const Level& l : scene.levels) {
+    out << "  - name: " << quoted(l.name) << "\n    elevation: " << num(l.elevation) << "\n    ceiling: " << num(l.ceiling)
+        << "\n    slab: " << polygon(l.slab) << "\n";
+    if (!l.voids.empty()) {
+      out << "    voids:\n";
+      for (const Polygon2& v : l.voids) out << "      - " << polygon(v) << "\n";
+    }
+  }
+  if (!scene.walls.empty()) {
+    out << "\nwalls:\n";
+    for (const Wall& w : scene.walls) {
+      out << "  - {level: " << level_name(w.level) << ", from: " << point(w.from) << ", to: " << point(w.to)
+          << ", thickness: " << num(w.thickness) << ", height: " << num(w.height);
+      if (!w.openings.empty()) {
+        out << ", openings: [";
+        for (std::size_t i = 0; i < w.openings.size(); ++i) {
+          const Opening& o = w.openings[i];
+          out << (i ? ", " : "") << "{at: " << num(o.at) << ", width: " << num(o.width) << ", height: " << num(o.height)
+              << ", sill: " << num(o.sill) << "}";
+        }
+        out << "]";
+      }
+      out << "}\n";
+    }
+  }
+  if (!scene.railings.empty()) {
+    out << "\nrailings:\n";
+    for (const Railing& r : scene.railings) {
+      out << "  - {level: " << level_name(r.level) << ", from: " << point(r.from) << ", to: " << point(r.to)
+          << ", height: " << num(r.height) << ", style: " << railing_style(r.style);
+      if (r.style == RailingStyle::kGlass) out << ", transmission: " << fig(r.transmission);
+      out << "}\n";
+    }
+  }
+  if (!scene.boxes.empty()) {
+    out << "\nboxes:\n";
+    for (const Box& b : scene.boxes) {
+      out << "  - {level: " << level_name(b.level) << ", min: [" << num(b.min.x()) << ", " << num(b.min.y()) << ", "
+          << num(b.min.z()) << "], max: [" << num(b.max.x()) << ", " << num(b.max.y()) << ", " << num(b.max.z()) << "]";
+      if (b.yaw_deg != 0.0) out << ", yaw_deg: " << fig(b.yaw_deg);
+      out << ", label: " << quoted(b.label) << "}\n";
+    }
+  }
+  if (!scene.voxel_maps.empty()) {
+    out << "\nvoxel_maps:\n";
+    for (const VoxelMap& v : scene.voxel_maps) {
+      out << "  - {file: " << quoted(v.file) << ", voxel_size: " << fig(v.voxel_size) << ", level: " << level_name(v.level)
+          << ", label: " << voxel_label(v.label) << ", offset: [" << num(v.offset.x()) << ", " << num(v.offset.y()) << ", "
+          << num(v.offset.z()) << "], yaw_deg: " << fig(v.yaw_deg) << "}\n";
+    }
+  }
+  if (!scene.ramps.empty()) {
+    out << "\nramps:\n";
+    for (const Ramp& r : scene.ramps) {
+      out << "  - {from_level: " << level_name(r.from_level) << ", to_level: " << level_name(r.to_level)
+          << ", polygon: " << polygon(r.polygon) << ", axis: [" << fig(r.axis.x()) << ", " << fig(r.axis.y()) << "]}\n";
+    }
+  }
+  if (!scene.rooms.empty()) {
+    out << "\nrooms:\n";
+    for (const Room& r : scene.rooms)
+      out << "  - {name: " << quoted(r.name) << ", level: " << level_name(r.level) << ", polygon: " << polygon(r.polygon)
+          << "}\n";
+  }
+  const TrajectorySpec& t = scene.trajectory;
+  out << "\ntrajectory:\n  level: " << level_name(t.level) << "\n  waypoints:\n";
+  int level = t.level;
+  for (std::size_t i = 0; i < t.waypoints.size(); ++i) {
+    const Waypoint& w = t.waypoints[i];
+    out << "    - [" << num(w.xy.x()) << ", " << num(w.xy.y());
+    if (w.level != level || (i == 0 && w.level != t.level)) out << ", " << level_name(w.level);
+    level = w.level;
+    out << "]\n";
+  }
+  out << "  closed: " << (t.closed ? "true" : "false") << "\n  laps: " << t.laps << "\n  speed: " << fig(t.speed)
+      << "\n  yaw_rate_deg: " << fig(t.yaw_rate_deg) << "\n";
+  return out.str();
+}
+
+}  // namespace tsgraphs::scene
