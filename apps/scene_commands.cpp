@@ -12,8 +12,10 @@ namespace tsgraphs::app {
 void generate(const GenerateOptions& options) {
   if (options.out.empty()) throw input_error("generate", 0, "give --out SCENE.yaml");
   if (options.laps < 1) throw input_error("--laps", 0, "must be >= 1");
+  if (!(options.size > 0.0 && options.size <= 1.0)) throw input_error("--size", 0, "must lie in (0, 1]");
   scene::GeneratorConfig config;
   config.laps = options.laps;
+  config.size = options.size;
   const scene::GeneratedBuilding b = scene::generate_building(options.style, options.seed, config);
   io::write_file_atomic(options.out, b.yaml);
   if (!options.quiet) {

@@ -11,6 +11,7 @@ struct GenerateOptions {
   std::uint64_t seed = 1;
   std::string out;     ///< scene file to write
   int laps = 2;        ///< laps of the survey path
+  double size = 1.0;   ///< scales the building's extent, (0, 1]
   bool quiet = false;
 };
 

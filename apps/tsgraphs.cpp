@@ -72,6 +72,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   generate_cmd->add_option("--out", opt.generate.out, "scene file to write")->required();
   generate_cmd->add_option("--laps", opt.generate.laps, "laps of the survey path")->check(CLI::PositiveNumber)->capture_default_str();
+  generate_cmd->add_option("--size", opt.generate.size, "scales the building's extent, (0, 1] (small buildings for quick tests)")
+      ->capture_default_str();
 
   auto* draw_cmd = app.add_subcommand("draw-scene", "bird's-eye SVG of a scene and its path");
   draw_cmd->add_option("SCENE", opt.scene, "scene YAML file or built-in scene name")->required();

@@ -57,12 +57,16 @@ constexpr double kLevelMatch = 0.3;          // m between a pose's floor height 
 struct StyleSize {
   double w_lo, w_hi, h_lo, h_hi;
 };
-StyleSize size_of(const std::string& style) {
-  if (style == "office") return {14, 28, 9, 20};
-  if (style == "atrium") return {18, 30, 16, 24};
-  if (style == "library") return {18, 32, 14, 22};
-  if (style == "open_plan") return {20, 40, 15, 30};
-  return {14, 24, 14, 20};  // irregular: each of its two wings
+StyleSize size_of(const std::string& style, double scale) {
+  StyleSize z = style == "office"      ? StyleSize{14, 28, 9, 20}
+                : style == "atrium"    ? StyleSize{18, 30, 16, 24}
+                : style == "library"   ? StyleSize{18, 32, 14, 22}
+                : style == "open_plan" ? StyleSize{20, 40, 15, 30}
+                                       : StyleSize{14, 24, 14, 20};  // irregular: each of its two wings
+  // Scaled down, but never below what the style needs.
+  const Vec2 m = minimum_region(style);
+  return {std::max(m.x(), z.w_lo * scale), std::max(m.x(), z.w_hi * scale), std::max(m.y(), z.h_lo * scale),
+          std::max(m.y(), z.h_hi * scale)};
 }
 
 void fill(const std::string& style, FloorPlan* plan, const Region& r, Rng& rng, const std::string& prefix,
@@ -133,8 +137,8 @@ Storey lobby_below(const Region& r, const FloorPlanRules& rules, double ceiling)
   return s;
 }
 
-Building single_wing(const std::string& style, Rng& rng) {
-  const StyleSize z = size_of(style);
+Building single_wing(const std::string& style, double scale, Rng& rng) {
+  const StyleSize z = size_of(style, scale);
   const Region r{{0, 0}, {rng.uniform(z.w_lo, z.w_hi), rng.uniform(z.h_lo, z.h_hi)}};
   const FloorPlanRules rules = draw_rules(rng);
   const double ceiling = rng.uniform(kCeilingMin, kCeilingMax);
@@ -147,7 +151,7 @@ Building single_wing(const std::string& style, Rng& rng) {
   s.ceiling = ceiling;
   if (style == "irregular") {
     // Two wings: rooms merged into L and T shapes beside a diagonal corridor or a pentagonal ring.
-    const double w0 = rng.uniform(12.0, 18.0);
+    const double w0 = std::max(minimum_region("irregular").x(), rng.uniform(12.0, 18.0) * scale);
     const Region a{{0, 0}, {w0, r.hi.y()}}, c{{w0, 0}, {w0 + r.hi.x(), r.hi.y()}};
     fill("irregular", &s.plan, a, rng, "west_", IrregularVariant::kMergedRooms);
     fill("irregular", &s.plan, c, rng, "east_", rng.chance(0.5) ? IrregularVariant::kDiagonal : IrregularVariant::kPentagon);
@@ -159,7 +163,7 @@ Building single_wing(const std::string& style, Rng& rng) {
   return b;
 }
 
-Building mixed(Rng& rng) {
+Building mixed(double scale, Rng& rng) {
   static const std::vector<std::string> kWingStyles = {"office", "atrium", "library", "open_plan", "irregular"};
   const int n = rng.integer(2, 3);
   std::vector<std::string> styles;
@@ -168,10 +172,10 @@ Building mixed(Rng& rng) {
   std::vector<Region> wings;
   double x = 0.0;
   for (const std::string& st : styles) {
-    const StyleSize z = size_of(st);
-    const Vec2 lo = minimum_region(st);
-    const double w = rng.uniform(std::max(lo.x(), z.w_lo * 0.6), std::max(lo.x(), z.w_hi * 0.6));
-    const double h = rng.uniform(std::max(lo.y(), z.h_lo * 0.8), std::max(lo.y(), z.h_hi * 0.8));
+    // Wings are smaller than whole buildings of their style.
+    const StyleSize z = size_of(st, scale * 0.7);
+    const double w = rng.uniform(z.w_lo, z.w_hi);
+    const double h = rng.uniform(z.h_lo, z.h_hi);
     wings.push_back({{x, 0.0}, {x + w, h}});
     x += w;
   }
@@ -190,7 +194,7 @@ Building mixed(Rng& rng) {
   return b;
 }
 
-Building multi_storey(Rng& rng) {
+Building multi_storey(double scale, Rng& rng) {
   static const std::vector<std::string> kGround = {"office", "library", "open_plan", "irregular"};
   static const std::vector<std::string> kUpper = {"office", "library", "open_plan", "irregular", "atrium"};
   const int n = rng.chance(0.75) ? 2 : 3;
@@ -200,7 +204,7 @@ Building multi_storey(Rng& rng) {
   const double wr = rng.uniform(kRampWidthMin, kRampWidthMax), wg = rng.uniform(kGalleryMin, kGalleryMax);
   const double ws = wr + wg;
   const double W = run + rng.uniform(2 * kRampEndMin + 1.0, 2 * kRampEndMin + 4.0);
-  const double H = rng.uniform(8.0, 13.0) + ws * (n == 3 ? 2 : 1);
+  const double H = std::max(minimum_region("office").y(), rng.uniform(8.0, 13.0) * scale) + ws * (n == 3 ? 2 : 1);
   const FloorPlanRules rules = draw_rules(rng);
   Building b;
   // Ramp k joins storeys k and k + 1: along the south facade for even k, the north for odd.
@@ -322,7 +326,9 @@ GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed,
   scene.name = style + "_" + std::to_string(seed);
   scene.seed = seed;
   draw_platform(&scene, rng, config);
-  Building b = style == "mixed" ? mixed(rng) : style == "multi_storey" ? multi_storey(rng) : single_wing(style, rng);
+  Building b = style == "mixed"          ? mixed(config.size, rng)
+               : style == "multi_storey" ? multi_storey(config.size, rng)
+                                         : single_wing(style, config.size, rng);
   double elevation = 0.0;
   for (const Storey& s : b.storeys) {
     Level l;

@@ -19,6 +19,7 @@ struct GeneratorConfig {
   double clearance = 0.3;          ///< m the survey path keeps from every obstacle (a door is >= 0.8 m)
   double grid_resolution = 0.05;   ///< m: the planning raster
   int laps = 2;                    ///< laps of the survey path
+  double size = 1.0;               ///< (0, 1]: scales the building's extent (never below what its style needs)
   int max_attempts = 20;           ///< layouts drawn for one seed before giving up
   double mount_height_min = 0.3;   ///< m: sensor heights drawn from [min, max]
   double mount_height_max = 1.8;
