@@ -308,3 +308,15 @@ TEST(SceneLoader, RejectsScansTooLargeForMemory) {
   const std::string text = replace(kRoom, "levels:", "sensor: {channels: 100000, columns: 100000}\nlevels:");
   EXPECT_THAT(error_of(text), HasSubstr("sensor.columns: channels x columns = 10000000000 rays per scan"));
 }
+
+TEST(SceneLoader, GlassRailingsHaveATransmission) {
+  const std::string railing = "railings:\n  - {level: L0, from: [1, 5], to: [9, 5], style: glass, transmission: 0.6}\n";
+  const Scene s = parse_scene(replace(kRoom, "trajectory:", railing + "trajectory:"), "test.yaml", ".");
+  ASSERT_EQ(s.railings.size(), 1u);
+  EXPECT_EQ(s.railings[0].style, RailingStyle::kGlass);
+  EXPECT_DOUBLE_EQ(s.railings[0].transmission, 0.6);
+  const std::string bad = replace(kRoom, "trajectory:", replace(railing, "0.6", "1.5") + "trajectory:");
+  EXPECT_THAT(error_of(bad), HasSubstr("transmission: must lie in [0, 1]"));
+  const std::string solid = replace(kRoom, "trajectory:", replace(railing, "glass", "solid") + "trajectory:");
+  EXPECT_THAT(error_of(solid), HasSubstr("only a glass railing lets rays through"));
+}

@@ -122,6 +122,35 @@ TEST_F(RayCasterTest, BarsLetSomeRaysThroughSolidRailingsNone) {
   EXPECT_LT(above.range, 0.0f);
 }
 
+// A glass railing in front of a wall, at three transmissions: the share of rays that pass
+// it and return from the wall behind is the transmission, and the result is the same on
+// a second cast (the draw depends on the ray, not on a random state).
+TEST(GlassRailing, LetsItsTransmissionThrough) {
+  for (const double transmission : {0.0, 0.3, 0.8, 1.0}) {
+    const std::string text = std::string(R"(name: glass
+levels: [{name: L0, slab: [[0,0],[10,0],[10,10],[0,10]]}]
+walls: [{level: L0, from: [0, 8], to: [10, 8]}]
+railings: [{level: L0, from: [0, 5], to: [10, 5], height: 1.0, style: glass, transmission: )") +
+                             std::to_string(transmission) + R"(}]
+trajectory: {waypoints: [[2, 2], [8, 2]]}
+)";
+    const Scene scene = parse_scene(text, "glass.yaml", ".");
+    const RayCaster caster(build_scene_mesh(scene));
+    int glass = 0, wall = 0, same = 0;
+    const int n = 2000;
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3f dir(-0.6f + 1.2f * i / (n - 1), 1.0f, -0.02f);
+      const RayHit h = caster.cast({5.0f, 2.0f, 0.6f}, dir, 60.0f);
+      glass += h.label == kRailing;
+      wall += h.label == kWall;
+      same += caster.cast({5.0f, 2.0f, 0.6f}, dir, 60.0f).range == h.range;
+    }
+    EXPECT_EQ(glass + wall, n) << transmission;
+    EXPECT_NEAR(static_cast<double>(wall) / n, transmission, 0.05) << transmission;
+    EXPECT_EQ(same, n);
+  }
+}
+
 TEST(SimulatedScan, RangesToAWallMatchTruthWithinNoise) {
   // One horizontal beam ring in a 20 m wide hall: the wall face at x = 9.9 is 4.9 m ahead.
   const Scene scene = parse_scene(R"(

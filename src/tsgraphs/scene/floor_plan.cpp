@@ -67,7 +67,10 @@ class Subdivision {
             edge_of_.push_back({{static_cast<int>(si), static_cast<int>(e)}});
           } else {
             Elementary& piece = pieces_[it->second];
-            if (piece.b >= 0 || piece.a == static_cast<int>(si))
+            // Neighbours run along a shared piece in opposite directions; the same direction means
+            // the two spaces lie on the same side of it: they overlap.
+            const bool same_direction = (piece.p - a).norm() < kEps;
+            if (piece.b >= 0 || piece.a == static_cast<int>(si) || same_direction)
               throw std::invalid_argument("floor plan: spaces '" + plan.spaces[piece.a].name + "' and '" +
                                           plan.spaces[si].name + "' overlap");
             piece.b = static_cast<int>(si);

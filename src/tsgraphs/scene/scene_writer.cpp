@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "tsgraphs/scene/sensor_presets.hpp"
@@ -20,10 +21,13 @@ std::string num(double v) {
   return s == "-0" ? "0" : s;
 }
 
-/// A rate or a noise figure, to six significant digits.
+/// A rate, a noise figure or an angle: the shortest text that reads back as the same double.
 std::string fig(double v) {
   char text[64];
-  std::snprintf(text, sizeof(text), "%.6g", v);
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof(text), "%.*g", digits, v);
+    if (std::strtod(text, nullptr) == v) break;
+  }
   return text;
 }
 
@@ -82,9 +86,15 @@ std::string scene_yaml(const Scene& scene, const std::string& header) {
   const bool has_preset = !s.preset.empty() && apply_preset(s.preset, &preset);
   if (has_preset) out << "  preset: " << s.preset << "\n";
   if (!has_preset || s.vertical_angles_deg != preset.vertical_angles_deg || s.columns != preset.columns) {
-    out << "  columns: " << s.columns << "\n  vertical_angles_deg: [";
-    for (std::size_t i = 0; i < s.vertical_angles_deg.size(); ++i) out << (i ? ", " : "") << fig(s.vertical_angles_deg[i]);
-    out << "]\n";
+    out << "  columns: " << s.columns << "\n";
+    if (s.vertical_angles_deg.empty()) {
+      out << "  channels: " << s.channels << "\n  vertical_fov_deg: [" << fig(s.vertical_fov_min_deg) << ", "
+          << fig(s.vertical_fov_max_deg) << "]\n";
+    } else {
+      out << "  vertical_angles_deg: [";
+      for (std::size_t i = 0; i < s.vertical_angles_deg.size(); ++i) out << (i ? ", " : "") << fig(s.vertical_angles_deg[i]);
+      out << "]\n";
+    }
   }
   if (!has_preset || s.max_range != preset.max_range) out << "  max_range: " << fig(s.max_range) << "\n";
   if (!has_preset || s.min_range != preset.min_range) out << "  min_range: " << fig(s.min_range) << "\n";

@@ -6,6 +6,7 @@
 #include <optional>
 #include <queue>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "tsgraphs/scene/scene_geometry.hpp"
 #include "tsgraphs/scene/trajectory.hpp"
@@ -22,17 +23,22 @@ constexpr double kLevelMatch = 0.3;            // m between a pose's floor heigh
 /// a link's area, to the same cell of the linked grid.
 class PlanningGraph {
  public:
-  PlanningGraph(const std::vector<WalkableGrid>& grids, const std::vector<GridLink>& links, double min_clearance)
-      : grids_(grids), n_(grids.front().frame.size()), frame_(grids.front().frame) {
+  PlanningGraph(const std::vector<WalkableGrid>& grids, const std::vector<GridLink>& links, double min_clearance,
+                double centre_weight)
+      : n_(grids.front().frame.size()), frame_(grids.front().frame) {
     for (const WalkableGrid& g : grids) {
       if (g.frame.cols != frame_.cols || g.frame.rows != frame_.rows || g.frame.resolution != frame_.resolution ||
           g.frame.origin != frame_.origin)
         throw std::invalid_argument("survey path: the grids of all levels must share one frame");
     }
     passable_.assign(grids.size() * n_, 0);
+    weight_.assign(grids.size() * n_, 1.0f);
     for (std::size_t g = 0; g < grids.size(); ++g) {
-      for (std::size_t i = 0; i < n_; ++i)
+      for (std::size_t i = 0; i < n_; ++i) {
         passable_[g * n_ + i] = grids[g].free[i] != 0 && grids[g].clearance[i] >= min_clearance;
+        weight_[g * n_ + i] = static_cast<float>(
+            1.0 + centre_weight / std::max<double>(grids[g].clearance[i], kMinClearanceForCost));
+      }
     }
     link_.assign(grids.size() * n_, -1);
     for (const GridLink& l : links) {
@@ -70,7 +76,7 @@ class PlanningGraph {
     const int g = grid_of(node);
     const std::size_t cell = cell_of(node);
     const int c = static_cast<int>(cell % frame_.cols), r = static_cast<int>(cell / frame_.cols);
-    const double w0 = weight(node);
+    const double w0 = weight_[node];
     static const int kDc[8] = {1, -1, 0, 0, 1, 1, -1, -1};
     static const int kDr[8] = {0, 0, 1, -1, 1, -1, 1, -1};
     for (int k = 0; k < 8; ++k) {
@@ -81,7 +87,7 @@ class PlanningGraph {
       // Diagonal steps only where both straight neighbours are open: no cutting a corner.
       if (k >= 4 && (!passable(g * n_ + frame_.index(cc, r)) || !passable(g * n_ + frame_.index(c, rr)))) continue;
       const double len = (k >= 4 ? M_SQRT2 : 1.0) * frame_.resolution;
-      f(nb, 0.5 * len * (w0 + weight(nb)));
+      f(nb, 0.5 * len * (w0 + weight_[nb]));
     }
     const int other = link_[node];
     if (other >= 0) {
@@ -90,44 +96,75 @@ class PlanningGraph {
     }
   }
 
-  void set_centre_weight(double w) { centre_weight_ = w; }
-
  private:
-  double weight(std::size_t node) const {
-    const double clearance = grids_[grid_of(node)].clearance[cell_of(node)];
-    return 1.0 + centre_weight_ / std::max(clearance, kMinClearanceForCost);
-  }
-
-  const std::vector<WalkableGrid>& grids_;
   std::size_t n_;
   GridFrame frame_;
   std::vector<std::uint8_t> passable_;
   std::vector<int> link_;
-  double centre_weight_ = 0.0;
+  std::vector<float> weight_;  // cost per metre of a step leaving each node
 };
 
 using QueueItem = std::pair<double, std::size_t>;
 
-/// Costs from `source` to every node (kInf where unreachable); `parent` gets the tree.
-std::vector<double> shortest_paths(const PlanningGraph& graph, std::size_t source, std::vector<std::int64_t>* parent) {
+/// Costs from `source` to each of `targets` (kInf where unreachable): Dijkstra, stopped once
+/// every target is settled.
+std::vector<double> costs_to(const PlanningGraph& graph, std::size_t source, const std::vector<std::size_t>& targets) {
   std::vector<double> cost(graph.num_nodes(), kInf);
-  if (parent) parent->assign(graph.num_nodes(), -1);
+  std::vector<std::uint8_t> is_target(graph.num_nodes(), 0);
+  for (std::size_t t : targets) is_target[t] = 1;
+  std::size_t left = 0;
+  for (std::size_t t : targets) left += is_target[t] == 1 ? (is_target[t] = 2, 1) : 0;  // distinct targets
   std::priority_queue<QueueItem, std::vector<QueueItem>, std::greater<>> queue;
   cost[source] = 0.0;
   queue.push({0.0, source});
-  while (!queue.empty()) {
+  while (!queue.empty() && left > 0) {
     const auto [c, node] = queue.top();
     queue.pop();
     if (c > cost[node]) continue;
+    if (is_target[node] == 2) {
+      is_target[node] = 3;
+      --left;
+    }
     graph.for_each_neighbour(node, [&](std::size_t nb, double step) {
       if (c + step < cost[nb]) {
         cost[nb] = c + step;
-        if (parent) (*parent)[nb] = static_cast<std::int64_t>(node);
         queue.push({cost[nb], nb});
       }
     });
   }
-  return cost;
+  std::vector<double> out;
+  for (std::size_t t : targets) out.push_back(cost[t]);
+  return out;
+}
+
+/// The cheapest path from `source` to `target` (A*, the straight-line distance as the bound:
+/// every step costs at least its length); empty when there is none.
+std::vector<std::size_t> cheapest_path(const PlanningGraph& graph, std::size_t source, std::size_t target) {
+  std::unordered_map<std::size_t, double> cost;
+  std::unordered_map<std::size_t, std::size_t> parent;
+  const Vec2 goal = graph.xy(target);
+  std::priority_queue<QueueItem, std::vector<QueueItem>, std::greater<>> queue;
+  cost[source] = 0.0;
+  queue.push({(graph.xy(source) - goal).norm(), source});
+  while (!queue.empty()) {
+    const auto [f, node] = queue.top();
+    queue.pop();
+    const double c = cost[node];
+    if (f > c + (graph.xy(node) - goal).norm() + 1e-12) continue;  // a stale entry
+    if (node == target) break;
+    graph.for_each_neighbour(node, [&](std::size_t nb, double step) {
+      const auto it = cost.find(nb);
+      if (it != cost.end() && it->second <= c + step) return;
+      cost[nb] = c + step;
+      parent[nb] = node;
+      queue.push({c + step + (graph.xy(nb) - goal).norm(), nb});
+    });
+  }
+  if (!cost.count(target)) return {};
+  std::vector<std::size_t> chain = {target};
+  while (chain.back() != source) chain.push_back(parent.at(chain.back()));
+  std::reverse(chain.begin(), chain.end());
+  return chain;
 }
 
 /// Visiting order: nearest neighbour from stop 0, then 2-opt on the closed tour.
@@ -250,8 +287,7 @@ std::vector<Waypoint> plan_survey(const std::vector<WalkableGrid>& grids, const 
   if (grids.empty() || stops.empty()) throw std::invalid_argument("survey path: no grid or no stop");
   const auto name = [&](std::size_t i) { return describe ? describe(i) : "stop " + std::to_string(i); };
   const double min_clearance = config.clearance + config.plan_margin_cells * grids.front().frame.resolution;
-  PlanningGraph graph(grids, links, min_clearance);
-  graph.set_centre_weight(config.centre_weight);
+  const PlanningGraph graph(grids, links, min_clearance, config.centre_weight);
   std::vector<std::size_t> nodes(stops.size());
   for (std::size_t i = 0; i < stops.size(); ++i) {
     const SurveyStop& s = stops[i];
@@ -264,9 +300,9 @@ std::vector<Waypoint> plan_survey(const std::vector<WalkableGrid>& grids, const 
   // Path costs between every pair of stops.
   std::vector<std::vector<double>> cost(stops.size(), std::vector<double>(stops.size(), 0.0));
   for (std::size_t i = 0; i < stops.size(); ++i) {
-    const std::vector<double> c = shortest_paths(graph, nodes[i], nullptr);
+    const std::vector<double> c = costs_to(graph, nodes[i], nodes);
     for (std::size_t j = 0; j < stops.size(); ++j) {
-      cost[i][j] = c[nodes[j]];
+      cost[i][j] = c[j];
       if (!std::isfinite(cost[i][j]))
         throw std::invalid_argument("survey path: " + name(j) + " cannot be reached from " + name(i) + " with " +
                                     std::to_string(config.clearance) + " m clearance");
@@ -287,11 +323,7 @@ std::vector<Waypoint> plan_survey(const std::vector<WalkableGrid>& grids, const 
   for (std::size_t k = 0; k < tour.size(); ++k) {
     const std::size_t from = nodes[tour[k]], to = nodes[tour[(k + 1) % tour.size()]];
     if (from == to) continue;
-    std::vector<std::int64_t> parent;
-    shortest_paths(graph, from, &parent);
-    std::vector<std::size_t> chain = {to};
-    while (chain.back() != from) chain.push_back(static_cast<std::size_t>(parent[chain.back()]));
-    std::reverse(chain.begin(), chain.end());
+    const std::vector<std::size_t> chain = cheapest_path(graph, from, to);
     // Simplify each run on one grid; the stops keep their exact places.
     std::size_t a = 0;
     while (a + 1 < chain.size()) {

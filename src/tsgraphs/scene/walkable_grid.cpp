@@ -12,6 +12,7 @@ namespace {
 constexpr double kHalfDiagonal = 0.7072;  // of a cell, in cells: a shape within it of a centre touches the cell
 constexpr int kProbeRings = 4;            // rings of obstacle_distance's walkable-surface probe
 constexpr int kProbeDirections = 24;      // probes per ring (15 degrees apart)
+constexpr int kEdgeBisections = 12;       // halvings that place a surface edge between two rings (to 1e-4 of a ring)
 
 /// An oriented rectangle: centre, unit axis along its length, half length and half width, and
 /// the heights it spans (relative to its level's floor).
@@ -198,10 +199,19 @@ double obstacle_distance(const Scene& scene, const Vec2& xy, double floor_z, dou
   if (!walkable(xy)) return 0.0;
   for (int ring = 1; ring <= kProbeRings && ring * probe_radius / kProbeRings < best; ++ring) {
     const double radius = ring * probe_radius / kProbeRings;
+    double edge = std::numeric_limits<double>::infinity();
     for (int k = 0; k < kProbeDirections; ++k) {
-      const double a = 2.0 * M_PI * k / kProbeDirections;
-      if (!walkable(xy + radius * Vec2(std::cos(a), std::sin(a)))) return std::min(best, radius);
+      const Vec2 dir(std::cos(2.0 * M_PI * k / kProbeDirections), std::sin(2.0 * M_PI * k / kProbeDirections));
+      if (walkable(xy + radius * dir)) continue;
+      // The edge lies between the last ring and this one: find it along this direction.
+      double lo = (ring - 1) * probe_radius / kProbeRings, hi = radius;
+      for (int i = 0; i < kEdgeBisections; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (walkable(xy + mid * dir) ? lo : hi) = mid;
+      }
+      edge = std::min(edge, hi);
     }
+    if (std::isfinite(edge)) return std::min(best, edge);
   }
   return best;
 }

@@ -37,10 +37,18 @@ void add_railing(LabelledMesh* mesh, const scene::Railing& r, double elevation) 
   const Vec2 dir = d / length;
   const double yaw = std::atan2(dir.y(), dir.x());
   const Vec2 mid = 0.5 * (r.from + r.to);
-  if (r.style != scene::RailingStyle::kBars) {
-    const float transmission = r.style == scene::RailingStyle::kGlass ? static_cast<float>(r.transmission) : 0.0f;
+  if (r.style == scene::RailingStyle::kGlass) {
+    // One pane, no thickness: a ray meets it once, and passes with the railing's transmission.
+    const Eigen::Vector3d a(r.from.x(), r.from.y(), elevation), b(r.to.x(), r.to.y(), elevation);
+    const Eigen::Vector3d up(0.0, 0.0, r.height);
+    const float t = static_cast<float>(r.transmission);
+    mesh->add_triangle(a, b, b + up, PointLabel::kRailing, t);
+    mesh->add_triangle(a, b + up, a + up, PointLabel::kRailing, t);
+    return;
+  }
+  if (r.style == scene::RailingStyle::kSolid) {
     mesh->add_box(mid, {0.5 * length, 0.5 * scene::RailingGeometry::kSolidThickness}, yaw, elevation, elevation + r.height,
-                  PointLabel::kRailing, transmission);
+                  PointLabel::kRailing);
     return;
   }
   const double top = elevation + r.height;
