@@ -359,3 +359,40 @@ TEST_F(RunCli, BadParameterFileAndUnrelatedOutputFolderAreRefused) {
   EXPECT_EQ(cli("-q eval " + (dir_ / "nothing").string(), &err), 2);
   EXPECT_NE(err.find("nothing"), std::string::npos) << err;
 }
+
+// A scene whose voxel map lies in another folder: its sequence carries the map, so it runs
+// where it was written, and again after it is moved and the map's folder is gone.
+TEST_F(RunCli, ASequenceCarriesItsSceneVoxelMapsAndRunsAfterItMoves) {
+  fs::create_directories(dir_ / "scenes");
+  fs::create_directories(dir_ / "maps");
+  std::ostringstream pcd;
+  pcd << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+  std::ostringstream points;
+  int n = 0;
+  for (int i = 0; i <= 20; ++i) {
+    for (int k = 0; k < 20; ++k, ++n) points << 3.0 + 0.1 * i << " 3.0 " << 0.05 + 0.1 * k << "\n";
+  }
+  pcd << "WIDTH " << n << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << n << "\nDATA ascii\n" << points.str();
+  std::ofstream(dir_ / "maps" / "wall.pcd") << pcd.str();
+  std::string scene = kScene;
+  scene.replace(scene.find("trajectory:"), 11,
+                "voxel_maps:\n  - {file: ../maps/wall.pcd, voxel_size: 0.1, level: L0, label: wall}\ntrajectory:");
+  std::ofstream(dir_ / "scenes" / "room.yaml") << scene;
+  const fs::path seq = dir_ / "seq", moved = dir_ / "elsewhere" / "seq";
+  std::string err;
+  ASSERT_EQ(cli("-q simulate " + (dir_ / "scenes" / "room.yaml").string() + " --laps 1 --out " + seq.string(), &err), 0)
+      << err;
+  EXPECT_TRUE(fs::exists(seq / "voxel_maps" / "0_wall.pcd"));
+  ASSERT_EQ(cli("-q run " + seq.string() + " --out " + (dir_ / "run1").string(), &err), 0) << err;
+  fs::create_directories(moved.parent_path());
+  fs::rename(seq, moved);
+  fs::remove_all(dir_ / "maps");
+  fs::remove_all(dir_ / "scenes");
+  ASSERT_EQ(cli("-q run " + moved.string() + " --out " + (dir_ / "run2").string(), &err), 0) << err;
+  ASSERT_EQ(cli("-q eval " + (dir_ / "run2").string() + " --seq " + moved.string(), &err), 0) << err;
+  // The copy of the scene still has the wall the map adds: simulating it again gives the same scans.
+  ASSERT_EQ(cli("-q simulate " + (moved / "scene.yaml").string() + " --laps 1 --out " + (dir_ / "again").string(), &err),
+            0)
+      << err;
+  EXPECT_EQ(read_file(moved / "scans" / "000010.bin"), read_file(dir_ / "again" / "scans" / "000010.bin"));
+}

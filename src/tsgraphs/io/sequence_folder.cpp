@@ -103,6 +103,13 @@ void SequenceWriter::commit(const SequenceInfo& info) {
     }
     write_text(dir / "rooms_gt.json", rooms.dump(2) + "\n");
   }
+  for (const auto& [source, inside] : info.attached_files) {
+    const fs::path to = dir / inside;
+    std::error_code ec;
+    fs::create_directories(to.parent_path(), ec);
+    if (ec || !fs::copy_file(source, to, fs::copy_options::overwrite_existing, ec) || ec)
+      throw input_error(source, 0, "cannot copy into the sequence as " + inside + (ec ? ": " + ec.message() : ""));
+  }
   if (!info.scene_yaml.empty()) write_text(dir / "scene.yaml", info.scene_yaml);
   // times.txt last: it marks a folder as a sequence.
   write_text(dir / "times.txt", format_times(info.times));

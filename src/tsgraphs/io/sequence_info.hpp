@@ -1,6 +1,7 @@
 #pragma once
 /// Everything of a sequence but its scans: times, odometry, and the simulator's ground truth.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tsgraphs/core/polygon.hpp"
@@ -25,6 +26,9 @@ struct SequenceInfo {
   bool has_rooms = false;                    ///< write / found rooms_gt.json
   std::vector<RoomTruth> rooms;
   std::string scene_yaml;                    ///< copied to scene.yaml when not empty
+  /// Files the scene needs (its voxel maps), copied into the folder: source path, and the
+  /// path inside the folder that scene_yaml names.
+  std::vector<std::pair<std::string, std::string>> attached_files;
 };
 
 }  // namespace tsgraphs::io

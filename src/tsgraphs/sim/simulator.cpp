@@ -3,8 +3,10 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "tsgraphs/io/sequence_folder.hpp"
+#include "tsgraphs/scene/scene_writer.hpp"
 #include "tsgraphs/sim/odometry_drift.hpp"
 
 namespace tsgraphs::sim {
@@ -120,6 +122,19 @@ void write_sequence(const Simulator& sim, const std::string& out_dir,
     info.rooms.push_back({r.name, l.name, r.polygon, l.elevation});
   }
   info.scene_yaml = scene.source_text;
+  // A scene's voxel maps travel with its sequence: copied into voxel_maps/, and the copy of
+  // the scene names them there, so the folder can move (or the scene's folder go) and still run.
+  if (!scene.voxel_maps.empty()) {
+    scene::Scene copy = scene;
+    for (std::size_t i = 0; i < copy.voxel_maps.size(); ++i) {
+      const std::string inside =
+          "voxel_maps/" + std::to_string(i) + "_" + std::filesystem::path(copy.voxel_maps[i].file).filename().string();
+      info.attached_files.emplace_back(copy.voxel_maps[i].file, inside);
+      copy.voxel_maps[i].file = inside;
+    }
+    info.scene_yaml = scene::scene_yaml(copy, "The scene " + scene.file + " as simulated into this sequence, its voxel maps "
+                                              "copied into voxel_maps/ (written by tsgraphs simulate).");
+  }
   writer.commit(info);
 }
 
