@@ -13,6 +13,7 @@ PACKAGES=(
   libtbb-dev           # parallel loops (ray casting)
   libembree-dev        # ray casting in the simulator (Embree 3)
   libyaml-cpp-dev      # scene and parameter files
+  libpng-dev           # PNG occupancy maps and room labels (import-map)
   libcli11-dev         # command line
   nlohmann-json3-dev   # JSON outputs
   libspdlog-dev        # logging

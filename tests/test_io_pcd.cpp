@@ -244,3 +244,20 @@ TEST_F(Pcd, AsciiBodyWithAWordIsAnInputError) {
       write_file("word.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "ascii") + "1 2 3\n4 abc 6\n");
   EXPECT_THAT(read_error(path), StartsWith(path + ":"));
 }
+
+TEST_F(Pcd, EncodedCloudsReadBackExactly) {
+  PointCloud xyz;
+  xyz.points = {{0.025f, -3.5f, 2.575f}, {1e4f, 0.0f, -7.25f}};
+  const std::string bytes = encode_pcd(xyz);
+  EXPECT_THAT(bytes, HasSubstr("FIELDS x y z\n"));
+  EXPECT_THAT(bytes, HasSubstr("DATA binary\n"));
+  const PointCloud back = read_pcd(write_file("xyz.pcd", bytes));
+  EXPECT_EQ(back.points, xyz.points);
+  EXPECT_FALSE(back.has_intensity());
+  PointCloud with_i = xyz;
+  with_i.intensity = {0.5f, 0.75f};
+  const PointCloud back_i = read_pcd(write_file("xyzi.pcd", encode_pcd(with_i)));
+  EXPECT_EQ(back_i.points, with_i.points);
+  EXPECT_EQ(back_i.intensity, with_i.intensity);
+  EXPECT_TRUE(read_pcd(write_file("empty.pcd", encode_pcd(PointCloud{}))).empty());
+}

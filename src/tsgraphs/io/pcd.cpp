@@ -162,4 +162,26 @@ PointCloud read_pcd(const std::string& path) {
   return cloud;
 }
 
+std::string encode_pcd(const PointCloud& cloud) {
+  const bool with_i = cloud.has_intensity();
+  if (with_i && cloud.intensity.size() != cloud.size()) throw std::invalid_argument("encode_pcd: one intensity per point");
+  const std::size_t n = cloud.size();
+  std::ostringstream h;
+  h << "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z" << (with_i ? " intensity" : "")
+    << "\nSIZE 4 4 4" << (with_i ? " 4" : "") << "\nTYPE F F F" << (with_i ? " F" : "") << "\nCOUNT 1 1 1"
+    << (with_i ? " 1" : "") << "\nWIDTH " << n << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << n
+    << "\nDATA binary\n";
+  std::string out = h.str();
+  const std::size_t stride = with_i ? 4 : 3;
+  const std::size_t header = out.size();
+  out.resize(header + n * stride * sizeof(float));
+  char* p = out.data() + header;
+  for (std::size_t i = 0; i < n; ++i) {
+    float v[4] = {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z(), with_i ? cloud.intensity[i] : 0.0f};
+    std::memcpy(p, v, stride * sizeof(float));
+    p += stride * sizeof(float);
+  }
+  return out;
+}
+
 }  // namespace tsgraphs::io

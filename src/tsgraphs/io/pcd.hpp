@@ -1,5 +1,5 @@
 #pragma once
-/// PCD files (ASCII, binary, binary_compressed), read through PCL.
+/// PCD files (ASCII, binary, binary_compressed), read through PCL; written as binary PCD.
 #include <string>
 
 #include "tsgraphs/core/point_cloud.hpp"
@@ -10,5 +10,10 @@ namespace tsgraphs::io {
 /// are dropped (organised clouds carry NaNs for missing returns). A missing or malformed
 /// file is an InputError naming it.
 PointCloud read_pcd(const std::string& path);
+
+/// The bytes of a binary PCD (v0.7) of the cloud: float x y z, and intensity when the cloud
+/// has it; unorganised (HEIGHT 1). Written by hand (a header and the floats), so that a caller
+/// can write it through write_file_atomic.
+std::string encode_pcd(const PointCloud& cloud);
 
 }  // namespace tsgraphs::io
