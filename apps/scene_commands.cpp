@@ -16,7 +16,9 @@ void generate(const GenerateOptions& options) {
   scene::GeneratorConfig config;
   config.laps = options.laps;
   config.size = options.size;
-  const scene::GeneratedBuilding b = scene::generate_building(options.style, options.seed, config);
+  if (options.seed < 0) throw input_error("--seed", 0, "must be >= 0");
+  const scene::GeneratedBuilding b =
+      scene::generate_building(options.style, static_cast<std::uint64_t>(options.seed), config);
   io::write_file_atomic(options.out, b.yaml);
   if (!options.quiet) {
     const scene::Scene& s = b.scene;

@@ -8,7 +8,7 @@ namespace tsgraphs::app {
 
 struct GenerateOptions {
   std::string style;   ///< building style (scene::building_style_names())
-  std::uint64_t seed = 1;
+  long long seed = 1;  ///< >= 0
   std::string out;     ///< scene file to write
   int laps = 2;        ///< laps of the survey path
   double size = 1.0;   ///< scales the building's extent, (0, 1]

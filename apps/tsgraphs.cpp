@@ -69,6 +69,7 @@ int main(int argc, char** argv) {
   generate_cmd->add_option("--style", opt.generate.style, "office, atrium, library, open_plan, irregular, multi_storey or mixed")
       ->required();
   generate_cmd->add_option("--seed", opt.generate.seed, "the building's seed (the same seed, the same building)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   generate_cmd->add_option("--out", opt.generate.out, "scene file to write")->required();
   generate_cmd->add_option("--laps", opt.generate.laps, "laps of the survey path")->check(CLI::PositiveNumber)->capture_default_str();

@@ -38,7 +38,8 @@ std::string raw_png(int w, int h, int bit_depth, int color_type, const std::vect
     return "";
   }
   png_set_write_fn(
-      png, &out, [](png_structp p, png_bytep d, png_size_t n) {
+      png, &out,
+      [](png_structp p, png_bytep d, png_size_t n) {
         static_cast<std::string*>(png_get_io_ptr(p))->append(reinterpret_cast<char*>(d), n);
       },
       nullptr);

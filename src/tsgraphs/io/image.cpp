@@ -7,8 +7,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 
 #include "tsgraphs/core/error.hpp"
 
@@ -16,16 +16,17 @@ namespace tsgraphs::io {
 namespace {
 
 constexpr unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-constexpr int kMaxPgmValue = 65535;      // the netpbm format's largest maxval
-constexpr int kMaxSide = 1 << 20;        // pixels a side (libpng's own limit is 2^31)
+constexpr int kMaxPgmValue = 65535;  // the netpbm format's largest maxval
+constexpr int kMaxSide = 1 << 20;    // pixels a side (libpng's own limit is 2^31)
 
 std::string size_text(long long w, long long h) { return std::to_string(w) + " x " + std::to_string(h); }
 
 void check_size(long long w, long long h, const std::string& name) {
   if (w <= 0 || h <= 0) throw input_error(name, 0, "image size " + size_text(w, h) + ": must be at least 1 x 1");
   if (w > kMaxSide || h > kMaxSide || w * h > kMaxImagePixels)
-    throw input_error(name, 0, "image size " + size_text(w, h) + " is absurd (more than " +
-                                   std::to_string(kMaxImagePixels) + " pixels)");
+    throw input_error(
+        name, 0,
+        "image size " + size_text(w, h) + " is absurd (more than " + std::to_string(kMaxImagePixels) + " pixels)");
 }
 
 /// A value of 0..maxval as 0..255, rounded.
@@ -115,7 +116,8 @@ class PgmReader {
     }
     if (digits == 0) {
       const char c = b_[pos_];
-      const std::string shown = (c >= 32 && c < 127) ? std::string("'") + c + "'" : "byte " + std::to_string(static_cast<unsigned char>(c));
+      const std::string shown =
+          (c >= 32 && c < 127) ? std::string("'") + c + "'" : "byte " + std::to_string(static_cast<unsigned char>(c));
       throw input_error(name_, 0, "PGM: " + what + " is not a number (found " + shown + ")");
     }
     if (pos_ < b_.size() && !is_space(b_[pos_]) && b_[pos_] != '#')
@@ -124,13 +126,14 @@ class PgmReader {
   }
 
   InputError truncated(std::size_t found, std::size_t expected) const {
-    return input_error(name_, 0, "truncated PGM: " + std::to_string(found) + " of " + std::to_string(expected) +
-                                     " pixels present");
+    return input_error(
+        name_, 0, "truncated PGM: " + std::to_string(found) + " of " + std::to_string(expected) + " pixels present");
   }
   InputError bad_value(std::size_t i, long long width, unsigned v, unsigned maxval) const {
     const std::size_t w = static_cast<std::size_t>(width);
-    return input_error(name_, 0, "PGM pixel at column " + std::to_string(i % w) + ", row " + std::to_string(i / w) +
-                                     ": value " + std::to_string(v) + " exceeds maxval " + std::to_string(maxval));
+    return input_error(name_, 0,
+                       "PGM pixel at column " + std::to_string(i % w) + ", row " + std::to_string(i / w) + ": value " +
+                           std::to_string(v) + " exceeds maxval " + std::to_string(maxval));
   }
 
   const std::string& b_;

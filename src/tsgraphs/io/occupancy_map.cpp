@@ -42,7 +42,8 @@ MapMetadata parse_map_yaml(const std::string& text, const std::string& file, con
   meta.image = p.is_absolute() ? p.string() : (std::filesystem::path(base_dir) / p).lexically_normal().string();
   meta.resolution = m.require<double>("resolution");
   if (!(meta.resolution > 0.0) || meta.resolution > kMaxResolution)
-    throw m.error("resolution", "must lie in (0, " + std::to_string(static_cast<int>(kMaxResolution)) + "] m per pixel");
+    throw m.error("resolution",
+                  "must lie in (0, " + std::to_string(static_cast<int>(kMaxResolution)) + "] m per pixel");
   if (!m.has("origin")) throw m.error_here("missing required key 'origin' ([x, y, yaw])");
   const YAML::Node o = m.raw("origin");
   if (!o.IsSequence() || o.size() != 3) throw m.error("origin", "expected [x, y, yaw]");

@@ -19,15 +19,15 @@ enum class CellState : std::uint8_t { kFree = 0, kOccupied = 1, kUnknown = 2 };
 
 /// The map YAML, as map_server reads it.
 struct MapMetadata {
-  std::string yaml_file;           ///< the YAML file (for messages)
-  std::string image;               ///< the image file, resolved against the YAML's folder
-  double resolution = 0.05;        ///< m per pixel (required)
-  double origin_x = 0.0;           ///< m: world position of the lower-left pixel's corner (required)
+  std::string yaml_file;     ///< the YAML file (for messages)
+  std::string image;         ///< the image file, resolved against the YAML's folder
+  double resolution = 0.05;  ///< m per pixel (required)
+  double origin_x = 0.0;     ///< m: world position of the lower-left pixel's corner (required)
   double origin_y = 0.0;
-  double origin_yaw = 0.0;         ///< rad: the map's rotation about that corner
-  bool negate = false;             ///< white is occupied and black free
-  double occupied_thresh = 0.65;   ///< occupancy above this is occupied (map_saver's default)
-  double free_thresh = 0.196;      ///< occupancy below this is free (map_saver's default)
+  double origin_yaw = 0.0;        ///< rad: the map's rotation about that corner
+  bool negate = false;            ///< white is occupied and black free
+  double occupied_thresh = 0.65;  ///< occupancy above this is occupied (map_saver's default)
+  double free_thresh = 0.196;     ///< occupancy below this is free (map_saver's default)
   MapMode mode = MapMode::kTrinary;
 };
 
@@ -35,9 +35,9 @@ struct MapMetadata {
 /// orders its data; the image's row 0 (its top) is the map's last row.
 struct OccupancyMap {
   MapMetadata meta;
-  int width = 0;                   ///< cells along x
-  int height = 0;                  ///< cells along y
-  std::vector<CellState> cells;    ///< width * height, index = row * width + column
+  int width = 0;                 ///< cells along x
+  int height = 0;                ///< cells along y
+  std::vector<CellState> cells;  ///< width * height, index = row * width + column
 
   CellState at(int col, int row) const { return cells[static_cast<std::size_t>(row) * width + col]; }
 };

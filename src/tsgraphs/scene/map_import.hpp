@@ -1,0 +1,93 @@
+#pragma once
+/// An occupancy map (free / occupied / unknown cells, as ROS map_server gives them) made a
+/// scene (docs/import-map.md): one level whose slab is the known area, unknown holes as voids,
+/// occupied cells as a voxel map of wall columns, ground-truth rooms from a label image in the
+/// IPA room-segmentation benchmark's convention, and a survey path. No file I/O: the caller
+/// reads the map and writes the scene and the voxel points.
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tsgraphs/scene/scene.hpp"
+
+namespace tsgraphs::scene {
+
+enum class MapCell : std::uint8_t { kFree = 0, kOccupied = 1, kUnknown = 2 };
+
+/// A map raster: cell (c, r) covers [c, c + 1) x [r, r + 1) resolutions from the map's
+/// lower-left corner, row 0 at the bottom; the map frame is placed in the world by `origin`
+/// (the corner's position) and `yaw` (rotation about it), as map_server's origin [x, y, yaw].
+struct MapRaster {
+  int cols = 0, rows = 0;
+  double resolution = 0.05;    ///< m per cell
+  Vec2 origin = Vec2::Zero();  ///< world position of the lower-left corner
+  double yaw = 0.0;            ///< rad
+  std::vector<MapCell> cells;  ///< cols * rows, index r * cols + c
+
+  MapCell at(int c, int r) const { return cells[static_cast<std::size_t>(r) * cols + c]; }
+  /// The world position of a point given in the map frame (metres from the lower-left corner).
+  Vec2 to_world(const Vec2& p) const;
+  /// The inverse.
+  Vec2 to_map(const Vec2& p) const;
+};
+
+struct MapImportConfig {
+  std::string name = "imported_map";     ///< the scene's name
+  std::string voxel_file = "walls.pcd";  ///< the voxel map's file as the scene names it (relative to the scene)
+  double ceiling = 2.6;                  ///< m: the level's ceiling and the walls' height
+  double clearance = 0.35;               ///< m the survey path keeps from every occupied or unknown cell
+  int laps = 2;                          ///< laps of the survey path
+  double min_void_area = 1.0;  ///< m²: unknown holes in the known area larger than this are voids; smaller ones floor
+  double coverage_tile = 7.0;  ///< m: without rooms, one stop per tile of this size of the free space
+  std::string sensor_preset = "os1-64";  ///< the scene format's default sensor
+  double mount_height = 0.55;            ///< m: the sensor above the floor
+  double speed = 1.0;                    ///< m/s along the path
+  double yaw_rate_deg = 90.0;            ///< deg/s at corners
+};
+
+/// What the import made, for the command's summary and the tests.
+struct MapImportStats {
+  std::size_t known_cells = 0;     ///< cells of the slab's component
+  std::size_t occupied_cells = 0;  ///< occupied cells on the slab
+  std::size_t skin_cells = 0;      ///< those next to a free or unknown cell: the ones that get voxels
+  std::size_t voxels = 0;          ///< cubes written
+  int small_holes = 0;             ///< unknown holes of at most min_void_area, left as floor
+  std::size_t slab_vertices = 0;
+  double path_length = 0.0;         ///< m, one lap
+  double min_path_clearance = 0.0;  ///< m, along the driven path (all laps), to the nearest cell edge
+};
+
+struct ImportedMap {
+  Scene scene;                          ///< voxel_maps[0].file is config.voxel_file
+  std::vector<Eigen::Vector3f> voxels;  ///< voxel centres in the voxel map's frame (the map frame, z up from the floor)
+  std::vector<std::string> warnings;    ///< rooms left out of the tour, and why
+  MapImportStats stats;
+};
+
+/// Room labels are white (grey above this, the IPA evaluation's cv::threshold at 250).
+constexpr int kRoomWhiteAbove = 250;
+/// White regions of this many cells or fewer are no rooms (the IPA evaluation's "mini rooms").
+constexpr std::size_t kRoomMaxSmallCells = 100;
+
+/// Builds the scene of `map`. `room_grey` (empty, or one grey value per cell, row 0 at the
+/// bottom like `map.cells`) gives the ground-truth rooms: 8-connected regions of white, each
+/// room's polygon the outline of its region without its holes. Throws an InputError when the
+/// map has no known cell or no free cell far enough from every obstacle to start a path, and
+/// std::invalid_argument on a raster whose size disagrees with its cells.
+ImportedMap import_map(const MapRaster& map, const std::vector<std::uint8_t>& room_grey, const MapImportConfig& config);
+
+/// The outer outlines of the 4-connected (eight_connected false) or 8-connected regions of
+/// `mask` (cols x rows, row 0 at the bottom), traced along cell edges, counter-clockwise, in
+/// cell units: the regions' ids are `labels` (one per cell, -1 outside every region), region k
+/// gets outline k. Where a region touches itself diagonally the outline passes the corner
+/// twice; both passes cut it a tenth of a cell short, so that every outline is a simple polygon.
+std::vector<Polygon2> trace_outlines(const std::vector<int>& labels, int cols, int rows, int n_regions,
+                                     bool eight_connected);
+
+/// Douglas-Peucker on closed outlines with `tolerance`, together: where a simplified edge
+/// would meet another (of any outline), the vertex the simplification dropped that is farthest
+/// from it is put back, until no two edges meet. Outlines that are simple and disjoint stay so.
+std::vector<Polygon2> simplify_outlines(const std::vector<Polygon2>& outlines, double tolerance);
+
+}  // namespace tsgraphs::scene
