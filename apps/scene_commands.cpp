@@ -1,11 +1,23 @@
 // The commands that make scenes (scene_commands.hpp).
 #include "scene_commands.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
+#include "tsgraphs/io/image.hpp"
+#include "tsgraphs/io/occupancy_map.hpp"
+#include "tsgraphs/io/pcd.hpp"
 #include "tsgraphs/scene/generator.hpp"
+#include "tsgraphs/scene/map_import.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
+#include "tsgraphs/scene/scene_writer.hpp"
+#include "tsgraphs/scene/sensor_presets.hpp"
 
 namespace tsgraphs::app {
 
@@ -26,6 +38,134 @@ void generate(const GenerateOptions& options) {
                  options.style.c_str(), static_cast<unsigned long long>(options.seed), s.levels.size(),
                  s.levels.size() == 1 ? "" : "s", s.rooms.size(), s.walls.size(), s.boxes.size(),
                  s.sensor.preset.c_str(), s.sensor.mount_height, options.out.c_str());
+  }
+}
+
+namespace {
+
+constexpr double kMaxCeiling = 20.0;   // m: an atrium's height, well beyond any storey
+constexpr double kMaxClearance = 5.0;  // m: more than half of any corridor's width
+
+/// The map's cells for the scene builder (the same raster, the classes renamed).
+scene::MapRaster raster_of(const io::OccupancyMap& m) {
+  scene::MapRaster r;
+  r.cols = m.width;
+  r.rows = m.height;
+  r.resolution = m.meta.resolution;
+  r.origin = Vec2(m.meta.origin_x, m.meta.origin_y);
+  r.yaw = m.meta.origin_yaw;
+  r.cells.resize(m.cells.size());
+  for (std::size_t i = 0; i < m.cells.size(); ++i) {
+    r.cells[i] = m.cells[i] == io::CellState::kFree       ? scene::MapCell::kFree
+                 : m.cells[i] == io::CellState::kOccupied ? scene::MapCell::kOccupied
+                                                          : scene::MapCell::kUnknown;
+  }
+  return r;
+}
+
+/// The label image's grey values, row 0 at the bottom like the map's cells.
+std::vector<std::uint8_t> room_grey(const std::string& file, const io::OccupancyMap& map) {
+  const io::Image img = io::read_image(file);
+  if (img.width != map.width || img.height != map.height) {
+    throw input_error(file, 0, "room labels are " + std::to_string(img.width) + " x " + std::to_string(img.height) +
+                                   " pixels but the map " + map.meta.image + " is " + std::to_string(map.width) +
+                                   " x " + std::to_string(map.height));
+  }
+  const std::vector<std::uint8_t> grey = io::luma(img);
+  std::vector<std::uint8_t> out(grey.size());
+  for (int j = 0; j < img.height; ++j) {
+    std::copy_n(grey.begin() + static_cast<long>(j) * img.width, img.width,
+                out.begin() + static_cast<long>(img.height - 1 - j) * img.width);
+  }
+  return out;
+}
+
+}  // namespace
+
+void import_map(const ImportMapOptions& options) {
+  namespace fs = std::filesystem;
+  if (options.map.empty()) throw input_error("import-map", 0, "give the map's YAML file");
+  if (options.out.empty()) throw input_error("import-map", 0, "give --out SCENE.yaml");
+  if (!(options.ceiling > 0.0 && options.ceiling <= kMaxCeiling))
+    throw input_error("--ceiling", 0, "must lie in (0, 20] m");
+  if (!(options.clearance >= 0.0 && options.clearance < kMaxClearance))
+    throw input_error("--clearance", 0, "must lie in [0, 5) m");
+  if (options.laps < 1) throw input_error("--laps", 0, "must be >= 1");
+  const auto& presets = scene::preset_names();
+  if (std::find(presets.begin(), presets.end(), options.sensor) == presets.end()) {
+    std::string list;
+    for (const std::string& n : presets) list += (list.empty() ? "" : ", ") + n;
+    throw input_error("--sensor", 0, "unknown preset '" + options.sensor + "' (presets: " + list + ")");
+  }
+  if (!(options.mount_height > 0.0 && options.mount_height < options.ceiling))
+    throw input_error("--mount-height", 0, "must lie between 0 and the ceiling");
+
+  const auto t0 = std::chrono::steady_clock::now();
+  const io::OccupancyMap map = io::read_occupancy_map(options.map);
+  const std::vector<std::uint8_t> grey =
+      options.rooms.empty() ? std::vector<std::uint8_t>{} : room_grey(options.rooms, map);
+
+  const fs::path out(options.out);
+  scene::MapImportConfig config;
+  config.name = fs::path(options.map).stem().string();
+  config.voxel_file = out.stem().string() + "_walls.pcd";
+  config.ceiling = options.ceiling;
+  config.clearance = options.clearance;
+  config.laps = options.laps;
+  config.sensor_preset = options.sensor;
+  config.mount_height = options.mount_height;
+  scene::ImportedMap imported;
+  try {
+    imported = scene::import_map(raster_of(map), grey, config);
+  } catch (const InputError& e) {
+    throw input_error(options.map, 0, e.what());
+  }
+  for (const std::string& w : imported.warnings)
+    std::fprintf(stderr, "tsgraphs: warning: %s: %s\n", options.map.c_str(), w.c_str());
+
+  std::ostringstream header;
+  header << "Imported by `tsgraphs import-map` (docs/import-map.md) from " << fs::path(options.map).filename().string();
+  if (!options.rooms.empty()) header << " with rooms from " << fs::path(options.rooms).filename().string();
+  header << ".\nWalls: " << config.voxel_file
+         << " (voxel centres, one column per occupied cell next to free or unknown space).";
+  const std::string yaml = scene::scene_yaml(imported.scene, header.str());
+  const fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+  const fs::path pcd = out.parent_path() / config.voxel_file;  // beside the scene, named as the user named it
+  const bool has_walls = !imported.scene.voxel_maps.empty();
+  if (has_walls) {
+    PointCloud cloud;
+    cloud.points = std::move(imported.voxels);
+    io::write_file_atomic(pcd.string(), io::encode_pcd(cloud));
+  }
+  // The scene must read back as written (and its PCD beside it) before it is put in place.
+  try {
+    scene::Scene check;
+    try {
+      check = scene::parse_scene(yaml, options.out, dir.string());
+    } catch (const InputError& e) {
+      throw std::runtime_error(std::string("the imported scene does not read back: ") + e.what());  // a bug here
+    }
+    for (const std::string& w : check.warnings) std::fprintf(stderr, "tsgraphs: warning: %s\n", w.c_str());
+    io::write_file_atomic(options.out, yaml);
+  } catch (...) {
+    std::error_code ec;
+    if (has_walls) fs::remove(pcd, ec);
+    throw;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!options.quiet) {
+    const scene::MapImportStats& st = imported.stats;
+    const scene::Scene& s = imported.scene;
+    std::fprintf(stderr,
+                 "import-map: %s: %d x %d cells at %.3f m; slab %zu vertices, %zu void%s, %zu room%s; "
+                 "%zu occupied cells, "
+                 "%zu on the surface, %zu voxels; path %.1f m a lap (%zu waypoints), clearance >= %.2f m; %.1f s; "
+                 "wrote %s%s%s\n",
+                 options.map.c_str(), map.width, map.height, map.meta.resolution, st.slab_vertices,
+                 s.levels[0].voids.size(), s.levels[0].voids.size() == 1 ? "" : "s", s.rooms.size(),
+                 s.rooms.size() == 1 ? "" : "s", st.occupied_cells, st.skin_cells, st.voxels, st.path_length,
+                 s.trajectory.waypoints.size(), st.min_path_clearance, seconds, options.out.c_str(),
+                 has_walls ? " and " : "", has_walls ? pcd.string().c_str() : "");
   }
 }
 

@@ -19,4 +19,20 @@ struct GenerateOptions {
 /// written whole or not at all.
 void generate(const GenerateOptions& options);
 
+struct ImportMapOptions {
+  std::string map;              ///< the map_server YAML
+  std::string out;              ///< scene file to write; its walls go beside it as <stem>_walls.pcd
+  std::string rooms;            ///< room labels image (IPA convention), or "" for none
+  double ceiling = 2.6;         ///< m: ceiling and wall height
+  double clearance = 0.35;      ///< m the survey path keeps from occupied and unknown cells
+  int laps = 2;                 ///< laps of the survey path
+  std::string sensor = "os1-64";  ///< sensor preset
+  double mount_height = 0.55;   ///< m: sensor above the floor
+  bool quiet = false;
+};
+
+/// `import-map`: a ROS occupancy map (and its room labels) as a scene file and its voxel
+/// PCD (docs/import-map.md), both written whole or not at all.
+void import_map(const ImportMapOptions& options);
+
 }  // namespace tsgraphs::app

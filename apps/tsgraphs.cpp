@@ -38,6 +38,7 @@ struct Options {
   std::string compression = "lz4";
   DemoOptions demo;
   GenerateOptions generate;
+  ImportMapOptions import_map;
 };
 
 std::uint64_t seed_for(const scene::Scene& scene, long long cli_seed) {
@@ -75,6 +76,22 @@ int main(int argc, char** argv) {
   generate_cmd->add_option("--laps", opt.generate.laps, "laps of the survey path")->check(CLI::PositiveNumber)->capture_default_str();
   generate_cmd->add_option("--size", opt.generate.size, "scales the building's extent, (0, 1] (small buildings for quick tests)")
       ->capture_default_str();
+
+  auto* import_cmd = app.add_subcommand(
+      "import-map", "a ROS map_server occupancy map (PGM or PNG and its YAML) as a scene file: walls, rooms, a survey path");
+  import_cmd->add_option("MAP", opt.import_map.map, "the map's YAML file (map_server format)")->required();
+  import_cmd->add_option("--out", opt.import_map.out, "scene file to write; its walls go beside it as <stem>_walls.pcd")
+      ->required();
+  import_cmd->add_option("--rooms", opt.import_map.rooms,
+                         "ground-truth rooms: a PNG or PGM of the map's size, rooms white, doors closed by black lines "
+                         "(the IPA room-segmentation benchmark's convention)");
+  import_cmd->add_option("--ceiling", opt.import_map.ceiling, "ceiling and wall height, m")->capture_default_str();
+  import_cmd->add_option("--clearance", opt.import_map.clearance, "m the survey path keeps from occupied and unknown cells")
+      ->capture_default_str();
+  import_cmd->add_option("--laps", opt.import_map.laps, "laps of the survey path")->check(CLI::PositiveNumber)->capture_default_str();
+  import_cmd->add_option("--sensor", opt.import_map.sensor, "sensor preset: os1-64, os0-128, vlp-16 or hesai-xt32")
+      ->capture_default_str();
+  import_cmd->add_option("--mount-height", opt.import_map.mount_height, "sensor above the floor, m")->capture_default_str();
 
   auto* draw_cmd = app.add_subcommand("draw-scene", "bird's-eye SVG of a scene and its path");
   draw_cmd->add_option("SCENE", opt.scene, "scene YAML file or built-in scene name")->required();
@@ -167,6 +184,9 @@ int main(int argc, char** argv) {
     } else if (*generate_cmd) {
       opt.generate.quiet = opt.quiet;
       generate(opt.generate);
+    } else if (*import_cmd) {
+      opt.import_map.quiet = opt.quiet;
+      import_map(opt.import_map);
     } else if (*bag_info_cmd) {
       print_bag_info(opt.bag.bag);
     } else if (*draw_cmd) {
