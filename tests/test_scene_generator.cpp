@@ -58,8 +58,10 @@ void check(const GeneratedBuilding& b) {
   }
   for (std::size_t i = 0; i < s.rooms.size(); ++i) EXPECT_TRUE(entered[i]) << "room " << s.rooms[i].name;
 
+  std::set<std::string> names;
   for (std::size_t i = 0; i < s.rooms.size(); ++i) {
     const Room& a = s.rooms[i];
+    EXPECT_TRUE(names.insert(a.name).second) << "two rooms named " << a.name;
     EXPECT_FALSE(find_self_intersection(a.polygon).has_value()) << a.name;
     for (std::size_t j = i + 1; j < s.rooms.size(); ++j) {
       if (s.rooms[j].level == a.level)

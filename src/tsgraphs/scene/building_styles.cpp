@@ -140,7 +140,7 @@ Vec2 minimum_region(const std::string& style) {
   if (style == "atrium") return {16.0, 14.0};
   if (style == "library") return {16.0, 12.0};
   if (style == "open_plan") return {16.0, 12.0};
-  if (style == "irregular") return {16.0, 14.0};
+  if (style == "irregular") return {14.0, 14.0};
   throw std::invalid_argument("no such building style: " + style);
 }
 

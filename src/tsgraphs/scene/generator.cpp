@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -35,8 +36,8 @@ constexpr double kGlassTransmissionMax = 0.9;
 constexpr double kExtraDoorChance = 0.2;     // of a room getting a second door into a neighbour room
 
 // Ramps between storeys (multi_storey).
-constexpr double kRampSlopeMin = 0.14;       // rise per run: 8 to 10 degrees
-constexpr double kRampSlopeMax = 0.18;
+constexpr double kRampSlopeMin = 0.16;       // rise per run: 9 to 12 degrees (a robot's ramp, steeper than a wheelchair's)
+constexpr double kRampSlopeMax = 0.21;
 constexpr double kRampWidthMin = 1.8;        // m
 constexpr double kRampWidthMax = 2.4;
 constexpr double kGalleryMin = 1.6;          // m: the corridor along a ramp
@@ -62,7 +63,7 @@ StyleSize size_of(const std::string& style, double scale) {
                 : style == "atrium"    ? StyleSize{18, 30, 16, 24}
                 : style == "library"   ? StyleSize{18, 32, 14, 22}
                 : style == "open_plan" ? StyleSize{20, 40, 15, 30}
-                                       : StyleSize{14, 24, 14, 20};  // irregular: each of its two wings
+                                       : StyleSize{14, 22, 14, 18};  // irregular: its second wing
   // Scaled down, but never below what the style needs.
   const Vec2 m = minimum_region(style);
   return {std::max(m.x(), z.w_lo * scale), std::max(m.x(), z.w_hi * scale), std::max(m.y(), z.h_lo * scale),
@@ -151,7 +152,7 @@ Building single_wing(const std::string& style, double scale, Rng& rng) {
   s.ceiling = ceiling;
   if (style == "irregular") {
     // Two wings: rooms merged into L and T shapes beside a diagonal corridor or a pentagonal ring.
-    const double w0 = std::max(minimum_region("irregular").x(), rng.uniform(12.0, 18.0) * scale);
+    const double w0 = std::max(minimum_region("irregular").x(), rng.uniform(10.0, 15.0) * scale);
     const Region a{{0, 0}, {w0, r.hi.y()}}, c{{w0, 0}, {w0 + r.hi.x(), r.hi.y()}};
     fill("irregular", &s.plan, a, rng, "west_", IrregularVariant::kMergedRooms);
     fill("irregular", &s.plan, c, rng, "east_", rng.chance(0.5) ? IrregularVariant::kDiagonal : IrregularVariant::kPentagon);
@@ -165,7 +166,7 @@ Building single_wing(const std::string& style, double scale, Rng& rng) {
 
 Building mixed(double scale, Rng& rng) {
   static const std::vector<std::string> kWingStyles = {"office", "atrium", "library", "open_plan", "irregular"};
-  const int n = rng.integer(2, 3);
+  const int n = rng.chance(0.7) ? 2 : 3;
   std::vector<std::string> styles;
   for (int i = 0; i < n; ++i) styles.push_back(rng.pick(kWingStyles));
   if (std::adjacent_find(styles.begin(), styles.end()) != styles.end() && n == 2) styles[1] = styles[0] == "office" ? "library" : "office";
@@ -197,8 +198,8 @@ Building mixed(double scale, Rng& rng) {
 Building multi_storey(double scale, Rng& rng) {
   static const std::vector<std::string> kGround = {"office", "library", "open_plan", "irregular"};
   static const std::vector<std::string> kUpper = {"office", "library", "open_plan", "irregular", "atrium"};
-  const int n = rng.chance(0.75) ? 2 : 3;
-  const double ceiling = rng.uniform(kCeilingMin, 3.2);
+  const int n = rng.chance(0.8) ? 2 : 3;
+  const double ceiling = rng.uniform(kCeilingMin, 3.0);
   const double rise = ceiling + kSlabThickness;
   const double run = rise / rng.uniform(kRampSlopeMin, kRampSlopeMax);
   const double wr = rng.uniform(kRampWidthMin, kRampWidthMax), wg = rng.uniform(kGalleryMin, kGalleryMax);
@@ -228,7 +229,7 @@ Building multi_storey(double scale, Rng& rng) {
       const double s0 = p.south ? 0.0 : H - wr, s1 = p.south ? wr : H;      // the ramp's strip
       const double g0 = p.south ? wr : H - ws, g1 = p.south ? ws : H - wr;   // the gallery beside it
       if (p.south) y_lo = ws; else y_hi = H - ws;
-      const std::string side = p.south ? "south_" : "north_";
+      const std::string side = s.name + "_" + (p.south ? "south_" : "north_");
       const int gallery = s.plan.add_rect(side + "gallery", SpaceKind::kCorridor, {0, g0}, {W, g1});
       const int west = s.plan.add_rect(side + (lower ? "landing" : "balcony"), SpaceKind::kCorridor, {0, s0}, {p.x0, s1});
       s.plan.open_joints.push_back({gallery, west});
@@ -251,7 +252,7 @@ Building multi_storey(double scale, Rng& rng) {
       }
     }
     const std::string st = rng.pick(j == 0 ? kGround : kUpper);
-    fill(st, &s.plan, {{0, y_lo}, {W, y_hi}}, rng, "");
+    fill(st, &s.plan, {{0, y_lo}, {W, y_hi}}, rng, s.name + "_");  // names unique over the storeys
     b.storeys.push_back(std::move(s));
   }
   return b;
@@ -423,6 +424,10 @@ GeneratedBuilding generate_building(const std::string& style, std::uint64_t seed
     for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
     throw InputError("--style: unknown building style '" + style + "' (styles: " + list + ")");
   }
+  // The scene file's seed is read back as a signed 64-bit number.
+  if (seed > static_cast<std::uint64_t>(std::numeric_limits<long long>::max()))
+    throw InputError("--seed: " + std::to_string(seed) + " is more than " +
+                     std::to_string(std::numeric_limits<long long>::max()));
   std::string last;
   for (int attempt = 0; attempt < config.max_attempts; ++attempt) {
     try {
