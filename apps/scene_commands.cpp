@@ -123,15 +123,17 @@ void import_map(const ImportMapOptions& options) {
   for (const std::string& w : imported.warnings)
     std::fprintf(stderr, "tsgraphs: warning: %s: %s\n", options.map.c_str(), w.c_str());
 
+  const bool has_walls = !imported.scene.voxel_maps.empty();  // a map without an occupied cell has none
   std::ostringstream header;
   header << "Imported by `tsgraphs import-map` (docs/import-map.md) from " << fs::path(options.map).filename().string();
   if (!options.rooms.empty()) header << " with rooms from " << fs::path(options.rooms).filename().string();
-  header << ".\nWalls: " << config.voxel_file
-         << " (voxel centres, one column per occupied cell next to free or unknown space).";
+  header << ".";
+  if (has_walls)
+    header << "\nWalls: " << config.voxel_file
+           << " (voxel centres, one column per occupied cell next to free or unknown space).";
   const std::string yaml = scene::scene_yaml(imported.scene, header.str());
   const fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
   const fs::path pcd = out.parent_path() / config.voxel_file;  // beside the scene, named as the user named it
-  const bool has_walls = !imported.scene.voxel_maps.empty();
   if (has_walls) {
     PointCloud cloud;
     cloud.points = std::move(imported.voxels);
