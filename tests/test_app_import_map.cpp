@@ -4,6 +4,7 @@
 // YAML key) is one line naming the file and place, exit status 2, and nothing written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 
@@ -118,4 +119,20 @@ TEST_F(ImportMapCli, BadOptions) {
   expect_refused(path("maps/floor.yaml"), "--sensor kinect", {"--sensor", "kinect"});
   expect_refused(path("maps/floor.yaml"), "--ceiling 0", {"--ceiling"});
   expect_refused(path("maps/floor.yaml"), "--clearance 3", {path("maps/floor.yaml"), "--clearance"});
+}
+
+TEST_F(ImportMapCli, MapWithoutWallsHasNoVoxelFile) {
+  // A free rectangle in unknown space: floor and a path, no occupied cell, so no walls file.
+  io::Image img = drawn_.map;
+  std::fill(img.samples.begin(), img.samples.end(), test::kUnknownPx);
+  test::fill_box(&img, {2.0, 2.0, 8.0, 6.0}, test::kFreePx);
+  write_file("maps/open.pgm", io::encode_pgm(img));
+  write_file("maps/open.yaml", test::map_yaml("open.pgm"));
+  std::string err;
+  ASSERT_EQ(cli("-q import-map " + path("maps/open.yaml") + " --out " + path("out/open.yaml"), &err), 0) << err;
+  EXPECT_EQ(names_in(dir_ / "out"), (std::set<std::string>{"open.yaml"}));
+  const scene::Scene s = scene::load_scene(path("out/open.yaml"));
+  EXPECT_TRUE(s.warnings.empty());
+  EXPECT_TRUE(s.voxel_maps.empty());
+  EXPECT_NEAR(area(s.levels[0].slab), 24.0, 1e-6);
 }
