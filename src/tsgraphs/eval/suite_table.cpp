@@ -1,0 +1,298 @@
+#include "tsgraphs/eval/suite_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <tuple>
+
+namespace tsgraphs::eval {
+namespace {
+
+/// Fixed-point text; a value that rounds to zero prints as 0, never -0.
+std::string fixed(double v, int decimals) {
+  if (std::abs(v) < 0.5 * std::pow(10.0, -decimals)) v = 0.0;
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
+  return buf;
+}
+
+/// A CSV number: enough digits to read back what metrics.json holds.
+std::string csv_number(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.10g", v);
+  return buf;
+}
+
+/// A CSV field, quoted when it holds a separator, a quote or a line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+/// A markdown cell: pipes escaped, line breaks flattened.
+std::string md_cell(std::string text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|') out += "\\|";
+    else if (c == '\n' || c == '\r') out += ' ';
+    else out += c;
+  }
+  return out;
+}
+
+const SuiteFigure& figure_by_key(const std::string& key) {
+  for (const SuiteFigure& f : suite_figures())
+    if (f.key == key) return f;
+  throw std::logic_error("no suite figure " + key);
+}
+
+/// Is `a` worse than `b`?
+bool worse(double a, double b, Better better) { return better == Better::kHigher ? a < b : a > b; }
+
+}  // namespace
+
+const std::vector<SuiteFigure>& suite_figures() {
+  static const std::vector<SuiteFigure> figures = {
+      {"consistency.f_re", "f_re", Better::kHigher, 2, ""},
+      {"consistency.dcs", "DCS", Better::kHigher, 2, ""},
+      {"consistency.d_center", "d_center (m)", Better::kLower, 2, ""},
+      {"rooms_gt.precision", "rooms P", Better::kHigher, 2, ""},
+      {"rooms_gt.recall", "rooms R", Better::kHigher, 2, ""},
+      {"rooms_gt.f1", "rooms F1", Better::kHigher, 2, "rooms_gt.recall"},
+      {"rooms_gt.mean_iou", "mean IoU", Better::kHigher, 2, ""},
+      {"rooms_gt.under_segmented", "under-segmented", Better::kLower, 1, "", true},
+      {"rooms_gt.over_segmented", "over-segmented", Better::kLower, 1, "", true},
+      {"rooms_gt.unsupported", "unsupported rooms", Better::kLower, 1, "", true},
+      {"rooms_gt.ipa_precision_micro", "IPA P micro", Better::kHigher, 2, ""},
+      {"rooms_gt.ipa_recall_micro", "IPA R micro", Better::kHigher, 2, ""},
+      {"rooms_gt.ipa_precision_macro", "IPA P macro", Better::kHigher, 2, ""},
+      {"rooms_gt.ipa_recall_macro", "IPA R macro", Better::kHigher, 2, ""},
+      {"trajectory.ate_rmse", "ATE_rmse (m)", Better::kLower, 3, ""},
+      {"pgo.t_pgo_s", "T_PGO (s)", Better::kLower, 3, ""},
+      {"speed.rtf", "RTF", Better::kHigher, 1, ""},
+  };
+  return figures;
+}
+
+Figure suite_value(const CaseMethod& run, const SuiteFigure& figure) {
+  if (const Figure f = run.figure(figure.key)) return f;
+  if (!figure.zero_when_null_with.empty() && run.figure(figure.zero_when_null_with)) return 0.0;
+  return std::nullopt;
+}
+
+double percentile(std::vector<double> values, double p) {
+  if (values.empty()) throw std::invalid_argument("percentile of no values");
+  std::sort(values.begin(), values.end());
+  const double rank = std::clamp(p, 0.0, 100.0) / 100.0 * static_cast<double>(values.size() - 1);
+  const std::size_t lo = static_cast<std::size_t>(std::floor(rank));
+  const std::size_t hi = std::min(lo + 1, values.size() - 1);
+  return values[lo] + (rank - static_cast<double>(lo)) * (values[hi] - values[lo]);
+}
+
+int worst_decile_percentile(Better better) { return better == Better::kHigher ? 10 : 90; }
+
+double worst_decile(const std::vector<double>& values, Better better) {
+  return percentile(values, worst_decile_percentile(better));
+}
+
+FigureStats figure_stats(const std::vector<std::pair<std::string, double>>& values, Better better) {
+  FigureStats s;
+  std::vector<double> v;
+  for (const auto& [id, x] : values) {
+    if (!std::isfinite(x)) continue;
+    v.push_back(x);
+    if (!s.worst || worse(x, *s.worst, better)) {
+      s.worst = x;
+      s.worst_case = id;
+    }
+  }
+  s.n = static_cast<int>(v.size());
+  if (v.empty()) return s;
+  s.median = percentile(v, 50.0);
+  s.worst_decile = worst_decile(v, better);
+  return s;
+}
+
+std::vector<MethodSummary> summarise(const SuiteResults& results) {
+  std::vector<MethodSummary> out;
+  for (const SuiteMethod& m : results.methods) {
+    MethodSummary summary;
+    summary.method = m;
+    std::vector<std::vector<std::pair<std::string, double>>> values(suite_figures().size());
+    for (const CaseRecord& c : results.cases) {
+      if (!c.done()) {
+        ++summary.failed;
+        continue;
+      }
+      const CaseMethod* run = c.method(m.slug);
+      if (run == nullptr) continue;
+      ++summary.counted;
+      for (std::size_t k = 0; k < suite_figures().size(); ++k)
+        if (const Figure f = suite_value(*run, suite_figures()[k])) values[k].emplace_back(c.id, *f);
+    }
+    for (std::size_t k = 0; k < suite_figures().size(); ++k)
+      summary.stats.push_back(figure_stats(values[k], suite_figures()[k].better));
+    out.push_back(std::move(summary));
+  }
+  return out;
+}
+
+std::string key_method(const SuiteResults& results) {
+  for (const SuiteMethod& m : results.methods)
+    if (m.slug == "ts-graphs") return m.slug;
+  return results.methods.empty() ? "" : results.methods.front().slug;
+}
+
+std::vector<const CaseRecord*> worst_first(const SuiteResults& results) {
+  const std::string key = key_method(results);
+  const SuiteFigure& f1 = figure_by_key("rooms_gt.f1");
+  const SuiteFigure& f_re = figure_by_key("consistency.f_re");
+  // Failed cases, and figures a case lacks, sort before every number.
+  constexpr double kFirst = -std::numeric_limits<double>::infinity();
+  const auto sort_key = [&](const CaseRecord& c) {
+    const CaseMethod* run = c.done() ? c.method(key) : nullptr;
+    if (run == nullptr) return std::make_tuple(0, kFirst, kFirst);
+    return std::make_tuple(1, suite_value(*run, f1).value_or(kFirst), suite_value(*run, f_re).value_or(kFirst));
+  };
+  std::vector<const CaseRecord*> out;
+  for (const CaseRecord& c : results.cases) out.push_back(&c);
+  std::stable_sort(out.begin(), out.end(),
+                   [&](const CaseRecord* a, const CaseRecord* b) { return sort_key(*a) < sort_key(*b); });
+  return out;
+}
+
+std::string figure_text(const Figure& f, int decimals) { return f ? fixed(*f, decimals) : "-"; }
+
+std::string case_figure_text(const CaseMethod& run, const SuiteFigure& figure) {
+  return figure_text(suite_value(run, figure), figure.whole ? 0 : figure.decimals);
+}
+
+std::string case_figure_text(const CaseMethod& run, const std::string& key) {
+  return case_figure_text(run, figure_by_key(key));
+}
+
+std::string better_text(Better better) {
+  return better == Better::kHigher ? "higher (p10)" : "lower (p90)";
+}
+
+std::string case_line(const CaseRecord& c, const SuiteResults& results) {
+  if (!c.done()) return c.id + ": failed: " + c.message;
+  const std::string key = key_method(results);
+  std::string line = c.id + ":";
+  const auto add = [&](const CaseMethod& run, const char* figure_key, const char* label, const char* unit) {
+    return std::string(label) + " " + case_figure_text(run, figure_key) + unit;
+  };
+  if (const CaseMethod* run = c.method(key)) {
+    line += " " + run->method.name + " " + add(*run, "rooms_gt.f1", "F1", "") + ", " +
+            add(*run, "consistency.f_re", "f_re", "") + ", " + add(*run, "consistency.dcs", "DCS", "") + ", " +
+            add(*run, "consistency.d_center", "d_center", " m") + ";";
+  }
+  for (const CaseMethod& run : c.methods) {
+    if (run.method.slug == key) continue;
+    line += " " + run.method.name + " " + add(run, "rooms_gt.f1", "F1", "") + ";";
+  }
+  return line + " " + fixed(c.wall_s, 0) + " s";
+}
+
+std::string suite_csv(const SuiteResults& results) {
+  std::string out = "case,status,message,kind";
+  for (const std::string& k : case_info_keys()) out += "," + k;
+  out += ",method,wall_s";
+  for (const std::string& k : metrics_keys()) out += "," + k;
+  out += "\n";
+  for (const CaseRecord& c : results.cases) {
+    std::string lead = csv_field(c.id) + "," + csv_field(c.status) + "," + csv_field(c.message) + "," + csv_field(c.kind);
+    for (const std::string& k : case_info_keys()) lead += "," + csv_field(c.info_value(k));
+    for (const SuiteMethod& m : results.methods) {
+      const CaseMethod* run = c.done() ? c.method(m.slug) : nullptr;
+      if (c.done() && run == nullptr) continue;  // a case run without this method
+      out += lead + "," + csv_field(m.name) + ",";
+      if (run != nullptr && run->wall_s) out += csv_number(*run->wall_s);
+      for (const std::string& k : metrics_keys()) {
+        out += ",";
+        if (run == nullptr) continue;
+        if (const Figure f = run->figure(k)) out += csv_number(*f);
+      }
+      out += "\n";
+    }
+  }
+  return out;
+}
+
+std::string suite_markdown(const SuiteResults& results) {
+  const std::vector<MethodSummary> summaries = summarise(results);
+  int done = 0, failed = 0;
+  double wall = 0.0;
+  for (const CaseRecord& c : results.cases) {
+    (c.done() ? done : failed) += 1;
+    wall += c.wall_s;
+  }
+  const std::size_t total = results.cases.size() + results.pending.size();
+  std::string md = "# Suite " + md_cell(results.name) + "\n\n";
+  md += std::to_string(total) + " cases: " + std::to_string(done) + " counted, " + std::to_string(failed) +
+        " failed, " + std::to_string(results.pending.size()) + " not run yet; " + fixed(wall, 0) +
+        " s of case wall time. Methods: ";
+  for (std::size_t i = 0; i < results.methods.size(); ++i) md += (i ? ", " : "") + results.methods[i].name;
+  md += ".\n\n";
+  md += "Per method and figure, over the counted cases that have the figure (`cases`): the median, the worst "
+        "decile (the 10th percentile where higher is better, the 90th where lower is better; linear between "
+        "ranks), the worst value and the first case with it. DCS, d_center and mean IoU exist only where "
+        "rooms were paired or matched; rooms F1 is 0 where a run has no final room.\n";
+  for (const MethodSummary& s : summaries) {
+    md += "\n## " + md_cell(s.method.name) + "\n\n" + std::to_string(s.counted) + " cases counted, " +
+          std::to_string(s.failed) + " failed.\n\n";
+    md += "| figure | better (worst decile) | median | worst decile | worst | worst case | cases |\n";
+    md += "|---|---|---|---|---|---|---|\n";
+    for (std::size_t k = 0; k < suite_figures().size(); ++k) {
+      const SuiteFigure& f = suite_figures()[k];
+      const FigureStats& st = s.stats[k];
+      md += "| " + f.header + " | " + better_text(f.better) + " | " + figure_text(st.median, f.decimals) + " | " +
+            figure_text(st.worst_decile, f.decimals) + " | " + figure_text(st.worst, f.decimals) + " | " +
+            (st.worst_case.empty() ? "-" : md_cell(st.worst_case)) + " | " + std::to_string(st.n) + " |\n";
+    }
+  }
+
+  const std::string key = key_method(results);
+  md += "\n## Cases, worst first\n\n";
+  md += "By the " + (key.empty() ? std::string("first method") : key) + " run's rooms F1, then its f_re.\n\n";
+  std::string header = "| case | status |", rule = "|---|---|";
+  std::vector<std::pair<const SuiteMethod*, std::vector<const SuiteFigure*>>> columns;
+  for (const SuiteMethod& m : results.methods) {
+    std::vector<const SuiteFigure*> figures = {&figure_by_key("rooms_gt.f1")};
+    if (m.slug == key) {
+      for (const char* k : {"consistency.f_re", "consistency.dcs", "consistency.d_center"})
+        figures.push_back(&figure_by_key(k));
+    }
+    for (const SuiteFigure* f : figures) {
+      header += " " + md_cell(m.name) + " " + f->header + " |";
+      rule += "---|";
+    }
+    columns.emplace_back(&m, std::move(figures));
+  }
+  md += header + " wall (s) |\n" + rule + "---|\n";
+  for (const CaseRecord* c : worst_first(results)) {
+    md += "| " + md_cell(c->id) + " | " + c->status + " |";
+    for (const auto& [m, figures] : columns) {
+      const CaseMethod* run = c->done() ? c->method(m->slug) : nullptr;
+      for (const SuiteFigure* f : figures)
+        md += " " + (run ? case_figure_text(*run, *f) : std::string("-")) + " |";
+    }
+    md += " " + fixed(c->wall_s, 0) + " |\n";
+  }
+  if (failed > 0) {
+    md += "\n## Failed cases\n\n";
+    for (const CaseRecord& c : results.cases)
+      if (!c.done()) md += "- `" + c.id + "`: " + md_cell(c.message) + "\n";
+  }
+  if (!results.pending.empty()) {
+    md += "\n## Not run yet\n\n";
+    for (const std::string& id : results.pending) md += "- `" + id + "`\n";
+  }
+  return md;
+}
+
+}  // namespace tsgraphs::eval
