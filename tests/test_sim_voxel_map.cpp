@@ -76,18 +76,28 @@ TEST_F(VoxelMapTest, CubesAreHitAtTheirFacesWithAutoLabels) {
   EXPECT_EQ(ceiling.label, static_cast<std::uint32_t>(PointLabel::kCeiling));
 }
 
-TEST_F(VoxelMapTest, InnerFacesAreDropped) {
+TEST_F(VoxelMapTest, InnerFacesAreDroppedAndColumnsMerged) {
   const Scene scene = scene_with_map(dir_, ", label: box");
   const LabelledMesh mesh = build_scene_mesh(scene);
-  // The wall is a 1 x 20 x 30 block of cubes: only its outer faces remain, 2 triangles each:
-  // 2 * (20*30) + 2 * (1*30) + 2 * (1*20) faces. The floor and ceiling layers: 2 * (30*20)
-  // + 2*30 + 2*20 faces each. Where the wall's bottom and top rows touch the layers' last
-  // column (20 cubes each), both touching faces go: 2 * 2 * 20 fewer.
-  const std::size_t wall_faces = 2 * 600 + 60 + 40;
-  const std::size_t layer_faces = 2 * 600 + 60 + 40;
+  // The wall is a 1 x 20 x 30 block of cubes, the floor and ceiling layers 30 x 20 x 1 each;
+  // the wall's bottom and top rows touch the layers' last column. Only faces between a cube
+  // and empty space remain: 2 * (20*30) + 2 * (1*30) + 2 * (1*20) of the wall and
+  // 2 * (30*20) + 2*30 + 2*20 of each layer, less 2 * 2 * 20 where they touch: 3820 faces
+  // of 0.1 x 0.1 m.
+  double area = 0.0;
   std::size_t box_triangles = 0;
-  for (std::uint32_t l : mesh.labels) box_triangles += l == static_cast<std::uint32_t>(PointLabel::kBox);
-  EXPECT_EQ(box_triangles, 2 * (wall_faces + 2 * layer_faces - 2 * 2 * 20));
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (mesh.labels[t] != static_cast<std::uint32_t>(PointLabel::kBox)) continue;
+    ++box_triangles;
+    const Eigen::Vector3f a = mesh.vertices[mesh.triangles[t][0]], b = mesh.vertices[mesh.triangles[t][1]],
+                          c = mesh.vertices[mesh.triangles[t][2]];
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  EXPECT_NEAR(area, 3820 * 0.01, 1e-3);
+  // Side faces merge up each column: +x 20 runs, -x 20 (the wall between the layers) + 40
+  // (the layers' west ends), +y and -y 1 + 60 each: 202 quads. Top and bottom faces stay one
+  // per cube: 2440. Two triangles a quad.
+  EXPECT_EQ(box_triangles, 2u * (202 + 2440));
 }
 
 TEST_F(VoxelMapTest, YawAndOffsetMoveTheMap) {

@@ -1,8 +1,10 @@
 #include "tsgraphs/sim/scene_mesh.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <unordered_set>
 
 #include "tsgraphs/core/error.hpp"
@@ -100,33 +102,61 @@ void add_voxel_map(LabelledMesh* mesh, const scene::Scene& scene, const scene::V
     return Eigen::Vector3d(c * p.x() - sn * p.y() + vm.offset.x(), sn * p.x() + c * p.y() + vm.offset.y(),
                            p.z() + vm.offset.z() + level.elevation);
   };
-  static const Eigen::Vector3i kNeighbours[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  for (const Eigen::Vector3i& k : keys) {
-    const Eigen::Vector3d centre = origin + s * k.cast<double>();
-    const double z_rel = centre.z() + vm.offset.z();
-    PointLabel label = PointLabel::kWall;
+  const auto label_of = [&](const Eigen::Vector3i& k) {
+    const double z_rel = origin.z() + s * k.z() + vm.offset.z();
     switch (vm.label) {
-      case scene::VoxelLabel::kWall: label = PointLabel::kWall; break;
-      case scene::VoxelLabel::kBox: label = PointLabel::kBox; break;
-      case scene::VoxelLabel::kRailing: label = PointLabel::kRailing; break;
-      case scene::VoxelLabel::kAuto:
-        label = std::abs(z_rel) <= s                     ? PointLabel::kFloor
-                : std::abs(z_rel - level.ceiling) <= s ? PointLabel::kCeiling
-                                                         : PointLabel::kWall;
-        break;
+      case scene::VoxelLabel::kWall: return PointLabel::kWall;
+      case scene::VoxelLabel::kBox: return PointLabel::kBox;
+      case scene::VoxelLabel::kRailing: return PointLabel::kRailing;
+      case scene::VoxelLabel::kAuto: break;
     }
-    for (const Eigen::Vector3i& n : kNeighbours) {
-      if (occupied.count(k + n)) continue;  // shared face: never visible
-      // The face square: centre of the face plus two in-plane half axes.
-      const Eigen::Vector3d nd = n.cast<double>();
-      const Eigen::Vector3d fc = centre + 0.5 * s * nd;
-      const Eigen::Vector3d u = 0.5 * s * (n.x() != 0 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX());
-      const Eigen::Vector3d v = nd.cross(u);
-      const Eigen::Vector3d a = to_world(fc - u - v), b = to_world(fc + u - v), cc = to_world(fc + u + v),
-                            d = to_world(fc - u + v);
-      mesh->add_triangle(a, b, cc, label);
-      mesh->add_triangle(a, cc, d, label);
+    return std::abs(z_rel) <= s                    ? PointLabel::kFloor
+           : std::abs(z_rel - level.ceiling) <= s ? PointLabel::kCeiling
+                                                    : PointLabel::kWall;
+  };
+  // Faces between an occupied voxel and an empty one are the visible surface. The side faces
+  // of a column of voxels are merged into one tall quad per run of the same label: a wall
+  // extruded from an occupancy map is then a few triangles per cell, not a few per voxel.
+  struct SideFace {
+    int dir, x, y;
+    std::uint32_t label;
+    int z;
+    bool operator<(const SideFace& o) const {
+      return std::tie(dir, x, y, label, z) < std::tie(o.dir, o.x, o.y, o.label, o.z);
     }
+  };
+  static const Eigen::Vector3i kSides[4] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
+  static const Eigen::Vector3i kUpDown[2] = {{0, 0, 1}, {0, 0, -1}};
+  std::vector<SideFace> sides;
+  for (const Eigen::Vector3i& k : keys) {
+    const PointLabel label = label_of(k);
+    for (int d = 0; d < 4; ++d) {
+      if (!occupied.count(k + kSides[d])) sides.push_back({d, k.x(), k.y(), static_cast<std::uint32_t>(label), k.z()});
+    }
+    for (const Eigen::Vector3i& n : kUpDown) {
+      if (occupied.count(k + n)) continue;
+      const Eigen::Vector3d fc = origin + s * k.cast<double>() + 0.5 * s * n.cast<double>();
+      const Eigen::Vector3d u = 0.5 * s * Eigen::Vector3d::UnitX(), v = 0.5 * s * Eigen::Vector3d::UnitY();
+      mesh->add_triangle(to_world(fc - u - v), to_world(fc + u - v), to_world(fc + u + v), label);
+      mesh->add_triangle(to_world(fc - u - v), to_world(fc + u + v), to_world(fc - u + v), label);
+    }
+  }
+  std::sort(sides.begin(), sides.end());
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i + 1;
+    while (j < sides.size() && sides[j].dir == sides[i].dir && sides[j].x == sides[i].x && sides[j].y == sides[i].y &&
+           sides[j].label == sides[i].label && sides[j].z == sides[j - 1].z + 1)
+      ++j;
+    const SideFace& f = sides[i];
+    const Eigen::Vector3d n = kSides[f.dir].cast<double>();
+    const Eigen::Vector3d base = origin + s * Eigen::Vector3d(f.x, f.y, 0.0) + 0.5 * s * n;
+    const Eigen::Vector3d u = 0.5 * s * (f.dir < 2 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX());
+    const Eigen::Vector3d z0 = Eigen::Vector3d(0, 0, origin.z() + s * (f.z - 0.5) - base.z());
+    const Eigen::Vector3d z1 = Eigen::Vector3d(0, 0, origin.z() + s * (sides[j - 1].z + 0.5) - base.z());
+    const auto label = static_cast<PointLabel>(f.label);
+    mesh->add_triangle(to_world(base - u + z0), to_world(base + u + z0), to_world(base + u + z1), label);
+    mesh->add_triangle(to_world(base - u + z0), to_world(base + u + z1), to_world(base - u + z1), label);
+    i = j;
   }
 }
 
