@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "commands.hpp"
+#include "methods.hpp"
 #include "tsgraphs/eval/method_table.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/report/report_html.hpp"
@@ -21,21 +22,6 @@ namespace tsgraphs::app {
 namespace fs = std::filesystem;
 
 namespace {
-
-/// A room-layer mode of the comparison: TS-graphs, S-Graphs+, or one of the two ablations.
-struct Method {
-  const char* name;
-  const char* slug;  ///< run folder suffix
-  const char* free_space;
-  const char* room_trigger;
-};
-
-constexpr Method kMethods[] = {
-    {"TS-graphs", "ts-graphs", "traversable", "flush"},
-    {"S-Graphs+", "s-graphs-plus", "esdf", "timer"},
-    {"ablation: traversable + timer", "traversable-timer", "traversable", "timer"},
-    {"ablation: esdf + flush", "esdf-flush", "esdf", "flush"},
-};
 
 using Clock = std::chrono::steady_clock;
 
