@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "demo.hpp"
 #include "scene_commands.hpp"
+#include "suite.hpp"
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
 
@@ -39,6 +40,7 @@ struct Options {
   DemoOptions demo;
   GenerateOptions generate;
   ImportMapOptions import_map;
+  SuiteOptions suite;
 };
 
 std::uint64_t seed_for(const scene::Scene& scene, long long cli_seed) {
@@ -159,6 +161,23 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
 
+  auto* suite_cmd = app.add_subcommand(
+      "suite", "many cases (generated buildings, imported maps, scenes, sequences) run by the same rules, and their tables");
+  suite_cmd->add_option("SUITE", opt.suite.suite, "suite file (docs/suite.md)");
+  suite_cmd->add_option("--out", opt.suite.out, "suite folder (resumed when it holds an earlier run)");
+  suite_cmd->add_option("--jobs", opt.suite.jobs, "cases at once, each a child process with cores / N threads")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  suite_cmd->add_flag("--keep-sequences", opt.suite.keep_sequences, "keep each case's simulated sequence (2-9 GB)");
+  suite_cmd->add_option("--methods", opt.suite.methods,
+                        "instead of the suite's methods: ts-graphs, s-graphs-plus, traversable-timer, esdf-flush");
+  suite_cmd->add_flag("--plan", opt.suite.plan, "write OUT/plan.txt, one command per case (GNU parallel, Slurm), run nothing");
+  auto* collect_opt = suite_cmd
+                         ->add_option("--collect", opt.suite.collect,
+                                      "build the tables from the cases that finished: of DIR, or of --out without a value")
+                         ->expected(0, 1);
+  suite_cmd->add_option("--case", opt.suite.case_id, "run this case only (the commands of --plan)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -234,6 +253,11 @@ int main(int argc, char** argv) {
     } else if (*demo_cmd) {
       opt.demo.quiet = opt.quiet;
       demo(opt.demo);
+    } else if (*suite_cmd) {
+      opt.suite.quiet = opt.quiet;
+      opt.suite.threads = opt.threads;
+      opt.suite.collect_flag = collect_opt->count() > 0;
+      return suite(opt.suite);
     }
   } catch (const InputError& e) {
     std::fprintf(stderr, "tsgraphs: error: %s\n", e.what());
