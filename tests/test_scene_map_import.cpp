@@ -284,6 +284,38 @@ TEST_F(MapImportTest, PathKeepsTheClearanceAndEntersEveryReachableRoom) {
   EXPECT_LT(imported_.stats.path_length, 80.0);
 }
 
+// Speckle noise: single unknown cells sprinkled over 2 % of the free space are floor, to the
+// scene and to the path: the same rooms are reached as without them.
+TEST_F(MapImportTest, UnknownSpecklesInTheFreeSpaceDoNotWallRoomsOff) {
+  MapRaster noisy = map_;
+  std::uint64_t x = 99;
+  int specks = 0;
+  for (int r = 1; r + 1 < noisy.rows; ++r) {
+    for (int c = 1; c + 1 < noisy.cols; ++c) {
+      x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+      const std::size_t i = static_cast<std::size_t>(r) * noisy.cols + c;
+      if ((x >> 33) % 50 != 0 || map_.cells[i] != MapCell::kFree) continue;
+      bool isolated = true;  // a speck, not part of a larger unknown patch
+      for (int dr = -1; dr <= 1; ++dr)
+        for (int dc = -1; dc <= 1; ++dc) isolated = isolated && noisy.cells[i + dr * noisy.cols + dc] != MapCell::kUnknown;
+      if (!isolated) continue;
+      noisy.cells[i] = MapCell::kUnknown;
+      ++specks;
+    }
+  }
+  ASSERT_GT(specks, 50);
+  const ImportedMap im = import_map(noisy, grey_, config_);
+  EXPECT_EQ(im.warnings.size(), imported_.warnings.size());
+  EXPECT_EQ(im.scene.levels[0].voids.size(), imported_.scene.levels[0].voids.size());
+  const Trajectory t(im.scene);
+  std::vector<bool> entered(im.scene.rooms.size(), false);
+  for (double time = 0.0; time <= t.duration(); time += 0.05) {
+    const Vec2 xy = t.body_pose(time).translation().head<2>();
+    for (std::size_t i = 0; i < im.scene.rooms.size(); ++i) entered[i] = entered[i] || contains(im.scene.rooms[i].polygon, xy);
+  }
+  for (std::size_t i = 0; i < im.scene.rooms.size(); ++i) EXPECT_EQ(entered[i], drawn_.rooms[i].reachable) << i;
+}
+
 TEST_F(MapImportTest, WrittenSceneLoadsWithoutWarningsAndTheSimulatorSeesTheWalls) {
   const Scene loaded = write_and_load(imported_);
   EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front();

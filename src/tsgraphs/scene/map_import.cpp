@@ -468,7 +468,13 @@ ImportedMap import_map(const MapRaster& map, const std::vector<std::uint8_t>& ro
   grid.frame.cols = cols;
   grid.frame.rows = rows;
   grid.free.assign(n, 0);
-  for (std::size_t i = 0; i < n; ++i) grid.free[i] = slab_label[i] == 0 && map.cells[i] == MapCell::kFree;
+  // Unknown specks too small to be voids are floor in the scene, so they are floor to the path
+  // too (a map's speckle noise must not wall rooms off).
+  for (std::size_t i = 0; i < n; ++i) {
+    const int h = hole_label[i];
+    const bool floor_speck = h >= 0 && !exterior[h] && void_of_hole[h] < 0 && map.cells[i] == MapCell::kUnknown;
+    grid.free[i] = (slab_label[i] == 0 && map.cells[i] == MapCell::kFree) || floor_speck;
+  }
   compute_clearance(&grid);
   SurveyConfig survey;
   survey.clearance = config.clearance;
