@@ -154,8 +154,8 @@ int plan(const Suite& suite, const SuiteOptions& options, const std::string& out
   const std::string file = (fs::path(out) / files::kPlan).string();
   io::write_file_atomic(file, text);
   if (!options.quiet)
-    std::fprintf(stderr, "suite: wrote %s: %zu cases, one command a line (docs/suite.md: parallel, Slurm)\n",
-                 file.c_str(), suite.cases.size());
+    std::fprintf(stderr, "suite: wrote %s: %s, one command a line (docs/suite.md: parallel, Slurm)\n", file.c_str(),
+                 eval::cases_text(suite.cases.size()).c_str());
   return 0;
 }
 
@@ -225,9 +225,10 @@ int run_all(const Suite& suite, const SuiteOptions& options, const std::string& 
   const bool quiet = options.quiet;
   const bool tty = ::isatty(STDERR_FILENO) != 0;
   if (!quiet) {
-    std::fprintf(stderr, "suite: %s: %zu cases, %zu done earlier, %zu to run, %d at a time (%d thread%s each); logs "
+    std::fprintf(stderr, "suite: %s: %s, %zu done earlier, %zu to run, %d at a time (%d thread%s each); logs "
                          "in %s/%s/ID/%s\n",
-                 suite.name.c_str(), suite.cases.size(), suite.cases.size() - pending.size(), pending.size(), jobs,
+                 suite.name.c_str(), eval::cases_text(suite.cases.size()).c_str(), suite.cases.size() - pending.size(),
+                 pending.size(), jobs,
                  threads, threads == 1 ? "" : "s", out.c_str(), files::kCases, files::kLog);
   }
   eval::SuiteResults names;
@@ -237,6 +238,7 @@ int run_all(const Suite& suite, const SuiteOptions& options, const std::string& 
   ChildProcesses children;
   std::map<pid_t, const SuiteCase*> running;
   std::size_t next = 0, finished = 0;
+  if (tty && !pending.empty()) progress.update(0, pending.size());  // the bar from the start
   while (true) {
     while (ChildProcesses::signal_received() == 0 && static_cast<int>(running.size()) < jobs && next < pending.size()) {
       const SuiteCase& c = *pending[next++];

@@ -364,6 +364,35 @@ TEST(SuiteCli, InterruptStopsTheCasesAndLeavesNoProcess) {
 
 namespace {
 
+// A case that fails is recorded with its message, and the suite goes on to the next; it exits 1.
+TEST(SuiteCli, FailedCasesAreRecordedAndTheSuiteGoesOn) {
+  const fs::path base = test::fresh_temp_dir("suite_failed");
+  // Two sequence folders that look like one but disagree with themselves.
+  for (const char* name : {"broken_a", "broken_b"}) {
+    fs::create_directories(base / name / "scans");
+    std::ofstream(base / name / "times.txt") << "0.0\n0.1\n";
+    std::ofstream(base / name / "odom.txt") << "0.0 0 0 0 0 0 0 1\n";
+  }
+  std::ofstream(base / "failing.yaml") << "name: failing\ncases:\n  - sequence: broken_a\n  - sequence: broken_b\n";
+  const fs::path out = base / "out";
+  std::string o, e;
+  EXPECT_EQ(cli("suite " + (base / "failing.yaml").string() + " --out " + out.string() + " --jobs 1", &o, &e), 1) << e;
+  for (const char* id : {"seq-broken_a", "seq-broken_b"}) {
+    const eval::CaseRecord r = eval::read_case_record((out / "cases" / id / "case.json").string());
+    EXPECT_FALSE(r.done()) << id;
+    EXPECT_NE(r.message.find("odom.txt: has 1 poses but times.txt has 2 scans"), std::string::npos) << r.message;
+    EXPECT_NE(e.find(std::string("] ") + id + ": failed: "), std::string::npos) << e;
+    EXPECT_NE(o.find(std::string("- `") + id + "`: "), std::string::npos) << o;
+  }
+  EXPECT_NE(o.find("2 cases: 0 counted, 2 failed, 0 not run yet"), std::string::npos) << o;
+  // One row per method for each, status failed, message quoted as needed.
+  const std::vector<std::string> lines = split(read_file(out / "suite.csv"), '\n');
+  ASSERT_EQ(lines.size(), 1u + 2 * 2);
+  for (std::size_t i = 1; i < lines.size(); ++i) EXPECT_NE(lines[i].find(",failed,"), std::string::npos) << lines[i];
+  EXPECT_TRUE(fs::exists(base / "broken_a" / "times.txt")) << "a sequence case's folder is left alone";
+  fs::remove_all(base);
+}
+
 // Bad suite files: exit 2, one line naming file:line, nothing written.
 class SuiteFileErrors : public test::TempDirTest {
  protected:

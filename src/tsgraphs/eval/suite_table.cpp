@@ -175,6 +175,8 @@ std::string case_figure_text(const CaseMethod& run, const std::string& key) {
   return case_figure_text(run, figure_by_key(key));
 }
 
+std::string cases_text(std::size_t n) { return std::to_string(n) + (n == 1 ? " case" : " cases"); }
+
 std::string better_text(Better better) {
   return better == Better::kHigher ? "higher (p10)" : "lower (p90)";
 }
@@ -233,7 +235,7 @@ std::string suite_markdown(const SuiteResults& results) {
   }
   const std::size_t total = results.cases.size() + results.pending.size();
   std::string md = "# Suite " + md_cell(results.name) + "\n\n";
-  md += std::to_string(total) + " cases: " + std::to_string(done) + " counted, " + std::to_string(failed) +
+  md += cases_text(total) + ": " + std::to_string(done) + " counted, " + std::to_string(failed) +
         " failed, " + std::to_string(results.pending.size()) + " not run yet; " + fixed(wall, 0) +
         " s of case wall time. Methods: ";
   for (std::size_t i = 0; i < results.methods.size(); ++i) md += (i ? ", " : "") + results.methods[i].name;
@@ -243,7 +245,7 @@ std::string suite_markdown(const SuiteResults& results) {
         "ranks), the worst value and the first case with it. DCS, d_center and mean IoU exist only where "
         "rooms were paired or matched; rooms F1 is 0 where a run has no final room.\n";
   for (const MethodSummary& s : summaries) {
-    md += "\n## " + md_cell(s.method.name) + "\n\n" + std::to_string(s.counted) + " cases counted, " +
+    md += "\n## " + md_cell(s.method.name) + "\n\n" + cases_text(s.counted) + " counted, " +
           std::to_string(s.failed) + " failed.\n\n";
     md += "| figure | better (worst decile) | median | worst decile | worst | worst case | cases |\n";
     md += "|---|---|---|---|---|---|---|\n";

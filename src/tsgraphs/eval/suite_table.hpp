@@ -85,6 +85,8 @@ std::string figure_text(const Figure& f, int decimals);
 std::string case_figure_text(const CaseMethod& run, const SuiteFigure& figure);
 /// The same for the figure at `key` (a key of suite_figures()).
 std::string case_figure_text(const CaseMethod& run, const std::string& key);
+/// "1 case", "3 cases".
+std::string cases_text(std::size_t n);
 /// "higher (p10)" or "lower (p90)".
 std::string better_text(Better better);
 

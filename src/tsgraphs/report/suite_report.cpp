@@ -89,7 +89,7 @@ std::string suite_report_html(const eval::SuiteResults& results, const BirdseyeS
   for (const eval::CaseRecord& c : results.cases) (c.done() ? done : failed) += 1;
   std::string methods;
   for (const eval::SuiteMethod& m : results.methods) methods += (methods.empty() ? "" : ", ") + m.name;
-  out += "<p>" + std::to_string(results.cases.size() + results.pending.size()) + " cases: " + std::to_string(done) +
+  out += "<p>" + eval::cases_text(results.cases.size() + results.pending.size()) + ": " + std::to_string(done) +
          " counted, " + std::to_string(failed) + " failed, " + std::to_string(results.pending.size()) +
          " not run yet. Methods: " + xml_escape(methods) + ".</p>\n";
   out += "<p class=\"note\">Per method and figure, over the counted cases that have the figure: the median, the "
@@ -97,8 +97,8 @@ std::string suite_report_html(const eval::SuiteResults& results, const BirdseyeS
          "and the first case with it. DCS, d_center and mean IoU exist only where rooms were paired or matched; "
          "rooms F1 is 0 where a run has no final room.</p>\n";
   for (const eval::MethodSummary& s : eval::summarise(results)) {
-    out += "<section class=\"method\">\n<h2>" + xml_escape(s.method.name) + "</h2>\n<p>" + std::to_string(s.counted) +
-           " cases counted, " + std::to_string(s.failed) + " failed.</p>\n" + summary_table(s) + "</section>\n";
+    out += "<section class=\"method\">\n<h2>" + xml_escape(s.method.name) + "</h2>\n<p>" + eval::cases_text(s.counted) +
+           " counted, " + std::to_string(s.failed) + " failed.</p>\n" + summary_table(s) + "</section>\n";
   }
 
   const std::string key = eval::key_method(results);
