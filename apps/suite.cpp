@@ -6,7 +6,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -26,9 +25,10 @@ namespace tsgraphs::app {
 
 namespace fs = std::filesystem;
 
+static_assert(kMaxSuiteJobs == ChildProcesses::kMaxChildren, "--jobs may not start more children than the table holds");
+
 namespace {
 
-using Clock = std::chrono::steady_clock;
 namespace files = eval::suite_files;
 
 /// This program's absolute path: the children and the plan's commands run the same binary.

@@ -9,6 +9,9 @@
 
 namespace tsgraphs::app {
 
+/// Most cases at once: the size of the child-process table (ChildProcesses::kMaxChildren).
+inline constexpr int kMaxSuiteJobs = 256;
+
 struct SuiteOptions {
   std::string suite;                 ///< the suite file ("" with --collect alone)
   std::string out;                   ///< the suite folder

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -52,6 +53,26 @@ std::string read_text(const std::string& file) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+/// 64-bit FNV-1a of the files' bytes, in hex (a file that cannot be read adds nothing): a
+/// fingerprint of a case's input files, stable across builds and machines.
+std::string fingerprint(const std::vector<std::string>& files) {
+  std::uint64_t h = 14695981039346656037ULL;
+  for (const std::string& file : files) {
+    if (file.empty()) continue;
+    std::ifstream in(file, std::ios::binary);
+    char buf[65536];
+    while (in.read(buf, sizeof(buf)) || in.gcount() > 0) {
+      for (std::streamsize i = 0; i < in.gcount(); ++i) {
+        h ^= static_cast<unsigned char>(buf[i]);
+        h *= 1099511628211ULL;
+      }
+    }
+  }
+  char text[17];
+  std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(h));
+  return text;
 }
 
 /// What a case runs on, once its scene (if any) is known.
@@ -170,6 +191,9 @@ std::string case_spec(const Suite& suite, const SuiteCase& c) {
     std::snprintf(ceiling, sizeof(ceiling), "%.6g", c.ceiling);
     spec += " rooms=" + (c.rooms.empty() ? std::string("none") : c.rooms) + " ceiling=" + ceiling;
   }
+  // An edited scene file or map is another case, though its path stays.
+  if (c.kind == "import") spec += " content=" + fingerprint({c.source, c.rooms});
+  if (c.kind == "scene" && fs::path(c.source).is_absolute()) spec += " content=" + fingerprint({c.source});
   if (c.kind != "sequence") spec += " laps=" + std::to_string(suite.laps);
   return spec;
 }

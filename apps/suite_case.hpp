@@ -22,8 +22,9 @@ struct CaseOptions {
 std::string case_dir(const std::string& out, const std::string& id);
 /// OUT/cases/ID/case.json.
 std::string case_file(const std::string& out, const std::string& id);
-/// The case's definition in one line: its kind, its parameters and the suite's laps
-/// ("generate style=office seed=3 size=0.3 laps=2 platform=default").
+/// The case's definition in one line: its kind, its parameters, the suite's laps and, for a
+/// scene file or an imported map, a fingerprint of the files' contents
+/// ("generate style=office seed=3 size=0.3 platform=default laps=2").
 std::string case_spec(const Suite& suite, const SuiteCase& c);
 /// Whether OUT/cases/ID/case.json says done, for this definition of the case and with a run
 /// of every method of the suite.

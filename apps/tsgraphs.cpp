@@ -166,7 +166,7 @@ int main(int argc, char** argv) {
   suite_cmd->add_option("SUITE", opt.suite.suite, "suite file (docs/suite.md)");
   suite_cmd->add_option("--out", opt.suite.out, "suite folder (resumed when it holds an earlier run)");
   suite_cmd->add_option("--jobs", opt.suite.jobs, "cases at once, each a child process with cores / N threads")
-      ->check(CLI::Range(1, 256))
+      ->check(CLI::Range(1, kMaxSuiteJobs))
       ->capture_default_str();
   suite_cmd->add_flag("--keep-sequences", opt.suite.keep_sequences, "keep each case's simulated sequence (2-9 GB)");
   suite_cmd->add_option("--methods", opt.suite.methods,
