@@ -322,6 +322,38 @@ TEST(SuiteCli, TinySuiteEndToEnd) {
   fs::remove_all(run.base);
 }
 
+// The shipped smoke suite (what CI runs): every case done, a CSV row per case and method with
+// every figure's column, and each method's table complete in suite.md.
+TEST(SuiteCli, ShippedSmokeSuiteRunsAndItsTablesAreComplete) {
+  const fs::path base = test::fresh_temp_dir("smoke"), out = base / "out";
+  std::string md, err;
+  ASSERT_EQ(cli("suite " + std::string(TSGRAPHS_SOURCE_DIR) + "/suites/smoke.yaml --out " + out.string() + " --jobs 2", &md,
+                &err),
+            0)
+      << err;
+  const std::vector<std::string> ids = {"office-s1", "atrium-s1", "library-s1"};
+  for (const std::string& id : ids) {
+    const eval::CaseRecord record = eval::read_case_record((out / "cases" / id / "case.json").string());
+    EXPECT_TRUE(record.done()) << id << ": " << record.message;
+  }
+  const std::vector<std::string> lines = split(read_file(out / "suite.csv"), '\n');
+  ASSERT_EQ(lines.size(), 1 + ids.size() * kSlugs.size());
+  const std::size_t columns = split(lines[0], ',').size();
+  for (const std::string& key : eval::metrics_keys())
+    EXPECT_NE(lines[0].find(key), std::string::npos) << key;
+  for (std::size_t r = 1; r < lines.size(); ++r) EXPECT_EQ(split(lines[r], ',').size(), columns) << lines[r];
+  EXPECT_NE(md.find("3 cases: 3 counted, 0 failed, 0 not run yet"), std::string::npos) << md;
+  for (const std::string& m : kMethodNames) {
+    const std::size_t at = md.find("## " + m + "\n");
+    ASSERT_NE(at, std::string::npos) << m;
+    for (const eval::SuiteFigure& f : eval::suite_figures())
+      EXPECT_NE(md.find("\n| " + f.header + " | " + eval::better_text(f.better) + " | ", at), std::string::npos)
+          << m << ": " << f.header;
+  }
+  EXPECT_TRUE(fs::exists(out / "report.html"));
+  fs::remove_all(base);
+}
+
 // The suite passes a SIGINT on to its cases and records none of them.
 TEST(SuiteCli, InterruptStopsTheCasesAndLeavesNoProcess) {
   SuiteRun run;
