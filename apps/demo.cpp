@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "methods.hpp"
 #include "tsgraphs/eval/method_table.hpp"
+#include "tsgraphs/eval/table_text.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/report/report_html.hpp"
 #include "tsgraphs/report/run_view.hpp"
@@ -48,13 +49,8 @@ std::string machine() {
   return std::to_string(cores) + (cores == 1 ? " core" : " cores") + (model.empty() ? "" : ", " + model);
 }
 
-std::string fixed(double v, int decimals) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.*f", decimals, v);
-  return text;
-}
 
-std::string figure(const std::optional<double>& v) { return v ? fixed(*v, 2) : "-"; }
+std::string figure(const std::optional<double>& v) { return v ? eval::fixed_text(*v, 2) : "-"; }
 
 }  // namespace
 
@@ -96,7 +92,7 @@ void demo(const DemoOptions& options) {
     if (si != 0 || options.platform_height <= 0.0) continue;
     scene::Scene raised = scene;
     raised.sensor.mount_height = options.platform_height;
-    const std::string tag = scene.name + "_seed1_sensor" + fixed(options.platform_height, 2);
+    const std::string tag = scene.name + "_seed1_sensor" + eval::fixed_text(options.platform_height, 2);
     const std::string seq = (out / tag).string();
     step("simulate " + tag);
     simulate(raised, seq, 1, 0, true);
@@ -110,19 +106,19 @@ void demo(const DemoOptions& options) {
     const eval::Metrics high = evaluate(high_run, seq, true, false);
     const eval::Consistency c = compare(low_run, high_run, true, false);
     platforms = "Platforms (" + scene.name + ", seed 1, TS-graphs): the sensor at " +
-                fixed(scene.sensor.mount_height, 2) + " m against " + fixed(options.platform_height, 2) +
+                eval::fixed_text(scene.sensor.mount_height, 2) + " m against " + eval::fixed_text(options.platform_height, 2) +
                 " m: " + std::to_string(c.N1st) + " / " + std::to_string(c.N2nd) + " rooms, " +
-                std::to_string(c.N_re) + " paired, f_re " + fixed(c.f_re, 2) + ", DCS " + figure(c.dcs) +
-                ", d_center " + figure(c.d_center) + " m; at " + fixed(options.platform_height, 2) +
+                std::to_string(c.N_re) + " paired, f_re " + eval::fixed_text(c.f_re, 2) + ", DCS " + figure(c.dcs) +
+                ", d_center " + figure(c.d_center) + " m; at " + eval::fixed_text(options.platform_height, 2) +
                 " m: rooms F1 " + figure(high.rooms_gt.f1) + ", ATE_rmse " +
-                (high.trajectory.ate_rmse ? fixed(*high.trajectory.ate_rmse, 3) : std::string("-")) + " m.\n";
+                (high.trajectory.ate_rmse ? eval::fixed_text(*high.trajectory.ate_rmse, 3) : std::string("-")) + " m.\n";
   }
 
   const double elapsed = seconds_since(start);
   const std::string seeds_text = std::to_string(options.seeds) + (options.seeds == 1 ? " seed" : " seeds");
   std::string md = "Measured " + utc_now() + " on " + machine() + "; " + seeds_text +
                    (options.seeds > 1 ? " (mean ± standard deviation)" : "") + "; the demo took " +
-                   fixed(elapsed, 0) + " s.\n\n";
+                   eval::fixed_text(elapsed, 0) + " s.\n\n";
   md += "Table 1 (the paper's layout; ATE is ATE_loop, the distance between the first and last pose):\n\n";
   md += eval::markdown_table(results, eval::table1_columns());
   md += "\nAgainst the simulator's ground truth, and speed:\n\n";
@@ -150,7 +146,7 @@ void demo(const DemoOptions& options) {
   }
   const std::string intro = "<p>" + report::html_escape("Measured " + utc_now() + " on " + machine() + "; " + seeds_text +
                                               (options.seeds > 1 ? " (mean ± standard deviation)" : "") +
-                                              "; the demo took " + fixed(elapsed, 0) + " s.") +
+                                              "; the demo took " + eval::fixed_text(elapsed, 0) + " s.") +
                             "</p>\n" + (platforms.empty() ? "" : "<p>" + report::html_escape(platforms) + "</p>\n");
   const std::string tables = "<h2>Table 1</h2>\n<p>The paper's layout; ATE is ATE_loop, the distance between the "
                              "first and last pose.</p>\n" +

@@ -15,6 +15,8 @@
 #include "methods.hpp"
 #include "scene_commands.hpp"
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/text_file.hpp"
+#include "tsgraphs/eval/table_text.hpp"
 #include "tsgraphs/ground/ground_segmentation.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/io/run_folder.hpp"
@@ -41,19 +43,7 @@ constexpr double kSeedRadiusMargin = 1.5;
 /// A beam less steep than this below the horizon meets no floor within any ground range.
 constexpr double kMinDownwardBeamDeg = 0.5;
 
-std::string fixed(double v, int decimals) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.*f", decimals, v);
-  return text;
-}
 
-std::string read_text(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw input_error(file, 0, "cannot open file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// 64-bit FNV-1a of the files' bytes, in hex (a file that cannot be read adds nothing): a
 /// fingerprint of a case's input files, stable across builds and machines.
@@ -140,14 +130,14 @@ std::vector<std::pair<std::string, std::string>> case_info(const SuiteCase& c, c
   if (c.kind == "generate") {
     info = {{"style", c.style},
             {"seed", std::to_string(c.seed)},
-            {"size", fixed(c.size, 2)},
+            {"size", eval::fixed_text(c.size, 2)},
             {"platform", c.platform.name.empty() ? "default" : c.platform.name}};
   } else {
     info = {{"source", c.source}};
   }
   if (scene) {
     info.emplace_back("preset", scene->sensor.preset.empty() ? "custom" : scene->sensor.preset);
-    info.emplace_back("mount_height", fixed(scene->sensor.mount_height, 2));
+    info.emplace_back("mount_height", eval::fixed_text(scene->sensor.mount_height, 2));
     if (c.kind != "sequence") info.emplace_back("laps", std::to_string(scene->trajectory.laps));
     info.emplace_back("levels", std::to_string(scene->levels.size()));
     info.emplace_back("rooms", std::to_string(scene->rooms.size()));
@@ -247,7 +237,7 @@ eval::CaseRecord run_case(const Suite& suite, const SuiteCase& c, const CaseOpti
     // reused: all but the log (open in this process) goes.
     const fs::path spec_file = dir / eval::suite_files::kSpec;
     fs::create_directories(dir);
-    if (fs::is_regular_file(spec_file) && read_text(spec_file.string()) != record.spec + "\n") {
+    if (fs::is_regular_file(spec_file) && read_text_file(spec_file.string()) != record.spec + "\n") {
       step("the case's definition changed: its folder is started afresh");
       for (const fs::directory_entry& e : fs::directory_iterator(dir))
         if (e.path().filename() != eval::suite_files::kLog) fs::remove_all(e.path());
@@ -258,8 +248,8 @@ eval::CaseRecord run_case(const Suite& suite, const SuiteCase& c, const CaseOpti
     in = case_input(suite, c, dir);
     record.info = case_info(c, in.scene);
     pipeline::PipelineConfig config = in.scene ? platform_config(in.scene->sensor) : pipeline::PipelineConfig{};
-    step("ground.sensor_height " + fixed(config.ground.sensor_height, 2) + " m, ground.seed_radius " +
-         fixed(config.ground.seed_radius, 2) + " m" + (in.scene ? "" : " (no scene.yaml: the defaults)"));
+    step("ground.sensor_height " + eval::fixed_text(config.ground.sensor_height, 2) + " m, ground.seed_radius " +
+         eval::fixed_text(config.ground.seed_radius, 2) + " m" + (in.scene ? "" : " (no scene.yaml: the defaults)"));
 
     const auto has_metrics = [&](const Method& m) {
       return fs::is_regular_file(dir / m.slug / io::run_files::kMetrics);
@@ -286,7 +276,7 @@ eval::CaseRecord run_case(const Suite& suite, const SuiteCase& c, const CaseOpti
       eval::CaseMethod method;
       method.method = {m.slug, m.name};
       const std::string metrics = (fs::path(run_dir) / io::run_files::kMetrics).string();
-      method.figures = eval::flatten_metrics_json(read_text(metrics), metrics);
+      method.figures = eval::flatten_metrics_json(read_text_file(metrics), metrics);
       method.wall_s = io::read_run_summary((fs::path(run_dir) / io::run_files::kRunInfo).string()).wall_time_s;
       record.methods.push_back(std::move(method));
     }

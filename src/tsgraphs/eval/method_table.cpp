@@ -1,5 +1,6 @@
 #include "tsgraphs/eval/method_table.hpp"
 
+#include "tsgraphs/eval/table_text.hpp"
 #include <cmath>
 #include <cstdio>
 
@@ -7,21 +8,7 @@ namespace tsgraphs::eval {
 
 namespace {
 
-/// Fixed-point text; a value that rounds to zero prints as 0, never -0.
-std::string fixed(double v, int decimals) {
-  if (std::abs(v) < 0.5 * std::pow(10.0, -decimals)) v = 0.0;
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
-  return buf;
-}
 
-/// A CSV field, quoted when it holds a separator or a quote.
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
 
 }  // namespace
 
@@ -73,8 +60,8 @@ Spread spread(const MethodResult& result, const TableColumn& column) {
 
 std::string cell_text(const Spread& s, int decimals) {
   if (s.n == 0) return "-";
-  if (s.n < 2) return fixed(s.mean, decimals);
-  return fixed(s.mean, decimals) + " ± " + fixed(s.sd, decimals);
+  if (s.n < 2) return fixed_text(s.mean, decimals);
+  return fixed_text(s.mean, decimals) + " ± " + fixed_text(s.sd, decimals);
 }
 
 std::string markdown_table(const std::vector<MethodResult>& results, const std::vector<TableColumn>& columns) {
@@ -101,7 +88,7 @@ std::string csv_table(const std::vector<MethodResult>& results, const std::vecto
     out += csv_field(r.scene) + "," + csv_field(r.method) + "," + std::to_string(r.seeds.size());
     for (const TableColumn& c : columns) {
       const Spread s = spread(r, c);
-      out += s.n == 0 ? std::string(",,") : "," + fixed(s.mean, 6) + "," + (s.n < 2 ? std::string() : fixed(s.sd, 6));
+      out += s.n == 0 ? std::string(",,") : "," + fixed_text(s.mean, 6) + "," + (s.n < 2 ? std::string() : fixed_text(s.sd, 6));
     }
     out += "\n";
   }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/text_file.hpp"
 
 namespace tsgraphs::eval {
 namespace {
@@ -16,13 +17,6 @@ nlohmann::json value(const Figure& f) {
   return f && std::isfinite(*f) ? nlohmann::json(*f) : nlohmann::json(nullptr);
 }
 
-std::string read_text(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw input_error(file, 0, "cannot open file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 ordered_json parse_json(const std::string& text, const std::string& file) {
   try {
@@ -139,7 +133,7 @@ CaseRecord parse_case_record(const std::string& text, const std::string& file) {
   return r;
 }
 
-CaseRecord read_case_record(const std::string& file) { return parse_case_record(read_text(file), file); }
+CaseRecord read_case_record(const std::string& file) { return parse_case_record(read_text_file(file), file); }
 
 std::string suite_index_json(const SuiteIndex& index) {
   ordered_json j;
@@ -152,7 +146,7 @@ std::string suite_index_json(const SuiteIndex& index) {
 }
 
 SuiteIndex read_suite_index(const std::string& file) {
-  const ordered_json j = parse_json(read_text(file), file);
+  const ordered_json j = parse_json(read_text_file(file), file);
   SuiteIndex index;
   index.name = string_at(j, "name", file);
   if (j.contains("suite_file") && j["suite_file"].is_string()) index.suite_file = j["suite_file"].get<std::string>();

@@ -1,5 +1,6 @@
 #include "tsgraphs/eval/suite_table.hpp"
 
+#include "tsgraphs/eval/table_text.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,13 +11,6 @@
 namespace tsgraphs::eval {
 namespace {
 
-/// Fixed-point text; a value that rounds to zero prints as 0, never -0.
-std::string fixed(double v, int decimals) {
-  if (std::abs(v) < 0.5 * std::pow(10.0, -decimals)) v = 0.0;
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
-  return buf;
-}
 
 /// A CSV number: enough digits to read back what metrics.json holds.
 std::string csv_number(double v) {
@@ -25,13 +19,6 @@ std::string csv_number(double v) {
   return buf;
 }
 
-/// A CSV field, quoted when it holds a separator, a quote or a line break.
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
 
 /// A markdown cell: pipes escaped, line breaks flattened.
 std::string md_cell(std::string text) {
@@ -165,7 +152,7 @@ std::vector<const CaseRecord*> worst_first(const SuiteResults& results) {
   return out;
 }
 
-std::string figure_text(const Figure& f, int decimals) { return f ? fixed(*f, decimals) : "-"; }
+std::string figure_text(const Figure& f, int decimals) { return f ? fixed_text(*f, decimals) : "-"; }
 
 std::string case_figure_text(const CaseMethod& run, const SuiteFigure& figure) {
   return figure_text(suite_value(run, figure), figure.whole ? 0 : figure.decimals);
@@ -197,7 +184,7 @@ std::string case_line(const CaseRecord& c, const SuiteResults& results) {
     if (run.method.slug == key) continue;
     line += " " + run.method.name + " " + add(run, "rooms_gt.f1", "F1", "") + ";";
   }
-  return line + " " + fixed(c.wall_s, 0) + " s";
+  return line + " " + fixed_text(c.wall_s, 0) + " s";
 }
 
 std::string suite_csv(const SuiteResults& results) {
@@ -236,7 +223,7 @@ std::string suite_markdown(const SuiteResults& results) {
   const std::size_t total = results.cases.size() + results.pending.size();
   std::string md = "# Suite " + md_cell(results.name) + "\n\n";
   md += cases_text(total) + ": " + std::to_string(done) + " counted, " + std::to_string(failed) +
-        " failed, " + std::to_string(results.pending.size()) + " not run yet; " + fixed(wall, 0) +
+        " failed, " + std::to_string(results.pending.size()) + " not run yet; " + fixed_text(wall, 0) +
         " s of case wall time. Methods: ";
   for (std::size_t i = 0; i < results.methods.size(); ++i) md += (i ? ", " : "") + results.methods[i].name;
   md += ".\n\n";
@@ -283,7 +270,7 @@ std::string suite_markdown(const SuiteResults& results) {
       for (const SuiteFigure* f : figures)
         md += " " + (run ? case_figure_text(*run, *f) : std::string("-")) + " |";
     }
-    md += " " + fixed(c->wall_s, 0) + " |\n";
+    md += " " + fixed_text(c->wall_s, 0) + " |\n";
   }
   if (failed > 0) {
     md += "\n## Failed cases\n\n";

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/text_file.hpp"
 
 namespace tsgraphs::io {
 namespace {
@@ -269,13 +270,7 @@ Image decode_image(const std::string& bytes, const std::string& name) {
 }
 
 Image read_image(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw input_error(path, 0, "no such image file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw input_error(path, 0, "cannot open image file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return decode_image(s.str(), path);
+  return decode_image(read_text_file(path, "no such image file"), path);
 }
 
 std::string encode_pgm(const Image& image) {

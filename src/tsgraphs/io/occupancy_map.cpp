@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/text_file.hpp"
 #include "tsgraphs/core/yaml_map.hpp"
 
 namespace tsgraphs::io {
@@ -63,14 +64,9 @@ MapMetadata parse_map_yaml(const std::string& text, const std::string& file, con
 }
 
 MapMetadata read_map_yaml(const std::string& file) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) throw input_error(file, 0, "cannot open file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw input_error(file, 0, "cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = read_text_file(file);
   const std::string base = std::filesystem::path(file).parent_path().string();
-  return parse_map_yaml(text.str(), file, base.empty() ? "." : base);
+  return parse_map_yaml(text, file, base.empty() ? "." : base);
 }
 
 OccupancyMap classify(const Image& image, const MapMetadata& meta) {

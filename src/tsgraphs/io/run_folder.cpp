@@ -14,6 +14,7 @@
 #include <type_traits>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/text_file.hpp"
 
 namespace tsgraphs::io {
 namespace {
@@ -29,11 +30,7 @@ struct FieldError : std::runtime_error {
 std::string quoted(const std::string& name) { return "'" + name + "'"; }
 
 std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw input_error(path, 0, "cannot open (is this a run folder written by `tsgraphs run`?)");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return read_text_file(path, "cannot open (is this a run folder written by `tsgraphs run`?)");
 }
 
 // The document in `text`; a syntax error names the line it is on.

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/text_file.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/io/kitti.hpp"
 
@@ -25,13 +26,7 @@ void write_binary(const fs::path& path, const void* data, std::size_t bytes) {
 
 void write_text(const fs::path& path, const std::string& text) { write_binary(path, text.data(), text.size()); }
 
-std::string read_all(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw input_error(path.string(), 0, "cannot open file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::string read_all(const fs::path& path) { return read_text_file(path.string()); }
 
 
 std::string format_times(const std::vector<double>& times) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tsgraphs/eval/table_text.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/report/run_svg.hpp"
 #include "tsgraphs/report/svg_writer.hpp"
@@ -65,13 +66,6 @@ constexpr MetricRow kMetricRows[] = {
     {"speed", "rtf", "real-time factor (sequence time / wall time)", 2},
 };
 
-std::string fixed(double v, int decimals) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, decimals);
-  std::string s(buf, r.ptr);
-  if (s.find_first_not_of("-0.") == std::string::npos && s[0] == '-') s.erase(0, 1);  // "-0.000"
-  return s;
-}
 
 std::string metrics_table(const std::string& metrics_json) {
   if (metrics_json.empty()) {
@@ -95,7 +89,7 @@ std::string metrics_table(const std::string& metrics_json) {
     if (m.is_object() && m.contains(row.group) && m[row.group].is_object() && m[row.group].contains(row.key) &&
         m[row.group][row.key].is_number()) {
       const double v = m[row.group][row.key].get<double>();
-      if (std::isfinite(v)) value = fixed(v, row.decimals);
+      if (std::isfinite(v)) value = eval::fixed_text(v, row.decimals);
     }
     out += "<tr><td>" + xml_escape(row.key) + "</td><td class=\"value\">" + value + "</td><td>" +
            xml_escape(row.meaning) + "</td></tr>\n";

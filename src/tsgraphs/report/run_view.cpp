@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/text_file.hpp"
 #include "tsgraphs/io/run_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
@@ -23,11 +24,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw input_error(path, 0, "cannot open (is this a run folder written by `tsgraphs run`?)");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return read_text_file(path, "cannot open (is this a run folder written by `tsgraphs run`?)");
 }
 
 json parse_json(const std::string& text, const std::string& path) {

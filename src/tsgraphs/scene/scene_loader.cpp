@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "tsgraphs/core/rect.hpp"
+#include "tsgraphs/core/text_file.hpp"
 #include "tsgraphs/core/yaml_map.hpp"
 #include "tsgraphs/scene/sensor_presets.hpp"
 #include "tsgraphs/scene/scene_geometry.hpp"
@@ -518,12 +519,9 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::s
 }
 
 Scene load_scene(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in || !std::filesystem::is_regular_file(file)) throw input_error(file, 0, "cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = read_text_file(file);
   const std::string base = std::filesystem::path(file).parent_path().string();
-  return parse_scene(text.str(), file, base.empty() ? "." : base);
+  return parse_scene(text, file, base.empty() ? "." : base);
 }
 
 }  // namespace tsgraphs::scene
