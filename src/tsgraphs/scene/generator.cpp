@@ -52,7 +52,6 @@ constexpr double kDriftMax = 0.03;
 
 // Checks.
 constexpr double kRoomOverlapArea = 1e-4;    // m^2 two ground-truth rooms may share (rounding)
-constexpr double kPathSampleStep = 0.02;     // m of travel between checked poses
 constexpr double kLevelMatch = 0.3;          // m between a pose's floor height and its level
 
 struct StyleSize {
@@ -449,7 +448,8 @@ std::vector<std::string> check_building(const Scene& scene, double clearance) {
   const auto clearance_at = [&](const Vec2& xy, double floor_z, int) {
     return obstacle_distance(scene, xy, floor_z, clearance + 0.05);
   };
-  const PathClearance c = path_clearance(scene, clearance_at, kPathSampleStep);
+  const double step = SurveyConfig{}.check_step;  // the same sampling as the planner's own check
+  const PathClearance c = path_clearance(scene, clearance_at, step);
   if (c.min_clearance < clearance) {
     std::ostringstream s;
     s << "the path comes " << c.min_clearance << " m from an obstacle at [" << c.where.x() << ", " << c.where.y()
@@ -458,7 +458,7 @@ std::vector<std::string> check_building(const Scene& scene, double clearance) {
   }
   // Every room entered: a true pose inside it, on its level.
   std::vector<bool> entered(scene.rooms.size(), false);
-  const double dt = kPathSampleStep / scene.trajectory.speed;
+  const double dt = step / scene.trajectory.speed;
   for (double t = 0.0; t <= trajectory.duration(); t += dt) {
     const Pose3 p = trajectory.body_pose(t);
     const int level = level_under(scene, p.translation().head<2>(), p.translation().z() - scene.sensor.mount_height,

@@ -87,16 +87,16 @@ std::pair<long, double> farthest_in_span(const Polygon2& p, std::size_t i, std::
 /// Douglas-Peucker of the span (i, j) of a ring, appending the kept vertices (no recursion:
 /// outlines can be long).
 void dp_span(const Polygon2& p, std::size_t i, std::size_t j, double tolerance, std::vector<std::size_t>* kept) {
-  std::vector<std::pair<std::size_t, std::size_t>> todo = {{i, j}};
-  while (!todo.empty()) {
-    const auto [a, b] = todo.back();
-    todo.pop_back();
+  std::vector<std::pair<std::size_t, std::size_t>> pending = {{i, j}};
+  while (!pending.empty()) {
+    const auto [a, b] = pending.back();
+    pending.pop_back();
     const auto [k, d] = farthest_in_span(p, a, b);
     if (k < 0 || d <= tolerance) continue;
     const std::size_t kk = static_cast<std::size_t>(k);
     kept->push_back(kk % p.size());
-    todo.push_back({a, kk});
-    todo.push_back({kk, b});
+    pending.push_back({a, kk});
+    pending.push_back({kk, b});
   }
 }
 

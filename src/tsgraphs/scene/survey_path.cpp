@@ -366,25 +366,25 @@ PathClearance path_clearance(const Scene& scene, const ClearanceAt& clearance_at
 
 double keep_clearance_on_turns(Scene* scene, const ClearanceAt& clearance_at, const SurveyConfig& config) {
   std::vector<Waypoint>& wps = scene->trajectory.waypoints;
-  std::vector<bool> stubbed(wps.size(), false);
+  std::vector<bool> turned(wps.size(), false);  // corners already made turns in place
   for (int fixes = 0; fixes < config.max_turn_fixes;) {
     // The corner nearest to each place that comes too close.
     std::vector<bool> fix(wps.size(), false);
     bool any = false;
-    for (const Sample& s : sample_path(*scene, clearance_at, 0.02)) {
+    for (const Sample& s : sample_path(*scene, clearance_at, config.check_step)) {
       if (s.clearance >= config.clearance) continue;
       std::size_t nearest = 0;
       for (std::size_t i = 1; i < wps.size(); ++i) {
         if ((wps[i].xy - s.xy).norm() < (wps[nearest].xy - s.xy).norm()) nearest = i;
       }
-      if (!stubbed[nearest]) {
+      if (!turned[nearest]) {
         fix[nearest] = true;
         any = true;
       }
     }
     if (!any) break;
     std::vector<Waypoint> next;
-    std::vector<bool> next_stubbed;
+    std::vector<bool> next_turned;
     std::optional<Waypoint> end_stub;  // the corner at a lap's start: its stub ends the lap
     for (std::size_t i = 0; i < wps.size(); ++i) {
       const std::size_t prev = i == 0 ? wps.size() - 1 : i - 1;
@@ -396,21 +396,21 @@ double keep_clearance_on_turns(Scene* scene, const ClearanceAt& clearance_at, co
           end_stub = stub;
         } else {
           next.push_back(stub);
-          next_stubbed.push_back(true);
+          next_turned.push_back(true);
         }
         ++fixes;
       }
       next.push_back(wps[i]);
-      next_stubbed.push_back(stubbed[i] || fix[i]);
+      next_turned.push_back(turned[i] || fix[i]);
     }
     if (end_stub) {
       next.push_back(*end_stub);
-      next_stubbed.push_back(true);
+      next_turned.push_back(true);
     }
     wps = std::move(next);
-    stubbed = std::move(next_stubbed);
+    turned = std::move(next_turned);
   }
-  return path_clearance(*scene, clearance_at).min_clearance;
+  return path_clearance(*scene, clearance_at, config.check_step).min_clearance;
 }
 
 }  // namespace tsgraphs::scene

@@ -18,6 +18,7 @@ struct SurveyConfig {
   double centre_weight = 0.3;       ///< m: a step costs (1 + centre_weight / clearance), so paths keep mid-aisle
   double stub_length = 0.1;         ///< m before a corner where the path stops to turn in place
   int max_turn_fixes = 200;         ///< corners made turns in place at most, per path
+  double check_step = 0.02;         ///< m of travel between the poses whose clearance is checked
 };
 
 /// A place the tour must visit: a point on grid `grid` (an index into the grids given).
@@ -55,7 +56,7 @@ using ClearanceAt = std::function<double(const Vec2& xy, double floor_z, int lev
 /// Where the smoothed path that the simulator drives (Trajectory: corners taken on arcs) comes
 /// closer than `config.clearance` to an obstacle at a corner, makes that corner a turn in
 /// place (a waypoint `stub_length` before it, so the arc no longer fits). Returns the
-/// smallest clearance left along the whole path (all laps), sampled every 2 cm.
+/// smallest clearance left along the whole path (all laps), sampled every `check_step`.
 double keep_clearance_on_turns(Scene* scene, const ClearanceAt& clearance_at, const SurveyConfig& config);
 
 /// The smallest clearance along the scene's planned path (all laps), sampled every `step`
