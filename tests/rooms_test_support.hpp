@@ -8,7 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "tsgraphs/core/rect.hpp"
-#include "tsgraphs/rooms/room_extraction.hpp"
+#include "tsgraphs/rooms/room.hpp"
 
 namespace tsgraphs::rooms::test {
 

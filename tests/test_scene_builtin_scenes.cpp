@@ -21,20 +21,6 @@ namespace {
 
 std::string scene_path(const std::string& name) { return std::string(TSGRAPHS_SCENES_DIR) + "/" + name + ".yaml"; }
 
-Vec2 centroid(const Polygon2& poly) {
-  // Area centroid (the vertex mean is skewed on L-shaped rooms).
-  double a = 0.0, cx = 0.0, cy = 0.0;
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const Vec2& p = poly[i];
-    const Vec2& q = poly[(i + 1) % poly.size()];
-    const double c = p.x() * q.y() - q.x() * p.y();
-    a += c;
-    cx += (p.x() + q.x()) * c;
-    cy += (p.y() + q.y()) * c;
-  }
-  return {cx / (3.0 * a), cy / (3.0 * a)};
-}
-
 /// Grid points (cell centres, about `step` apart) of the room's bounding box that lie inside it.
 std::vector<Vec2> samples_inside(const Polygon2& poly, double step) {
   Vec2 lo = poly.front(), hi = poly.front();

@@ -31,7 +31,7 @@ trajectory: {waypoints: [[1, 5.7], [17, 5.7]], speed: 1.0, yaw_rate_deg: 45}
 
 TEST(SurveyPath, VisitsEveryStopKeepingTheClearance) {
   Scene s = parse_scene(kScene, "survey.yaml", ".");
-  const WalkableGrid g = rasterise_walkable(s, 0, GridFrame::covering(s, 0.05, 0.5));
+  const WalkableGrid g = rasterise_walkable(s, 0, frame_covering(s, 0.05, 0.5));
   std::vector<SurveyStop> stops = {{0, {1.0, 5.7}}};
   for (const Polygon2& room : {Polygon2{{0, 0}, {6, 0}, {6, 5}, {0, 5}}, Polygon2{{6, 0}, {12, 0}, {12, 5}, {6, 5}},
                                Polygon2{{12, 0}, {18, 0}, {18, 5}, {12, 5}}}) {
@@ -87,7 +87,7 @@ trajectory:
 
 TEST(SurveyPath, AStopBehindADoorTooNarrowForTheClearanceIsNamed) {
   const Scene s = parse_scene(kScene, "survey.yaml", ".");
-  const WalkableGrid g = rasterise_walkable(s, 0, GridFrame::covering(s, 0.05, 0.5));
+  const WalkableGrid g = rasterise_walkable(s, 0, frame_covering(s, 0.05, 0.5));
   SurveyConfig config;
   config.clearance = 0.5;  // more than the 0.45 m a 0.9 m door leaves
   try {
@@ -103,7 +103,7 @@ TEST(SurveyPath, AStopBehindADoorTooNarrowForTheClearanceIsNamed) {
 
 TEST(SurveyPath, TheOrderIsShortAndTheSameEveryTime) {
   const Scene s = parse_scene(kScene, "survey.yaml", ".");
-  const WalkableGrid g = rasterise_walkable(s, 0, GridFrame::covering(s, 0.05, 0.5));
+  const WalkableGrid g = rasterise_walkable(s, 0, frame_covering(s, 0.05, 0.5));
   // Stops along the corridor given out of order: the tour runs along it and back.
   const std::vector<SurveyStop> stops = {{0, {1, 5.7}}, {0, {13, 5.7}}, {0, {5, 5.7}}, {0, {17, 5.7}}, {0, {9, 5.7}}};
   SurveyConfig config;

@@ -62,7 +62,7 @@ TEST(WalkableGrid, DistanceTransformIsExact) {
 
 TEST(WalkableGrid, WallsRailingsAndFurnitureBlockDoorsAndWhatHangsAboveDoNot) {
   const Scene s = parse_scene(kScene, "grid.yaml", ".");
-  const WalkableGrid g = rasterise_walkable(s, 0, GridFrame::covering(s, 0.05, 0.5));
+  const WalkableGrid g = rasterise_walkable(s, 0, frame_covering(s, 0.05, 0.5));
   EXPECT_TRUE(free_at(g, {1.0, 2.0}));
   EXPECT_FALSE(free_at(g, {3.0, 4.0}));   // the wall
   EXPECT_TRUE(free_at(g, {5.0, 4.0}));    // its door

@@ -31,6 +31,40 @@ bool contains(const Polygon2& poly, const Vec2& p) {
   return inside;
 }
 
+Vec2 centroid(const Polygon2& poly) {
+  Vec2 c = Vec2::Zero();
+  double a2 = 0.0;
+  for (std::size_t i = 0, n = poly.size(); i < n; ++i) {
+    const Vec2& p = poly[i];
+    const Vec2& q = poly[(i + 1) % n];
+    const double w = p.x() * q.y() - q.x() * p.y();
+    a2 += w;
+    c += w * (p + q);
+  }
+  return std::abs(a2) > 0.0 ? Vec2(c / (3.0 * a2)) : poly.front();
+}
+
+Polygon2 convex_hull(std::vector<Vec2> points) {
+  std::sort(points.begin(), points.end(), [](const Vec2& a, const Vec2& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  if (points.size() < 3) return points;
+  Polygon2 hull(2 * points.size());
+  std::size_t k = 0;
+  for (std::size_t pass = 0; pass < 2; ++pass) {  // lower hull, then upper
+    const std::size_t start = k;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Vec2& p = pass == 0 ? points[i] : points[points.size() - 1 - i];
+      while (k >= start + 2 && cross(hull[k - 1] - hull[k - 2], p - hull[k - 2]) <= 0.0) --k;
+      hull[k++] = p;
+    }
+    --k;  // the last point starts the other half
+  }
+  hull.resize(k);
+  return hull;
+}
+
 double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
   const Vec2 ab = b - a;
   const double len2 = ab.squaredNorm();

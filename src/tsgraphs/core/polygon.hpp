@@ -18,6 +18,12 @@ using Triangle2 = std::array<Vec2, 3>;
 double signed_area(const Polygon2& poly);
 inline double area(const Polygon2& poly) { return std::abs(signed_area(poly)); }
 
+/// The area centroid of a simple polygon (its first vertex when the area is zero).
+Vec2 centroid(const Polygon2& poly);
+
+/// Convex hull, counter-clockwise, without collinear points (Andrew's monotone chain).
+Polygon2 convex_hull(std::vector<Vec2> points);
+
 /// Even-odd point-in-polygon test (points on the boundary may go either way).
 bool contains(const Polygon2& poly, const Vec2& p);
 

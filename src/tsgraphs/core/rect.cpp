@@ -1,6 +1,7 @@
 #include "tsgraphs/core/rect.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace tsgraphs {
 
@@ -32,6 +33,44 @@ double dice(const OrientedRect& a, const OrientedRect& b) {
 double iou(const OrientedRect& a, const OrientedRect& b) {
   const double inter = intersection_area(a, b);
   const double uni = a.area() + b.area() - inter;
+  return uni > 0.0 ? inter / uni : 0.0;
+}
+
+OrientedRect min_area_rect(const std::vector<Vec2>& points) {
+  OrientedRect best;
+  if (!points.empty()) best.center = points.front();
+  const Polygon2 hull = convex_hull(points);
+  if (hull.size() < 3) return best;
+  double best_area = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const Vec2 u = (hull[(i + 1) % hull.size()] - hull[i]).normalized();
+    const Vec2 v(-u.y(), u.x());
+    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Vec2& p : hull) {
+      const Vec2 q(u.dot(p), v.dot(p));
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+    const Vec2 size = hi - lo;
+    if (size.x() * size.y() >= best_area) continue;
+    best_area = size.x() * size.y();
+    const Vec2 mid = 0.5 * (lo + hi);
+    best.center = u * mid.x() + v * mid.y();
+    const bool along_u = size.x() >= size.y();  // x axis along the longer side
+    best.size = along_u ? size : Vec2(size.y(), size.x());
+    best.yaw = along_u ? std::atan2(u.y(), u.x()) : std::atan2(v.y(), v.x());
+  }
+  return best;
+}
+
+double dice(const Polygon2& a, const Polygon2& b) {
+  const double total = area(a) + area(b);
+  return total > 0.0 ? 2.0 * intersection_area(a, b) / total : 0.0;
+}
+
+double iou(const Polygon2& a, const Polygon2& b) {
+  const double inter = intersection_area(a, b);
+  const double uni = area(a) + area(b) - inter;
   return uni > 0.0 ? inter / uni : 0.0;
 }
 

@@ -22,4 +22,18 @@ double dice(const OrientedRect& a, const OrientedRect& b);
 /// Intersection over union; 0 when both are empty.
 double iou(const OrientedRect& a, const OrientedRect& b);
 
+/// The smallest-area rectangle enclosing `points` (rotating calipers over their convex hull);
+/// its x axis runs along the longer side. Empty (zero size at the first point) for fewer than 3
+/// points or collinear ones.
+OrientedRect min_area_rect(const std::vector<Vec2>& points);
+
+/// A footprint as a polygon: `outline` when it has one, else the rectangle's corners.
+inline Polygon2 footprint_of(const OrientedRect& rect, const Polygon2& outline) {
+  return outline.size() >= 3 ? outline : rect.corners();
+}
+/// Dice score of two simple polygons; 0 when both are empty.
+double dice(const Polygon2& a, const Polygon2& b);
+/// Intersection over union of two simple polygons; 0 when both are empty.
+double iou(const Polygon2& a, const Polygon2& b);
+
 }  // namespace tsgraphs

@@ -35,10 +35,13 @@ std::vector<Candidate> greedy_pairs(std::vector<Candidate> candidates, std::size
 
 Consistency consistency_between(const std::vector<DetectedRoom>& first, const std::vector<DetectedRoom>& second) {
   std::vector<Candidate> candidates;
+  std::vector<Polygon2> fa, fb;
+  for (const DetectedRoom& r : first) fa.push_back(r.footprint());
+  for (const DetectedRoom& r : second) fb.push_back(r.footprint());
   for (std::size_t a = 0; a < first.size(); ++a) {
     for (std::size_t b = 0; b < second.size(); ++b) {
       if (first[a].level != second[b].level) continue;
-      const double d = dice(first[a].rect, second[b].rect);
+      const double d = dice(fa[a], fb[b]);
       if (d >= kPairMinDice) candidates.push_back({d, a, b});
     }
   }
@@ -47,7 +50,7 @@ Consistency consistency_between(const std::vector<DetectedRoom>& first, const st
   c.N2nd = static_cast<int>(second.size());
   double sum_dice = 0.0, sum_dist = 0.0;
   for (const Candidate& p : greedy_pairs(std::move(candidates), first.size(), second.size())) {
-    const double dist = (first[p.a].rect.center - second[p.b].rect.center).norm();
+    const double dist = (first[p.a].center() - second[p.b].center()).norm();
     c.pairs.push_back({p.a, p.b, p.score, dist});
     sum_dice += p.score;
     sum_dist += dist;
@@ -64,8 +67,8 @@ Consistency consistency_between(const std::vector<DetectedRoom>& first, const st
 Consistency consistency(const std::vector<io::RoomEvent>& events) {
   std::vector<DetectedRoom> lap1, lap2;
   for (const io::RoomEvent& e : events) {
-    if (e.lap == 1) lap1.push_back({e.rect, std::to_string(e.level)});
-    if (e.lap == 2) lap2.push_back({e.rect, std::to_string(e.level)});
+    if (e.lap == 1) lap1.push_back({e.rect, std::to_string(e.level), e.polygon});
+    if (e.lap == 2) lap2.push_back({e.rect, std::to_string(e.level), e.polygon});
   }
   return consistency_between(lap1, lap2);
 }
@@ -85,19 +88,25 @@ double iou(const OrientedRect& rect, const Polygon2& polygon) {
 RoomsVsTruth rooms_vs_truth(const std::vector<DetectedRoom>& detected, const std::vector<io::RoomTruth>& truth) {
   const std::size_t nd = detected.size(), nt = truth.size();
   std::vector<double> truth_area(nt);
+  std::vector<Polygon2> footprint(nd);
+  std::vector<double> detected_area(nd);
+  for (std::size_t d = 0; d < nd; ++d) {
+    footprint[d] = detected[d].footprint();
+    detected_area[d] = area(footprint[d]);
+  }
   for (std::size_t g = 0; g < nt; ++g) truth_area[g] = area(truth[g].polygon);
   // Shared areas; rooms of different levels share none.
   std::vector<std::vector<double>> inter(nd, std::vector<double>(nt, 0.0));
   for (std::size_t d = 0; d < nd; ++d)
     for (std::size_t g = 0; g < nt; ++g)
-      if (detected[d].level == truth[g].level) inter[d][g] = intersection_area(detected[d].rect, truth[g].polygon);
+      if (detected[d].level == truth[g].level) inter[d][g] = tsgraphs::intersection_area(footprint[d], truth[g].polygon);
 
   // Greedy matching on the pairs at the threshold only: lower pairs are taken after every
   // pair above it, so they could not change those.
   std::vector<Candidate> candidates;
   for (std::size_t d = 0; d < nd; ++d) {
     for (std::size_t g = 0; g < nt; ++g) {
-      const double uni = detected[d].rect.area() + truth_area[g] - inter[d][g];
+      const double uni = detected_area[d] + truth_area[g] - inter[d][g];
       const double score = uni > 0.0 ? inter[d][g] / uni : 0.0;
       if (score >= kMatchMinIou) candidates.push_back({score, d, g});
     }

@@ -25,6 +25,10 @@ constexpr double kSegmentMinCover = 0.25;
 struct DetectedRoom {
   OrientedRect rect;
   std::string level;
+  Polygon2 polygon;  ///< the footprint when it is no rectangle (empty: rect)
+
+  Polygon2 footprint() const { return footprint_of(rect, polygon); }
+  Vec2 center() const { return polygon.size() >= 3 ? centroid(polygon) : rect.center; }
 };
 
 /// A pair of footprints taken as the same room.

@@ -86,6 +86,7 @@ std::vector<Pose3> poses_of(const std::vector<io::StampedPose>& stamped) {
 /// A final room carried into the truth frame: its footprint and the height of its floor there.
 struct TruthFrameRoom {
   OrientedRect rect;
+  Polygon2 polygon;  ///< empty: rect
   double z = 0.0;
 };
 
@@ -93,13 +94,14 @@ struct TruthFrameRoom {
 std::vector<TruthFrameRoom> in_truth_frame(const std::vector<FinalRoom>& rooms, const std::vector<double>& level_heights,
                                            const Pose3& T) {
   std::vector<TruthFrameRoom> out;
-  for (const auto& [rect, level] : rooms) {
+  for (const auto& [rect, level, polygon] : rooms) {
     const double floor = level >= 0 && level < static_cast<int>(level_heights.size()) ? level_heights[level] : 0.0;
     const Eigen::Vector3d c = T * Eigen::Vector3d(rect.center.x(), rect.center.y(), floor);
     TruthFrameRoom r;
     r.rect = rect;
     r.rect.center = c.head<2>();
     r.rect.yaw = rect.yaw + std::atan2(T.linear()(1, 0), T.linear()(0, 0));
+    for (const Vec2& p : polygon) r.polygon.push_back((T * Eigen::Vector3d(p.x(), p.y(), floor)).head<2>());
     r.z = c.z();
     out.push_back(r);
   }
@@ -135,8 +137,8 @@ void truth_room_figures(const std::vector<TruthFrameRoom>& placed, const io::Seq
     std::vector<DetectedRoom> detected;
     std::vector<LevelFootprint> footprints;
     for (const TruthFrameRoom& r : placed) {
-      detected.push_back({r.rect, nearest_level(r.z, names, heights)});
-      footprints.push_back({r.rect.corners(), detected.back().level});
+      detected.push_back({r.rect, nearest_level(r.z, names, heights), r.polygon});
+      footprints.push_back({detected.back().footprint(), detected.back().level});
     }
     const std::vector<io::RoomTruth> visited = visited_rooms(si.rooms, si.groundtruth);
     m->rooms_gt.n_truth = static_cast<double>(si.rooms.size());
@@ -169,7 +171,8 @@ void truth_room_figures(const std::vector<TruthFrameRoom>& placed, const io::Seq
       heights.push_back(l.elevation);
     }
     std::vector<LevelFootprint> footprints;
-    for (const TruthFrameRoom& r : placed) footprints.push_back({r.rect.corners(), nearest_level(r.z, names, heights)});
+    for (const TruthFrameRoom& r : placed)
+      footprints.push_back({footprint_of(r.rect, r.polygon), nearest_level(r.z, names, heights)});
     const RoomSupport support = room_support(unwalkable_shares(footprints, *scene));
     m->rooms_gt.unsupported = support.unsupported;
     m->rooms_gt.unsupported_fraction_max = support.max_unwalkable_share;
@@ -179,7 +182,7 @@ void truth_room_figures(const std::vector<TruthFrameRoom>& placed, const io::Seq
 /// The room map's footprints of a scene graph (map frame).
 std::vector<FinalRoom> final_rooms_of(const io::SceneGraph& graph) {
   std::vector<FinalRoom> rooms;
-  for (const io::SceneGraph::Room& r : graph.rooms) rooms.push_back({r.rect, r.level});
+  for (const io::SceneGraph::Room& r : graph.rooms) rooms.push_back({r.rect, r.level, r.polygon});
   return rooms;
 }
 
@@ -193,7 +196,7 @@ Consistency compare_runs(const std::string& run_a, const std::string& run_b) {
   const auto detected = [](const std::string& dir) {
     if (!fs::is_directory(dir)) throw input_error(dir, 0, "not a run folder");
     std::vector<DetectedRoom> out;
-    for (const FinalRoom& r : read_final_rooms(dir)) out.push_back({r.rect, std::to_string(r.level)});
+    for (const FinalRoom& r : read_final_rooms(dir)) out.push_back({r.rect, std::to_string(r.level), r.polygon});
     return out;
   };
   return consistency_between(detected(run_a), detected(run_b));

@@ -26,7 +26,8 @@ Metrics evaluate_run(const EvalOptions& options);
 /// A footprint of the room map at the end of a run (scene_graph.json "rooms"), map frame.
 struct FinalRoom {
   OrientedRect rect;
-  int level = 0;  ///< index into the run's levels
+  int level = 0;     ///< index into the run's levels
+  Polygon2 polygon;  ///< the footprint when it is no rectangle (empty: rect)
 };
 
 /// The final rooms of a run folder. Missing or malformed scene_graph.json: InputError.

@@ -9,7 +9,7 @@
 
 #include "tsgraphs/core/plane.hpp"
 #include "tsgraphs/core/pose.hpp"
-#include "tsgraphs/rooms/room_extraction.hpp"
+#include "tsgraphs/rooms/room.hpp"
 
 namespace tsgraphs::graph {
 

@@ -158,6 +158,11 @@ json xy(const Vec2& v) { return {v.x(), v.y()}; }
 json xyz(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 json pose_json(const PoseRecord& p) { return {{"t", xyz(p.t)}, {"q", {p.q.x(), p.q.y(), p.q.z(), p.q.w()}}}; }
 json rect_json(const OrientedRect& r) { return {{"center", xy(r.center)}, {"size", xy(r.size)}, {"yaw", r.yaw}}; }
+json polygon_json(const Polygon2& p) {
+  json out = json::array();
+  for (const Vec2& v : p) out.push_back(xy(v));
+  return out;
+}
 
 PoseRecord pose_at(const json& obj, const char* key, const std::string& parent) {
   const std::string name = child(parent, key);
@@ -179,6 +184,17 @@ OrientedRect rect_at(const json& obj, const char* key, const std::string& parent
   if (rect.size.x() < 0.0 || rect.size.y() < 0.0) throw FieldError(quoted(child(name, "size")) + " must not be negative");
   rect.yaw = number_at(r, "yaw", name);
   return rect;
+}
+
+/// An optional footprint polygon: [[x, y], ...] with at least 3 vertices.
+Polygon2 polygon_at(const json& obj, const char* key, const std::string& parent) {
+  const json* v = optional_member(obj, key);
+  if (v == nullptr) return {};
+  const std::string name = child(parent, key);
+  Polygon2 out;
+  for (std::size_t i = 0; i < array(*v, name).size(); ++i) out.push_back(vector_of<2>((*v)[i], item(name, i)));
+  if (out.size() < 3) throw FieldError(quoted(name) + " must have at least 3 vertices");
+  return out;
 }
 
 std::string room_kind_at(const json& obj, const std::string& parent) {
@@ -230,6 +246,7 @@ SceneGraph::Room room_of(const json& r, const std::string& name) {
   out.kind = room_kind_at(r, name);
   out.level = integer_at<int>(r, "level", name);
   out.rect = rect_at(r, "rect", name);
+  out.polygon = polygon_at(r, "polygon", name);
   if (const json* v = optional_member(r, "walls")) out.walls = ints(*v, child(name, "walls"));
   if (const json* v = optional_member(r, "extractions")) out.extractions = integer<int>(*v, child(name, "extractions"));
   if (const json* v = optional_member(r, "node"); v != nullptr && !v->is_null())
@@ -405,14 +422,16 @@ std::string format_scene_graph(const SceneGraph& g) {
   for (const SceneGraph::Room& r : g.rooms) {
     json space = json::array();
     for (const Eigen::Vector3d& p : r.free_space) space.push_back(xyz(p));
-    rooms.push_back({{"id", r.id},
-                     {"kind", r.kind},
-                     {"level", r.level},
-                     {"rect", rect_json(r.rect)},
-                     {"walls", r.walls},
-                     {"extractions", r.extractions},
-                     {"node", r.node ? json(*r.node) : json(nullptr)},
-                     {"free_space", space}});
+    json room = {{"id", r.id},
+                 {"kind", r.kind},
+                 {"level", r.level},
+                 {"rect", rect_json(r.rect)},
+                 {"walls", r.walls},
+                 {"extractions", r.extractions},
+                 {"node", r.node ? json(*r.node) : json(nullptr)},
+                 {"free_space", space}};
+    if (!r.polygon.empty()) room["polygon"] = polygon_json(r.polygon);
+    rooms.push_back(std::move(room));
   }
   // nlohmann::json keeps keys sorted: the file's layout since version 1.
   const json doc = {{"format", "tsgraphs-scene-graph"},
@@ -483,6 +502,7 @@ std::string format_room_event(const RoomEvent& e) {
   j["level"] = e.level;
   j["center"] = xy(e.center);
   j["rect"] = rect_json(e.rect);
+  if (!e.polygon.empty()) j["polygon"] = polygon_json(e.polygon);
   j["walls"] = e.walls;
   j["kind"] = e.kind;
   return j.dump();
@@ -514,6 +534,7 @@ std::vector<RoomEvent> read_room_events(const std::string& path) {
       e.level = integer_at<int>(j, "level", "");
       e.center = vector_at<2>(j, "center", "");
       e.rect = rect_at(j, "rect", "");
+      e.polygon = polygon_at(j, "polygon", "");
       e.walls = ints(member(j, "walls", ""), "walls");
       e.kind = room_kind_at(j, "");
       events.push_back(std::move(e));

@@ -81,7 +81,8 @@ struct SceneGraph {
     int id = -1;
     std::string kind = "room";  ///< "room" or "corridor"
     int level = 0;              ///< index into `levels`
-    OrientedRect rect;
+    OrientedRect rect;          ///< the footprint, or the smallest rectangle round `polygon`
+    Polygon2 polygon;           ///< [polygon]: the footprint when it is no rectangle (counter-clockwise), else empty
     std::vector<int> walls;     ///< [walls]
     int extractions = 0;        ///< [extractions]: extractions associated with it
     std::optional<int> node;    ///< [node]: its room node, null when it has none
@@ -153,7 +154,8 @@ struct RoomEvent {
   bool is_new = true;        ///< key "new": false for a re-detection of an existing room node
   int level = 0;             ///< index of the level
   Vec2 center = Vec2::Zero();
-  OrientedRect rect;         ///< footprint in the map frame at the time of extraction
+  OrientedRect rect;         ///< footprint in the map frame at the time of extraction (or the rectangle round `polygon`)
+  Polygon2 polygon;          ///< [polygon]: the footprint when it is no rectangle, else empty
   std::vector<int> walls;    ///< ids of the wall planes that bound it
   std::string kind = "room"; ///< "room" or "corridor"
 };

@@ -237,12 +237,22 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
   }
   for (const Eigen::Vector3f& p : voxel_downsample(near, config_.rooms.layer.obstacle_voxel).points)
     in.obstacle_candidates.push_back(p.cast<double>());
-  // Walls: the mapped vertical planes with their extents.
+  // This keyframe's rays for the sight map (TS-graphs).
+  if (config_.rooms.layer.free_space_method == "traversable") {
+    PointCloud own;
+    const Eigen::Isometry3f T = kf.pose.cast<float>();
+    for (const Eigen::Vector3f& p : keyframe_clouds_[keyframe].points) own.points.push_back(T * p);
+    for (const Eigen::Vector3f& p : voxel_downsample(own, config_.rooms.layer.obstacle_voxel).points)
+      in.scan_points.push_back(p.cast<double>());
+  }
+  // Walls: the mapped vertical planes with their extents, as far as a space the robot is in
+  // may reach (the room segmentation closes the doors of all of them).
+  const double wall_radius = std::max(radius, config_.rooms.layer.context_radius);
   for (const auto& [id, lm] : mapper_.landmarks()) {
     if (!lm.vertical || lm.points.empty()) continue;
     const PlaneExtent e = plane_extent(graph_.planes().at(id).plane, lm.points);
-    if ((e.centroid.head<2>() - kf.pose.translation().head<2>()).norm() > radius + (e.b - e.a).norm()) continue;
-    in.walls.push_back({id, graph_.planes().at(id).plane, e.a, e.b, e.z1 - e.z0});
+    if ((e.centroid.head<2>() - kf.pose.translation().head<2>()).norm() > wall_radius + (e.b - e.a).norm()) continue;
+    in.walls.push_back({id, graph_.planes().at(id).plane, e.a, e.b, e.z1 - e.z0, e.z0, e.z1});
   }
   // The keyframe's plane edges were appended with it, after every older keyframe's: read them
   // from the back instead of scanning the whole list at every keyframe.

@@ -61,10 +61,11 @@ struct PipelineConfig {
     v.section("room_layer", rooms.layer);
     v.section("free_space", rooms.free_space);
     v.section("esdf_free_space", rooms.esdf);
+    v.section("sight_map", rooms.sight);
     v.section("aisle", rooms.aisle);
     v.section("room_flush", rooms.flush);
     v.section("room_timer", rooms.timer);
-    v.section("room_extraction", rooms.extraction);
+    v.section("room_segmentation", rooms.segmentation);
     v.section("sgraphs_room_extraction", rooms.sgraphs_extraction);
     v.section("room_association", rooms.association);
   }

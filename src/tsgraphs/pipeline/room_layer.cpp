@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -13,6 +14,12 @@ namespace {
 
 rooms::RoomAssociationConfig association_for(rooms::RoomAssociationConfig config, const std::string& method) {
   config.match_by_dice = method != "esdf";  // S-Graphs+ associates by centre distance only
+  // TS-graphs segments the whole level's free space each time: the latest footprint is the
+  // most complete one, and one that a newly mapped wall cut smaller is the right one.
+  if (method != "esdf") {
+    rooms::RoomMap check(config);  // the key's value is still checked
+    config.footprint = "latest";
+  }
   return config;
 }
 
@@ -93,19 +100,70 @@ bool RoomLayer::robot_space(const RoomLayerInput& input, const Eigen::Vector3d& 
 std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
   const Eigen::Vector3d floor = input.pose.translation() - input.sensor_height * Eigen::Vector3d::UnitZ();
   const int level = level_of(floor.z());
+  if (!esdf()) {
+    freespace::SightMapConfig sight = settings_.sight;
+    sight.floor_step = settings_.free_space.obstacle_min_height;
+    sight.headroom = settings_.free_space.obstacle_max_height;
+    auto it = sight_.find(level);
+    if (it == sight_.end()) it = sight_.emplace(level, freespace::SightMap(levels_[static_cast<std::size_t>(level)], sight)).first;
+    it->second.add_scan(input.pose.translation(), input.scan_points);
+  }
   if (settings_.layer.room_trigger == "timer") {
     // S-Graphs+: every period, the robot's whole cluster as it is now.
     if (!timer_trigger_.update(input.stamp)) return {};
     KeyframeSpace space;
     if (!robot_space(input, floor, space)) return {};
-    return extract(input, space.cluster, space.cluster, level);
+    if (!esdf()) for (const auto& entry : space.cluster) free_nodes_.insert(static_cast<int>(entry.first));
+    segment_path_ = {floor};
+    return extract(input, space.cluster, level);
   }
   KeyframeSpace space;
   const bool in_free_space = robot_space(input, floor, space);
+  if (in_free_space && !esdf())
+    for (const auto& entry : space.cluster) free_nodes_.insert(static_cast<int>(entry.first));
   // The robot is in a doorway when the free space has no vertex under it (a door narrower
   // than 2 lambda_th has none); leaving it into free space again has passed the doorway.
   const bool passed_doorway = in_free_space && !was_in_free_space_;
   was_in_free_space_ = in_free_space;
+  if (!esdf()) {
+    // TS-graphs: a step across a mapped wall (through its door) leaves the space for another
+    // one, whatever the free space under the robot shows (a high sensor sees little floor).
+    // So does a step into another space of the latest segmentation (an open joint, a bend):
+    // extracting at every change of space makes one extraction a visit, the same on every lap.
+    const Eigen::Vector3d from = pending_.empty() ? (last_position_ ? *last_position_ : floor) : pending_.back().position;
+    const bool crossed = rooms::crosses_wall(from.head<2>(), floor.head<2>(), input.walls, floor.z(), settings_.segmentation);
+    // A step into the other space for less than min_visit_length (a corner, a doorway's
+    // strip) is no change: the robot must walk that far in it.
+    const int now_in = last_segmentation_ && last_segmentation_level_ == level ? space_of(*last_segmentation_, floor) : -1;
+    bool moved_on = false;
+    if (now_in >= 0 && last_space_ >= 0 && now_in != last_space_) {
+      const double step = (floor - from).head<2>().norm();
+      entering_length_ = now_in == entering_space_ ? entering_length_ + step : step;
+      entering_space_ = now_in;
+      moved_on = entering_length_ >= settings_.layer.min_visit_length;
+    } else {
+      entering_space_ = -1;
+      entering_length_ = 0.0;
+    }
+    if (now_in >= 0 && (last_space_ < 0 || moved_on)) last_space_ = now_in;
+    if (segment_level_ == level && (crossed || moved_on)) {
+      for (const KeyframeSpace& held : pending_) commit(held);
+      pending_.clear();
+      flush_trigger_.reset();
+      std::vector<RoomEventRecord> events = extract(input, segment_, segment_level_);
+      clear_segment();
+      commit(space);
+      return events;
+    }
+    if (!in_free_space) {
+      // No free space to measure the aisle by: the keyframe joins the segment's path.
+      for (const KeyframeSpace& held : pending_) commit(held);
+      pending_.clear();
+      commit(space);
+      segment_level_ = level;
+      return {};
+    }
+  }
   if (!in_free_space) return {};
   return update_flush(input, std::move(space), level, passed_doorway);
 }
@@ -126,7 +184,7 @@ std::vector<RoomEventRecord> RoomLayer::update_flush(const RoomLayerInput& input
     // A segment walked less than min_segment_length (a corner, a doorway) is no room of its
     // own: it is carried into the next one.
     if (segment_length_ >= settings_.layer.min_segment_length) {
-      if (!segment_.empty()) events = extract(input, segment_, context_, segment_level_);
+      if (!segment_.empty() || (!esdf() && !segment_path_.empty())) events = extract(input, segment_, segment_level_);
       clear_segment();
     }
     // Of the keyframes that confirmed the change only the latest starts the new segment: the
@@ -144,15 +202,15 @@ std::vector<RoomEventRecord> RoomLayer::update_flush(const RoomLayerInput& input
 void RoomLayer::commit(const KeyframeSpace& space) {
   if (last_position_) segment_length_ += (space.position - *last_position_).head<2>().norm();
   last_position_ = space.position;
+  segment_path_.push_back(space.position);
   for (const auto& [key, p] : space.near) segment_[key] = p;
-  for (const auto& [key, p] : space.cluster) context_[key] = p;
 }
 
 void RoomLayer::clear_segment() {
   segment_.clear();
-  context_.clear();
   segment_length_ = 0.0;
   last_position_.reset();
+  segment_path_.clear();
 }
 
 std::vector<RoomEventRecord> RoomLayer::finish(const RoomLayerInput& input) {
@@ -160,10 +218,16 @@ std::vector<RoomEventRecord> RoomLayer::finish(const RoomLayerInput& input) {
   for (const KeyframeSpace& space : pending_) commit(space);
   pending_.clear();
   std::vector<RoomEventRecord> events;
-  if (!segment_.empty() && segment_length_ >= settings_.layer.min_segment_length)
-    events = extract(input, segment_, context_, segment_level_);
+  if (!esdf() && segment_path_.empty() && !deferred_path_.empty()) segment_path_ = {deferred_path_.back()};
+  if ((!segment_.empty() || (!esdf() && !segment_path_.empty())) &&
+      (segment_length_ >= settings_.layer.min_segment_length || !deferred_path_.empty()))
+    events = extract(input, segment_, segment_level_, true);
   clear_segment();
   return events;
+}
+
+int RoomLayer::space_of(const rooms::RoomSegmentation& seg, const Eigen::Vector3d& floor) const {
+  return seg.space_at(floor.head<2>(), settings_.free_space.lambda_th + nodes_cell_);
 }
 
 void RoomLayer::move_room(int id, const Vec2& center) {
@@ -172,8 +236,8 @@ void RoomLayer::move_room(int id, const Vec2& center) {
   map_.set_rect(id, rect);
 }
 
-std::vector<RoomEventRecord> RoomLayer::extract(const RoomLayerInput& input, const Vertices& segment,
-                                                const Vertices& context, int level) {
+std::vector<RoomEventRecord> RoomLayer::extract(const RoomLayerInput& input, const Vertices& segment, int level,
+                                                bool final) {
   std::vector<RoomEventRecord> events;
   std::optional<rooms::ExtractedRoom> room;
   std::vector<Eigen::Vector3d> free_space;
@@ -186,27 +250,26 @@ std::vector<RoomEventRecord> RoomLayer::extract(const RoomLayerInput& input, con
     free_space = points_of(segment);
     room = rooms::extract_room_sgraphs(free_space, seen, settings_.sgraphs_extraction);
   } else {
-    // Traversable nodes move with their keyframes: take them where they are now.
-    const auto now = [&input](const Vertices& vertices) {
-      std::vector<Eigen::Vector3d> points;
-      points.reserve(vertices.size());
-      for (const auto& [id, p] : vertices) {
+    for (const rooms::ExtractedRoom& space : segmented_spaces(input, segment, segment_path_, level, final)) {
+      std::vector<Eigen::Vector3d> inside;
+      const Polygon2 footprint = footprint_of(space.rect, space.outline);
+      for (const auto& [id, p] : segment) {
         const ground::GlobalNode* n = input.nodes->node(static_cast<int>(id));
-        points.push_back(n != nullptr ? n->position : p);
+        const Eigen::Vector3d q = n != nullptr ? n->position : p;
+        if (tsgraphs::contains(footprint, q.head<2>())) inside.push_back(q);
       }
-      return points;
-    };
-    // The context also holds the mapped ground farther along the aisle than the clusters
-    // reached (each node once).
-    Vertices around = context;
-    const Eigen::Vector3d floor = input.pose.translation() - input.sensor_height * Eigen::Vector3d::UnitZ();
-    for (const ground::GlobalNode* n : input.nodes->nodes_near(floor, settings_.layer.context_radius))
-      around.emplace(n->id, n->position);
-    free_space = now(segment);
-    room = rooms::extract_room(free_space, now(around), input.walls, settings_.extraction);
+      events.push_back(event_of(input, space, level, std::move(inside)));
+    }
+    return events;
   }
   if (!room) return events;
-  const rooms::RoomAssociation a = map_.add_extraction(*room, level);
+  events.push_back(event_of(input, *room, level, std::move(free_space)));
+  return events;
+}
+
+RoomEventRecord RoomLayer::event_of(const RoomLayerInput& input, const rooms::ExtractedRoom& room, int level,
+                                    std::vector<Eigen::Vector3d> free_space) {
+  const rooms::RoomAssociation a = map_.add_extraction(room, level);
   RoomEventRecord e;
   e.merged = map_.merge_duplicates();
   e.room_id = a.id;
@@ -216,14 +279,106 @@ std::vector<RoomEventRecord> RoomLayer::extract(const RoomLayerInput& input, con
   e.keyframe = input.keyframe;
   e.is_new = a.is_new;
   e.level = level;
-  e.kind = room->kind;
-  e.rect = room->rect;
-  e.walls = room->wall_ids;
+  e.kind = room.kind;
+  e.rect = room.rect;
+  e.outline = room.outline;
+  e.walls = room.wall_ids;
   e.free_space = std::move(free_space);
-  if (!room->one_sided) e.factor_walls = room->wall_ids;
-  e.walls.insert(e.walls.end(), room->end_wall_ids.begin(), room->end_wall_ids.end());
-  events.push_back(e);
-  return events;
+  if (!room.one_sided) e.factor_walls = room.wall_ids;
+  e.walls.insert(e.walls.end(), room.end_wall_ids.begin(), room.end_wall_ids.end());
+  return e;
+}
+
+std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInput& input, const Vertices& segment,
+                                                              std::vector<Eigen::Vector3d> path, int level, bool final) {
+  // The floor points of spaces deferred before (the same level's) come first.
+  std::vector<Eigen::Vector3d> deferred;
+  deferred.swap(deferred_path_);
+  if (!path.empty()) {
+    const double floor = path.front().z();
+    std::vector<Eigen::Vector3d> same;
+    for (const Eigen::Vector3d& p : deferred)
+      if (std::abs(p.z() - floor) <= settings_.layer.level_tolerance) same.push_back(p);
+    path.insert(path.begin(), same.begin(), same.end());
+  }
+  if (path.empty()) return {};
+  // The level's floor: where the segment's free space lies (the median node height), so that a
+  // sensor height off by a little does not lose the level; without free space, the level's.
+  std::vector<double> heights;
+  for (const auto& [id, p] : segment) {
+    const ground::GlobalNode* n = input.nodes->node(static_cast<int>(id));
+    heights.push_back(n != nullptr ? n->position.z() : p.z());
+  }
+  rooms::SegmentationInput in;
+  in.floor_z = levels_.at(static_cast<std::size_t>(level));
+  if (!heights.empty()) {
+    std::nth_element(heights.begin(), heights.begin() + static_cast<long>(heights.size() / 2), heights.end());
+    in.floor_z = heights[heights.size() / 2];
+  }
+  const double band = settings_.layer.level_band;
+  for (int id : free_nodes_) {
+    const ground::GlobalNode* n = input.nodes->node(id);
+    if (n != nullptr && std::abs(n->position.z() - in.floor_z) <= band) in.free_space.push_back(n->position.head<2>());
+  }
+  for (const ground::GlobalNode* n : input.nodes->nodes_in_height_range(in.floor_z - band, in.floor_z + band))
+    in.ground.push_back(n->position.head<2>());
+  in.free_radius = settings_.free_space.lambda_th;
+  in.ground_radius = input.nodes->config().cell_size;
+  nodes_cell_ = in.ground_radius;
+  in.walls = input.walls;
+  // The raster covers the level's ground and what its rays saw.
+  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const std::vector<Vec2>* set : {&in.free_space, &in.ground}) {
+    for (const Vec2& p : *set) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
+  const auto sight = sight_.find(level);
+  if (sight != sight_.end() && sight->second.lo().x() <= sight->second.hi().x()) {
+    lo = lo.cwiseMin(sight->second.lo());
+    hi = hi.cwiseMax(sight->second.hi());
+  }
+  if (!(lo.x() <= hi.x())) return {};
+  in.frame = GridFrame::around(lo, hi, settings_.segmentation.cell, in.free_radius + in.ground_radius);
+  if (sight != sight_.end()) {
+    in.seen = sight->second.open_cells(in.frame);
+    in.known = sight->second.known_cells(in.frame);
+  }
+  last_segmentation_ = rooms::segment_rooms(in, settings_.segmentation);
+  last_segmentation_level_ = level;
+  const rooms::RoomSegmentation& seg = *last_segmentation_;
+  // The path's length in each space; the robot walks nearer the walls than lambda at times,
+  // so a floor point off every space takes the nearest one within lambda plus a node's reach.
+  std::map<int, double> walked;
+  const double reach = in.free_radius + in.ground_radius;
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const int s = seg.space_at(path[k].head<2>(), reach);
+    if (s >= 0) walked[s] += (path[k] - path[k - 1]).head<2>().norm();
+  }
+  if (path.size() == 1) {
+    const int s = seg.space_at(path.front().head<2>(), reach);
+    if (s >= 0) walked[s] = settings_.layer.min_visit_length;
+  }
+  // The space the robot is in is still being visited: it is extracted once the robot has left
+  // it (one extraction a visit, from all it saw), or at the end.
+  const Vec2 robot = (input.pose.translation() - input.sensor_height * Eigen::Vector3d::UnitZ()).head<2>();
+  const int current = final ? -1 : seg.space_at(robot, reach);
+  last_space_ = current;
+  entering_space_ = -1;
+  entering_length_ = 0.0;
+  std::vector<rooms::ExtractedRoom> out;
+  for (const auto& [s, length] : walked) {
+    if (length < settings_.layer.min_visit_length && s != current) continue;
+    const rooms::SegmentedSpace& space = seg.spaces[static_cast<std::size_t>(s)];
+    if (s != current && (final || space.frontier <= settings_.layer.max_frontier)) {
+      out.push_back(space.room);
+      continue;
+    }
+    for (const Eigen::Vector3d& p : path)
+      if (seg.space_at(p.head<2>(), reach) == s) deferred_path_.push_back(p);
+  }
+  return out;
 }
 
 }  // namespace tsgraphs::pipeline

@@ -3,10 +3,11 @@
 /// the free space around the robot, and the trigger that says when to extract a room from it.
 ///
 /// - TS-graphs (`free_space_method: traversable`, `room_trigger: flush`): free space on the
-///   traversable nodes near the robot; the aisle it is in and the flush rule; when the rule
-///   fires, the free space walked since the last flush is extracted as a room or corridor
-///   segment from the mapped walls around it (extract_room) and associated with the room map by
-///   Dice or centre distance.
+///   traversable nodes near the robot, and what its rays saw at walking height (sight map);
+///   the flush rule on the aisle it is in, and a step across a mapped wall (a door); when
+///   either fires, the level's free space is segmented into spaces (segment_rooms) and each
+///   space the segment's path ran in is extracted, associated with the room map by the overlap
+///   of the footprints (Dice) or centre distance.
 /// - S-Graphs+ (`esdf`, `timer`): free space from the ESDF slice of the latest keyframes' points;
 ///   every period the robot's cluster is extracted with the planes of the last keyframe
 ///   (extract_room_sgraphs) and associated by centre distance only.
@@ -16,16 +17,18 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/freespace/esdf_free_space.hpp"
+#include "tsgraphs/freespace/sight_map.hpp"
 #include "tsgraphs/freespace/traversable_free_space.hpp"
 #include "tsgraphs/ground/traversable_node_map.hpp"
 #include "tsgraphs/rooms/room_association.hpp"
-#include "tsgraphs/rooms/room_extraction.hpp"
 #include "tsgraphs/rooms/room_flush_trigger.hpp"
+#include "tsgraphs/rooms/room_segmentation.hpp"
 #include "tsgraphs/rooms/room_timer_trigger.hpp"
 #include "tsgraphs/rooms/sgraphs_room_extraction.hpp"
 
@@ -40,9 +43,14 @@ struct RoomLayerConfig {
   double obstacle_voxel = 0.2;     ///< obstacle candidate points are thinned to this (m)
   double segment_radius = 2.5;     ///< flush: only the cluster's vertices this near the robot along the free space join the segment (m):
                                    ///< the aisle it walks, not everything in view
-  double context_radius = 20.0;    ///< flush: mapped ground within this of the robot also carries a corridor on (m)
+  double context_radius = 20.0;    ///< walls within this of the robot (plus their length) bound the spaces segmented (m)
   double min_segment_length = 2.0; ///< flush: a segment walked less than this (a corner, a doorway passed
                                    ///< through) is not extracted but carried into the next one (m)
+  double min_visit_length = 1.0;   ///< flush: a space the segment's path runs this far in is extracted (m); a step
+                                   ///< through a doorway is no visit
+  double max_frontier = 0.1;       ///< flush: a space more than this share of whose edge borders the unseen waits for a
+                                   ///< later flush (or the end): its footprint is still growing
+  double level_band = 0.3;         ///< flush: ground within this height of the walked floor is the level's (m): steps, not a ramp's rise
 
   template <class V>
   void visit(V& v) {
@@ -55,6 +63,9 @@ struct RoomLayerConfig {
     v("segment_radius", segment_radius);
     v("context_radius", context_radius);
     v("min_segment_length", min_segment_length);
+    v("min_visit_length", min_visit_length);
+    v("max_frontier", max_frontier);
+    v("level_band", level_band);
   }
 };
 
@@ -63,10 +74,11 @@ struct RoomLayerSettings {
   RoomLayerConfig layer;
   freespace::TraversableFreeSpaceConfig free_space;
   freespace::EsdfFreeSpaceConfig esdf;
+  freespace::SightMapConfig sight;  ///< floor_step and headroom come from free_space's obstacle heights
   rooms::AisleMeasureConfig aisle;
   rooms::RoomFlushConfig flush;
   rooms::RoomTimerConfig timer;
-  rooms::RoomExtractionConfig extraction;
+  rooms::RoomSegmentationConfig segmentation;
   rooms::SgraphsRoomExtractionConfig sgraphs_extraction;
   rooms::RoomAssociationConfig association;
 };
@@ -80,6 +92,7 @@ struct RoomEventRecord {
   int level = 0;
   rooms::RoomKind kind = rooms::RoomKind::room;
   OrientedRect rect;
+  Polygon2 outline;                       ///< the footprint when it is no rectangle (empty: rect)
   std::vector<int> walls;                 ///< every plane that bounds it
   std::vector<int> factor_walls;          ///< the planes of its room-planes factor (4, 2, or none)
   std::vector<std::pair<int, int>> merged;///< (keep, drop) room ids merged as duplicates after it
@@ -94,6 +107,7 @@ struct RoomLayerInput {
   double sensor_height = 0.0;              ///< the sensor above the floor (m)
   const ground::TraversableNodeMap* nodes = nullptr;
   std::vector<Eigen::Vector3d> obstacle_candidates;  ///< map-frame points of the latest keyframes
+  std::vector<Eigen::Vector3d> scan_points;          ///< this keyframe's points, map frame, thinned (the sight map's rays)
   std::vector<rooms::WallCandidate> walls;           ///< mapped vertical planes with their extents
   std::vector<int> keyframe_planes;                  ///< ids of the planes this keyframe observes
 };
@@ -131,8 +145,17 @@ class RoomLayer {
   bool robot_space(const RoomLayerInput& input, const Eigen::Vector3d& floor, KeyframeSpace& out);
   std::vector<RoomEventRecord> update_flush(const RoomLayerInput& input, KeyframeSpace space, int level,
                                             bool passed_doorway);
-  std::vector<RoomEventRecord> extract(const RoomLayerInput& input, const Vertices& segment,
-                                       const Vertices& context, int level);
+  std::vector<RoomEventRecord> extract(const RoomLayerInput& input, const Vertices& segment, int level,
+                                       bool final = false);
+  /// TS-graphs: the spaces of the level's segmentation the segment's path ran in.
+  /// The spaces explored enough are returned; the path in the others is kept in deferred_path_
+  /// for the next extraction (all are returned when `final`).
+  std::vector<rooms::ExtractedRoom> segmented_spaces(const RoomLayerInput& input, const Vertices& segment,
+                                                     std::vector<Eigen::Vector3d> path, int level, bool final);
+  /// The space of `seg` holding the floor point (or the nearest within a node's reach of the free space), or -1.
+  int space_of(const rooms::RoomSegmentation& seg, const Eigen::Vector3d& floor) const;
+  RoomEventRecord event_of(const RoomLayerInput& input, const rooms::ExtractedRoom& room, int level,
+                           std::vector<Eigen::Vector3d> free_space);
   int level_of(double floor_z);
   void commit(const KeyframeSpace& space);
   void clear_segment();
@@ -142,9 +165,18 @@ class RoomLayer {
   rooms::RoomTimerTrigger timer_trigger_;
   rooms::RoomMap map_;
   Vertices segment_;                        ///< the free space walked since the last flush
-  Vertices context_;                        ///< the whole clusters the robot was in meanwhile
   double segment_length_ = 0.0;             ///< path walked in the segment (m)
   std::optional<Eigen::Vector3d> last_position_;
+  std::vector<Eigen::Vector3d> segment_path_; ///< the robot's floor points in the segment, in order
+  std::optional<rooms::RoomSegmentation> last_segmentation_;  ///< TS-graphs: the latest one, to tell a change of space
+  int last_segmentation_level_ = -1;
+  int last_space_ = -1;                     ///< the space of it the robot is in
+  int entering_space_ = -1;                 ///< another space the robot has stepped into...
+  double entering_length_ = 0.0;            ///< ...and how far it has walked in it (m)
+  double nodes_cell_ = 0.25;                ///< the node map's cell (the reach of a node)
+  std::vector<Eigen::Vector3d> deferred_path_;///< TS-graphs: floor points in spaces not yet explored enough
+  std::map<int, freespace::SightMap> sight_;   ///< TS-graphs: per level, what the rays saw
+  std::set<int> free_nodes_;                ///< TS-graphs: every node that was in the robot's free space
   std::vector<KeyframeSpace> pending_;      ///< the latest keyframes' free space, held while the trigger confirms a change
   std::vector<double> levels_;              ///< floor heights of the levels seen
   int segment_level_ = -1;

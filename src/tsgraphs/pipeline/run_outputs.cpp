@@ -113,6 +113,7 @@ io::SceneGraph scene_graph_of(const Pipeline& pipeline) {
     room.kind = rooms::to_string(r.kind);
     room.level = r.level;
     room.rect = r.rect;
+    room.polygon = r.outline;
     room.walls = r.wall_ids;
     room.extractions = r.extraction_count;
     if (pipeline.room_node_of(id) >= 0) room.node = pipeline.room_node_of(id);
@@ -166,8 +167,9 @@ std::vector<io::RoomEvent> room_events_of(const Pipeline& pipeline, const std::v
     ev.room_id = e.room_id;
     ev.is_new = e.is_new;
     ev.level = e.level;
-    ev.center = e.rect.center;
+    ev.center = e.outline.size() >= 3 ? centroid(e.outline) : e.rect.center;
     ev.rect = e.rect;
+    ev.polygon = e.outline;
     ev.walls = e.walls;
     ev.kind = rooms::to_string(e.kind);
     events.push_back(std::move(ev));
@@ -236,7 +238,7 @@ std::string map_ply(const Pipeline& pipeline) {
     const auto& levels = pipeline.room_layer().levels();
     const float z = static_cast<float>(levels.at(static_cast<std::size_t>(r.level)) + kOutlineLift);
     const Rgb c = r.kind == rooms::RoomKind::room ? kRoomOutline : kCorridorOutline;
-    const Polygon2 corners = r.rect.corners();
+    const Polygon2 corners = r.footprint();
     for (std::size_t i = 0; i < corners.size(); ++i) {
       const Vec2& a = corners[i];
       const Vec2& b = corners[(i + 1) % corners.size()];

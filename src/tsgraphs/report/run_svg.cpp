@@ -414,7 +414,7 @@ class BirdseyeDrawer {
       if (on_level(n.p)) e.add(Vec2(n.p.head<2>()));
     }
     for (const RunView::Room* r : rooms_) {
-      e.add(r->rect.corners());
+      e.add(r->footprint());
       for (const Eigen::Vector3d& p : r->free_space) e.add(Vec2(p.head<2>()));
     }
     for (const io::RoomTruth* t : truth_rooms_) e.add(t->polygon);
@@ -542,7 +542,7 @@ class BirdseyeDrawer {
       const std::string colour = room_colour(*r);
       out_ += std::string("<polygon class=\"") + (is_corridor(*r) ? "corridor" : "room") + "\" data-id=\"" +
               std::to_string(r->id) + "\" fill=\"" + colour + "\" stroke=\"" + colour + "\" points=\"" +
-              points_attr(frame_, r->rect.corners()) + "\"/>\n";
+              points_attr(frame_, r->footprint()) + "\"/>\n";
     }
     out_ += "</g>\n";
   }
@@ -621,7 +621,7 @@ class BirdseyeDrawer {
     for (const RunView::Room* r : rooms_) {
       const std::string label = std::to_string(r->id) + " \xC2\xB7 " +
                                 (r->first_lap > 0 ? "lap " + std::to_string(r->first_lap) : std::string("no event"));
-      const Vec2 c = frame_.px(r->rect.center);
+      const Vec2 c = frame_.px(r->center());
       const double half = 0.5 * kLabelCharWidth * static_cast<double>(label.size() - 1);  // the dot is 2 bytes
       const Box b = place({c.x() - half, c.y() - 0.5 * kLabelHeight, c.x() + half, c.y() + 0.5 * kLabelHeight});
       out_ += text(0.5 * (b.x0 + b.x1), 0.5 * (b.y0 + b.y1) + kTextBaselineShift, "room-label halo", label);

@@ -48,6 +48,7 @@ void take_scene_graph(const io::SceneGraph& graph, RunView* run) {
     room.kind = r.kind;
     room.level = r.level;
     room.rect = r.rect;
+    room.polygon = r.polygon;
     room.free_space = r.free_space;
     run->rooms.push_back(std::move(room));
   }

@@ -35,8 +35,12 @@ struct RunView {
     std::string kind = "room";  ///< "room" or "corridor"
     int level = 0;              ///< index into `levels`
     OrientedRect rect;
+    Polygon2 polygon;           ///< the footprint when it is no rectangle (empty: rect)
     int first_lap = 0;          ///< lowest lap of its rooms_events.jsonl lines; 0 without one
     std::vector<Eigen::Vector3d> free_space;  ///< vertices of its latest extraction
+
+    Polygon2 footprint() const { return footprint_of(rect, polygon); }
+    Vec2 center() const { return polygon.size() >= 3 ? centroid(polygon) : rect.center; }
   };
   struct Stamped {
     double t = 0.0;

@@ -13,19 +13,40 @@ RoomMap::RoomMap(RoomAssociationConfig config) : config_(std::move(config)) {
     throw std::invalid_argument("footprint must be first, latest or largest, not '" + config_.footprint + "'");
 }
 
-bool RoomMap::matches(const OrientedRect& a, const OrientedRect& b) const {
-  return (config_.match_by_dice && dice(a, b) >= config_.min_dice) ||
-         (a.center - b.center).norm() <= config_.room_dist_threshold;
+namespace {
+
+/// Whether two footprints' bounding boxes overlap (they can have a Dice score above 0).
+bool boxes_meet(const Polygon2& a, const Polygon2& b) {
+  Vec2 alo = a.front(), ahi = a.front(), blo = b.front(), bhi = b.front();
+  for (const Vec2& p : a) {
+    alo = alo.cwiseMin(p);
+    ahi = ahi.cwiseMax(p);
+  }
+  for (const Vec2& p : b) {
+    blo = blo.cwiseMin(p);
+    bhi = bhi.cwiseMax(p);
+  }
+  return alo.x() <= bhi.x() && blo.x() <= ahi.x() && alo.y() <= bhi.y() && blo.y() <= ahi.y();
 }
 
-int RoomMap::match(const OrientedRect& rect, int level) const {
+double footprint_dice(const Polygon2& a, const Polygon2& b) { return boxes_meet(a, b) ? dice(a, b) : 0.0; }
+
+}  // namespace
+
+bool RoomMap::matches(const Polygon2& a, const Vec2& ca, const Polygon2& b, const Vec2& cb) const {
+  return (ca - cb).norm() <= config_.room_dist_threshold ||
+         (config_.match_by_dice && footprint_dice(a, b) >= config_.min_dice);
+}
+
+int RoomMap::match(const Polygon2& footprint, const Vec2& center, int level) const {
   int best = -1;
   double best_dice = 0.0;
   double best_distance = 0.0;
   for (const auto& [id, room] : rooms_) {  // ascending ids: ties keep the lower one
-    if (room.level != level || !matches(rect, room.rect)) continue;
-    const double d = dice(rect, room.rect);
-    const double dist = (rect.center - room.rect.center).norm();
+    const Polygon2 other = room.footprint();
+    if (room.level != level || !matches(footprint, center, other, room.center())) continue;
+    const double d = footprint_dice(footprint, other);
+    const double dist = (center - room.center()).norm();
     if (best < 0 || std::make_tuple(-d, dist) < std::make_tuple(-best_dice, best_distance)) {
       best = id;
       best_dice = d;
@@ -36,17 +57,22 @@ int RoomMap::match(const OrientedRect& rect, int level) const {
 }
 
 RoomAssociation RoomMap::add_extraction(const ExtractedRoom& room, int level) {
-  const int id = match(room.rect, level);
+  const Polygon2 footprint = footprint_of(room.rect, room.outline);
+  const int id = match(footprint, room.outline.size() >= 3 ? centroid(room.outline) : room.rect.center, level);
   if (id >= 0) {
     MappedRoom& mapped = rooms_.at(id);
     ++mapped.extraction_count;
-    const bool larger = room.rect.size.prod() > mapped.rect.size.prod();
-    if (config_.footprint == "latest" || (config_.footprint == "largest" && larger)) mapped.rect = room.rect;
+    const bool larger = area(footprint) > area(mapped.footprint());
+    if (config_.footprint == "latest" || (config_.footprint == "largest" && larger)) {
+      mapped.rect = room.rect;
+      mapped.outline = room.outline;
+    }
     return {id, false};
   }
   MappedRoom mapped;
   mapped.id = next_id_++;
   mapped.rect = room.rect;
+  mapped.outline = room.outline;
   mapped.level = level;
   mapped.kind = room.kind;
   mapped.wall_ids = room.wall_ids;
@@ -67,7 +93,8 @@ std::vector<std::pair<int, int>> RoomMap::find_duplicates() const {
   };
   for (std::size_t i = 0; i < list.size(); ++i) {
     for (std::size_t j = i + 1; j < list.size(); ++j) {
-      if (list[i]->level == list[j]->level && matches(list[i]->rect, list[j]->rect)) {
+      if (list[i]->level == list[j]->level &&
+          matches(list[i]->footprint(), list[i]->center(), list[j]->footprint(), list[j]->center())) {
         parent[root(j)] = root(i);
       }
     }
@@ -97,7 +124,12 @@ void RoomMap::merge(int keep, int drop) {
   rooms_.erase(drop);
 }
 
-void RoomMap::set_rect(int id, const OrientedRect& rect) { rooms_.at(id).rect = rect; }
+void RoomMap::set_rect(int id, const OrientedRect& rect) {
+  MappedRoom& room = rooms_.at(id);
+  const Vec2 moved = rect.center - room.rect.center;
+  for (Vec2& p : room.outline) p += moved;
+  room.rect = rect;
+}
 
 std::vector<std::pair<int, int>> RoomMap::merge_duplicates() {
   const std::vector<std::pair<int, int>> pairs = find_duplicates();

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "tsgraphs/core/rect.hpp"
-#include "tsgraphs/rooms/room_extraction.hpp"
+#include "tsgraphs/rooms/room.hpp"
 
 namespace tsgraphs::rooms {
 
@@ -31,10 +31,15 @@ struct RoomAssociationConfig {
 struct MappedRoom {
   int id = -1;
   OrientedRect rect;
+  Polygon2 outline;          ///< the footprint when it is no rectangle (empty: rect)
   int level = 0;
   RoomKind kind = RoomKind::room;
   std::vector<int> wall_ids;
   int extraction_count = 0;  ///< extractions associated with it, the first one included
+
+  Polygon2 footprint() const { return footprint_of(rect, outline); }
+  /// The footprint's centre: the rectangle's, or the outline's area centroid.
+  Vec2 center() const { return outline.size() >= 3 ? centroid(outline) : rect.center; }
 };
 
 struct RoomAssociation {
@@ -49,7 +54,9 @@ class RoomMap {
 
   /// Id of the mapped room of `level` the footprint matches (the highest Dice; on a tie the
   /// nearer centre, then the lower id), or -1.
-  int match(const OrientedRect& rect, int level) const;
+  int match(const OrientedRect& rect, int level) const { return match(rect.corners(), rect.center, level); }
+  /// The same for any footprint with its centre.
+  int match(const Polygon2& footprint, const Vec2& center, int level) const;
   /// Associates an extraction with its mapped room (its count goes up; its footprint follows
   /// config.footprint) or adds it as a new room with the next id.
   RoomAssociation add_extraction(const ExtractedRoom& room, int level);
@@ -59,7 +66,8 @@ class RoomMap {
   std::vector<std::pair<int, int>> find_duplicates() const;
   /// Adds drop's extraction count and wall ids to keep and removes drop.
   void merge(int keep, int drop);
-  /// Moves mapped room `id` (after optimisation the back-end moves the room nodes).
+  /// Moves mapped room `id` (after optimisation the back-end moves the room nodes); its
+  /// outline moves with the rectangle's centre.
   void set_rect(int id, const OrientedRect& rect);
   /// find_duplicates() then merge() of every pair; returns the pairs merged.
   std::vector<std::pair<int, int>> merge_duplicates();
@@ -68,7 +76,7 @@ class RoomMap {
   const RoomAssociationConfig& config() const { return config_; }
 
  private:
-  bool matches(const OrientedRect& a, const OrientedRect& b) const;
+  bool matches(const Polygon2& a, const Vec2& ca, const Polygon2& b, const Vec2& cb) const;
 
   RoomAssociationConfig config_;
   std::map<int, MappedRoom> rooms_;

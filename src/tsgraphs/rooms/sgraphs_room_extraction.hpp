@@ -9,7 +9,7 @@
 /// segment of its points, on either side; S-Graphs measures to the plane's nearest point) wins. Two winners of one axis that face each other and are far enough apart make a pair; two
 /// pairs make a room, one pair a corridor whose length is the cluster's extent along it.
 ///
-/// Where it differs from TS-graphs' extract_room: the classes are the map axes, so a room rotated
+/// Where it differs from TS-graphs' room segmentation: the classes are the map axes, so a room rotated
 /// in the map is still split by map x and y and its footprint is an axis-aligned rectangle; and a
 /// plane is chosen by how many points lie near it, not by whether the cluster reaches it without
 /// crossing it, so a plane the cluster crosses, or a wall across a void behind a railing, can be
@@ -19,7 +19,7 @@
 
 #include <Eigen/Core>
 
-#include "tsgraphs/rooms/room_extraction.hpp"
+#include "tsgraphs/rooms/room.hpp"
 
 namespace tsgraphs::rooms {
 

@@ -368,7 +368,7 @@ GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed,
   scene.trajectory.waypoints = {{Vec2::Zero(), first_walked, 0}, {Vec2::Zero(), first_walked, 0}};
 
   // The survey path over the walked storeys.
-  const GridFrame frame = GridFrame::covering(scene, config.grid_resolution, 0.5);
+  const GridFrame frame = frame_covering(scene, config.grid_resolution, 0.5);
   std::vector<WalkableGrid> grids;
   std::vector<int> grid_of_level(scene.levels.size(), -1);
   for (std::size_t i = 0; i < scene.levels.size(); ++i) {

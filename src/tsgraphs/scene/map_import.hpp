@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tsgraphs/core/raster_regions.hpp"
 #include "tsgraphs/scene/scene.hpp"
 
 namespace tsgraphs::scene {
@@ -76,18 +77,5 @@ constexpr std::size_t kRoomMaxSmallCells = 100;
 /// map has no known cell or no free cell far enough from every obstacle to start a path, and
 /// std::invalid_argument on a raster whose size disagrees with its cells.
 ImportedMap import_map(const MapRaster& map, const std::vector<std::uint8_t>& room_grey, const MapImportConfig& config);
-
-/// The outer outlines of the 4-connected (eight_connected false) or 8-connected regions of
-/// `mask` (cols x rows, row 0 at the bottom), traced along cell edges, counter-clockwise, in
-/// cell units: the regions' ids are `labels` (one per cell, -1 outside every region), region k
-/// gets outline k. Where a region touches itself diagonally the outline passes the corner
-/// twice; both passes cut it a tenth of a cell short, so that every outline is a simple polygon.
-std::vector<Polygon2> trace_outlines(const std::vector<int>& labels, int cols, int rows, int n_regions,
-                                     bool eight_connected);
-
-/// Douglas-Peucker on closed outlines with `tolerance`, together: where a simplified edge
-/// would meet another (of any outline), the vertex the simplification dropped that is farthest
-/// from it is put back, until no two edges meet. Outlines that are simple and disjoint stay so.
-std::vector<Polygon2> simplify_outlines(const std::vector<Polygon2>& outlines, double tolerance);
 
 }  // namespace tsgraphs::scene

@@ -55,49 +55,9 @@ std::vector<Slab2> blocking_shapes(const Scene& scene, int level, const Walkable
   return shapes;
 }
 
-// One pass of the 1-D squared distance transform (Felzenszwalb and Huttenlocher 2012) over
-// f[0..n), in cells; v and z are scratch space.
-void distance_transform_1d(const float* f, int n, float* out, std::vector<int>& v, std::vector<float>& z) {
-  constexpr float kInf = std::numeric_limits<float>::infinity();
-  v.resize(n);
-  z.resize(n + 1);
-  int k = -1;
-  for (int q = 0; q < n; ++q) {
-    if (!std::isfinite(f[q])) continue;
-    float s = -kInf;
-    while (k >= 0) {
-      s = ((f[q] + q * q) - (f[v[k]] + v[k] * v[k])) / (2.0f * (q - v[k]));
-      if (s > z[k]) break;
-      --k;
-    }
-    ++k;
-    v[k] = q;
-    z[k] = k == 0 ? -kInf : s;
-    z[k + 1] = kInf;
-  }
-  if (k < 0) {
-    std::fill(out, out + n, kInf);
-    return;
-  }
-  int j = 0;
-  for (int q = 0; q < n; ++q) {
-    while (z[j + 1] < q) ++j;
-    const float d = static_cast<float>(q - v[j]);
-    out[q] = d * d + f[v[j]];
-  }
-}
-
 }  // namespace
 
-bool GridFrame::cell_of(const Vec2& p, int* c, int* r) const {
-  const Vec2 q = (p - origin) / resolution;
-  if (!(q.x() >= 0.0 && q.y() >= 0.0)) return false;
-  *c = static_cast<int>(q.x());
-  *r = static_cast<int>(q.y());
-  return inside(*c, *r);
-}
-
-GridFrame GridFrame::covering(const Scene& scene, double resolution, double margin) {
+GridFrame frame_covering(const Scene& scene, double resolution, double margin) {
   Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const Level& l : scene.levels) {
     for (const Vec2& p : l.slab) {
@@ -105,12 +65,7 @@ GridFrame GridFrame::covering(const Scene& scene, double resolution, double marg
       hi = hi.cwiseMax(p);
     }
   }
-  GridFrame f;
-  f.resolution = resolution;
-  f.origin = lo - Vec2::Constant(margin);
-  f.cols = static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * margin) / resolution));
-  f.rows = static_cast<int>(std::ceil((hi.y() - lo.y() + 2 * margin) / resolution));
-  return f;
+  return GridFrame::around(lo, hi, resolution, margin);
 }
 
 double WalkableGrid::clearance_at(const Vec2& p) const {
@@ -149,35 +104,7 @@ WalkableGrid rasterise_walkable(const Scene& scene, int level, const GridFrame& 
   return g;
 }
 
-void compute_clearance(WalkableGrid* grid) {
-  const GridFrame& f = grid->frame;
-  constexpr float kInf = std::numeric_limits<float>::infinity();
-  // Blocked cells are the sources; the raster's border counts as blocked (one ring outside).
-  const int W = f.cols + 2, H = f.rows + 2;
-  std::vector<float> d(static_cast<std::size_t>(W) * H, 0.0f);
-  for (int r = 0; r < f.rows; ++r) {
-    for (int c = 0; c < f.cols; ++c) d[static_cast<std::size_t>(r + 1) * W + c + 1] = grid->free[f.index(c, r)] ? kInf : 0.0f;
-  }
-  std::vector<int> v;
-  std::vector<float> z, col(H), out(std::max(W, H));
-  for (int x = 0; x < W; ++x) {
-    for (int y = 0; y < H; ++y) col[y] = d[static_cast<std::size_t>(y) * W + x];
-    distance_transform_1d(col.data(), H, out.data(), v, z);
-    for (int y = 0; y < H; ++y) d[static_cast<std::size_t>(y) * W + x] = out[y];
-  }
-  for (int y = 0; y < H; ++y) {
-    float* row = &d[static_cast<std::size_t>(y) * W];
-    distance_transform_1d(row, W, out.data(), v, z);
-    std::copy(out.begin(), out.begin() + W, row);
-  }
-  grid->clearance.assign(f.size(), 0.0f);
-  for (int r = 0; r < f.rows; ++r) {
-    for (int c = 0; c < f.cols; ++c) {
-      grid->clearance[f.index(c, r)] =
-          static_cast<float>(std::sqrt(d[static_cast<std::size_t>(r + 1) * W + c + 1]) * f.resolution);
-    }
-  }
-}
+void compute_clearance(WalkableGrid* grid) { grid->clearance = distance_transform(grid->frame, grid->free); }
 
 double obstacle_distance(const Scene& scene, const Vec2& xy, double floor_z, double probe_radius,
                          const WalkableRules& rules) {

@@ -6,28 +6,15 @@
 #include <cstdint>
 #include <vector>
 
+#include "tsgraphs/core/grid_frame.hpp"
 #include "tsgraphs/scene/scene.hpp"
 
 namespace tsgraphs::scene {
 
-/// A raster over the xy plane: cell (c, r) covers [origin + c res, origin + (c + 1) res) in x
-/// and likewise in y (r grows with y).
-struct GridFrame {
-  Vec2 origin = Vec2::Zero();
-  double resolution = 0.05;
-  int cols = 0, rows = 0;
+using tsgraphs::GridFrame;
 
-  std::size_t size() const { return static_cast<std::size_t>(cols) * static_cast<std::size_t>(rows); }
-  std::size_t index(int c, int r) const { return static_cast<std::size_t>(r) * cols + c; }
-  bool inside(int c, int r) const { return c >= 0 && r >= 0 && c < cols && r < rows; }
-  Vec2 center(int c, int r) const { return origin + resolution * Vec2(c + 0.5, r + 0.5); }
-  Vec2 center(std::size_t i) const { return center(static_cast<int>(i % cols), static_cast<int>(i / cols)); }
-  /// The cell holding `p`; false when it lies outside the raster.
-  bool cell_of(const Vec2& p, int* c, int* r) const;
-
-  /// A frame covering every level's slab of `scene` with `margin` metres around.
-  static GridFrame covering(const Scene& scene, double resolution, double margin);
-};
+/// A frame covering every level's slab of `scene` with `margin` metres around.
+GridFrame frame_covering(const Scene& scene, double resolution, double margin);
 
 /// One level's free space for planning.
 struct WalkableGrid {

@@ -1,0 +1,75 @@
+#pragma once
+/// The free space a LiDAR sees on one level: a 2-D raster of where its rays passed at walking
+/// height (between the floor and the headroom), where they met the floor, and where they went
+/// below it (no floor there: a void, a ramp's well, the storey below).
+///
+/// A sensor mounted high sees the floor only far away (1.7 m up with a lowest beam at -15 deg:
+/// beyond 6.3 m), so a small room's floor may never become traversable ground; the rays that
+/// cross the room to its walls still show it is open at walking height and has a floor under
+/// it wherever they did not go below it. The room segmentation takes its spaces from this and
+/// from the traversable ground together, so that the same rooms come from any mount height.
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "tsgraphs/core/grid_frame.hpp"
+
+namespace tsgraphs::freespace {
+
+struct SightMapConfig {
+  double cell = 0.1;         ///< raster cell (m), the room segmentation's
+  double floor_step = 0.2;   ///< a return within this of the floor height is the floor (m); the free space's obstacle_min_height
+  double headroom = 2.0;     ///< a ray below this above the floor passes at walking height (m); the free space's obstacle_max_height
+  double max_range = 20.0;   ///< returns farther than this horizontally are not traced (m): far returns on the floor are tilt-sensitive
+
+  template <class V>
+  void visit(V& v) {
+    v("cell", cell);
+    v("max_range", max_range);
+  }
+};
+
+class SightMap {
+ public:
+  /// Throws std::invalid_argument for cell <= 0, floor_step < 0, headroom <= floor_step or max_range <= 0.
+  SightMap(double floor_z, const SightMapConfig& config);
+
+  /// Traces the rays from `sensor` to each of `points` (map frame).
+  void add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points);
+
+  /// Per cell of `frame`: `open` where rays passed at walking height or met the floor, and
+  /// rays never went below the floor more often than they met it there.
+  std::vector<std::uint8_t> open_cells(const GridFrame& frame) const;
+  /// Per cell of `frame`: whether any ray passed or ended there (open or not), i.e. it is no
+  /// frontier of what the sensor has seen.
+  std::vector<std::uint8_t> known_cells(const GridFrame& frame) const;
+
+  double floor_z() const { return floor_z_; }
+  /// The box of every cell touched (lo > hi when none).
+  Eigen::Vector2d lo() const { return lo_; }
+  Eigen::Vector2d hi() const { return hi_; }
+
+ private:
+  static constexpr int kTileBits = 5;  // 32 x 32 cells a tile
+  static constexpr int kTileSide = 1 << kTileBits;
+  struct Tile {
+    std::uint16_t passed[kTileSide * kTileSide] = {};
+    std::uint16_t floor[kTileSide * kTileSide] = {};
+    std::uint16_t below[kTileSide * kTileSide] = {};
+    std::uint8_t hit[kTileSide * kTileSide] = {};  ///< a return above the floor ended here
+  };
+  enum class Mark { passed, floor, below, hit };
+  void mark(long c, long r, Mark m);
+  const Tile* tile(long tc, long tr) const;
+  /// The tile and index of the cell holding the frame's cell centre, or nullptr.
+  const Tile* cell(const GridFrame& f, int col, int row, std::size_t* i) const;
+
+  double floor_z_;
+  SightMapConfig config_;
+  std::unordered_map<std::uint64_t, Tile> tiles_;
+  Eigen::Vector2d lo_, hi_;
+};
+
+}  // namespace tsgraphs::freespace

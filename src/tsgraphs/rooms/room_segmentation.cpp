@@ -1,0 +1,596 @@
+#include "tsgraphs/rooms/room_segmentation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "tsgraphs/core/raster_regions.hpp"
+
+namespace tsgraphs::rooms {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+constexpr double kLineStep = 0.5;
+constexpr int kFrontierReach = 3;  // cells: rays end on a wall's face a cell or two short of a space grown to its line  // cells between the samples that draw a wall: the line stays 8-connected
+
+/// Cells within `radius` of a cell holding one of `points` (its centre within radius of one).
+std::vector<std::uint8_t> discs(const GridFrame& f, const std::vector<Vec2>& points, double radius) {
+  std::vector<std::uint8_t> away(f.size(), 1);  // 0 on the cells that hold a point
+  for (const Vec2& p : points) {
+    int c, r;
+    if (f.cell_of(p, &c, &r)) away[f.index(c, r)] = 0;
+  }
+  const std::vector<float> d = distance_transform(f, away, false);
+  std::vector<std::uint8_t> in(f.size(), 0);
+  for (std::size_t i = 0; i < in.size(); ++i) in[i] = d[i] <= radius ? 1 : 0;
+  return in;
+}
+
+/// The wall's line at floor height: unit normal n (as the plane's, horizontal) and offset d.
+struct WallLine {
+  int id = -1;
+  Vec2 n = Vec2::UnitX();
+  double d = 0.0;
+  Vec2 a = Vec2::Zero(), b = Vec2::Zero();  ///< its extent, on the line
+};
+
+/// The walls of the level as lines at floor height: with `reaching`, only those whose points
+/// span wall_reach_height (they bound spaces); else every vertical plane of min_wall_height
+/// that comes down to the level (they may carry a footprint's side: a low sensor sees a small
+/// room's walls only up to its head height plus a little).
+std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, double floor_z, const RoomSegmentationConfig& cfg,
+                                  bool reaching = true) {
+  std::vector<WallLine> out;
+  for (const WallCandidate& w : walls) {
+    if (std::abs(w.plane.n.z()) > cfg.max_normal_z || w.height < cfg.min_wall_height) continue;
+    if (w.z0 > floor_z + cfg.wall_reach_height || (reaching && w.z1 < floor_z + cfg.wall_reach_height)) continue;
+    WallLine l;
+    l.id = w.id;
+    const double len = w.plane.n.head<2>().norm();
+    l.n = w.plane.n.head<2>() / len;
+    l.d = (w.plane.d + w.plane.n.z() * floor_z) / len;
+    l.a = w.end_a - (l.n.dot(w.end_a) + l.d) * l.n;
+    l.b = w.end_b - (l.n.dot(w.end_b) + l.d) * l.n;
+    out.push_back(l);
+  }
+  return out;
+}
+
+/// The segments that close the doors: from each end of a wall at least min_door_post long, on
+/// along its line to the first other such wall it meets within max_door_width (crossing it, or
+/// the nearer end of one in line with it).
+std::vector<std::pair<Vec2, Vec2>> door_closures(const std::vector<WallLine>& walls, const RoomSegmentationConfig& cfg) {
+  const double cos_parallel = std::cos(cfg.parallel_tolerance_deg * kDegToRad);
+  std::vector<std::pair<Vec2, Vec2>> out;
+  for (std::size_t i = 0; i < walls.size(); ++i) {
+    const WallLine& w = walls[i];
+    const double length = (w.b - w.a).norm();
+    if (length < cfg.min_door_post) continue;
+    const Vec2 dir = (w.b - w.a) / length;
+    for (int end = 0; end < 2; ++end) {
+      const Vec2 from = end == 0 ? w.a : w.b;
+      const Vec2 out_dir = end == 0 ? Vec2(-dir) : dir;
+      const Vec2 far = from + cfg.max_door_width * out_dir;
+      double best = cfg.max_door_width;
+      Vec2 to = from;
+      for (std::size_t j = 0; j < walls.size(); ++j) {
+        const WallLine& o = walls[j];
+        if (j == i || (o.b - o.a).norm() < cfg.min_door_post) continue;
+        Vec2 at;
+        if (std::abs(o.n.dot(w.n)) >= cos_parallel) {
+          // In line: the other wall's nearer end, if it lies on this line within a wall's thickness.
+          for (const Vec2& e : {o.a, o.b}) {
+            const double along = out_dir.dot(e - from);
+            const double side = std::abs(w.n.dot(e - from));
+            if (along > 0.0 && along < best && side <= cfg.wall_snap) {
+              best = along;
+              to = e;
+            }
+          }
+        } else if (segments_intersect(from, far, o.a, o.b, &at)) {
+          const double along = out_dir.dot(at - from);
+          if (along > 0.0 && along < best) {
+            best = along;
+            to = at;
+          }
+        }
+      }
+      if (best < cfg.max_door_width) out.emplace_back(from, to);
+    }
+  }
+  return out;
+}
+
+void draw_line(const GridFrame& f, const Vec2& a, const Vec2& b, std::vector<std::uint8_t>* blocked) {
+  const double length = (b - a).norm();
+  const int steps = std::max(1, static_cast<int>(std::ceil(length / (kLineStep * f.resolution))));
+  for (int s = 0; s <= steps; ++s) {
+    int c, r;
+    if (f.cell_of(a + (b - a) * (static_cast<double>(s) / steps), &c, &r)) (*blocked)[f.index(c, r)] = 1;
+  }
+}
+
+/// Grows the labelled cells over `ground` by breadth-first search, at most `reach` cells
+/// (4-connected steps); the first label to arrive takes a cell.
+void grow(const GridFrame& f, const std::vector<std::uint8_t>& ground, int reach, std::vector<int>* label) {
+  std::vector<int> depth(f.size(), -1);
+  std::deque<std::size_t> queue;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    if ((*label)[i] < 0) continue;
+    depth[i] = 0;
+    queue.push_back(i);
+  }
+  static const int kDc[4] = {1, -1, 0, 0};
+  static const int kDr[4] = {0, 0, 1, -1};
+  while (!queue.empty()) {
+    const std::size_t i = queue.front();
+    queue.pop_front();
+    if (depth[i] >= reach) continue;
+    const int c = static_cast<int>(i % f.cols), r = static_cast<int>(i / f.cols);
+    for (int k = 0; k < 4; ++k) {
+      const int cc = c + kDc[k], rr = r + kDr[k];
+      if (!f.inside(cc, rr)) continue;
+      const std::size_t j = f.index(cc, rr);
+      if (!ground[j] || (*label)[j] >= 0) continue;
+      (*label)[j] = (*label)[i];
+      depth[j] = depth[i] + 1;
+      queue.push_back(j);
+    }
+  }
+}
+
+/// Regions of fewer than `min_cells` cells join the neighbour they share the most cell edges
+/// with (smallest first; ties: the lower label), or are dropped without one; the rest are
+/// renumbered from 0 in the order of their first cell. Returns their number.
+int merge_small_regions(const GridFrame& f, double min_cells, int n_labels, std::vector<int>* label) {
+  std::vector<int>& lab = *label;
+  std::vector<std::size_t> cells(static_cast<std::size_t>(n_labels), 0);
+  for (int l : lab)
+    if (l >= 0) ++cells[static_cast<std::size_t>(l)];
+  std::vector<int> parent(static_cast<std::size_t>(n_labels));
+  for (int k = 0; k < n_labels; ++k) parent[static_cast<std::size_t>(k)] = k;
+  const auto root = [&](int k) {
+    while (parent[static_cast<std::size_t>(k)] != k) k = parent[static_cast<std::size_t>(k)];
+    return k;
+  };
+  // Shared edges between labels, counted once per pair of neighbouring cells.
+  std::map<std::pair<int, int>, std::size_t> shared;
+  for (int r = 0; r < f.rows; ++r) {
+    for (int c = 0; c < f.cols; ++c) {
+      const int a = lab[f.index(c, r)];
+      if (a < 0) continue;
+      const int right = c + 1 < f.cols ? lab[f.index(c + 1, r)] : -1;
+      const int up = r + 1 < f.rows ? lab[f.index(c, r + 1)] : -1;
+      for (int b : {right, up})
+        if (b >= 0 && b != a) ++shared[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  std::vector<int> order;
+  for (int k = 0; k < n_labels; ++k)
+    if (static_cast<double>(cells[static_cast<std::size_t>(k)]) < min_cells) order.push_back(k);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return cells[a] < cells[b]; });
+  for (int k : order) {
+    const int rk = root(k);
+    if (static_cast<double>(cells[static_cast<std::size_t>(rk)]) >= min_cells) continue;  // grown by an earlier merge
+    std::map<int, std::size_t> by_root;
+    for (const auto& [pair, count] : shared) {
+      const int a = root(pair.first), b = root(pair.second);
+      if (a == b) continue;
+      if (a == rk) by_root[b] += count;
+      if (b == rk) by_root[a] += count;
+    }
+    int best = -1;
+    std::size_t best_count = 0;
+    for (const auto& [other, count] : by_root) {
+      if (count > best_count) {
+        best = other;
+        best_count = count;
+      }
+    }
+    if (best < 0) {
+      cells[static_cast<std::size_t>(rk)] = 0;
+      parent[static_cast<std::size_t>(rk)] = rk;
+      continue;
+    }
+    parent[static_cast<std::size_t>(rk)] = best;
+    cells[static_cast<std::size_t>(best)] += cells[static_cast<std::size_t>(rk)];
+  }
+  std::vector<int> renumber(static_cast<std::size_t>(n_labels), -1);
+  int n = 0;
+  for (int& l : lab) {
+    if (l < 0) continue;
+    const int r = root(l);
+    if (static_cast<double>(cells[static_cast<std::size_t>(r)]) < min_cells) {
+      l = -1;
+      continue;
+    }
+    if (renumber[static_cast<std::size_t>(r)] < 0) renumber[static_cast<std::size_t>(r)] = n++;
+    l = renumber[static_cast<std::size_t>(r)];
+  }
+  return n;
+}
+
+/// Renumbers the labels so that each 4-connected piece of one label is a region of its own,
+/// from 0 in the order of their first cell; returns their number.
+int split_regions(const GridFrame& f, std::vector<int>* label) {
+  std::vector<int>& lab = *label;
+  std::vector<int> out(lab.size(), -1);
+  std::vector<std::size_t> stack;
+  static const int kDc[4] = {1, -1, 0, 0};
+  static const int kDr[4] = {0, 0, 1, -1};
+  int n = 0;
+  for (std::size_t start = 0; start < lab.size(); ++start) {
+    if (lab[start] < 0 || out[start] >= 0) continue;
+    out[start] = n;
+    stack.push_back(start);
+    while (!stack.empty()) {
+      const std::size_t i = stack.back();
+      stack.pop_back();
+      const int c = static_cast<int>(i % f.cols), r = static_cast<int>(i / f.cols);
+      for (int k = 0; k < 4; ++k) {
+        const int cc = c + kDc[k], rr = r + kDr[k];
+        if (!f.inside(cc, rr)) continue;
+        const std::size_t j = f.index(cc, rr);
+        if (lab[j] == lab[start] && out[j] < 0) {
+          out[j] = n;
+          stack.push_back(j);
+        }
+      }
+    }
+    ++n;
+  }
+  lab = std::move(out);
+  return n;
+}
+
+/// Cuts each corridor-like region (its area at least `corridor_aspect` times the square of its
+/// widest width, twice its largest clearance) into its straight legs: at every corner where its
+/// outline turns inwards (an inner corner of a bend, a corner of what it runs round: an
+/// atrium's void, a walled-off room) the outline's edge arriving there (counter-clockwise round
+/// the region, clockwise round a hole) is drawn on across the region until it leaves it, if it
+/// does within the corridor's width. Each corner square thus goes to one leg, the same way round
+/// every bend. Cut cells lose their label; returns whether any was cut.
+bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cells, double tolerance_cells,
+               std::vector<int>* label) {
+  std::vector<int>& lab = *label;
+  bool cut = false;
+  for (int k = 0; k < n; ++k) {
+    int c0 = f.cols, r0 = f.rows, c1 = -1, r1 = -1;
+    std::size_t cells = 0;
+    for (int r = 0; r < f.rows; ++r) {
+      for (int c = 0; c < f.cols; ++c) {
+        if (lab[f.index(c, r)] != k) continue;
+        ++cells;
+        c0 = std::min(c0, c);
+        c1 = std::max(c1, c);
+        r0 = std::min(r0, r);
+        r1 = std::max(r1, r);
+      }
+    }
+    if (c1 < 0) continue;
+    // The region in its box, one cell of margin round it.
+    GridFrame box;
+    box.resolution = 1.0;
+    box.cols = c1 - c0 + 3;
+    box.rows = r1 - r0 + 3;
+    std::vector<std::uint8_t> in(box.size(), 0);
+    for (int r = r0; r <= r1; ++r)
+      for (int c = c0; c <= c1; ++c)
+        if (lab[f.index(c, r)] == k) in[box.index(c - c0 + 1, r - r0 + 1)] = 1;
+    const std::vector<float> clearance = distance_transform(box, in);
+    const double width = 2.0 * *std::max_element(clearance.begin(), clearance.end());
+    if (static_cast<double>(cells) < corridor_aspect * width * width) continue;
+    // Its outline, counter-clockwise, and its holes' outlines, each clockwise round the hole:
+    // the region lies left of every edge, and an inner corner is a right turn.
+    std::vector<Polygon2> loops;
+    {
+      std::vector<int> only(box.size(), -1);
+      for (std::size_t i = 0; i < in.size(); ++i)
+        if (in[i]) only[i] = 0;
+      loops.push_back(trace_outlines(only, box.cols, box.rows, 1, false).front());
+    }
+    std::vector<std::uint8_t> other(box.size(), 0);
+    for (std::size_t i = 0; i < in.size(); ++i) other[i] = in[i] ? 0 : 1;
+    std::vector<std::size_t> sizes;
+    const std::vector<int> parts = label_regions(other, box.cols, box.rows, false, &sizes);
+    const int outside = parts[0];  // the margin's corner is outside the region
+    for (std::size_t p = 0; p < sizes.size(); ++p) {
+      if (static_cast<int>(p) == outside || static_cast<double>(sizes[p]) < min_cells) continue;
+      std::vector<int> only(box.size(), -1);
+      for (std::size_t i = 0; i < parts.size(); ++i)
+        if (parts[i] == static_cast<int>(p)) only[i] = 0;
+      Polygon2 hole = trace_outlines(only, box.cols, box.rows, 1, false).front();
+      std::reverse(hole.begin(), hole.end());
+      loops.push_back(hole);
+    }
+    for (Polygon2& loop : loops) {
+      loop = simplify_outlines({loop}, tolerance_cells).front();
+      if (loop.size() < 3) continue;
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        const Vec2& prev = loop[(i + loop.size() - 1) % loop.size()];
+        const Vec2& at = loop[i];
+        const Vec2& next = loop[(i + 1) % loop.size()];
+        const Vec2 d_in = (at - prev).normalized(), d_out = (next - at).normalized();
+        const double turn = d_in.x() * d_out.y() - d_in.y() * d_out.x();
+        if (turn > -std::sin(M_PI / 4.0)) continue;  // not an inner corner of 45 degrees or more
+        // Walk on along d_in from the corner; cut if the walk leaves the region within its width.
+        const Vec2 start = Vec2(c0 - 1, r0 - 1) + at;
+        std::vector<std::size_t> run;
+        bool left = false;
+        for (double t = kLineStep; t <= 1.5 * width + tolerance_cells + 2.0; t += kLineStep) {
+          const Vec2 q = start + t * d_in;
+          const int c = static_cast<int>(std::floor(q.x())), r = static_cast<int>(std::floor(q.y()));
+          if (!f.inside(c, r) || lab[f.index(c, r)] != k) {
+            if (!run.empty()) {
+              left = true;
+              break;
+            }
+            if (t > tolerance_cells + 1.0) break;  // never entered the region
+            continue;
+          }
+          run.push_back(f.index(c, r));
+        }
+        if (!left) continue;
+        for (std::size_t j : run) lab[j] = -1;
+        cut = true;
+      }
+    }
+  }
+  return cut;
+}
+
+/// Puts each side of the rectangle that has a wall beside it (parallel, within
+/// wall_snap, running along min_wall_overlap of it) on the nearest such wall. Returns per side
+/// (-x, +x, -y, +y of the rect's frame) the wall's id or -1.
+std::array<int, 4> snap_to_walls(OrientedRect* rect, const std::vector<WallLine>& walls,
+                                 const RoomSegmentationConfig& cfg) {
+  const Vec2 ux(std::cos(rect->yaw), std::sin(rect->yaw));
+  const Vec2 uy(-ux.y(), ux.x());
+  double lo[2] = {ux.dot(rect->center) - 0.5 * rect->size.x(), uy.dot(rect->center) - 0.5 * rect->size.y()};
+  double hi[2] = {ux.dot(rect->center) + 0.5 * rect->size.x(), uy.dot(rect->center) + 0.5 * rect->size.y()};
+  const double cos_parallel = std::cos(cfg.parallel_tolerance_deg * kDegToRad);
+  std::array<int, 4> ids{-1, -1, -1, -1};
+  double moved[4] = {0, 0, 0, 0};
+  for (int side = 0; side < 4; ++side) {
+    const int axis = side / 2;
+    const Vec2& u = axis == 0 ? ux : uy;
+    const Vec2& v = axis == 0 ? uy : ux;
+    const double at = side % 2 == 0 ? lo[axis] : hi[axis];
+    const double v_lo = side < 2 ? lo[1] : lo[0], v_hi = side < 2 ? hi[1] : hi[0];
+    double best = cfg.wall_snap;
+    for (const WallLine& w : walls) {
+      if (std::abs(w.n.dot(u)) < cos_parallel) continue;  // either face: a plane's sign follows who saw it
+      // Where the wall's line crosses u at the side's middle.
+      const Vec2 mid = u * at + v * (0.5 * (v_lo + v_hi));
+      const double pos = at - (w.n.dot(mid) + w.d) / w.n.dot(u);
+      const double offset = std::abs(pos - at);
+      const double a = v.dot(w.a), b = v.dot(w.b);
+      const double overlap = std::min(std::max(a, b), v_hi) - std::max(std::min(a, b), v_lo);
+      if (offset > best || overlap < cfg.min_wall_overlap * (v_hi - v_lo)) continue;
+      best = offset;
+      ids[side] = w.id;
+      moved[side] = pos;
+    }
+  }
+  for (int side = 0; side < 4; ++side) {
+    if (ids[side] < 0) continue;
+    (side % 2 == 0 ? lo : hi)[side / 2] = moved[side];
+  }
+  const Vec2 mid(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]));
+  rect->center = ux * mid.x() + uy * mid.y();
+  rect->size = Vec2(hi[0] - lo[0], hi[1] - lo[1]);
+  return ids;
+}
+
+}  // namespace
+
+void RoomSegmentationConfig::validate() const {
+  const auto fail = [](const std::string& what) { throw std::invalid_argument("RoomSegmentationConfig: " + what); };
+  if (!(cell > 0.0)) fail("cell must be > 0");
+  if (!(rect_fill > 0.0 && rect_fill <= 1.0)) fail("rect_fill must be in (0, 1]");
+  if (!(min_wall_overlap >= 0.0 && min_wall_overlap <= 1.0)) fail("min_wall_overlap must be in [0, 1]");
+  if (!(corridor_aspect >= 1.0)) fail("corridor_aspect must be >= 1");
+  if (!(wall_snap >= 0.0)) fail("wall_snap must be >= 0");
+  if (!(min_region_area >= 0.0)) fail("min_region_area must be >= 0");
+  if (!(simplify_tolerance >= 0.0)) fail("simplify_tolerance must be >= 0");
+  if (!(bend_tolerance >= 0.0)) fail("bend_tolerance must be >= 0");
+  if (!(parallel_tolerance_deg >= 0.0 && parallel_tolerance_deg < 90.0)) fail("parallel_tolerance_deg must be in [0, 90)");
+  if (!(max_normal_z >= 0.0 && max_normal_z < 1.0)) fail("max_normal_z must be in [0, 1)");
+}
+
+bool crosses_wall(const Vec2& a, const Vec2& b, const std::vector<WallCandidate>& walls, double floor_z,
+                  const RoomSegmentationConfig& cfg) {
+  for (const WallLine& w : level_walls(walls, floor_z, cfg))
+    if (segments_intersect(a, b, w.a, w.b)) return true;
+  return false;
+}
+
+int RoomSegmentation::space_at(const Vec2& p, double radius) const {
+  int c, r;
+  if (frame.size() == 0) return -1;
+  if (frame.cell_of(p, &c, &r) && label[frame.index(c, r)] >= 0) return label[frame.index(c, r)];
+  const int reach = static_cast<int>(std::ceil(radius / frame.resolution));
+  const Vec2 q = (p - frame.origin) / frame.resolution;
+  const int pc = static_cast<int>(std::floor(q.x())), pr = static_cast<int>(std::floor(q.y()));
+  int best = -1;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (int rr = pr - reach; rr <= pr + reach; ++rr) {
+    for (int cc = pc - reach; cc <= pc + reach; ++cc) {
+      if (!frame.inside(cc, rr) || label[frame.index(cc, rr)] < 0) continue;
+      const double d = (frame.center(cc, rr) - p).norm();
+      if (d <= radius && d < best_d) {
+        best_d = d;
+        best = label[frame.index(cc, rr)];
+      }
+    }
+  }
+  return best;
+}
+
+RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentationConfig& cfg) {
+  cfg.validate();
+  RoomSegmentation out;
+  if (in.free_space.empty() && in.seen.empty()) return out;
+  GridFrame f = in.frame;
+  if (f.size() == 0) {
+    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const std::vector<Vec2>* set : {&in.free_space, &in.ground}) {
+      for (const Vec2& p : *set) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+    }
+    f = GridFrame::around(lo, hi, cfg.cell, std::max(in.free_radius, in.ground_radius) + 2.0 * cfg.cell);
+  }
+  for (const std::vector<std::uint8_t>* cells : {&in.seen, &in.known}) {
+    if (!cells->empty() && cells->size() != f.size())
+      throw std::invalid_argument("segment_rooms: a cell mask has " + std::to_string(cells->size()) + " cells, the frame " +
+                                  std::to_string(f.size()));
+  }
+  out.frame = f;
+
+  // 1-2. The opened free space with what the rays saw, and the ground, all cut by the walls.
+  std::vector<std::uint8_t> free = discs(f, in.free_space, in.free_radius);
+  for (std::size_t i = 0; i < in.seen.size(); ++i) free[i] = free[i] || in.seen[i];
+  std::vector<std::uint8_t> ground = discs(f, in.ground, in.ground_radius);
+  for (std::size_t i = 0; i < f.size(); ++i) ground[i] = ground[i] || free[i];
+  std::vector<std::uint8_t> wall(f.size(), 0);
+  const std::vector<WallLine> walls = level_walls(in.walls, in.floor_z, cfg);
+  const std::vector<WallLine> sides = level_walls(in.walls, in.floor_z, cfg, false);
+  for (const WallLine& w : walls) draw_line(f, w.a, w.b, &wall);
+  for (const auto& [a, b] : door_closures(walls, cfg)) draw_line(f, a, b, &wall);
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    if (!wall[i]) continue;
+    free[i] = 0;
+    ground[i] = 0;
+  }
+
+  // 3. The free space's regions, grown back over the ground the opening took off; small ones
+  // join the neighbour they share the most cell edges with (never across a wall: wall cells
+  // carry no label), or go.
+  std::vector<std::size_t> sizes;
+  std::vector<int> label = label_regions(free, f.cols, f.rows, false, &sizes);
+  const int reach = static_cast<int>(std::ceil((in.free_radius + in.ground_radius) / cfg.cell));
+  grow(f, ground, reach, &label);
+  // A region the robot does not fit in (a strip of cells just past a wall's line, between a
+  // wall's two faces) is no space: its widest point is under half the robot's width.
+  {
+    std::vector<std::uint8_t> mask(f.size(), 0);
+    for (std::size_t i = 0; i < f.size(); ++i) mask[i] = label[i] >= 0 ? 1 : 0;
+    const std::vector<float> clearance = distance_transform(f, mask);
+    std::vector<float> widest(sizes.size(), 0.0f);
+    for (std::size_t i = 0; i < f.size(); ++i)
+      if (label[i] >= 0) widest[static_cast<std::size_t>(label[i])] = std::max(widest[static_cast<std::size_t>(label[i])], clearance[i]);
+    for (int& l : label)
+      if (l >= 0 && widest[static_cast<std::size_t>(l)] < 0.5 * in.free_radius) l = -1;
+  }
+  const double cell_area = cfg.cell * cfg.cell;
+  int n = merge_small_regions(f, cfg.min_region_area / cell_area, static_cast<int>(sizes.size()), &label);
+  if (cut_bends(f, n, cfg.corridor_aspect, cfg.min_region_area / cell_area, cfg.bend_tolerance / cfg.cell, &label)) {
+    // The legs are regions of their own.
+    const int pieces = split_regions(f, &label);
+    sizes.assign(static_cast<std::size_t>(pieces), 0);
+    n = merge_small_regions(f, cfg.min_region_area / cell_area, static_cast<int>(sizes.size()), &label);
+  }
+  out.label = label;
+
+  // 4. Footprints.
+  // Neighbouring spaces share cell edges, so each outline is simplified on its own.
+  std::vector<Polygon2> outlines = trace_outlines(label, f.cols, f.rows, n, false);
+  for (Polygon2& p : outlines) p = simplify_outlines({p}, cfg.simplify_tolerance / cfg.cell).front();
+  for (Polygon2& p : outlines)
+    for (Vec2& v : p) v = f.origin + cfg.cell * v;
+  std::vector<std::size_t> counts(static_cast<std::size_t>(n), 0);
+  for (int l : label)
+    if (l >= 0) ++counts[static_cast<std::size_t>(l)];
+  // Frontiers: edge cells beside a cell nothing has seen (no ray, no ground, no wall).
+  std::vector<std::size_t> edge(static_cast<std::size_t>(n), 0), open_edge(static_cast<std::size_t>(n), 0);
+  if (!in.known.empty()) {
+    static const int kDc[4] = {1, -1, 0, 0};
+    static const int kDr[4] = {0, 0, 1, -1};
+    for (int r = 0; r < f.rows; ++r) {
+      for (int c = 0; c < f.cols; ++c) {
+        const int l = label[f.index(c, r)];
+        if (l < 0) continue;
+        bool is_edge = false, frontier = false;
+        for (int k = 0; k < 4; ++k) {
+          const int cc = c + kDc[k], rr = r + kDr[k];
+          if (f.inside(cc, rr) && label[f.index(cc, rr)] == l) continue;
+          is_edge = true;
+          // Outwards, up to kFrontierReach cells, an unseen cell before a wall or a seen one.
+          for (int step = 1; step <= kFrontierReach && !frontier; ++step) {
+            const int sc = c + step * kDc[k], sr = r + step * kDr[k];
+            if (!f.inside(sc, sr)) {
+              frontier = true;
+              break;
+            }
+            const std::size_t j = f.index(sc, sr);
+            if (wall[j] || label[j] >= 0 || ground[j] || in.known[j]) break;
+            frontier = true;
+          }
+        }
+        if (!is_edge) continue;
+        ++edge[static_cast<std::size_t>(l)];
+        if (frontier) ++open_edge[static_cast<std::size_t>(l)];
+      }
+    }
+  }
+  for (int k = 0; k < n; ++k) {
+    SegmentedSpace s;
+    const Polygon2& outline = outlines[static_cast<std::size_t>(k)];
+    s.area = static_cast<double>(counts[static_cast<std::size_t>(k)]) * cell_area;
+    const std::size_t ek = edge[static_cast<std::size_t>(k)];
+    s.frontier = ek > 0 ? static_cast<double>(open_edge[static_cast<std::size_t>(k)]) / static_cast<double>(ek) : 0.0;
+    OrientedRect rect = min_area_rect(outline);
+    const bool rectangular = rect.area() > 0.0 && area(outline) >= cfg.rect_fill * rect.area();
+    const std::array<int, 4> on = snap_to_walls(&rect, sides, cfg);
+    // A factor's pair must face each other (the back-end's room-planes factor needs it).
+    const auto faces = [&](int a, int b) {
+      const Vec2* na = nullptr;
+      const Vec2* nb = nullptr;
+      for (const WallLine& w : sides) {
+        if (w.id == a) na = &w.n;
+        if (w.id == b) nb = &w.n;
+      }
+      return na != nullptr && nb != nullptr && na->dot(*nb) < 0.0;
+    };
+    const bool long_along_x = rect.size.x() >= rect.size.y();
+    const double length = std::max(rect.size.x(), rect.size.y()), width = std::min(rect.size.x(), rect.size.y());
+    s.room.kind = length >= cfg.corridor_aspect * width ? RoomKind::corridor : RoomKind::room;
+    s.room.rect = rect;
+    if (rectangular) {
+      // The room-planes factor: four walls for a room, the two long sides for a corridor.
+      if (s.room.kind == RoomKind::room && std::all_of(on.begin(), on.end(), [](int id) { return id >= 0; }) &&
+          faces(on[0], on[1]) && faces(on[2], on[3])) {
+        s.room.wall_ids = {on[0], on[1], on[2], on[3]};
+      } else if (s.room.kind == RoomKind::corridor) {
+        const int a = long_along_x ? 2 : 0;  // the sides along the corridor's length
+        if (on[a] >= 0 && on[a + 1] >= 0 && faces(on[a], on[a + 1])) {
+          s.room.wall_ids = {on[a], on[a + 1]};
+          // The factor's pair is along the rect's x axis: turn the rect so that x is across.
+          if (long_along_x) {
+            s.room.rect.yaw += M_PI / 2.0;
+            s.room.rect.size = Vec2(rect.size.y(), rect.size.x());
+          }
+        }
+        const int b = long_along_x ? 0 : 2;
+        for (int e : {on[b], on[b + 1]})
+          if (e >= 0) s.room.end_wall_ids.push_back(e);
+      }
+      s.centroid = s.room.rect.center;
+    } else {
+      s.room.outline = outline;
+      if (signed_area(s.room.outline) < 0.0) std::reverse(s.room.outline.begin(), s.room.outline.end());
+      s.centroid = centroid(outline);
+    }
+    out.spaces.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace tsgraphs::rooms

@@ -1,0 +1,115 @@
+#pragma once
+/// Room segmentation of the free space walked (TS-graphs' room layer): a room or corridor
+/// segment is the space one can walk in, bounded by what stops one walking.
+///
+/// On a raster of one level:
+/// 1. the *free space* is the union of the discs of radius lambda round the free-space vertices
+///    (each vertex is at least lambda from every obstacle, so its disc is clear): the
+///    traversable ground opened by the robot's size, off voids, walls and furniture;
+/// 2. every mapped wall is drawn across it along its whole extent, and on to the next wall
+///    where it ends within a door's width of one, so a door (an opening in a wall, or between
+///    a wall's end and the wall it meets) is closed and a wall the free space does not cross
+///    bounds it;
+/// 3. the 4-connected regions of what is left, with what the sensor's rays crossed at walking
+///    height over a floor (freespace/sight_map.hpp: a high mount sees little floor), are the
+///    spaces; each grows back over the traversable ground the opening took off (up to lambda
+///    plus a node's reach), never across a wall, so that it reaches the walls; a region too
+///    small to be a room joins the one it opens to; a corridor (long for its width) is cut into
+///    its straight legs at its inner corners;
+/// 4. a region's footprint is its outer outline, or its smallest enclosing rectangle where it
+///    fills that rectangle (sides on the walls beside them: the room-planes factor's planes).
+/// Only what the free space carries becomes a footprint: a void, the slab's outside or the
+/// inside of a wall never does, whatever the planes around it.
+#include <vector>
+
+#include "tsgraphs/core/grid_frame.hpp"
+#include "tsgraphs/rooms/room.hpp"
+
+namespace tsgraphs::rooms {
+
+struct RoomSegmentationConfig {
+  double cell = 0.1;                    ///< raster cell (m): an eighth of the narrowest door, finer than the node map
+  double max_normal_z = 0.2;            ///< |n.z| above this: not a vertical plane, no wall
+  double min_wall_height = 1.5;         ///< lower planes are furniture (desks, cabinets) and railings, not walls (m)
+  double wall_reach_height = 2.3;       ///< a wall bounds a level when its points span this height above the floor (m):
+                                        ///< above a door's lintel and the tallest furniture (shelves end by 2.2 m), below the
+                                        ///< ceiling; a lintel, the storey above, a shelf row or a railing does not
+  double max_door_width = 2.0;          ///< a wall that ends this close to another wall has a door (or an opening) between
+                                        ///< them: it is drawn on to it (m)
+  double min_door_post = 0.8;           ///< ...when both are at least this long (m): a pillar's face is no wall to close a gap to
+  double min_region_area = 2.0;         ///< m^2: a smaller region (a doorway's strip between a wall's two faces, a corner
+                                        ///< square cut off) is no space of its own: it joins the one it opens to
+  double rect_fill = 0.85;              ///< a region filling this share of its smallest enclosing rectangle has it as footprint
+  double wall_snap = 0.4;               ///< a rectangle's side this near a parallel wall facing into it lies on the wall (m):
+                                        ///< the grown free space stops up to a node cell and a raster cell short of it
+  double parallel_tolerance_deg = 10.0; ///< a wall is parallel to a side within this
+  double min_wall_overlap = 0.3;        ///< ...and runs along at least this share of the side
+  double corridor_aspect = 3.0;         ///< a region this many times longer than wide is a corridor segment
+  double simplify_tolerance = 0.15;     ///< an outline strays at most this from the region's cell edges (m)
+  double bend_tolerance = 0.3;          ///< a corridor's outline, for finding its bends, strays at most this (m): a
+                                        ///< chair's or a door jamb's notch is no bend
+
+  /// Throws std::invalid_argument("RoomSegmentationConfig: KEY must ...") for a value out of range.
+  void validate() const;
+
+  template <class V>
+  void visit(V& v) {
+    v("cell", cell);
+    v("max_normal_z", max_normal_z);
+    v("min_wall_height", min_wall_height);
+    v("wall_reach_height", wall_reach_height);
+    v("max_door_width", max_door_width);
+    v("min_door_post", min_door_post);
+    v("min_region_area", min_region_area);
+    v("rect_fill", rect_fill);
+    v("wall_snap", wall_snap);
+    v("parallel_tolerance_deg", parallel_tolerance_deg);
+    v("min_wall_overlap", min_wall_overlap);
+    v("corridor_aspect", corridor_aspect);
+    v("simplify_tolerance", simplify_tolerance);
+    v("bend_tolerance", bend_tolerance);
+  }
+};
+
+/// One level's free space and walls.
+struct SegmentationInput {
+  GridFrame frame;                  ///< the raster (resolution = config.cell); empty: round the points
+  std::vector<std::uint8_t> seen;   ///< per cell of frame (or empty): rays passed there at walking height over a floor
+  std::vector<std::uint8_t> known;  ///< per cell of frame (or empty): any ray passed or ended there (no frontier)
+  std::vector<Vec2> free_space;     ///< free-space vertices (at least free_radius from every obstacle)
+  std::vector<Vec2> ground;         ///< every traversable node of the level (free or not)
+  double free_radius = 0.4;         ///< the free space's lambda_th (m)
+  double ground_radius = 0.25;      ///< a traversable node covers the disc of this radius (its node map cell, m)
+  double floor_z = 0.0;             ///< the level's floor height, map frame (m)
+  std::vector<WallCandidate> walls; ///< mapped planes (others than vertical walls of this level are skipped)
+};
+
+/// A space found: its footprint and, where its rectangle's sides lie on walls, their planes.
+struct SegmentedSpace {
+  ExtractedRoom room;        ///< kind, rect (and outline when it is no rectangle), wall_ids for the factor
+  double area = 0.0;         ///< of the region's cells (m^2)
+  double frontier = 0.0;     ///< share of its edge cells beside what nothing has seen (0 without `known`): not yet
+                             ///< explored there, so its footprint may still grow
+  Vec2 centroid = Vec2::Zero();  ///< of the footprint
+};
+
+struct RoomSegmentation {
+  GridFrame frame;
+  std::vector<int> label;              ///< per cell: index into spaces, -1 for none
+  std::vector<SegmentedSpace> spaces;
+
+  /// The space holding `p`, else the one of the nearest labelled cell within `radius` (m), else -1.
+  int space_at(const Vec2& p, double radius = 0.0) const;
+};
+
+/// Whether the step from `a` to `b` (floor points of the level at floor_z) crosses one of the
+/// walls that bound its spaces (the same walls segment_rooms draws): the robot went through a
+/// door or an opening in a wall, into another space.
+bool crosses_wall(const Vec2& a, const Vec2& b, const std::vector<WallCandidate>& walls, double floor_z,
+                  const RoomSegmentationConfig& config = {});
+
+/// Segments one level (config.validate() first). Deterministic: the same input gives the same spaces in the
+/// same order (by their first cell).
+RoomSegmentation segment_rooms(const SegmentationInput& input, const RoomSegmentationConfig& config = {});
+
+}  // namespace tsgraphs::rooms

@@ -1,0 +1,294 @@
+// Room segmentation on constructed levels, one rule each: a void between facing walls, a
+// corridor at the outer wall, doors, an L-shaped room, a diagonal corridor, a ring, shelves.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "tsgraphs/freespace/sight_map.hpp"
+#include "tsgraphs/rooms/room_segmentation.hpp"
+
+namespace tsgraphs::rooms {
+namespace {
+
+constexpr double kNode = 0.25;    // the node map's cell (m)
+constexpr double kLambda = 0.4;   // the free space's lambda_th (m)
+constexpr double kWallZ1 = 2.8;   // a storey's walls reach this (m)
+
+/// A wall along a -> b whose normal points to `inside` (the side it is seen from).
+WallCandidate wall(int id, Vec2 a, Vec2 b, Vec2 inside, double top = kWallZ1) {
+  WallCandidate w;
+  w.id = id;
+  Vec2 n(-(b - a).y(), (b - a).x());
+  n.normalize();
+  if (n.dot(inside - a) < 0.0) n = -n;
+  w.plane = Plane::from_point_normal(Eigen::Vector3d(a.x(), a.y(), 0.0), Eigen::Vector3d(n.x(), n.y(), 0.0));
+  w.end_a = a;
+  w.end_b = b;
+  w.z0 = 0.0;
+  w.z1 = top;
+  w.height = top;
+  return w;
+}
+
+double distance_to_outline(const Polygon2& poly, const Vec2& p) {
+  double d = 1e9;
+  for (std::size_t i = 0; i < poly.size(); ++i) d = std::min(d, distance_to_segment(p, poly[i], poly[(i + 1) % poly.size()]));
+  return d;
+}
+
+/// Adds the nodes of `area` (a simple polygon) to a level: ground on a kNode grid, free space
+/// where the node is at least lambda inside its outline (walls and obstacles bound the area).
+void add_area(const Polygon2& area, SegmentationInput* in) {
+  Vec2 lo = area.front(), hi = area.front();
+  for (const Vec2& p : area) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  for (double x = std::floor(lo.x() / kNode) * kNode + 0.5 * kNode; x < hi.x(); x += kNode) {
+    for (double y = std::floor(lo.y() / kNode) * kNode + 0.5 * kNode; y < hi.y(); y += kNode) {
+      const Vec2 p(x, y);
+      if (!contains(area, p)) continue;
+      in->ground.push_back(p);
+      if (distance_to_outline(area, p) >= kLambda) in->free_space.push_back(p);
+    }
+  }
+}
+
+Polygon2 box(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+
+SegmentationInput level() {
+  SegmentationInput in;
+  in.free_radius = kLambda;
+  in.ground_radius = kNode;
+  return in;
+}
+
+/// The walls round the box, ids from `id`, seen from inside.
+void box_walls(double x0, double y0, double x1, double y1, int id, SegmentationInput* in) {
+  const Vec2 c(0.5 * (x0 + x1), 0.5 * (y0 + y1));
+  in->walls.push_back(wall(id, {x0, y0}, {x1, y0}, c));
+  in->walls.push_back(wall(id + 1, {x1, y0}, {x1, y1}, c));
+  in->walls.push_back(wall(id + 2, {x1, y1}, {x0, y1}, c));
+  in->walls.push_back(wall(id + 3, {x0, y1}, {x0, y0}, c));
+}
+
+double footprint_area(const SegmentedSpace& s) { return area(footprint_of(s.room.rect, s.room.outline)); }
+
+TEST(RoomSegmentation, FourWallRoomIsItsRectangleOnItsWalls) {
+  SegmentationInput in = level();
+  add_area(box(0, 0, 5, 4), &in);
+  box_walls(0, 0, 5, 4, 0, &in);
+  const RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 1u);
+  const SegmentedSpace& s = seg.spaces[0];
+  EXPECT_EQ(s.room.kind, RoomKind::room);
+  EXPECT_TRUE(s.room.outline.empty());  // a rectangle
+  EXPECT_NEAR(s.room.rect.area(), 20.0, 0.5);
+  EXPECT_NEAR(s.centroid.x(), 2.5, 0.1);
+  EXPECT_NEAR(s.centroid.y(), 2.0, 0.1);
+  EXPECT_EQ(s.room.wall_ids.size(), 4u);  // the room-planes factor's four walls
+  EXPECT_EQ(seg.space_at({2.5, 2.0}), 0);
+  EXPECT_EQ(seg.space_at({6.0, 2.0}), -1);
+}
+
+TEST(RoomSegmentation, AVoidBetweenTwoFacingWallsGivesNoRoom) {
+  // Two aisles, y in [0, 2] and [6, 8], their walls facing each other across a void with no
+  // floor: each aisle is a space of its own and nothing covers the void.
+  SegmentationInput in = level();
+  add_area(box(0, 0, 10, 2), &in);
+  add_area(box(0, 6, 10, 8), &in);
+  in.walls.push_back(wall(0, {0, 0}, {10, 0}, {5, 1}));
+  in.walls.push_back(wall(1, {0, 8}, {10, 8}, {5, 7}));
+  const RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 2u);
+  for (const SegmentedSpace& s : seg.spaces) {
+    EXPECT_LT(footprint_area(s), 23.0);  // 20 m^2 and what grows past the open side
+    EXPECT_FALSE(contains(footprint_of(s.room.rect, s.room.outline), Vec2(5, 4)));
+  }
+  EXPECT_EQ(seg.space_at({5, 4}), -1);
+}
+
+TEST(RoomSegmentation, ACorridorStopsAtTheOuterWall) {
+  // A corridor x in [0, 12] against the outer wall at x = 12; rays or no, nothing lies beyond.
+  SegmentationInput in = level();
+  add_area(box(0, 0, 12, 2), &in);
+  box_walls(0, 0, 12, 2, 0, &in);
+  const RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 1u);
+  const OrientedRect& r = seg.spaces[0].room.rect;
+  EXPECT_EQ(seg.spaces[0].room.kind, RoomKind::corridor);
+  for (const Vec2& c : r.corners()) EXPECT_LE(c.x(), 12.0 + 0.05);
+  EXPECT_NEAR(std::max(r.size.x(), r.size.y()), 12.0, 0.3);
+}
+
+TEST(RoomSegmentation, ADoorInAWallSeparatesTheRoomsItJoins) {
+  // Two rooms side by side; the wall between them (x = 5) has a 1.2 m door; its plane's extent
+  // spans the door, as the mapper sees it.
+  SegmentationInput in = level();
+  add_area(box(0, 0, 5, 4), &in);
+  add_area(box(5, 0, 10, 4), &in);
+  add_area(box(4.6, 1.4, 5.4, 2.6), &in);  // the doorway's ground
+  box_walls(0, 0, 10, 4, 0, &in);
+  in.walls.push_back(wall(4, {5, 0}, {5, 4}, {2, 2}));
+  const RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 2u);
+  EXPECT_NE(seg.space_at({2.5, 2}), seg.space_at({7.5, 2}));
+  for (const SegmentedSpace& s : seg.spaces) EXPECT_NEAR(footprint_area(s), 20.0, 1.5);
+}
+
+TEST(RoomSegmentation, ADoorBesideACornerIsClosedToTheWallItMeets) {
+  // The wall between the rooms ends 1 m short of the outer wall: the door is the gap.
+  SegmentationInput in = level();
+  add_area(box(0, 0, 5, 4), &in);
+  add_area(box(5, 0, 10, 4), &in);
+  add_area(box(4.6, 3.0, 5.4, 4.0), &in);
+  box_walls(0, 0, 10, 4, 0, &in);
+  in.walls.push_back(wall(4, {5, 0}, {5, 3}, {2, 2}));
+  const RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 2u);
+  EXPECT_NE(seg.space_at({2.5, 2}), seg.space_at({7.5, 2}));
+}
+
+TEST(RoomSegmentation, AnLShapedRoomIsOneRoomWithItsOutline) {
+  const Polygon2 l = {{0, 0}, {6, 0}, {6, 3}, {3, 3}, {3, 6}, {0, 6}};
+  SegmentationInput in = level();
+  add_area(l, &in);
+  for (std::size_t i = 0; i < l.size(); ++i) in.walls.push_back(wall(static_cast<int>(i), l[i], l[(i + 1) % l.size()], {1, 1}));
+  const RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 1u);
+  const SegmentedSpace& s = seg.spaces[0];
+  EXPECT_EQ(s.room.kind, RoomKind::room);
+  ASSERT_GE(s.room.outline.size(), 6u);  // no rectangle
+  EXPECT_GT(iou(s.room.outline, l), 0.85);
+  EXPECT_TRUE(s.room.wall_ids.empty());  // no four-plane factor for an L
+}
+
+TEST(RoomSegmentation, ADiagonalCorridorIsOneCorridorAlongItsAxis) {
+  const double yaw = 40.0 * M_PI / 180.0;
+  const Eigen::Rotation2Dd R(yaw);
+  Polygon2 corridor;
+  for (const Vec2& p : box(0, 0, 12, 2)) corridor.push_back(R * p);
+  SegmentationInput in = level();
+  add_area(corridor, &in);
+  for (std::size_t i = 0; i < 4; ++i)
+    in.walls.push_back(wall(static_cast<int>(i), corridor[i], corridor[(i + 1) % 4], R * Vec2(6, 1)));
+  const RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 1u);
+  const SegmentedSpace& s = seg.spaces[0];
+  EXPECT_EQ(s.room.kind, RoomKind::corridor);
+  EXPECT_TRUE(s.room.outline.empty());
+  const OrientedRect& r = s.room.rect;
+  const double length = std::max(r.size.x(), r.size.y());
+  EXPECT_NEAR(length, 12.0, 0.4);
+  // Its long axis runs at 40 degrees (either way round).
+  const double long_yaw = r.size.x() >= r.size.y() ? r.yaw : r.yaw + M_PI / 2.0;
+  EXPECT_NEAR(std::abs(std::sin(long_yaw - yaw)), 0.0, 0.05);
+  EXPECT_GT(iou(r.corners(), corridor), 0.85);
+}
+
+TEST(RoomSegmentation, ARingCorridorIsCutIntoItsLegs) {
+  // A 2 m ring round a 10 x 6 m void with railings (obstacles, no walls) on its inner side.
+  SegmentationInput in = level();
+  const Polygon2 outer = box(0, 0, 14, 10), inner = box(2, 2, 12, 8);
+  for (double x = 0.5 * kNode; x < 14.0; x += kNode) {
+    for (double y = 0.5 * kNode; y < 10.0; y += kNode) {
+      const Vec2 p(x, y);
+      if (contains(inner, p)) continue;
+      in.ground.push_back(p);
+      if (distance_to_outline(outer, p) >= kLambda && distance_to_outline(inner, p) >= kLambda) in.free_space.push_back(p);
+    }
+  }
+  box_walls(0, 0, 14, 10, 0, &in);
+  const RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 4u);
+  for (const SegmentedSpace& s : seg.spaces) {
+    EXPECT_EQ(s.room.kind, RoomKind::corridor);
+    EXPECT_FALSE(contains(footprint_of(s.room.rect, s.room.outline), Vec2(7, 5)));  // never over the void
+  }
+  const int south = seg.space_at({7, 1}), north = seg.space_at({7, 9}), west = seg.space_at({1, 5}),
+            east = seg.space_at({13, 5});
+  EXPECT_EQ(std::set<int>({south, north, west, east}).size(), 4u);
+}
+
+TEST(RoomSegmentation, ShelfRowsDoNotCutAHall) {
+  // A 10 x 8 m hall with rows of 2.1 m shelves (planes that do not reach a wall's height).
+  SegmentationInput in = level();
+  add_area(box(0, 0, 10, 8), &in);
+  box_walls(0, 0, 10, 8, 0, &in);
+  for (int row = 0; row < 4; ++row) {
+    const double y = 2.0 + 1.5 * row;
+    in.walls.push_back(wall(10 + 2 * row, {1.5, y}, {8.5, y}, {5, y - 1}, 2.1));
+    in.walls.push_back(wall(11 + 2 * row, {1.5, y + 0.5}, {8.5, y + 0.5}, {5, y + 1}, 2.1));
+  }
+  const RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 1u);
+  EXPECT_NEAR(footprint_area(seg.spaces[0]), 80.0, 4.0);
+}
+
+TEST(RoomSegmentation, WhatOnlyTheRaysSawIsARoomToo) {
+  // A sensor 1.7 m up sees no floor in a 4 x 4 m room: the rays to its walls still show it.
+  freespace::SightMap sight(0.0, {});
+  const Eigen::Vector3d sensor(2.0, 2.0, 1.7);
+  std::vector<Eigen::Vector3d> returns;
+  for (int i = 0; i < 360; ++i) {
+    const double a = i * M_PI / 180.0;
+    const Vec2 d(std::cos(a), std::sin(a));
+    // To the nearest wall of [0, 4]^2 along d, at 1.2 m height.
+    double t = 1e9;
+    if (d.x() > 1e-9) t = std::min(t, 2.0 / d.x());
+    if (d.x() < -1e-9) t = std::min(t, -2.0 / d.x());
+    if (d.y() > 1e-9) t = std::min(t, 2.0 / d.y());
+    if (d.y() < -1e-9) t = std::min(t, -2.0 / d.y());
+    returns.emplace_back(2.0 + t * d.x(), 2.0 + t * d.y(), 1.2);
+  }
+  sight.add_scan(sensor, returns);
+  SegmentationInput in = level();
+  RoomSegmentationConfig cfg;
+  in.frame = GridFrame::around({0, 0}, {4, 4}, cfg.cell, 1.0);
+  in.seen = sight.open_cells(in.frame);
+  box_walls(0, 0, 4, 4, 0, &in);
+  const RoomSegmentation seg = segment_rooms(in, cfg);
+  ASSERT_EQ(seg.spaces.size(), 1u);
+  EXPECT_NEAR(footprint_area(seg.spaces[0]), 16.0, 1.0);
+}
+
+TEST(SightMap, RaysThatGoBelowTheFloorMarkNoFloor) {
+  // A sensor 1 m up looks across a floor x in [0, 3] into a void beyond, whose returns come
+  // from 3 m below: the floor is open, the void (where the rays are below the floor) is not.
+  freespace::SightMap sight(0.0, {});
+  std::vector<Eigen::Vector3d> returns;
+  for (int k = 0; k < 40; ++k) {
+    const double y = -1.0 + 0.05 * k;
+    returns.emplace_back(2.5, y, 0.0);    // the floor
+    returns.emplace_back(12.0, y, -3.0);  // the storey below, through the void (crossing the floor's height at x = 3)
+  }
+  sight.add_scan({0.0, 0.0, 1.0}, returns);
+  const GridFrame f = GridFrame::around({-1, -1}, {7, 1}, 0.1, 0.0);
+  const std::vector<std::uint8_t> open = sight.open_cells(f);
+  const auto at = [&](double x, double y) {
+    int c, r;
+    EXPECT_TRUE(f.cell_of({x, y}, &c, &r));
+    return open[f.index(c, r)];
+  };
+  EXPECT_EQ(at(1.0, 0.0), 1);
+  EXPECT_EQ(at(2.45, 0.0), 1);
+  EXPECT_EQ(at(5.5, 0.0), 0);
+  EXPECT_EQ(at(-0.5, 0.9), 0); // never seen
+}
+
+TEST(RoomSegmentation, ConfigOutOfRangeIsRefused) {
+  RoomSegmentationConfig c;
+  c.cell = 0.0;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+  c = {};
+  c.rect_fill = 1.5;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+  EXPECT_THROW(freespace::SightMap(0.0, freespace::SightMapConfig{0.1, 0.2, 0.1, 12.0}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace tsgraphs::rooms
