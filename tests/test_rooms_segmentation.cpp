@@ -1,5 +1,5 @@
 // Room segmentation on constructed levels, one rule each: a void between facing walls, a
-// corridor at the outer wall, doors, an L-shaped room, a diagonal corridor, a ring, shelves.
+// corridor at the outer wall, doors, an L-shaped room, a diagonal corridor, a ring, shelves, a wall whose top no ray saw.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -229,6 +229,21 @@ TEST(RoomSegmentation, ShelfRowsDoNotCutAHall) {
   EXPECT_NEAR(footprint_area(seg.spaces[0]), 80.0, 4.0);
 }
 
+TEST(RoomSegmentation, AWallWhoseTopNoRaySawDividesTheLevel) {
+  // Two 3 x 4 m rooms side by side; a low sensor saw their shared wall only up to 1.6 m. No
+  // ray passed above it, so it may reach the ceiling: it divides them. Had rays passed above
+  // it (a 1.6 m partition), it would not.
+  SegmentationInput in = level();
+  add_area(box(0, 0, 6, 4), &in);
+  box_walls(0, 0, 6, 4, 0, &in);
+  WallCandidate shared = wall(10, {3, 0}, {3, 4}, {1, 2}, 1.6);
+  shared.top_seen = false;
+  in.walls.push_back(shared);
+  EXPECT_EQ(segment_rooms(in).spaces.size(), 2u);
+  in.walls.back().top_seen = true;
+  EXPECT_EQ(segment_rooms(in).spaces.size(), 1u);
+}
+
 TEST(RoomSegmentation, WhatOnlyTheRaysSawIsARoomToo) {
   // A sensor 1.7 m up sees no floor in a 4 x 4 m room: the rays to its walls still show it.
   freespace::SightMap sight(0.0, {});
@@ -278,6 +293,46 @@ TEST(SightMap, RaysThatGoBelowTheFloorMarkNoFloor) {
   EXPECT_EQ(at(2.45, 0.0), 1);
   EXPECT_EQ(at(5.5, 0.0), 0);
   EXPECT_EQ(at(-0.5, 0.9), 0); // never seen
+}
+
+TEST(SightMap, ARayUnderTheFloorBeyondAVoidMarksNothingAboveIt) {
+  // A sensor 1 m up on a floor x in [0, 3], a void x in [3, 5], a room's floor beyond. Rays to
+  // the storey below cross the floor's height in the void (x = 3.5) and run on under the room;
+  // rays to the room's floor pass above the void. The void is no floor, the room is open.
+  freespace::SightMap sight(0.0, {});
+  std::vector<Eigen::Vector3d> returns;
+  for (int k = 0; k < 40; ++k) {
+    const double y = -1.0 + 0.05 * k;
+    for (double x : {6.0, 7.0, 8.0}) returns.emplace_back(x, y * x / 14.0, 0.0);
+    for (int deep = 0; deep < 3; ++deep) returns.emplace_back(14.0, y, -3.0);
+  }
+  sight.add_scan({0.0, 0.0, 1.0}, returns);
+  const GridFrame f = GridFrame::around({-1, -1}, {15, 1}, 0.1, 0.0);
+  const std::vector<std::uint8_t> open = sight.open_cells(f);
+  const auto at = [&](double x, double y) {
+    int c, r;
+    EXPECT_TRUE(f.cell_of({x, y}, &c, &r));
+    return open[f.index(c, r)];
+  };
+  EXPECT_EQ(at(2.0, 0.0), 1);
+  EXPECT_EQ(at(4.5, 0.0), 0);  // where the rays went down through the slab's thickness
+  EXPECT_EQ(at(6.5, 0.0), 1);  // above the rays that ran on under the floor
+}
+
+TEST(SightMap, RaysOverAPlaneShowItsTop) {
+  // A sensor 1.7 m up; a block's face at x = 3 stops the rays aimed at it (0.5 m up), the
+  // others pass over it, at 1.04-1.06 m, to the floor 8 m out.
+  freespace::SightMap sight(0.0, {});
+  std::vector<Eigen::Vector3d> returns;
+  for (int k = 0; k < 40; ++k) {
+    const double y = -1.0 + 0.05 * k;  // where the ray crosses x = 3
+    returns.emplace_back(3.0, y, 0.5);
+    returns.emplace_back(8.0, y * 8.0 / 3.0, 0.0);
+  }
+  sight.add_scan({0.0, 0.0, 1.7}, returns);
+  EXPECT_GT(sight.share_passed_above({3.05, -0.9}, {3.05, 0.9}, 1.0), 0.9);
+  EXPECT_LT(sight.share_passed_above({3.05, -0.9}, {3.05, 0.9}, 1.2), 0.1);
+  EXPECT_EQ(sight.share_passed_above({20.0, 0.0}, {21.0, 0.0}, 0.0), 0.0);  // never seen
 }
 
 TEST(RoomSegmentation, ConfigOutOfRangeIsRefused) {

@@ -29,9 +29,14 @@ SightMap::SightMap(double floor_z, const SightMapConfig& config)
   if (!(config.max_range > 0.0)) throw std::invalid_argument("SightMapConfig: max_range must be > 0");
 }
 
+SightMap::Tile& SightMap::tile_at(long c, long r, std::size_t* i) {
+  *i = static_cast<std::size_t>((r & (kTileSide - 1)) * kTileSide + (c & (kTileSide - 1)));
+  return tiles_[tile_key(c >> kTileBits, r >> kTileBits)];
+}
+
 void SightMap::mark(long c, long r, Mark m) {
-  Tile& t = tiles_[tile_key(c >> kTileBits, r >> kTileBits)];
-  const std::size_t i = static_cast<std::size_t>((r & (kTileSide - 1)) * kTileSide + (c & (kTileSide - 1)));
+  std::size_t i;
+  Tile& t = tile_at(c, r, &i);
   if (m == Mark::hit) {
     t.hit[i] = 1;
     return;
@@ -47,6 +52,9 @@ const SightMap::Tile* SightMap::tile(long tc, long tr) const {
 void SightMap::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points) {
   const double res = config_.cell;
   const double low = floor_z_ - config_.floor_step;
+  // A ray that is lower still than a slab's thickness (taken as another floor_step) is under
+  // the floor, in the storey below: it says nothing more of this level's cells above it.
+  const double under = low - config_.floor_step;
   const double top = floor_z_ + config_.headroom;
   for (const Eigen::Vector3d& p : points) {
     const Eigen::Vector2d d = (p - sensor).head<2>();
@@ -66,8 +74,15 @@ void SightMap::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::
     while (c != c_end || r != r_end) {
       if (t > 1.0) break;
       const double z = sensor.z() + t * (p.z() - sensor.z());
-      if (z < low) mark(c, r, Mark::below);
-      else if (z <= top) mark(c, r, Mark::passed);
+      if (z < under) break;
+      std::size_t i;
+      Tile& cell = tile_at(c, r, &i);
+      if (z < low) bump(cell.below[i]);
+      else if (z <= top) bump(cell.passed[i]);
+      // How high the ray crossed the cell: the lower of its heights entering and leaving it.
+      const double z_out = sensor.z() + std::min(1.0, std::min(t_x, t_y)) * (p.z() - sensor.z());
+      const double over = std::ceil((std::min(z, z_out) - floor_z_) / kOverStep);
+      if (over >= 1.0) cell.over[i] = std::max(cell.over[i], static_cast<std::uint8_t>(std::min(over, 255.0)));
       if (t_x < t_y) {
         t = t_x;
         t_x += inv_x;
@@ -79,8 +94,8 @@ void SightMap::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::
       }
     }
     if (std::abs(p.z() - floor_z_) <= config_.floor_step) mark(c_end, r_end, Mark::floor);
-    else if (p.z() < low) mark(c_end, r_end, Mark::below);
-    else mark(c_end, r_end, Mark::hit);
+    else if (p.z() >= under && p.z() < low) mark(c_end, r_end, Mark::below);
+    else if (p.z() >= low) mark(c_end, r_end, Mark::hit);
     lo_ = lo_.cwiseMin(sensor.head<2>()).cwiseMin(p.head<2>());
     hi_ = hi_.cwiseMax(sensor.head<2>()).cwiseMax(p.head<2>());
   }
@@ -93,31 +108,44 @@ const SightMap::Tile* SightMap::cell(const GridFrame& f, int col, int row, std::
   return tile(c >> kTileBits, r >> kTileBits);
 }
 
-std::vector<std::uint8_t> SightMap::open_cells(const GridFrame& f) const {
-  std::vector<std::uint8_t> open(f.size(), 0);
+template <class Test>
+std::vector<std::uint8_t> SightMap::cells_where(const GridFrame& f, Test test) const {
+  std::vector<std::uint8_t> out(f.size(), 0);
   for (int row = 0; row < f.rows; ++row) {
     for (int col = 0; col < f.cols; ++col) {
       std::size_t i;
       const Tile* t = cell(f, col, row, &i);
-      if (t == nullptr) continue;
-      const bool seen = t->passed[i] > 0 || t->floor[i] > 0;
-      open[f.index(col, row)] = seen && t->below[i] <= t->floor[i] ? 1 : 0;
+      if (t != nullptr && test(*t, i)) out[f.index(col, row)] = 1;
     }
   }
-  return open;
+  return out;
+}
+
+double SightMap::share_passed_above(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double z) const {
+  const double length = (b - a).norm();
+  const int steps = std::max(1, static_cast<int>(std::ceil(length / config_.cell)));
+  int above = 0;
+  for (int k = 0; k <= steps; ++k) {
+    const Eigen::Vector2d q = (a + (b - a) * (static_cast<double>(k) / steps)) / config_.cell;
+    const long c = static_cast<long>(std::floor(q.x())), r = static_cast<long>(std::floor(q.y()));
+    const Tile* t = tile(c >> kTileBits, r >> kTileBits);
+    if (t == nullptr) continue;
+    const std::size_t i = static_cast<std::size_t>((r & (kTileSide - 1)) * kTileSide + (c & (kTileSide - 1)));
+    if (t->over[i] > 0 && floor_z_ + t->over[i] * kOverStep > z) ++above;
+  }
+  return static_cast<double>(above) / (steps + 1);
+}
+
+std::vector<std::uint8_t> SightMap::open_cells(const GridFrame& f) const {
+  return cells_where(f, [](const Tile& t, std::size_t i) {
+    return (t.passed[i] > 0 || t.floor[i] > 0) && t.below[i] <= t.floor[i];
+  });
 }
 
 std::vector<std::uint8_t> SightMap::known_cells(const GridFrame& f) const {
-  std::vector<std::uint8_t> known(f.size(), 0);
-  for (int row = 0; row < f.rows; ++row) {
-    for (int col = 0; col < f.cols; ++col) {
-      std::size_t i;
-      const Tile* t = cell(f, col, row, &i);
-      if (t != nullptr && (t->passed[i] > 0 || t->floor[i] > 0 || t->below[i] > 0 || t->hit[i] > 0))
-        known[f.index(col, row)] = 1;
-    }
-  }
-  return known;
+  return cells_where(f, [](const Tile& t, std::size_t i) {
+    return t.passed[i] > 0 || t.floor[i] > 0 || t.below[i] > 0 || t.hit[i] > 0;
+  });
 }
 
 }  // namespace tsgraphs::freespace

@@ -6,8 +6,10 @@
 /// A sensor mounted high sees the floor only far away (1.7 m up with a lowest beam at -15 deg:
 /// beyond 6.3 m), so a small room's floor may never become traversable ground; the rays that
 /// cross the room to its walls still show it is open at walking height and has a floor under
-/// it wherever they did not go below it. The room segmentation takes its spaces from this and
-/// from the traversable ground together, so that the same rooms come from any mount height.
+/// it wherever they did not go below it. A ray is followed down only through the slab's
+/// thickness: past a void's edge it runs on under the floor, beneath rooms that have one.
+/// The room segmentation takes its spaces from this and from the traversable ground together,
+/// so that the same rooms come from any mount height.
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -46,6 +48,11 @@ class SightMap {
   /// frontier of what the sensor has seen.
   std::vector<std::uint8_t> known_cells(const GridFrame& frame) const;
 
+  /// The share of the cells along a-b (map x-y) that some ray crossed higher than z (map
+  /// frame) without ending there: over a plane's line above its highest point, its top was
+  /// seen (a shelf, a partition); a wall up to the ceiling stops every ray.
+  double share_passed_above(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double z) const;
+
   double floor_z() const { return floor_z_; }
   /// The box of every cell touched (lo > hi when none).
   Eigen::Vector2d lo() const { return lo_; }
@@ -59,12 +66,19 @@ class SightMap {
     std::uint16_t floor[kTileSide * kTileSide] = {};
     std::uint16_t below[kTileSide * kTileSide] = {};
     std::uint8_t hit[kTileSide * kTileSide] = {};  ///< a return above the floor ended here
+    std::uint8_t over[kTileSide * kTileSide] = {}; ///< the highest ray crossing it, kOverStep units above the floor (0: none)
   };
+  static constexpr double kOverStep = 0.05;  // m: 12.7 m of headroom in a byte
   enum class Mark { passed, floor, below, hit };
+  /// The tile holding cell (c, r) (made if new) and the cell's index in it.
+  Tile& tile_at(long c, long r, std::size_t* i);
   void mark(long c, long r, Mark m);
   const Tile* tile(long tc, long tr) const;
   /// The tile and index of the cell holding the frame's cell centre, or nullptr.
   const Tile* cell(const GridFrame& f, int col, int row, std::size_t* i) const;
+  /// 1 for each cell of f whose tile cell passes test(tile, index).
+  template <class Test>
+  std::vector<std::uint8_t> cells_where(const GridFrame& f, Test test) const;
 
   double floor_z_;
   SightMapConfig config_;

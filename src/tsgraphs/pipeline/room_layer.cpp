@@ -48,6 +48,19 @@ RoomLayer::RoomLayer(RoomLayerSettings settings)
     throw std::invalid_argument("free_space_method must be traversable or esdf, not '" + c.free_space_method + "'");
   if (c.room_trigger != "flush" && c.room_trigger != "timer")
     throw std::invalid_argument("room_trigger must be flush or timer, not '" + c.room_trigger + "'");
+  if (!(c.max_floor_slope > 0.0)) throw std::invalid_argument("max_floor_slope must be > 0");
+  if (!(c.floor_window > 0.0)) throw std::invalid_argument("floor_window must be > 0");
+}
+
+bool RoomLayer::on_level_floor(const Eigen::Vector3d& floor) {
+  if (!floor_track_.empty()) track_length_ += (floor - floor_track_.back().second).head<2>().norm();
+  floor_track_.emplace_back(track_length_, floor);
+  // Keep the points of the last floor_window of path, and the one before it.
+  const double window = settings_.layer.floor_window;
+  while (floor_track_.size() > 2 && floor_track_[1].first <= track_length_ - window) floor_track_.pop_front();
+  double rise = 0.0;
+  for (const auto& entry : floor_track_) rise = std::max(rise, std::abs(entry.second.z() - floor.z()));
+  return rise <= settings_.layer.max_floor_slope * window;
 }
 
 int RoomLayer::level_of(double floor_z) {
@@ -99,6 +112,9 @@ bool RoomLayer::robot_space(const RoomLayerInput& input, const Eigen::Vector3d& 
 
 std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
   const Eigen::Vector3d floor = input.pose.translation() - input.sensor_height * Eigen::Vector3d::UnitZ();
+  // On a ramp or stairs the robot is between levels: no floor there is a level's, nor are the
+  // spaces either level's (a first keyframe half-way up would otherwise found a level there).
+  if (!on_level_floor(floor)) return {};
   const int level = level_of(floor.z());
   if (!esdf()) {
     freespace::SightMapConfig sight = settings_.sight;
@@ -107,6 +123,11 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
     auto it = sight_.find(level);
     if (it == sight_.end()) it = sight_.emplace(level, freespace::SightMap(levels_[static_cast<std::size_t>(level)], sight)).first;
     it->second.add_scan(input.pose.translation(), input.scan_points);
+    // A plane whose top no ray passed above may reach the ceiling (a low sensor sees a wall's foot).
+    const rooms::RoomSegmentationConfig& seg = settings_.segmentation;
+    walls_ = input.walls;
+    for (rooms::WallCandidate& w : walls_)
+      w.top_seen = it->second.share_passed_above(w.end_a, w.end_b, w.z1 + seg.wall_top_margin) >= seg.wall_top_share;
   }
   if (settings_.layer.room_trigger == "timer") {
     // S-Graphs+: every period, the robot's whole cluster as it is now.
@@ -131,7 +152,7 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
     // So does a step into another space of the latest segmentation (an open joint, a bend):
     // extracting at every change of space makes one extraction a visit, the same on every lap.
     const Eigen::Vector3d from = pending_.empty() ? (last_position_ ? *last_position_ : floor) : pending_.back().position;
-    const bool crossed = rooms::crosses_wall(from.head<2>(), floor.head<2>(), input.walls, floor.z(), settings_.segmentation);
+    const bool crossed = rooms::crosses_wall(from.head<2>(), floor.head<2>(), walls_, floor.z(), settings_.segmentation);
     // A step into the other space for less than min_visit_length (a corner, a doorway's
     // strip) is no change: the robot must walk that far in it.
     const int now_in = last_segmentation_ && last_segmentation_level_ == level ? space_of(*last_segmentation_, floor) : -1;
@@ -298,7 +319,7 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
     const double floor = path.front().z();
     std::vector<Eigen::Vector3d> same;
     for (const Eigen::Vector3d& p : deferred)
-      if (std::abs(p.z() - floor) <= settings_.layer.level_tolerance) same.push_back(p);
+      (std::abs(p.z() - floor) <= settings_.layer.level_tolerance ? same : deferred_path_).push_back(p);
     path.insert(path.begin(), same.begin(), same.end());
   }
   if (path.empty()) return {};
@@ -325,15 +346,10 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
   in.free_radius = settings_.free_space.lambda_th;
   in.ground_radius = input.nodes->config().cell_size;
   nodes_cell_ = in.ground_radius;
-  in.walls = input.walls;
+  in.walls = walls_;
   // The raster covers the level's ground and what its rays saw.
   Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const std::vector<Vec2>* set : {&in.free_space, &in.ground}) {
-    for (const Vec2& p : *set) {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-  }
+  in.extend_bounds(&lo, &hi);
   const auto sight = sight_.find(level);
   if (sight != sight_.end() && sight->second.lo().x() <= sight->second.hi().x()) {
     lo = lo.cwiseMin(sight->second.lo());
@@ -371,7 +387,10 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
   for (const auto& [s, length] : walked) {
     if (length < settings_.layer.min_visit_length && s != current) continue;
     const rooms::SegmentedSpace& space = seg.spaces[static_cast<std::size_t>(s)];
-    if (s != current && (final || space.frontier <= settings_.layer.max_frontier)) {
+    // A space is explored when little of its edge borders the unseen and no unseen gap in it
+    // is wide enough for the robot (2 lambda): else it may go on there (a corridor's open end).
+    const bool explored = space.frontier <= settings_.layer.max_frontier && space.open_edge < 2.0 * in.free_radius;
+    if (s != current && (final || explored)) {
       out.push_back(space.room);
       continue;
     }

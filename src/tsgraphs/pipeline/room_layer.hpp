@@ -15,6 +15,7 @@
 ///   and association, the trigger says when.
 #include <Eigen/Core>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <optional>
 #include <set>
@@ -51,6 +52,9 @@ struct RoomLayerConfig {
   double max_frontier = 0.1;       ///< flush: a space more than this share of whose edge borders the unseen waits for a
                                    ///< later flush (or the end): its footprint is still growing
   double level_band = 0.3;         ///< flush: ground within this height of the walked floor is the level's (m): steps, not a ramp's rise
+  double max_floor_slope = 0.05;   ///< a level's floor rises less than this per metre walked (1:20, where building codes
+                                   ///< call a walk a ramp); on a steeper path (ramp, stairs) the robot is between levels
+  double floor_window = 2.0;       ///< the floor's rise is measured over this much of the path (m)
 
   template <class V>
   void visit(V& v) {
@@ -66,6 +70,8 @@ struct RoomLayerConfig {
     v("min_visit_length", min_visit_length);
     v("max_frontier", max_frontier);
     v("level_band", level_band);
+    v("max_floor_slope", max_floor_slope);
+    v("floor_window", floor_window);
   }
 };
 
@@ -157,6 +163,9 @@ class RoomLayer {
   RoomEventRecord event_of(const RoomLayerInput& input, const rooms::ExtractedRoom& room, int level,
                            std::vector<Eigen::Vector3d> free_space);
   int level_of(double floor_z);
+  /// Adds the robot's floor point to its recent track; false while the track rises faster than
+  /// max_floor_slope over floor_window (a ramp, stairs): such floors belong to no level.
+  bool on_level_floor(const Eigen::Vector3d& floor);
   void commit(const KeyframeSpace& space);
   void clear_segment();
 
@@ -179,6 +188,9 @@ class RoomLayer {
   std::set<int> free_nodes_;                ///< TS-graphs: every node that was in the robot's free space
   std::vector<KeyframeSpace> pending_;      ///< the latest keyframes' free space, held while the trigger confirms a change
   std::vector<double> levels_;              ///< floor heights of the levels seen
+  std::vector<rooms::WallCandidate> walls_; ///< TS-graphs: the keyframe's walls, whether rays saw above their tops set
+  std::deque<std::pair<double, Eigen::Vector3d>> floor_track_;  ///< (path length, floor point) over the last floor_window
+  double track_length_ = 0.0;               ///< the robot's path length so far (m)
   int segment_level_ = -1;
   bool was_in_free_space_ = true;
   std::size_t last_cluster_size_ = 0;

@@ -22,6 +22,7 @@ struct WallCandidate {
   Vec2 end_b = Vec2::Zero();
   double height = 3.0;        ///< vertical extent of the plane's points (m)
   double z0 = 0.0, z1 = 3.0;  ///< ...from z0 to z1, map frame (m)
+  bool top_seen = true;       ///< rays passed above z1 along it: its top is z1 (false: unseen, it may reach the ceiling)
 };
 
 struct ExtractedRoom {

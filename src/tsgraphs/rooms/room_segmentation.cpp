@@ -15,8 +15,7 @@ namespace tsgraphs::rooms {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
-constexpr double kLineStep = 0.5;
-constexpr int kFrontierReach = 3;  // cells: rays end on a wall's face a cell or two short of a space grown to its line  // cells between the samples that draw a wall: the line stays 8-connected
+constexpr double kLineStep = 0.5;  // cells between the samples that draw a wall: the line stays 8-connected
 
 /// Cells within `radius` of a cell holding one of `points` (its centre within radius of one).
 std::vector<std::uint8_t> discs(const GridFrame& f, const std::vector<Vec2>& points, double radius) {
@@ -48,7 +47,11 @@ std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, doubl
   std::vector<WallLine> out;
   for (const WallCandidate& w : walls) {
     if (std::abs(w.plane.n.z()) > cfg.max_normal_z || w.height < cfg.min_wall_height) continue;
-    if (w.z0 > floor_z + cfg.wall_reach_height || (reaching && w.z1 < floor_z + cfg.wall_reach_height)) continue;
+    // Its points start below a wall's reach and rise min_wall_height above this floor (a wall of
+    // the storey below, whose top no ray from here passes above, is not this level's)...
+    if (w.z0 > floor_z + cfg.wall_reach_height || w.z1 < floor_z + cfg.min_wall_height) continue;
+    // ...and reach wall_reach_height, or rise to where no ray saw above them.
+    if (reaching && w.top_seen && w.z1 < floor_z + cfg.wall_reach_height) continue;
     WallLine l;
     l.id = w.id;
     const double len = w.plane.n.head<2>().norm();
@@ -255,7 +258,7 @@ int split_regions(const GridFrame& f, std::vector<int>* label) {
 /// the region, clockwise round a hole) is drawn on across the region until it leaves it, if it
 /// does within the corridor's width. Each corner square thus goes to one leg, the same way round
 /// every bend. Cut cells lose their label; returns whether any was cut.
-bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cells, double tolerance_cells,
+bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cells, double tolerance_cells, double min_turn,
                std::vector<int>* label) {
   std::vector<int>& lab = *label;
   bool cut = false;
@@ -317,8 +320,10 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
         const Vec2& next = loop[(i + 1) % loop.size()];
         const Vec2 d_in = (at - prev).normalized(), d_out = (next - at).normalized();
         const double turn = d_in.x() * d_out.y() - d_in.y() * d_out.x();
-        if (turn > -std::sin(M_PI / 4.0)) continue;  // not an inner corner of 45 degrees or more
+        if (turn > -std::sin(min_turn)) continue;  // not an inner corner turning min_turn or more
         // Walk on along d_in from the corner; cut if the walk leaves the region within its width.
+        // (Always d_in, never "the longer edge": which leg is longer changes as the map grows,
+        // the outline's turning sense does not, so a corner stays with the same leg.)
         const Vec2 start = Vec2(c0 - 1, r0 - 1) + at;
         std::vector<std::size_t> run;
         bool left = false;
@@ -401,6 +406,11 @@ void RoomSegmentationConfig::validate() const {
   if (!(bend_tolerance >= 0.0)) fail("bend_tolerance must be >= 0");
   if (!(parallel_tolerance_deg >= 0.0 && parallel_tolerance_deg < 90.0)) fail("parallel_tolerance_deg must be in [0, 90)");
   if (!(max_normal_z >= 0.0 && max_normal_z < 1.0)) fail("max_normal_z must be in [0, 1)");
+  if (!(min_bend_deg > 0.0 && min_bend_deg < 180.0)) fail("min_bend_deg must be in (0, 180)");
+  if (!(min_fit_share >= 0.0)) fail("min_fit_share must be >= 0");
+  if (!(wall_top_margin >= 0.0)) fail("wall_top_margin must be >= 0");
+  if (!(wall_top_share > 0.0 && wall_top_share <= 1.0)) fail("wall_top_share must be in (0, 1]");
+  if (!(frontier_reach >= 0.0)) fail("frontier_reach must be >= 0");
 }
 
 bool crosses_wall(const Vec2& a, const Vec2& b, const std::vector<WallCandidate>& walls, double floor_z,
@@ -432,6 +442,15 @@ int RoomSegmentation::space_at(const Vec2& p, double radius) const {
   return best;
 }
 
+void SegmentationInput::extend_bounds(Vec2* lo, Vec2* hi) const {
+  for (const std::vector<Vec2>* set : {&free_space, &ground}) {
+    for (const Vec2& p : *set) {
+      *lo = lo->cwiseMin(p);
+      *hi = hi->cwiseMax(p);
+    }
+  }
+}
+
 RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentationConfig& cfg) {
   cfg.validate();
   RoomSegmentation out;
@@ -439,12 +458,7 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   GridFrame f = in.frame;
   if (f.size() == 0) {
     Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (const std::vector<Vec2>* set : {&in.free_space, &in.ground}) {
-      for (const Vec2& p : *set) {
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
-      }
-    }
+    in.extend_bounds(&lo, &hi);
     f = GridFrame::around(lo, hi, cfg.cell, std::max(in.free_radius, in.ground_radius) + 2.0 * cfg.cell);
   }
   for (const std::vector<std::uint8_t>* cells : {&in.seen, &in.known}) {
@@ -478,7 +492,7 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   const int reach = static_cast<int>(std::ceil((in.free_radius + in.ground_radius) / cfg.cell));
   grow(f, ground, reach, &label);
   // A region the robot does not fit in (a strip of cells just past a wall's line, between a
-  // wall's two faces) is no space: its widest point is under half the robot's width.
+  // wall's two faces) is no space.
   {
     std::vector<std::uint8_t> mask(f.size(), 0);
     for (std::size_t i = 0; i < f.size(); ++i) mask[i] = label[i] >= 0 ? 1 : 0;
@@ -487,11 +501,12 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
     for (std::size_t i = 0; i < f.size(); ++i)
       if (label[i] >= 0) widest[static_cast<std::size_t>(label[i])] = std::max(widest[static_cast<std::size_t>(label[i])], clearance[i]);
     for (int& l : label)
-      if (l >= 0 && widest[static_cast<std::size_t>(l)] < 0.5 * in.free_radius) l = -1;
+      if (l >= 0 && widest[static_cast<std::size_t>(l)] < cfg.min_fit_share * in.free_radius) l = -1;
   }
   const double cell_area = cfg.cell * cfg.cell;
   int n = merge_small_regions(f, cfg.min_region_area / cell_area, static_cast<int>(sizes.size()), &label);
-  if (cut_bends(f, n, cfg.corridor_aspect, cfg.min_region_area / cell_area, cfg.bend_tolerance / cfg.cell, &label)) {
+  if (cut_bends(f, n, cfg.corridor_aspect, cfg.min_region_area / cell_area, cfg.bend_tolerance / cfg.cell,
+                cfg.min_bend_deg * kDegToRad, &label)) {
     // The legs are regions of their own.
     const int pieces = split_regions(f, &label);
     sizes.assign(static_cast<std::size_t>(pieces), 0);
@@ -510,7 +525,9 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
     if (l >= 0) ++counts[static_cast<std::size_t>(l)];
   // Frontiers: edge cells beside a cell nothing has seen (no ray, no ground, no wall).
   std::vector<std::size_t> edge(static_cast<std::size_t>(n), 0), open_edge(static_cast<std::size_t>(n), 0);
+  std::vector<std::uint8_t> open_cell(f.size(), 0);
   if (!in.known.empty()) {
+    const int frontier_cells = std::max(1, static_cast<int>(std::lround(cfg.frontier_reach / cfg.cell)));
     static const int kDc[4] = {1, -1, 0, 0};
     static const int kDr[4] = {0, 0, 1, -1};
     for (int r = 0; r < f.rows; ++r) {
@@ -522,8 +539,8 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
           const int cc = c + kDc[k], rr = r + kDr[k];
           if (f.inside(cc, rr) && label[f.index(cc, rr)] == l) continue;
           is_edge = true;
-          // Outwards, up to kFrontierReach cells, an unseen cell before a wall or a seen one.
-          for (int step = 1; step <= kFrontierReach && !frontier; ++step) {
+          // Outwards, up to frontier_reach, an unseen cell before a wall or a seen one.
+          for (int step = 1; step <= frontier_cells && !frontier; ++step) {
             const int sc = c + step * kDc[k], sr = r + step * kDr[k];
             if (!f.inside(sc, sr)) {
               frontier = true;
@@ -536,8 +553,39 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
         }
         if (!is_edge) continue;
         ++edge[static_cast<std::size_t>(l)];
-        if (frontier) ++open_edge[static_cast<std::size_t>(l)];
+        if (frontier) {
+          ++open_edge[static_cast<std::size_t>(l)];
+          open_cell[f.index(c, r)] = 1;
+        }
       }
+    }
+  }
+  // The longest stretch of each space's frontier: its 8-connected runs of frontier cells.
+  std::vector<std::size_t> longest_open(static_cast<std::size_t>(n), 0);
+  {
+    std::vector<std::size_t> stack;
+    for (std::size_t start = 0; start < f.size(); ++start) {
+      if (!open_cell[start]) continue;
+      const int l = label[start];
+      std::size_t run = 0;
+      open_cell[start] = 0;
+      stack.push_back(start);
+      while (!stack.empty()) {
+        const std::size_t i = stack.back();
+        stack.pop_back();
+        ++run;
+        const int c = static_cast<int>(i % static_cast<std::size_t>(f.cols)), r = static_cast<int>(i / static_cast<std::size_t>(f.cols));
+        for (int dr = -1; dr <= 1; ++dr) {
+          for (int dc = -1; dc <= 1; ++dc) {
+            if (!f.inside(c + dc, r + dr)) continue;
+            const std::size_t j = f.index(c + dc, r + dr);
+            if (!open_cell[j] || label[j] != l) continue;
+            open_cell[j] = 0;
+            stack.push_back(j);
+          }
+        }
+      }
+      longest_open[static_cast<std::size_t>(l)] = std::max(longest_open[static_cast<std::size_t>(l)], run);
     }
   }
   for (int k = 0; k < n; ++k) {
@@ -546,6 +594,7 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
     s.area = static_cast<double>(counts[static_cast<std::size_t>(k)]) * cell_area;
     const std::size_t ek = edge[static_cast<std::size_t>(k)];
     s.frontier = ek > 0 ? static_cast<double>(open_edge[static_cast<std::size_t>(k)]) / static_cast<double>(ek) : 0.0;
+    s.open_edge = static_cast<double>(longest_open[static_cast<std::size_t>(k)]) * cfg.cell;
     OrientedRect rect = min_area_rect(outline);
     const bool rectangular = rect.area() > 0.0 && area(outline) >= cfg.rect_fill * rect.area();
     const std::array<int, 4> on = snap_to_walls(&rect, sides, cfg);

@@ -31,9 +31,14 @@ struct RoomSegmentationConfig {
   double cell = 0.1;                    ///< raster cell (m): an eighth of the narrowest door, finer than the node map
   double max_normal_z = 0.2;            ///< |n.z| above this: not a vertical plane, no wall
   double min_wall_height = 1.5;         ///< lower planes are furniture (desks, cabinets) and railings, not walls (m)
-  double wall_reach_height = 2.3;       ///< a wall bounds a level when its points span this height above the floor (m):
+  double wall_reach_height = 2.3;       ///< a wall bounds a level when its points span this height above the floor (m)
+                                        ///< or no ray saw above its top (wall_top_*):
                                         ///< above a door's lintel and the tallest furniture (shelves end by 2.2 m), below the
                                         ///< ceiling; a lintel, the storey above, a shelf row or a railing does not
+  double wall_top_margin = 0.2;         ///< a ray this far above a plane's highest point over its line saw above it (m)
+  double wall_top_share = 0.25;         ///< ...along this share of its length: its top is seen (a shelf, a partition) and it
+                                        ///< bounds a level only if it spans wall_reach_height; an unseen top (a low sensor
+                                        ///< sees only a wall's foot) may reach the ceiling: it bounds the level
   double max_door_width = 2.0;          ///< a wall that ends this close to another wall has a door (or an opening) between
                                         ///< them: it is drawn on to it (m)
   double min_door_post = 0.8;           ///< ...when both are at least this long (m): a pillar's face is no wall to close a gap to
@@ -48,6 +53,11 @@ struct RoomSegmentationConfig {
   double simplify_tolerance = 0.15;     ///< an outline strays at most this from the region's cell edges (m)
   double bend_tolerance = 0.3;          ///< a corridor's outline, for finding its bends, strays at most this (m): a
                                         ///< chair's or a door jamb's notch is no bend
+  double min_bend_deg = 45.0;           ///< a corridor's inner corner turning at least this is a bend it is cut at
+  double min_fit_share = 0.5;           ///< a region narrower everywhere than this share of the robot's width (2 lambda)
+                                        ///< is no space: a strip of cells past a wall's line, between a wall's two faces
+  double frontier_reach = 0.3;          ///< rays end on a wall's face short of a space grown to its line: an unseen strip
+                                        ///< this wide (m) at a region's edge before a wall or seen space is no frontier
 
   /// Throws std::invalid_argument("RoomSegmentationConfig: KEY must ...") for a value out of range.
   void validate() const;
@@ -58,6 +68,8 @@ struct RoomSegmentationConfig {
     v("max_normal_z", max_normal_z);
     v("min_wall_height", min_wall_height);
     v("wall_reach_height", wall_reach_height);
+    v("wall_top_margin", wall_top_margin);
+    v("wall_top_share", wall_top_share);
     v("max_door_width", max_door_width);
     v("min_door_post", min_door_post);
     v("min_region_area", min_region_area);
@@ -68,6 +80,9 @@ struct RoomSegmentationConfig {
     v("corridor_aspect", corridor_aspect);
     v("simplify_tolerance", simplify_tolerance);
     v("bend_tolerance", bend_tolerance);
+    v("min_bend_deg", min_bend_deg);
+    v("min_fit_share", min_fit_share);
+    v("frontier_reach", frontier_reach);
   }
 };
 
@@ -82,6 +97,9 @@ struct SegmentationInput {
   double ground_radius = 0.25;      ///< a traversable node covers the disc of this radius (its node map cell, m)
   double floor_z = 0.0;             ///< the level's floor height, map frame (m)
   std::vector<WallCandidate> walls; ///< mapped planes (others than vertical walls of this level are skipped)
+
+  /// Widens [lo, hi] to hold the free-space vertices and the ground nodes.
+  void extend_bounds(Vec2* lo, Vec2* hi) const;
 };
 
 /// A space found: its footprint and, where its rectangle's sides lie on walls, their planes.
@@ -90,6 +108,7 @@ struct SegmentedSpace {
   double area = 0.0;         ///< of the region's cells (m^2)
   double frontier = 0.0;     ///< share of its edge cells beside what nothing has seen (0 without `known`): not yet
                              ///< explored there, so its footprint may still grow
+  double open_edge = 0.0;    ///< the longest stretch of its edge beside what nothing has seen (m): where it may go on
   Vec2 centroid = Vec2::Zero();  ///< of the footprint
 };
 
