@@ -387,10 +387,7 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
   for (const auto& [s, length] : walked) {
     if (length < settings_.layer.min_visit_length && s != current) continue;
     const rooms::SegmentedSpace& space = seg.spaces[static_cast<std::size_t>(s)];
-    // A space is explored when little of its edge borders the unseen and no unseen gap in it
-    // is wide enough for the robot (2 lambda): else it may go on there (a corridor's open end).
-    const bool explored = space.frontier <= settings_.layer.max_frontier && space.open_edge < 2.0 * in.free_radius;
-    if (s != current && (final || explored)) {
+    if (s != current && (final || space.frontier <= settings_.layer.max_frontier)) {
       out.push_back(space.room);
       continue;
     }

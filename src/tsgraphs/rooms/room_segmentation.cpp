@@ -525,7 +525,6 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
     if (l >= 0) ++counts[static_cast<std::size_t>(l)];
   // Frontiers: edge cells beside a cell nothing has seen (no ray, no ground, no wall).
   std::vector<std::size_t> edge(static_cast<std::size_t>(n), 0), open_edge(static_cast<std::size_t>(n), 0);
-  std::vector<std::uint8_t> open_cell(f.size(), 0);
   if (!in.known.empty()) {
     const int frontier_cells = std::max(1, static_cast<int>(std::lround(cfg.frontier_reach / cfg.cell)));
     static const int kDc[4] = {1, -1, 0, 0};
@@ -553,39 +552,8 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
         }
         if (!is_edge) continue;
         ++edge[static_cast<std::size_t>(l)];
-        if (frontier) {
-          ++open_edge[static_cast<std::size_t>(l)];
-          open_cell[f.index(c, r)] = 1;
-        }
+        if (frontier) ++open_edge[static_cast<std::size_t>(l)];
       }
-    }
-  }
-  // The longest stretch of each space's frontier: its 8-connected runs of frontier cells.
-  std::vector<std::size_t> longest_open(static_cast<std::size_t>(n), 0);
-  {
-    std::vector<std::size_t> stack;
-    for (std::size_t start = 0; start < f.size(); ++start) {
-      if (!open_cell[start]) continue;
-      const int l = label[start];
-      std::size_t run = 0;
-      open_cell[start] = 0;
-      stack.push_back(start);
-      while (!stack.empty()) {
-        const std::size_t i = stack.back();
-        stack.pop_back();
-        ++run;
-        const int c = static_cast<int>(i % static_cast<std::size_t>(f.cols)), r = static_cast<int>(i / static_cast<std::size_t>(f.cols));
-        for (int dr = -1; dr <= 1; ++dr) {
-          for (int dc = -1; dc <= 1; ++dc) {
-            if (!f.inside(c + dc, r + dr)) continue;
-            const std::size_t j = f.index(c + dc, r + dr);
-            if (!open_cell[j] || label[j] != l) continue;
-            open_cell[j] = 0;
-            stack.push_back(j);
-          }
-        }
-      }
-      longest_open[static_cast<std::size_t>(l)] = std::max(longest_open[static_cast<std::size_t>(l)], run);
     }
   }
   for (int k = 0; k < n; ++k) {
@@ -594,7 +562,6 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
     s.area = static_cast<double>(counts[static_cast<std::size_t>(k)]) * cell_area;
     const std::size_t ek = edge[static_cast<std::size_t>(k)];
     s.frontier = ek > 0 ? static_cast<double>(open_edge[static_cast<std::size_t>(k)]) / static_cast<double>(ek) : 0.0;
-    s.open_edge = static_cast<double>(longest_open[static_cast<std::size_t>(k)]) * cfg.cell;
     OrientedRect rect = min_area_rect(outline);
     const bool rectangular = rect.area() > 0.0 && area(outline) >= cfg.rect_fill * rect.area();
     const std::array<int, 4> on = snap_to_walls(&rect, sides, cfg);

@@ -108,7 +108,6 @@ struct SegmentedSpace {
   double area = 0.0;         ///< of the region's cells (m^2)
   double frontier = 0.0;     ///< share of its edge cells beside what nothing has seen (0 without `known`): not yet
                              ///< explored there, so its footprint may still grow
-  double open_edge = 0.0;    ///< the longest stretch of its edge beside what nothing has seen (m): where it may go on
   Vec2 centroid = Vec2::Zero();  ///< of the footprint
 };
 
