@@ -2,10 +2,10 @@
 # The room layer side by side: TS-graphs (traversable + flush), S-Graphs+ (esdf + timer) and the
 # two ablations, on built-in scenes (simulated once, cached under $TMPDIR). Prints one row per
 # scene and mode: Table 1's figures, the ground-truth room figures, the room layer's front-end
-# time per keyframe and T_PGO. Usage: bench/bench_rooms.sh [SEED] [SCENE...]  (default: 1 atrium office)
+# time per keyframe and T_PGO. Usage: [TSGRAPHS=binary] bench/bench_rooms.sh [SEED] [SCENE...]  (default: 1 atrium office)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
-bin="$here/build/tsgraphs"
+bin="${TSGRAPHS:-$here/build/tsgraphs}"  # TSGRAPHS=another binary compares two builds
 seed="${1:-1}"
 shift || true
 if [ $# -gt 0 ]; then scenes=("$@"); else scenes=(atrium office); fi

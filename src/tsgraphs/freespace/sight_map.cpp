@@ -31,7 +31,14 @@ SightMap::SightMap(double floor_z, const SightMapConfig& config)
 
 SightMap::Tile& SightMap::tile_at(long c, long r, std::size_t* i) {
   *i = static_cast<std::size_t>((r & (kTileSide - 1)) * kTileSide + (c & (kTileSide - 1)));
-  return tiles_[tile_key(c >> kTileBits, r >> kTileBits)];
+  // A ray walks many cells of one tile in a row: look the tile up only when it changes (the
+  // map's nodes stay put when it grows).
+  const std::uint64_t key = tile_key(c >> kTileBits, r >> kTileBits);
+  if (last_.tile == nullptr || key != last_.key) {
+    last_.tile = &tiles_[key];
+    last_.key = key;
+  }
+  return *last_.tile;
 }
 
 void SightMap::mark(long c, long r, Mark m) {

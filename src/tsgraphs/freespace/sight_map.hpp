@@ -83,6 +83,18 @@ class SightMap {
   double floor_z_;
   SightMapConfig config_;
   std::unordered_map<std::uint64_t, Tile> tiles_;
+  /// The tile tile_at found last; a copy or a move starts without one (its tiles are others).
+  struct TileCache {
+    Tile* tile = nullptr;
+    std::uint64_t key = 0;
+    TileCache() = default;
+    TileCache(const TileCache&) {}
+    TileCache& operator=(const TileCache&) {
+      tile = nullptr;
+      return *this;
+    }
+  };
+  TileCache last_;
   Eigen::Vector2d lo_, hi_;
 };
 
