@@ -76,6 +76,13 @@ void box_walls(double x0, double y0, double x1, double y1, int id, SegmentationI
   in->walls.push_back(wall(id + 3, {x0, y1}, {x0, y0}, c));
 }
 
+/// The value of `cells` (one per cell of f) at (x, y), which must lie on f.
+std::uint8_t cell_at(const std::vector<std::uint8_t>& cells, const GridFrame& f, double x, double y) {
+  int c, r;
+  EXPECT_TRUE(f.cell_of({x, y}, &c, &r));
+  return cells[f.index(c, r)];
+}
+
 double footprint_area(const SegmentedSpace& s) { return area(footprint_of(s.room.rect, s.room.outline)); }
 
 TEST(RoomSegmentation, FourWallRoomIsItsRectangleOnItsWalls) {
@@ -284,11 +291,7 @@ TEST(SightMap, RaysThatGoBelowTheFloorMarkNoFloor) {
   sight.add_scan({0.0, 0.0, 1.0}, returns);
   const GridFrame f = GridFrame::around({-1, -1}, {7, 1}, 0.1, 0.0);
   const std::vector<std::uint8_t> open = sight.open_cells(f);
-  const auto at = [&](double x, double y) {
-    int c, r;
-    EXPECT_TRUE(f.cell_of({x, y}, &c, &r));
-    return open[f.index(c, r)];
-  };
+  const auto at = [&](double x, double y) { return cell_at(open, f, x, y); };
   EXPECT_EQ(at(1.0, 0.0), 1);
   EXPECT_EQ(at(2.45, 0.0), 1);
   EXPECT_EQ(at(5.5, 0.0), 0);
@@ -309,11 +312,7 @@ TEST(SightMap, ARayUnderTheFloorBeyondAVoidMarksNothingAboveIt) {
   sight.add_scan({0.0, 0.0, 1.0}, returns);
   const GridFrame f = GridFrame::around({-1, -1}, {15, 1}, 0.1, 0.0);
   const std::vector<std::uint8_t> open = sight.open_cells(f);
-  const auto at = [&](double x, double y) {
-    int c, r;
-    EXPECT_TRUE(f.cell_of({x, y}, &c, &r));
-    return open[f.index(c, r)];
-  };
+  const auto at = [&](double x, double y) { return cell_at(open, f, x, y); };
   EXPECT_EQ(at(2.0, 0.0), 1);
   EXPECT_EQ(at(4.5, 0.0), 0);  // where the rays went down through the slab's thickness
   EXPECT_EQ(at(6.5, 0.0), 1);  // above the rays that ran on under the floor
