@@ -19,7 +19,7 @@ ExtractedRoom room(Vec2 center, Vec2 size, std::vector<int> walls = {}) {
 }
 
 TEST(RoomAssociation, DiceOfPointEightAssociates) {
-  RoomMap map;  // min_dice 0.5, room_dist_threshold 1.0
+  RoomMap map;  // min_overlap 0.5, room_dist_threshold 1.0
   const ExtractedRoom first = room({0, 0}, {10, 4}, {0, 1, 2, 3});
   EXPECT_EQ(map.add_extraction(first, 0).id, 0);
   const ExtractedRoom again = room({2, 0}, {10, 4});  // centre 2 m away: only the Dice can match
@@ -44,6 +44,27 @@ TEST(RoomAssociation, DiceOfPointTwoThreeMetresAwayIsANewRoom) {
   EXPECT_TRUE(a.is_new);
   EXPECT_EQ(a.id, 1);
   EXPECT_EQ(map.rooms().size(), 2u);
+}
+
+TEST(RoomAssociation, ARoomSeenFromItsDoorIsPartOfTheRoomSeenWhole) {
+  RoomMap map;
+  // A corner of a 10 x 12 m hall seen from its door (Dice 0.14, centres 4.2 m apart), then the hall.
+  map.add_extraction(room({-3.5, 4.5}, {3, 3}), 0);
+  const ExtractedRoom hall = room({0, 0}, {10, 12});
+  ASSERT_LT(dice(map.rooms().at(0).rect, hall.rect), 0.2);
+  const RoomAssociation a = map.add_extraction(hall, 0);
+  EXPECT_FALSE(a.is_new);
+  EXPECT_EQ(a.id, 0);
+  // Two views of its sides mapped apart, then the whole: one room.
+  RoomMap two;
+  two.add_extraction(room({-3.5, 0}, {3, 12}), 0);
+  two.add_extraction(room({3.5, 0}, {3, 12}), 0);
+  ASSERT_EQ(two.rooms().size(), 2u);
+  two.add_extraction(hall, 0);
+  EXPECT_EQ(two.merge_duplicates(), (std::vector<std::pair<int, int>>{{0, 1}}));
+  EXPECT_EQ(two.rooms().size(), 1u);
+  // A neighbour that only shares a strip (a sixth of it) stays a room of its own.
+  EXPECT_TRUE(map.add_extraction(room({6, 0}, {3, 12}), 0).is_new);
 }
 
 TEST(RoomAssociation, CentreWithinThresholdAssociatesAndLevelsAreSeparate) {
@@ -75,7 +96,7 @@ TEST(RoomAssociation, FootprintPolicyDecidesWhatARedetectionKeeps) {
 
 TEST(RoomAssociation, CentresOnlyIgnoresTheDice) {
   RoomAssociationConfig config;
-  config.match_by_dice = false;  // S-Graphs+
+  config.match_by_footprint = false;  // S-Graphs+
   RoomMap map(config);
   map.add_extraction(room({0, 0}, {10, 4}), 0);
   EXPECT_TRUE(map.add_extraction(room({2, 0}, {10, 4}), 0).is_new);  // Dice 0.8, centres 2 m apart

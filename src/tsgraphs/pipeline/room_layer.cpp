@@ -13,7 +13,7 @@ namespace tsgraphs::pipeline {
 namespace {
 
 rooms::RoomAssociationConfig association_for(rooms::RoomAssociationConfig config, const std::string& method) {
-  config.match_by_dice = method != "esdf";  // S-Graphs+ associates by centre distance only
+  config.match_by_footprint = method != "esdf";  // S-Graphs+ associates by centre distance only
   // TS-graphs segments the whole level's free space each time: the latest footprint is the
   // most complete one, and one that a newly mapped wall cut smaller is the right one.
   if (method != "esdf") {

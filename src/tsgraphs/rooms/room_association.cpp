@@ -11,6 +11,9 @@ namespace tsgraphs::rooms {
 RoomMap::RoomMap(RoomAssociationConfig config) : config_(std::move(config)) {
   if (config_.footprint != "first" && config_.footprint != "latest" && config_.footprint != "largest")
     throw std::invalid_argument("footprint must be first, latest or largest, not '" + config_.footprint + "'");
+  if (!(config_.min_overlap > 0.0 && config_.min_overlap <= 1.0))
+    throw std::invalid_argument("min_overlap must be in (0, 1]");
+  if (!(config_.room_dist_threshold >= 0.0)) throw std::invalid_argument("room_dist_threshold must be >= 0");
 }
 
 namespace {
@@ -31,11 +34,17 @@ bool boxes_meet(const Polygon2& a, const Polygon2& b) {
 
 double footprint_dice(const Polygon2& a, const Polygon2& b) { return boxes_meet(a, b) ? dice(a, b) : 0.0; }
 
+/// The share of the smaller footprint's area inside the other.
+double footprint_overlap(const Polygon2& a, const Polygon2& b) {
+  const double smaller = std::min(area(a), area(b));
+  return boxes_meet(a, b) && smaller > 0.0 ? intersection_area(a, b) / smaller : 0.0;
+}
+
 }  // namespace
 
 bool RoomMap::matches(const Polygon2& a, const Vec2& ca, const Polygon2& b, const Vec2& cb) const {
   return (ca - cb).norm() <= config_.room_dist_threshold ||
-         (config_.match_by_dice && footprint_dice(a, b) >= config_.min_dice);
+         (config_.match_by_footprint && footprint_overlap(a, b) >= config_.min_overlap);
 }
 
 int RoomMap::match(const Polygon2& footprint, const Vec2& center, int level) const {

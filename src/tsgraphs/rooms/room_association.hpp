@@ -1,7 +1,8 @@
 #pragma once
-/// The map of rooms: a new extraction that matches a mapped room of the same level (Dice of the
-/// footprints >= min_dice, or centres within room_dist_threshold) is a re-detection of it, not a
-/// new room; mapped rooms that have come to match each other are duplicates and are merged.
+/// The map of rooms: a new extraction that matches a mapped room of the same level (the smaller
+/// footprint lies min_overlap inside the other, or centres within room_dist_threshold) is a
+/// re-detection of it, not a new room; mapped rooms that have come to match each other are
+/// duplicates and are merged.
 #include <map>
 #include <string>
 #include <utility>
@@ -13,16 +14,18 @@
 namespace tsgraphs::rooms {
 
 struct RoomAssociationConfig {
-  double min_dice = 0.5;             ///< footprints with at least this Dice score are one room...
+  double min_overlap = 0.5;          ///< footprints of which the smaller has this share of its area inside the other
+                                     ///< are one room (a room seen first from its door, later whole; spaces of one
+                                     ///< segmentation never overlap)...
   double room_dist_threshold = 1.0;  ///< ...or centres within this distance (m)
-  bool match_by_dice = true;         ///< false: centres only (S-Graphs+); set by the room layer from its mode, not a file key
+  bool match_by_footprint = true;    ///< false: centres only (S-Graphs+); set by the room layer from its mode, not a file key
   /// What a re-detection does to the mapped footprint: "first" keeps it, "latest" replaces it,
   /// "largest" replaces it when the new one is larger (a room seen more completely).
   std::string footprint = "largest";
 
   template <class V>
   void visit(V& v) {
-    v("min_dice", min_dice);
+    v("min_overlap", min_overlap);
     v("room_dist_threshold", room_dist_threshold);
     v("footprint", footprint);
   }
@@ -49,7 +52,7 @@ struct RoomAssociation {
 
 class RoomMap {
  public:
-  /// Throws std::invalid_argument for an unknown config.footprint.
+  /// Throws std::invalid_argument ("KEY must ...") for an unknown config.footprint or a value out of range.
   explicit RoomMap(RoomAssociationConfig config = {});
 
   /// Id of the mapped room of `level` the footprint matches (the highest Dice; on a tie the
