@@ -88,6 +88,12 @@ TEST(PipelineConfig, ErrorsNameFileLineAndKey) {
   EXPECT_NE(input_error_of([] { parse_pipeline_config("room_association:\n  footprint: big\n", "p.yaml"); })
                 .find("p.yaml:2: room_association.footprint"),
             std::string::npos);
+  EXPECT_NE(input_error_of([] { parse_pipeline_config("room_association:\n  min_overlap: 1.5\n", "p.yaml"); })
+                .find("p.yaml:2: room_association.min_overlap: min_overlap must be in (0, 1]"),
+            std::string::npos);
+  EXPECT_NE(input_error_of([] { parse_pipeline_config("room_segmentation:\n  wall_joint_gap: -1\n", "p.yaml"); })
+                .find("p.yaml:2: room_segmentation.wall_joint_gap"),
+            std::string::npos);
 }
 
 TEST(PipelineConfig, BaselineModeIsTwoKeys) {

@@ -251,6 +251,31 @@ TEST(RoomSegmentation, AWallWhoseTopNoRaySawDividesTheLevel) {
   EXPECT_EQ(segment_rooms(in).spaces.size(), 1u);
 }
 
+TEST(RoomSegmentation, AFreeStandingShelfWhoseTopNoRaySawDividesNothing) {
+  // A 12 x 8 m hall with a 9 m shelf row down its middle, its ends 1.5 m from the walls (a door's
+  // width: were it a wall, both gaps would be closed); a low sensor saw neither face's top. The
+  // row joins no wall, one walks round it: one space. A plane of the same height that meets the
+  // hall's wall at one end (a partition with a 1.5 m door) joins the walls: it divides the hall.
+  SegmentationInput in = level();
+  add_area(box(0, 0, 12, 8), &in);
+  box_walls(0, 0, 12, 8, 0, &in);
+  for (const double y : {3.75, 4.25}) {
+    WallCandidate face = wall(in.walls.size(), {1.5, y}, {10.5, y}, {6, y < 4.0 ? 0.0 : 8.0}, 1.6);
+    face.top_seen = false;
+    in.walls.push_back(face);
+  }
+  EXPECT_EQ(segment_rooms(in).spaces.size(), 1u);
+  in.walls.resize(4);
+  WallCandidate partition = wall(4, {0, 4}, {10.5, 4}, {6, 0}, 1.6);
+  partition.top_seen = false;
+  in.walls.push_back(partition);
+  EXPECT_EQ(segment_rooms(in).spaces.size(), 2u);
+  // Its end 0.5 m short of the wall (more than wall_joint_gap): free-standing again.
+  in.walls.back() = wall(4, {0.5, 4}, {10.5, 4}, {6, 0}, 1.6);
+  in.walls.back().top_seen = false;
+  EXPECT_EQ(segment_rooms(in).spaces.size(), 1u);
+}
+
 TEST(RoomSegmentation, WhatOnlyTheRaysSawIsARoomToo) {
   // A sensor 1.7 m up sees no floor in a 4 x 4 m room: the rays to its walls still show it.
   freespace::SightMap sight(0.0, {});

@@ -131,7 +131,8 @@ void validate(const YamlMap& root, const PipelineConfig& c) {
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
     const std::string key = what.substr(0, what.find(' '));
-    throw root.map(key == "footprint" ? "room_association" : "room_layer").error(key, what);
+    const bool association = key == "footprint" || key == "min_overlap" || key == "room_dist_threshold";
+    throw root.map(association ? "room_association" : "room_layer").error(key, what);
   }
   check_positive(root, "schedule", "optimize_every_keyframes", c.schedule.optimize_every_keyframes);
   if (c.schedule.full_every_keyframes < 0)

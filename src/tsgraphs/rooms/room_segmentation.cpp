@@ -38,28 +38,59 @@ struct WallLine {
   Vec2 a = Vec2::Zero(), b = Vec2::Zero();  ///< its extent, on the line
 };
 
-/// The walls of the level as lines at floor height: with `reaching`, only those whose points
-/// span wall_reach_height (they bound spaces); else every vertical plane of min_wall_height
-/// that comes down to the level (they may carry a footprint's side: a low sensor sees a small
-/// room's walls only up to its head height plus a little).
+WallLine line_at(const WallCandidate& w, double floor_z) {
+  WallLine l;
+  l.id = w.id;
+  const double len = w.plane.n.head<2>().norm();
+  l.n = w.plane.n.head<2>() / len;
+  l.d = (w.plane.d + w.plane.n.z() * floor_z) / len;
+  l.a = w.end_a - (l.n.dot(w.end_a) + l.d) * l.n;
+  l.b = w.end_b - (l.n.dot(w.end_b) + l.d) * l.n;
+  return l;
+}
+
+/// One of the lines ends within `gap` of the other, and they are not parallel: a corner or a T.
+bool joined(const WallLine& p, const WallLine& q, double gap, double cos_parallel) {
+  if (std::abs(p.n.dot(q.n)) >= cos_parallel) return false;
+  return distance_to_segment(p.a, q.a, q.b) <= gap || distance_to_segment(p.b, q.a, q.b) <= gap ||
+         distance_to_segment(q.a, p.a, p.b) <= gap || distance_to_segment(q.b, p.a, p.b) <= gap;
+}
+
+/// The walls of the level as lines at floor height: with `reaching`, only those that bound
+/// spaces: their points span wall_reach_height, or no ray saw above their top and they join
+/// (wall_joint_gap) a wall that bounds; else every vertical plane of min_wall_height that comes
+/// down to the level (they may carry a footprint's side: a low sensor sees a small room's walls
+/// only up to its head height plus a little).
 std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, double floor_z, const RoomSegmentationConfig& cfg,
                                   bool reaching = true) {
-  std::vector<WallLine> out;
+  std::vector<WallLine> out, unseen_top;
   for (const WallCandidate& w : walls) {
     if (std::abs(w.plane.n.z()) > cfg.max_normal_z || w.height < cfg.min_wall_height) continue;
     // Its points start below a wall's reach and rise min_wall_height above this floor (a wall of
     // the storey below, whose top no ray from here passes above, is not this level's)...
     if (w.z0 > floor_z + cfg.wall_reach_height || w.z1 < floor_z + cfg.min_wall_height) continue;
     // ...and reach wall_reach_height, or rise to where no ray saw above them.
-    if (reaching && w.top_seen && w.z1 < floor_z + cfg.wall_reach_height) continue;
-    WallLine l;
-    l.id = w.id;
-    const double len = w.plane.n.head<2>().norm();
-    l.n = w.plane.n.head<2>() / len;
-    l.d = (w.plane.d + w.plane.n.z() * floor_z) / len;
-    l.a = w.end_a - (l.n.dot(w.end_a) + l.d) * l.n;
-    l.b = w.end_b - (l.n.dot(w.end_b) + l.d) * l.n;
-    out.push_back(l);
+    if (reaching && w.z1 < floor_z + cfg.wall_reach_height) {
+      if (!w.top_seen) unseen_top.push_back(line_at(w, floor_z));
+      continue;
+    }
+    out.push_back(line_at(w, floor_z));
+  }
+  // A plane whose top is unseen bounds once it joins one that does, in the input's order.
+  const double cos_parallel = std::cos(cfg.parallel_tolerance_deg * kDegToRad);
+  std::vector<bool> taken(unseen_top.size(), false);
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (std::size_t i = 0; i < unseen_top.size(); ++i) {
+      if (taken[i]) continue;
+      const bool joins = std::any_of(out.begin(), out.end(), [&](const WallLine& o) {
+        return joined(unseen_top[i], o, cfg.wall_joint_gap, cos_parallel);
+      });
+      if (!joins) continue;
+      taken[i] = true;
+      out.push_back(unseen_top[i]);
+      grew = true;
+    }
   }
   return out;
 }
@@ -216,6 +247,46 @@ int merge_small_regions(const GridFrame& f, double min_cells, int n_labels, std:
     l = renumber[static_cast<std::size_t>(r)];
   }
   return n;
+}
+
+/// Per region, the share of its edge cells (beside a cell of another label or none) that are
+/// frontier: outwards, within `reach` cells, a cell nothing has seen (no ray, no ground, no wall)
+/// comes before a wall, a region or a seen cell.
+std::vector<double> frontier_shares(const GridFrame& f, const std::vector<int>& label, int n,
+                                    const std::vector<std::uint8_t>& wall, const std::vector<std::uint8_t>& ground,
+                                    const std::vector<std::uint8_t>& known, int reach) {
+  static const int kDc[4] = {1, -1, 0, 0};
+  static const int kDr[4] = {0, 0, 1, -1};
+  std::vector<std::size_t> edge(static_cast<std::size_t>(n), 0), open_edge(static_cast<std::size_t>(n), 0);
+  for (int r = 0; r < f.rows; ++r) {
+    for (int c = 0; c < f.cols; ++c) {
+      const int l = label[f.index(c, r)];
+      if (l < 0) continue;
+      bool is_edge = false, frontier = false;
+      for (int k = 0; k < 4; ++k) {
+        const int cc = c + kDc[k], rr = r + kDr[k];
+        if (f.inside(cc, rr) && label[f.index(cc, rr)] == l) continue;
+        is_edge = true;
+        for (int step = 1; step <= reach && !frontier; ++step) {
+          const int sc = c + step * kDc[k], sr = r + step * kDr[k];
+          if (!f.inside(sc, sr)) {
+            frontier = true;
+            break;
+          }
+          const std::size_t j = f.index(sc, sr);
+          if (wall[j] || label[j] >= 0 || ground[j] || known[j]) break;
+          frontier = true;
+        }
+      }
+      if (!is_edge) continue;
+      ++edge[static_cast<std::size_t>(l)];
+      if (frontier) ++open_edge[static_cast<std::size_t>(l)];
+    }
+  }
+  std::vector<double> share(static_cast<std::size_t>(n), 0.0);
+  for (std::size_t k = 0; k < share.size(); ++k)
+    if (edge[k] > 0) share[k] = static_cast<double>(open_edge[k]) / static_cast<double>(edge[k]);
+  return share;
 }
 
 /// Renumbers the labels so that each 4-connected piece of one label is a region of its own,
@@ -410,6 +481,7 @@ void RoomSegmentationConfig::validate() const {
   if (!(min_fit_share >= 0.0)) fail("min_fit_share must be >= 0");
   if (!(wall_top_margin >= 0.0)) fail("wall_top_margin must be >= 0");
   if (!(wall_top_share > 0.0 && wall_top_share <= 1.0)) fail("wall_top_share must be in (0, 1]");
+  if (!(wall_joint_gap >= 0.0)) fail("wall_joint_gap must be >= 0");
   if (!(frontier_reach >= 0.0)) fail("frontier_reach must be >= 0");
 }
 
@@ -505,12 +577,16 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   }
   const double cell_area = cfg.cell * cfg.cell;
   int n = merge_small_regions(f, cfg.min_region_area / cell_area, static_cast<int>(sizes.size()), &label);
+  std::vector<int> before_cut = label;
+  const int n_before_cut = n;
   if (cut_bends(f, n, cfg.corridor_aspect, cfg.min_region_area / cell_area, cfg.bend_tolerance / cfg.cell,
                 cfg.min_bend_deg * kDegToRad, &label)) {
     // The legs are regions of their own.
     const int pieces = split_regions(f, &label);
     sizes.assign(static_cast<std::size_t>(pieces), 0);
     n = merge_small_regions(f, cfg.min_region_area / cell_area, static_cast<int>(sizes.size()), &label);
+  } else {
+    before_cut.clear();
   }
   out.label = label;
 
@@ -523,45 +599,24 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   std::vector<std::size_t> counts(static_cast<std::size_t>(n), 0);
   for (int l : label)
     if (l >= 0) ++counts[static_cast<std::size_t>(l)];
-  // Frontiers: edge cells beside a cell nothing has seen (no ray, no ground, no wall).
-  std::vector<std::size_t> edge(static_cast<std::size_t>(n), 0), open_edge(static_cast<std::size_t>(n), 0);
+  std::vector<double> frontier(static_cast<std::size_t>(n), 0.0);
   if (!in.known.empty()) {
-    const int frontier_cells = std::max(1, static_cast<int>(std::lround(cfg.frontier_reach / cfg.cell)));
-    static const int kDc[4] = {1, -1, 0, 0};
-    static const int kDr[4] = {0, 0, 1, -1};
-    for (int r = 0; r < f.rows; ++r) {
-      for (int c = 0; c < f.cols; ++c) {
-        const int l = label[f.index(c, r)];
-        if (l < 0) continue;
-        bool is_edge = false, frontier = false;
-        for (int k = 0; k < 4; ++k) {
-          const int cc = c + kDc[k], rr = r + kDr[k];
-          if (f.inside(cc, rr) && label[f.index(cc, rr)] == l) continue;
-          is_edge = true;
-          // Outwards, up to frontier_reach, an unseen cell before a wall or a seen one.
-          for (int step = 1; step <= frontier_cells && !frontier; ++step) {
-            const int sc = c + step * kDc[k], sr = r + step * kDr[k];
-            if (!f.inside(sc, sr)) {
-              frontier = true;
-              break;
-            }
-            const std::size_t j = f.index(sc, sr);
-            if (wall[j] || label[j] >= 0 || ground[j] || in.known[j]) break;
-            frontier = true;
-          }
-        }
-        if (!is_edge) continue;
-        ++edge[static_cast<std::size_t>(l)];
-        if (frontier) ++open_edge[static_cast<std::size_t>(l)];
-      }
+    const int reach_cells = std::max(1, static_cast<int>(std::lround(cfg.frontier_reach / cfg.cell)));
+    frontier = frontier_shares(f, label, n, wall, ground, in.known, reach_cells);
+    // A leg cut off a region that is still being explored is too: the cut is no wall.
+    if (!before_cut.empty()) {
+      const std::vector<double> whole = frontier_shares(f, before_cut, n_before_cut, wall, ground, in.known, reach_cells);
+      for (std::size_t i = 0; i < f.size(); ++i)
+        if (label[i] >= 0 && before_cut[i] >= 0)
+          frontier[static_cast<std::size_t>(label[i])] =
+              std::max(frontier[static_cast<std::size_t>(label[i])], whole[static_cast<std::size_t>(before_cut[i])]);
     }
   }
   for (int k = 0; k < n; ++k) {
     SegmentedSpace s;
     const Polygon2& outline = outlines[static_cast<std::size_t>(k)];
     s.area = static_cast<double>(counts[static_cast<std::size_t>(k)]) * cell_area;
-    const std::size_t ek = edge[static_cast<std::size_t>(k)];
-    s.frontier = ek > 0 ? static_cast<double>(open_edge[static_cast<std::size_t>(k)]) / static_cast<double>(ek) : 0.0;
+    s.frontier = frontier[static_cast<std::size_t>(k)];
     OrientedRect rect = min_area_rect(outline);
     const bool rectangular = rect.area() > 0.0 && area(outline) >= cfg.rect_fill * rect.area();
     const std::array<int, 4> on = snap_to_walls(&rect, sides, cfg);

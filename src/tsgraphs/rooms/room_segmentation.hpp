@@ -39,6 +39,9 @@ struct RoomSegmentationConfig {
   double wall_top_share = 0.25;         ///< ...along this share of its length: its top is seen (a shelf, a partition) and it
                                         ///< bounds a level only if it spans wall_reach_height; an unseen top (a low sensor
                                         ///< sees only a wall's foot) may reach the ceiling: it bounds the level
+  double wall_joint_gap = 0.4;          ///< ...if one of its ends is this close to another wall of the level, across it (a
+                                        ///< corner, a T; m): walls join into one structure, a free-standing shelf row or
+                                        ///< screen one walks round does not
   double max_door_width = 2.0;          ///< a wall that ends this close to another wall has a door (or an opening) between
                                         ///< them: it is drawn on to it (m)
   double min_door_post = 0.8;           ///< ...when both are at least this long (m): a pillar's face is no wall to close a gap to
@@ -70,6 +73,7 @@ struct RoomSegmentationConfig {
     v("wall_reach_height", wall_reach_height);
     v("wall_top_margin", wall_top_margin);
     v("wall_top_share", wall_top_share);
+    v("wall_joint_gap", wall_joint_gap);
     v("max_door_width", max_door_width);
     v("min_door_post", min_door_post);
     v("min_region_area", min_region_area);
