@@ -20,15 +20,15 @@ std::vector<Eigen::Vector3d> select_obstacles(const std::vector<Eigen::Vector3d>
 std::vector<Eigen::Vector3d> select_obstacles(const std::vector<Eigen::Vector3d>& points,
                                               const std::vector<Eigen::Vector3d>& nodes,
                                               const TraversableFreeSpaceConfig& config) {
-  const PlanarIndex index(nodes);
-  std::vector<int> near;
+  // A radius of 0 or less finds no ground: any cell does for the index.
+  const PlanarIndex index(nodes, config.ground_search_radius > 0.0 ? config.ground_search_radius : 1.0);
   const GroundHeight highest_node_below = [&](const Eigen::Vector3d& p) -> std::optional<double> {
-    index.within(p, config.ground_search_radius, near);
     std::optional<double> ground;
-    for (const int i : near) {
+    index.visit_within(p, config.ground_search_radius, [&](int i) {
       const double z = nodes[static_cast<std::size_t>(i)].z();
       if (z <= p.z() && (!ground || z > *ground)) ground = z;
-    }
+      return true;
+    });
     return ground;
   };
   return select_obstacles(points, highest_node_below, config);

@@ -11,13 +11,14 @@ namespace {
 // A vertex is removed when an obstacle point within lambda_th horizontally stands over it:
 // at most obstacle_max_height above it, and not below it (the storey under a landing).
 bool blocked(const Eigen::Vector3d& vertex, const std::vector<Eigen::Vector3d>& obstacles, const PlanarIndex& index,
-             const TraversableFreeSpaceConfig& config, std::vector<int>& scratch) {
-  index.within(vertex, config.lambda_th, scratch);
-  for (const int j : scratch) {
+             const TraversableFreeSpaceConfig& config) {
+  bool over = false;
+  index.visit_within(vertex, config.lambda_th, [&](int j) {
     const double dz = obstacles[static_cast<std::size_t>(j)].z() - vertex.z();
-    if (dz >= 0.0 && dz <= config.obstacle_max_height) return true;
-  }
-  return false;
+    over = dz >= 0.0 && dz <= config.obstacle_max_height;
+    return !over;
+  });
+  return over;
 }
 
 }  // namespace
@@ -28,14 +29,14 @@ FreeSpace traversable_free_space(const std::vector<Eigen::Vector3d>& nodes, cons
     throw std::invalid_argument("traversable_free_space: edge_length > 0, lambda_th >= 0 and max_height_step >= 0 required");
 
   const std::size_t n = nodes.size();
-  const PlanarIndex obstacle_index(obstacles);
+  const PlanarIndex obstacle_index(obstacles, config.lambda_th > 0.0 ? config.lambda_th : config.edge_length);
   std::vector<int> scratch;
   std::vector<bool> kept(n, false);
   for (std::size_t i = 0; i < n; ++i)
-    kept[i] = nodes[i].allFinite() && !blocked(nodes[i], obstacles, obstacle_index, config, scratch);
+    kept[i] = nodes[i].allFinite() && !blocked(nodes[i], obstacles, obstacle_index, config);
 
   // Edges between kept neighbours only: removing a vertex removes its edges.
-  const PlanarIndex node_index(nodes);
+  const PlanarIndex node_index(nodes, config.edge_length);
   std::vector<std::vector<int>> neighbours(n);
   for (std::size_t i = 0; i < n; ++i) {
     if (!kept[i]) continue;
