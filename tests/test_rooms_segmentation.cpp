@@ -354,9 +354,28 @@ TEST(SightMap, RaysOverAPlaneShowItsTop) {
     returns.emplace_back(8.0, y * 8.0 / 3.0, 0.0);
   }
   sight.add_scan({0.0, 0.0, 1.7}, returns);
-  EXPECT_GT(sight.share_passed_above({3.05, -0.9}, {3.05, 0.9}, 1.0), 0.9);
-  EXPECT_LT(sight.share_passed_above({3.05, -0.9}, {3.05, 0.9}, 1.2), 0.1);
-  EXPECT_EQ(sight.share_passed_above({20.0, 0.0}, {21.0, 0.0}, 0.0), 0.0);  // never seen
+  EXPECT_GT(sight.share_passed_above({3.05, -0.9}, {3.05, 0.9}, 0.8, 0.2), 0.9);
+  EXPECT_LT(sight.share_passed_above({3.05, -0.9}, {3.05, 0.9}, 1.0, 0.2), 0.1);
+  EXPECT_EQ(sight.share_passed_above({20.0, 0.0}, {21.0, 0.0}, 0.0, 0.2), 0.0);  // never seen
+}
+
+TEST(SightMap, RaysThroughADoorDoNotShowAWallsTop) {
+  // A low sensor (0.5 m) sees a wall at x = 3 up to 0.8 m, a 1 m door in it and the door's
+  // lintel from 2.1 m; the rays through the door pass the wall's line above 0.8 m. Nothing as
+  // low as the wall's top is in the door, so the rays there saw no top: the wall's is unseen.
+  freespace::SightMap sight(0.0, {});
+  std::vector<Eigen::Vector3d> returns;
+  for (int k = 0; k < 60; ++k) {
+    const double y = -1.5 + 0.05 * k;
+    if (std::abs(y) > 0.5) {
+      for (const double z : {0.2, 0.5, 0.8}) returns.emplace_back(3.0, y, z);
+    } else {
+      returns.emplace_back(3.0, y, 2.1);                  // the lintel
+      returns.emplace_back(7.0, y * 7.0 / 3.0, 2.0);      // through the door, crossing its line at 1.14 m
+    }
+  }
+  sight.add_scan({0.0, 0.0, 0.5}, returns);
+  EXPECT_LT(sight.share_passed_above({3.05, -1.5}, {3.05, 1.5}, 0.8, 0.2), 0.25);
 }
 
 TEST(RoomSegmentation, ConfigOutOfRangeIsRefused) {

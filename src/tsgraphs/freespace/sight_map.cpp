@@ -41,11 +41,17 @@ SightMap::Tile& SightMap::tile_at(long c, long r, std::size_t* i) {
   return *last_.tile;
 }
 
-void SightMap::mark(long c, long r, Mark m) {
+std::uint8_t SightMap::height_code(double z) const {
+  return static_cast<std::uint8_t>(std::clamp(std::ceil((z - floor_z_) / kOverStep), 1.0, 255.0));
+}
+
+void SightMap::mark(long c, long r, Mark m, double z) {
   std::size_t i;
   Tile& t = tile_at(c, r, &i);
   if (m == Mark::hit) {
     t.hit[i] = 1;
+    const std::uint8_t code = height_code(z);
+    if (t.low[i] == 0 || code < t.low[i]) t.low[i] = code;
     return;
   }
   bump(m == Mark::passed ? t.passed[i] : m == Mark::floor ? t.floor[i] : t.below[i]);
@@ -102,7 +108,7 @@ void SightMap::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::
     }
     if (std::abs(p.z() - floor_z_) <= config_.floor_step) mark(c_end, r_end, Mark::floor);
     else if (p.z() >= under && p.z() < low) mark(c_end, r_end, Mark::below);
-    else if (p.z() >= low) mark(c_end, r_end, Mark::hit);
+    else if (p.z() >= low) mark(c_end, r_end, Mark::hit, p.z());
     lo_ = lo_.cwiseMin(sensor.head<2>()).cwiseMin(p.head<2>());
     hi_ = hi_.cwiseMax(sensor.head<2>()).cwiseMax(p.head<2>());
   }
@@ -128,17 +134,30 @@ std::vector<std::uint8_t> SightMap::cells_where(const GridFrame& f, Test test) c
   return out;
 }
 
-double SightMap::share_passed_above(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double z) const {
+double SightMap::share_passed_above(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double top, double margin) const {
   const double length = (b - a).norm();
   const int steps = std::max(1, static_cast<int>(std::ceil(length / config_.cell)));
+  const auto at = [this](long c, long r, std::size_t* i) {
+    *i = static_cast<std::size_t>((r & (kTileSide - 1)) * kTileSide + (c & (kTileSide - 1)));
+    return tile(c >> kTileBits, r >> kTileBits);
+  };
+  const std::uint8_t top_code = height_code(top);
   int above = 0;
   for (int k = 0; k <= steps; ++k) {
     const Eigen::Vector2d q = (a + (b - a) * (static_cast<double>(k) / steps)) / config_.cell;
     const long c = static_cast<long>(std::floor(q.x())), r = static_cast<long>(std::floor(q.y()));
-    const Tile* t = tile(c >> kTileBits, r >> kTileBits);
-    if (t == nullptr) continue;
-    const std::size_t i = static_cast<std::size_t>((r & (kTileSide - 1)) * kTileSide + (c & (kTileSide - 1)));
-    if (t->over[i] > 0 && floor_z_ + t->over[i] * kOverStep > z) ++above;
+    std::size_t i;
+    const Tile* t = at(c, r, &i);
+    if (t == nullptr || t->over[i] == 0 || !(floor_z_ + t->over[i] * kOverStep > top + margin)) continue;
+    bool low_return = false;
+    for (long dr = -1; dr <= 1 && !low_return; ++dr) {
+      for (long dc = -1; dc <= 1 && !low_return; ++dc) {
+        std::size_t j;
+        const Tile* u = at(c + dc, r + dr, &j);
+        low_return = u != nullptr && u->low[j] > 0 && u->low[j] <= top_code;
+      }
+    }
+    if (low_return) ++above;
   }
   return static_cast<double>(above) / (steps + 1);
 }

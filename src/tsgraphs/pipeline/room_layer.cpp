@@ -127,7 +127,7 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
     const rooms::RoomSegmentationConfig& seg = settings_.segmentation;
     walls_ = input.walls;
     for (rooms::WallCandidate& w : walls_)
-      w.top_seen = it->second.share_passed_above(w.end_a, w.end_b, w.z1 + seg.wall_top_margin) >= seg.wall_top_share;
+      w.top_seen = it->second.share_passed_above(w.end_a, w.end_b, w.z1, seg.wall_top_margin) >= seg.wall_top_share;
   }
   if (settings_.layer.room_trigger == "timer") {
     // S-Graphs+: every period, the robot's whole cluster as it is now.
