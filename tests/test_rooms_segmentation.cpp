@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "tsgraphs/freespace/sight_map.hpp"
+#include "tsgraphs/freespace/wall_top_rays.hpp"
 #include "tsgraphs/rooms/room_segmentation.hpp"
 
 namespace tsgraphs::rooms {
@@ -343,9 +344,9 @@ TEST(SightMap, ARayUnderTheFloorBeyondAVoidMarksNothingAboveIt) {
   EXPECT_EQ(at(6.5, 0.0), 1);  // above the rays that ran on under the floor
 }
 
-TEST(SightMap, RaysOverAPlaneShowItsTop) {
-  // A sensor 1.7 m up; a block's face at x = 3 stops the rays aimed at it (0.5 m up), the
-  // others pass over it, at 1.04-1.06 m, to the floor 8 m out.
+TEST(WallTopRays, RaysOverAPlaneShowItsTop) {
+  // A sensor 1.7 m up; a block's face at x = 3 (its top 0.8 m) stops the rays aimed at it, at
+  // 0.5 m; the others pass over it, at 1.04-1.06 m, to the floor 8 m out.
   freespace::SightMap sight(0.0, {});
   std::vector<Eigen::Vector3d> returns;
   for (int k = 0; k < 40; ++k) {
@@ -353,13 +354,41 @@ TEST(SightMap, RaysOverAPlaneShowItsTop) {
     returns.emplace_back(3.0, y, 0.5);
     returns.emplace_back(8.0, y * 8.0 / 3.0, 0.0);
   }
-  sight.add_scan({0.0, 0.0, 1.7}, returns);
-  EXPECT_GT(sight.share_passed_above({3.05, -0.9}, {3.05, 0.9}, 0.8, 0.2), 0.9);
-  EXPECT_LT(sight.share_passed_above({3.05, -0.9}, {3.05, 0.9}, 1.0, 0.2), 0.1);
-  EXPECT_EQ(sight.share_passed_above({20.0, 0.0}, {21.0, 0.0}, 0.0, 0.2), 0.0);  // never seen
+  const Eigen::Vector3d sensor(0.0, 0.0, 1.7);
+  sight.add_scan(sensor, returns);
+  const freespace::WallTopRays::Wall block{7, {3.0, -0.9}, {3.0, 0.9}, 0.8};
+  freespace::WallTopRays tops(0.1);
+  tops.add_scan(sensor, returns, {block}, sight, 0.2, 0.2);
+  EXPECT_GT(tops.share_above(block, 0.2), 0.9);
+  // Seen higher later (its top at 1.0 m), no ray passed 0.2 m above it.
+  freespace::WallTopRays::Wall taller = block;
+  taller.top = 1.0;
+  EXPECT_LT(tops.share_above(taller, 0.2), 0.1);
+  freespace::WallTopRays::Wall far = block;
+  far.id = 8;
+  EXPECT_EQ(tops.share_above(far, 0.2), 0.0);  // never seen
 }
 
-TEST(SightMap, RaysThroughADoorDoNotShowAWallsTop) {
+TEST(WallTopRays, RaysInTheRoomBesideAWallDoNotShowItsTop) {
+  // A low sensor (0.5 m) near a wall whose face is at x = 3.05, seen up to 1.8 m; rays to the
+  // ceiling (3 m) just short of the wall run along its face, high above 1.8 m, through the
+  // raster cells its line lies in (x in [3.0, 3.1)), but never cross it: its top is unseen.
+  freespace::SightMap sight(0.0, {});
+  std::vector<Eigen::Vector3d> returns;
+  for (int k = 0; k < 60; ++k) {
+    const double y = -3.0 + 0.1 * k;
+    for (const double z : {0.2, 1.0, 1.8}) returns.emplace_back(3.05, y, z);
+    if (y > -1.0) returns.emplace_back(3.03, y, 3.0);
+  }
+  const Eigen::Vector3d sensor(2.5, -3.0, 0.5);
+  sight.add_scan(sensor, returns);
+  const freespace::WallTopRays::Wall wall{1, {3.05, -3.0}, {3.05, 3.0}, 1.8};
+  freespace::WallTopRays tops(0.1);
+  tops.add_scan(sensor, returns, {wall}, sight, 0.2, 0.2);
+  EXPECT_EQ(tops.share_above(wall, 0.2), 0.0);
+}
+
+TEST(WallTopRays, RaysThroughADoorDoNotShowAWallsTop) {
   // A low sensor (0.5 m) sees a wall at x = 3 up to 0.8 m, a 1 m door in it and the door's
   // lintel from 2.1 m; the rays through the door pass the wall's line above 0.8 m. Nothing as
   // low as the wall's top is in the door, so the rays there saw no top: the wall's is unseen.
@@ -370,12 +399,16 @@ TEST(SightMap, RaysThroughADoorDoNotShowAWallsTop) {
     if (std::abs(y) > 0.5) {
       for (const double z : {0.2, 0.5, 0.8}) returns.emplace_back(3.0, y, z);
     } else {
-      returns.emplace_back(3.0, y, 2.1);                  // the lintel
-      returns.emplace_back(7.0, y * 7.0 / 3.0, 2.0);      // through the door, crossing its line at 1.14 m
+      returns.emplace_back(3.0, y, 2.1);              // the lintel
+      returns.emplace_back(7.0, y * 7.0 / 3.0, 2.0);  // through the door, crossing its line at 1.14 m
     }
   }
-  sight.add_scan({0.0, 0.0, 0.5}, returns);
-  EXPECT_LT(sight.share_passed_above({3.05, -1.5}, {3.05, 1.5}, 0.8, 0.2), 0.25);
+  const Eigen::Vector3d sensor(0.0, 0.0, 0.5);
+  sight.add_scan(sensor, returns);
+  const freespace::WallTopRays::Wall wall{1, {3.0, -1.5}, {3.0, 1.5}, 0.8};
+  freespace::WallTopRays tops(0.1);
+  tops.add_scan(sensor, returns, {wall}, sight, 0.2, 0.2);
+  EXPECT_LT(tops.share_above(wall, 0.2), 0.25);
 }
 
 TEST(RoomSegmentation, ConfigOutOfRangeIsRefused) {

@@ -42,7 +42,7 @@ SightMap::Tile& SightMap::tile_at(long c, long r, std::size_t* i) {
 }
 
 std::uint8_t SightMap::height_code(double z) const {
-  return static_cast<std::uint8_t>(std::clamp(std::ceil((z - floor_z_) / kOverStep), 1.0, 255.0));
+  return static_cast<std::uint8_t>(std::clamp(std::ceil((z - floor_z_) / kLowStep), 1.0, 255.0));
 }
 
 void SightMap::mark(long c, long r, Mark m, double z) {
@@ -92,10 +92,6 @@ void SightMap::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::
       Tile& cell = tile_at(c, r, &i);
       if (z < low) bump(cell.below[i]);
       else if (z <= top) bump(cell.passed[i]);
-      // How high the ray crossed the cell: the lower of its heights entering and leaving it.
-      const double z_out = sensor.z() + std::min(1.0, std::min(t_x, t_y)) * (p.z() - sensor.z());
-      const double over = std::ceil((std::min(z, z_out) - floor_z_) / kOverStep);
-      if (over >= 1.0) cell.over[i] = std::max(cell.over[i], static_cast<std::uint8_t>(std::min(over, 255.0)));
       if (t_x < t_y) {
         t = t_x;
         t_x += inv_x;
@@ -134,32 +130,17 @@ std::vector<std::uint8_t> SightMap::cells_where(const GridFrame& f, Test test) c
   return out;
 }
 
-double SightMap::share_passed_above(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double top, double margin) const {
-  const double length = (b - a).norm();
-  const int steps = std::max(1, static_cast<int>(std::ceil(length / config_.cell)));
-  const auto at = [this](long c, long r, std::size_t* i) {
-    *i = static_cast<std::size_t>((r & (kTileSide - 1)) * kTileSide + (c & (kTileSide - 1)));
-    return tile(c >> kTileBits, r >> kTileBits);
-  };
-  const std::uint8_t top_code = height_code(top);
-  int above = 0;
-  for (int k = 0; k <= steps; ++k) {
-    const Eigen::Vector2d q = (a + (b - a) * (static_cast<double>(k) / steps)) / config_.cell;
-    const long c = static_cast<long>(std::floor(q.x())), r = static_cast<long>(std::floor(q.y()));
-    std::size_t i;
-    const Tile* t = at(c, r, &i);
-    if (t == nullptr || t->over[i] == 0 || !(floor_z_ + t->over[i] * kOverStep > top + margin)) continue;
-    bool low_return = false;
-    for (long dr = -1; dr <= 1 && !low_return; ++dr) {
-      for (long dc = -1; dc <= 1 && !low_return; ++dc) {
-        std::size_t j;
-        const Tile* u = at(c + dc, r + dr, &j);
-        low_return = u != nullptr && u->low[j] > 0 && u->low[j] <= top_code;
-      }
+bool SightMap::return_near(const Eigen::Vector2d& xy, double z) const {
+  const long c = static_cast<long>(std::floor(xy.x() / config_.cell)), r = static_cast<long>(std::floor(xy.y() / config_.cell));
+  const std::uint8_t code = height_code(z);
+  for (long dr = -1; dr <= 1; ++dr) {
+    for (long dc = -1; dc <= 1; ++dc) {
+      const Tile* t = tile((c + dc) >> kTileBits, (r + dr) >> kTileBits);
+      const std::size_t i = static_cast<std::size_t>(((r + dr) & (kTileSide - 1)) * kTileSide + ((c + dc) & (kTileSide - 1)));
+      if (t != nullptr && t->low[i] > 0 && t->low[i] <= code) return true;
     }
-    if (low_return) ++above;
   }
-  return static_cast<double>(above) / (steps + 1);
+  return false;
 }
 
 std::vector<std::uint8_t> SightMap::open_cells(const GridFrame& f) const {

@@ -48,12 +48,9 @@ class SightMap {
   /// frontier of what the sensor has seen.
   std::vector<std::uint8_t> known_cells(const GridFrame& frame) const;
 
-  /// The share of the cells along a-b (map x-y) where a return ended at most `top` high (map
-  /// frame; there or in a neighbouring cell) and some ray crossed higher than top + margin
-  /// without ending there: over a plane's line above its highest point, its top was seen (a
-  /// shelf, a partition); a wall up to the ceiling stops every ray. Rays through a door in the
-  /// plane's line do not count: nothing there is as low as the plane's top (its lintel is above).
-  double share_passed_above(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double top, double margin) const;
+  /// Whether a return above the floor ended at most z high (map frame) in the cell of xy or
+  /// one of its 8 neighbours (something stands there that low).
+  bool return_near(const Eigen::Vector2d& xy, double z) const;
 
   double floor_z() const { return floor_z_; }
   /// The box of every cell touched (lo > hi when none).
@@ -68,11 +65,10 @@ class SightMap {
     std::uint16_t floor[kTileSide * kTileSide] = {};
     std::uint16_t below[kTileSide * kTileSide] = {};
     std::uint8_t hit[kTileSide * kTileSide] = {};  ///< a return above the floor ended here
-    std::uint8_t over[kTileSide * kTileSide] = {}; ///< the highest ray crossing it, kOverStep units above the floor (0: none)
-    std::uint8_t low[kTileSide * kTileSide] = {};  ///< 1 + the lowest return in it, kOverStep units above the floor (0: none)
+    std::uint8_t low[kTileSide * kTileSide] = {};  ///< the lowest return in it, kLowStep units above the floor (0: none)
   };
-  static constexpr double kOverStep = 0.05;  // m: 12.7 m of headroom in a byte
-  /// A height above the floor in kOverStep units, 1 to 255 (0 is "none").
+  static constexpr double kLowStep = 0.05;  // m: 12.7 m in a byte
+  /// A height above the floor in kLowStep units, 1 to 255 (0 is "none").
   std::uint8_t height_code(double z) const;
   enum class Mark { passed, floor, below, hit };
   /// The tile holding cell (c, r) (made if new) and the cell's index in it.

@@ -42,7 +42,8 @@ RoomLayer::RoomLayer(RoomLayerSettings settings)
     : settings_(std::move(settings)),
       flush_trigger_(settings_.flush),
       timer_trigger_(settings_.timer),
-      map_(association_for(settings_.association, settings_.layer.free_space_method)) {
+      map_(association_for(settings_.association, settings_.layer.free_space_method)),
+      wall_tops_(settings_.sight.cell) {
   const RoomLayerConfig& c = settings_.layer;
   if (c.free_space_method != "traversable" && c.free_space_method != "esdf")
     throw std::invalid_argument("free_space_method must be traversable or esdf, not '" + c.free_space_method + "'");
@@ -123,11 +124,20 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
     auto it = sight_.find(level);
     if (it == sight_.end()) it = sight_.emplace(level, freespace::SightMap(levels_[static_cast<std::size_t>(level)], sight)).first;
     it->second.add_scan(input.pose.translation(), input.scan_points);
-    // A plane whose top no ray passed above may reach the ceiling (a low sensor sees a wall's foot).
+    // A plane whose top no ray passed above may reach the ceiling (a low sensor sees a wall's
+    // foot); only those of this level short of wall_reach_height need the rays' word.
     const rooms::RoomSegmentationConfig& seg = settings_.segmentation;
+    const double level_floor = levels_[static_cast<std::size_t>(level)];
+    const auto top_of = [](const rooms::WallCandidate& w) { return freespace::WallTopRays::Wall{w.id, w.end_a, w.end_b, w.z1}; };
+    std::vector<freespace::WallTopRays::Wall> short_walls;
+    for (const rooms::WallCandidate& w : input.walls)
+      if (std::abs(w.plane.n.z()) <= seg.max_normal_z && w.z1 >= level_floor + seg.min_wall_height &&
+          w.z1 < level_floor + seg.wall_reach_height && w.z0 <= level_floor + seg.wall_reach_height)
+        short_walls.push_back(top_of(w));
+    wall_tops_.add_scan(input.pose.translation(), input.scan_points, short_walls, it->second, seg.wall_top_margin,
+                        seg.wall_top_beyond);
     walls_ = input.walls;
-    for (rooms::WallCandidate& w : walls_)
-      w.top_seen = it->second.share_passed_above(w.end_a, w.end_b, w.z1, seg.wall_top_margin) >= seg.wall_top_share;
+    for (rooms::WallCandidate& w : walls_) w.top_seen = wall_tops_.share_above(top_of(w), seg.wall_top_margin) >= seg.wall_top_share;
   }
   if (settings_.layer.room_trigger == "timer") {
     // S-Graphs+: every period, the robot's whole cluster as it is now.

@@ -25,6 +25,7 @@
 #include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/freespace/esdf_free_space.hpp"
 #include "tsgraphs/freespace/sight_map.hpp"
+#include "tsgraphs/freespace/wall_top_rays.hpp"
 #include "tsgraphs/freespace/traversable_free_space.hpp"
 #include "tsgraphs/ground/traversable_node_map.hpp"
 #include "tsgraphs/rooms/room_association.hpp"
@@ -185,6 +186,7 @@ class RoomLayer {
   double nodes_cell_ = 0.25;                ///< the node map's cell (the reach of a node)
   std::vector<Eigen::Vector3d> deferred_path_;///< TS-graphs: floor points in spaces not yet explored enough
   std::map<int, freespace::SightMap> sight_;   ///< TS-graphs: per level, what the rays saw
+  freespace::WallTopRays wall_tops_;           ///< TS-graphs: the rays that passed above the planes' tops
   std::set<int> free_nodes_;                ///< TS-graphs: every node that was in the robot's free space
   std::vector<KeyframeSpace> pending_;      ///< the latest keyframes' free space, held while the trigger confirms a change
   std::vector<double> levels_;              ///< floor heights of the levels seen

@@ -480,6 +480,7 @@ void RoomSegmentationConfig::validate() const {
   if (!(min_bend_deg > 0.0 && min_bend_deg < 180.0)) fail("min_bend_deg must be in (0, 180)");
   if (!(min_fit_share >= 0.0)) fail("min_fit_share must be >= 0");
   if (!(wall_top_margin >= 0.0)) fail("wall_top_margin must be >= 0");
+  if (!(wall_top_beyond >= 0.0)) fail("wall_top_beyond must be >= 0");
   if (!(wall_top_share > 0.0 && wall_top_share <= 1.0)) fail("wall_top_share must be in (0, 1]");
   if (!(wall_joint_gap >= 0.0)) fail("wall_joint_gap must be >= 0");
   if (!(frontier_reach >= 0.0)) fail("frontier_reach must be >= 0");

@@ -36,6 +36,7 @@ struct RoomSegmentationConfig {
                                         ///< above a door's lintel and the tallest furniture (shelves end by 2.2 m), below the
                                         ///< ceiling; a lintel, the storey above, a shelf row or a railing does not
   double wall_top_margin = 0.2;         ///< a ray this far above a plane's highest point over its line saw above it (m)
+  double wall_top_beyond = 0.2;         ///< ...if it ends at least this far past the plane's line (m): not on its face
   double wall_top_share = 0.25;         ///< ...along this share of its length: its top is seen (a shelf, a partition) and it
                                         ///< bounds a level only if it spans wall_reach_height; an unseen top (a low sensor
                                         ///< sees only a wall's foot) may reach the ceiling: it bounds the level
@@ -72,6 +73,7 @@ struct RoomSegmentationConfig {
     v("min_wall_height", min_wall_height);
     v("wall_reach_height", wall_reach_height);
     v("wall_top_margin", wall_top_margin);
+    v("wall_top_beyond", wall_top_beyond);
     v("wall_top_share", wall_top_share);
     v("wall_joint_gap", wall_joint_gap);
     v("max_door_width", max_door_width);
