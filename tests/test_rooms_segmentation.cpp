@@ -344,21 +344,27 @@ TEST(SightMap, ARayUnderTheFloorBeyondAVoidMarksNothingAboveIt) {
   EXPECT_EQ(at(6.5, 0.0), 1);  // above the rays that ran on under the floor
 }
 
+/// The rays from `sensor` to `returns` recorded for `wall` (a margin and a reach past it of 0.2 m).
+freespace::WallTopRays rays_over(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& returns,
+                                 const freespace::WallTopRays::Wall& wall) {
+  freespace::SightMap sight(0.0, {});
+  sight.add_scan(sensor, returns);
+  freespace::WallTopRays tops(0.1);
+  tops.add_scan(sensor, returns, {wall}, sight, 0.2, 0.2);
+  return tops;
+}
+
 TEST(WallTopRays, RaysOverAPlaneShowItsTop) {
   // A sensor 1.7 m up; a block's face at x = 3 (its top 0.8 m) stops the rays aimed at it, at
   // 0.5 m; the others pass over it, at 1.04-1.06 m, to the floor 8 m out.
-  freespace::SightMap sight(0.0, {});
   std::vector<Eigen::Vector3d> returns;
   for (int k = 0; k < 40; ++k) {
     const double y = -1.0 + 0.05 * k;  // where the ray crosses x = 3
     returns.emplace_back(3.0, y, 0.5);
     returns.emplace_back(8.0, y * 8.0 / 3.0, 0.0);
   }
-  const Eigen::Vector3d sensor(0.0, 0.0, 1.7);
-  sight.add_scan(sensor, returns);
   const freespace::WallTopRays::Wall block{7, {3.0, -0.9}, {3.0, 0.9}, 0.8};
-  freespace::WallTopRays tops(0.1);
-  tops.add_scan(sensor, returns, {block}, sight, 0.2, 0.2);
+  const freespace::WallTopRays tops = rays_over({0.0, 0.0, 1.7}, returns, block);
   EXPECT_GT(tops.share_above(block, 0.2), 0.9);
   // Seen higher later (its top at 1.0 m), no ray passed 0.2 m above it.
   freespace::WallTopRays::Wall taller = block;
@@ -373,26 +379,20 @@ TEST(WallTopRays, RaysInTheRoomBesideAWallDoNotShowItsTop) {
   // A low sensor (0.5 m) near a wall whose face is at x = 3.05, seen up to 1.8 m; rays to the
   // ceiling (3 m) just short of the wall run along its face, high above 1.8 m, through the
   // raster cells its line lies in (x in [3.0, 3.1)), but never cross it: its top is unseen.
-  freespace::SightMap sight(0.0, {});
   std::vector<Eigen::Vector3d> returns;
   for (int k = 0; k < 60; ++k) {
     const double y = -3.0 + 0.1 * k;
     for (const double z : {0.2, 1.0, 1.8}) returns.emplace_back(3.05, y, z);
     if (y > -1.0) returns.emplace_back(3.03, y, 3.0);
   }
-  const Eigen::Vector3d sensor(2.5, -3.0, 0.5);
-  sight.add_scan(sensor, returns);
   const freespace::WallTopRays::Wall wall{1, {3.05, -3.0}, {3.05, 3.0}, 1.8};
-  freespace::WallTopRays tops(0.1);
-  tops.add_scan(sensor, returns, {wall}, sight, 0.2, 0.2);
-  EXPECT_EQ(tops.share_above(wall, 0.2), 0.0);
+  EXPECT_EQ(rays_over({2.5, -3.0, 0.5}, returns, wall).share_above(wall, 0.2), 0.0);
 }
 
 TEST(WallTopRays, RaysThroughADoorDoNotShowAWallsTop) {
   // A low sensor (0.5 m) sees a wall at x = 3 up to 0.8 m, a 1 m door in it and the door's
   // lintel from 2.1 m; the rays through the door pass the wall's line above 0.8 m. Nothing as
   // low as the wall's top is in the door, so the rays there saw no top: the wall's is unseen.
-  freespace::SightMap sight(0.0, {});
   std::vector<Eigen::Vector3d> returns;
   for (int k = 0; k < 60; ++k) {
     const double y = -1.5 + 0.05 * k;
@@ -403,12 +403,8 @@ TEST(WallTopRays, RaysThroughADoorDoNotShowAWallsTop) {
       returns.emplace_back(7.0, y * 7.0 / 3.0, 2.0);  // through the door, crossing its line at 1.14 m
     }
   }
-  const Eigen::Vector3d sensor(0.0, 0.0, 0.5);
-  sight.add_scan(sensor, returns);
   const freespace::WallTopRays::Wall wall{1, {3.0, -1.5}, {3.0, 1.5}, 0.8};
-  freespace::WallTopRays tops(0.1);
-  tops.add_scan(sensor, returns, {wall}, sight, 0.2, 0.2);
-  EXPECT_LT(tops.share_above(wall, 0.2), 0.25);
+  EXPECT_LT(rays_over({0.0, 0.0, 0.5}, returns, wall).share_above(wall, 0.2), 0.25);
 }
 
 TEST(RoomSegmentation, ConfigOutOfRangeIsRefused) {
