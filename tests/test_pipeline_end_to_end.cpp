@@ -164,17 +164,13 @@ void expect_must_show(const Outcome& o) {
 }  // namespace
 
 // Issue 5's must-show figures for rooms on the built-in scenes: DCS >= 0.85, F1 >= 0.9 at IoU
-// 0.5, no under-segmented room and no two final rooms for one true room; f_re >= 0.9 (issue 5
-// asked 0.95: the room segmentation of issue 15 extracts the atrium's west leg once more on
-// lap 1, where the map is still filling in); d_center <= 0.4 m (issue 5 asked 0.3: a ring leg
-// of the atrium extracted on lap 1 before the leg round its corner was seen keeps the corner
-// square, which the completed ring gives to the next leg: 0.28 m at issue 15's first sitting,
-// 0.36 m since the sight map stops following rays under the floor). The suite-level figures
-// are asserted on the smoke suite, test_app_suite.cpp.
+// 0.5, no under-segmented room and no two final rooms for one true room, f_re >= 0.95 and
+// d_center <= 0.3 m. The suite-level figures are asserted on the smoke suite,
+// test_app_suite.cpp.
 void expect_rooms(const Outcome& o) {
-  EXPECT_GE(o.rooms_consistency.f_re, 0.9);
+  EXPECT_GE(o.rooms_consistency.f_re, 0.95);
   EXPECT_GE(o.rooms_consistency.dcs.value_or(0), 0.85);
-  EXPECT_LE(o.rooms_consistency.d_center.value_or(1e9), 0.4);
+  EXPECT_LE(o.rooms_consistency.d_center.value_or(1e9), 0.3);
   EXPECT_GE(o.rooms_truth.f1.value_or(0), 0.9);
   EXPECT_EQ(o.rooms_truth.under_segmented, 0);  // no room spans the void or crosses a railing
   EXPECT_EQ(o.rooms_truth.over_segmented, 0);   // no two final rooms for one true room
