@@ -29,8 +29,12 @@ SightMap::SightMap(double floor_z, const SightMapConfig& config)
   if (!(config.max_range > 0.0)) throw std::invalid_argument("SightMapConfig: max_range must be > 0");
 }
 
+std::size_t SightMap::index_in_tile(long c, long r) {
+  return static_cast<std::size_t>((r & (kTileSide - 1)) * kTileSide + (c & (kTileSide - 1)));
+}
+
 SightMap::Tile& SightMap::tile_at(long c, long r, std::size_t* i) {
-  *i = static_cast<std::size_t>((r & (kTileSide - 1)) * kTileSide + (c & (kTileSide - 1)));
+  *i = index_in_tile(c, r);
   // A ray walks many cells of one tile in a row: look the tile up only when it changes (the
   // map's nodes stay put when it grows).
   const std::uint64_t key = tile_key(c >> kTileBits, r >> kTileBits);
@@ -113,7 +117,7 @@ void SightMap::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::
 const SightMap::Tile* SightMap::cell(const GridFrame& f, int col, int row, std::size_t* i) const {
   const Eigen::Vector2d q = f.center(col, row);
   const long c = static_cast<long>(std::floor(q.x() / config_.cell)), r = static_cast<long>(std::floor(q.y() / config_.cell));
-  *i = static_cast<std::size_t>((r & (kTileSide - 1)) * kTileSide + (c & (kTileSide - 1)));
+  *i = index_in_tile(c, r);
   return tile(c >> kTileBits, r >> kTileBits);
 }
 
@@ -136,7 +140,7 @@ bool SightMap::return_near(const Eigen::Vector2d& xy, double z) const {
   for (long dr = -1; dr <= 1; ++dr) {
     for (long dc = -1; dc <= 1; ++dc) {
       const Tile* t = tile((c + dc) >> kTileBits, (r + dr) >> kTileBits);
-      const std::size_t i = static_cast<std::size_t>(((r + dr) & (kTileSide - 1)) * kTileSide + ((c + dc) & (kTileSide - 1)));
+      const std::size_t i = index_in_tile(c + dc, r + dr);
       if (t != nullptr && t->low[i] > 0 && t->low[i] <= code) return true;
     }
   }

@@ -71,6 +71,8 @@ class SightMap {
   /// A height above the floor in kLowStep units, 1 to 255 (0 is "none").
   std::uint8_t height_code(double z) const;
   enum class Mark { passed, floor, below, hit };
+  /// Cell (c, r)'s index in its tile.
+  static std::size_t index_in_tile(long c, long r);
   /// The tile holding cell (c, r) (made if new) and the cell's index in it.
   Tile& tile_at(long c, long r, std::size_t* i);
   /// `z`: the return's height (map frame), for a hit.

@@ -131,9 +131,7 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
     const auto top_of = [](const rooms::WallCandidate& w) { return freespace::WallTopRays::Wall{w.id, w.end_a, w.end_b, w.z1}; };
     std::vector<freespace::WallTopRays::Wall> short_walls;
     for (const rooms::WallCandidate& w : input.walls)
-      if (std::abs(w.plane.n.z()) <= seg.max_normal_z && w.z1 >= level_floor + seg.min_wall_height &&
-          w.z1 < level_floor + seg.wall_reach_height && w.z0 <= level_floor + seg.wall_reach_height)
-        short_walls.push_back(top_of(w));
+      if (rooms::short_of_reach(w, level_floor, seg)) short_walls.push_back(top_of(w));
     wall_tops_.add_scan(input.pose.translation(), input.scan_points, short_walls, it->second, seg.wall_top_margin,
                         seg.wall_top_beyond);
     walls_ = input.walls;

@@ -49,6 +49,14 @@ WallLine line_at(const WallCandidate& w, double floor_z) {
   return l;
 }
 
+/// A vertical plane of min_wall_height whose points start below a wall's reach and rise
+/// min_wall_height above this floor (a wall of the storey below, whose top no ray from here
+/// passes above, is not this level's)...
+bool of_level(const WallCandidate& w, double floor_z, const RoomSegmentationConfig& cfg) {
+  return std::abs(w.plane.n.z()) <= cfg.max_normal_z && w.height >= cfg.min_wall_height &&
+         w.z0 <= floor_z + cfg.wall_reach_height && w.z1 >= floor_z + cfg.min_wall_height;
+}
+
 /// One of the lines ends within `gap` of the other, and they are not parallel: a corner or a T.
 bool joined(const WallLine& p, const WallLine& q, double gap, double cos_parallel) {
   if (std::abs(p.n.dot(q.n)) >= cos_parallel) return false;
@@ -65,10 +73,7 @@ std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, doubl
                                   bool reaching = true) {
   std::vector<WallLine> out, unseen_top;
   for (const WallCandidate& w : walls) {
-    if (std::abs(w.plane.n.z()) > cfg.max_normal_z || w.height < cfg.min_wall_height) continue;
-    // Its points start below a wall's reach and rise min_wall_height above this floor (a wall of
-    // the storey below, whose top no ray from here passes above, is not this level's)...
-    if (w.z0 > floor_z + cfg.wall_reach_height || w.z1 < floor_z + cfg.min_wall_height) continue;
+    if (!of_level(w, floor_z, cfg)) continue;
     // ...and reach wall_reach_height, or rise to where no ray saw above them.
     if (reaching && w.z1 < floor_z + cfg.wall_reach_height) {
       if (!w.top_seen) unseen_top.push_back(line_at(w, floor_z));
@@ -484,6 +489,10 @@ void RoomSegmentationConfig::validate() const {
   if (!(wall_top_share > 0.0 && wall_top_share <= 1.0)) fail("wall_top_share must be in (0, 1]");
   if (!(wall_joint_gap >= 0.0)) fail("wall_joint_gap must be >= 0");
   if (!(frontier_reach >= 0.0)) fail("frontier_reach must be >= 0");
+}
+
+bool short_of_reach(const WallCandidate& wall, double floor_z, const RoomSegmentationConfig& cfg) {
+  return of_level(wall, floor_z, cfg) && wall.z1 < floor_z + cfg.wall_reach_height;
 }
 
 bool crosses_wall(const Vec2& a, const Vec2& b, const std::vector<WallCandidate>& walls, double floor_z,

@@ -126,6 +126,11 @@ struct RoomSegmentation {
   int space_at(const Vec2& p, double radius = 0.0) const;
 };
 
+/// Whether `wall` is a vertical plane of the level at floor_z (min_wall_height tall, coming down
+/// to it) whose points do not span wall_reach_height: it bounds the level only if no ray saw
+/// above its top (WallCandidate::top_seen) and it joins a wall that bounds.
+bool short_of_reach(const WallCandidate& wall, double floor_z, const RoomSegmentationConfig& config);
+
 /// Whether the step from `a` to `b` (floor points of the level at floor_z) crosses one of the
 /// walls that bound its spaces (the same walls segment_rooms draws): the robot went through a
 /// door or an opening in a wall, into another space.
