@@ -344,6 +344,32 @@ TEST(SightMap, ARayUnderTheFloorBeyondAVoidMarksNothingAboveIt) {
   EXPECT_EQ(at(6.5, 0.0), 1);  // above the rays that ran on under the floor
 }
 
+TEST(SightMap, AScanTakenBackLeavesWhatTheOthersSaw) {
+  // Two scans of a floor 1 m below the sensor: one from (0, 0) towards +x, one from (0, 3)
+  // towards -x, with a return on a box. After the first is taken back the map is what the
+  // second alone makes: the back-end moved the first one's keyframe and it is traced again.
+  const auto scan = [](double y0, double dir) {
+    std::vector<Eigen::Vector3d> returns;
+    for (int k = 0; k < 30; ++k) returns.emplace_back(dir * (1.0 + 0.1 * k), y0 + 0.02 * k, k % 5 == 0 ? 0.4 : 0.0);
+    return returns;
+  };
+  const Eigen::Vector3d s1(0.0, 0.0, 1.0), s2(0.0, 3.0, 1.0);
+  freespace::SightMap both(0.0, {}), second(0.0, {});
+  both.add_scan(s1, scan(0.0, 1.0));
+  both.add_scan(s2, scan(3.0, -1.0));
+  second.add_scan(s2, scan(3.0, -1.0));
+  const GridFrame f = GridFrame::around({-5, -1}, {5, 4}, 0.1, 0.0);
+  ASSERT_NE(both.known_cells(f), second.known_cells(f));
+  both.remove_scan(s1, scan(0.0, 1.0));
+  EXPECT_EQ(both.known_cells(f), second.known_cells(f));
+  EXPECT_EQ(both.open_cells(f), second.open_cells(f));
+  EXPECT_FALSE(both.return_near({2.0, 0.2}, 0.5));  // the first scan's box return is gone
+  EXPECT_TRUE(both.return_near({-2.0, 3.2}, 0.5));  // the second's stays
+  both.remove_scan(s2, scan(3.0, -1.0));
+  const std::vector<std::uint8_t> none(f.size(), 0);
+  EXPECT_EQ(both.known_cells(f), none);
+}
+
 /// The rays from `sensor` to `returns` recorded for `wall` (a margin and a reach past it of 0.2 m).
 freespace::WallTopRays rays_over(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& returns,
                                  const freespace::WallTopRays::Wall& wall) {

@@ -12,8 +12,9 @@ std::uint64_t tile_key(long tc, long tr) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(tc)) << 32) | static_cast<std::uint32_t>(tr);
 }
 
-void bump(std::uint16_t& count) {
-  if (count < std::numeric_limits<std::uint16_t>::max()) ++count;
+void bump(std::uint32_t& count, int delta) {
+  if (delta > 0) ++count;
+  else if (count > 0) --count;
 }
 
 }  // namespace
@@ -49,16 +50,20 @@ std::uint8_t SightMap::height_code(double z) const {
   return static_cast<std::uint8_t>(std::clamp(std::ceil((z - floor_z_) / kLowStep), 1.0, 255.0));
 }
 
-void SightMap::mark(long c, long r, Mark m, double z) {
+void SightMap::mark(long c, long r, Mark m, int delta, double z) {
   std::size_t i;
   Tile& t = tile_at(c, r, &i);
   if (m == Mark::hit) {
-    t.hit[i] = 1;
-    const std::uint8_t code = height_code(z);
-    if (t.low[i] == 0 || code < t.low[i]) t.low[i] = code;
+    bump(t.hit[i], delta);
+    if (t.hit[i] == 0) {
+      t.low[i] = 0;
+    } else if (delta > 0) {
+      const std::uint8_t code = height_code(z);
+      if (t.low[i] == 0 || code < t.low[i]) t.low[i] = code;
+    }
     return;
   }
-  bump(m == Mark::passed ? t.passed[i] : m == Mark::floor ? t.floor[i] : t.below[i]);
+  bump(m == Mark::passed ? t.passed[i] : m == Mark::floor ? t.floor[i] : t.below[i], delta);
 }
 
 const SightMap::Tile* SightMap::tile(long tc, long tr) const {
@@ -67,6 +72,14 @@ const SightMap::Tile* SightMap::tile(long tc, long tr) const {
 }
 
 void SightMap::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points) {
+  trace(sensor, points, +1);
+}
+
+void SightMap::remove_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points) {
+  trace(sensor, points, -1);
+}
+
+void SightMap::trace(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points, int delta) {
   const double res = config_.cell;
   const double low = floor_z_ - config_.floor_step;
   // A ray that is lower still than a slab's thickness (taken as another floor_step) is under
@@ -94,8 +107,8 @@ void SightMap::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::
       if (z < under) break;
       std::size_t i;
       Tile& cell = tile_at(c, r, &i);
-      if (z < low) bump(cell.below[i]);
-      else if (z <= top) bump(cell.passed[i]);
+      if (z < low) bump(cell.below[i], delta);
+      else if (z <= top) bump(cell.passed[i], delta);
       if (t_x < t_y) {
         t = t_x;
         t_x += inv_x;
@@ -106,9 +119,9 @@ void SightMap::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::
         r += step_r;
       }
     }
-    if (std::abs(p.z() - floor_z_) <= config_.floor_step) mark(c_end, r_end, Mark::floor);
-    else if (p.z() >= under && p.z() < low) mark(c_end, r_end, Mark::below);
-    else if (p.z() >= low) mark(c_end, r_end, Mark::hit, p.z());
+    if (std::abs(p.z() - floor_z_) <= config_.floor_step) mark(c_end, r_end, Mark::floor, delta);
+    else if (p.z() >= under && p.z() < low) mark(c_end, r_end, Mark::below, delta);
+    else if (p.z() >= low) mark(c_end, r_end, Mark::hit, delta, p.z());
     lo_ = lo_.cwiseMin(sensor.head<2>()).cwiseMin(p.head<2>());
     hi_ = hi_.cwiseMax(sensor.head<2>()).cwiseMax(p.head<2>());
   }

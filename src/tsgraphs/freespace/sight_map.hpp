@@ -9,7 +9,8 @@
 /// it wherever they did not go below it. A ray is followed down only through the slab's
 /// thickness: past a void's edge it runs on under the floor, beneath rooms that have one.
 /// The room segmentation takes its spaces from this and from the traversable ground together,
-/// so that the same rooms come from any mount height.
+/// so that the same rooms come from any mount height. A scan can be taken back and traced
+/// again (remove_scan, add_scan) when the back-end corrects its keyframe.
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -40,6 +41,11 @@ class SightMap {
 
   /// Traces the rays from `sensor` to each of `points` (map frame).
   void add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points);
+  /// Takes back a scan given to add_scan with the same sensor and points (its keyframe has
+  /// moved: the back-end corrected it), so that it can be traced again where it now is. The
+  /// counts return to what they were without it; a cell's lowest return does so only when no
+  /// other return is left in it (the map keeps the lowest, not all).
+  void remove_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points);
 
   /// Per cell of `frame`: `open` where rays passed at walking height or met the floor, and
   /// rays never went below the floor more often than they met it there.
@@ -61,10 +67,11 @@ class SightMap {
   static constexpr int kTileBits = 5;  // 32 x 32 cells a tile
   static constexpr int kTileSide = 1 << kTileBits;
   struct Tile {
-    std::uint16_t passed[kTileSide * kTileSide] = {};
-    std::uint16_t floor[kTileSide * kTileSide] = {};
-    std::uint16_t below[kTileSide * kTileSide] = {};
-    std::uint8_t hit[kTileSide * kTileSide] = {};  ///< a return above the floor ended here
+    // Counts, not flags, so that a scan can be taken back (remove_scan).
+    std::uint32_t passed[kTileSide * kTileSide] = {};
+    std::uint32_t floor[kTileSide * kTileSide] = {};
+    std::uint32_t below[kTileSide * kTileSide] = {};
+    std::uint32_t hit[kTileSide * kTileSide] = {};  ///< returns above the floor that ended here
     std::uint8_t low[kTileSide * kTileSide] = {};  ///< the lowest return in it, kLowStep units above the floor (0: none)
   };
   static constexpr double kLowStep = 0.05;  // m: 12.7 m in a byte
@@ -75,8 +82,10 @@ class SightMap {
   static std::size_t index_in_tile(long c, long r);
   /// The tile holding cell (c, r) (made if new) and the cell's index in it.
   Tile& tile_at(long c, long r, std::size_t* i);
-  /// `z`: the return's height (map frame), for a hit.
-  void mark(long c, long r, Mark m, double z = 0.0);
+  /// Adds `delta` (+1 or -1) to cell (c, r)'s count `m`; `z`: the return's height (map frame), for a hit.
+  void mark(long c, long r, Mark m, int delta, double z = 0.0);
+  /// add_scan (delta +1) and remove_scan (delta -1).
+  void trace(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points, int delta);
   const Tile* tile(long tc, long tr) const;
   /// The tile and index of the cell holding the frame's cell centre, or nullptr.
   const Tile* cell(const GridFrame& f, int col, int row, std::size_t* i) const;

@@ -35,6 +35,10 @@ class WallTopRays {
   void add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points, const std::vector<Wall>& walls,
                 const SightMap& sight, double margin, double beyond);
 
+  /// Drops what was recorded for plane `id` (its rays are to be recorded again, from where
+  /// their keyframes now are).
+  void forget(int id) { crossed_.erase(id); }
+
   /// The share of the cells along the wall's segment that a recorded ray crossed higher than
   /// its (current) top + margin.
   double share_above(const Wall& wall, double margin) const;

@@ -244,6 +244,8 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
     for (const Eigen::Vector3f& p : keyframe_clouds_[keyframe].points) own.points.push_back(T * p);
     for (const Eigen::Vector3f& p : voxel_downsample(own, config_.rooms.layer.obstacle_voxel).points)
       in.scan_points.push_back(p.cast<double>());
+    in.keyframe_poses.reserve(graph_.keyframes().size());
+    for (const auto& k : graph_.keyframes()) in.keyframe_poses.push_back(k.pose);
   }
   // Walls: the mapped vertical planes with their extents, as far as a space the robot is in
   // may reach (the room segmentation closes the doors of all of them).

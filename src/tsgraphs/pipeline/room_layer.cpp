@@ -123,17 +123,42 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
     sight.headroom = settings_.free_space.obstacle_max_height;
     auto it = sight_.find(level);
     if (it == sight_.end()) it = sight_.emplace(level, freespace::SightMap(levels_[static_cast<std::size_t>(level)], sight)).first;
-    it->second.add_scan(input.pose.translation(), input.scan_points);
+    retrace(input);
+    TracedScan scan{input.keyframe, level, input.pose, {}, 0.0};
+    const Pose3 to_sensor = input.pose.inverse();
+    scan.local.reserve(input.scan_points.size());
+    for (const Eigen::Vector3d& p : input.scan_points) {
+      const Eigen::Vector3d l = to_sensor * p;
+      scan.local.push_back(l.cast<float>());
+      scan.reach = std::max(scan.reach, l.norm());
+    }
+    const std::vector<Eigen::Vector3d> points = map_points(scan);
+    it->second.add_scan(input.pose.translation(), points);
+    traced_.push_back(std::move(scan));
     // A plane whose top no ray passed above may reach the ceiling (a low sensor sees a wall's
     // foot); only those of this level short of wall_reach_height need the rays' word.
     const rooms::RoomSegmentationConfig& seg = settings_.segmentation;
     const double level_floor = levels_[static_cast<std::size_t>(level)];
     const auto top_of = [](const rooms::WallCandidate& w) { return freespace::WallTopRays::Wall{w.id, w.end_a, w.end_b, w.z1}; };
-    std::vector<freespace::WallTopRays::Wall> short_walls;
-    for (const rooms::WallCandidate& w : input.walls)
-      if (rooms::short_of_reach(w, level_floor, seg)) short_walls.push_back(top_of(w));
-    wall_tops_.add_scan(input.pose.translation(), input.scan_points, short_walls, it->second, seg.wall_top_margin,
+    std::vector<freespace::WallTopRays::Wall> short_walls, stale_walls;
+    for (const rooms::WallCandidate& w : input.walls) {
+      if (!rooms::short_of_reach(w, level_floor, seg)) continue;
+      // A plane whose rays were recorded before kept scans were traced again is recorded anew
+      // from all of them, where their keyframes are now.
+      const auto at = wall_tops_at_.find(w.id);
+      if (at != wall_tops_at_.end() && at->second != retraced_) stale_walls.push_back(top_of(w));
+      else short_walls.push_back(top_of(w));
+      wall_tops_at_[w.id] = retraced_;
+    }
+    wall_tops_.add_scan(input.pose.translation(), points, short_walls, it->second, seg.wall_top_margin,
                         seg.wall_top_beyond);
+    if (!stale_walls.empty()) {
+      for (const freespace::WallTopRays::Wall& w : stale_walls) wall_tops_.forget(w.id);
+      for (const TracedScan& kept : traced_)
+        if (kept.level == level)
+          wall_tops_.add_scan(kept.traced_at.translation(), map_points(kept), stale_walls, it->second,
+                              seg.wall_top_margin, seg.wall_top_beyond);
+    }
     walls_ = input.walls;
     for (rooms::WallCandidate& w : walls_) w.top_seen = wall_tops_.share_above(top_of(w), seg.wall_top_margin) >= seg.wall_top_share;
   }
@@ -226,6 +251,32 @@ std::vector<RoomEventRecord> RoomLayer::update_flush(const RoomLayerInput& input
   pending_.erase(pending_.begin(), pending_.end() - static_cast<std::ptrdiff_t>(held));
   segment_level_ = level;
   return events;
+}
+
+std::vector<Eigen::Vector3d> RoomLayer::map_points(const TracedScan& scan) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(scan.local.size());
+  for (const Eigen::Vector3f& l : scan.local) out.push_back(scan.traced_at * l.cast<double>());
+  return out;
+}
+
+void RoomLayer::retrace(const RoomLayerInput& input) {
+  bool any = false;
+  for (TracedScan& scan : traced_) {
+    if (scan.keyframe < 0 || static_cast<std::size_t>(scan.keyframe) >= input.keyframe_poses.size()) continue;
+    const Pose3& now = input.keyframe_poses[static_cast<std::size_t>(scan.keyframe)];
+    // How far its farthest point has moved: a shift under a cell changes no cell it marks by
+    // more than one.
+    const double angle = Eigen::AngleAxisd(now.linear() * scan.traced_at.linear().transpose()).angle();
+    const double shift = (now.translation() - scan.traced_at.translation()).norm() + 2.0 * std::sin(angle / 2.0) * scan.reach;
+    if (shift <= settings_.sight.cell) continue;
+    freespace::SightMap& sight = sight_.at(scan.level);
+    sight.remove_scan(scan.traced_at.translation(), map_points(scan));
+    scan.traced_at = now;
+    sight.add_scan(scan.traced_at.translation(), map_points(scan));
+    any = true;
+  }
+  if (any) ++retraced_;
 }
 
 void RoomLayer::commit(const KeyframeSpace& space) {

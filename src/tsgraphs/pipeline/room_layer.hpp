@@ -115,6 +115,7 @@ struct RoomLayerInput {
   const ground::TraversableNodeMap* nodes = nullptr;
   std::vector<Eigen::Vector3d> obstacle_candidates;  ///< map-frame points of the latest keyframes
   std::vector<Eigen::Vector3d> scan_points;          ///< this keyframe's points, map frame, thinned (the sight map's rays)
+  std::vector<Pose3> keyframe_poses;                 ///< TS-graphs: every keyframe's current estimate by index, so that earlier rays follow their keyframes (empty: they stay where traced)
   std::vector<rooms::WallCandidate> walls;           ///< mapped vertical planes with their extents
   std::vector<int> keyframe_planes;                  ///< ids of the planes this keyframe observes
 };
@@ -168,6 +169,19 @@ class RoomLayer {
   /// max_floor_slope over floor_window (a ramp, stairs): such floors belong to no level.
   bool on_level_floor(const Eigen::Vector3d& floor);
   void commit(const KeyframeSpace& space);
+  /// TS-graphs: a keyframe's rays, kept in its own frame so that they follow it when the
+  /// back-end corrects it (the planes they are judged against move with the optimisation).
+  struct TracedScan {
+    int keyframe = -1;
+    int level = -1;
+    Pose3 traced_at = Pose3::Identity();  ///< where its rays are in the sight map
+    std::vector<Eigen::Vector3f> local;   ///< its points, sensor frame
+    double reach = 0.0;                   ///< its farthest point from the sensor (m)
+  };
+  static std::vector<Eigen::Vector3d> map_points(const TracedScan& scan);
+  /// Traces again each kept scan whose keyframe has moved by more than a sight-map cell at its
+  /// farthest point (counted in retraced_).
+  void retrace(const RoomLayerInput& input);
   void clear_segment();
 
   RoomLayerSettings settings_;
@@ -187,6 +201,9 @@ class RoomLayer {
   std::vector<Eigen::Vector3d> deferred_path_;///< TS-graphs: floor points in spaces not yet explored enough
   std::map<int, freespace::SightMap> sight_;   ///< TS-graphs: per level, what the rays saw
   freespace::WallTopRays wall_tops_;           ///< TS-graphs: the rays that passed above the planes' tops
+  std::vector<TracedScan> traced_;             ///< TS-graphs: every keyframe's rays in the sight map
+  int retraced_ = 0;                           ///< TS-graphs: how many times kept scans were traced again
+  std::map<int, int> wall_tops_at_;            ///< TS-graphs: per plane, retraced_ when its rays were recorded
   std::set<int> free_nodes_;                ///< TS-graphs: every node that was in the robot's free space
   std::vector<KeyframeSpace> pending_;      ///< the latest keyframes' free space, held while the trigger confirms a change
   std::vector<double> levels_;              ///< floor heights of the levels seen
