@@ -103,6 +103,28 @@ TEST(RoomAssociation, CentresOnlyIgnoresTheDice) {
   EXPECT_FALSE(map.add_extraction(room({0.9, 0}, {6, 4}), 0).is_new);
 }
 
+TEST(RoomAssociation, AMappedRoomALaterSegmentationDividesFollowsIt) {
+  RoomMap map;
+  // A gallery and the bay beside it, first seen as one space.
+  map.add_extraction(room({0, 0}, {10, 4}), 0);
+  const ExtractedRoom gallery = room({0, 1}, {10, 2}), bay = room({-4, -1}, {2, 2});
+  const ExtractedRoom elsewhere = room({20, 0}, {4, 4});
+  // One space over it, or one space and another mostly outside it, divide nothing.
+  EXPECT_TRUE(map.follow_segmentation({room({0, 0}, {10, 4.2}), elsewhere}, 0).empty());
+  EXPECT_TRUE(map.follow_segmentation({gallery, room({-4, -3}, {2, 4})}, 0).empty());
+  EXPECT_TRUE(map.follow_segmentation({gallery, bay}, 1).empty());  // another level's
+  EXPECT_EQ(map.rooms().at(0).rect.size, Vec2(10, 4));
+  // Two spaces inside it: it becomes the one it shares the most with, the other a room of its own.
+  EXPECT_EQ(map.follow_segmentation({bay, gallery, elsewhere}, 0), std::vector<int>{0});
+  EXPECT_EQ(map.rooms().at(0).rect.center, Vec2(0, 1));
+  EXPECT_EQ(map.rooms().at(0).rect.size, Vec2(10, 2));
+  EXPECT_FALSE(map.add_extraction(gallery, 0).is_new);
+  const RoomAssociation b = map.add_extraction(bay, 0);
+  EXPECT_TRUE(b.is_new);
+  EXPECT_TRUE(map.merge_duplicates().empty());
+  EXPECT_EQ(map.rooms().size(), 2u);
+}
+
 TEST(RoomAssociation, DuplicatesMergeIntoTheMostExtracted) {
   RoomMap map;
   map.add_extraction(room({0, 0}, {5, 4}, {0, 1}), 0);    // id 0

@@ -1,7 +1,9 @@
 // Room segmentation on constructed levels, one rule each: a void between facing walls, a
-// corridor at the outer wall, doors, an L-shaped room, a diagonal corridor, a ring, shelves, a wall whose top no ray saw.
+// corridor at the outer wall, doors, an L-shaped room, a diagonal corridor, a ring, a
+// T-junction, a step in a corridor's width, a bay beside a gallery, shelves, a wall whose top no ray saw, rays over a ramp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <vector>
@@ -222,6 +224,75 @@ TEST(RoomSegmentation, ARingCorridorIsCutIntoItsLegs) {
   EXPECT_EQ(std::set<int>({south, north, west, east}).size(), 4u);
 }
 
+/// The four mirror images a rule must hold in (x, y flipped or not): in two of them the
+/// outline runs the other way round a corner.
+const Vec2 kMirrors[4] = {{1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
+
+/// `shape` mirrored by `m` (its coordinates times m's), counter-clockwise again.
+Polygon2 mirrored(const Polygon2& shape, const Vec2& m) {
+  Polygon2 out;
+  for (const Vec2& p : shape) out.push_back(p.cwiseProduct(m));
+  if (m.x() * m.y() < 0.0) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+/// A level of `shape` (mirrored by m) with a wall along each of its edges.
+SegmentationInput walled_level(const Polygon2& shape, const Vec2& m, const Vec2& inside) {
+  const Polygon2 c = mirrored(shape, m);
+  SegmentationInput in = level();
+  add_area(c, &in);
+  for (std::size_t i = 0; i < c.size(); ++i)
+    in.walls.push_back(wall(static_cast<int>(i), c[i], c[(i + 1) % c.size()], inside.cwiseProduct(m)));
+  return in;
+}
+
+TEST(RoomSegmentation, ATJunctionKeepsItsThroughCorridorWhole) {
+  // A 16 x 2 m corridor with a 2 m side corridor 6 m long off its middle: the through corridor
+  // is one space, cut from the side corridor across its mouth.
+  const Polygon2 t = {{0, 0}, {16, 0}, {16, 2}, {8, 2}, {8, 8}, {6, 8}, {6, 2}, {0, 2}};
+  for (const Vec2& m : kMirrors) {
+    const RoomSegmentation seg = segment_rooms(walled_level(t, m, {1, 1}));
+    const auto at = [&](double x, double y) { return seg.space_at(Vec2(x, y).cwiseProduct(m)); };
+    ASSERT_GE(at(1, 1), 0) << m.transpose();
+    EXPECT_EQ(at(1, 1), at(15, 1)) << m.transpose();
+    EXPECT_EQ(at(1, 1), at(7, 1)) << m.transpose();
+    ASSERT_GE(at(7, 6), 0) << m.transpose();
+    EXPECT_NE(at(7, 6), at(1, 1)) << m.transpose();
+  }
+}
+
+TEST(RoomSegmentation, ACorridorThatWidensIsCutWhereItWidens) {
+  // A 1.6 m corridor 10 m long running on as a 3 m one, one side straight (a library's two
+  // corridors): two corridors, cut across the narrow one's end.
+  const Polygon2 c = {{0, 0}, {20, 0}, {20, 3}, {10, 3}, {10, 1.6}, {0, 1.6}};
+  for (const Vec2& m : kMirrors) {
+    SegmentationInput in = level();
+    add_area(mirrored(c, m), &in);
+    // A wall along its straight side only, shelves along the other: no wall's end closes the step.
+    in.walls.push_back(wall(0, Vec2(0, 0).cwiseProduct(m), Vec2(20, 0).cwiseProduct(m), Vec2(5, 0.8).cwiseProduct(m)));
+    const RoomSegmentation seg = segment_rooms(in);
+    const auto at = [&](double x, double y) { return seg.space_at(Vec2(x, y).cwiseProduct(m)); };
+    ASSERT_GE(at(5, 0.8), 0) << m.transpose();
+    ASSERT_GE(at(15, 1.5), 0) << m.transpose();
+    EXPECT_NE(at(5, 0.8), at(15, 1.5)) << m.transpose();
+    EXPECT_EQ(at(11, 0.5), at(15, 1.5)) << m.transpose();
+  }
+}
+
+TEST(RoomSegmentation, ABayBesideAGalleryIsCutAlongTheGallerysSide) {
+  // A 24 x 2 m gallery with a 5 x 2 m bay open along its side at one end (a landing beside a
+  // gallery): the gallery's side runs on across the bay's opening.
+  const Polygon2 c = {{0, 0}, {5, 0}, {5, 2}, {24, 2}, {24, 4}, {0, 4}};
+  for (const Vec2& m : kMirrors) {
+    const RoomSegmentation seg = segment_rooms(walled_level(c, m, {10, 3}));
+    const auto at = [&](double x, double y) { return seg.space_at(Vec2(x, y).cwiseProduct(m)); };
+    ASSERT_GE(at(1, 3), 0) << m.transpose();
+    EXPECT_EQ(at(1, 3), at(23, 3)) << m.transpose();
+    ASSERT_GE(at(2.5, 1), 0) << m.transpose();
+    EXPECT_NE(at(2.5, 1), at(1, 3)) << m.transpose();
+  }
+}
+
 TEST(RoomSegmentation, ShelfRowsDoNotCutAHall) {
   // A 10 x 8 m hall with rows of 2.1 m shelves (planes that do not reach a wall's height).
   SegmentationInput in = level();
@@ -302,6 +373,31 @@ TEST(RoomSegmentation, WhatOnlyTheRaysSawIsARoomToo) {
   const RoomSegmentation seg = segment_rooms(in, cfg);
   ASSERT_EQ(seg.spaces.size(), 1u);
   EXPECT_NEAR(footprint_area(seg.spaces[0]), 16.0, 1.0);
+}
+
+TEST(RoomSegmentation, WhatTheRaysSawOverARampIsNoFloorOfTheLevel) {
+  // A 5 x 4 m landing open at x = 5 to a ramp rising east; the rays pass at walking height over
+  // the ramp's first metres (seen), but the ramp's traversable nodes lie higher than the level.
+  SegmentationInput in = level();
+  RoomSegmentationConfig cfg;
+  add_area(box(0, 0, 5, 4), &in);
+  in.walls.push_back(wall(0, {0, 0}, {12, 0}, {2, 2}));
+  in.walls.push_back(wall(1, {12, 4}, {0, 4}, {2, 2}));
+  in.walls.push_back(wall(2, {0, 4}, {0, 0}, {2, 2}));
+  in.frame = GridFrame::around({0, 0}, {12, 4}, cfg.cell, 1.0);
+  in.seen.assign(in.frame.size(), 0);
+  for (int r = 0; r < in.frame.rows; ++r)
+    for (int c = 0; c < in.frame.cols; ++c) {
+      const Vec2 p = in.frame.origin + cfg.cell * Vec2(c + 0.5, r + 0.5);
+      if (p.x() > 0.0 && p.x() < 12.0 && p.y() > 0.0 && p.y() < 4.0) in.seen[in.frame.index(c, r)] = 1;
+    }
+  const double without = footprint_area(segment_rooms(in, cfg).spaces.at(0));
+  EXPECT_GT(without, 40.0);  // the rays alone carry the space up the ramp
+  for (double x = 5.0 + 0.5 * kNode; x < 12.0; x += kNode)
+    for (double y = 0.5 * kNode; y < 4.0; y += kNode) in.raised.emplace_back(x, y);
+  const RoomSegmentation seg = segment_rooms(in, cfg);
+  ASSERT_EQ(seg.spaces.size(), 1u);
+  EXPECT_NEAR(footprint_area(seg.spaces[0]), 20.0, 2.0);
 }
 
 TEST(SightMap, RaysThatGoBelowTheFloorMarkNoFloor) {

@@ -402,6 +402,9 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
   }
   for (const ground::GlobalNode* n : input.nodes->nodes_in_height_range(in.floor_z - band, in.floor_z + band))
     in.ground.push_back(n->position.head<2>());
+  for (const ground::GlobalNode* n :
+       input.nodes->nodes_in_height_range(in.floor_z + band, in.floor_z + settings_.free_space.obstacle_max_height))
+    if (n->position.z() > in.floor_z + band) in.raised.push_back(n->position.head<2>());
   in.free_radius = settings_.free_space.lambda_th;
   in.ground_radius = input.nodes->config().cell_size;
   nodes_cell_ = in.ground_radius;
@@ -423,6 +426,13 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
   last_segmentation_ = rooms::segment_rooms(in, settings_.segmentation);
   last_segmentation_level_ = level;
   const rooms::RoomSegmentation& seg = *last_segmentation_;
+  // A mapped room that this segmentation divides (first seen as one space, now two: a bay
+  // beside a gallery) follows it, so that its parts are extracted as rooms of their own.
+  {
+    std::vector<rooms::ExtractedRoom> spaces;
+    for (const rooms::SegmentedSpace& s : seg.spaces) spaces.push_back(s.room);
+    map_.follow_segmentation(spaces, level);
+  }
   // The path's length in each space; the robot walks nearer the walls than lambda at times,
   // so a floor point off every space takes the nearest one within lambda plus a node's reach.
   std::map<int, double> walked;

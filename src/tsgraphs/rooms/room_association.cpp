@@ -90,6 +90,37 @@ RoomAssociation RoomMap::add_extraction(const ExtractedRoom& room, int level) {
   return {mapped.id, true};
 }
 
+std::vector<int> RoomMap::follow_segmentation(const std::vector<ExtractedRoom>& spaces, int level) {
+  std::vector<Polygon2> footprints;
+  std::vector<double> areas;
+  for (const ExtractedRoom& s : spaces) {
+    footprints.push_back(footprint_of(s.rect, s.outline));
+    areas.push_back(area(footprints.back()));
+  }
+  std::vector<int> changed;
+  for (auto& [id, room] : rooms_) {
+    if (room.level != level) continue;
+    const Polygon2 mine = room.footprint();
+    int held = 0, successor = -1;
+    double most = 0.0;
+    for (std::size_t i = 0; i < spaces.size(); ++i) {
+      if (!(areas[i] > 0.0) || !boxes_meet(mine, footprints[i])) continue;
+      const double shared = intersection_area(mine, footprints[i]);
+      if (shared < config_.min_overlap * areas[i]) continue;
+      ++held;
+      if (shared > most) {
+        most = shared;
+        successor = static_cast<int>(i);
+      }
+    }
+    if (held < 2) continue;
+    room.rect = spaces[static_cast<std::size_t>(successor)].rect;
+    room.outline = spaces[static_cast<std::size_t>(successor)].outline;
+    changed.push_back(id);
+  }
+  return changed;
+}
+
 std::vector<std::pair<int, int>> RoomMap::find_duplicates() const {
   std::vector<const MappedRoom*> list;
   for (const auto& entry : rooms_) list.push_back(&entry.second);

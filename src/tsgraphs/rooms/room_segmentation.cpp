@@ -6,6 +6,7 @@
 #include <deque>
 #include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -333,7 +334,11 @@ int split_regions(const GridFrame& f, std::vector<int>* label) {
 /// atrium's void, a walled-off room) the outline's edge arriving there (counter-clockwise round
 /// the region, clockwise round a hole) is drawn on across the region until it leaves it, if it
 /// does within the corridor's width. Each corner square thus goes to one leg, the same way round
-/// every bend. Cut cells lose their label; returns whether any was cut.
+/// every bend. The edge leaving the corner is drawn back instead where only it ends at another
+/// inner corner (the mouth of a side corridor: the corridor it leaves stays whole), where only
+/// it crosses the region (a step in the width), or where it is corridor_aspect times longer
+/// than the arriving edge (a corridor's side running on past a bay). Cut cells lose their
+/// label; returns whether any was cut.
 bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cells, double tolerance_cells, double min_turn,
                std::vector<int>* label) {
   std::vector<int>& lab = *label;
@@ -387,6 +392,12 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
       std::reverse(hole.begin(), hole.end());
       loops.push_back(hole);
     }
+    // The inner corners of all its loops (box coordinates), then one cut per corner.
+    struct Corner {
+      Vec2 at, d_in, d_out;
+      double len_in = 0.0, len_out = 0.0;  ///< the arriving and leaving edges' lengths (cells)
+    };
+    std::vector<Corner> corners;
     for (Polygon2& loop : loops) {
       loop = simplify_outlines({loop}, tolerance_cells).front();
       if (loop.size() < 3) continue;
@@ -397,29 +408,66 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
         const Vec2 d_in = (at - prev).normalized(), d_out = (next - at).normalized();
         const double turn = d_in.x() * d_out.y() - d_in.y() * d_out.x();
         if (turn > -std::sin(min_turn)) continue;  // not an inner corner turning min_turn or more
-        // Walk on along d_in from the corner; cut if the walk leaves the region within its width.
-        // (Always d_in, never "the longer edge": which leg is longer changes as the map grows,
-        // the outline's turning sense does not, so a corner stays with the same leg.)
-        const Vec2 start = Vec2(c0 - 1, r0 - 1) + at;
-        std::vector<std::size_t> run;
-        bool left = false;
-        for (double t = kLineStep; t <= 1.5 * width + tolerance_cells + 2.0; t += kLineStep) {
-          const Vec2 q = start + t * d_in;
-          const int c = static_cast<int>(std::floor(q.x())), r = static_cast<int>(std::floor(q.y()));
-          if (!f.inside(c, r) || lab[f.index(c, r)] != k) {
-            if (!run.empty()) {
-              left = true;
-              break;
-            }
-            if (t > tolerance_cells + 1.0) break;  // never entered the region
-            continue;
-          }
-          run.push_back(f.index(c, r));
-        }
-        if (!left) continue;
-        for (std::size_t j : run) lab[j] = -1;
-        cut = true;
+        corners.push_back({at, d_in, d_out, (at - prev).norm(), (next - at).norm()});
       }
+    }
+    // A walk on from a corner along `d`, the edge it draws on having the region on its `left`:
+    // the region's cells it crosses, and where it left the region (empty if it did not within
+    // the corridor's width). Its cells are taken half a cell to the side that was outside along
+    // the edge, so that a walk drawing a wall on past a mouth leaves the region where the wall
+    // resumes, whichever way the outline runs.
+    const double max_walk = 1.5 * width + tolerance_cells + 2.0;
+    const auto walk = [&](const Corner& from, const Vec2& d, bool left,
+                          std::vector<std::size_t>* run) -> std::optional<Vec2> {
+      const Vec2 outside = left ? Vec2(d.y(), -d.x()) : Vec2(-d.y(), d.x());
+      const Vec2 start = Vec2(c0 - 1, r0 - 1) + from.at + 0.5 * outside;
+      run->clear();
+      for (double t = kLineStep; t <= max_walk; t += kLineStep) {
+        const Vec2 q = start + t * d;
+        const int c = static_cast<int>(std::floor(q.x())), r = static_cast<int>(std::floor(q.y()));
+        if (!f.inside(c, r) || lab[f.index(c, r)] != k) {
+          if (!run->empty()) return q - 0.5 * outside - Vec2(c0 - 1, r0 - 1);
+          if (t > tolerance_cells + 1.0) return std::nullopt;  // never entered the region
+          continue;
+        }
+        run->push_back(f.index(c, r));
+      }
+      return std::nullopt;
+    };
+    const auto at_other_corner = [&](const Corner& from, const Vec2& q) {
+      for (const Corner& o : corners)
+        if (&o != &from && (o.at - q).norm() <= tolerance_cells + 1.0) return true;
+      return false;
+    };
+    // The edge arriving at a corner drawn on (d_in), or the edge leaving it drawn back
+    // (-d_out). A cut that ends at another inner corner is the mouth between two (a side
+    // corridor's, a bridge's): both take it, so a T-junction keeps its through corridor whole.
+    // Judged before any cut, as its partner's cut would hide the mouth.
+    std::vector<std::size_t> run;
+    std::vector<bool> drawn_back;
+    for (const Corner& corner : corners) {
+      const std::optional<Vec2> end_in = walk(corner, corner.d_in, true, &run);
+      const std::optional<Vec2> end_out = walk(corner, -corner.d_out, false, &run);
+      const bool mouth_in = end_in && at_other_corner(corner, *end_in);
+      const bool mouth_out = end_out && at_other_corner(corner, *end_out);
+      // Else the edge that crosses the region within its width, if only one does (a step in a
+      // corridor's width: its one edge runs on along the wider part). Else the longer edge if
+      // it is corridor_aspect times the other's length: that edge is a corridor's side and the
+      // other the end of a bay open to it (a landing, a balcony beside a gallery), and the side
+      // runs on across the bay's opening. Else d_in, not the longer edge: which of two legs
+      // is longer changes as the map grows, the outline's turning sense does not, so a
+      // corner stays with the same leg.
+      bool back = false;
+      if (mouth_in != mouth_out) back = mouth_out;
+      else if (end_in.has_value() != end_out.has_value()) back = end_out.has_value();
+      else if (end_in) back = corner.len_out >= corridor_aspect * corner.len_in;
+      drawn_back.push_back(back);
+    }
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      const Vec2 d = drawn_back[i] ? Vec2(-corners[i].d_out) : corners[i].d_in;
+      if (!walk(corners[i], d, !drawn_back[i], &run)) continue;  // not within the width, or a mouth already cut
+      for (std::size_t j : run) lab[j] = -1;
+      cut = true;
     }
   }
   return cut;
@@ -552,7 +600,12 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
 
   // 1-2. The opened free space with what the rays saw, and the ground, all cut by the walls.
   std::vector<std::uint8_t> free = discs(f, in.free_space, in.free_radius);
-  for (std::size_t i = 0; i < in.seen.size(); ++i) free[i] = free[i] || in.seen[i];
+  {
+    // Rays pass at walking height over a ramp's first metres too: where the ground is known to
+    // lie higher, what they saw is no floor of this level.
+    const std::vector<std::uint8_t> raised = discs(f, in.raised, in.ground_radius);
+    for (std::size_t i = 0; i < in.seen.size(); ++i) free[i] = free[i] || (in.seen[i] && !raised[i]);
+  }
   std::vector<std::uint8_t> ground = discs(f, in.ground, in.ground_radius);
   for (std::size_t i = 0; i < f.size(); ++i) ground[i] = ground[i] || free[i];
   std::vector<std::uint8_t> wall(f.size(), 0);

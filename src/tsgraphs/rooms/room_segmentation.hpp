@@ -99,6 +99,8 @@ struct SegmentationInput {
   std::vector<std::uint8_t> known;  ///< per cell of frame (or empty): any ray passed or ended there (no frontier)
   std::vector<Vec2> free_space;     ///< free-space vertices (at least free_radius from every obstacle)
   std::vector<Vec2> ground;         ///< every traversable node of the level (free or not)
+  std::vector<Vec2> raised;         ///< traversable nodes above the level's floor but below its headroom (a ramp,
+                                    ///< a stair): the floor is not the level's there, whatever the rays passed over
   double free_radius = 0.4;         ///< the free space's lambda_th (m)
   double ground_radius = 0.25;      ///< a traversable node covers the disc of this radius (its node map cell, m)
   double floor_z = 0.0;             ///< the level's floor height, map frame (m)
