@@ -400,11 +400,11 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
     const ground::GlobalNode* n = input.nodes->node(id);
     if (n != nullptr && std::abs(n->position.z() - in.floor_z) <= band) in.free_space.push_back(n->position.head<2>());
   }
-  for (const ground::GlobalNode* n : input.nodes->nodes_in_height_range(in.floor_z - band, in.floor_z + band))
-    in.ground.push_back(n->position.head<2>());
+  // The level's ground, and the ground above it within the headroom (a ramp, a stair).
   for (const ground::GlobalNode* n :
-       input.nodes->nodes_in_height_range(in.floor_z + band, in.floor_z + settings_.free_space.obstacle_max_height))
-    if (n->position.z() > in.floor_z + band) in.raised.push_back(n->position.head<2>());
+       input.nodes->nodes_in_height_range(in.floor_z - band,
+                                          in.floor_z + std::max(band, settings_.free_space.obstacle_max_height)))
+    (n->position.z() <= in.floor_z + band ? in.ground : in.raised).push_back(n->position.head<2>());
   in.free_radius = settings_.free_space.lambda_th;
   in.ground_radius = input.nodes->config().cell_size;
   nodes_cell_ = in.ground_radius;

@@ -396,6 +396,7 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
     struct Corner {
       Vec2 at, d_in, d_out;
       double len_in = 0.0, len_out = 0.0;  ///< the arriving and leaving edges' lengths (cells)
+      bool drawn_back = false;             ///< the leaving edge drawn back, not the arriving one drawn on
     };
     std::vector<Corner> corners;
     for (Polygon2& loop : loops) {
@@ -408,7 +409,7 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
         const Vec2 d_in = (at - prev).normalized(), d_out = (next - at).normalized();
         const double turn = d_in.x() * d_out.y() - d_in.y() * d_out.x();
         if (turn > -std::sin(min_turn)) continue;  // not an inner corner turning min_turn or more
-        corners.push_back({at, d_in, d_out, (at - prev).norm(), (next - at).norm()});
+        corners.push_back({at, d_in, d_out, (at - prev).norm(), (next - at).norm(), false});
       }
     }
     // A walk on from a corner along `d`, the edge it draws on having the region on its `left`:
@@ -444,8 +445,7 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
     // corridor's, a bridge's): both take it, so a T-junction keeps its through corridor whole.
     // Judged before any cut, as its partner's cut would hide the mouth.
     std::vector<std::size_t> run;
-    std::vector<bool> drawn_back;
-    for (const Corner& corner : corners) {
+    for (Corner& corner : corners) {
       const std::optional<Vec2> end_in = walk(corner, corner.d_in, true, &run);
       const std::optional<Vec2> end_out = walk(corner, -corner.d_out, false, &run);
       const bool mouth_in = end_in && at_other_corner(corner, *end_in);
@@ -457,15 +457,13 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
       // runs on across the bay's opening. Else d_in, not the longer edge: which of two legs
       // is longer changes as the map grows, the outline's turning sense does not, so a
       // corner stays with the same leg.
-      bool back = false;
-      if (mouth_in != mouth_out) back = mouth_out;
-      else if (end_in.has_value() != end_out.has_value()) back = end_out.has_value();
-      else if (end_in) back = corner.len_out >= corridor_aspect * corner.len_in;
-      drawn_back.push_back(back);
+      if (mouth_in != mouth_out) corner.drawn_back = mouth_out;
+      else if (end_in.has_value() != end_out.has_value()) corner.drawn_back = end_out.has_value();
+      else if (end_in) corner.drawn_back = corner.len_out >= corridor_aspect * corner.len_in;
     }
-    for (std::size_t i = 0; i < corners.size(); ++i) {
-      const Vec2 d = drawn_back[i] ? Vec2(-corners[i].d_out) : corners[i].d_in;
-      if (!walk(corners[i], d, !drawn_back[i], &run)) continue;  // not within the width, or a mouth already cut
+    for (const Corner& corner : corners) {
+      const Vec2 d = corner.drawn_back ? Vec2(-corner.d_out) : corner.d_in;
+      if (!walk(corner, d, !corner.drawn_back, &run)) continue;  // not within the width, or a mouth already cut
       for (std::size_t j : run) lab[j] = -1;
       cut = true;
     }
