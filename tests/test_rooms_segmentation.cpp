@@ -1,6 +1,7 @@
 // Room segmentation on constructed levels, one rule each: a void between facing walls, a
-// corridor at the outer wall, doors, an L-shaped room, a diagonal corridor, a ring, a
-// T-junction, a step in a corridor's width, a bay beside a gallery, shelves, a wall whose top no ray saw, rays over a ramp.
+// corridor at the outer wall, doors, an L-shaped room, a diagonal corridor (and its ends at the
+// facades), a ring, a T-junction, a step in a corridor's width, a bay beside a gallery, shelves,
+// a wall whose top no ray saw, rays over a ramp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -198,6 +199,39 @@ TEST(RoomSegmentation, ADiagonalCorridorIsOneCorridorAlongItsAxis) {
   const double long_yaw = r.size.x() >= r.size.y() ? r.yaw : r.yaw + M_PI / 2.0;
   EXPECT_NEAR(std::abs(std::sin(long_yaw - yaw)), 0.0, 0.05);
   EXPECT_GT(iou(r.corners(), corridor), 0.85);
+}
+
+TEST(RoomSegmentation, ADiagonalCorridorStopsAtTheFacadesItRunsInto) {
+  // A corridor 2 m wide at 40 degrees between two facades, x = 0 and x = 16: its ends are
+  // slanted, so its smallest rectangle (which it fills 0.89 of) runs past both facades.
+  const double yaw = 40.0 * M_PI / 180.0;
+  const Vec2 u(std::cos(yaw), std::sin(yaw)), v(-u.y(), u.x());
+  const double w = 2.0, x1 = 16.0;
+  const Vec2 a0 = Vec2(0, 0), b0 = a0 + x1 / u.x() * u;   // its south side, facade to facade
+  const Vec2 a1 = Vec2(0, w / u.x()), b1 = a1 + x1 / u.x() * u;  // its north side
+  const Polygon2 corridor = {a0, b0, b1, a1};
+  SegmentationInput in = level();
+  add_area(corridor, &in);
+  const Vec2 mid = 0.25 * (a0 + b0 + a1 + b1);
+  in.walls.push_back(wall(0, a0, b0, mid));
+  in.walls.push_back(wall(1, a1, b1, mid));
+  in.walls.push_back(wall(2, {0, -2}, {0, 4}, mid));        // the west facade
+  in.walls.push_back(wall(3, {x1, 10}, {x1, 18}, mid));     // the east facade
+  const RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 1u);
+  const SegmentedSpace& s = seg.spaces[0];
+  EXPECT_EQ(s.room.kind, RoomKind::corridor);
+  const Polygon2 footprint = footprint_of(s.room.rect, s.room.outline);
+  for (const Vec2& c : footprint) {
+    EXPECT_GE(c.x(), -0.1);
+    EXPECT_LE(c.x(), x1 + 0.1);
+  }
+  EXPECT_GT(iou(footprint, corridor), 0.85);
+  // Its long sides still make the corridor's factor, along its own axis.
+  EXPECT_EQ(s.room.wall_ids.size(), 2u);
+  const OrientedRect& r = s.room.rect;
+  const double long_yaw = r.size.x() >= r.size.y() ? r.yaw : r.yaw + M_PI / 2.0;
+  EXPECT_NEAR(std::abs(std::sin(long_yaw - yaw)), 0.0, 0.05);
 }
 
 TEST(RoomSegmentation, ARingCorridorIsCutIntoItsLegs) {

@@ -427,11 +427,13 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
   last_segmentation_level_ = level;
   const rooms::RoomSegmentation& seg = *last_segmentation_;
   // A mapped room that this segmentation divides (first seen as one space, now two: a bay
-  // beside a gallery) follows it, so that its parts are extracted as rooms of their own.
+  // beside a gallery) follows it, so that its parts are extracted as rooms of their own; one it
+  // no longer carries (a first view over what later rays showed to be a void) follows the space
+  // it is a view of. Carried: as much of it on spaces as a segmented footprint is on its region.
   {
     std::vector<rooms::ExtractedRoom> spaces;
     for (const rooms::SegmentedSpace& s : seg.spaces) spaces.push_back(s.room);
-    map_.follow_segmentation(spaces, level);
+    map_.follow_segmentation(spaces, level, settings_.segmentation.rect_fill);
   }
   // The path's length in each space; the robot walks nearer the walls than lambda at times,
   // so a floor point off every space takes the nearest one within lambda plus a node's reach.

@@ -90,7 +90,7 @@ RoomAssociation RoomMap::add_extraction(const ExtractedRoom& room, int level) {
   return {mapped.id, true};
 }
 
-std::vector<int> RoomMap::follow_segmentation(const std::vector<ExtractedRoom>& spaces, int level) {
+std::vector<int> RoomMap::follow_segmentation(const std::vector<ExtractedRoom>& spaces, int level, double min_support) {
   std::vector<Polygon2> footprints;
   std::vector<double> areas;
   for (const ExtractedRoom& s : spaces) {
@@ -101,19 +101,31 @@ std::vector<int> RoomMap::follow_segmentation(const std::vector<ExtractedRoom>& 
   for (auto& [id, room] : rooms_) {
     if (room.level != level) continue;
     const Polygon2 mine = room.footprint();
-    int held = 0, successor = -1;
-    double most = 0.0;
+    int held = 0, held_best = -1, best = -1;
+    double held_most = 0.0, most = 0.0, supported = 0.0;
     for (std::size_t i = 0; i < spaces.size(); ++i) {
       if (!(areas[i] > 0.0) || !boxes_meet(mine, footprints[i])) continue;
       const double shared = intersection_area(mine, footprints[i]);
-      if (shared < config_.min_overlap * areas[i]) continue;
-      ++held;
+      supported += shared;
       if (shared > most) {
         most = shared;
-        successor = static_cast<int>(i);
+        best = static_cast<int>(i);
+      }
+      if (shared < config_.min_overlap * areas[i]) continue;
+      ++held;
+      if (shared > held_most) {
+        held_most = shared;
+        held_best = static_cast<int>(i);
       }
     }
-    if (held < 2) continue;
+    // Divided: it holds two spaces or more. Unsupported: the spaces carry less than min_support
+    // of it (a first view over what later rays showed to be a void, a view across a wall mapped
+    // since); it is a stale view of the space it shares the most with.
+    const double own = area(mine);
+    int successor = -1;
+    if (held >= 2) successor = held_best;
+    else if (best >= 0 && supported < min_support * own) successor = best;
+    if (successor < 0) continue;
     room.rect = spaces[static_cast<std::size_t>(successor)].rect;
     room.outline = spaces[static_cast<std::size_t>(successor)].outline;
     changed.push_back(id);

@@ -64,10 +64,13 @@ class RoomMap {
   /// config.footprint) or adds it as a new room with the next id.
   RoomAssociation add_extraction(const ExtractedRoom& room, int level);
   /// A later segmentation of `level` (its spaces, which never overlap) that divides a mapped
-  /// room: a mapped room whose footprint holds two or more of `spaces` (each with min_overlap of
-  /// its area inside it) takes the footprint of the one of them it shares the most area with, so that
-  /// the others are rooms of their own when they are extracted. Returns the ids it changed.
-  std::vector<int> follow_segmentation(const std::vector<ExtractedRoom>& spaces, int level);
+  /// room or no longer carries it: a mapped room whose footprint holds two or more of `spaces`
+  /// (each with min_overlap of its area inside it) takes the footprint of the one of them it
+  /// shares the most area with, so that the others are rooms of their own when they are
+  /// extracted; one that the spaces cover less than `min_support` of (a stale view over a void or
+  /// across a wall) takes the footprint of the space it shares the most with, and is merged as a
+  /// duplicate if another room holds that space. Returns the ids it changed.
+  std::vector<int> follow_segmentation(const std::vector<ExtractedRoom>& spaces, int level, double min_support = 0.0);
   /// Pairs (keep, drop) of mapped rooms of one level that match each other; keep is the one with
   /// more extractions (the lower id on a tie). Rooms linked by a chain of matches form one group
   /// with one keep, so every pair can be merged in turn; sorted by (keep, drop).

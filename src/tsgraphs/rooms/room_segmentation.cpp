@@ -514,6 +514,23 @@ std::array<int, 4> snap_to_walls(OrientedRect* rect, const std::vector<WallLine>
   return ids;
 }
 
+/// Whether a wall that bounds spaces runs into the rectangle farther than `margin` inside its
+/// sides (a wall along a side, where the rectangle was snapped, does not): the rectangle then
+/// covers the far side of a wall, as a diagonal corridor's rectangle does past the facade at its
+/// ends.
+bool crosses_a_wall(const OrientedRect& rect, const std::vector<WallLine>& walls, double margin) {
+  if (rect.size.x() <= 2.0 * margin || rect.size.y() <= 2.0 * margin) return false;
+  OrientedRect inner = rect;
+  inner.size -= Vec2::Constant(2.0 * margin);
+  const Polygon2 box = inner.corners();
+  for (const WallLine& w : walls) {
+    if (contains(box, w.a) || contains(box, w.b)) return true;
+    for (std::size_t i = 0; i < box.size(); ++i)
+      if (segments_intersect(w.a, w.b, box[i], box[(i + 1) % box.size()])) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void RoomSegmentationConfig::validate() const {
@@ -694,6 +711,11 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
     const bool long_along_x = rect.size.x() >= rect.size.y();
     const double length = std::max(rect.size.x(), rect.size.y()), width = std::min(rect.size.x(), rect.size.y());
     s.room.kind = length >= cfg.corridor_aspect * width ? RoomKind::corridor : RoomKind::room;
+    const auto take_outline = [&] {
+      s.room.outline = outline;
+      if (signed_area(s.room.outline) < 0.0) std::reverse(s.room.outline.begin(), s.room.outline.end());
+      s.centroid = centroid(outline);
+    };
     s.room.rect = rect;
     if (rectangular) {
       // The room-planes factor: four walls for a room, the two long sides for a corridor.
@@ -715,10 +737,11 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
           if (e >= 0) s.room.end_wall_ids.push_back(e);
       }
       s.centroid = s.room.rect.center;
+      // A rectangle across a wall is no footprint (the free space does not cross it): the
+      // outline is, and the rectangle's walls still make the factor.
+      if (crosses_a_wall(s.room.rect, walls, cfg.wall_snap)) take_outline();
     } else {
-      s.room.outline = outline;
-      if (signed_area(s.room.outline) < 0.0) std::reverse(s.room.outline.begin(), s.room.outline.end());
-      s.centroid = centroid(outline);
+      take_outline();
     }
     out.spaces.push_back(std::move(s));
   }

@@ -30,7 +30,9 @@ namespace tsgraphs::rooms {
 struct RoomSegmentationConfig {
   double cell = 0.1;                    ///< raster cell (m): an eighth of the narrowest door, finer than the node map
   double max_normal_z = 0.2;            ///< |n.z| above this: not a vertical plane, no wall
-  double min_wall_height = 1.5;         ///< lower planes are furniture (desks, cabinets) and railings, not walls (m)
+  double min_wall_height = 1.0;         ///< lower planes are desks and tables, not walls (m); a taller one short of
+                                        ///< wall_reach_height bounds only if no ray saw above its top (wall_top_*): a
+                                        ///< low sensor sees a wall beside it only up to its own height plus a little
   double wall_reach_height = 2.3;       ///< a wall bounds a level when its points span this height above the floor (m)
                                         ///< or no ray saw above its top (wall_top_*):
                                         ///< above a door's lintel and the tallest furniture (shelves end by 2.2 m), below the
