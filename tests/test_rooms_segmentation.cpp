@@ -164,6 +164,59 @@ TEST(RoomSegmentation, ADoorBesideACornerIsClosedToTheWallItMeets) {
   EXPECT_NE(seg.space_at({2.5, 2}), seg.space_at({7.5, 2}));
 }
 
+TEST(RoomSegmentation, TwoDoorsBesideAPierSeparateTheRoomsTheyJoin) {
+  // The wall between two rooms has two doors (1.3 m and 1.5 m) with a 0.6 m pier between them:
+  // the opening from one long piece to the other is wider than a door, the pier closes it.
+  SegmentationInput in = level();
+  const std::vector<std::pair<Vec2, Vec2>> pieces = {{{5, 0}, {5, 1.2}}, {{5, 2.5}, {5, 3.1}}, {{5, 4.6}, {5, 6}}};
+  const Polygon2 outer = box(0, 0, 10, 6);
+  for (double x = 0.5 * kNode; x < 10.0; x += kNode) {
+    for (double y = 0.5 * kNode; y < 6.0; y += kNode) {
+      const Vec2 p(x, y);
+      double clear = distance_to_outline(outer, p);
+      for (const auto& [a, b] : pieces) clear = std::min(clear, distance_to_segment(p, a, b));
+      in.ground.push_back(p);
+      if (clear >= kLambda) in.free_space.push_back(p);
+    }
+  }
+  box_walls(0, 0, 10, 6, 0, &in);
+  int id = 4;
+  for (const auto& [a, b] : pieces) in.walls.push_back(wall(id++, a, b, {2, 3}));
+  const RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 2u);
+  EXPECT_NE(seg.space_at({2.5, 3}), seg.space_at({7.5, 3}));
+  for (const SegmentedSpace& s : seg.spaces) EXPECT_NEAR(footprint_area(s), 30.0, 2.0);
+}
+
+TEST(RoomSegmentation, ADoorBesideAJointOfTheRoomsBelowStaysClosed) {
+  // A wall between a room to the north and two rooms to the south has a 1 m door; the wall
+  // between the two southern rooms meets it 0.3 m past the door's east post. The door is
+  // closed from its east post to the 0.6 m stub across it, not to that joint behind the post.
+  SegmentationInput in = level();
+  const std::vector<std::pair<Vec2, Vec2>> inner = {{{2, 0}, {10, 0}}, {{0.4, 0}, {1, 0}}, {{2.3, -4}, {2.3, -0.05}}};
+  const Polygon2 outer = box(0.4, -4, 10, 4);
+  for (double x = 0.4 + 0.5 * kNode; x < 10.0; x += kNode) {
+    for (double y = -4.0 + 0.5 * kNode; y < 4.0; y += kNode) {
+      const Vec2 p(x, y);
+      double clear = distance_to_outline(outer, p);
+      for (const auto& [a, b] : inner) clear = std::min(clear, distance_to_segment(p, a, b));
+      in.ground.push_back(p);
+      if (clear >= kLambda) in.free_space.push_back(p);
+    }
+  }
+  box_walls(0.4, -4, 10, 4, 0, &in);
+  in.walls.push_back(wall(4, inner[0].first, inner[0].second, {5, 2}));
+  in.walls.push_back(wall(5, inner[1].first, inner[1].second, {0.7, 2}));
+  in.walls.push_back(wall(6, inner[2].first, inner[2].second, {1, -2}));
+  const RoomSegmentation seg = segment_rooms(in);
+  const int north = seg.space_at({5, 2}), south_west = seg.space_at({1.3, -2}), south_east = seg.space_at({6, -2});
+  ASSERT_GE(north, 0);
+  ASSERT_GE(south_west, 0);
+  EXPECT_NE(north, south_west);
+  EXPECT_NE(north, south_east);
+  EXPECT_NE(south_west, south_east);
+}
+
 TEST(RoomSegmentation, AnLShapedRoomIsOneRoomWithItsOutline) {
   const Polygon2 l = {{0, 0}, {6, 0}, {6, 3}, {3, 3}, {3, 6}, {0, 6}};
   SegmentationInput in = level();
@@ -342,6 +395,41 @@ TEST(RoomSegmentation, ShelfRowsDoNotCutAHall) {
   EXPECT_NEAR(footprint_area(seg.spaces[0]), 80.0, 4.0);
 }
 
+TEST(RoomSegmentation, PillarsDoNotMakeAHallACorridor) {
+  // A 16 x 12 m hall with a 4 x 1.5 m desk island (an obstacle, no wall) and six 0.5 m pillars
+  // on a 4 m grid, their sides mapped as walls: the pillars narrow the widest disc to ~5.6 m,
+  // which would make the hall "long for its width" and cut it at the island's corners.
+  SegmentationInput in = level();
+  const Polygon2 hall = box(0, 0, 16, 12), island = box(9.5, 8.5, 13.5, 10);
+  std::vector<Polygon2> pillars;
+  for (double x : {4.0, 8.0, 12.0})
+    for (double y : {4.0, 8.0})
+      if (!(x == 12.0 && y == 8.0)) pillars.push_back(box(x - 0.25, y - 0.25, x + 0.25, y + 0.25));
+  for (double x = 0.5 * kNode; x < 16.0; x += kNode) {
+    for (double y = 0.5 * kNode; y < 12.0; y += kNode) {
+      const Vec2 p(x, y);
+      double clear = std::min(distance_to_outline(hall, p), contains(island, p) ? 0.0 : distance_to_outline(island, p));
+      for (const Polygon2& q : pillars) clear = std::min(clear, contains(q, p) ? 0.0 : distance_to_outline(q, p));
+      if (clear <= 0.0) continue;
+      in.ground.push_back(p);
+      if (clear >= kLambda) in.free_space.push_back(p);
+    }
+  }
+  box_walls(0, 0, 16, 12, 0, &in);
+  int id = 10;
+  for (const Polygon2& q : pillars) {
+    const Vec2 c = 0.5 * (q[0] + q[2]);
+    for (std::size_t i = 0; i < 4; ++i) {
+      const Vec2 a = q[i], b = q[(i + 1) % 4];
+      in.walls.push_back(wall(id++, a, b, a + b - c));  // seen from outside the pillar
+    }
+  }
+  const RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 1u);
+  EXPECT_EQ(seg.spaces[0].room.kind, RoomKind::room);
+  EXPECT_NEAR(seg.spaces[0].area, 16.0 * 12.0 - 6.0, 12.0);
+}
+
 TEST(RoomSegmentation, AWallWhoseTopNoRaySawDividesTheLevel) {
   // Two 3 x 4 m rooms side by side; a low sensor saw their shared wall only up to 1.6 m. No
   // ray passed above it, so it may reach the ceiling: it divides them. Had rays passed above
@@ -407,6 +495,33 @@ TEST(RoomSegmentation, WhatOnlyTheRaysSawIsARoomToo) {
   const RoomSegmentation seg = segment_rooms(in, cfg);
   ASSERT_EQ(seg.spaces.size(), 1u);
   EXPECT_NEAR(footprint_area(seg.spaces[0]), 16.0, 1.0);
+}
+
+TEST(RoomSegmentation, ACornerBothOfWhoseWallsStopShortOfItIsClosed) {
+  // A 6 x 4 m room whose west and north walls were mapped 0.3 m short of their corner, and a
+  // strip of cells 0.3 m wide outside the north wall that rays marked (past the face they ended
+  // on): the room does not take the strip in through the gap at the corner.
+  SegmentationInput in = level();
+  RoomSegmentationConfig cfg;
+  add_area(box(0, 0, 6, 4), &in);
+  in.frame = GridFrame::around({0, 0}, {6, 4}, cfg.cell, 1.0);
+  in.seen.assign(in.frame.size(), 0);
+  for (int r = 0; r < in.frame.rows; ++r) {
+    for (int c = 0; c < in.frame.cols; ++c) {
+      const Vec2 p = in.frame.center(c, r);
+      if (p.x() > -0.3 && p.x() < 6.0 && p.y() > 4.0 && p.y() < 4.3) in.seen[in.frame.index(c, r)] = 1;
+    }
+  }
+  in.walls.push_back(wall(0, {0, 0}, {6, 0}, {3, 2}));
+  in.walls.push_back(wall(1, {6, 0}, {6, 4}, {3, 2}));
+  in.walls.push_back(wall(2, {6, 4}, {0.3, 4}, {3, 2}));
+  in.walls.push_back(wall(3, {0, 3.7}, {0, 0}, {3, 2}));
+  const RoomSegmentation seg = segment_rooms(in, cfg);
+  ASSERT_GE(seg.spaces.size(), 1u);
+  const int room = seg.space_at({3, 2});
+  ASSERT_GE(room, 0);
+  EXPECT_NEAR(footprint_area(seg.spaces[static_cast<std::size_t>(room)]), 24.0, 1.0);
+  EXPECT_NE(seg.space_at({3, 4.15}), room);
 }
 
 TEST(RoomSegmentation, WhatTheRaysSawOverARampIsNoFloorOfTheLevel) {

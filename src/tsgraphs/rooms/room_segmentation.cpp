@@ -102,8 +102,10 @@ std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, doubl
 }
 
 /// The segments that close the doors: from each end of a wall at least min_door_post long, on
-/// along its line to the first other such wall it meets within max_door_width (crossing it, or
-/// the nearer end of one in line with it).
+/// along its line to the first other wall it meets within max_door_width: one in line with it
+/// (its nearer end; a pier between two doors is part of the wall whatever its length), or one
+/// at least min_door_post long that it crosses, or would cross within wall_joint_gap of both
+/// ends (a corner; a pillar's face is no wall to close a gap to).
 std::vector<std::pair<Vec2, Vec2>> door_closures(const std::vector<WallLine>& walls, const RoomSegmentationConfig& cfg) {
   const double cos_parallel = std::cos(cfg.parallel_tolerance_deg * kDegToRad);
   std::vector<std::pair<Vec2, Vec2>> out;
@@ -120,7 +122,7 @@ std::vector<std::pair<Vec2, Vec2>> door_closures(const std::vector<WallLine>& wa
       Vec2 to = from;
       for (std::size_t j = 0; j < walls.size(); ++j) {
         const WallLine& o = walls[j];
-        if (j == i || (o.b - o.a).norm() < cfg.min_door_post) continue;
+        if (j == i) continue;
         Vec2 at;
         if (std::abs(o.n.dot(w.n)) >= cos_parallel) {
           // In line: the other wall's nearer end, if it lies on this line within a wall's thickness.
@@ -132,8 +134,19 @@ std::vector<std::pair<Vec2, Vec2>> door_closures(const std::vector<WallLine>& wa
               to = e;
             }
           }
-        } else if (segments_intersect(from, far, o.a, o.b, &at)) {
+        } else if ((o.b - o.a).norm() >= cfg.min_door_post &&
+                   segments_intersect(from, far,
+                                      o.a - cfg.wall_joint_gap * (o.b - o.a).normalized(),
+                                      o.b + cfg.wall_joint_gap * (o.b - o.a).normalized(), &at)) {
+          // Across: where it would cross the other wall's line if both ran on for wall_joint_gap
+          // (a corner whose walls were both mapped short of it). Past the other wall's end only
+          // at such a corner, this wall's end near it too: a door farther on is closed to the
+          // wall across it (the corner of a wall's end is no wall). A wall already at or past
+          // the other (a joint behind its end) has no door there.
           const double along = out_dir.dot(at - from);
+          const double on_other = (at - o.a).dot((o.b - o.a).normalized());
+          const bool past_end = on_other < 0.0 || on_other > (o.b - o.a).norm();
+          if (past_end && along > cfg.wall_joint_gap) continue;
           if (along > 0.0 && along < best) {
             best = along;
             to = at;
@@ -329,7 +342,8 @@ int split_regions(const GridFrame& f, std::vector<int>* label) {
 }
 
 /// Cuts each corridor-like region (its area at least `corridor_aspect` times the square of its
-/// widest width, twice its largest clearance) into its straight legs: at every corner where its
+/// widest width, twice its largest clearance, holes of fewer than `min_cells` not counted: a
+/// pillar stands inside a space) into its straight legs: at every corner where its
 /// outline turns inwards (an inner corner of a bend, a corner of what it runs round: an
 /// atrium's void, a walled-off room) the outline's edge arriving there (counter-clockwise round
 /// the region, clockwise round a hole) is drawn on across the region until it leaves it, if it
@@ -366,7 +380,19 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
     for (int r = r0; r <= r1; ++r)
       for (int c = c0; c <= c1; ++c)
         if (lab[f.index(c, r)] == k) in[box.index(c - c0 + 1, r - r0 + 1)] = 1;
-    const std::vector<float> clearance = distance_transform(box, in);
+    // What is not the region: the outside and its holes. A hole smaller than a region (a
+    // pillar, a wall drawn round one) is something one walks round inside the space, not what
+    // the space runs round: it neither narrows the width nor has corners.
+    std::vector<std::uint8_t> other(box.size(), 0);
+    for (std::size_t i = 0; i < in.size(); ++i) other[i] = in[i] ? 0 : 1;
+    std::vector<std::size_t> sizes;
+    const std::vector<int> parts = label_regions(other, box.cols, box.rows, false, &sizes);
+    const int outside = parts[0];  // the margin's corner is outside the region
+    const auto counted = [&](int p) { return p == outside || static_cast<double>(sizes[static_cast<std::size_t>(p)]) >= min_cells; };
+    std::vector<std::uint8_t> filled = in;
+    for (std::size_t i = 0; i < parts.size(); ++i)
+      if (parts[i] >= 0 && !counted(parts[i])) filled[i] = 1;
+    const std::vector<float> clearance = distance_transform(box, filled);
     const double width = 2.0 * *std::max_element(clearance.begin(), clearance.end());
     if (static_cast<double>(cells) < corridor_aspect * width * width) continue;
     // Its outline, counter-clockwise, and its holes' outlines, each clockwise round the hole:
@@ -378,13 +404,8 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
         if (in[i]) only[i] = 0;
       loops.push_back(trace_outlines(only, box.cols, box.rows, 1, false).front());
     }
-    std::vector<std::uint8_t> other(box.size(), 0);
-    for (std::size_t i = 0; i < in.size(); ++i) other[i] = in[i] ? 0 : 1;
-    std::vector<std::size_t> sizes;
-    const std::vector<int> parts = label_regions(other, box.cols, box.rows, false, &sizes);
-    const int outside = parts[0];  // the margin's corner is outside the region
     for (std::size_t p = 0; p < sizes.size(); ++p) {
-      if (static_cast<int>(p) == outside || static_cast<double>(sizes[p]) < min_cells) continue;
+      if (static_cast<int>(p) == outside || !counted(static_cast<int>(p))) continue;
       std::vector<int> only(box.size(), -1);
       for (std::size_t i = 0; i < parts.size(); ++i)
         if (parts[i] == static_cast<int>(p)) only[i] = 0;

@@ -44,10 +44,12 @@ struct RoomSegmentationConfig {
                                         ///< sees only a wall's foot) may reach the ceiling: it bounds the level
   double wall_joint_gap = 0.4;          ///< ...if one of its ends is this close to another wall of the level, across it (a
                                         ///< corner, a T; m): walls join into one structure, a free-standing shelf row or
-                                        ///< screen one walks round does not
+                                        ///< screen one walks round does not; two walls that would cross within this of
+                                        ///< both their ends meet at a corner (both mapped short of it: it is closed)
   double max_door_width = 2.0;          ///< a wall that ends this close to another wall has a door (or an opening) between
                                         ///< them: it is drawn on to it (m)
-  double min_door_post = 0.8;           ///< ...when both are at least this long (m): a pillar's face is no wall to close a gap to
+  double min_door_post = 0.8;           ///< ...when it is at least this long, and so is the wall it meets across (m): a
+                                        ///< pillar's face is no wall to close a gap to; a pier in line, between two doors, is
   double min_region_area = 2.0;         ///< m^2: a smaller region (a doorway's strip between a wall's two faces, a corner
                                         ///< square cut off) is no space of its own: it joins the one it opens to
   double rect_fill = 0.85;              ///< a region filling this share of its smallest enclosing rectangle has it as footprint

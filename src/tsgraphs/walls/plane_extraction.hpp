@@ -18,8 +18,9 @@ struct PlaneExtractionConfig {
   double distance_threshold = 0.05;     ///< inlier distance to a plane (m)
   double normal_angle_threshold_deg = 15.0;  ///< inlier normals within this of the plane's
   int min_inliers = 150;                ///< smallest face kept (points after prefiltering)
-  double min_extent = 1.0;              ///< smallest horizontal length of a wall face (m): shorter ones are as often a
-                                        ///< pillar's side or a cabinet's end as a stretch of wall between a door and a corner
+  double min_extent = 0.5;              ///< smallest horizontal length of a wall face (m): a stretch of wall between a door
+                                        ///< and a corner; a pillar's sides are faces too (the room layer does not let them
+                                        ///< narrow a space)
   double cluster_tolerance = 0.4;       ///< Euclidean clustering gap that splits one plane into faces (m; <= 0: no split)
   int max_planes = 30;                  ///< at most this many planes per keyframe
   double max_range = 15.0;              ///< points farther from the sensor are not used (m)
