@@ -104,8 +104,9 @@ std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, doubl
 /// The segments that close the doors: from each end of a wall at least min_door_post long, on
 /// along its line to the first other wall it meets within max_door_width: one in line with it
 /// (its nearer end; a pier between two doors is part of the wall whatever its length), or one
-/// at least min_door_post long that it crosses, or would cross within wall_joint_gap of both
-/// ends (a corner; a pillar's face is no wall to close a gap to).
+/// at least min_door_post long that it crosses (a pillar's face is no wall to close a gap to);
+/// and, besides, to the corner where it and such a wall would cross within wall_joint_gap of
+/// both their ends.
 std::vector<std::pair<Vec2, Vec2>> door_closures(const std::vector<WallLine>& walls, const RoomSegmentationConfig& cfg) {
   const double cos_parallel = std::cos(cfg.parallel_tolerance_deg * kDegToRad);
   std::vector<std::pair<Vec2, Vec2>> out;
@@ -120,6 +121,8 @@ std::vector<std::pair<Vec2, Vec2>> door_closures(const std::vector<WallLine>& wa
       const Vec2 far = from + cfg.max_door_width * out_dir;
       double best = cfg.max_door_width;
       Vec2 to = from;
+      double corner_along = cfg.wall_joint_gap;
+      std::optional<Vec2> corner;
       for (std::size_t j = 0; j < walls.size(); ++j) {
         const WallLine& o = walls[j];
         if (j == i) continue;
@@ -134,26 +137,29 @@ std::vector<std::pair<Vec2, Vec2>> door_closures(const std::vector<WallLine>& wa
               to = e;
             }
           }
-        } else if ((o.b - o.a).norm() >= cfg.min_door_post &&
-                   segments_intersect(from, far,
-                                      o.a - cfg.wall_joint_gap * (o.b - o.a).normalized(),
-                                      o.b + cfg.wall_joint_gap * (o.b - o.a).normalized(), &at)) {
-          // Across: where it would cross the other wall's line if both ran on for wall_joint_gap
-          // (a corner whose walls were both mapped short of it). Past the other wall's end only
-          // at such a corner, this wall's end near it too: a door farther on is closed to the
-          // wall across it (the corner of a wall's end is no wall). A wall already at or past
-          // the other (a joint behind its end) has no door there.
-          const double along = out_dir.dot(at - from);
-          const double on_other = (at - o.a).dot((o.b - o.a).normalized());
-          const bool past_end = on_other < 0.0 || on_other > (o.b - o.a).norm();
-          if (past_end && along > cfg.wall_joint_gap) continue;
-          if (along > 0.0 && along < best) {
-            best = along;
-            to = at;
+        } else if ((o.b - o.a).norm() >= cfg.min_door_post) {
+          const Vec2 u = (o.b - o.a).normalized();
+          if (segments_intersect(from, far, o.a, o.b, &at)) {
+            const double along = out_dir.dot(at - from);
+            if (along > 0.0 && along < best) {
+              best = along;
+              to = at;
+            }
+          } else if (segments_intersect(from, from + cfg.wall_joint_gap * out_dir, o.a - cfg.wall_joint_gap * u,
+                                        o.b + cfg.wall_joint_gap * u, &at)) {
+            // A corner whose two walls were both mapped short of it (each ends within
+            // wall_joint_gap of where they would cross): closed as well, not instead of a
+            // door farther on.
+            const double along = out_dir.dot(at - from);
+            if (along > 0.0 && along < corner_along) {
+              corner_along = along;
+              corner = at;
+            }
           }
         }
       }
       if (best < cfg.max_door_width) out.emplace_back(from, to);
+      if (corner) out.emplace_back(from, *corner);
     }
   }
   return out;
