@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -63,6 +64,21 @@ void add_area(const Polygon2& area, SegmentationInput* in) {
 }
 
 Polygon2 box(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+
+/// Adds the nodes of the box `outer` with wall pieces `inside` it: ground on a kNode grid
+/// everywhere, free space where the node is at least lambda from the outline and every piece.
+void add_area_with_walls(const Polygon2& outer, const std::vector<std::pair<Vec2, Vec2>>& inside, SegmentationInput* in) {
+  const Vec2 lo = outer[0], hi = outer[2];
+  for (double x = lo.x() + 0.5 * kNode; x < hi.x(); x += kNode) {
+    for (double y = lo.y() + 0.5 * kNode; y < hi.y(); y += kNode) {
+      const Vec2 p(x, y);
+      double clear = distance_to_outline(outer, p);
+      for (const auto& [a, b] : inside) clear = std::min(clear, distance_to_segment(p, a, b));
+      in->ground.push_back(p);
+      if (clear >= kLambda) in->free_space.push_back(p);
+    }
+  }
+}
 
 SegmentationInput level() {
   SegmentationInput in;
@@ -169,16 +185,7 @@ TEST(RoomSegmentation, TwoDoorsBesideAPierSeparateTheRoomsTheyJoin) {
   // the opening from one long piece to the other is wider than a door, the pier closes it.
   SegmentationInput in = level();
   const std::vector<std::pair<Vec2, Vec2>> pieces = {{{5, 0}, {5, 1.2}}, {{5, 2.5}, {5, 3.1}}, {{5, 4.6}, {5, 6}}};
-  const Polygon2 outer = box(0, 0, 10, 6);
-  for (double x = 0.5 * kNode; x < 10.0; x += kNode) {
-    for (double y = 0.5 * kNode; y < 6.0; y += kNode) {
-      const Vec2 p(x, y);
-      double clear = distance_to_outline(outer, p);
-      for (const auto& [a, b] : pieces) clear = std::min(clear, distance_to_segment(p, a, b));
-      in.ground.push_back(p);
-      if (clear >= kLambda) in.free_space.push_back(p);
-    }
-  }
+  add_area_with_walls(box(0, 0, 10, 6), pieces, &in);
   box_walls(0, 0, 10, 6, 0, &in);
   int id = 4;
   for (const auto& [a, b] : pieces) in.walls.push_back(wall(id++, a, b, {2, 3}));
@@ -191,19 +198,11 @@ TEST(RoomSegmentation, TwoDoorsBesideAPierSeparateTheRoomsTheyJoin) {
 TEST(RoomSegmentation, ADoorBesideAJointOfTheRoomsBelowStaysClosed) {
   // A wall between a room to the north and two rooms to the south has a 1 m door; the wall
   // between the two southern rooms meets it 0.3 m past the door's east post. The door is
-  // closed from its east post to the 0.6 m stub across it, not to that joint behind the post.
+  // closed from its east post to the 0.6 m piece of wall across it, not to that joint behind
+  // the post.
   SegmentationInput in = level();
   const std::vector<std::pair<Vec2, Vec2>> inner = {{{2, 0}, {10, 0}}, {{0.4, 0}, {1, 0}}, {{2.3, -4}, {2.3, -0.05}}};
-  const Polygon2 outer = box(0.4, -4, 10, 4);
-  for (double x = 0.4 + 0.5 * kNode; x < 10.0; x += kNode) {
-    for (double y = -4.0 + 0.5 * kNode; y < 4.0; y += kNode) {
-      const Vec2 p(x, y);
-      double clear = distance_to_outline(outer, p);
-      for (const auto& [a, b] : inner) clear = std::min(clear, distance_to_segment(p, a, b));
-      in.ground.push_back(p);
-      if (clear >= kLambda) in.free_space.push_back(p);
-    }
-  }
+  add_area_with_walls(box(0.4, -4, 10, 4), inner, &in);
   box_walls(0.4, -4, 10, 4, 0, &in);
   in.walls.push_back(wall(4, inner[0].first, inner[0].second, {5, 2}));
   in.walls.push_back(wall(5, inner[1].first, inner[1].second, {0.7, 2}));

@@ -49,7 +49,8 @@ struct RoomSegmentationConfig {
   double max_door_width = 2.0;          ///< a wall that ends this close to another wall has a door (or an opening) between
                                         ///< them: it is drawn on to it (m)
   double min_door_post = 0.8;           ///< ...when it is at least this long, and so is the wall it meets across (m): a
-                                        ///< pillar's face is no wall to close a gap to; a pier in line, between two doors, is
+                                        ///< pillar's face is no wall to close a gap to; a wall in line with it (a pier between
+                                        ///< two doors) is a door post whatever its length
   double min_region_area = 2.0;         ///< m^2: a smaller region (a doorway's strip between a wall's two faces, a corner
                                         ///< square cut off) is no space of its own: it joins the one it opens to
   double rect_fill = 0.85;              ///< a region filling this share of its smallest enclosing rectangle has it as footprint
