@@ -4,9 +4,11 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <unordered_set>
 #include <utility>
 
 #include "tsgraphs/freespace/obstacle_points.hpp"
+#include "tsgraphs/ground/ground_slope.hpp"
 
 namespace tsgraphs::pipeline {
 
@@ -395,16 +397,36 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
     std::nth_element(heights.begin(), heights.begin() + static_cast<long>(heights.size() / 2), heights.end());
     in.floor_z = heights[heights.size() / 2];
   }
+  // The level's ground: within level_band of its floor and no steeper round about than a floor
+  // (max_floor_slope over floor_window, as the path's): a ramp's first metres rise less than
+  // the band but are no floor of the level. The ground above the band within the headroom
+  // (a ramp, a stair) and the sloped ground are raised.
   const double band = settings_.layer.level_band;
+  std::vector<const ground::GlobalNode*> level_nodes;
+  std::vector<Eigen::Vector3d> positions, normals;
+  for (const ground::GlobalNode* n : input.nodes->nodes_in_height_range(
+           in.floor_z - band, in.floor_z + std::max(band, settings_.free_space.obstacle_max_height))) {
+    if (n->position.z() > in.floor_z + band) {
+      in.raised.push_back(n->position.head<2>());
+      continue;
+    }
+    level_nodes.push_back(n);
+    positions.push_back(n->position);
+    normals.push_back(n->normal);
+  }
+  const std::vector<double> slopes =
+      ground::ground_slopes(positions, normals, input.nodes->config().cell_size, 0.5 * settings_.layer.floor_window);
+  std::unordered_set<int> sloped;
+  for (std::size_t i = 0; i < level_nodes.size(); ++i) {
+    const bool level = slopes[i] <= settings_.layer.max_floor_slope;
+    (level ? in.ground : in.raised).push_back(level_nodes[i]->position.head<2>());
+    if (!level) sloped.insert(level_nodes[i]->id);
+  }
   for (int id : free_nodes_) {
     const ground::GlobalNode* n = input.nodes->node(id);
-    if (n != nullptr && std::abs(n->position.z() - in.floor_z) <= band) in.free_space.push_back(n->position.head<2>());
+    if (n != nullptr && std::abs(n->position.z() - in.floor_z) <= band && sloped.count(id) == 0)
+      in.free_space.push_back(n->position.head<2>());
   }
-  // The level's ground, and the ground above it within the headroom (a ramp, a stair).
-  for (const ground::GlobalNode* n :
-       input.nodes->nodes_in_height_range(in.floor_z - band,
-                                          in.floor_z + std::max(band, settings_.free_space.obstacle_max_height)))
-    (n->position.z() <= in.floor_z + band ? in.ground : in.raised).push_back(n->position.head<2>());
   in.free_radius = settings_.free_space.lambda_th;
   in.ground_radius = input.nodes->config().cell_size;
   nodes_cell_ = in.ground_radius;
@@ -435,13 +457,26 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
     for (const rooms::SegmentedSpace& s : seg.spaces) spaces.push_back(s.room);
     map_.follow_segmentation(spaces, level, settings_.segmentation.rect_fill);
   }
-  // The path's length in each space; the robot walks nearer the walls than lambda at times,
-  // so a floor point off every space takes the nearest one within lambda plus a node's reach.
+  // The path's length in each space, each step between floor points cut into pieces of a
+  // raster cell (a keyframe's step is as long as a short visit: a step into a store and back
+  // must not count as a step through its door). A piece counts for the space of one of its
+  // step's ends only: deferred points are a subset of an earlier path, and the chord between
+  // two of them crosses what the robot walked round. The robot walks nearer the walls than
+  // lambda at times, so a point off every space takes the nearest one within lambda plus a
+  // node's reach.
   std::map<int, double> walked;
   const double reach = in.free_radius + in.ground_radius;
   for (std::size_t k = 1; k < path.size(); ++k) {
-    const int s = seg.space_at(path[k].head<2>(), reach);
-    if (s >= 0) walked[s] += (path[k] - path[k - 1]).head<2>().norm();
+    const Vec2 a = path[k - 1].head<2>(), b = path[k].head<2>();
+    const int end_a = seg.space_at(a, reach), end_b = seg.space_at(b, reach);
+    const double length = (b - a).norm();
+    // No more pieces than the raster has cells across: beyond it no space is found anyway.
+    const double across = static_cast<double>(seg.frame.cols + seg.frame.rows);
+    const int pieces = static_cast<int>(std::clamp(std::ceil(length / settings_.segmentation.cell), 1.0, std::max(1.0, across)));
+    for (int j = 0; j < pieces; ++j) {
+      const int s = seg.space_at(a + (b - a) * ((j + 0.5) / pieces), reach);
+      if (s >= 0 && (s == end_a || s == end_b)) walked[s] += length / pieces;
+    }
   }
   if (path.size() == 1) {
     const int s = seg.space_at(path.front().head<2>(), reach);

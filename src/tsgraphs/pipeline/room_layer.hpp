@@ -54,8 +54,10 @@ struct RoomLayerConfig {
                                    ///< later flush (or the end): its footprint is still growing
   double level_band = 0.3;         ///< flush: ground within this height of the walked floor is the level's (m): steps, not a ramp's rise
   double max_floor_slope = 0.05;   ///< a level's floor rises less than this per metre walked (1:20, where building codes
-                                   ///< call a walk a ramp); on a steeper path (ramp, stairs) the robot is between levels
-  double floor_window = 2.0;       ///< the floor's rise is measured over this much of the path (m)
+                                   ///< call a walk a ramp); on a steeper path (ramp, stairs) the robot is between levels,
+                                   ///< and steeper ground round a node (a ramp's foot) is no floor of the level
+  double floor_window = 2.0;       ///< the floor's rise is measured over this much of the path, the ground's over this
+                                   ///< square round a node (m)
 
   template <class V>
   void visit(V& v) {
