@@ -267,15 +267,19 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
 void Pipeline::add_room_events(const std::vector<RoomEventRecord>& events) {
   for (const RoomEventRecord& e : events) {
     room_events_.push_back(e);
-    // Duplicates merged in the room map are merged in the graph.
+    // A duplicate merged in the room map: a kept room without a node takes the duplicate's
+    // (its footprint then follows the graph's corrections of that place). A kept room with a
+    // node keeps it as it is, and the duplicate's node leaves the graph: its room-planes
+    // factor names the walls of the footprint the duplicate was extracted with, and given to
+    // the kept node it would pull that node, and the kept footprint that moves with it, to a
+    // compromise between two rooms (a room dragged out of the building).
     for (const auto& [keep, drop] : e.merged) {
       const auto d = room_nodes_.find(drop);
       if (d == room_nodes_.end()) continue;
-      const auto k = room_nodes_.find(keep);
-      if (k == room_nodes_.end()) {
+      if (room_nodes_.count(keep) == 0) {
         room_nodes_[keep] = d->second;
       } else {
-        graph_.merge_rooms(k->second.node, d->second.node);
+        graph_.remove_room(d->second.node);
       }
       room_nodes_.erase(drop);
     }
