@@ -223,3 +223,42 @@ trajectory:
   }
   EXPECT_EQ(long_faces, 2);
 }
+
+// Issue 15: a short visit still gives the room. The path walks a corridor, steps through a
+// store's door to 1.3 m past it, turns and walks on: 2.6 m in the store, about as long as
+// two keyframe steps.
+TEST(EndToEnd, AStoreSteppedIntoAndLeftIsFound) {
+  const scene::Scene scene = scene::parse_scene(R"(
+name: store_off_a_corridor
+sensor: {preset: os1-64, mount_height: 0.55}
+odometry: {trans_noise_per_m: 0.01, yaw_noise_per_rad: 0.01, yaw_noise_per_m: 0.002}
+levels:
+  - {name: L0, elevation: 0.0, ceiling: 2.8, slab: [[0, 0], [14, 0], [14, 5.2], [0, 5.2]]}
+walls:
+  - {level: L0, from: [-0.1, 0], to: [14.1, 0]}
+  - {level: L0, from: [-0.1, 5.2], to: [14.1, 5.2]}
+  - {level: L0, from: [0, 0], to: [0, 5.2]}
+  - {level: L0, from: [14, 0], to: [14, 5.2]}
+  - level: L0
+    from: [0, 3]
+    to: [14, 3]
+    openings: [{at: 6.5, width: 1.0, height: 2.1, sill: 0.0}]
+  - {level: L0, from: [5, 0], to: [5, 3]}
+  - {level: L0, from: [8, 0], to: [8, 3]}
+rooms:
+  - {name: corridor, level: L0, polygon: [[0.1, 3.1], [13.9, 3.1], [13.9, 5.1], [0.1, 5.1]]}
+  - {name: store, level: L0, polygon: [[5.1, 0.1], [7.9, 0.1], [7.9, 2.9], [5.1, 2.9]]}
+trajectory:
+  level: L0
+  speed: 1.0
+  closed: false
+  laps: 1
+  waypoints: [[1, 4.1], [6.5, 4.1], [6.5, 1.7], [6.5, 4.1], [13, 4.1]]
+)",
+                                                "store_off_a_corridor.yaml", ".");
+  const Outcome o = run_scene(scene, 5);
+  std::printf("rooms vs truth: P %.2f R %.2f F1 %.2f, %d final\n", o.rooms_truth.precision.value_or(0),
+              o.rooms_truth.recall.value_or(0), o.rooms_truth.f1.value_or(0), o.rooms_truth.n_rooms_final);
+  EXPECT_EQ(o.rooms_truth.recall.value_or(0), 1.0);  // the store and the corridor
+  EXPECT_EQ(o.rooms_truth.under_segmented, 0);
+}

@@ -379,6 +379,28 @@ TEST(RoomSegmentation, ABayBesideAGalleryIsCutAlongTheGallerysSide) {
   }
 }
 
+TEST(RoomSegmentation, ABayWhoseMouthIsRaggedIsCutAlongTheGallerysSide) {
+  // A 22 x 2 m gallery along a railing (no wall) that ends in a ragged slant where a ramp's
+  // top meets a 4 x 1.5 m landing below the gallery's east end (the free space's outline
+  // there: 1.6 m at 18 degrees). The slant is the raster's, the building's sides run along
+  // its walls: the cut continues the gallery's side, not the slant.
+  const Polygon2 c = {{0, 2}, {16.5, 2}, {18, 1.5}, {18, 0}, {22, 0}, {22, 4}, {0, 4}};
+  for (const Vec2& m : kMirrors) {
+    SegmentationInput in = level();
+    add_area(mirrored(c, m), &in);
+    const Vec2 inside(10, 3);
+    for (const auto& [a, b] : std::vector<std::pair<Vec2, Vec2>>{{{0, 4}, {22, 4}}, {{0, 2}, {0, 4}}, {{22, 0}, {22, 4}}, {{18, 0}, {22, 0}}})
+      in.walls.push_back(wall(static_cast<int>(in.walls.size()), a.cwiseProduct(m), b.cwiseProduct(m), inside.cwiseProduct(m)));
+    const RoomSegmentation seg = segment_rooms(in);
+    const auto at = [&](double x, double y) { return seg.space_at(Vec2(x, y).cwiseProduct(m)); };
+    ASSERT_GE(at(10, 3), 0) << m.transpose();
+    ASSERT_GE(at(20, 0.7), 0) << m.transpose();
+    EXPECT_NE(at(20, 0.7), at(10, 3)) << m.transpose();
+    EXPECT_EQ(at(21.5, 3), at(10, 3)) << m.transpose();      // the gallery's east end stays the gallery's
+    EXPECT_EQ(at(21.5, 1.2), at(20, 0.7)) << m.transpose();  // the landing's far corner is the landing's
+  }
+}
+
 TEST(RoomSegmentation, ShelfRowsDoNotCutAHall) {
   // A 10 x 8 m hall with rows of 2.1 m shelves (planes that do not reach a wall's height).
   SegmentationInput in = level();

@@ -357,10 +357,12 @@ int split_regions(const GridFrame& f, std::vector<int>* label) {
 /// every bend. The edge leaving the corner is drawn back instead where only it ends at another
 /// inner corner (the mouth of a side corridor: the corridor it leaves stays whole), where only
 /// it crosses the region (a step in the width), or where it is corridor_aspect times longer
-/// than the arriving edge (a corridor's side running on past a bay). Cut cells lose their
-/// label; returns whether any was cut.
+/// than the arriving edge (a corridor's side running on past a bay). An edge within its
+/// simplification's angular error of a wall's direction (`wall_directions`, unit) takes it,
+/// and is as long as the straight run of edges it then belongs to.
+/// Cut cells lose their label; returns whether any was cut.
 bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cells, double tolerance_cells, double min_turn,
-               std::vector<int>* label) {
+               const std::vector<Vec2>& wall_directions, std::vector<int>* label) {
   std::vector<int>& lab = *label;
   bool cut = false;
   for (int k = 0; k < n; ++k) {
@@ -426,17 +428,51 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
       bool drawn_back = false;             ///< the leaving edge drawn back, not the arriving one drawn on
     };
     std::vector<Corner> corners;
+    // A simplified edge's direction is known to within atan(2 tolerance / length); within that
+    // of a mapped wall's, it runs along the wall: the raggedness is the raster's (a railing's
+    // end, a ramp's top), the sides are the building's, and a cut drawn on from it follows them.
+    const auto along_walls = [&](const Vec2& d, double length) {
+      double best = std::atan2(2.0 * tolerance_cells, length);
+      Vec2 out = d;
+      for (const Vec2& w : wall_directions) {
+        const double c = d.dot(w);
+        const double angle = std::acos(std::min(1.0, std::abs(c)));
+        if (angle < best) {
+          best = angle;
+          out = c >= 0.0 ? w : Vec2(-w);
+        }
+      }
+      return out;
+    };
     for (Polygon2& loop : loops) {
       loop = simplify_outlines({loop}, tolerance_cells).front();
-      if (loop.size() < 3) continue;
-      for (std::size_t i = 0; i < loop.size(); ++i) {
-        const Vec2& prev = loop[(i + loop.size() - 1) % loop.size()];
-        const Vec2& at = loop[i];
-        const Vec2& next = loop[(i + 1) % loop.size()];
-        const Vec2 d_in = (at - prev).normalized(), d_out = (next - at).normalized();
-        const double turn = d_in.x() * d_out.y() - d_in.y() * d_out.x();
+      const std::size_t m = loop.size();
+      if (m < 3) continue;
+      // Edge i runs from vertex i to i + 1; its direction as along_walls gives it.
+      std::vector<Vec2> dir(m);
+      std::vector<double> len(m);
+      for (std::size_t i = 0; i < m; ++i) {
+        len[i] = (loop[(i + 1) % m] - loop[i]).norm();
+        dir[i] = along_walls((loop[(i + 1) % m] - loop[i]).normalized(), len[i]);
+      }
+      // The length of the straight run of edges that edge e belongs to, going back (or on):
+      // a side whose end the raster made ragged is as long as the whole side.
+      const auto run_length = [&](std::size_t e, bool back) {
+        double total = len[e];
+        for (std::size_t k = 1; k < m; ++k) {
+          const std::size_t o = back ? (e + m - k) % m : (e + k) % m;
+          if ((dir[o] - dir[e]).norm() > 1e-9) break;
+          total += len[o];
+        }
+        return total;
+      };
+      for (std::size_t i = 0; i < m; ++i) {
+        const std::size_t e_in = (i + m - 1) % m, e_out = i;
+        const Vec2 raw_in = (loop[i] - loop[e_in]).normalized(), raw_out = (loop[(i + 1) % m] - loop[i]).normalized();
+        const double turn = raw_in.x() * raw_out.y() - raw_in.y() * raw_out.x();
         if (turn > -std::sin(min_turn)) continue;  // not an inner corner turning min_turn or more
-        corners.push_back({at, d_in, d_out, (at - prev).norm(), (next - at).norm(), false});
+        if (dir[e_in].x() * dir[e_out].y() - dir[e_in].y() * dir[e_out].x() > -std::sin(min_turn)) continue;  // nor along the walls
+        corners.push_back({loop[i], dir[e_in], dir[e_out], run_length(e_in, true), run_length(e_out, false), false});
       }
     }
     // A walk on from a corner along `d`, the edge it draws on having the region on its `left`:
@@ -684,8 +720,11 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   int n = merge_small_regions(f, cfg.min_region_area / cell_area, static_cast<int>(sizes.size()), &label);
   std::vector<int> before_cut = label;
   const int n_before_cut = n;
+  std::vector<Vec2> wall_directions;
+  for (const WallLine& w : walls)
+    if ((w.b - w.a).norm() > 0.0) wall_directions.push_back((w.b - w.a).normalized());
   if (cut_bends(f, n, cfg.corridor_aspect, cfg.min_region_area / cell_area, cfg.bend_tolerance / cfg.cell,
-                cfg.min_bend_deg * kDegToRad, &label)) {
+                cfg.min_bend_deg * kDegToRad, wall_directions, &label)) {
     // The legs are regions of their own.
     const int pieces = split_regions(f, &label);
     sizes.assign(static_cast<std::size_t>(pieces), 0);
