@@ -14,6 +14,10 @@ namespace {
 // grid's corner); the normals' height gradients gx, gy.
 enum Sum { kN, kX, kY, kZ, kXX, kXY, kYY, kXZ, kYZ, kGX, kGY, kSums };
 
+// Nodes fix a plane when their spread across their main direction is at least this share of
+// the spread along it (a ring's arc, a single row of nodes fix none).
+constexpr double kMinSpreadRatio = 0.1;
+
 }  // namespace
 
 std::vector<double> ground_slopes(const std::vector<Eigen::Vector3d>& positions,
@@ -80,9 +84,8 @@ std::vector<double> ground_slopes(const std::vector<Eigen::Vector3d>& positions,
     const double sxx = s[kXX] - s[kX] * s[kX] / m, sxy = s[kXY] - s[kX] * s[kY] / m, syy = s[kYY] - s[kY] * s[kY] / m;
     const double sxz = s[kXZ] - s[kX] * s[kZ] / m, syz = s[kYZ] - s[kY] * s[kZ] / m;
     const double det = sxx * syy - sxy * sxy;
-    // Nodes on a line (one ring's arc, one node) fix no plane: the window's spread across its
-    // main direction must be a tenth of that along it (det / trace^2 is their ratio squared).
-    if (!(det > 0.01 * (sxx + syy) * (sxx + syy))) continue;
+    // det / trace^2 is about the square of the spreads' ratio.
+    if (!(det > kMinSpreadRatio * kMinSpreadRatio * (sxx + syy) * (sxx + syy))) continue;
     const double gx = (syy * sxz - sxy * syz) / det, gy = (sxx * syz - sxy * sxz) / det;
     slopes[i] = std::min(tilt, std::hypot(gx, gy));
   }

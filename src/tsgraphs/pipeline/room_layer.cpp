@@ -466,13 +466,13 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
   // node's reach.
   std::map<int, double> walked;
   const double reach = in.free_radius + in.ground_radius;
+  // No more pieces than the raster has cells across: beyond it no space is found anyway.
+  const double across = std::max(1.0, static_cast<double>(seg.frame.cols + seg.frame.rows));
   for (std::size_t k = 1; k < path.size(); ++k) {
     const Vec2 a = path[k - 1].head<2>(), b = path[k].head<2>();
     const int end_a = seg.space_at(a, reach), end_b = seg.space_at(b, reach);
     const double length = (b - a).norm();
-    // No more pieces than the raster has cells across: beyond it no space is found anyway.
-    const double across = static_cast<double>(seg.frame.cols + seg.frame.rows);
-    const int pieces = static_cast<int>(std::clamp(std::ceil(length / settings_.segmentation.cell), 1.0, std::max(1.0, across)));
+    const int pieces = static_cast<int>(std::clamp(std::ceil(length / settings_.segmentation.cell), 1.0, across));
     for (int j = 0; j < pieces; ++j) {
       const int s = seg.space_at(a + (b - a) * ((j + 0.5) / pieces), reach);
       if (s >= 0 && (s == end_a || s == end_b)) walked[s] += length / pieces;
