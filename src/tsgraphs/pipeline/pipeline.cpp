@@ -250,6 +250,7 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
   // Walls: the mapped vertical planes with their extents, as far as a space the robot is in
   // may reach (the room segmentation closes the doors of all of them).
   const double wall_radius = std::max(radius, config_.rooms.layer.context_radius);
+  in.walls_reach = wall_radius;
   for (const auto& [id, lm] : mapper_.landmarks()) {
     if (!lm.vertical || lm.points.empty()) continue;
     const PlaneExtent e = plane_extent(graph_.planes().at(id).plane, lm.points);

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -45,7 +46,8 @@ struct RoomLayerConfig {
   double obstacle_voxel = 0.2;     ///< obstacle candidate points are thinned to this (m)
   double segment_radius = 2.5;     ///< flush: only the cluster's vertices this near the robot along the free space join the segment (m):
                                    ///< the aisle it walks, not everything in view
-  double context_radius = 20.0;    ///< walls within this of the robot (plus their length) bound the spaces segmented (m)
+  double context_radius = 20.0;    ///< walls within this of the robot (plus their length) bound the spaces segmented;
+                                   ///< only rooms within it follow a re-segmentation (m)
   double min_segment_length = 2.0; ///< flush: a segment walked less than this (a corner, a doorway passed
                                    ///< through) is not extracted but carried into the next one (m)
   double min_visit_length = 1.0;   ///< flush: a space the segment's path runs this far in is extracted (m); a step
@@ -119,6 +121,7 @@ struct RoomLayerInput {
   std::vector<Eigen::Vector3d> scan_points;          ///< this keyframe's points, map frame, thinned (the sight map's rays)
   std::vector<Pose3> keyframe_poses;                 ///< TS-graphs: every keyframe's current estimate by index, so that earlier rays follow their keyframes (empty: they stay where traced)
   std::vector<rooms::WallCandidate> walls;           ///< mapped vertical planes with their extents
+  double walls_reach = std::numeric_limits<double>::infinity();  ///< walls holds every one within this of the pose (m)
   std::vector<int> keyframe_planes;                  ///< ids of the planes this keyframe observes
 };
 
