@@ -1,7 +1,7 @@
 // Room segmentation on constructed levels, one rule each: a void between facing walls, a
 // corridor at the outer wall, doors, an L-shaped room, a diagonal corridor (and its ends at the
 // facades), a ring, a T-junction, a step in a corridor's width, a bay beside a gallery, shelves,
-// a wall whose top no ray saw, rays over a ramp.
+// a wall whose top no ray saw (and a pier in its line), rays over a ramp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -193,6 +193,29 @@ TEST(RoomSegmentation, TwoDoorsBesideAPierSeparateTheRoomsTheyJoin) {
   ASSERT_EQ(seg.spaces.size(), 2u);
   EXPECT_NE(seg.space_at({2.5, 3}), seg.space_at({7.5, 3}));
   for (const SegmentedSpace& s : seg.spaces) EXPECT_NEAR(footprint_area(s), 30.0, 2.0);
+}
+
+TEST(RoomSegmentation, APierSeenOnlyBelowItsLintelStillSeparatesTheRooms) {
+  // The same two doors, seen by a low sensor: the pier is mapped only up to 1.6 m (its lintel
+  // unseen, and no ray above it). It lies in the wall's line a door's width from its pieces: it
+  // is the same wall and closes the opening. The same plane 0.5 m off the line (something
+  // standing in the room) joins nothing: the opening is wider than a door, one space.
+  SegmentationInput in = level();
+  const std::vector<std::pair<Vec2, Vec2>> pieces = {{{5, 0}, {5, 1.2}}, {{5, 2.5}, {5, 3.1}}, {{5, 4.6}, {5, 6}}};
+  add_area_with_walls(box(0, 0, 10, 6), pieces, &in);
+  box_walls(0, 0, 10, 6, 0, &in);
+  in.walls.push_back(wall(4, pieces[0].first, pieces[0].second, {2, 3}));
+  in.walls.push_back(wall(5, pieces[2].first, pieces[2].second, {2, 3}));
+  WallCandidate pier = wall(6, pieces[1].first, pieces[1].second, {2, 3}, 1.6);
+  pier.top_seen = false;
+  in.walls.push_back(pier);
+  RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 2u);
+  EXPECT_NE(seg.space_at({2.5, 3}), seg.space_at({7.5, 3}));
+  in.walls.back() = wall(6, {4.5, 2.5}, {4.5, 3.1}, {2, 3}, 1.6);
+  in.walls.back().top_seen = false;
+  seg = segment_rooms(in);
+  EXPECT_EQ(seg.space_at({2.5, 3}), seg.space_at({7.5, 3}));
 }
 
 TEST(RoomSegmentation, ADoorBesideAJointOfTheRoomsBelowStaysClosed) {

@@ -65,9 +65,19 @@ bool joined(const WallLine& p, const WallLine& q, double gap, double cos_paralle
          distance_to_segment(q.a, p.a, p.b) <= gap || distance_to_segment(q.b, p.a, p.b) <= gap;
 }
 
+/// `p` lies on the line of `q` (parallel, within `offset` of it at both ends) with an end within
+/// `gap` of one of q's: the next piece of the same wall past a door.
+bool in_line(const WallLine& p, const WallLine& q, double offset, double gap, double cos_parallel) {
+  if (std::abs(p.n.dot(q.n)) < cos_parallel) return false;
+  if (std::abs(q.n.dot(p.a) + q.d) > offset || std::abs(q.n.dot(p.b) + q.d) > offset) return false;
+  return std::min({(p.a - q.a).norm(), (p.a - q.b).norm(), (p.b - q.a).norm(), (p.b - q.b).norm()}) <= gap;
+}
+
 /// The walls of the level as lines at floor height: with `reaching`, only those that bound
 /// spaces: their points span wall_reach_height, or no ray saw above their top and they join
-/// (wall_joint_gap) a wall that bounds; else every vertical plane of min_wall_height that comes
+/// (wall_joint_gap) a wall that bounds, or lie in line with one (on its line within a raster
+/// cell, a door's width from its end: a pier between two doors, whose lintel a low sensor
+/// does not see); else every vertical plane of min_wall_height that comes
 /// down to the level (they may carry a footprint's side: a low sensor sees a small room's walls
 /// only up to its head height plus a little).
 std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, double floor_z, const RoomSegmentationConfig& cfg,
@@ -90,7 +100,8 @@ std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, doubl
     for (std::size_t i = 0; i < unseen_top.size(); ++i) {
       if (taken[i]) continue;
       const bool joins = std::any_of(out.begin(), out.end(), [&](const WallLine& o) {
-        return joined(unseen_top[i], o, cfg.wall_joint_gap, cos_parallel);
+        return joined(unseen_top[i], o, cfg.wall_joint_gap, cos_parallel) ||
+               in_line(unseen_top[i], o, cfg.cell, cfg.max_door_width, cos_parallel);
       });
       if (!joins) continue;
       taken[i] = true;
