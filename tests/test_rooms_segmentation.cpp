@@ -690,6 +690,37 @@ TEST(WallTopRays, RaysOverAPlaneShowItsTop) {
   EXPECT_EQ(tops.share_above(far, 0.2), 0.0);  // never seen
 }
 
+TEST(WallTopRays, PlanesRecordedTogetherGetWhatEachGetsAlone) {
+  // A low sensor (0.5 m) and three planes: a low block ahead (top 0.3 m), whose rays end at
+  // 0.9 m on a wall 8 m out, a taller one to the side (top 0.8 m), whose rays end on the
+  // ceiling (3 m), and one beyond every return. Recording them in one call (which filters the
+  // points once for all planes) gives each what recording it alone gives.
+  std::vector<Eigen::Vector3d> returns;
+  for (int k = 0; k < 40; ++k) {
+    const double y = -1.0 + 0.05 * k;
+    returns.emplace_back(3.0, y, 0.25);                 // the low block's face
+    returns.emplace_back(8.0, y * 8.0 / 3.0, 0.9);      // over it (at 0.65 m), to a wall
+    returns.emplace_back(y, 3.0, 0.5);                  // the taller one's face
+    returns.emplace_back(y * 8.0 / 3.0, 8.0, 3.0);      // over it (at 1.44 m), to the ceiling
+  }
+  const freespace::WallTopRays::Wall low{1, {3.0, -0.9}, {3.0, 0.9}, 0.3};
+  const freespace::WallTopRays::Wall tall{2, {-0.9, 3.0}, {0.9, 3.0}, 0.8};
+  const freespace::WallTopRays::Wall beyond{3, {20.0, -1.0}, {20.0, 1.0}, 0.3};
+  const Eigen::Vector3d sensor(0.0, 0.0, 0.5);
+  freespace::SightMap sight(0.0, {});
+  sight.add_scan(sensor, returns);
+  freespace::WallTopRays together(0.1);
+  together.add_scan(sensor, returns, {low, tall, beyond}, sight, 0.2, 0.2);
+  for (const freespace::WallTopRays::Wall& w : {low, tall, beyond}) {
+    freespace::WallTopRays alone(0.1);
+    alone.add_scan(sensor, returns, {w}, sight, 0.2, 0.2);
+    EXPECT_EQ(together.share_above(w, 0.2), alone.share_above(w, 0.2)) << "plane " << w.id;
+  }
+  EXPECT_GT(together.share_above(low, 0.2), 0.9);
+  EXPECT_GT(together.share_above(tall, 0.2), 0.9);
+  EXPECT_EQ(together.share_above(beyond, 0.2), 0.0);
+}
+
 TEST(WallTopRays, RaysInTheRoomBesideAWallDoNotShowItsTop) {
   // A low sensor (0.5 m) near a wall whose face is at x = 3.05, seen up to 1.8 m; rays to the
   // ceiling (3 m) just short of the wall run along its face, high above 1.8 m, through the

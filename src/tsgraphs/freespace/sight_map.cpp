@@ -34,16 +34,19 @@ std::size_t SightMap::index_in_tile(long c, long r) {
   return static_cast<std::size_t>((r & (kTileSide - 1)) * kTileSide + (c & (kTileSide - 1)));
 }
 
-SightMap::Tile& SightMap::tile_at(long c, long r, std::size_t* i) {
+SightMap::Tile& SightMap::tile_miss(std::uint64_t key) {
+  last_.tile = &tiles_[key];
+  last_.key = key;
+  return *last_.tile;
+}
+
+inline SightMap::Tile& SightMap::tile_at(long c, long r, std::size_t* i) {
   *i = index_in_tile(c, r);
   // A ray walks many cells of one tile in a row: look the tile up only when it changes (the
   // map's nodes stay put when it grows).
   const std::uint64_t key = tile_key(c >> kTileBits, r >> kTileBits);
-  if (last_.tile == nullptr || key != last_.key) {
-    last_.tile = &tiles_[key];
-    last_.key = key;
-  }
-  return *last_.tile;
+  if (last_.tile != nullptr && key == last_.key) return *last_.tile;
+  return tile_miss(key);
 }
 
 std::uint8_t SightMap::height_code(double z) const {

@@ -82,6 +82,8 @@ class SightMap {
   static std::size_t index_in_tile(long c, long r);
   /// The tile holding cell (c, r) (made if new) and the cell's index in it.
   Tile& tile_at(long c, long r, std::size_t* i);
+  /// tile_at's lookup when the cell is in another tile than the last one (made if new).
+  Tile& tile_miss(std::uint64_t key);
   /// Adds `delta` (+1 or -1) to cell (c, r)'s count `m`; `z`: the return's height (map frame), for a hit.
   void mark(long c, long r, Mark m, int delta, double z = 0.0);
   /// add_scan (delta +1) and remove_scan (delta -1).

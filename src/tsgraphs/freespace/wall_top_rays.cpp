@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+
+#include "tsgraphs/core/polygon.hpp"
 
 namespace tsgraphs::freespace {
 
@@ -17,7 +20,20 @@ std::uint64_t WallTopRays::key(const Eigen::Vector2d& p) const {
 
 void WallTopRays::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points,
                            const std::vector<Wall>& walls, const SightMap& sight, double margin, double beyond) {
+  if (walls.empty() || points.empty()) return;
   const Eigen::Vector2d s = sensor.head<2>();
+  // Only rays that rise above the lowest plane's top can count, and none reaches a plane
+  // farther than the farthest point: one pass over the points, not one per plane.
+  double lowest_over = std::numeric_limits<double>::infinity();
+  for (const Wall& w : walls) lowest_over = std::min(lowest_over, w.top + margin);
+  std::vector<const Eigen::Vector3d*> high;
+  double reach = 0.0;
+  for (const Eigen::Vector3d& p : points) {
+    if (!p.allFinite() || std::max(sensor.z(), p.z()) <= lowest_over) continue;
+    high.push_back(&p);
+    reach = std::max(reach, (p.head<2>() - s).norm());
+  }
+  if (high.empty()) return;
   for (const Wall& w : walls) {
     const Eigen::Vector2d along = w.b - w.a;
     const double length = along.norm();
@@ -25,8 +41,10 @@ void WallTopRays::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eige
     const Eigen::Vector2d n(-along.y() / length, along.x() / length);
     const double side_s = n.dot(s - w.a);
     if (std::abs(side_s) < beyond) continue;  // the sensor stands in the plane's line
+    if (!(distance_to_segment(s, w.a, w.b) <= reach + cell_)) continue;
     const double over = w.top + margin;
-    for (const Eigen::Vector3d& p : points) {
+    for (const Eigen::Vector3d* q : high) {
+      const Eigen::Vector3d& p = *q;
       if (std::max(sensor.z(), p.z()) <= over) continue;  // never that high
       const double side_p = n.dot(p.head<2>() - w.a);
       if ((side_p > 0.0) == (side_s > 0.0) || std::abs(side_p) < beyond) continue;  // ends before or on its face
