@@ -12,6 +12,7 @@
 #include <cmath>
 #include <iterator>
 #include <optional>
+#include <random>
 #include <stdexcept>
 #include <vector>
 
@@ -246,6 +247,33 @@ TEST(FreespaceTraversable, StoreysStayApartAndOnlyTheirOwnObstaclesCount) {
   ASSERT_EQ(selected.size(), 2u);
   EXPECT_DOUBLE_EQ(selected[0].z(), 0.5);
   EXPECT_DOUBLE_EQ(selected[1].z(), 2.0);
+}
+
+TEST(FreespaceTraversable, ObstacleSelectionAgreesWithASearchOverEveryNode) {
+  // Rough ground on two storeys and a ramp between them, points at every height: the indexed
+  // selection (nodes highest first, points above the ceiling or at the floor not searched)
+  // picks what the highest node below each point within ground_search_radius, found by a
+  // search over every node, makes an obstacle.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Points nodes, raw;
+  for (int k = 0; k < 600; ++k) {
+    const double x = 8.0 * u(rng), y = 6.0 * u(rng);
+    const double storey = k % 3 == 0 ? 3.0 : 0.0;
+    nodes.emplace_back(x, y, storey + (x > 6.0 ? 0.4 * (x - 6.0) : 0.0) + 0.05 * u(rng));
+  }
+  for (int k = 0; k < 3000; ++k) raw.emplace_back(9.0 * u(rng) - 0.5, 7.0 * u(rng) - 0.5, 7.0 * u(rng) - 1.0);
+  const TraversableFreeSpaceConfig config;
+  const GroundHeight every_node = [&](const Eigen::Vector3d& p) -> std::optional<double> {
+    std::optional<double> ground;
+    for (const Eigen::Vector3d& n : nodes)
+      if ((n - p).head<2>().norm() < config.ground_search_radius && n.z() <= p.z() && (!ground || n.z() > *ground))
+        ground = n.z();
+    return ground;
+  };
+  const Points expected = select_obstacles(raw, every_node, config);
+  EXPECT_GT(expected.size(), 100u);
+  EXPECT_EQ(select_obstacles(raw, nodes, config), expected);
 }
 
 TEST(FreespaceTraversable, DeterministicAndValidated) {

@@ -633,6 +633,31 @@ TEST(SightMap, ARayUnderTheFloorBeyondAVoidMarksNothingAboveIt) {
   EXPECT_EQ(at(6.5, 0.0), 1);  // above the rays that ran on under the floor
 }
 
+TEST(SightMap, RaysMarkOnlyWhereTheyAreAtWalkingHeight) {
+  // A sensor 1 m up; rays rising to a ceiling 3 m up, 10 m out, pass the headroom (2 m) at
+  // x = 5; rays from a sensor 2.5 m up (above the headroom) come down to a floor 10 m out,
+  // entering it at x = 2. Cells are open where the ray is at walking height, not beyond.
+  const GridFrame f = GridFrame::around({-1, -1}, {11, 1}, 0.1, 0.0);
+  std::vector<Eigen::Vector3d> up, down;
+  for (int k = 0; k < 40; ++k) {
+    const double y = -0.5 + 0.025 * k;
+    up.emplace_back(10.0, y, 3.0);
+    down.emplace_back(10.0, y, 0.0);
+  }
+  freespace::SightMap rising(0.0, {});
+  rising.add_scan({0.0, 0.0, 1.0}, up);
+  std::vector<std::uint8_t> open = rising.open_cells(f);
+  EXPECT_EQ(cell_at(open, f, 4.8, 0.0), 1);
+  EXPECT_EQ(cell_at(open, f, 5.3, 0.0), 0);
+  EXPECT_EQ(cell_at(open, f, 9.5, 0.0), 0);
+  freespace::SightMap falling(0.0, {});
+  falling.add_scan({0.0, 0.0, 2.5}, down);
+  open = falling.open_cells(f);
+  EXPECT_EQ(cell_at(open, f, 1.8, 0.0), 0);
+  EXPECT_EQ(cell_at(open, f, 2.3, 0.0), 1);
+  EXPECT_EQ(cell_at(open, f, 9.5, 0.0), 1);
+}
+
 TEST(SightMap, AScanTakenBackLeavesWhatTheOthersSaw) {
   // Two scans of a floor 1 m below the sensor: one from (0, 0) towards +x, one from (0, 3)
   // towards -x, with a return on a box. After the first is taken back the map is what the

@@ -24,6 +24,18 @@ class PlanarIndex {
   template <class F>
   void visit_within(const Eigen::Vector3d& p, double radius, F&& f) const;
 
+  /// Calls f(first, last) for each grid cell that may hold points strictly closer than
+  /// `radius` to p horizontally: [first, last) are its point indices, increasing (the caller
+  /// tests the distance; points given in a chosen order keep it within a cell), until f
+  /// returns false.
+  template <class F>
+  void visit_cells(const Eigen::Vector3d& p, double radius, F&& f) const;
+
+  /// Horizontal squared distance from p to point i.
+  double squared_distance(const Eigen::Vector3d& p, int i) const {
+    return (p.head<2>() - xy_[static_cast<std::size_t>(i)]).squaredNorm();
+  }
+
   /// Indices of the points strictly closer than `radius` to p horizontally, increasing
   /// (replaces the content of `out`).
   void within(const Eigen::Vector3d& p, double radius, std::vector<int>& out) const;
@@ -38,9 +50,8 @@ class PlanarIndex {
 };
 
 template <class F>
-void PlanarIndex::visit_within(const Eigen::Vector3d& p, double radius, F&& f) const {
+void PlanarIndex::visit_cells(const Eigen::Vector3d& p, double radius, F&& f) const {
   if (xy_.empty() || !(radius > 0.0) || !p.head<2>().allFinite()) return;
-  const double r2 = radius * radius;
   const double reach = std::ceil(radius / cell_);
   const double fc = std::floor((p.x() - origin_.x()) / cell_), fr = std::floor((p.y() - origin_.y()) / cell_);
   const double last_c = static_cast<double>(cols_ - 1), last_r = static_cast<double>(rows_ - 1);
@@ -50,14 +61,19 @@ void PlanarIndex::visit_within(const Eigen::Vector3d& p, double radius, F&& f) c
   for (long r = r0; r <= r1; ++r) {
     for (long c = c0; c <= c1; ++c) {
       const std::size_t k = static_cast<std::size_t>(r * cols_ + c);
-      for (std::size_t s = start_[k]; s < start_[k + 1]; ++s) {
-        const int i = order_[s];
-        const double dx = p.x() - xy_[static_cast<std::size_t>(i)].x();
-        const double dy = p.y() - xy_[static_cast<std::size_t>(i)].y();
-        if (dx * dx + dy * dy < r2 && !f(i)) return;
-      }
+      if (start_[k] < start_[k + 1] && !f(order_.data() + start_[k], order_.data() + start_[k + 1])) return;
     }
   }
+}
+
+template <class F>
+void PlanarIndex::visit_within(const Eigen::Vector3d& p, double radius, F&& f) const {
+  const double r2 = radius * radius;
+  visit_cells(p, radius, [&](const int* first, const int* last) {
+    for (const int* i = first; i != last; ++i)
+      if (squared_distance(p, *i) < r2 && !f(*i)) return false;
+    return true;
+  });
 }
 
 }  // namespace tsgraphs::freespace

@@ -104,10 +104,12 @@ void SightMap::trace(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vec
     double t_x = d.x() != 0.0 ? ((step_c > 0 ? c + 1 - a.x() : a.x() - c) * inv_x) : inv_x;
     double t_y = d.y() != 0.0 ? ((step_r > 0 ? r + 1 - a.y() : a.y() - r) * inv_y) : inv_y;
     double t = 0.0;
+    const bool rising = p.z() > sensor.z();
     while (c != c_end || r != r_end) {
       if (t > 1.0) break;
       const double z = sensor.z() + t * (p.z() - sensor.z());
       if (z < under) break;
+      if (z > top && rising) break;  // above walking height, and only higher on
       std::size_t i;
       Tile& cell = tile_at(c, r, &i);
       if (z < low) bump(cell.below[i], delta);
