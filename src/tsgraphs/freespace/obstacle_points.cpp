@@ -28,12 +28,12 @@ std::vector<Eigen::Vector3d> select_obstacles(const std::vector<Eigen::Vector3d>
   by_height.reserve(nodes.size());
   for (const Eigen::Vector3d& n : nodes)
     if (n.allFinite()) by_height.push_back(n);
+  if (by_height.empty()) return {};  // no ground anywhere: no obstacle
   std::stable_sort(by_height.begin(), by_height.end(),
                    [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.z() > b.z(); });
   // A radius of 0 or less finds no ground: any cell does for the index.
   const PlanarIndex index(by_height, config.ground_search_radius > 0.0 ? config.ground_search_radius : 1.0);
   const double r2 = config.ground_search_radius * config.ground_search_radius;
-  if (by_height.empty()) return {};
   const double top = by_height.front().z(), bottom = by_height.back().z();
   const GroundHeight highest_node_below = [&](const Eigen::Vector3d& p) -> std::optional<double> {
     std::optional<double> ground;

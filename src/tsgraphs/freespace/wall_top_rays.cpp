@@ -41,7 +41,7 @@ void WallTopRays::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eige
     const Eigen::Vector2d n(-along.y() / length, along.x() / length);
     const double side_s = n.dot(s - w.a);
     if (std::abs(side_s) < beyond) continue;  // the sensor stands in the plane's line
-    if (!(distance_to_segment(s, w.a, w.b) <= reach + cell_)) continue;
+    if (!(distance_to_segment(s, w.a, w.b) <= reach + cell_)) continue;  // a cell of slack for rounding
     const double over = w.top + margin;
     for (const Eigen::Vector3d* q : high) {
       const Eigen::Vector3d& p = *q;
