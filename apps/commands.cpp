@@ -12,6 +12,7 @@
 #include "tsgraphs/eval/run_evaluation.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
+#include "tsgraphs/odometry/deskew.hpp"
 #include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
@@ -92,7 +93,11 @@ void convert(const io::ScanSequence& sequence, const std::string& out, const pip
   for (std::size_t i = 0; i < sequence.size(); ++i) {
     const PointCloud scan = sequence.scan(i);
     writer.write_scan(i, scan);
-    if (lidar_odometry) info.odometry.push_back(odometry.initial_pose * lidar_odometry->register_scan(scan));
+    if (lidar_odometry) {
+      // The scans are written as they are (with their times); the odometry registers them de-skewed.
+      const auto [motion, interval] = odometry::sweep_motion(i, info.times, {}, &*lidar_odometry);
+      info.odometry.push_back(odometry.initial_pose * lidar_odometry->register_scan(odometry::deskew(scan, motion, interval)));
+    }
     progress.update(i + 1, sequence.size());
   }
   writer.commit(info);
@@ -184,6 +189,7 @@ void run(const io::ScanSequence& sequence, const std::string& out, const pipelin
   pipeline::RunCallbacks callbacks;
   callbacks.progress = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
   callbacks.warning = [](const std::string& w) { std::fprintf(stderr, "tsgraphs: warning: %s\n", w.c_str()); };
+  if (!quiet) callbacks.note = [](const std::string& n) { std::fprintf(stderr, "run: platform: %s\n", n.c_str()); };
   pipeline::RunInfo info = pipeline::run_sequence(sequence, slam, callbacks, odometry);
   info.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   pipeline::write_run_outputs(slam, info, dir.path());

@@ -96,9 +96,7 @@ void demo(const DemoOptions& options) {
     const std::string seq = (out / tag).string();
     step("simulate " + tag);
     simulate(raised, seq, 1, 0, true);
-    pipeline::PipelineConfig config;
-    config.ground.sensor_height = options.platform_height;
-    config.ground.seed_radius = options.platform_seed_radius;
+    const pipeline::PipelineConfig config;  // the platform is measured from the scans
     const std::string low_run = (out / (scene.name + "_seed1_" + kMethods[0].slug)).string();
     const std::string high_run = (out / (tag + "_" + kMethods[0].slug)).string();
     step("run " + tag + ", TS-graphs");

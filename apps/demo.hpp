@@ -13,8 +13,6 @@ struct DemoOptions {
   int seeds = 1;                                        ///< seeds 1..N per scene (one run each ~20 s on 2 cores)
   std::vector<std::string> scenes = {"atrium", "office"};  ///< built-in names or scene files
   double platform_height = 1.7;  ///< the second platform's sensor height for the comparison (m); 0: none
-  double platform_seed_radius = 6.0;  ///< its ground.seed_radius (m): from 1.7 m the os1-64's lowest beam
-                                      ///< meets the floor 4.1 m away, beyond the default 3 m
   bool quiet = false;
 };
 

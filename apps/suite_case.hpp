@@ -30,17 +30,6 @@ std::string case_spec(const Suite& suite, const SuiteCase& c);
 /// of every method of the suite.
 bool case_done(const Suite& suite, const SuiteCase& c, const std::string& out);
 
-/// The method's parameters for a platform: what the user is told to set for it and nothing
-/// else (docs/suite.md): the sensor's ground section of config/sensors/<preset>.yaml
-/// (ground::per_sensor_preset), ground.sensor_height = the mount height, and
-/// ground.seed_radius = platform_seed_radius.
-pipeline::PipelineConfig platform_config(const scene::SensorSpec& sensor);
-
-/// Where the ground search may start for a sensor: the distance at which its lowest beam
-/// meets the floor plus kSeedRadiusMargin, at most the ground's max_range, never below
-/// `default_radius` (ground.seed_radius's default).
-double platform_seed_radius(const scene::SensorSpec& sensor, double default_radius, double max_range);
-
 /// Runs the case into OUT/cases/ID and writes its case.json (written whole, last). A case
 /// folder left by another definition of the case (spec.txt) is emptied first. A case that
 /// throws is recorded as failed with the message, not rethrown; its sequence is removed either

@@ -14,6 +14,7 @@
 #include "tsgraphs/scene/builtin_scenes.hpp"
 #include "tsgraphs/scene/generator.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
+#include "tsgraphs/scene/platform_presets.hpp"
 #include "tsgraphs/scene/sensor_presets.hpp"
 
 namespace tsgraphs::app {
@@ -29,6 +30,10 @@ constexpr std::uint64_t kMaxSeedsPerRange = 10000;
 /// Highest sensor a platform may set (m): a person holds it no higher, and the lowest
 /// generated ceiling (2.6 m) must stay above it.
 constexpr double kMaxMountHeight = 2.5;
+/// Scan rates a platform may set (Hz): the slowest real sensors turn once a second, the
+/// fastest 40 times (and a sweep shorter than 25 ms sees almost no motion).
+constexpr double kMinRateHz = 1.0;
+constexpr double kMaxRateHz = 40.0;
 
 std::string join(const std::vector<std::string>& names) {
   std::string out;
@@ -114,7 +119,7 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
   const std::string what = g.key_path("platforms");
   const YAML::Node node = g.raw("platforms");
   if (!node.IsSequence() || node.size() == 0)
-    throw input_error(g.file(), node.Mark().line + 1, what + ": expected a list of platforms (default, or {name, mount_height, preset})");
+    throw input_error(g.file(), node.Mark().line + 1, what + ": expected a list of platforms (default, or {name, mount_height, preset, type, rate_hz})");
   std::vector<SuitePlatform> out;
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string item = what + "[" + std::to_string(i) + "]";
@@ -126,7 +131,7 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
       continue;
     }
     const YamlMap p(n, g.file(), item);
-    p.check_keys({"name", "mount_height", "preset"});
+    p.check_keys({"name", "mount_height", "preset", "type", "rate_hz"});
     SuitePlatform platform;
     platform.name = p.require<std::string>("name");
     if (platform.name.empty() || platform.name == "default" || id_text(platform.name) != platform.name)
@@ -142,8 +147,18 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
       if (std::find(presets.begin(), presets.end(), platform.preset) == presets.end())
         throw p.error("preset", "unknown preset '" + platform.preset + "' (presets: " + join(presets) + ")");
     }
-    if (!platform.mount_height && platform.preset.empty())
-      throw p.error_here("a platform sets mount_height, preset or both");
+    if (p.has("type")) {
+      platform.type = p.require<std::string>("type");
+      if (!scene::platform_type(platform.type))
+        throw p.error("type", "unknown platform type '" + platform.type + "' (" + join(scene::platform_names()) + ")");
+    }
+    if (p.has("rate_hz")) {
+      platform.rate_hz = p.require<double>("rate_hz");
+      if (!(*platform.rate_hz >= kMinRateHz && *platform.rate_hz <= kMaxRateHz))
+        throw p.error("rate_hz", "must lie in [1, 40] Hz");
+    }
+    if (!platform.mount_height && platform.preset.empty() && platform.type.empty() && !platform.rate_hz)
+      throw p.error_here("a platform sets mount_height, preset, type or rate_hz");
     out.push_back(platform);
   }
   return out;

@@ -16,6 +16,8 @@ struct SuitePlatform {
   std::string name;                   ///< "" for the generator's draw ("default")
   std::optional<double> mount_height; ///< m: the sensor above the floor
   std::string preset;                 ///< a sensor preset ("" keeps the drawn one)
+  std::string type;                   ///< what carries the sensor: wheeled, handheld, legged ("" keeps the drawn one)
+  std::optional<double> rate_hz;      ///< scans per second (none keeps the preset's)
 };
 
 struct SuiteCase {

@@ -19,6 +19,7 @@
 #include "tsgraphs/io/tum.hpp"
 #include "tsgraphs/pipeline/pipeline.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
+#include "tsgraphs/pipeline/sequence_runner.hpp"
 
 namespace fs = std::filesystem;
 using namespace tsgraphs;
@@ -165,6 +166,7 @@ TEST_F(RunCli, ParallelRunEqualsOneScanAtATime) {
   ASSERT_EQ(cli("-q --threads 2 run " + seq.string() + " --out " + out.string(), &err), 0) << err;
   const io::SequenceReader reader(seq.string());
   pipeline::Pipeline slam;
+  pipeline::measure_platform(reader, false, slam);  // as `run` does before its first scan
   for (std::size_t i = 0; i < reader.size(); ++i)
     slam.process(i, reader.info().times[i], reader.scan(i), reader.info().odometry[i]);
   slam.finish();

@@ -27,6 +27,7 @@
 #include "tsgraphs/io/image.hpp"
 #include "tsgraphs/eval/suite_folder.hpp"
 #include "tsgraphs/eval/suite_table.hpp"
+#include "tsgraphs/io/run_folder.hpp"
 
 namespace fs = std::filesystem;
 using namespace tsgraphs;
@@ -93,13 +94,14 @@ std::size_t count(const std::string& s, const std::string& what) {
   return n;
 }
 
-/// ground.seed_radius of a params.yaml.
-double seed_radius(const std::string& params) {
-  const std::size_t at = params.find("seed_radius: ");
-  return at == std::string::npos ? -1.0 : std::stod(params.substr(at + 13));
+/// The platform a run measured (run_info.json).
+io::RunPlatform platform_of(const fs::path& run) {
+  const io::RunSummary s = io::read_run_summary((run / io::run_files::kRunInfo).string());
+  return s.platform.value_or(io::RunPlatform{});
 }
 
-/// docs/suite.md's rule: where the lowest beam meets the floor plus 1.5 m, at least the default 3 m.
+/// The seed radius's rule (pipeline/platform.hpp): where the lowest beam meets the floor plus
+/// 1.5 m, at least 3 m.
 double expected_seed_radius(const std::string& preset, double height) {
   const std::map<std::string, double> lowest_deg = {
       {"os1-64", 22.5}, {"os0-128", 45.0}, {"vlp-16", 15.0}, {"hesai-xt32", 16.0}};
@@ -177,11 +179,13 @@ void check_case_folders(const SuiteRun& run) {
   for (const std::string& slug : kSlugs) {
     EXPECT_TRUE(fs::exists(gen / slug / "metrics.json")) << slug;
     EXPECT_NE(read_file(gen / slug / "birdseye.svg").find("<svg"), std::string::npos) << slug;
-    // The platform's parameters: the sensor height, and the seed radius past the lowest beam's
-    // first floor ring.
-    const std::string params = read_file(gen / slug / "params.yaml");
-    EXPECT_NE(params.find("sensor_height: 1.2\n"), std::string::npos) << params.substr(0, 2000);
-    EXPECT_NEAR(seed_radius(params), expected_seed_radius(record.info_value("preset"), 1.2), 1e-6) << slug;
+    // No parameter given for the platform: the run measured the sensor's height, and set the
+    // seed radius past the lowest beam's first floor ring (a level sensor).
+    const io::RunPlatform platform = platform_of(gen / slug);
+    EXPECT_EQ(platform.sensor_height_source, "measured") << slug;
+    EXPECT_NEAR(platform.sensor_height, 1.2, 0.05) << slug;
+    EXPECT_NEAR(platform.seed_radius, expected_seed_radius(record.info_value("preset"), platform.sensor_height), 0.1)
+        << slug;
   }
   const std::string params = read_file(gen / "ts-graphs" / "params.yaml");
   EXPECT_NE(params.find("free_space_method: traversable"), std::string::npos);
@@ -191,11 +195,16 @@ void check_case_folders(const SuiteRun& run) {
   EXPECT_TRUE(fs::exists(imported / "scene_walls.pcd"));
   EXPECT_FALSE(fs::exists(imported / "sequence"));
   EXPECT_EQ(eval::read_case_record((imported / "case.json").string()).info_value("rooms"), "5");  // its five labelled rooms
-  // The sequence case runs with its scene.yaml's platform: a VLP-16 at 0.55 m.
-  const std::string seq_params = read_file(run.out() / "cases" / "seq-room_seq" / "ts-graphs" / "params.yaml");
-  EXPECT_NE(seq_params.find("sensor_height: 0.55\n"), std::string::npos);
-  EXPECT_NEAR(seed_radius(seq_params), expected_seed_radius("vlp-16", 0.55), 1e-6);
-  EXPECT_NE(seq_params.find("max_gap: 4.5\n"), std::string::npos) << "config/sensors/vlp-16.yaml's ground section";
+  // The sequence case's platform, measured: a VLP-16 at 0.55 m, whose ring spacing picks
+  // config/sensors/vlp-16.yaml's ground section.
+  const fs::path seq_run = run.out() / "cases" / "seq-room_seq" / "ts-graphs";
+  const io::RunPlatform seq_platform = platform_of(seq_run);
+  EXPECT_NEAR(seq_platform.sensor_height, 0.55, 0.05);
+  EXPECT_EQ(seq_platform.rings, 16);
+  EXPECT_EQ(seq_platform.preset, "vlp-16");
+  EXPECT_NEAR(seq_platform.seed_radius, expected_seed_radius("vlp-16", seq_platform.sensor_height), 0.1);
+  EXPECT_NE(read_file(seq_run / "params.yaml").find("max_gap: 4.5\n"), std::string::npos)
+      << "config/sensors/vlp-16.yaml's ground section";
 }
 
 void check_report(const SuiteRun& run) {

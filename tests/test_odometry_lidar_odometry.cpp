@@ -234,3 +234,49 @@ TEST(LidarOdometry, RegistersTwoRealHdl32Scans) {
   EXPECT_TRUE(odom.last_icp().converged);
   std::printf("hdl32 pair: %.4f m, %.4f deg from relative.txt\n", error.translation().norm(), angle_deg(error));
 }
+
+// A hand-held sensor at 2 Hz: standing still, then turning in place by 40 degrees between
+// scans (the turns a constant-velocity prediction cannot follow: from a standstill it predicts
+// none), then walking 0.6 m per scan while turning 20 degrees.
+TEST(LidarOdometry, RecoversLargeTurnsBetweenScansAfterAStandstill) {
+  const std::vector<Eigen::Vector3d> world = synthetic_room();
+  std::vector<Pose3> truth;
+  Pose3 T = make_pose(Eigen::Vector3d(-1.0, -0.5, 0.3), 0.2);
+  for (int k = 0; k < 3; ++k) truth.push_back(T);
+  for (int k = 0; k < 5; ++k) truth.push_back(T = T * make_pose(Eigen::Vector3d::Zero(), 40.0 / kRadToDeg));
+  for (int k = 0; k < 4; ++k) truth.push_back(T = T * make_pose(Eigen::Vector3d(0.6, 0.0, 0.0), -20.0 / kRadToDeg));
+  const auto run = [&](double search_deg) {
+    LidarOdometryConfig config;
+    config.yaw_search_deg = search_deg;
+    LidarOdometry odom(config);
+    for (std::size_t k = 0; k < truth.size(); ++k) odom.register_scan(scan_at(world, truth[k], static_cast<std::uint32_t>(k)));
+    const Pose3 rel_est = odom.poses().front().inverse() * odom.poses().back();
+    const Pose3 rel_true = truth.front().inverse() * truth.back();
+    const Pose3 err = rel_true.inverse() * rel_est;
+    return std::make_pair(err.translation().norm(), Eigen::AngleAxisd(err.linear()).angle() * kRadToDeg);
+  };
+  const auto [trans, rot] = run(LidarOdometryConfig{}.yaw_search_deg);
+  EXPECT_LT(trans, 0.05);
+  EXPECT_LT(rot, 0.5);
+  // Without the search the turns are lost.
+  const auto [trans_off, rot_off] = run(0.0);
+  EXPECT_GT(rot_off, 5.0) << "translation error " << trans_off;
+}
+
+TEST(LidarOdometry, AScanThatMatchesNothingIsReportedLostAndKeptOutOfTheMap) {
+  const std::vector<Eigen::Vector3d> world = synthetic_room();
+  const std::vector<Pose3> truth = arc_poses(4);
+  LidarOdometry odom;
+  for (std::size_t k = 0; k < 3; ++k) odom.register_scan(scan_at(world, truth[k], static_cast<std::uint32_t>(k)));
+  EXPECT_TRUE(odom.lost_scans().empty());
+  const std::size_t map_points = odom.local_map().num_points();
+  // Another place altogether: a long hall the map has never seen.
+  std::mt19937 rng(3);
+  std::vector<Eigen::Vector3d> hall;
+  add_box({-30.0, -10.0, -1.0}, {30.0, 10.0, 6.0}, &rng, &hall);
+  odom.register_scan(scan_at(hall, Pose3::Identity(), 9));
+  ASSERT_EQ(odom.lost_scans().size(), 1u);
+  EXPECT_EQ(odom.lost_scans().front(), 3u);
+  EXPECT_TRUE(odom.last_icp().lost);
+  EXPECT_EQ(odom.local_map().num_points(), map_points);
+}

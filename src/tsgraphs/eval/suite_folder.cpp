@@ -68,9 +68,10 @@ std::string CaseRecord::info_value(const std::string& key) const {
 
 const std::vector<std::string>& case_info_keys() {
   // source: the scene file, built-in scene or sequence folder; platform: the suite's platform
-  // name ("default": the generator's own draw); levels and rooms: of the ground truth.
-  static const std::vector<std::string> keys = {"source", "style", "seed",   "size",   "platform",
-                                                "preset", "mount_height", "laps", "levels", "rooms"};
+  // name ("default": the generator's own draw); carrier: wheeled, handheld or legged (the
+  // scene's platform type); levels and rooms: of the ground truth.
+  static const std::vector<std::string> keys = {"source", "style",   "seed", "size",   "platform", "preset",
+                                                "mount_height", "carrier", "rate_hz", "laps", "levels", "rooms"};
   return keys;
 }
 

@@ -108,6 +108,25 @@ GroundConfig per_sensor_preset(const std::string& preset) {
   return config;
 }
 
+std::string preset_for_ring_spacing(double spacing_deg) {
+  if (!(spacing_deg > 0.0)) return "";
+  struct Spacing {
+    const char* preset;
+    double deg;
+  };
+  constexpr Spacing kSpacings[] = {{"vlp-16", 2.0}, {"hesai-xt32", 1.0}, {"os1-64", 45.0 / 63.0}};
+  const char* best = kSpacings[0].preset;
+  double best_ratio = 1e300;
+  for (const Spacing& s : kSpacings) {
+    const double ratio = std::abs(std::log(spacing_deg / s.deg));
+    if (ratio < best_ratio) {
+      best_ratio = ratio;
+      best = s.preset;
+    }
+  }
+  return best;
+}
+
 GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_sensor, const GroundConfig& config) {
   GroundScan scan;
   scan.R_level_sensor = level_rotation(R_map_sensor);

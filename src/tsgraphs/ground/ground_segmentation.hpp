@@ -22,7 +22,7 @@ enum class GroundLabel : std::uint8_t {
 /// Every parameter of the ground layer (TRAVEL's names where they exist). Defaults are for
 /// an indoor 64-beam sensor on a ground robot; see per_sensor_preset().
 struct GroundConfig {
-  double sensor_height = 0.55;   ///< height of the sensor above the floor under the robot (m): set it for your platform
+  double sensor_height = 0.55;   ///< height of the sensor above the floor under the robot (m); the pipeline sets it from the platform (pipeline/platform.hpp)
   double resolution = 0.5;       ///< tri-grid cell size (m); each cell is split into 4 triangles by its diagonals
   double min_range = 0.5;        ///< points nearer than this are not used (m)
   double max_range = 15.0;       ///< ...nor farther than this (m)
@@ -40,7 +40,7 @@ struct GroundConfig {
   double th_obstacle = 2.0;      ///< obstacle points: at most this above the local ground (m)
   double foot_radius = 0.02;     ///< a ground-band point with obstacle points within this (horizontally)...
   double foot_height = 0.3;      ///< ...and this above the band is the foot of a wall or a box: an obstacle (m)
-  double seed_radius = 3.0;      ///< the search starts at ground-like nodes within this of the robot (m)...
+  double seed_radius = 3.0;      ///< the search starts at ground-like nodes within this of the robot (m; the pipeline sets it from the platform)...
   double seed_height_tolerance = 0.2;  ///< ...whose plane passes within this of the floor under the robot (m)
   double max_gap = 2.0;          ///< the search links nodes across runs of empty or unknown nodes up to this long (m): far rings are metres apart
   double bgk_length_scale = 1.0; ///< BGK sparse kernel support (m)
@@ -48,9 +48,10 @@ struct GroundConfig {
   double th_traversable = 0.4;   ///< a node is traversable when its smoothed probability is at least this (below 0.5: floors are seen on sparse rings, walls densely)
   double bgk_max_height_gap = 0.25;  ///< ...and its own height is within this of the smoothed surface (m)
 
+  /// Every field but sensor_height and seed_radius, which belong to the platform (the
+  /// pipeline's `platform` section measures or takes them).
   template <class V>
   void visit(V& v) {
-    v("sensor_height", sensor_height);
     v("resolution", resolution);
     v("min_range", min_range);
     v("max_range", max_range);
@@ -68,7 +69,6 @@ struct GroundConfig {
     v("th_obstacle", th_obstacle);
     v("foot_radius", foot_radius);
     v("foot_height", foot_height);
-    v("seed_radius", seed_radius);
     v("seed_height_tolerance", seed_height_tolerance);
     v("max_gap", max_gap);
     v("bgk_length_scale", bgk_length_scale);
@@ -81,6 +81,17 @@ struct GroundConfig {
 /// Defaults adjusted for a sensor preset name ("os1-64", "os0-128", "vlp-16", "hesai-xt32");
 /// unknown names get the defaults.
 GroundConfig per_sensor_preset(const std::string& preset);
+/// The fields per_sensor_preset() sets (the ones that follow the floor rings' density), copied
+/// from `from` to `to` unless `keep(name)` says the caller gave that field itself.
+template <class Keep>
+void copy_ring_density_fields(const GroundConfig& from, GroundConfig* to, Keep keep) {
+  if (!keep("num_min_pts")) to->num_min_pts = from.num_min_pts;
+  if (!keep("max_gap")) to->max_gap = from.max_gap;
+}
+/// The preset whose beams are nearest `spacing_deg` apart (nearest by ratio): "vlp-16" (2 deg),
+/// "hesai-xt32" (1 deg), "os1-64" (0.7 deg, as the os0-128's); "" when spacing_deg <= 0. The
+/// ground's presets differ only in how sparse the floor's rings are, which the spacing decides.
+std::string preset_for_ring_spacing(double spacing_deg);
 
 /// One node of the tri-grid field after search and smoothing, in the level frame: origin at
 /// the sensor, z up (gravity), x along the sensor's heading.

@@ -6,6 +6,7 @@
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_types.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/io/point_time.hpp"
 
 namespace tsgraphs::io {
 namespace {
@@ -107,12 +109,12 @@ void check_pcd_header(const std::string& path) {
   }
 }
 
-// Value of field `f` of point `i` as a float, whatever the field's numeric type.
-float field_value(const pcl::PCLPointCloud2& blob, const pcl::PCLPointField& f, std::size_t i) {
+// Value of field `f` of point `i` as a double, whatever the field's numeric type.
+double field_value(const pcl::PCLPointCloud2& blob, const pcl::PCLPointField& f, std::size_t i) {
   const std::uint8_t* p = blob.data.data() + i * blob.point_step + f.offset;
   auto get = [p](auto v) {
     std::memcpy(&v, p, sizeof v);
-    return static_cast<float>(v);
+    return static_cast<double>(v);
   };
   switch (f.datatype) {
     case pcl::PCLPointField::INT8: return get(std::int8_t{});
@@ -139,26 +141,47 @@ PointCloud read_pcd(const std::string& path) {
   const pcl::PCLPointField* fy = nullptr;
   const pcl::PCLPointField* fz = nullptr;
   const pcl::PCLPointField* fi = nullptr;
+  const pcl::PCLPointField* ft = nullptr;
+  double time_scale = 0.0;
+  std::size_t time_rank = time_field_names().size();
   for (const auto& f : blob.fields) {
     if (f.name == "x") fx = &f;
     if (f.name == "y") fy = &f;
     if (f.name == "z") fz = &f;
     if (f.name == "intensity") fi = &f;
+    const auto scale = time_field_scale(f.name, f.datatype != pcl::PCLPointField::FLOAT32 &&
+                                                    f.datatype != pcl::PCLPointField::FLOAT64);
+    const auto rank = static_cast<std::size_t>(
+        std::find(time_field_names().begin(), time_field_names().end(), f.name) - time_field_names().begin());
+    if (scale && rank < time_rank) {
+      ft = &f;
+      time_scale = *scale;
+      time_rank = rank;
+    }
   }
   if (!fx || !fy || !fz) throw input_error(path, 0, "PCD has no x y z fields");
   const std::size_t n = static_cast<std::size_t>(blob.width) * blob.height;
   if (blob.data.size() < n * blob.point_step) throw input_error(path, 0, "PCD body is shorter than its header says");
   PointCloud cloud;
   cloud.reserve(n, fi != nullptr, false);
+  std::vector<double> seconds;
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3f p(field_value(blob, *fx, i), field_value(blob, *fy, i), field_value(blob, *fz, i));
-    if (!p.allFinite()) continue;
-    cloud.points.push_back(p);
+    const Eigen::Vector3d p(field_value(blob, *fx, i), field_value(blob, *fy, i), field_value(blob, *fz, i));
+    const Eigen::Vector3f pf = p.cast<float>();
+    if (!pf.allFinite()) continue;
+    cloud.points.push_back(pf);
     if (fi) {
-      const float v = field_value(blob, *fi, i);
+      const auto v = static_cast<float>(field_value(blob, *fi, i));
       cloud.intensity.push_back(std::isfinite(v) ? v : 0.0f);
     }
+    if (ft) {
+      const double t = field_value(blob, *ft, i) * time_scale;
+      if (!std::isfinite(t))
+        throw input_error(path, 0, "point " + std::to_string(i) + ": field '" + ft->name + "' is not a finite number");
+      seconds.push_back(t);
+    }
   }
+  if (ft) cloud.times = relative_times(seconds);
   return cloud;
 }
 

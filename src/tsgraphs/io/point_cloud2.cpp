@@ -1,10 +1,12 @@
 #include "tsgraphs/io/point_cloud2.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <optional>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/io/point_time.hpp"
 
 namespace tsgraphs::io {
 
@@ -52,7 +54,9 @@ double value_of(const PointField2& f, const std::uint8_t* point) {
 PointCloud decode_point_cloud2(const PointCloud2Layout& layout, const std::uint8_t* data, std::size_t size,
                                const std::string& where) {
   if (layout.is_bigendian) throw input_error(where, 0, "big-endian point data is not supported");
-  std::optional<PointField2> x, y, z, intensity;
+  std::optional<PointField2> x, y, z, intensity, time;
+  double time_scale = 0.0;
+  std::size_t time_rank = time_field_names().size();
   for (const PointField2& f : layout.fields) {
     const std::size_t bytes = size_of(f.datatype);
     if (bytes == 0) throw input_error(where, 0, "field '" + f.name + "' has unknown datatype " + std::to_string(f.datatype));
@@ -62,6 +66,15 @@ PointCloud decode_point_cloud2(const PointCloud2Layout& layout, const std::uint8
     if (f.name == "y") y = f;
     if (f.name == "z") z = f;
     if (f.name == "intensity") intensity = f;
+    const auto scale = time_field_scale(f.name, f.datatype != static_cast<std::uint8_t>(FieldType::float32) &&
+                                                    f.datatype != static_cast<std::uint8_t>(FieldType::float64));
+    const auto rank = static_cast<std::size_t>(
+        std::find(time_field_names().begin(), time_field_names().end(), f.name) - time_field_names().begin());
+    if (scale && rank < time_rank) {
+      time = f;
+      time_scale = *scale;
+      time_rank = rank;
+    }
   }
   if (!x || !y || !z) throw input_error(where, 0, "no x, y and z fields");
   for (const PointField2* f : {&*x, &*y, &*z}) {
@@ -77,6 +90,7 @@ PointCloud decode_point_cloud2(const PointCloud2Layout& layout, const std::uint8
                                     std::to_string(rows * layout.row_step));
   PointCloud cloud;
   cloud.reserve(rows * columns, intensity.has_value(), false);
+  std::vector<double> seconds;
   for (std::size_t r = 0; r < rows; ++r) {
     for (std::size_t c = 0; c < columns; ++c) {
       const std::uint8_t* point = data + r * layout.row_step + c * layout.point_step;
@@ -84,8 +98,15 @@ PointCloud decode_point_cloud2(const PointCloud2Layout& layout, const std::uint8
       if (!std::isfinite(px) || !std::isfinite(py) || !std::isfinite(pz)) continue;  // no return
       cloud.points.emplace_back(static_cast<float>(px), static_cast<float>(py), static_cast<float>(pz));
       if (intensity) cloud.intensity.push_back(static_cast<float>(value_of(*intensity, point)));
+      if (time) {
+        const double t = value_of(*time, point) * time_scale;
+        if (!std::isfinite(t)) throw input_error(where, 0, "point " + std::to_string(cloud.size() - 1) + ": field '" +
+                                                                 time->name + "' is not a finite number");
+        seconds.push_back(t);
+      }
     }
   }
+  if (time) cloud.times = relative_times(seconds);
   return cloud;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 /// Decoding sensor_msgs/PointCloud2 data without ROS types: any field layout (x, y, z as
 /// float32 or float64, at any offset, padding between fields or points, extra fields ignored,
-/// organised or not); intensity taken when present; points with a non-finite coordinate dropped.
+/// organised or not); intensity and per-point times (point_time.hpp) taken when present; points
+/// with a non-finite coordinate dropped.
 #include <cstddef>
 #include <cstdint>
 #include <string>

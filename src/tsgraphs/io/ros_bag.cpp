@@ -278,7 +278,11 @@ void write_bag(const ScanSequence& sequence, const std::string& path, BagCompres
       pc.header.frame_id = "lidar";
       pc.height = 1;
       pc.width = static_cast<std::uint32_t>(cloud.size());
-      for (const char* name : {"x", "y", "z", "intensity"}) {
+      // A swept scan's per-point times as Velodyne's driver writes them: float32 `time`,
+      // seconds after the stamp.
+      const bool timed = cloud.has_times();
+      for (const char* name : {"x", "y", "z", "intensity", "time"}) {
+        if (!timed && std::string(name) == "time") continue;
         sensor_msgs::PointField f;
         f.name = name;
         f.offset = static_cast<std::uint32_t>(4 * pc.fields.size());
@@ -286,14 +290,14 @@ void write_bag(const ScanSequence& sequence, const std::string& path, BagCompres
         f.count = 1;
         pc.fields.push_back(f);
       }
-      pc.point_step = 16;
+      pc.point_step = static_cast<std::uint32_t>(4 * pc.fields.size());
       pc.row_step = pc.point_step * pc.width;
       pc.is_dense = true;
       pc.data.resize(pc.row_step);
       for (std::size_t k = 0; k < cloud.size(); ++k) {
-        const float v[4] = {cloud.points[k].x(), cloud.points[k].y(), cloud.points[k].z(),
-                            cloud.has_intensity() ? cloud.intensity[k] : 0.0f};
-        std::memcpy(pc.data.data() + 16 * k, v, sizeof(v));
+        const float v[5] = {cloud.points[k].x(), cloud.points[k].y(), cloud.points[k].z(),
+                            cloud.has_intensity() ? cloud.intensity[k] : 0.0f, timed ? cloud.times[k] : 0.0f};
+        std::memcpy(pc.data.data() + pc.point_step * k, v, pc.point_step);
       }
       bag.write("/points", record_time(info.times[i]), pc);
       nav_msgs::Odometry odom;

@@ -669,7 +669,25 @@ std::string format_run_summary(const RunSummary& s) {
                     {"wall_time_s", s.wall_time_s},
                     {"rtf", s.rtf},
                     {"peak_rss_mb", s.peak_rss_mb}};
-  return doc.dump(1) + "\n";
+  json out = doc;
+  if (s.platform) {
+    const RunPlatform& p = *s.platform;
+    out["platform"] = {{"sensor_height", p.sensor_height},
+                       {"sensor_height_source", p.sensor_height_source},
+                       {"tilt_deg", p.tilt_deg},
+                       {"scans_measured", p.scans_measured},
+                       {"floors_found", p.floors_found},
+                       {"height_spread", p.height_spread},
+                       {"rings", p.rings},
+                       {"ring_spacing_deg", p.ring_spacing_deg},
+                       {"lowest_ring_deg", p.lowest_ring_deg},
+                       {"preset", p.preset},
+                       {"preset_source", p.preset_source},
+                       {"seed_radius", p.seed_radius},
+                       {"seed_radius_source", p.seed_radius_source}};
+  }
+  out["warnings"] = s.warnings;
+  return out.dump(1) + "\n";
 }
 
 RunSummary read_run_summary(const std::string& path) {
@@ -693,6 +711,32 @@ RunSummary read_run_summary(const std::string& path) {
     s.wall_time_s = number_at(doc, "wall_time_s", "");
     s.rtf = number_at(doc, "rtf", "");
     s.peak_rss_mb = number_at(doc, "peak_rss_mb", "");
+    if (doc.contains("platform")) {
+      const json& j = doc.at("platform");
+      object(j, "platform");
+      RunPlatform p;
+      p.sensor_height = number_at(j, "sensor_height", "platform");
+      p.sensor_height_source = string_at(j, "sensor_height_source", "platform");
+      p.tilt_deg = number_at(j, "tilt_deg", "platform");
+      p.scans_measured = integer_at<std::size_t>(j, "scans_measured", "platform");
+      p.floors_found = integer_at<std::size_t>(j, "floors_found", "platform");
+      p.height_spread = number_at(j, "height_spread", "platform");
+      p.rings = integer_at<int>(j, "rings", "platform");
+      p.ring_spacing_deg = number_at(j, "ring_spacing_deg", "platform");
+      p.lowest_ring_deg = number_at(j, "lowest_ring_deg", "platform");
+      p.preset = string_at(j, "preset", "platform");
+      p.preset_source = string_at(j, "preset_source", "platform");
+      p.seed_radius = number_at(j, "seed_radius", "platform");
+      p.seed_radius_source = string_at(j, "seed_radius_source", "platform");
+      s.platform = p;
+    }
+    if (doc.contains("warnings")) {
+      if (!doc.at("warnings").is_array()) throw FieldError("warnings: expected a list of strings");
+      for (const json& w : doc.at("warnings")) {
+        if (!w.is_string()) throw FieldError("warnings: expected a list of strings");
+        s.warnings.push_back(w.get<std::string>());
+      }
+    }
   } catch (const FieldError& e) {
     throw input_error(path, 0, e.what());
   }

@@ -208,6 +208,21 @@ Timings read_timings(const std::string& path);
 
 // ---- run_info.json ------------------------------------------------------------------------
 
+/// The platform the run measured or was given (pipeline/platform.hpp).
+struct RunPlatform {
+  double sensor_height = 0.0;          ///< m above the floor
+  std::string sensor_height_source;    ///< "measured", "config" or "fallback"
+  double tilt_deg = 0.0;               ///< measured: the sensor's z against the floor's normal
+  std::size_t scans_measured = 0, floors_found = 0;
+  double height_spread = 0.0;          ///< m, max - min over the scans with a floor
+  int rings = 0;                       ///< beam rings found
+  double ring_spacing_deg = 0.0, lowest_ring_deg = 0.0;
+  std::string preset;                  ///< the ground's preset ("" none)
+  std::string preset_source;           ///< "beams", "config" or "none"
+  double seed_radius = 0.0;            ///< m
+  std::string seed_radius_source;      ///< "beams", "config" or "default"
+};
+
 /// The run's summary.
 struct RunSummary {
   std::string sequence;  ///< input folder or file
@@ -220,10 +235,12 @@ struct RunSummary {
   double wall_time_s = 0.0;
   double rtf = 0.0;                  ///< sequence_duration_s / wall_time_s (0 when no time passed)
   double peak_rss_mb = 0.0;
+  std::optional<RunPlatform> platform;  ///< absent in runs written before tsgraphs measured it
+  std::vector<std::string> warnings;    ///< the pipeline's warnings (a layer left empty, the platform), in order
 };
 
 std::string format_run_summary(const RunSummary& summary);
-/// Reads run_info.json; every key above is required.
+/// Reads run_info.json; every key above is required but `platform` and `warnings`.
 RunSummary read_run_summary(const std::string& path);
 
 }  // namespace tsgraphs::io

@@ -77,6 +77,7 @@ void SequenceWriter::write_scan(std::size_t index, const PointCloud& cloud) {
   if (cloud.has_labels()) {
     write_binary(stem.string() + ".label", cloud.labels.data(), cloud.labels.size() * sizeof(std::uint32_t));
   }
+  if (cloud.has_times()) write_binary(stem.string() + ".time", cloud.times.data(), cloud.times.size() * sizeof(float));
   ++impl_->scans_written;
 }
 
@@ -181,6 +182,17 @@ PointCloud SequenceReader::scan(std::size_t index) const {
     cloud.labels.resize(n);
     std::memcpy(cloud.labels.data(), raw.data(), raw.size());
     for (std::uint32_t& l : cloud.labels) l &= 0xFFFFu;  // SemanticKITTI: class in the low 16 bits
+  }
+  const std::string time_path = stem.string() + ".time";
+  if (fs::exists(time_path)) {
+    const std::string raw = read_all(time_path);
+    if (raw.size() != n * sizeof(float))
+      throw input_error(time_path, 0, "has " + std::to_string(raw.size() / 4) + " times for " + std::to_string(n) + " points");
+    cloud.times.resize(n);
+    std::memcpy(cloud.times.data(), raw.data(), raw.size());
+    for (std::size_t i = 0; i < n; ++i)
+      if (!std::isfinite(cloud.times[i]))
+        throw input_error(time_path, 0, "point " + std::to_string(i) + "'s time is not a finite number");
   }
   return cloud;
 }

@@ -5,6 +5,7 @@
 #include <tsl/robin_set.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -120,6 +121,11 @@ void LidarOdometryConfig::validate() const {
   if (!(convergence_criterion > 0.0)) fail("convergence_criterion must be > 0");
   if (min_correspondences < 6) fail("min_correspondences must be >= 6 (six unknowns)");
   if (reduction_grain < 1) fail("reduction_grain must be >= 1");
+  if (!(yaw_search_deg >= 0.0 && yaw_search_deg <= 180.0)) fail("yaw_search_deg must be in [0, 180]");
+  if (!(yaw_search_step_deg >= 0.5 && yaw_search_step_deg <= 90.0)) fail("yaw_search_step_deg must be in [0.5, 90]");
+  if (yaw_search_points < 10 || yaw_search_points > 1000000) fail("yaw_search_points must be in [10, 1000000]");
+  if (!(yaw_search_margin >= 0.0 && yaw_search_margin <= 1.0)) fail("yaw_search_margin must be in [0, 1]");
+  if (!(min_overlap >= 0.0 && min_overlap <= 1.0)) fail("min_overlap must be in [0, 1]");
 }
 
 IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map, const Pose3& initial_guess,
@@ -205,12 +211,61 @@ LidarOdometry::LidarOdometry(LidarOdometryConfig config)
 
 double LidarOdometry::threshold() const { return std::max(threshold_.threshold(), config_.min_threshold); }
 
+Pose3 LidarOdometry::last_motion() const {
+  if (poses_.size() < 2) return Pose3::Identity();
+  return poses_[poses_.size() - 2].inverse() * poses_.back();
+}
+
 Pose3 LidarOdometry::predict() const {
   if (poses_.empty()) return Pose3::Identity();
   if (poses_.size() == 1) return poses_.back();
   const Pose3& last = poses_.back();
   const Pose3& before = poses_[poses_.size() - 2];
   return last * (before.inverse() * last);  // constant velocity: repeat the last motion
+}
+
+double voxel_overlap(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map, const Pose3& pose,
+                     std::size_t stride) {
+  if (source.empty() || stride == 0) return 0.0;
+  std::size_t hits = 0, tried = 0;
+  for (std::size_t i = 0; i < source.size(); i += stride, ++tried)
+    hits += map.voxel_points(map.voxel_of(pose * source[i])).empty() ? 0 : 1;
+  return static_cast<double>(hits) / static_cast<double>(tried);
+}
+
+Pose3 LidarOdometry::initial_guess(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction) {
+  if (config_.yaw_search_deg <= 0.0 || poses_.empty()) return prediction;
+  const std::size_t stride = std::max<std::size_t>(1, source.size() / static_cast<std::size_t>(config_.yaw_search_points));
+  const double predicted = voxel_overlap(source, map_, prediction, stride);
+  double best = predicted;
+  Pose3 best_pose = prediction;
+  double best_turn = 0.0;
+  constexpr double kDegToRad = M_PI / 180.0;
+  const int steps = static_cast<int>(std::floor(config_.yaw_search_deg / config_.yaw_search_step_deg + 1e-9));
+  // Turns about the map's z at the sensor's place, from the prediction and from standing
+  // still, nearest turns first so that ties keep the smaller turn.
+  for (int k = 0; k <= steps; ++k) {
+    for (const int sign : {1, -1}) {
+      if (k == 0 && sign < 0) continue;
+      const double turn = sign * k * config_.yaw_search_step_deg;
+      const Eigen::Matrix3d R = Eigen::AngleAxisd(turn * kDegToRad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      const Pose3& still = poses_.back();
+      for (const Pose3* base : {&prediction, &still}) {
+        if (k == 0 && base == &prediction) continue;
+        Pose3 guess = *base;
+        guess.linear() = R * base->linear();
+        const double score = voxel_overlap(source, map_, guess, stride);
+        if (score > best) {
+          best = score;
+          best_pose = guess;
+          best_turn = turn;
+        }
+      }
+    }
+  }
+  if (best < predicted + config_.yaw_search_margin) return prediction;
+  last_icp_.turn_searched_deg = best_turn;
+  return best_pose;
 }
 
 Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
@@ -231,11 +286,26 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
   Pose3 pose = prediction;
   if (!map_.empty()) {
     const double sigma = threshold();
-    last_icp_ = align_to_map(source, map_, prediction, config_.correspondence_factor * sigma,
+    const Pose3 start = initial_guess(source, prediction);
+    const double turn = last_icp_.turn_searched_deg;
+    last_icp_ = align_to_map(source, map_, start, config_.correspondence_factor * sigma,
                              sigma / config_.kernel_divisor, config_);
+    last_icp_.turn_searched_deg = turn;
+    last_icp_.num_source = source.size();
     pose = last_icp_.pose;
     const Pose3 motion = poses_.back().inverse() * pose;
-    threshold_.update(prediction.inverse() * pose, motion);
+    // The threshold learns from the start ICP was given: a turn the search found is no
+    // deviation of the motion model to widen every later search for.
+    threshold_.update(start.inverse() * pose, motion);
+    const std::size_t stride =
+        std::max<std::size_t>(1, source.size() / static_cast<std::size_t>(config_.yaw_search_points));
+    last_icp_.overlap = voxel_overlap(source, map_, pose, stride);
+    last_icp_.lost = last_icp_.overlap < config_.min_overlap;
+  }
+  if (last_icp_.lost) {
+    lost_.push_back(poses_.size());
+    poses_.push_back(pose);
+    return pose;
   }
 
   for (Eigen::Vector3d& p : frame) p = pose * p;  // to the world, in place: not needed after

@@ -35,6 +35,15 @@ struct LidarOdometryConfig {
   int max_iterations = 50;                     ///< Gauss-Newton iterations per scan at most (more: it oscillates)
   double convergence_criterion = 1e-3;         ///< stop when the update's norm (rad and m) falls below this
   int min_correspondences = 50;                ///< fewer correspondences than this: keep the prediction
+  double yaw_search_deg = 60.0;                ///< the initial guess is searched among turns up to this either side of the
+                                               ///< constant-velocity prediction and of standing still (0: off); a hand-held
+                                               ///< sensor at 2 Hz turns 45 deg between scans, after a standstill too
+  double yaw_search_step_deg = 5.0;            ///< the turns tried are this far apart (ICP closes the rest)
+  int yaw_search_points = 1000;                ///< scan points scored per guess (spread over the scan)
+  double yaw_search_margin = 0.1;              ///< a guess replaces the prediction when it places this much larger a share
+                                               ///< of the points in occupied map voxels (at 10 Hz the prediction stays)
+  double min_overlap = 0.3;                    ///< a scan whose share of points in occupied map voxels ends below this
+                                               ///< is reported lost (voxel_overlap)
   int reduction_grain = 256;                   ///< points per block of the parallel reduction (fixed: the sums are
                                                ///< then added in the same order whatever the threads)
 
@@ -58,6 +67,11 @@ struct LidarOdometryConfig {
     v("max_iterations", max_iterations);
     v("convergence_criterion", convergence_criterion);
     v("min_correspondences", min_correspondences);
+    v("yaw_search_deg", yaw_search_deg);
+    v("yaw_search_step_deg", yaw_search_step_deg);
+    v("yaw_search_points", yaw_search_points);
+    v("yaw_search_margin", yaw_search_margin);
+    v("min_overlap", min_overlap);
     v("reduction_grain", reduction_grain);
   }
 
@@ -72,8 +86,17 @@ struct IcpResult {
   Pose3 pose = Pose3::Identity();  ///< sensor pose in the map frame
   int iterations = 0;
   std::size_t num_correspondences = 0;  ///< in the last iteration
+  std::size_t num_source = 0;           ///< points registered
   bool converged = false;               ///< the update fell below convergence_criterion
+  double turn_searched_deg = 0.0;       ///< the turn from the prediction that the yaw search chose as the start
+  double overlap = 1.0;                 ///< share of the points in occupied map voxels at the result (voxel_overlap)
+  bool lost = false;                    ///< overlap below min_overlap: reported, see LidarOdometry
 };
+
+/// The share of `source` (sensor frame) placed at `pose` whose map voxel holds points, over
+/// every `stride`-th point: how well a guess overlaps the map, for a fraction of ICP's cost.
+double voxel_overlap(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map, const Pose3& pose,
+                     std::size_t stride = 1);
 
 /// ICP of `source` (sensor frame) against `map` from `initial_guess`, Gauss-Newton on SE(3) with
 /// a Geman-McClure kernel of scale `kernel_scale`, pairs farther than
@@ -93,6 +116,9 @@ class LidarOdometry {
   /// keeps the constant-velocity prediction and leaves the map as it is.
   Pose3 register_scan(const PointCloud& scan);
 
+  /// The last motion between two registered scans (the constant-velocity model's), in the
+  /// earlier scan's frame; the identity before the second scan.
+  Pose3 last_motion() const;
   /// One pose per registered scan.
   const std::vector<Pose3>& poses() const { return poses_; }
   const VoxelHashMap& local_map() const { return map_; }
@@ -100,16 +126,24 @@ class LidarOdometry {
   double threshold() const;
   /// ICP details of the last scan (iterations 0 when it was not registered).
   const IcpResult& last_icp() const { return last_icp_; }
+  /// Indices (in registration order) of the scans reported lost: too few of their points matched
+  /// the map (a degenerate scan, a turn beyond the search). Their pose is kept as registered,
+  /// but the map does not take their points, so a wrong pose is not built into it.
+  const std::vector<std::size_t>& lost_scans() const { return lost_; }
   const LidarOdometryConfig& config() const { return config_; }
 
  private:
   Pose3 predict() const;
+  /// The start for ICP: the prediction, or the turn of it or of the last pose (standing still)
+  /// that overlaps the map clearly better (yaw_search_*); sets last_icp_.turn_searched_deg.
+  Pose3 initial_guess(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction);
 
   LidarOdometryConfig config_;
   VoxelHashMap map_;
   AdaptiveThreshold threshold_;
   std::vector<Pose3> poses_;
   IcpResult last_icp_;
+  std::vector<std::size_t> lost_;
 };
 
 }  // namespace tsgraphs::odometry

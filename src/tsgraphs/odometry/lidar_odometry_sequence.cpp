@@ -2,11 +2,14 @@
 
 #include <tbb/task_group.h>
 
+#include "tsgraphs/odometry/deskew.hpp"
+
 namespace tsgraphs::odometry {
 
 std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, const LidarOdometryConfig& config,
                                      const std::function<void(std::size_t, std::size_t)>& progress,
-                                     const Pose3& initial_pose) {
+                                     const Pose3& initial_pose, std::vector<std::size_t>* lost,
+                                     std::vector<double>* overlaps) {
   LidarOdometry odometry(config);
   const std::size_t n = sequence.size();
   std::vector<Pose3> poses;
@@ -20,15 +23,19 @@ std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, const Lid
     tbb::task_group reader;
     if (k + 1 < n) reader.run([&] { next = sequence.scan(k + 1); });
     try {
-      poses.push_back(initial_pose * odometry.register_scan(current));
+      // A swept scan is registered de-skewed by the odometry's own last motion.
+      const auto [motion, interval] = sweep_motion(k, sequence.info().times, {}, &odometry);
+      poses.push_back(initial_pose * odometry.register_scan(deskew(current, motion, interval)));
     } catch (...) {
       reader.wait();
       throw;
     }
     reader.wait();  // rethrows a read error
+    if (overlaps) overlaps->push_back(odometry.last_icp().overlap);
     current = std::move(next);
     if (progress) progress(k + 1, n);
   }
+  if (lost) *lost = odometry.lost_scans();
   return poses;
 }
 

@@ -10,12 +10,16 @@
 
 namespace tsgraphs::odometry {
 
-/// Registers every scan of `sequence` in order and returns one sensor pose per scan:
+/// Registers every scan of `sequence` in order (de-skewed when it has per-point times: deskew.hpp)
+/// and returns one sensor pose per scan:
 /// `initial_pose` * (the odometry pose, identity at the first scan), so that a caller can
 /// anchor the odometry frame, e.g. at the first ground-truth pose or the sensor's mount tilt.
-/// `progress(done, total)` after each scan. Input errors of the sequence propagate.
+/// `progress(done, total)` after each scan. Input errors of the sequence propagate. `lost`
+/// (optional) gets the indices of the scans the odometry reported lost; `overlaps` (optional)
+/// each scan's final voxel overlap.
 std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, const LidarOdometryConfig& config,
                                      const std::function<void(std::size_t, std::size_t)>& progress = {},
-                                     const Pose3& initial_pose = Pose3::Identity());
+                                     const Pose3& initial_pose = Pose3::Identity(),
+                                     std::vector<std::size_t>* lost = nullptr, std::vector<double>* overlaps = nullptr);
 
 }  // namespace tsgraphs::odometry

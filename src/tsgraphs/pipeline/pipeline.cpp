@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 
 #include "tsgraphs/core/voxel_grid.hpp"
+#include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
 
@@ -15,6 +17,12 @@ namespace {
 
 double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string fixed(double v, int digits) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", digits, v);
+  return text;
 }
 
 }  // namespace
@@ -28,8 +36,20 @@ Pipeline::Pipeline(PipelineConfig config)
       optimizer_(config_.optimizer),
       loop_detector_(config_.loop_closure) {}
 
+void Pipeline::set_platform(const std::vector<PointCloud>& scans, const std::vector<Eigen::Vector3d>& ups) {
+  if (platform_ || !scans_.empty()) throw std::logic_error("Pipeline::set_platform: once, before the first scan");
+  platform_ = resolve_platform(config_.platform, config_.floor_levelling, config_.ground, scans, ups);
+  config_.ground = apply_platform(*platform_, config_.ground, config_.ground_keys_given);
+  // The run's parameters record what was used: the same file gives the same run again.
+  config_.platform.sensor_height = platform_->sensor_height;
+  config_.platform.seed_radius = platform_->seed_radius;
+  config_.platform.preset = platform_->preset.empty() ? "none" : platform_->preset;
+  warnings_.insert(warnings_.end(), platform_->warnings.begin(), platform_->warnings.end());
+}
+
 PreparedScan Pipeline::prepare(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom,
                                bool keyframe_candidate) const {
+  if (!platform_) throw std::logic_error("Pipeline::prepare: the platform is not set (set_platform)");
   if (!odom.matrix().allFinite() || !std::isfinite(stamp))
     throw std::invalid_argument("scan " + std::to_string(scan_index) + ": non-finite pose or time");
   PreparedScan out;
@@ -82,6 +102,7 @@ void Pipeline::score_ground(const PointCloud& scan, const ground::GroundScan& gr
 }
 
 const ScanRecord& Pipeline::process(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom) {
+  if (!platform_) set_platform({scan}, {odom.linear().transpose() * Eigen::Vector3d::UnitZ()});
   return process(prepare(scan_index, stamp, scan, odom, false));
 }
 
@@ -162,7 +183,9 @@ void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud,
   // prepared ahead from the odometry's rotation are the same as those from T's.
   if (!planes) planes = walls::extract_planes(keyframe_clouds_.back(), record.odom.linear(), config_.plane_extraction);
   const std::vector<walls::PlaneObservation>& observations = *planes;
+  std::size_t walls_seen = 0;
   for (const walls::PlaneObservation& obs : observations) {
+    walls_seen += obs.vertical ? 1 : 0;
     int plane_id = mapper_.associate(obs, T);
     if (plane_id < 0) {
       plane_id = graph_.add_plane(obs.plane.transformed(T), obs.vertical);
@@ -173,6 +196,7 @@ void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud,
     graph_.add_plane_edge({id, plane_id, obs.plane, obs.num_inliers});
   }
   record.walls_ms += ms_since(walls_start);
+  check_empty_layers(id, nodes.size(), walls_seen);
 
   const auto rooms_start = std::chrono::steady_clock::now();
   add_room_events(rooms_.update(room_input(id)));
@@ -182,6 +206,45 @@ void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud,
   if (auto loop = loop_detector_.detect(graph_, id, [this](int k) -> const PointCloud& { return keyframe_clouds_[k]; }))
     graph_.add_loop_edge(*loop);
   record.loop_ms = ms_since(loop_start);
+}
+
+void Pipeline::check_empty_layers(int keyframe, std::size_t ground_nodes, std::size_t walls) {
+  const int n = config_.diagnostics.empty_layer_keyframes;
+  if (n <= 0) return;
+  const auto count = [](EmptyLayer& layer, bool empty) {
+    layer.total += empty ? 1 : 0;
+    layer.in_row = empty ? layer.in_row + 1 : 0;
+  };
+  count(no_ground_, ground_nodes == 0);
+  count(no_walls_, walls == 0);
+  const std::string span = " in " + std::to_string(n) + " keyframes in a row (to keyframe " + std::to_string(keyframe) + ")";
+  if (no_ground_.in_row >= n && !no_ground_.warned) {
+    no_ground_.warned = true;
+    // What the ground layer was told against what this keyframe shows.
+    const odometry::FloorLevel floor = odometry::level_from_floor(keyframe_clouds_.back(), config_.floor_levelling);
+    const std::string told = "platform.sensor_height is " + fixed(config_.ground.sensor_height, 2) + " m";
+    warnings_.push_back("no traversable ground" + span + ": " +
+                        (floor.found ? "the floor is " + fixed(floor.height, 2) + " m below the sensor there and " + told
+                                     : "no floor found below the sensor there; " + told));
+  }
+  if (no_walls_.in_row >= n && !no_walls_.warned) {
+    no_walls_.warned = true;
+    warnings_.push_back("no wall" + span + ": no vertical plane of plane_extraction.min_inliers (" +
+                        std::to_string(config_.plane_extraction.min_inliers) + ") points within plane_extraction.max_range (" +
+                        fixed(config_.plane_extraction.max_range, 1) + " m); keyframe " + std::to_string(keyframe) +
+                        " holds " + std::to_string(keyframe_clouds_.back().size()) + " points after prefiltering");
+  }
+  if (keyframe + 1 >= n && !warned_no_room_ && rooms_.room_map().rooms().empty()) {
+    warned_no_room_ = true;
+    std::size_t mapped_walls = 0;
+    for (const auto& [id, lm] : mapper_.landmarks()) mapped_walls += lm.vertical ? 1 : 0;
+    const std::string cause = node_map_.size() == 0 ? "no traversable ground"
+                              : mapped_walls < 2    ? "fewer than two walls"
+                                                    : "no space of the free space bounded by walls";
+    warnings_.push_back("no room after " + std::to_string(keyframe + 1) + " keyframes: " +
+                        std::to_string(node_map_.size()) + " traversable nodes and " + std::to_string(mapped_walls) +
+                        " walls mapped (" + cause + ")");
+  }
 }
 
 void Pipeline::optimize(bool full, const std::string& reason) {
@@ -214,6 +277,11 @@ void Pipeline::finish() {
   if (!graph_.keyframes().empty()) {
     add_room_events(rooms_.finish(room_input(static_cast<int>(graph_.keyframes().size()) - 1)));
   }
+  // A layer warned about once gets its count over the whole run.
+  const std::string of = " of " + std::to_string(graph_.keyframes().size()) + " keyframes in all";
+  if (no_ground_.warned) warnings_.push_back("no traversable ground in " + std::to_string(no_ground_.total) + of);
+  if (no_walls_.warned) warnings_.push_back("no wall in " + std::to_string(no_walls_.total) + of);
+  if (warned_no_room_ && rooms_.room_map().rooms().empty()) warnings_.push_back("no room in the whole run");
 }
 
 RoomLayerInput Pipeline::room_input(int keyframe) const {

@@ -60,6 +60,17 @@ class Pipeline {
  public:
   explicit Pipeline(PipelineConfig config = {});
 
+  /// Measures the platform (sensor height, seed radius, ground preset: platform.hpp) from scans
+  /// of the run, sensor frames (`ups`: empty, or the gravity's up in each when the poses give
+  /// it), and sets the ground layer from it; once, before the first prepare().
+  /// process(scan_index, ...) calls it with its first scan if nobody did.
+  void set_platform(const std::vector<PointCloud>& scans, const std::vector<Eigen::Vector3d>& ups = {});
+  /// The resolved platform, null before set_platform().
+  const Platform* platform() const { return platform_ ? &*platform_ : nullptr; }
+  /// Every warning so far, in order (a layer empty for diagnostics.empty_layer_keyframes, the
+  /// platform's); the caller prints the new ones.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
   /// Processes one scan (sensor frame) with its odometry pose (odom <- sensor). A scan with no
   /// usable point is recorded with a warning and only its pose is kept. A non-finite pose
   /// throws std::invalid_argument (the reader is expected to reject it with file and line).
@@ -106,8 +117,21 @@ class Pipeline {
   void move_rooms_with_graph();
   void score_ground(const PointCloud& scan, const ground::GroundScan& ground, ScanRecord* record) const;
   void optimize(bool full, const std::string& reason);
+  /// Counts keyframes in which a layer stayed empty and warns once per layer.
+  void check_empty_layers(int keyframe, std::size_t ground_nodes, std::size_t walls);
 
   PipelineConfig config_;
+  std::optional<Platform> platform_;
+  std::vector<std::string> warnings_;
+  /// Keyframes in a row without traversable ground / without a wall, in all, and whether the
+  /// layer was warned about.
+  struct EmptyLayer {
+    int in_row = 0;
+    int total = 0;
+    bool warned = false;
+  };
+  EmptyLayer no_ground_, no_walls_;
+  bool warned_no_room_ = false;
   KeyframeSelector selector_;
   walls::PlaneMapper mapper_;
   ground::TraversableNodeMap node_map_;

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cstdio>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -12,7 +13,16 @@
 namespace tsgraphs::pipeline {
 namespace {
 
+template <class T>
+struct IsOptional : std::false_type {};
+template <class T>
+struct IsOptional<std::optional<T>> : std::true_type {};
+
+// The value an optional field has when it is measured rather than given.
+constexpr const char* kAuto = "auto";
+
 // Reads each visited field from a YAML mapping, keeping the default when the key is absent.
+// An optional field reads `auto` as unset.
 struct Reader {
   const YamlMap& map;
   std::vector<std::string> keys;
@@ -20,7 +30,21 @@ struct Reader {
   template <class T>
   void operator()(const char* key, T& field) {
     keys.emplace_back(key);
-    field = map.get<T>(key, field);
+    if constexpr (IsOptional<T>::value) {
+      if (!map.has(key)) return;
+      const YAML::Node node = map.raw(key);
+      if (node.IsScalar() && node.Scalar() == kAuto) {
+        field.reset();
+      } else {
+        try {
+          field = map.as<typename T::value_type>(node, map.key_path(key));
+        } catch (const InputError&) {
+          throw map.error(key, "expected a number or auto");
+        }
+      }
+    } else {
+      field = map.get<T>(key, field);
+    }
   }
   template <class S>
   void section(const char* key, S& sub) {
@@ -50,8 +74,14 @@ struct Writer {
 
   template <class T>
   void operator()(const char* key, const T& field) {
-    out << YAML::Key << key << YAML::Value;
-    if constexpr (std::is_floating_point_v<T>) {
+    if (key != nullptr) out << YAML::Key << key << YAML::Value;
+    if constexpr (IsOptional<T>::value) {
+      if (field) {
+        (*this)(nullptr, *field);
+      } else {
+        out << kAuto;
+      }
+    } else if constexpr (std::is_floating_point_v<T>) {
       char buf[32];
       std::snprintf(buf, sizeof buf, "%.10g", field);
       std::string s = buf;
@@ -89,6 +119,7 @@ void validate(const YamlMap& root, const PipelineConfig& c) {
       throw root.map(section).error(what.substr(from, what.find(' ', from) - from), what.substr(from));
     }
   };
+  check_at_key("platform", c.platform);
   check_at_key("lidar_odometry", c.lidar_odometry);
   check_at_key("floor_levelling", c.floor_levelling);
   check_at_key("room_segmentation", c.rooms.segmentation);
@@ -134,17 +165,34 @@ void validate(const YamlMap& root, const PipelineConfig& c) {
     const bool association = key == "footprint" || key == "min_overlap" || key == "room_dist_threshold";
     throw root.map(association ? "room_association" : "room_layer").error(key, what);
   }
+  if (c.diagnostics.empty_layer_keyframes < 0)
+    throw root.map("diagnostics").error("empty_layer_keyframes", "empty_layer_keyframes must be >= 0");
   check_positive(root, "schedule", "optimize_every_keyframes", c.schedule.optimize_every_keyframes);
   if (c.schedule.full_every_keyframes < 0)
     throw root.map("schedule").error("full_every_keyframes", "full_every_keyframes must be >= 0");
 }
 
+// Keys that moved to another section: an old parameter file gets told where.
+void check_moved_keys(const YamlMap& root) {
+  const YamlMap ground = root.map("ground");
+  for (const char* key : {"sensor_height", "seed_radius"})
+    if (ground.has(key))
+      throw ground.error(key, std::string("ground.") + key + " is now platform." + key +
+                                  " (measured from the scans unless given)");
+}
+
 PipelineConfig read(const YamlMap& root) {
+  check_moved_keys(root);
   PipelineConfig config;
   Reader reader{root, {}};
   config.visit(reader);
   root.check_keys(reader.keys);
   validate(root, config);
+  if (root.has("ground")) {
+    const YAML::Node ground = root.raw("ground");
+    if (ground.IsMap())
+      for (const auto& kv : ground) config.ground_keys_given.insert(kv.first.as<std::string>());
+  }
   return config;
 }
 

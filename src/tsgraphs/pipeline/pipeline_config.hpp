@@ -1,6 +1,7 @@
 #pragma once
 /// Every parameter of the pipeline, one section per module, and the YAML file that sets
 /// them (config/params.yaml lists every key with its default). Unknown keys are errors.
+#include <set>
 #include <string>
 
 #include "tsgraphs/graph/graph_optimizer.hpp"
@@ -10,6 +11,7 @@
 #include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
 #include "tsgraphs/pipeline/keyframe_selector.hpp"
+#include "tsgraphs/pipeline/platform.hpp"
 #include "tsgraphs/pipeline/prefilter.hpp"
 #include "tsgraphs/pipeline/room_layer.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
@@ -31,7 +33,29 @@ struct ScheduleConfig {
   }
 };
 
+/// De-skewing of scans that carry per-point times (odometry/deskew.hpp).
+struct DeskewConfig {
+  bool enabled = true;  ///< de-skew scans with per-point times (from the poses around them, or the odometry's last motion)
+
+  template <class V>
+  void visit(V& v) {
+    v("enabled", enabled);
+  }
+};
+
+/// What the pipeline says about layers that stay empty.
+struct DiagnosticsConfig {
+  int empty_layer_keyframes = 50;  ///< warn when a layer has produced nothing for this many keyframes (0: never)
+
+  template <class V>
+  void visit(V& v) {
+    v("empty_layer_keyframes", empty_layer_keyframes);
+  }
+};
+
 struct PipelineConfig {
+  PlatformConfig platform;                       ///< the sensor's height, seed radius and ground preset: measured unless given
+  DeskewConfig deskew;                           ///< step 1: scans moved into the frame of their stamp
   odometry::LidarOdometryConfig lidar_odometry;  ///< step 2 when the input has no odometry (or `run --odometry lidar`)
   odometry::FloorLevellingConfig floor_levelling;///< step 2: the map's first pose when nothing gives the sensor's mount
   PrefilterConfig prefilter;
@@ -44,9 +68,15 @@ struct PipelineConfig {
   graph::LoopClosureConfig loop_closure;
   ScheduleConfig schedule;
   RoomLayerSettings rooms;  ///< free space, triggers, extraction and association (room_layer.hpp)
+  DiagnosticsConfig diagnostics;
+  /// The ground keys a parameter file set ("num_min_pts", ...): the platform's preset does not
+  /// replace them. Filled by load_pipeline_config; not a key itself.
+  std::set<std::string> ground_keys_given;
 
   template <class V>
   void visit(V& v) {
+    v.section("platform", platform);
+    v.section("deskew", deskew);
     v.section("prefilter", prefilter);
     v.section("lidar_odometry", lidar_odometry);
     v.section("floor_levelling", floor_levelling);
@@ -68,6 +98,7 @@ struct PipelineConfig {
     v.section("room_segmentation", rooms.segmentation);
     v.section("sgraphs_room_extraction", rooms.sgraphs_extraction);
     v.section("room_association", rooms.association);
+    v.section("diagnostics", diagnostics);
   }
 };
 

@@ -287,6 +287,24 @@ io::RunSummary run_summary_of(const Pipeline& pipeline, const RunInfo& info) {
   s.wall_time_s = info.wall_time_s;
   s.rtf = info.wall_time_s > 0 ? info.sequence_duration_s / info.wall_time_s : 0.0;
   s.peak_rss_mb = info.peak_rss_mb;
+  if (const Platform* p = pipeline.platform()) {
+    io::RunPlatform r;
+    r.sensor_height = p->sensor_height;
+    r.sensor_height_source = p->sensor_height_source;
+    r.tilt_deg = p->estimate.tilt_deg;
+    r.scans_measured = p->estimate.scans_measured;
+    r.floors_found = p->estimate.floors_found;
+    r.height_spread = p->estimate.height_spread;
+    r.rings = p->estimate.beams.rings;
+    r.ring_spacing_deg = p->estimate.beams.spacing_deg;
+    r.lowest_ring_deg = p->estimate.beams.lowest_deg;
+    r.preset = p->preset;
+    r.preset_source = p->preset_source;
+    r.seed_radius = p->seed_radius;
+    r.seed_radius_source = p->seed_radius_source;
+    s.platform = r;
+  }
+  s.warnings = pipeline.warnings();
   return s;
 }
 

@@ -20,6 +20,7 @@ struct RunInfo {
   std::size_t num_skipped = 0;   ///< scans with a warning
   std::vector<double> lap_starts;///< the sequence's laps.txt (empty: laps found from the trajectory)
   bool estimated_odometry = false;///< the poses came from LiDAR odometry, not the input
+  std::size_t num_odometry_lost = 0;///< scans the LiDAR odometry reported lost (lidar_odometry.min_overlap)
 };
 
 /// File names inside a run folder (io::run_files; the alias keeps the front ends' spelling).

@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/odometry/deskew.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
 
 namespace tsgraphs::pipeline {
@@ -17,6 +19,8 @@ namespace {
 
 // Scans in flight at once: each holds a raw scan (about 1 MB) while it is read and prepared.
 constexpr std::size_t kTokensPerThread = 2;
+// Lost odometry scans told one by one; more are counted at the end.
+constexpr std::size_t kLostScansTold = 5;
 
 struct Loaded {
   std::size_t index = 0;
@@ -25,6 +29,7 @@ struct Loaded {
   PointCloud scan;      ///< as read, until prepared
   PreparedScan prepared;
   std::string error;    ///< why the scan file could not be read
+  std::string odometry_warning;  ///< the LiDAR odometry lost this scan
 };
 
 }  // namespace
@@ -33,6 +38,25 @@ double peak_rss_mb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
+}
+
+void measure_platform(const io::ScanSequence& sequence, bool poses_estimated, Pipeline& pipeline) {
+  const std::size_t total = sequence.size();
+  const std::size_t n = std::min(total, static_cast<std::size_t>(pipeline.config().platform.measure.scans));
+  const std::vector<Pose3>& poses = sequence.info().odometry;
+  const bool use_poses = !poses_estimated && poses.size() == total;
+  std::vector<PointCloud> scans;
+  std::vector<Eigen::Vector3d> ups;
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::size_t i = n == 1 ? 0 : j * (total - 1) / (n - 1);
+    try {
+      scans.push_back(sequence.scan(i));
+    } catch (const std::exception&) {
+      continue;  // an unreadable scan is skipped with its warning when the run reaches it
+    }
+    if (use_poses) ups.push_back(poses[i].linear().transpose() * Eigen::Vector3d::UnitZ());
+  }
+  pipeline.set_platform(scans, ups);
 }
 
 RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const RunCallbacks& callbacks,
@@ -47,6 +71,16 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
   run.num_scans = sequence.size();
   run.lap_starts = info.lap_starts;
   run.estimated_odometry = odometry.estimate;
+  if (!pipeline.platform()) {
+    measure_platform(sequence, odometry.estimate, pipeline);
+    if (callbacks.note) callbacks.note(describe(*pipeline.platform()));
+  }
+  std::size_t warnings_told = 0;
+  const auto tell_warnings = [&] {
+    for (; warnings_told < pipeline.warnings().size(); ++warnings_told)
+      if (callbacks.warning) callbacks.warning(pipeline.warnings()[warnings_told]);
+  };
+  tell_warnings();
   std::optional<odometry::LidarOdometry> lidar_odometry;
   if (odometry.estimate) lidar_odometry.emplace(pipeline.config().lidar_odometry);
   // Reading and the per-scan steps (prefilter, ground) run in parallel on the next scans;
@@ -55,7 +89,8 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
   const std::size_t tokens = kTokensPerThread * static_cast<std::size_t>(std::max(
       1, static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))));
   std::size_t next = 0;
-  KeyframeSelector candidates(pipeline.config().keyframes);  // guesses the keyframes from odometry alone
+  KeyframeSelector candidates(pipeline.config().keyframes);
+  const bool deskew = pipeline.config().deskew.enabled;  // guesses the keyframes from odometry alone
   tbb::parallel_pipeline(
       tokens,
       tbb::make_filter<void, Loaded>(tbb::filter_mode::serial_in_order,
@@ -79,10 +114,24 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
                                            }) &
           tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::serial_in_order,
                                            [&](Loaded l) {
+                                             if (deskew && l.scan.has_times()) {
+                                               const auto [motion, interval] = odometry::sweep_motion(
+                                                   l.index, info.times, info.odometry,
+                                                   lidar_odometry ? &*lidar_odometry : nullptr);
+                                               l.scan = odometry::deskew(l.scan, motion, interval);
+                                             }
                                              // An unreadable scan is empty here: the odometry keeps its prediction.
                                              l.odom = lidar_odometry
                                                           ? odometry.initial_pose * lidar_odometry->register_scan(l.scan)
                                                           : info.odometry[l.index];
+                                             if (lidar_odometry && lidar_odometry->last_icp().lost) {
+                                               const odometry::IcpResult& icp = lidar_odometry->last_icp();
+                                               l.odometry_warning =
+                                                   "scan " + std::to_string(l.index) + ": LiDAR odometry lost: " +
+                                                   std::to_string(static_cast<int>(std::lround(100.0 * icp.overlap))) +
+                                                   " % of its points fall in the map (below lidar_odometry.min_overlap)"
+                                                   "; its pose is kept, its points stay out of the odometry's map";
+                                             }
                                              l.keyframe_candidate = candidates.is_keyframe(l.odom);
                                              if (l.keyframe_candidate) candidates.accept(l.odom);
                                              return l;
@@ -98,6 +147,10 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
           tbb::make_filter<Loaded, void>(tbb::filter_mode::serial_in_order, [&](Loaded l) {
             const std::size_t i = l.index;
             const ScanRecord& rec = pipeline.process(std::move(l.prepared));
+            if (!l.odometry_warning.empty()) {
+              ++run.num_odometry_lost;
+              if (callbacks.warning && run.num_odometry_lost <= kLostScansTold) callbacks.warning(l.odometry_warning);
+            }
             if (!l.error.empty()) {
               ++run.num_skipped;
               if (callbacks.warning) callbacks.warning(l.error + ": scan skipped, its pose taken from odometry");
@@ -105,9 +158,13 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
               ++run.num_skipped;
               if (callbacks.warning) callbacks.warning("scan " + std::to_string(i) + ": " + rec.warning);
             }
+            tell_warnings();
             if (callbacks.progress) callbacks.progress(i + 1, sequence.size());
           }));
   pipeline.finish();
+  tell_warnings();
+  if (callbacks.warning && run.num_odometry_lost > kLostScansTold)
+    callbacks.warning("LiDAR odometry lost " + std::to_string(run.num_odometry_lost) + " scans in all");
   if (info.times.size() >= 2) {
     const double period = (info.times.back() - info.times.front()) / static_cast<double>(info.times.size() - 1);
     run.sequence_duration_s = info.times.back() - info.times.front() + period;

@@ -14,7 +14,8 @@ namespace tsgraphs::pipeline {
 
 struct RunCallbacks {
   std::function<void(std::size_t done, std::size_t total)> progress;  ///< after each scan
-  std::function<void(const std::string&)> warning;                    ///< one line per skipped scan
+  std::function<void(const std::string&)> warning;                    ///< one line per skipped scan, and the pipeline's warnings
+  std::function<void(const std::string&)> note;                       ///< what was measured of the platform
 };
 
 /// Where the scans' poses come from.
@@ -27,7 +28,13 @@ struct OdometryOptions {
   Pose3 initial_pose = Pose3::Identity();
 };
 
-/// Feeds every scan of `sequence` with its odometry pose to `pipeline`, then finishes it.
+/// Measures the platform for `pipeline` (Pipeline::set_platform) from platform.scans scans spread
+/// evenly over `sequence` (one room may show little floor), with the gravity from the
+/// sequence's poses unless `poses_estimated`. Unreadable scans are left out.
+void measure_platform(const io::ScanSequence& sequence, bool poses_estimated, Pipeline& pipeline);
+
+/// Feeds every scan of `sequence` with its odometry pose to `pipeline`, then finishes it. The
+/// platform is measured first (measure_platform) unless the pipeline already has it.
 /// A scan file that cannot be read (truncated, wrong label count) is skipped with a warning;
 /// its pose still comes from the odometry (estimated: the constant-velocity prediction).
 /// Returns the run's facts for run_info.json. A sequence without odometry and

@@ -29,6 +29,20 @@ struct SensorSpec {
   double tilt_deg = 0.0;              ///< pitch about the sensor's y axis
 };
 
+/// What carries the sensor (scene format `platform:`): the motion it adds to the path's, and
+/// whether a scan is swept over its period.
+enum class PlatformType { kWheeled, kHandheld, kLegged };
+struct PlatformSpec {
+  PlatformType type = PlatformType::kWheeled;
+  double bob = 0.0;                  ///< m, amplitude of the vertical bob, once per step
+  double step_hz = 0.0;              ///< steps per second: bob and pitch at this rate, roll at half of it
+  double sway_deg = 0.0;             ///< amplitude of the roll sway (pitch: half of it)
+  double yaw_jitter_deg = 0.0;       ///< amplitude of the heading's wander about the path's
+  double vibration = 0.0;            ///< m, amplitude of the mount's vertical vibration (a trot's impacts)
+  double vibration_hz = 0.0;         ///< its frequency
+  bool motion_distortion = false;    ///< a scan is swept over its period, each column at its time (per-point times)
+};
+
 /// How odometry drifts from truth: random walks, std growing with sqrt(distance or angle).
 struct OdometryNoise {
   double trans_noise_per_m = 0.01;    ///< translation std per axis after 1 m (sqrt(m) scaling)
@@ -131,6 +145,7 @@ struct Scene {
   std::string name;
   std::uint64_t seed = 0;
   SensorSpec sensor;
+  PlatformSpec platform;
   OdometryNoise odometry;
   std::vector<Level> levels;
   std::vector<Wall> walls;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <functional>
 #include <cmath>
+#include <optional>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -11,6 +13,7 @@
 #include "tsgraphs/core/rect.hpp"
 #include "tsgraphs/core/text_file.hpp"
 #include "tsgraphs/core/yaml_map.hpp"
+#include "tsgraphs/scene/platform_presets.hpp"
 #include "tsgraphs/scene/sensor_presets.hpp"
 #include "tsgraphs/scene/scene_geometry.hpp"
 
@@ -31,7 +34,7 @@ class SceneParser {
   SceneParser(const YamlMap& root, std::string base_dir) : root_(root), base_dir_(std::move(base_dir)) {}
 
   Scene parse() {
-    root_.check_keys({"name", "seed", "sensor", "odometry", "levels", "walls", "railings", "boxes",
+    root_.check_keys({"name", "seed", "sensor", "platform", "odometry", "levels", "walls", "railings", "boxes",
                       "voxel_maps", "ramps", "rooms", "trajectory"});
     scene_.file = root_.file();
     scene_.name = root_.get<std::string>("name", std::filesystem::path(root_.file()).stem().string());
@@ -39,6 +42,7 @@ class SceneParser {
     if (seed < 0) throw root_.error("seed", "must be >= 0");
     scene_.seed = static_cast<std::uint64_t>(seed);
     parse_sensor(root_.map("sensor"));
+    parse_platform(root_.map("platform"));
     parse_odometry(root_.map("odometry"));
     parse_levels();
     for (const YamlMap& m : root_.maps("walls")) parse_wall(m);
@@ -163,6 +167,43 @@ class SceneParser {
     if (s.dropout < 0.0 || s.dropout >= 1.0) throw m.error("dropout", "must lie in [0, 1)");
     require_positive(m, "mount_height", s.mount_height);
     if (std::abs(s.tilt_deg) > 90.0) throw m.error("tilt_deg", "must lie in [-90, 90]");
+  }
+
+  void parse_platform(const YamlMap& m) {
+    m.check_keys({"type", "bob", "step_hz", "sway_deg", "yaw_jitter_deg", "vibration", "vibration_hz",
+                  "motion_distortion"});
+    PlatformSpec& p = scene_.platform;
+    if (m.has("type")) {
+      const std::string name = m.require<std::string>("type");
+      const std::optional<PlatformType> type = platform_type(name);
+      if (!type) throw m.error("type", "unknown platform '" + name + "' (wheeled, handheld or legged)");
+      p = platform_defaults(*type);
+    }
+    p.bob = m.get<double>("bob", p.bob);
+    p.step_hz = m.get<double>("step_hz", p.step_hz);
+    p.sway_deg = m.get<double>("sway_deg", p.sway_deg);
+    p.yaw_jitter_deg = m.get<double>("yaw_jitter_deg", p.yaw_jitter_deg);
+    p.vibration = m.get<double>("vibration", p.vibration);
+    p.vibration_hz = m.get<double>("vibration_hz", p.vibration_hz);
+    p.motion_distortion = m.get<bool>("motion_distortion", p.motion_distortion);
+    // Bounds that keep a sensor a sensor: a bob beyond half a metre, a sway past 30 degrees or
+    // a vibration beyond 100 Hz describe no platform that walks a building.
+    const auto within = [&m](const char* key, double v, double lo, double hi) {
+      if (!(v >= lo && v <= hi)) {
+        char range[64];
+        std::snprintf(range, sizeof range, "must lie in [%g, %g]", lo, hi);
+        throw m.error(key, range);
+      }
+    };
+    within("bob", p.bob, 0.0, 0.5);
+    within("step_hz", p.step_hz, 0.0, 10.0);
+    within("sway_deg", p.sway_deg, 0.0, 30.0);
+    within("yaw_jitter_deg", p.yaw_jitter_deg, 0.0, 30.0);
+    within("vibration", p.vibration, 0.0, 0.1);
+    within("vibration_hz", p.vibration_hz, 0.0, 100.0);
+    if (p.bob > 0.0 && p.step_hz <= 0.0) throw m.error("step_hz", "must be > 0 when bob is");
+    if (p.sway_deg > 0.0 && p.step_hz <= 0.0) throw m.error("step_hz", "must be > 0 when sway_deg is");
+    if (p.vibration > 0.0 && p.vibration_hz <= 0.0) throw m.error("vibration_hz", "must be > 0 when vibration is");
   }
 
   void parse_odometry(const YamlMap& m) {

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "tsgraphs/scene/platform_presets.hpp"
 #include "tsgraphs/scene/sensor_presets.hpp"
 
 namespace tsgraphs::scene {
@@ -104,6 +105,16 @@ std::string scene_yaml(const Scene& scene, const std::string& header) {
   if (s.dropout > 0.0) out << "  dropout: " << fig(s.dropout) << "\n";
   out << "  mount_height: " << num(s.mount_height) << "\n";
   if (s.tilt_deg != 0.0) out << "  tilt_deg: " << fig(s.tilt_deg) << "\n";
+  const PlatformSpec& pf = scene.platform;
+  const PlatformSpec wheeled = platform_defaults(PlatformType::kWheeled);
+  if (pf.type != PlatformType::kWheeled || pf.bob != wheeled.bob || pf.sway_deg != wheeled.sway_deg ||
+      pf.yaw_jitter_deg != wheeled.yaw_jitter_deg || pf.vibration != wheeled.vibration ||
+      pf.motion_distortion != wheeled.motion_distortion) {
+    out << "\nplatform:\n  type: " << platform_name(pf.type) << "\n  bob: " << fig(pf.bob) << "\n  step_hz: "
+        << fig(pf.step_hz) << "\n  sway_deg: " << fig(pf.sway_deg) << "\n  yaw_jitter_deg: " << fig(pf.yaw_jitter_deg)
+        << "\n  vibration: " << fig(pf.vibration) << "\n  vibration_hz: " << fig(pf.vibration_hz)
+        << "\n  motion_distortion: " << (pf.motion_distortion ? "true" : "false") << "\n";
+  }
   out << "\nodometry:\n  trans_noise_per_m: " << fig(scene.odometry.trans_noise_per_m)
       << "\n  yaw_noise_per_rad: " << fig(scene.odometry.yaw_noise_per_rad)
       << "\n  yaw_noise_per_m: " << fig(scene.odometry.yaw_noise_per_m) << "\n\nlevels:\n";

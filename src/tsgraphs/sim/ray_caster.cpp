@@ -71,15 +71,18 @@ struct RayCaster::Impl {
     if (device) rtcReleaseDevice(device);
   }
 
-  // Fills one packet of up to 16 rays starting at column c0 of a row.
-  void trace_packet(const Eigen::Vector3f& origin, const Eigen::Matrix3f& R, const Eigen::Vector3f* dirs, int n,
-                    float min_range, float max_range, RayHit* out) const {
+  // Fills one packet of up to 16 rays starting at column c0 of a row; ray i leaves from
+  // origins[i * stride] turned by Rs[i * stride] (stride 0: one pose for the packet).
+  void trace_packet(const Eigen::Vector3f* origins, const Eigen::Matrix3f* Rs, int stride, const Eigen::Vector3f* dirs,
+                    int n, float min_range, float max_range, RayHit* out) const {
     alignas(64) int valid[kPacket];
     alignas(64) RTCRayHit16 rh;
     Eigen::Vector3f world_dir[kPacket];
     for (int i = 0; i < kPacket; ++i) {
       valid[i] = i < n ? -1 : 0;
-      const Eigen::Vector3f d = i < n ? Eigen::Vector3f(R * dirs[i]) : Eigen::Vector3f::UnitX();
+      const int at = i < n ? i * stride : 0;
+      const Eigen::Vector3f d = i < n ? Eigen::Vector3f(Rs[at] * dirs[i]) : Eigen::Vector3f::UnitX();
+      const Eigen::Vector3f& origin = origins[at];
       world_dir[i] = d;
       rh.ray.org_x[i] = origin.x();
       rh.ray.org_y[i] = origin.y();
@@ -104,6 +107,7 @@ struct RayCaster::Impl {
       // A glass pane lets some rays through: follow them to what lies behind.
       for (int pane = 0; any_glass && pane < kMaxPassThrough && rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID; ++pane) {
         const unsigned prim = rh.hit.primID[i];
+        const Eigen::Vector3f origin(rh.ray.org_x[i], rh.ray.org_y[i], rh.ray.org_z[i]);
         if (transmission[prim] <= 0.0f || pass_draw(origin, world_dir[i], prim, pane) >= transmission[prim]) break;
         RTCRayHit one;
         one.ray.org_x = origin.x();
@@ -186,7 +190,29 @@ void RayCaster::cast_scan(const Pose3& sensor_pose, const BeamPattern& beams, fl
       const std::size_t row0 = static_cast<std::size_t>(r) * beams.cols;
       for (int c = 0; c < beams.cols; c += kPacket) {
         const int n = std::min(kPacket, beams.cols - c);
-        impl_->trace_packet(origin, R, &beams.dirs[row0 + c], n, min_range, max_range, &(*out)[row0 + c]);
+        impl_->trace_packet(&origin, &R, 0, &beams.dirs[row0 + c], n, min_range, max_range, &(*out)[row0 + c]);
+      }
+    }
+  });
+}
+
+void RayCaster::cast_sweep(const std::vector<Pose3>& column_poses, const BeamPattern& beams, float min_range,
+                           float max_range, std::vector<RayHit>* out) const {
+  if (column_poses.size() != static_cast<std::size_t>(beams.cols))
+    throw std::invalid_argument("RayCaster::cast_sweep: one pose per column");
+  out->resize(beams.dirs.size());
+  std::vector<Eigen::Vector3f> origins(column_poses.size());
+  std::vector<Eigen::Matrix3f> Rs(column_poses.size());
+  for (std::size_t c = 0; c < column_poses.size(); ++c) {
+    origins[c] = column_poses[c].translation().cast<float>();
+    Rs[c] = column_poses[c].linear().cast<float>();
+  }
+  tbb::parallel_for(tbb::blocked_range<int>(0, beams.rows), [&](const tbb::blocked_range<int>& rows) {
+    for (int r = rows.begin(); r < rows.end(); ++r) {
+      const std::size_t row0 = static_cast<std::size_t>(r) * beams.cols;
+      for (int c = 0; c < beams.cols; c += kPacket) {
+        const int n = std::min(kPacket, beams.cols - c);
+        impl_->trace_packet(&origins[c], &Rs[c], 1, &beams.dirs[row0 + c], n, min_range, max_range, &(*out)[row0 + c]);
       }
     }
   });
@@ -195,7 +221,8 @@ void RayCaster::cast_scan(const Pose3& sensor_pose, const BeamPattern& beams, fl
 RayHit RayCaster::cast(const Eigen::Vector3f& origin, const Eigen::Vector3f& dir, float max_range) const {
   RayHit hit;
   const Eigen::Vector3f d = dir.normalized();
-  impl_->trace_packet(origin, Eigen::Matrix3f::Identity(), &d, 1, 0.0f, max_range, &hit);
+  const Eigen::Matrix3f I = Eigen::Matrix3f::Identity();
+  impl_->trace_packet(&origin, &I, 0, &d, 1, 0.0f, max_range, &hit);
   return hit;
 }
 

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -22,6 +23,26 @@ std::uint64_t splitmix(std::uint64_t x) {
 }
 
 double to_unit(std::uint64_t x) { return static_cast<double>(x >> 11) * (1.0 / 9007199254740992.0); }
+
+// The platform's gait at time t, in the body frame: a bob and a vibration up and down, roll
+// over a stride (half the step rate), pitch with each step, and the heading wandering on two
+// slow incommensurate waves, so no two laps sway alike. Smooth in t: a swept scan sees it
+// change within its period.
+Pose3 gait(const scene::PlatformSpec& p, double t) {
+  constexpr double kDeg = M_PI / 180.0;
+  const double step = 2.0 * M_PI * p.step_hz * t;
+  const double roll = p.sway_deg * kDeg * std::sin(0.5 * step);
+  const double pitch = 0.5 * p.sway_deg * kDeg * std::sin(step + M_PI / 3.0);
+  const double yaw = p.yaw_jitter_deg * kDeg *
+                     (0.6 * std::sin(2.0 * M_PI * 0.23 * t + 0.4) + 0.4 * std::sin(2.0 * M_PI * 0.61 * t + 1.9));
+  const double z = p.bob * std::sin(step) + p.vibration * std::sin(2.0 * M_PI * p.vibration_hz * t + 0.8);
+  Pose3 T = Pose3::Identity();
+  T.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  T.translation() = Eigen::Vector3d(0.0, 0.0, z);
+  return T;
+}
 
 }  // namespace
 
@@ -50,33 +71,60 @@ Simulator::Simulator(scene::Scene scene, std::uint64_t seed) : scene_(std::move(
   const std::size_t intervals = static_cast<std::size_t>(std::llround(trajectory_->duration() / dt));
   const std::size_t n = intervals + 1;
   time_scale_ = intervals > 0 ? trajectory_->duration() / (intervals * dt) : 1.0;
-  const Pose3 tilt = make_pose(Eigen::Vector3d::Zero(), 0.0, scene_.sensor.tilt_deg * M_PI / 180.0);
+  tilt_ = make_pose(Eigen::Vector3d::Zero(), 0.0, scene_.sensor.tilt_deg * M_PI / 180.0);
   std::vector<Pose3> body(n);
   times_.resize(n);
   truth_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     times_[k] = k * dt;
     body[k] = trajectory_->body_pose(k == intervals ? trajectory_->duration() : times_[k] * time_scale_);
-    truth_[k] = body[k] * tilt;
+    truth_[k] = body[k] * gait(scene_.platform, times_[k]) * tilt_;
   }
+  // The odometry drifts along the path; the gait it follows (as an odometry with an IMU would).
   odom_ = drift_odometry(body, scene_.odometry, seed_);
-  for (Pose3& p : odom_) p = p * tilt;
+  for (std::size_t k = 0; k < n; ++k) odom_[k] = odom_[k] * gait(scene_.platform, times_[k]) * tilt_;
 }
 
 Simulator::~Simulator() = default;
 
-PointCloud Simulator::scan(std::size_t k) const { return scan_at(truth_.at(k), k); }
+Pose3 Simulator::sensor_pose_at(double t) const {
+  const double path_time = std::clamp(t * time_scale_, 0.0, trajectory_->duration());
+  return trajectory_->body_pose(path_time) * gait(scene_.platform, t) * tilt_;
+}
+
+PointCloud Simulator::scan(std::size_t k) const {
+  if (!scene_.platform.motion_distortion) return scan_at(truth_.at(k), k);
+  // Column c fires c / columns of a period after the stamp, from where the sensor is then.
+  const scene::SensorSpec& s = scene_.sensor;
+  const double period = 1.0 / s.rate_hz;
+  std::vector<Pose3> poses(static_cast<std::size_t>(beams_.cols));
+  std::vector<float> column_time(poses.size());
+  for (int c = 0; c < beams_.cols; ++c) {
+    column_time[c] = static_cast<float>(period * c / beams_.cols);
+    poses[c] = c == 0 ? truth_.at(k) : sensor_pose_at(times_.at(k) + column_time[c]);
+  }
+  std::vector<RayHit> hits;
+  caster_->cast_sweep(poses, beams_, static_cast<float>(s.min_range), static_cast<float>(s.max_range), &hits);
+  return points_of(hits, k, column_time);
+}
 
 PointCloud Simulator::scan_at(const Pose3& sensor_pose, std::uint64_t noise_index) const {
   const scene::SensorSpec& s = scene_.sensor;
   std::vector<RayHit> hits;
   caster_->cast_scan(sensor_pose, beams_, static_cast<float>(s.min_range), static_cast<float>(s.max_range), &hits);
+  return points_of(hits, noise_index, {});
+}
+
+PointCloud Simulator::points_of(const std::vector<RayHit>& hits, std::uint64_t noise_index,
+                                const std::vector<float>& column_time) const {
+  const scene::SensorSpec& s = scene_.sensor;
+  const bool timed = !column_time.empty();
   const std::uint64_t scan_key = splitmix(seed_ ^ splitmix(noise_index + 0x5CA11ULL));
   // Noise row by row in parallel; rows are joined in order, so threads change nothing.
   std::vector<PointCloud> rows(static_cast<std::size_t>(beams_.rows));
   tbb::parallel_for(0, beams_.rows, [&](int r) {
     PointCloud& row = rows[r];
-    row.reserve(beams_.cols, true, true);
+    row.reserve(beams_.cols, true, true, timed);
     for (std::size_t i = static_cast<std::size_t>(r) * beams_.cols, end = i + beams_.cols; i < end; ++i) {
       const RayHit& h = hits[i];
       if (h.range < 0.0f) continue;
@@ -91,12 +139,13 @@ PointCloud Simulator::scan_at(const Pose3& sensor_pose, std::uint64_t noise_inde
       row.points.push_back(beams_.dirs[i] * static_cast<float>(range));
       row.intensity.push_back(Reflectivity::of(h.label) * h.cos_incidence);
       row.labels.push_back(h.label);
+      if (timed) row.times.push_back(column_time[i % beams_.cols]);
     }
   });
   std::size_t total = 0;
   for (const PointCloud& row : rows) total += row.size();
   PointCloud cloud;
-  cloud.reserve(total, true, true);
+  cloud.reserve(total, true, true, timed);
   for (const PointCloud& row : rows) cloud.append(row);
   return cloud;
 }

@@ -1,6 +1,7 @@
 #pragma once
 /// The indoor LiDAR simulator: a scene in, a sequence of labelled scans with true and
-/// drifting poses out. Each scan is taken at one pose (de-skewed).
+/// drifting poses out. The platform (scene `platform:`) adds its gait to the path's motion; a
+/// swept scan's columns are each fired from the pose of their time, and carry that time.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -45,18 +46,26 @@ class Simulator {
   const std::vector<double>& times() const { return times_; }
   /// Path time per scan time, within half a scan period over the path's duration of 1.
   double time_scale() const { return time_scale_; }
-  /// True sensor poses (with mount height and tilt), one per scan.
+  /// True sensor poses (with mount height, tilt and the platform's gait), one per scan, at the
+  /// scan's stamp (a swept scan's start).
   const std::vector<Pose3>& true_poses() const { return truth_; }
   /// Drifting odometry poses, one per scan; the first equals the truth.
   const std::vector<Pose3>& odometry_poses() const { return odom_; }
 
   /// Scan k in the sensor frame, with intensity and labels; the same for the same seed and k
-  /// whatever the number of threads.
+  /// whatever the number of threads. Swept (platform.motion_distortion): each column in the
+  /// sensor's frame at its own time, with per-point times from the scan's stamp.
   PointCloud scan(std::size_t k) const;
+  /// The true sensor pose at time t (s, scan time), between and beyond the scans'.
+  Pose3 sensor_pose_at(double t) const;
   /// The same for any sensor pose (noise drawn as for scan `noise_index`).
   PointCloud scan_at(const Pose3& sensor_pose, std::uint64_t noise_index) const;
 
  private:
+  /// Noise, dropout and range limits applied to cast rays, as points in the frame they left
+  /// from; `column_time` (empty or one per column) fills the points' times.
+  PointCloud points_of(const std::vector<RayHit>& hits, std::uint64_t noise_index,
+                       const std::vector<float>& column_time) const;
   scene::Scene scene_;
   std::uint64_t seed_;
   std::unique_ptr<scene::Trajectory> trajectory_;
@@ -66,6 +75,7 @@ class Simulator {
   std::vector<double> times_;
   double time_scale_ = 1.0;
   std::vector<Pose3> truth_;
+  Pose3 tilt_ = Pose3::Identity();
   std::vector<Pose3> odom_;
 };
 

@@ -1,0 +1,73 @@
+#pragma once
+/// The platform the sensor rides on, as the pipeline uses it: the sensor's height above the
+/// floor, where the ground search may start, and the ground's settings for the density of the
+/// floor's rings. Each is measured from scans spread over the run (odometry/platform_estimate.hpp) unless
+/// the configuration gives it.
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "tsgraphs/core/point_cloud.hpp"
+#include "tsgraphs/ground/ground_segmentation.hpp"
+#include "tsgraphs/odometry/floor_levelling.hpp"
+#include "tsgraphs/odometry/platform_estimate.hpp"
+
+namespace tsgraphs::pipeline {
+
+/// The `platform` section of the parameters. `auto` (unset) values are measured.
+struct PlatformConfig {
+  std::optional<double> sensor_height;  ///< m above the floor under the robot; auto: the median floor under the scans measured
+  std::optional<double> seed_radius;    ///< m; auto: where the lowest beam meets the floor (on the tilted side) plus
+                                        ///< seed_radius_margin, within [min_seed_radius, ground.max_range]
+  std::string preset = "auto";          ///< the ground's ring-density settings: auto (the measured ring spacing),
+                                        ///< os1-64, os0-128, vlp-16, hesai-xt32, or none (the ground section as it is)
+  double seed_radius_margin = 1.5;      ///< m beyond the first floor ring: that ring is thin (a node needs
+                                        ///< ground.num_min_pts points), so seeds come from the next rings out too;
+                                        ///< three tri-grid cells
+  double min_seed_radius = 3.0;         ///< m; the search may always start this far out
+  double fallback_sensor_height = 0.55; ///< m; when no floor is found under the scans measured (a warning says so)
+  odometry::PlatformEstimateConfig measure;  ///< how the scans are measured
+
+  template <class V>
+  void visit(V& v) {
+    v("sensor_height", sensor_height);
+    v("seed_radius", seed_radius);
+    v("preset", preset);
+    v("seed_radius_margin", seed_radius_margin);
+    v("min_seed_radius", min_seed_radius);
+    v("fallback_sensor_height", fallback_sensor_height);
+    measure.visit(v);
+  }
+  /// Throws std::invalid_argument naming the first field out of range ("PlatformConfig: key ...").
+  void validate() const;
+};
+
+/// The platform resolved: every value the pipeline uses, and where each came from.
+struct Platform {
+  odometry::PlatformEstimate estimate;
+  double sensor_height = 0.0;       ///< m
+  std::string sensor_height_source; ///< "measured", "config" or "fallback"
+  double seed_radius = 0.0;         ///< m
+  std::string seed_radius_source;   ///< "beams" (the rule above), "config" or "default" (no ring below the horizon)
+  std::string preset;               ///< the ground settings' preset, "" for none
+  std::string preset_source;        ///< "beams", "config" or "none"
+  std::vector<std::string> warnings;///< what could not be measured, one line each
+};
+
+/// Resolves the platform from `config` and scans of the run (sensor frames; `ups`, empty or
+/// one per scan: the gravity's up in each, when the poses give it).
+Platform resolve_platform(const PlatformConfig& config, const odometry::FloorLevellingConfig& levelling,
+                          const ground::GroundConfig& ground, const std::vector<PointCloud>& scans,
+                          const std::vector<Eigen::Vector3d>& ups = {});
+
+/// `ground` with the platform's values: the height, the seed radius, and the preset's
+/// ring-density fields except those named in `given` ("num_min_pts", "max_gap": set by the
+/// user's parameter file).
+ground::GroundConfig apply_platform(const Platform& platform, ground::GroundConfig ground,
+                                    const std::set<std::string>& given = {});
+
+/// One line for a log: "sensor 1.62 m above the floor (measured in 9 of 10 scans), ...".
+std::string describe(const Platform& platform);
+
+}  // namespace tsgraphs::pipeline
