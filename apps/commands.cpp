@@ -12,7 +12,6 @@
 #include "tsgraphs/eval/run_evaluation.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
-#include "tsgraphs/odometry/deskew.hpp"
 #include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
@@ -93,11 +92,7 @@ void convert(const io::ScanSequence& sequence, const std::string& out, const pip
   for (std::size_t i = 0; i < sequence.size(); ++i) {
     const PointCloud scan = sequence.scan(i);
     writer.write_scan(i, scan);
-    if (lidar_odometry) {
-      // The scans are written as they are (with their times); the odometry registers them de-skewed.
-      const auto [motion, interval] = odometry::sweep_motion(i, info.times, {}, &*lidar_odometry);
-      info.odometry.push_back(odometry.initial_pose * lidar_odometry->register_scan(odometry::deskew(scan, motion, interval)));
-    }
+    if (lidar_odometry) info.odometry.push_back(odometry.initial_pose * lidar_odometry->register_scan(scan));
     progress.update(i + 1, sequence.size());
   }
   writer.commit(info);

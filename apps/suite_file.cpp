@@ -119,7 +119,7 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
   const std::string what = g.key_path("platforms");
   const YAML::Node node = g.raw("platforms");
   if (!node.IsSequence() || node.size() == 0)
-    throw input_error(g.file(), node.Mark().line + 1, what + ": expected a list of platforms (default, or {name, mount_height, preset, type, rate_hz})");
+    throw input_error(g.file(), node.Mark().line + 1, what + ": expected a list of platforms (default, or {name, mount_height, preset, type, rate_hz, record_hz})");
   std::vector<SuitePlatform> out;
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string item = what + "[" + std::to_string(i) + "]";
@@ -131,7 +131,7 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
       continue;
     }
     const YamlMap p(n, g.file(), item);
-    p.check_keys({"name", "mount_height", "preset", "type", "rate_hz"});
+    p.check_keys({"name", "mount_height", "preset", "type", "rate_hz", "record_hz"});
     SuitePlatform platform;
     platform.name = p.require<std::string>("name");
     if (platform.name.empty() || platform.name == "default" || id_text(platform.name) != platform.name)
@@ -157,8 +157,14 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
       if (!(*platform.rate_hz >= kMinRateHz && *platform.rate_hz <= kMaxRateHz))
         throw p.error("rate_hz", "must lie in [1, 40] Hz");
     }
-    if (!platform.mount_height && platform.preset.empty() && platform.type.empty() && !platform.rate_hz)
-      throw p.error_here("a platform sets mount_height, preset, type or rate_hz");
+    if (p.has("record_hz")) {
+      platform.record_hz = p.require<double>("record_hz");
+      if (!(*platform.record_hz >= kMinRateHz && *platform.record_hz <= kMaxRateHz))
+        throw p.error("record_hz", "must lie in [1, 40] Hz");
+    }
+    if (!platform.mount_height && platform.preset.empty() && platform.type.empty() && !platform.rate_hz &&
+        !platform.record_hz)
+      throw p.error_here("a platform sets mount_height, preset, type, rate_hz or record_hz");
     out.push_back(platform);
   }
   return out;

@@ -17,7 +17,8 @@ struct SuitePlatform {
   std::optional<double> mount_height; ///< m: the sensor above the floor
   std::string preset;                 ///< a sensor preset ("" keeps the drawn one)
   std::string type;                   ///< what carries the sensor: wheeled, handheld, legged ("" keeps the drawn one)
-  std::optional<double> rate_hz;      ///< scans per second (none keeps the preset's)
+  std::optional<double> rate_hz;      ///< sweeps per second (none keeps the preset's)
+  std::optional<double> record_hz;    ///< scans kept per second (none: every sweep)
 };
 
 struct SuiteCase {

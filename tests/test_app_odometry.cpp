@@ -222,3 +222,29 @@ TEST_F(OdometryCli, TiltedSensorWithoutPosesIsLevelledOnTheFloor) {
                                    [](const auto& p) { return p["kind"] == "wall"; });
   EXPECT_GE(walls, 5);
 }
+
+TEST_F(OdometryCli, HandHeldSweptScansAtTwoHertzWithoutPosesOrConfigGiveRooms) {
+  // A person carrying an os1-64 at 1.5 m through the two rooms (bobbing, swaying, its 10 Hz
+  // sweeps distorted by the motion), recorded at 2 Hz, as scans without poses and no
+  // parameter file: the run measures the platform, de-skews, follows the turns and finds rooms.
+  std::string scene = kScene;
+  scene.replace(scene.find("sensor: {preset: vlp-16, mount_height: 0.55}"),
+                std::strlen("sensor: {preset: vlp-16, mount_height: 0.55}"),
+                "sensor: {preset: os1-64, columns: 512, mount_height: 1.5, record_hz: 2}\nplatform: {type: handheld}");
+  std::ofstream(dir_ / "handheld.yaml") << scene;
+  const fs::path seq = dir_ / "seq", out = dir_ / "run";
+  std::string err;
+  ASSERT_EQ(cli("-q simulate " + (dir_ / "handheld.yaml").string() + " --out " + seq.string(), &err), 0) << err;
+  ASSERT_EQ(cli("-q run " + seq.string() + " --odometry lidar --out " + out.string(), &err), 0) << err;
+  const auto info = nlohmann::json::parse(read_file(out / "run_info.json"));
+  EXPECT_EQ(info["odometry"], "lidar");
+  EXPECT_EQ(info["platform"]["sensor_height_source"], "measured");
+  EXPECT_NEAR(info["platform"]["sensor_height"].get<double>(), 1.5, 0.05);
+  EXPECT_LT(info["platform"]["tilt_deg"].get<double>(), 6.0);
+  EXPECT_EQ(info["platform"]["rings"], 64);
+  EXPECT_GE(info["num_rooms"].get<int>(), 1);
+  EXPECT_TRUE(info["warnings"].empty()) << info["warnings"].dump();
+  const io::SequenceReader reader(seq.string());
+  // Within 1 % of the 27 m path.
+  EXPECT_LT(eval::ate_rmse(poses_of(io::read_tum((out / "odometry.txt").string())), reader.info().groundtruth), 0.27);
+}

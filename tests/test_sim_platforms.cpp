@@ -127,3 +127,19 @@ TEST(SimPlatforms, SweptSequenceCarriesItsTimes) {
   EXPECT_EQ(scan.times, sim.scan(2).times);
   std::filesystem::remove_all(dir);
 }
+
+TEST(SimPlatforms, ARecordingKeepsEveryNthSweep) {
+  // A 10 Hz sensor stored at 2 Hz: scans 0.5 s apart, each swept over 0.1 s.
+  std::string text = scene_with("platform: {type: handheld}");
+  text.replace(text.find("rate_hz: 5"), 10, "rate_hz: 10, record_hz: 2");
+  const sim::Simulator sim(scene::parse_scene(text, "r.yaml", "."), 1);
+  ASSERT_GE(sim.num_scans(), 3u);
+  EXPECT_NEAR(sim.times()[1] - sim.times()[0], 0.5, 1e-9);
+  const PointCloud scan = sim.scan(1);
+  EXPECT_LT(*std::max_element(scan.times.begin(), scan.times.end()), 0.1f);
+  EXPECT_GT(*std::max_element(scan.times.begin(), scan.times.end()), 0.09f);
+  std::string bad = scene_with("");
+  bad.replace(bad.find("rate_hz: 5"), 10, "rate_hz: 5, record_hz: 8");
+  EXPECT_NE(test::input_error_of([&] { scene::parse_scene(bad, "b.yaml", "."); }).find("sensor.record_hz: must lie in (0, rate_hz]"),
+            std::string::npos);
+}

@@ -18,8 +18,8 @@ Pose3 scale_motion(const Pose3& delta, double interval, double duration) {
 std::pair<Pose3, double> sweep_motion(std::size_t index, const std::vector<double>& times,
                                       const std::vector<Pose3>& poses, const LidarOdometry* odometry) {
   if (odometry) {
-    if (index < 2 || index >= times.size()) return {Pose3::Identity(), 0.0};
-    return {odometry->last_motion(), times[index - 1] - times[index - 2]};
+    if (index < 1 || index >= times.size()) return {Pose3::Identity(), 0.0};
+    return {odometry->last_motion(), times[index] - times[index - 1]};
   }
   if (poses.size() != times.size() || times.size() < 2 || index >= times.size()) return {Pose3::Identity(), 0.0};
   const std::size_t a = index + 1 < times.size() ? index : index - 1;

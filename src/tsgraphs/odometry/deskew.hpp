@@ -21,8 +21,11 @@ PointCloud deskew(const PointCloud& scan, const Pose3& motion, double duration);
 
 /// The sensor's motion over scan `index`'s sweep, as {motion, interval} for deskew(): from
 /// `poses` (one per scan, with `times`) to the next scan (the last scan: from the one before),
-/// or, when `odometry` is given, its last motion over the interval before the scan (constant
-/// velocity). Interval 0 when there is no motion to go by (a first scan).
+/// or, when `odometry` is given and has just registered the scan, its motion into the scan over
+/// the interval before it (constant velocity). Interval 0 when there is no motion to go by.
+/// The LiDAR odometry itself registers scans as they are: a motion from before the sweep can
+/// be far from the one during it (a hand-held sensor's pitch turns back at every step), and
+/// de-skewing with it bent the simulated hand-held walls more than the sweep had (docs/run.md).
 std::pair<Pose3, double> sweep_motion(std::size_t index, const std::vector<double>& times,
                                       const std::vector<Pose3>& poses, const LidarOdometry* odometry);
 

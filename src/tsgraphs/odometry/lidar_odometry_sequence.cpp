@@ -2,8 +2,6 @@
 
 #include <tbb/task_group.h>
 
-#include "tsgraphs/odometry/deskew.hpp"
-
 namespace tsgraphs::odometry {
 
 std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, const LidarOdometryConfig& config,
@@ -23,9 +21,7 @@ std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, const Lid
     tbb::task_group reader;
     if (k + 1 < n) reader.run([&] { next = sequence.scan(k + 1); });
     try {
-      // A swept scan is registered de-skewed by the odometry's own last motion.
-      const auto [motion, interval] = sweep_motion(k, sequence.info().times, {}, &odometry);
-      poses.push_back(initial_pose * odometry.register_scan(deskew(current, motion, interval)));
+      poses.push_back(initial_pose * odometry.register_scan(current));
     } catch (...) {
       reader.wait();
       throw;

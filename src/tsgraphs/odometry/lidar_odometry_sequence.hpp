@@ -10,8 +10,8 @@
 
 namespace tsgraphs::odometry {
 
-/// Registers every scan of `sequence` in order (de-skewed when it has per-point times: deskew.hpp)
-/// and returns one sensor pose per scan:
+/// Registers every scan of `sequence` in order (as they are: deskew.hpp, sweep_motion) and
+/// returns one sensor pose per scan:
 /// `initial_pose` * (the odometry pose, identity at the first scan), so that a caller can
 /// anchor the odometry frame, e.g. at the first ground-truth pose or the sensor's mount tilt.
 /// `progress(done, total)` after each scan. Input errors of the sequence propagate. `lost`

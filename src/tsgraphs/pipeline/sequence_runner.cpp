@@ -89,8 +89,8 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
   const std::size_t tokens = kTokensPerThread * static_cast<std::size_t>(std::max(
       1, static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))));
   std::size_t next = 0;
-  KeyframeSelector candidates(pipeline.config().keyframes);
-  const bool deskew = pipeline.config().deskew.enabled;  // guesses the keyframes from odometry alone
+  KeyframeSelector candidates(pipeline.config().keyframes);  // guesses the keyframes from odometry alone
+  const bool deskew = pipeline.config().deskew.enabled;
   tbb::parallel_pipeline(
       tokens,
       tbb::make_filter<void, Loaded>(tbb::filter_mode::serial_in_order,
@@ -114,16 +114,18 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
                                            }) &
           tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::serial_in_order,
                                            [&](Loaded l) {
+                                             // An unreadable scan is empty here: the odometry keeps its prediction.
+                                             l.odom = lidar_odometry
+                                                          ? odometry.initial_pose * lidar_odometry->register_scan(l.scan)
+                                                          : info.odometry[l.index];
+                                             // De-skewed after the odometry: its motion into this scan is the
+                                             // nearest to the sweep it knows (deskew.hpp, sweep_motion).
                                              if (deskew && l.scan.has_times()) {
                                                const auto [motion, interval] = odometry::sweep_motion(
                                                    l.index, info.times, info.odometry,
                                                    lidar_odometry ? &*lidar_odometry : nullptr);
                                                l.scan = odometry::deskew(l.scan, motion, interval);
                                              }
-                                             // An unreadable scan is empty here: the odometry keeps its prediction.
-                                             l.odom = lidar_odometry
-                                                          ? odometry.initial_pose * lidar_odometry->register_scan(l.scan)
-                                                          : info.odometry[l.index];
                                              if (lidar_odometry && lidar_odometry->last_icp().lost) {
                                                const odometry::IcpResult& icp = lidar_odometry->last_icp();
                                                l.odometry_warning =

@@ -22,7 +22,8 @@ struct SensorSpec {
   std::vector<double> vertical_angles_deg;
   double max_range = 60.0;            ///< returns beyond are lost, m
   double min_range = 0.3;             ///< returns closer are lost, m
-  double rate_hz = 10.0;              ///< revolutions (scans) per second
+  double rate_hz = 10.0;              ///< revolutions (sweeps) per second
+  double record_hz = 0.0;             ///< scans kept per second, <= rate_hz (a recording of every n-th sweep); 0: rate_hz
   double range_noise_std = 0.015;     ///< gaussian range noise, m
   double dropout = 0.0;               ///< probability that a return is lost
   double mount_height = 0.55;         ///< sensor above the walkable surface, m

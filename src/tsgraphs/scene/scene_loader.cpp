@@ -105,7 +105,7 @@ class SceneParser {
 
   void parse_sensor(const YamlMap& m) {
     m.check_keys({"preset", "channels", "columns", "vertical_fov_deg", "vertical_angles_deg", "max_range",
-                  "min_range", "rate_hz", "range_noise_std", "dropout", "mount_height", "tilt_deg"});
+                  "min_range", "rate_hz", "record_hz", "range_noise_std", "dropout", "mount_height", "tilt_deg"});
     SensorSpec& s = scene_.sensor;
     if (m.has("preset")) {
       const std::string name = m.require<std::string>("preset");
@@ -155,6 +155,7 @@ class SceneParser {
     s.max_range = m.get<double>("max_range", s.max_range);
     s.min_range = m.get<double>("min_range", s.min_range);
     s.rate_hz = m.get<double>("rate_hz", s.rate_hz);
+    s.record_hz = m.get<double>("record_hz", s.record_hz);
     s.range_noise_std = m.get<double>("range_noise_std", s.range_noise_std);
     s.dropout = m.get<double>("dropout", s.dropout);
     s.mount_height = m.get<double>("mount_height", s.mount_height);
@@ -163,6 +164,8 @@ class SceneParser {
     require_non_negative(m, "min_range", s.min_range);
     if (s.min_range >= s.max_range) throw m.error("min_range", "must be below max_range");
     require_positive(m, "rate_hz", s.rate_hz);
+    if (m.has("record_hz") && !(s.record_hz > 0.0 && s.record_hz <= s.rate_hz))
+      throw m.error("record_hz", "must lie in (0, rate_hz]");
     require_non_negative(m, "range_noise_std", s.range_noise_std);
     if (s.dropout < 0.0 || s.dropout >= 1.0) throw m.error("dropout", "must lie in [0, 1)");
     require_positive(m, "mount_height", s.mount_height);

@@ -100,6 +100,7 @@ std::string scene_yaml(const Scene& scene, const std::string& header) {
   if (!has_preset || s.max_range != preset.max_range) out << "  max_range: " << fig(s.max_range) << "\n";
   if (!has_preset || s.min_range != preset.min_range) out << "  min_range: " << fig(s.min_range) << "\n";
   if (!has_preset || s.rate_hz != preset.rate_hz) out << "  rate_hz: " << fig(s.rate_hz) << "\n";
+  if (s.record_hz > 0.0) out << "  record_hz: " << fig(s.record_hz) << "\n";
   if (!has_preset || s.range_noise_std != preset.range_noise_std)
     out << "  range_noise_std: " << fig(s.range_noise_std) << "\n";
   if (s.dropout > 0.0) out << "  dropout: " << fig(s.dropout) << "\n";

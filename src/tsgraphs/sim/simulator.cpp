@@ -64,7 +64,9 @@ Simulator::Simulator(scene::Scene scene, std::uint64_t seed) : scene_(std::move(
   num_triangles_ = mesh.triangles.size();
   caster_ = std::make_unique<RayCaster>(mesh);
   beams_ = BeamPattern::from_sensor(scene_.sensor);
-  const double dt = 1.0 / scene_.sensor.rate_hz;
+  // Scans every 1 / record_hz s (a recording may keep only every n-th sweep); each sweeps for
+  // 1 / rate_hz.
+  const double dt = 1.0 / (scene_.sensor.record_hz > 0.0 ? scene_.sensor.record_hz : scene_.sensor.rate_hz);
   // The last scan is taken at the end of the path (so a closed path's sequence ends where it
   // starts, as ATE_loop assumes): the motion runs at speed * time_scale_, within half a scan
   // period over the whole path of the scene's speed.

@@ -40,7 +40,7 @@ class Simulator {
   const RayCaster& ray_caster() const { return *caster_; }
   std::size_t num_triangles() const { return num_triangles_; }
 
-  /// One scan every 1 / rate_hz seconds from t = 0 to the end of the path: the last scan is
+  /// One scan every 1 / record_hz (else rate_hz) seconds from t = 0 to the end of the path: the last scan is
   /// taken at the path's end, the motion running at the scene's speed times time_scale().
   std::size_t num_scans() const { return times_.size(); }
   const std::vector<double>& times() const { return times_; }
