@@ -157,8 +157,32 @@ TEST_F(PlatformTest, WarnsOnceWhenNoFloorGivesNoGroundThenCounts) {
   const auto n = std::count_if(p.warnings().begin(), p.warnings().end(),
                                [](const std::string& w) { return w.find("in a row") != std::string::npos; });
   EXPECT_EQ(n, 1) << "once, then a count";
-  EXPECT_TRUE(has_warning(p, "no room after 5 keyframes: 0 traversable nodes"));
   EXPECT_FALSE(has_warning(p, "no wall")) << "the room's walls are seen";
+}
+
+TEST_F(PlatformTest, NoWallSaysSoAndARunWithoutARoomSaysWhyAtItsEnd) {
+  PipelineConfig config;
+  config.diagnostics.empty_layer_keyframes = 5;
+  // The S-Graphs+ mode: rooms from walls only (the traversable mode's sight map makes a space of
+  // rays alone, even under a bare ceiling: see the note).
+  config.rooms.layer.free_space_method = "esdf";
+  config.rooms.layer.room_trigger = "timer";
+  Pipeline p(config);
+  // Only the ceiling's returns: nothing to walk on, nothing standing.
+  walk(p, 8, [this](double x) {
+    const PointCloud s = sim_.scan_at(pose(x, 4.5, 0.55), 0);
+    PointCloud ceiling;
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (s.labels[i] == static_cast<std::uint32_t>(PointLabel::kCeiling)) ceiling.points.push_back(s.points[i]);
+    return ceiling;
+  });
+  EXPECT_TRUE(has_warning(p, "no wall in 5 keyframes in a row (to keyframe 4): no vertical plane"))
+      << ::testing::PrintToString(p.warnings());
+  EXPECT_FALSE(has_warning(p, "no room")) << "said only at the end";
+  p.finish();
+  EXPECT_TRUE(has_warning(p, "no wall in 7 of 7 keyframes in all"));
+  EXPECT_TRUE(has_warning(p, "no room in 7 keyframes: 0 traversable nodes and 0 walls mapped (no traversable ground)"))
+      << ::testing::PrintToString(p.warnings());
 }
 
 TEST_F(PlatformTest, WarningNamesTheFloorItMeasuredAgainstTheHeightGiven) {

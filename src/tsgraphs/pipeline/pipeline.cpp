@@ -234,17 +234,6 @@ void Pipeline::check_empty_layers(int keyframe, std::size_t ground_nodes, std::s
                         fixed(config_.plane_extraction.max_range, 1) + " m); keyframe " + std::to_string(keyframe) +
                         " holds " + std::to_string(keyframe_clouds_.back().size()) + " points after prefiltering");
   }
-  if (keyframe + 1 >= n && !warned_no_room_ && rooms_.room_map().rooms().empty()) {
-    warned_no_room_ = true;
-    std::size_t mapped_walls = 0;
-    for (const auto& [id, lm] : mapper_.landmarks()) mapped_walls += lm.vertical ? 1 : 0;
-    const std::string cause = node_map_.size() == 0 ? "no traversable ground"
-                              : mapped_walls < 2    ? "fewer than two walls"
-                                                    : "no space of the free space bounded by walls";
-    warnings_.push_back("no room after " + std::to_string(keyframe + 1) + " keyframes: " +
-                        std::to_string(node_map_.size()) + " traversable nodes and " + std::to_string(mapped_walls) +
-                        " walls mapped (" + cause + ")");
-  }
 }
 
 void Pipeline::optimize(bool full, const std::string& reason) {
@@ -281,7 +270,19 @@ void Pipeline::finish() {
   const std::string of = " of " + std::to_string(graph_.keyframes().size()) + " keyframes in all";
   if (no_ground_.warned) warnings_.push_back("no traversable ground in " + std::to_string(no_ground_.total) + of);
   if (no_walls_.warned) warnings_.push_back("no wall in " + std::to_string(no_walls_.total) + of);
-  if (warned_no_room_ && rooms_.room_map().rooms().empty()) warnings_.push_back("no room in the whole run");
+  // Rooms come when the robot leaves a space, which in a long hall may be late: said only of
+  // a whole run without one.
+  const int n = config_.diagnostics.empty_layer_keyframes;
+  if (n > 0 && static_cast<int>(graph_.keyframes().size()) >= n && rooms_.room_map().rooms().empty()) {
+    std::size_t mapped_walls = 0;
+    for (const auto& [id, lm] : mapper_.landmarks()) mapped_walls += lm.vertical ? 1 : 0;
+    const std::string cause = node_map_.size() == 0 ? "no traversable ground"
+                              : mapped_walls < 2    ? "fewer than two walls"
+                                                    : "no space of the free space bounded by walls";
+    warnings_.push_back("no room in " + std::to_string(graph_.keyframes().size()) + " keyframes: " +
+                        std::to_string(node_map_.size()) + " traversable nodes and " + std::to_string(mapped_walls) +
+                        " walls mapped (" + cause + ")");
+  }
 }
 
 RoomLayerInput Pipeline::room_input(int keyframe) const {

@@ -67,8 +67,8 @@ class Pipeline {
   void set_platform(const std::vector<PointCloud>& scans, const std::vector<Eigen::Vector3d>& ups = {});
   /// The resolved platform, null before set_platform().
   const Platform* platform() const { return platform_ ? &*platform_ : nullptr; }
-  /// Every warning so far, in order (a layer empty for diagnostics.empty_layer_keyframes, the
-  /// platform's); the caller prints the new ones.
+  /// Every warning so far, in order (a layer empty for diagnostics.empty_layer_keyframes, no
+  /// room in a run of at least that many keyframes, the platform's); the caller prints the new ones.
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   /// Processes one scan (sensor frame) with its odometry pose (odom <- sensor). A scan with no
@@ -131,7 +131,6 @@ class Pipeline {
     bool warned = false;
   };
   EmptyLayer no_ground_, no_walls_;
-  bool warned_no_room_ = false;
   KeyframeSelector selector_;
   walls::PlaneMapper mapper_;
   ground::TraversableNodeMap node_map_;

@@ -45,7 +45,7 @@ struct DeskewConfig {
 
 /// What the pipeline says about layers that stay empty.
 struct DiagnosticsConfig {
-  int empty_layer_keyframes = 50;  ///< warn when a layer has produced nothing for this many keyframes (0: never)
+  int empty_layer_keyframes = 50;  ///< warn when no ground or wall came for this many keyframes, or a run this long has no room (0: never)
 
   template <class V>
   void visit(V& v) {
