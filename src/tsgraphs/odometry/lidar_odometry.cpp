@@ -13,47 +13,16 @@
 #include <string>
 
 #include "tsgraphs/core/voxel_grid.hpp"
+#include "tsgraphs/odometry/se3.hpp"
 
 namespace tsgraphs::odometry {
 namespace {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
-using Vector6d = Eigen::Matrix<double, 6, 1>;
-
-// Below this rotation angle the series of exp's coefficients avoids 0/0.
-constexpr double kSmallAngle = 1e-10;
 
 const LidarOdometryConfig& validated(const LidarOdometryConfig& c) {
   c.validate();
   return c;
-}
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
-/// SE(3) exponential of (translation part rho, rotation part phi).
-Pose3 se3_exp(const Vector6d& xi) {
-  const Eigen::Vector3d rho = xi.head<3>();
-  const Eigen::Vector3d phi = xi.tail<3>();
-  const double theta = phi.norm();
-  const Eigen::Matrix3d K = skew(phi);
-  Eigen::Matrix3d R;
-  Eigen::Matrix3d V;
-  if (theta < kSmallAngle) {
-    R = Eigen::Matrix3d::Identity() + K;
-    V = Eigen::Matrix3d::Identity() + 0.5 * K;
-  } else {
-    const double t2 = theta * theta;
-    R = Eigen::AngleAxisd(theta, phi / theta).toRotationMatrix();
-    V = Eigen::Matrix3d::Identity() + (1.0 - std::cos(theta)) / t2 * K + (theta - std::sin(theta)) / (t2 * theta) * K * K;
-  }
-  Pose3 T = Pose3::Identity();
-  T.linear() = R;
-  T.translation() = V * rho;
-  return T;
 }
 
 /// Normal equations of one Gauss-Newton step, summed over correspondences.
@@ -69,19 +38,25 @@ struct NormalEquations {
   }
 };
 
-/// The first point of each voxel of edge `voxel_size`, in input order. Measured points rather
-/// than centroids: centroids of sensor-frame voxels sit on a lattice that moves with the
-/// sensor, which pulls point-to-point ICP towards "no motion" (on the simulated office,
-/// centroids lost track in the corridor where first points did not).
-std::vector<Eigen::Vector3d> first_point_per_voxel(const std::vector<Eigen::Vector3d>& points, double voxel_size) {
+}  // namespace
+
+std::vector<std::size_t> first_per_voxel(const std::vector<Eigen::Vector3d>& points, double voxel_size) {
   const double inv = 1.0 / voxel_size;
   tsl::robin_set<std::uint64_t, VoxelKeyHash> seen;
   seen.reserve(points.size());
-  std::vector<Eigen::Vector3d> out;
+  std::vector<std::size_t> out;
   out.reserve(points.size());
-  for (const Eigen::Vector3d& p : points) {
-    if (seen.insert(voxel_key(p.cast<float>(), inv)).second) out.push_back(p);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (seen.insert(voxel_key(points[i].cast<float>(), inv)).second) out.push_back(i);
   }
+  return out;
+}
+
+namespace {
+
+std::vector<Eigen::Vector3d> first_point_per_voxel(const std::vector<Eigen::Vector3d>& points, double voxel_size) {
+  std::vector<Eigen::Vector3d> out;
+  for (const std::size_t i : first_per_voxel(points, voxel_size)) out.push_back(points[i]);
   return out;
 }
 

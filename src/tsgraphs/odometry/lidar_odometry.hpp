@@ -93,6 +93,12 @@ struct IcpResult {
   bool lost = false;                    ///< overlap below min_overlap: reported, see LidarOdometry
 };
 
+/// Indices of the first point of each voxel of edge `voxel_size`, in input order. Measured
+/// points rather than centroids: centroids of sensor-frame voxels sit on a lattice that moves
+/// with the sensor, which pulls point-to-point ICP towards "no motion" (on the simulated
+/// office, centroids lost track in the corridor where first points did not).
+std::vector<std::size_t> first_per_voxel(const std::vector<Eigen::Vector3d>& points, double voxel_size);
+
 /// The share of `source` (sensor frame) placed at `pose` whose map voxel holds points, over
 /// every `stride`-th point: how well a guess overlaps the map, for a fraction of ICP's cost.
 double voxel_overlap(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map, const Pose3& pose,

@@ -99,6 +99,23 @@ struct Writer {
   }
 };
 
+}  // namespace
+
+void DeskewConfig::validate() const {
+  if (motion != "auto" && motion != "poses" && motion != "registration")
+    throw std::invalid_argument("DeskewConfig: motion must be auto, poses or registration, not '" + motion + "'");
+  if (!(max_interval_ratio >= 1.0 && max_interval_ratio <= 1e3))
+    throw std::invalid_argument("DeskewConfig: max_interval_ratio must be in [1, 1000]");
+  try {
+    registration.validate();
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    throw std::invalid_argument("DeskewConfig: " + what.substr(what.find(": ") + 2));
+  }
+}
+
+namespace {
+
 void check_positive(const YamlMap& root, const char* section, const char* key, double value) {
   if (!(value > 0.0)) throw root.map(section).error(key, std::string(key) + " must be > 0");
 }
@@ -120,6 +137,7 @@ void validate(const YamlMap& root, const PipelineConfig& c) {
     }
   };
   check_at_key("platform", c.platform);
+  check_at_key("deskew", c.deskew);
   check_at_key("lidar_odometry", c.lidar_odometry);
   check_at_key("floor_levelling", c.floor_levelling);
   check_at_key("room_segmentation", c.rooms.segmentation);

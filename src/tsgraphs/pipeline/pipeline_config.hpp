@@ -10,6 +10,7 @@
 #include "tsgraphs/graph/loop_closure.hpp"
 #include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
+#include "tsgraphs/odometry/sweep_registration.hpp"
 #include "tsgraphs/pipeline/keyframe_selector.hpp"
 #include "tsgraphs/pipeline/platform.hpp"
 #include "tsgraphs/pipeline/prefilter.hpp"
@@ -33,14 +34,26 @@ struct ScheduleConfig {
   }
 };
 
-/// De-skewing of scans that carry per-point times (odometry/deskew.hpp).
+/// De-skewing of scans that carry per-point times (odometry/deskew.hpp, sweep_registration.hpp).
 struct DeskewConfig {
-  bool enabled = true;  ///< de-skew scans with per-point times (from the poses around them, or the odometry's last motion)
+  bool enabled = true;             ///< de-skew scans with per-point times
+  std::string motion = "auto";     ///< the motion during a sweep: "poses" (from the poses around the scan, or the
+                                   ///< LiDAR odometry's last motion), "registration" (each sweep registered to a
+                                   ///< map of the ones before, the motion among the unknowns), "auto"
+  double max_interval_ratio = 1.5; ///< auto registers the sweeps when scans are farther apart than this times a
+                                   ///< sweep's duration: the poses then do not sample the motion inside a sweep
+  odometry::SweepRegistrationConfig registration;  ///< the sweep registration's fields
 
   template <class V>
   void visit(V& v) {
     v("enabled", enabled);
+    v("motion", motion);
+    v("max_interval_ratio", max_interval_ratio);
+    registration.visit(v);
   }
+
+  /// Throws std::invalid_argument("DeskewConfig: <key> ...") for the first field out of range.
+  void validate() const;
 };
 
 /// What the pipeline says about layers that stay empty.

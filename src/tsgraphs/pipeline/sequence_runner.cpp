@@ -13,6 +13,7 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/odometry/deskew.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
+#include "tsgraphs/odometry/sweep_registration.hpp"
 
 namespace tsgraphs::pipeline {
 namespace {
@@ -90,7 +91,19 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
       1, static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))));
   std::size_t next = 0;
   KeyframeSelector candidates(pipeline.config().keyframes);  // guesses the keyframes from odometry alone
-  const bool deskew = pipeline.config().deskew.enabled;
+  const DeskewConfig& deskew = pipeline.config().deskew;
+  std::optional<odometry::SweepDeskewer> sweeps;  // made at the first sweep it registers
+  // Registration, or the poses' motion: auto registers when scans are farther apart than the
+  // sweep lasts by max_interval_ratio, as then the poses miss the motion inside a sweep.
+  const auto register_sweep = [&](std::size_t i, const PointCloud& scan) {
+    if (deskew.motion != "auto") return deskew.motion == "registration";
+    if (info.times.size() < 2) return false;
+    const std::size_t a = i + 1 < info.times.size() ? i : i - 1;
+    const double interval = info.times[a + 1] - info.times[a];
+    const auto [lo, hi] = std::minmax_element(scan.times.begin(), scan.times.end());
+    const double sweep = static_cast<double>(*hi - *lo);
+    return sweep > 0.0 && interval > deskew.max_interval_ratio * sweep;
+  };
   tbb::parallel_pipeline(
       tokens,
       tbb::make_filter<void, Loaded>(tbb::filter_mode::serial_in_order,
@@ -120,11 +133,16 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
                                                           : info.odometry[l.index];
                                              // De-skewed after the odometry: its motion into this scan is the
                                              // nearest to the sweep it knows (deskew.hpp, sweep_motion).
-                                             if (deskew && l.scan.has_times()) {
+                                             if (deskew.enabled && l.scan.has_times()) {
                                                const auto [motion, interval] = odometry::sweep_motion(
                                                    l.index, info.times, info.odometry,
                                                    lidar_odometry ? &*lidar_odometry : nullptr);
-                                               l.scan = odometry::deskew(l.scan, motion, interval);
+                                               if (register_sweep(l.index, l.scan)) {
+                                                 if (!sweeps) sweeps.emplace(pipeline.config().lidar_odometry, deskew.registration);
+                                                 l.scan = sweeps->deskew(l.scan, l.odom, motion, interval);
+                                               } else {
+                                                 l.scan = odometry::deskew(l.scan, motion, interval);
+                                               }
                                              }
                                              if (lidar_odometry && lidar_odometry->last_icp().lost) {
                                                const odometry::IcpResult& icp = lidar_odometry->last_icp();

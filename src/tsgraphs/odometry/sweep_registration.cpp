@@ -1,0 +1,239 @@
+#include "tsgraphs/odometry/sweep_registration.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "tsgraphs/odometry/deskew.hpp"
+#include "tsgraphs/odometry/se3.hpp"
+
+namespace tsgraphs::odometry {
+namespace {
+
+using Matrix12d = Eigen::Matrix<double, 12, 12>;
+using Vector12d = Eigen::Matrix<double, 12, 1>;
+
+/// Normal equations of one step; unknowns: the pose's (translation, rotation) update in the
+/// map frame, then the velocity's and the turn rate's.
+struct Equations {
+  Matrix12d H = Matrix12d::Zero();
+  Vector12d g = Vector12d::Zero();
+  std::size_t count = 0;
+};
+
+Eigen::Matrix3d turn(const Eigen::Vector3d& rotation_vector) {
+  const double angle = rotation_vector.norm();
+  if (angle < 1e-12) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, rotation_vector / angle).toRotationMatrix();
+}
+
+const SweepRegistrationConfig& validated(const SweepRegistrationConfig& c) {
+  c.validate();
+  return c;
+}
+
+}  // namespace
+
+void SweepRegistrationConfig::validate() const {
+  auto fail = [](const std::string& what) { throw std::invalid_argument("SweepRegistrationConfig: " + what); };
+  if (!(voxel_size > 0.0 && voxel_size <= 10.0)) fail("voxel_size must be in (0, 10]");
+  if (!(final_distance > 0.0 && final_distance <= 10.0)) fail("final_distance must be in (0, 10]");
+  if (!(initial_distance >= final_distance && initial_distance <= 100.0))
+    fail("initial_distance must be in [final_distance, 100]");
+  if (!(kernel_divisor > 0.0 && kernel_divisor <= 1e3)) fail("kernel_divisor must be in (0, 1000]");
+  if (!(point_sigma > 0.0 && point_sigma <= 10.0)) fail("point_sigma must be in (0, 10]");
+  if (!(turn_rate_sigma > 0.0 && std::isfinite(turn_rate_sigma))) fail("turn_rate_sigma must be positive and finite");
+  if (!(velocity_sigma > 0.0 && std::isfinite(velocity_sigma))) fail("velocity_sigma must be positive and finite");
+  if (!(pose_sigma_deg > 0.0 && std::isfinite(pose_sigma_deg))) fail("pose_sigma_deg must be positive and finite");
+  if (!(pose_sigma > 0.0 && std::isfinite(pose_sigma))) fail("pose_sigma must be positive and finite");
+  if (max_iterations < 1 || max_iterations > 1000) fail("max_iterations must be in [1, 1000]");
+  if (!(convergence_criterion > 0.0)) fail("convergence_criterion must be > 0");
+  if (min_correspondences < 12) fail("min_correspondences must be >= 12 (twelve unknowns)");
+  if (window < 1 || window > 1000) fail("window must be in [1, 1000]");
+  if (reduction_grain < 1) fail("reduction_grain must be >= 1");
+}
+
+Pose3 SweepMotion::after(double seconds) const {
+  Pose3 out = Pose3::Identity();
+  out.linear() = turn(turn_rate * seconds);
+  out.translation() = velocity * seconds;
+  return out;
+}
+
+SweepMotion SweepMotion::from_motion(const Pose3& pose, const Pose3& motion, double seconds) {
+  if (!(seconds > 0.0)) throw std::invalid_argument("SweepMotion::from_motion: seconds must be > 0");
+  SweepMotion m;
+  m.pose = pose;
+  const Eigen::AngleAxisd aa(motion.linear());
+  m.turn_rate = aa.axis() * aa.angle() / seconds;
+  m.velocity = motion.translation() / seconds;
+  return m;
+}
+
+SweepMotion align_sweep_to_map(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& times,
+                               const VoxelHashMap& map, const SweepMotion& prior, const SweepRegistrationConfig& config) {
+  if (points.size() != times.size()) throw std::invalid_argument("align_sweep_to_map: one time per point");
+  SweepMotion m = prior;
+  m.registered = false;
+  m.iterations = 0;
+  m.num_correspondences = 0;
+  if (points.empty() || map.empty()) return m;
+  const double inv_point_var = 1.0 / (config.point_sigma * config.point_sigma);
+  const double inv_turn_var = 1.0 / (config.turn_rate_sigma * config.turn_rate_sigma);
+  const double inv_velocity_var = 1.0 / (config.velocity_sigma * config.velocity_sigma);
+  const double inv_turn_pose_var = std::pow(config.pose_sigma_deg * M_PI / 180.0, -2);
+  const double inv_pose_var = std::pow(config.pose_sigma, -2);
+  const std::size_t grain = static_cast<std::size_t>(config.reduction_grain);
+
+  double distance = config.initial_distance;
+  for (int iteration = 0;; ) {
+    ++iteration;
+    ++m.iterations;
+    const double kernel_sq = std::pow(distance / config.kernel_divisor, 2);
+    const Eigen::Matrix3d R = m.pose.linear();
+    // Deterministic reduction: the same split and join order whatever the threads (see align_to_map).
+    const Equations eq = tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<std::size_t>(0, points.size(), grain), Equations{},
+        [&](const tbb::blocked_range<std::size_t>& range, Equations acc) {
+          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            const double t = times[i];
+            const Eigen::Vector3d turned = turn(m.turn_rate * t) * points[i];
+            const Eigen::Vector3d x = m.pose * (turned + m.velocity * t);
+            const Neighbour nb = map.nearest(x);
+            if (!nb.found || nb.distance > distance) continue;
+            const Eigen::Vector3d r = x - nb.point;
+            // d x: [I, -[x]x] for the pose (left update), R t for the velocity, -t R [turned]x
+            // for the turn rate (a small change of rate turns the point about the stamp frame).
+            Eigen::Matrix<double, 3, 12> J;
+            J.block<3, 3>(0, 0).setIdentity();
+            J.block<3, 3>(0, 3) = -skew(x);
+            J.block<3, 3>(0, 6) = R * t;
+            J.block<3, 3>(0, 9) = -t * R * skew(turned);
+            if (nb.surface == Surface::planar) {
+              const double e = nb.normal.dot(r);
+              const Eigen::Matrix<double, 12, 1> Jn = J.transpose() * nb.normal;
+              const double w = kernel_sq * kernel_sq / std::pow(kernel_sq + e * e, 2) * inv_point_var;
+              acc.H.noalias() += w * Jn * Jn.transpose();
+              acc.g.noalias() += w * e * Jn;
+            } else if (nb.surface == Surface::scattered) {
+              const double w = kernel_sq * kernel_sq / std::pow(kernel_sq + r.squaredNorm(), 2) * inv_point_var;
+              acc.H.noalias() += w * J.transpose() * J;
+              acc.g.noalias() += w * J.transpose() * r;
+            } else {
+              continue;  // a line or too few points: no direction to trust
+            }
+            ++acc.count;
+          }
+          return acc;
+        },
+        [](Equations a, const Equations& b) {
+          a.H += b.H;
+          a.g += b.g;
+          a.count += b.count;
+          return a;
+        });
+    m.num_correspondences = eq.count;
+    if (eq.count < static_cast<std::size_t>(config.min_correspondences)) {
+      SweepMotion kept = prior;
+      kept.registered = false;
+      kept.iterations = m.iterations;
+      kept.num_correspondences = eq.count;
+      return kept;
+    }
+    Matrix12d H = eq.H;
+    Vector12d g = eq.g;
+    H.block<3, 3>(6, 6).diagonal().array() += inv_velocity_var;
+    H.block<3, 3>(9, 9).diagonal().array() += inv_turn_var;
+    g.segment<3>(6) += inv_velocity_var * (m.velocity - prior.velocity);
+    g.segment<3>(9) += inv_turn_var * (m.turn_rate - prior.turn_rate);
+    // The pose's prior, in the same left-update coordinates: log(pose * prior^-1) to first order.
+    const Pose3 off = m.pose * prior.pose.inverse();
+    const Eigen::AngleAxisd off_turn(off.linear());
+    H.block<3, 3>(0, 0).diagonal().array() += inv_pose_var;
+    H.block<3, 3>(3, 3).diagonal().array() += inv_turn_pose_var;
+    g.segment<3>(0) += inv_pose_var * off.translation();
+    g.segment<3>(3) += inv_turn_pose_var * off_turn.axis() * off_turn.angle();
+    const Vector12d dx = H.ldlt().solve(-g);
+    if (!dx.allFinite()) break;
+    m.pose = se3_exp(dx.head<6>()) * m.pose;
+    m.velocity += dx.segment<3>(6);
+    m.turn_rate += dx.segment<3>(9);
+    const bool converged = dx.norm() < config.convergence_criterion;
+    if (converged || iteration >= config.max_iterations) {
+      if (distance <= config.final_distance) break;
+      distance = std::max(config.final_distance, 0.5 * distance);
+      iteration = 0;
+    }
+  }
+  m.pose.linear() = Eigen::Quaterniond(m.pose.linear()).normalized().toRotationMatrix();
+  m.registered = true;
+  return m;
+}
+
+SweepDeskewer::SweepDeskewer(const LidarOdometryConfig& map_config, const SweepRegistrationConfig& config)
+    : map_config_(map_config),
+      config_(validated(config)),
+      map_(map_config.voxel_size, static_cast<std::size_t>(map_config.max_points_per_voxel), map_config.surface()) {}
+
+PointCloud SweepDeskewer::deskew(const PointCloud& scan, const Pose3& pose, const Pose3& prior_motion,
+                                 double prior_interval) {
+  if (!scan.has_times()) return scan;
+  if (scan.times.size() != scan.size()) throw std::invalid_argument("SweepDeskewer: one time per point");
+  SweepMotion prior;
+  prior.pose = pose;
+  if (prior_interval > 0.0) prior = SweepMotion::from_motion(pose, prior_motion, prior_interval);
+
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> times;
+  points.reserve(scan.size());
+  times.reserve(scan.size());
+  const double min_sq = map_config_.min_range * map_config_.min_range;
+  const double max_sq = map_config_.max_range * map_config_.max_range;
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    const Eigen::Vector3d p = scan.points[i].cast<double>();
+    if (!p.allFinite() || !std::isfinite(scan.times[i])) continue;
+    const double r_sq = p.squaredNorm();
+    if (r_sq < min_sq || r_sq > max_sq) continue;
+    points.push_back(p);
+    times.push_back(scan.times[i]);
+  }
+  std::vector<Eigen::Vector3d> source;
+  std::vector<double> source_times;
+  for (const std::size_t i : first_per_voxel(points, config_.voxel_size)) {
+    source.push_back(points[i]);
+    source_times.push_back(times[i]);
+  }
+  last_ = align_sweep_to_map(source, source_times, map_, prior, config_);
+  if (last_.registered) ++num_registered_;
+  // deskew() scales a motion over a duration: the motion over one second is the rates.
+  PointCloud out = odometry::deskew(scan, last_.after(1.0), 1.0);
+
+  // The map takes the de-skewed sweep at the pose it was given: the odometry's frame.
+  std::vector<Eigen::Vector3d> frame;
+  {
+    std::vector<Eigen::Vector3d> kept;
+    kept.reserve(out.size());
+    for (const Eigen::Vector3f& pf : out.points) {
+      const Eigen::Vector3d p = pf.cast<double>();
+      if (!p.allFinite()) continue;
+      const double r_sq = p.squaredNorm();
+      if (r_sq >= min_sq && r_sq <= max_sq) kept.push_back(p);
+    }
+    for (const std::size_t i : first_per_voxel(kept, map_config_.voxel_size * map_config_.map_voxel_factor))
+      frame.push_back(pose * kept[i]);
+  }
+  window_.push_back(std::move(frame));
+  while (window_.size() > static_cast<std::size_t>(config_.window)) window_.pop_front();
+  // Rebuilt with the newest sweep first: a full voxel keeps its first points.
+  map_.clear();
+  for (auto it = window_.rbegin(); it != window_.rend(); ++it) map_.add_points(*it);
+  return out;
+}
+
+}  // namespace tsgraphs::odometry

@@ -1,0 +1,116 @@
+#pragma once
+/// Sweep registration: a spinning LiDAR's sweep registered to a local map with the sensor's
+/// motion during the sweep among the unknowns, beside its pose: a continuous-time ICP with one
+/// constant turn rate and velocity per sweep (the idea of CT-ICP, Dellenbach et al., ICRA 2022,
+/// reduced to the de-skewing it needs). When scans are kept far apart in time (a hand-held
+/// 10 Hz sensor recorded at 2 Hz) the poses around a sweep do not tell the motion inside it:
+/// a hand-held sensor's pitch turns back at every step, so the motion between two poses 0.5 s
+/// apart can point the other way from the 0.1 s of the sweep.
+#include <cstddef>
+#include <deque>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "tsgraphs/core/point_cloud.hpp"
+#include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/odometry/lidar_odometry.hpp"
+#include "tsgraphs/odometry/voxel_hash_map.hpp"
+
+namespace tsgraphs::odometry {
+
+struct SweepRegistrationConfig {
+  double voxel_size = 0.375;           ///< the sweep is registered with one point per voxel of this edge (m)
+  double initial_distance = 1.0;       ///< pairs farther apart than this are ignored at first (m): a 4 deg
+                                       ///< unmodelled turn moves a point 10 m away by 0.7 m ...
+  double final_distance = 0.25;        ///< ... halved at each convergence down to this (m)
+  double kernel_divisor = 3.0;         ///< Geman-McClure kernel scale = pair distance / this (m)
+  double point_sigma = 0.05;           ///< a point's distance to the map is trusted to this (m), against the priors
+  double turn_rate_sigma = 0.2;        ///< the turn rate is expected within this of its prior (rad/s): the prior
+                                       ///< decides what the sweep observes weakly (a tilting, seen on floor and
+                                       ///< ceiling only); a turn about the vertical is observed on every wall
+  double velocity_sigma = 1.0;         ///< the velocity, within this of its prior (m/s)
+  double pose_sigma_deg = 0.5;         ///< the pose at the stamp is expected within this of its prior (deg) ...
+  double pose_sigma = 0.1;             ///< ... and this (m): a sweep's own tilt and the tilting during it are
+                                       ///< told apart only weakly, and the odometry's pose is close
+  int max_iterations = 10;             ///< Gauss-Newton iterations per pair distance at most
+  double convergence_criterion = 1e-4; ///< a distance is done when the update's norm falls below this (rad, m, /s)
+  int min_correspondences = 100;       ///< fewer pairs than this: the prior motion is kept
+  int window = 5;                      ///< the map holds the last this many sweeps: each sweep's own error of motion
+                                       ///< then averages out instead of the first sweeps' staying in the map for good
+  int reduction_grain = 256;           ///< points per block of the parallel reduction (fixed: the sums are added
+                                       ///< in the same order whatever the threads)
+
+  template <class V>
+  void visit(V& v) {
+    v("voxel_size", voxel_size);
+    v("initial_distance", initial_distance);
+    v("final_distance", final_distance);
+    v("kernel_divisor", kernel_divisor);
+    v("point_sigma", point_sigma);
+    v("turn_rate_sigma", turn_rate_sigma);
+    v("velocity_sigma", velocity_sigma);
+    v("pose_sigma_deg", pose_sigma_deg);
+    v("pose_sigma", pose_sigma);
+    v("max_iterations", max_iterations);
+    v("convergence_criterion", convergence_criterion);
+    v("min_correspondences", min_correspondences);
+    v("window", window);
+    v("reduction_grain", reduction_grain);
+  }
+
+  /// Throws std::invalid_argument naming the first field out of range.
+  void validate() const;
+};
+
+/// A sweep's pose and the motion during it.
+struct SweepMotion {
+  Pose3 pose = Pose3::Identity();                        ///< sensor pose at the stamp (map frame)
+  Eigen::Vector3d turn_rate = Eigen::Vector3d::Zero();   ///< rad/s about the stamp frame's axes
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();    ///< m/s in the stamp frame
+  bool registered = false;               ///< false: too few pairs, the prior was kept
+  int iterations = 0;                    ///< Gauss-Newton iterations over all distances
+  std::size_t num_correspondences = 0;   ///< pairs in the last iteration
+
+  /// The sensor's pose `seconds` after the stamp in the stamp's frame: turning at turn_rate,
+  /// moving at velocity (the model of deskew()).
+  Pose3 after(double seconds) const;
+  /// The constant rates that take the sensor through `motion` in `seconds` (> 0).
+  static SweepMotion from_motion(const Pose3& pose, const Pose3& motion, double seconds);
+};
+
+/// Registers `points` (sensor frame, measured times[i] seconds after the stamp) to `map` from
+/// `prior` (its pose and rates also anchor the rates' priors): point-to-plane pairs on the map's
+/// flat voxels, point-to-point on scattered ones, none on unknown ones. Deterministic.
+SweepMotion align_sweep_to_map(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& times,
+                               const VoxelHashMap& map, const SweepMotion& prior, const SweepRegistrationConfig& config);
+
+/// De-skews a run of scans by registering each sweep to a local map of the last few before it
+/// (de-skewed, placed at their poses). The map's voxels, range and surfaces follow the LiDAR
+/// odometry's config.
+class SweepDeskewer {
+ public:
+  /// std::invalid_argument for a config out of range.
+  SweepDeskewer(const LidarOdometryConfig& map_config, const SweepRegistrationConfig& config);
+
+  /// `scan` (with per-point times) in the sensor's frame at its stamp, the motion during the
+  /// sweep estimated from `prior_motion` (the sensor's motion over `prior_interval` seconds
+  /// after the stamp, as deskew() takes it; interval 0: no prior, standing still) and the map;
+  /// `pose`: the sensor's pose at the stamp in the map's frame (the odometry's). The sweep
+  /// then joins the map. A scan without times is returned as it is.
+  PointCloud deskew(const PointCloud& scan, const Pose3& pose, const Pose3& prior_motion, double prior_interval);
+
+  /// The last sweep's estimate.
+  const SweepMotion& last() const { return last_; }
+  std::size_t num_registered() const { return num_registered_; }
+
+ private:
+  LidarOdometryConfig map_config_;
+  SweepRegistrationConfig config_;
+  VoxelHashMap map_;
+  std::deque<std::vector<Eigen::Vector3d>> window_;  ///< the last sweeps, de-skewed, in the map's frame
+  SweepMotion last_;
+  std::size_t num_registered_ = 0;
+};
+
+}  // namespace tsgraphs::odometry
