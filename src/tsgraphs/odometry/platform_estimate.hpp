@@ -20,6 +20,10 @@ struct PlatformEstimateConfig {
                                 ///< sensor's axis (about 1.5 cm) bends a nearer return's elevation by more than
                                 ///< ring_gap_deg; farther, the floor's nearest rings of a low sensor still count
   int ring_min_points = 10;     ///< a ring holds at least this many returns (fewer: stray returns between rings)
+  double sweep_share = 0.25;    ///< scans with per-point times have their floor measured on the returns taken within this
+                                ///< share of the sweep from the stamp (whole, when no such part shows a floor): a hand-held
+                                ///< sensor tilts by degrees within a sweep, which spread one 10 Hz scan's floor over
+                                ///< 0.34 m of height on a simulated walk
 
   template <class V>
   void visit(V& v) {
@@ -28,6 +32,7 @@ struct PlatformEstimateConfig {
     v("ring_gap_deg", ring_gap_deg);
     v("ring_min_range", ring_min_range);
     v("ring_min_points", ring_min_points);
+    v("sweep_share", sweep_share);
   }
   /// Throws std::invalid_argument naming the first field out of range ("PlatformEstimateConfig: key ...").
   void validate() const;
@@ -74,6 +79,10 @@ struct PlatformEstimate {
   double tilt_deg = 0.0;            ///< median angle between the sensor's z and the floor's normal
   BeamLayout beams;                 ///< from the scan with the most rings
 };
+
+/// The returns of `scan` taken within `share` of its sweep's duration from its stamp (time 0);
+/// the scan itself when it has no times.
+PointCloud near_stamp(const PointCloud& scan, double share);
 
 /// Measures the platform from `scans` (sensor frames; at most config.scans of them are used).
 /// `ups` (empty, or one per scan): the gravity's up in each scan's frame when the poses give it;
