@@ -29,17 +29,6 @@ void PlatformEstimateConfig::validate() const {
   if (!(ring_min_range >= 0.0) || !std::isfinite(ring_min_range)) fail("ring_min_range must be finite and >= 0");
   if (ring_min_points < 1) fail("ring_min_points must be >= 1");
   if (!(floor_bin >= 0.001 && floor_bin <= 1.0)) fail("floor_bin must be in [0.001, 1]");
-  if (!(sweep_share > 0.0 && sweep_share <= 1.0)) fail("sweep_share must be in (0, 1]");
-}
-
-PointCloud near_stamp(const PointCloud& scan, double share) {
-  if (!scan.has_times() || scan.times.size() != scan.size()) return scan;
-  const auto [lo, hi] = std::minmax_element(scan.times.begin(), scan.times.end());
-  const float limit = static_cast<float>(share) * (*hi - *lo);
-  PointCloud out;
-  for (std::size_t i = 0; i < scan.size(); ++i)
-    if (std::abs(scan.times[i]) <= limit) out.push_back_from(scan, i);
-  return out;
 }
 
 BeamLayout measure_beam_layout(const PointCloud& scan, const PlatformEstimateConfig& config) {
@@ -166,31 +155,23 @@ PlatformEstimate estimate_platform(const std::vector<PointCloud>& scans, const F
   PlatformEstimate estimate;
   std::vector<double> heights, tilts;
   const std::size_t n = std::min(scans.size(), static_cast<std::size_t>(config.scans));
-  const auto measure = [&](std::size_t i, const PointCloud& part) {
+  for (std::size_t i = 0; i < n; ++i) {
+    ++estimate.scans_measured;
     std::optional<Eigen::Vector3d> up;
     if (!ups.empty()) {
       up = ups[i];
     } else {
-      const FloorLevel level = level_from_floor(part, levelling);
+      const FloorLevel level = level_from_floor(scans[i], levelling);
       if (level.found) up = level.sensor_pose.linear().transpose() * Eigen::Vector3d::UnitZ();
     }
-    const FloorHeight floor = up ? floor_height(part, *up, ups.empty(), levelling, config) : FloorHeight{};
+    const FloorHeight floor = up ? floor_height(scans[i], *up, ups.empty(), levelling, config) : FloorHeight{};
     if (floor.found) {
       heights.push_back(floor.height);
       tilts.push_back(floor.tilt_deg);
     }
-  };
-  // Swept scans are measured on the part of the sweep near the stamp, whose pose (and up) is
-  // the stamp's; the whole sweeps only when no such part shows a floor.
-  for (std::size_t i = 0; i < n; ++i) {
-    ++estimate.scans_measured;
-    measure(i, near_stamp(scans[i], config.sweep_share));
     const BeamLayout beams = measure_beam_layout(scans[i], config);
     if (beams.rings > estimate.beams.rings) estimate.beams = beams;
   }
-  if (heights.empty())
-    for (std::size_t i = 0; i < n; ++i)
-      if (scans[i].has_times()) measure(i, scans[i]);
   estimate.floors_found = heights.size();
   if (heights.empty()) return estimate;
   estimate.height_found = true;

@@ -13,18 +13,14 @@ namespace tsgraphs::odometry {
 
 struct PlatformEstimateConfig {
   int scans = 30;               ///< scans measured, spread over the run (a median over them: a hand-held sensor
-                                ///< bobs, many rooms show little floor near a sweep's stamp; with 10 the carriers
-                                ///< suite's worst error was 0.08 m, with 30 0.02 m)
+                                ///< bobs and tilts within a sweep, one room may show little floor; with 10 the
+                                ///< carriers suite's worst error was 0.08 m, with 30 0.02 m)
   double floor_bin = 0.02;      ///< m; height bins of the lowest returns, whose fullest bin is the floor
   double ring_gap_deg = 0.2;    ///< elevations closer than this belong to one ring (beams are >= 0.35 deg apart)
   double ring_min_range = 1.0;  ///< returns nearer than this are not used for rings (m): a beam's offset from the
                                 ///< sensor's axis (about 1.5 cm) bends a nearer return's elevation by more than
                                 ///< ring_gap_deg; farther, the floor's nearest rings of a low sensor still count
   int ring_min_points = 10;     ///< a ring holds at least this many returns (fewer: stray returns between rings)
-  double sweep_share = 0.25;    ///< scans with per-point times have their floor measured on the returns taken within this
-                                ///< share of the sweep from the stamp (whole, when no such part shows a floor): a hand-held
-                                ///< sensor tilts by degrees within a sweep, which spread one 10 Hz scan's floor over
-                                ///< 0.34 m of height on a simulated walk
 
   template <class V>
   void visit(V& v) {
@@ -33,7 +29,6 @@ struct PlatformEstimateConfig {
     v("ring_gap_deg", ring_gap_deg);
     v("ring_min_range", ring_min_range);
     v("ring_min_points", ring_min_points);
-    v("sweep_share", sweep_share);
   }
   /// Throws std::invalid_argument naming the first field out of range ("PlatformEstimateConfig: key ...").
   void validate() const;
@@ -80,10 +75,6 @@ struct PlatformEstimate {
   double tilt_deg = 0.0;            ///< median angle between the sensor's z and the floor's normal
   BeamLayout beams;                 ///< from the scan with the most rings
 };
-
-/// The returns of `scan` taken within `share` of its sweep's duration from its stamp (time 0);
-/// the scan itself when it has no times.
-PointCloud near_stamp(const PointCloud& scan, double share);
 
 /// Measures the platform from `scans` (sensor frames; at most config.scans of them are used).
 /// `ups` (empty, or one per scan): the gravity's up in each scan's frame when the poses give it;
