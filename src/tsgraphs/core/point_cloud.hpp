@@ -36,13 +36,6 @@ struct PointCloud {
     if (with_labels) labels.reserve(n);
     if (with_times) times.reserve(n);
   }
-  /// Appends point `i` of `other` with the channels `other` carries (this must carry the same).
-  void push_back_from(const PointCloud& other, std::size_t i) {
-    points.push_back(other.points[i]);
-    if (other.has_intensity()) intensity.push_back(other.intensity[i]);
-    if (other.has_labels()) labels.push_back(other.labels[i]);
-    if (other.has_times()) times.push_back(other.times[i]);
-  }
   /// Appends every point of `other`; both must carry the same optional channels.
   void append(const PointCloud& other) {
     points.insert(points.end(), other.points.begin(), other.points.end());
