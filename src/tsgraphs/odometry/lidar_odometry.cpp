@@ -60,21 +60,26 @@ std::vector<Eigen::Vector3d> first_point_per_voxel(const std::vector<Eigen::Vect
   return out;
 }
 
-/// The finite points of `cloud` with a range in [min_range, max_range].
 std::vector<Eigen::Vector3d> crop(const PointCloud& cloud, double min_range, double max_range) {
   std::vector<Eigen::Vector3d> out;
-  out.reserve(cloud.size());
-  const double min_sq = min_range * min_range, max_sq = max_range * max_range;
-  for (const Eigen::Vector3f& pf : cloud.points) {
-    const Eigen::Vector3d p = pf.cast<double>();
-    if (!p.allFinite()) continue;
-    const double r_sq = p.squaredNorm();
-    if (r_sq >= min_sq && r_sq <= max_sq) out.push_back(p);
-  }
+  for (const std::size_t i : in_range(cloud, min_range, max_range)) out.push_back(cloud.points[i].cast<double>());
   return out;
 }
 
 }  // namespace
+
+std::vector<std::size_t> in_range(const PointCloud& cloud, double min_range, double max_range) {
+  std::vector<std::size_t> out;
+  out.reserve(cloud.size());
+  const double min_sq = min_range * min_range, max_sq = max_range * max_range;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const Eigen::Vector3d p = cloud.points[i].cast<double>();
+    if (!p.allFinite()) continue;
+    const double r_sq = p.squaredNorm();
+    if (r_sq >= min_sq && r_sq <= max_sq) out.push_back(i);
+  }
+  return out;
+}
 
 void LidarOdometryConfig::validate() const {
   auto fail = [](const std::string& what) { throw std::invalid_argument("LidarOdometryConfig: " + what); };

@@ -99,6 +99,9 @@ struct IcpResult {
 /// office, centroids lost track in the corridor where first points did not).
 std::vector<std::size_t> first_per_voxel(const std::vector<Eigen::Vector3d>& points, double voxel_size);
 
+/// Indices of the finite points of `cloud` whose range is in [min_range, max_range].
+std::vector<std::size_t> in_range(const PointCloud& cloud, double min_range, double max_range);
+
 /// The share of `source` (sensor frame) placed at `pose` whose map voxel holds points, over
 /// every `stride`-th point: how well a guess overlaps the map, for a fraction of ICP's cost.
 double voxel_overlap(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map, const Pose3& pose,

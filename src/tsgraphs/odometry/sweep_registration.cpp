@@ -191,16 +191,9 @@ PointCloud SweepDeskewer::deskew(const PointCloud& scan, const Pose3& pose, cons
 
   std::vector<Eigen::Vector3d> points;
   std::vector<double> times;
-  points.reserve(scan.size());
-  times.reserve(scan.size());
-  const double min_sq = map_config_.min_range * map_config_.min_range;
-  const double max_sq = map_config_.max_range * map_config_.max_range;
-  for (std::size_t i = 0; i < scan.size(); ++i) {
-    const Eigen::Vector3d p = scan.points[i].cast<double>();
-    if (!p.allFinite() || !std::isfinite(scan.times[i])) continue;
-    const double r_sq = p.squaredNorm();
-    if (r_sq < min_sq || r_sq > max_sq) continue;
-    points.push_back(p);
+  for (const std::size_t i : in_range(scan, map_config_.min_range, map_config_.max_range)) {
+    if (!std::isfinite(scan.times[i])) continue;
+    points.push_back(scan.points[i].cast<double>());
     times.push_back(scan.times[i]);
   }
   std::vector<Eigen::Vector3d> source;
@@ -215,19 +208,12 @@ PointCloud SweepDeskewer::deskew(const PointCloud& scan, const Pose3& pose, cons
   PointCloud out = odometry::deskew(scan, last_.after(1.0), 1.0);
 
   // The map takes the de-skewed sweep at the pose it was given: the odometry's frame.
+  std::vector<Eigen::Vector3d> kept;
+  for (const std::size_t i : in_range(out, map_config_.min_range, map_config_.max_range))
+    kept.push_back(out.points[i].cast<double>());
   std::vector<Eigen::Vector3d> frame;
-  {
-    std::vector<Eigen::Vector3d> kept;
-    kept.reserve(out.size());
-    for (const Eigen::Vector3f& pf : out.points) {
-      const Eigen::Vector3d p = pf.cast<double>();
-      if (!p.allFinite()) continue;
-      const double r_sq = p.squaredNorm();
-      if (r_sq >= min_sq && r_sq <= max_sq) kept.push_back(p);
-    }
-    for (const std::size_t i : first_per_voxel(kept, map_config_.voxel_size * map_config_.map_voxel_factor))
-      frame.push_back(pose * kept[i]);
-  }
+  for (const std::size_t i : first_per_voxel(kept, map_config_.voxel_size * map_config_.map_voxel_factor))
+    frame.push_back(pose * kept[i]);
   window_.push_back(std::move(frame));
   while (window_.size() > static_cast<std::size_t>(config_.window)) window_.pop_front();
   // Rebuilt with the newest sweep first: a full voxel keeps its first points.
