@@ -1,6 +1,7 @@
 // The breadth-first traversable search on constructed input: the local convexity/concavity
 // test; the seeds under the robot; a 0.45 m step's top is not reached, a 7 degree ramp is, and
-// a floor patch 1 m lower across a gap is never traversable, not even after smoothing.
+// a floor patch 1 m lower across a gap is never traversable, not even after smoothing; far
+// floor seen only on sparse scan rings is reached, a far platform and a far drop are not.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -56,7 +57,7 @@ Searched search(const PointCloud& cloud, const GroundConfig& config) {
   Searched s;
   s.field = build_tri_grid_field(cloud, Eigen::Matrix3d::Identity(), config);
   s.seeds = find_seed_nodes(s.field, config);
-  s.reached = search_traversable(s.field, s.seeds, config);
+  s.reached = search_traversable(&s.field, s.seeds, config);
   return s;
 }
 
@@ -168,6 +169,121 @@ TEST(TraversableSearch, AFloorPatchOneMetreLowerAcrossAGapIsNeverTraversable) {
   EXPECT_GT(high_traversable, 500);
   EXPECT_EQ(low_traversable, 0);
   EXPECT_EQ(low_ground, 0);
+}
+
+// Scan rings of an os1-64 (beams 45/63 deg apart, 1024 columns) from kSensorHeight over a floor
+// whose height at (x, y) is `height` (NaN: nothing there): far out, each ring crosses a node
+// with a handful of points, fewer than num_min_pts, and rings are metres apart.
+template <class Height>
+PointCloud ring_scan(Height height) {
+  PointCloud cloud;
+  constexpr int kColumns = 1024;
+  const double spacing = 45.0 / 63.0 * kDeg;
+  for (int beam = 0; beam < 64; ++beam) {
+    const double elevation = -22.5 * kDeg + beam * spacing;
+    if (elevation >= 0.0) break;
+    for (int c = 0; c < kColumns; ++c) {
+      const double azimuth = 2.0 * M_PI * c / kColumns;
+      const double r = kSensorHeight / std::tan(-elevation);  // on the robot's floor...
+      const double x = r * std::cos(azimuth), y = r * std::sin(azimuth);
+      const double z = height(x, y);
+      if (!std::isfinite(z) || r > 16.0) continue;
+      // ...or, where the floor is elsewhere, where the beam meets that height (it is level).
+      const double range = -z / std::tan(-elevation);
+      if (range > 16.0 || range < 0.0) continue;
+      cloud.points.emplace_back(range * std::cos(azimuth), range * std::sin(azimuth), z);
+    }
+  }
+  return cloud;
+}
+
+TEST(LinkGap, SpansTheGapToTheNextFloorRingWhereLongerThanMaxGap) {
+  GroundConfig config;  // os1-64 at 0.55 m
+  EXPECT_DOUBLE_EQ(link_gap(3.0, config), config.max_gap);
+  // At 10 m the next ring out (a beam 0.71 deg flatter) meets the floor 12.9 m out.
+  const double next = kSensorHeight / std::tan(std::atan2(kSensorHeight, 10.0) - config.ring_spacing_deg * kDeg);
+  EXPECT_NEAR(next, 12.9, 0.1);
+  EXPECT_DOUBLE_EQ(link_gap(10.0, config), next - 10.0 + config.resolution);
+  // At 13 m the next ring is beyond max_range: nothing farther to link to.
+  EXPECT_DOUBLE_EQ(link_gap(13.0, config), config.max_gap);
+  config.sensor_height = 1.5;  // rings close up: max_gap covers them
+  EXPECT_DOUBLE_EQ(link_gap(10.0, config), config.max_gap);
+}
+
+TEST(TraversableSearch, FarFloorSeenOnSparseRingsIsGroundButNotAFarPlatformOrDrop) {
+  const GroundConfig config;
+  constexpr double kPlatformX = 9.0;  // beyond: a 0.3 m platform
+  constexpr double kDropX = -9.0;     // beyond: the storey below, 1 m lower
+  const PointCloud cloud = ring_scan([](double x, double) {
+    if (x > kPlatformX) return -kSensorHeight + 0.3;
+    if (x < kDropX) return -kSensorHeight - 1.0;
+    return -kSensorHeight;
+  });
+  const GroundScan result = segment_ground(cloud, Eigen::Matrix3d::Identity(), config);
+  int far_floor = 0, far_ground = 0, sparse_nodes = 0, elsewhere_ground = 0;
+  const TriGridField field = build_tri_grid_field(cloud, Eigen::Matrix3d::Identity(), config);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const Eigen::Vector3f& p = cloud.points[i];
+    const bool ground = result.labels[i] == GroundLabel::kGround;
+    const bool floor = std::abs(p.z() + kSensorHeight) < 0.01f;
+    if (!floor) {
+      elsewhere_ground += ground;
+      continue;
+    }
+    const double r = p.head<2>().norm();
+    if (r < 6.0 || r > config.max_range) continue;
+    ++far_floor;
+    far_ground += ground;
+    const int node = field.point_node[i];
+    sparse_nodes += node >= 0 && field.nodes[node].state == NodeState::kUnknown;
+  }
+  ASSERT_GT(far_floor, 2000);
+  EXPECT_GT(sparse_nodes, far_floor / 2);  // the far rings are mostly in nodes without a plane of their own
+  EXPECT_GE(far_ground, 0.95 * far_floor);
+  EXPECT_EQ(elsewhere_ground, 0);
+  for (const GroundNode& node : result.nodes)
+    if (node.traversable) {
+      EXPECT_LT(std::abs(node.centre.z() + kSensorHeight), 0.02) << node.centre.transpose();
+    }
+}
+
+TEST(AdoptPlane, AFewPointsOnTheFloorYesAWallFootOrADropNo) {
+  GroundConfig config;
+  config.max_range = 3.0;
+  const TriGridNode floor = plane_node({0.0f, 0.0f, -0.55f}, Eigen::Vector3f::UnitZ());
+  // Points in one node 2 m out: a few on the floor's level...
+  PointCloud cloud;
+  for (int k = 0; k < 4; ++k) cloud.points.emplace_back(2.1f, 0.02f * k, -0.55f + 0.01f * (k % 2));
+  const auto adopt = [&](const PointCloud& c, TriGridNode* out) {
+    const TriGridField field = build_tri_grid_field(c, Eigen::Matrix3d::Identity(), config);
+    const int node = field.point_node[0];
+    EXPECT_EQ(field.nodes[node].state, NodeState::kUnknown);
+    return adopt_plane(field, floor, node, config, out);
+  };
+  TriGridNode out;
+  ASSERT_TRUE(adopt(cloud, &out));
+  EXPECT_EQ(out.state, NodeState::kModelled);
+  EXPECT_TRUE(out.ground_like);
+  EXPECT_FLOAT_EQ(out.centre.z(), -0.55f);  // the reaching floor's level: chains of adoptions do not climb
+  // ...with a ceiling 3 m above: still floor.
+  PointCloud ceiling = cloud;
+  for (int k = 0; k < 5; ++k) ceiling.points.emplace_back(2.1f, 0.02f * k, 2.45f);
+  EXPECT_TRUE(adopt(ceiling, &out));
+  // ...at the foot of something standing there: more points up to th_seeds above than on the floor.
+  PointCloud foot = cloud;
+  for (int k = 0; k < 5; ++k) foot.points.emplace_back(2.1f, 0.0f, -0.45f + 0.07f * k);
+  EXPECT_FALSE(adopt(foot, &out));
+  // ...at a drop: points 0.2 m below the floor's level.
+  PointCloud drop = cloud;
+  drop.points.emplace_back(2.15f, 0.0f, -0.75f);
+  EXPECT_FALSE(adopt(drop, &out));
+  // ...at a void's edge: a return from the storey below.
+  PointCloud edge = cloud;
+  edge.points.emplace_back(2.15f, 0.0f, -3.55f);
+  EXPECT_FALSE(adopt(edge, &out));
+  // Too few points on the floor's level.
+  config.sparse_min_pts = 5;
+  EXPECT_FALSE(adopt(cloud, &out));
 }
 
 }  // namespace

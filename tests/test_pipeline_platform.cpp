@@ -86,6 +86,8 @@ TEST_F(PlatformTest, MeasuredUnlessGiven) {
   EXPECT_NEAR(measured.seed_radius, 1.7 / std::tan(22.5 * M_PI / 180.0) + 1.5, 0.1);
   EXPECT_EQ(measured.preset, "os1-64");
   EXPECT_TRUE(measured.warnings.empty());
+  // The far links of the ground follow the beams measured (45 deg over 64 rings), not a preset's.
+  EXPECT_NEAR(apply_platform(measured, {}).ring_spacing_deg, 45.0 / 63.0, 0.02);
   EXPECT_NE(describe(measured).find("1.70 m above the floor (measured in 2 of 2 scans"), std::string::npos)
       << describe(measured);
 

@@ -53,8 +53,16 @@ float node_level(const TriGridNode& node) { return node.ground_like ? node.centr
 
 std::vector<SmoothedNode> bgk_smooth(const TriGridField& field, const std::vector<std::uint8_t>& reached,
                                      const GroundConfig& config) {
+  std::vector<SmoothedNode> out;
+  bgk_smooth(field, reached, config, &out);
+  return out;
+}
+
+void bgk_smooth(const TriGridField& field, const std::vector<std::uint8_t>& reached, const GroundConfig& config,
+                std::vector<SmoothedNode>* smoothed) {
   const TriGrid& grid = field.grid;
-  std::vector<SmoothedNode> out(field.nodes.size());
+  std::vector<SmoothedNode>& out = *smoothed;
+  out.assign(field.nodes.size(), SmoothedNode{});
   const auto table = kernel_table(grid, config.bgk_length_scale);
   for (int i = 0; i < static_cast<int>(field.nodes.size()); ++i) {
     const TriGridNode& node = field.nodes[i];
@@ -83,7 +91,6 @@ std::vector<SmoothedNode> bgk_smooth(const TriGridField& field, const std::vecto
       s.normal = sum_normal.normalized().cast<float>();
     }
   }
-  return out;
 }
 
 std::vector<std::uint8_t> decide_traversable(const TriGridField& field, const std::vector<SmoothedNode>& smoothed,
@@ -94,13 +101,16 @@ std::vector<std::uint8_t> decide_traversable(const TriGridField& field, const st
     const TriGridNode& node = field.nodes[i];
     const SmoothedNode& s = smoothed[i];
     if (node.state == NodeState::kEmpty || !s.has_surface) continue;
+    // A node whose own plane is steep (a wall, a railing, a slab's edge) is not floor whatever
+    // its neighbours say; the floor at a wall's foot joins by the search's adoption instead.
+    if (node.state == NodeState::kModelled && !node.ground_like) continue;
     if (s.probability < config.th_traversable) continue;
     if (std::abs(node_level(node) - s.height) > config.bgk_max_height_gap) continue;
     candidate[i] = 1;
   }
   // Only what is linked to the robot's seeds stays.
   const std::vector<std::uint8_t> traversable =
-      flood_from(field, seeds, config.max_gap, [&](int i) { return candidate[i] != 0; }, [](int, int) { return true; });
+      flood_from(field, seeds, config, [&](int i) { return candidate[i] != 0; }, [](int, int) { return true; });
   return traversable;
 }
 

@@ -32,12 +32,16 @@ struct SmoothedNode {
 /// evaluated at the node's centroid. Empty nodes keep the defaults.
 std::vector<SmoothedNode> bgk_smooth(const TriGridField& field, const std::vector<std::uint8_t>& reached,
                                      const GroundConfig& config);
+/// The same into `smoothed`, reusing its buffer.
+void bgk_smooth(const TriGridField& field, const std::vector<std::uint8_t>& reached, const GroundConfig& config,
+                std::vector<SmoothedNode>* smoothed);
 
 /// The own height of a node that smoothing compares with the smoothed surface: its plane at
 /// the centroid when ground-like, else its robust lowest level.
 float node_level(const TriGridNode& node);
 
-/// The final decision: a node is traversable when its smoothed probability is at least
+/// The final decision: a node that is unknown or ground-like (a node whose own plane is steep
+/// is never restored) is traversable when its smoothed probability is at least
 /// th_traversable, its own height is within bgk_max_height_gap of the smoothed surface, and
 /// it is linked (NodeLinker) through such nodes to a seed.
 std::vector<std::uint8_t> decide_traversable(const TriGridField& field, const std::vector<SmoothedNode>& smoothed,

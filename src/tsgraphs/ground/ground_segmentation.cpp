@@ -16,10 +16,12 @@ namespace {
 
 /// For every node, the traversable node nearest to it over the grid's edges (itself when it
 /// is traversable), or -1 when there is none.
-std::vector<int> nearest_traversable(const TriGrid& grid, const std::vector<std::uint8_t>& traversable) {
-  std::vector<int> nearest(traversable.size(), -1);
-  std::vector<int> queue;
-  queue.reserve(traversable.size());
+void nearest_traversable(const TriGrid& grid, const std::vector<std::uint8_t>& traversable, std::vector<int>* out,
+                         std::vector<int>* queue_buffer) {
+  std::vector<int>& nearest = *out;
+  nearest.assign(traversable.size(), -1);
+  std::vector<int>& queue = *queue_buffer;
+  queue.clear();
   for (int k = 0; k < static_cast<int>(traversable.size()); ++k) {
     if (!traversable[k]) continue;
     nearest[k] = k;
@@ -35,7 +37,6 @@ std::vector<int> nearest_traversable(const TriGrid& grid, const std::vector<std:
       queue.push_back(adj[a]);
     }
   }
-  return nearest;
 }
 
 /// Where obstacle returns stand just above the ground (a wall, a box side): a ground-band
@@ -43,9 +44,14 @@ std::vector<int> nearest_traversable(const TriGrid& grid, const std::vector<std:
 /// bitmap of foot_radius cells (a quick "nothing near") and, sorted by cell, for the exact test.
 class FootMap {
  public:
-  FootMap(double radius, double half_extent)
-      : radius_(radius), cells_(static_cast<std::int64_t>(std::ceil(2.0 * half_extent / radius)) + 3),
-        origin_(-0.5 * static_cast<double>(cells_) * radius), bits_((cells_ * cells_ + 63) / 64, 0) {}
+  /// Empties the map for marks within half_extent of the sensor, keeping its buffers.
+  void reset(double radius, double half_extent) {
+    radius_ = radius;
+    cells_ = static_cast<std::int64_t>(std::ceil(2.0 * half_extent / radius)) + 3;
+    origin_ = -0.5 * static_cast<double>(cells_) * radius;
+    bits_.assign((cells_ * cells_ + 63) / 64, 0);
+    marks_.clear();
+  }
 
   void add(const Eigen::Vector3f& p) {
     const std::int64_t u = cell(p.x(), origin_), v = cell(p.y(), origin_);
@@ -80,11 +86,23 @@ class FootMap {
     float x, y;
   };
   std::int64_t cell(float x, double origin) const { return static_cast<std::int64_t>(std::floor((x - origin) / radius_)); }
-  double radius_;
-  std::int64_t cells_;
-  double origin_;
+  double radius_ = 1.0;
+  std::int64_t cells_ = 0;
+  double origin_ = 0.0;
   std::vector<std::uint64_t> bits_;
   std::vector<Mark> marks_;
+};
+
+/// The buffers of one segmentation. Each thread keeps its own and reuses it from scan to scan:
+/// allocating these few megabytes afresh for every scan took about as long as the
+/// segmentation itself (the pages are faulted in again each time).
+struct Workspace {
+  TriGridField field;
+  std::vector<SmoothedNode> smoothed;
+  std::vector<TriGridNode> ground;
+  std::vector<int> nearest, queue;
+  std::vector<Eigen::Vector3d> ground_sum;
+  FootMap feet;
 };
 
 }  // namespace
@@ -97,11 +115,13 @@ GroundConfig per_sensor_preset(const std::string& preset) {
     // (simulated office: ground recall 0.947 with the defaults, 0.960 with these).
     config.num_min_pts = 5;
     config.max_gap = 4.5;
+    config.ring_spacing_deg = 2.0;
   } else if (preset == "hesai-xt32") {
     // 32 beams 1 degree apart: half the os1-64's rings, about as far apart again (simulated
     // office: ground recall 0.964 with the defaults, 0.971 with these).
     config.num_min_pts = 6;
     config.max_gap = 3.0;
+    config.ring_spacing_deg = 1.0;
   }
   // "os1-64" (the defaults' sensor) and "os0-128" (twice the beams over twice the field of
   // view: rings as close as the os1-64's): the defaults.
@@ -128,18 +148,22 @@ std::string preset_for_ring_spacing(double spacing_deg) {
 }
 
 GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_sensor, const GroundConfig& config) {
+  thread_local Workspace ws;
   GroundScan scan;
   scan.R_level_sensor = level_rotation(R_map_sensor);
-  const TriGridField field = build_tri_grid_field(cloud, scan.R_level_sensor, config);
+  TriGridField& field = ws.field;
+  build_tri_grid_field(cloud, scan.R_level_sensor, config, &field);
   const std::vector<int> seeds = find_seed_nodes(field, config);
-  const std::vector<std::uint8_t> reached = search_traversable(field, seeds, config);
-  const std::vector<SmoothedNode> smoothed = bgk_smooth(field, reached, config);
+  const std::vector<std::uint8_t> reached = search_traversable(&field, seeds, config);
+  std::vector<SmoothedNode>& smoothed = ws.smoothed;
+  bgk_smooth(field, reached, config, &smoothed);
   const std::vector<std::uint8_t> traversable = decide_traversable(field, smoothed, seeds, config);
 
   // The ground plane of each traversable node: its own when the search reached it, the
   // smoothed one when smoothing restored it.
   const std::size_t num_nodes = field.nodes.size();
-  std::vector<TriGridNode> ground(num_nodes);
+  std::vector<TriGridNode>& ground = ws.ground;
+  ground.assign(num_nodes, TriGridNode{});
   for (std::size_t k = 0; k < num_nodes; ++k) {
     const TriGridNode& node = field.nodes[k];
     if (!traversable[k] || reached[k]) {
@@ -153,9 +177,11 @@ GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_
   // Point labels: the ground band of traversable nodes, obstacles up to th_obstacle above
   // the nearest traversable node's plane; a ground-band point under obstacle returns that rise
   // from it (within foot_radius and foot_height) is the foot of a wall or a box.
-  const std::vector<int> nearest = nearest_traversable(field.grid, traversable);
+  std::vector<int>& nearest = ws.nearest;
+  nearest_traversable(field.grid, traversable, &nearest, &ws.queue);
   scan.labels.assign(cloud.size(), GroundLabel::kOther);
-  FootMap feet(config.foot_radius, config.max_range);
+  FootMap& feet = ws.feet;
+  feet.reset(config.foot_radius, config.max_range);
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const int k = field.point_node[i];
     if (k < 0 || nearest[k] < 0) continue;
@@ -176,7 +202,8 @@ GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_
 
   // Each node stands where its ground points are (a node cut by a wall or a railing edge has
   // its ground on one side); a traversable node left with no ground point is not ground.
-  std::vector<Eigen::Vector3d> ground_sum(num_nodes, Eigen::Vector3d::Zero());  // x, y, count
+  std::vector<Eigen::Vector3d>& ground_sum = ws.ground_sum;  // x, y, count
+  ground_sum.assign(num_nodes, Eigen::Vector3d::Zero());
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     if (scan.labels[i] != GroundLabel::kGround) continue;
     const Eigen::Vector3f& p = field.points[i];

@@ -29,6 +29,7 @@ struct GroundConfig {
   int num_iter = 3;              ///< PCA rounds per node
   int num_lpr = 5;               ///< points averaged for the lowest-point representative
   int num_min_pts = 10;          ///< fewer points than this: the node is unknown
+  int sparse_min_pts = 1;        ///< a node the search cannot join by its plane joins the ground reaching it when this many of its points lie within th_dist of that ground's level, none below (traversable_search.hpp, adopt_plane)
   double th_seeds = 0.5;         ///< seeds: points within this above the LPR (m)
   double th_dist = 0.06;         ///< inliers of the node plane, and ground points: within this of it (m)
   double th_outlier = 0.3;       ///< points more than this below the node's robust lowest level are rejected (m)
@@ -42,7 +43,8 @@ struct GroundConfig {
   double foot_height = 0.3;      ///< ...and this above the band is the foot of a wall or a box: an obstacle (m)
   double seed_radius = 3.0;      ///< the search starts at ground-like nodes within this of the robot (m; the pipeline sets it from the platform)...
   double seed_height_tolerance = 0.2;  ///< ...whose plane passes within this of the floor under the robot (m)
-  double max_gap = 2.0;          ///< the search links nodes across runs of empty or unknown nodes up to this long (m): far rings are metres apart
+  double max_gap = 2.0;          ///< the search links nodes across runs of empty or unknown nodes up to this long (m), or across the gap to the next floor ring out where that is longer (link_gap())
+  double ring_spacing_deg = 45.0 / 63.0;  ///< angle between neighbouring beams (deg; the pipeline sets it from the platform): far floor rings are this far apart in elevation
   double bgk_length_scale = 1.0; ///< BGK sparse kernel support (m)
   double bgk_prior = 0.5;        ///< BGK prior weight (pseudo-observations) of traversability 0.5
   double th_traversable = 0.4;   ///< a node is traversable when its smoothed probability is at least this (below 0.5: floors are seen on sparse rings, walls densely)
@@ -58,6 +60,7 @@ struct GroundConfig {
     v("num_iter", num_iter);
     v("num_lpr", num_lpr);
     v("num_min_pts", num_min_pts);
+    v("sparse_min_pts", sparse_min_pts);
     v("th_seeds", th_seeds);
     v("th_dist", th_dist);
     v("th_outlier", th_outlier);
@@ -87,6 +90,7 @@ template <class Keep>
 void copy_ring_density_fields(const GroundConfig& from, GroundConfig* to, Keep keep) {
   if (!keep("num_min_pts")) to->num_min_pts = from.num_min_pts;
   if (!keep("max_gap")) to->max_gap = from.max_gap;
+  to->ring_spacing_deg = from.ring_spacing_deg;  // the sensor's, not a setting
 }
 /// The preset whose beams are nearest `spacing_deg` apart (nearest by ratio): "vlp-16" (2 deg),
 /// "hesai-xt32" (1 deg), "os1-64" (0.7 deg, as the os0-128's); "" when spacing_deg <= 0. The
@@ -117,7 +121,7 @@ struct GroundScan {
 
 /// Segments `cloud` (sensor frame, NaN points allowed: labelled kOther). `R_map_sensor` is
 /// the sensor's orientation; only its roll and pitch are used, to find the gravity direction.
-/// Deterministic.
+/// Deterministic. Thread-safe: each thread reuses its own working buffers from call to call.
 GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_sensor, const GroundConfig& config);
 
 }  // namespace tsgraphs::ground

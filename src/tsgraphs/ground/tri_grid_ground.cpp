@@ -254,9 +254,9 @@ Eigen::Matrix3d level_rotation(const Eigen::Matrix3d& R_map_sensor) {
   return Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * R_map_sensor;
 }
 
-TriGridField build_tri_grid_field(const PointCloud& cloud, const Eigen::Matrix3d& R_level_sensor,
-                                  const GroundConfig& config) {
-  TriGridField field;
+void build_tri_grid_field(const PointCloud& cloud, const Eigen::Matrix3d& R_level_sensor, const GroundConfig& config,
+                          TriGridField* out) {
+  TriGridField& field = *out;  // every buffer is refilled; their capacity is kept
   field.grid = TriGrid(config.resolution, config.max_range);
   const int num_nodes = field.grid.num_nodes();
   const std::size_t n = cloud.size();
@@ -285,7 +285,7 @@ TriGridField build_tri_grid_field(const PointCloud& cloud, const Eigen::Matrix3d
       if (field.point_node[i] >= 0) field.node_points[fill[field.point_node[i]]++] = static_cast<int>(i);
   }
 
-  field.nodes.resize(num_nodes);
+  field.nodes.assign(num_nodes, TriGridNode{});
   NodeScratch scratch;
   for (int k = 0; k < num_nodes; ++k) {
     TriGridNode& node = field.nodes[k];
@@ -295,6 +295,12 @@ TriGridField build_tri_grid_field(const PointCloud& cloud, const Eigen::Matrix3d
     if (node.num_points == 0) continue;
     model_node(field, k, config, &scratch, &node);
   }
+}
+
+TriGridField build_tri_grid_field(const PointCloud& cloud, const Eigen::Matrix3d& R_level_sensor,
+                                  const GroundConfig& config) {
+  TriGridField field;
+  build_tri_grid_field(cloud, R_level_sensor, config, &field);
   return field;
 }
 

@@ -93,5 +93,8 @@ Eigen::Matrix3d level_rotation(const Eigen::Matrix3d& R_map_sensor);
 /// horizontal range is outside [min_range, max_range] or that are not finite get no node.
 TriGridField build_tri_grid_field(const PointCloud& cloud, const Eigen::Matrix3d& R_level_sensor,
                                   const GroundConfig& config);
+/// The same into `field`, reusing its buffers (a scan after another allocates nothing new).
+void build_tri_grid_field(const PointCloud& cloud, const Eigen::Matrix3d& R_level_sensor, const GroundConfig& config,
+                          TriGridField* field);
 
 }  // namespace tsgraphs::ground

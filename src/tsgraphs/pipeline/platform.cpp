@@ -99,6 +99,8 @@ ground::GroundConfig apply_platform(const Platform& platform, ground::GroundConf
   if (!platform.preset.empty())
     ground::copy_ring_density_fields(ground::per_sensor_preset(platform.preset), &ground,
                                      [&given](const char* key) { return given.count(key) > 0; });
+  // The beams measured are the sensor's own: nearer the truth than a preset's nominal spacing.
+  if (platform.estimate.beams.spacing_deg > 0.0) ground.ring_spacing_deg = platform.estimate.beams.spacing_deg;
   return ground;
 }
 
