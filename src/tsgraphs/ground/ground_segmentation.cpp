@@ -130,18 +130,14 @@ GroundConfig per_sensor_preset(const std::string& preset) {
 
 std::string preset_for_ring_spacing(double spacing_deg) {
   if (!(spacing_deg > 0.0)) return "";
-  struct Spacing {
-    const char* preset;
-    double deg;
-  };
-  constexpr Spacing kSpacings[] = {{"vlp-16", 2.0}, {"hesai-xt32", 1.0}, {"os1-64", 45.0 / 63.0}};
-  const char* best = kSpacings[0].preset;
+  // Each preset's own beam spacing (per_sensor_preset's ring_spacing_deg), so the two agree.
+  const char* best = "";
   double best_ratio = 1e300;
-  for (const Spacing& s : kSpacings) {
-    const double ratio = std::abs(std::log(spacing_deg / s.deg));
+  for (const char* preset : {"vlp-16", "hesai-xt32", "os1-64"}) {
+    const double ratio = std::abs(std::log(spacing_deg / per_sensor_preset(preset).ring_spacing_deg));
     if (ratio < best_ratio) {
       best_ratio = ratio;
-      best = s.preset;
+      best = preset;
     }
   }
   return best;
