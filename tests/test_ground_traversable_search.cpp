@@ -86,6 +86,43 @@ TEST(SeedNodes, FloorNodesNearTheRobotButNotAPlatform) {
   }
 }
 
+// A ring crossing the face of a void's far edge, seen from across the void, is a line a little
+// below the floor; its tilt is the prior's, and carried 6 m to the robot it can land on the
+// robot's floor. A face's foot is a seed only at the floor's level where it stands. Any seed
+// is no farther above or below the robot's floor than a ramp could take it.
+TEST(SeedNodes, AFaceFootOrABoxEdgeIsNoSeedButARampIs) {
+  GroundConfig config;
+  config.seed_radius = 8.0;
+  TriGridField field;
+  field.grid = TriGrid(config.resolution, config.max_range);
+  field.nodes.resize(static_cast<std::size_t>(field.grid.num_nodes()));
+  const float floor = static_cast<float>(-kSensorHeight);
+  const float tilt = 0.15f / 6.0f;  // makes a plane 0.15 m below the floor at x = 6 meet it at the robot
+  const auto place = [&](double x, double y, float z, const Eigen::Vector3f& normal, bool face_foot) {
+    const int k = field.grid.node_at(x, y);
+    TriGridNode& n = field.nodes[k];
+    n = plane_node({static_cast<float>(x), static_cast<float>(y), z}, normal);
+    n.centre.head<2>() = field.grid.centroid(k).cast<float>();
+    n.centre.z() = z;
+    n.face_foot = face_foot;
+    return k;
+  };
+  const int void_face = place(6.0, 0.0, floor - 0.15f, {tilt, 0.0f, 1.0f}, true);
+  const int wall_foot = place(6.0, 2.0, floor + 0.02f, Eigen::Vector3f::UnitZ(), true);
+  const int floor_patch = place(6.0, -2.0, floor - 0.15f, {tilt, 0.0f, 1.0f}, false);  // a measured slope
+  // The edge of a box top 0.78 m high, 3 m away, whose plane the box's side tips by 15 degrees
+  // towards the robot's floor; and a 7 degree ramp the robot stands at the foot of.
+  const float box_tilt = 0.78f / 3.0f, ramp_tilt = std::tan(7.0f * static_cast<float>(kDeg));
+  const int box_edge = place(-3.0, 0.0, floor + 0.78f, {box_tilt, 0.0f, 1.0f}, false);
+  const int ramp = place(0.0, 4.0, floor + 4.0f * ramp_tilt, {0.0f, -ramp_tilt, 1.0f}, false);
+  const std::vector<int> seeds = find_seed_nodes(field, config);
+  EXPECT_EQ(std::count(seeds.begin(), seeds.end(), void_face), 0);
+  EXPECT_EQ(std::count(seeds.begin(), seeds.end(), wall_foot), 1);
+  EXPECT_EQ(std::count(seeds.begin(), seeds.end(), floor_patch), 1);
+  EXPECT_EQ(std::count(seeds.begin(), seeds.end(), box_edge), 0);
+  EXPECT_EQ(std::count(seeds.begin(), seeds.end(), ramp), 1);
+}
+
 TEST(TraversableSearch, TheTopOfA45cmStepIsNotReached) {
   const GroundConfig config;
   constexpr double kStepX = 3.0, kStepTop = -kSensorHeight + 0.45;

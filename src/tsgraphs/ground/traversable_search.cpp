@@ -53,7 +53,16 @@ std::vector<int> find_seed_nodes(const TriGridField& field, const GroundConfig& 
   for (int k = 0; k < static_cast<int>(field.nodes.size()); ++k) {
     const TriGridNode& node = field.nodes[k];
     if (!node.ground_like) continue;
-    if (node.centre.head<2>().cast<double>().squaredNorm() > radius_sq) continue;
+    const double distance_sq = node.centre.head<2>().cast<double>().squaredNorm();
+    if (distance_sq > radius_sq) continue;
+    // The node itself is no higher or lower than a ramp from the robot's floor could take it: a
+    // plane tilted by the edge of a box top, carried to the robot, would otherwise pass.
+    const double rise = std::abs(node.centre.z() + config.sensor_height);
+    if (rise > config.seed_height_tolerance + config.seed_max_rise * std::sqrt(distance_sq)) continue;
+    // A face's foot has the prior's tilt, so its plane carried to the robot says nothing: the
+    // face of a void's far edge, a ring below the floor, would pass. It is a seed only at the
+    // floor's level where it stands.
+    if (node.face_foot && rise > config.th_dist) continue;
     const double under_robot = node.height_at(0.0f, 0.0f);
     if (std::abs(under_robot + config.sensor_height) <= config.seed_height_tolerance) seeds.push_back(k);
   }
