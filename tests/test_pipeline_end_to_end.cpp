@@ -1,5 +1,6 @@
 // The SLAM spine end to end on simulated scenes with drifting odometry, driven scan by scan
-// from the simulator (no files): trajectory, loop closures and wall planes against ground truth.
+// from the simulator (no files): trajectory, loop closures and wall planes against ground truth,
+// with and without people walking through.
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -178,6 +179,25 @@ void expect_rooms(const Outcome& o) {
 
 TEST(EndToEnd, OfficeTwoLaps) {
   const Outcome o = run_scene(builtin("office"), 1);
+  expect_must_show(o);
+  expect_rooms(o);
+}
+
+// Five people walk the office's corridor and rooms (about 3 % of each scan's points): they are
+// no wall, no room's edge and no loop's error.
+TEST(EndToEnd, OfficeTwoLapsWithPeopleWalkingThrough) {
+  scene::Scene office = builtin("office");
+  const auto person = [](std::vector<Vec2> path, double speed, double offset) {
+    scene::Person p;
+    p.path = std::move(path);
+    p.speed = speed;
+    p.offset = offset;
+    return p;
+  };
+  office.people = {person({{1.0, 5.8}, {23.0, 5.8}}, 1.3, 0.0), person({{22.0, 6.4}, {2.0, 6.4}}, 1.1, 7.0),
+                   person({{9.5, 1.0}, {13.5, 4.0}}, 0.9, 0.0), person({{13.0, 8.5}, {22.0, 11.5}, {13.0, 11.5}}, 1.2, 3.0),
+                   person({{1.0, 1.0}, {7.0, 4.0}}, 1.0, 2.0)};
+  const Outcome o = run_scene(office, 1);
   expect_must_show(o);
   expect_rooms(o);
 }

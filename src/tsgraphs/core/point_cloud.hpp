@@ -15,6 +15,7 @@ enum class PointLabel : std::uint32_t {
   kWall = 4,
   kRailing = 5,
   kBox = 6,
+  kPerson = 7,  ///< someone walking through (scene `people:`)
 };
 
 struct PointCloud {

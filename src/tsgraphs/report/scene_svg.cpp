@@ -107,6 +107,7 @@ constexpr const char* kDoorColour = "#d2561e";
 constexpr const char* kWindowColour = "#2a86d6";
 constexpr const char* kWindowSillFill = "#b9dcf7";
 constexpr const char* kRailingColour = "#1d4fb8";
+constexpr const char* kPersonColour = "#c2185b";
 constexpr const char* kGlassColour = "#37b6d6";     // glass railings: lighter, the LiDAR sees through them
 constexpr const char* kBoxFill = "#b9834f";
 constexpr const char* kBoxStroke = "#6b4523";
@@ -354,6 +355,8 @@ class SceneDrawer {
     for (const scene::Box& b : scene_.boxes) e.add(box_corners(b));
     for (const scene::Ramp& r : scene_.ramps) e.add(r.polygon);
     for (const scene::Room& r : scene_.rooms) e.add(r.polygon);
+    for (const scene::Person& p : scene_.people)
+      for (const Vec2& q : p.path) e.add(q);
     for (const PathSample& s : path_) e.add(s.xy);
     for (const VoxelFootprint& v : voxels_) {
       for (const auto& [row, col] : v.cells) e.add(Vec2(col * v.cell, row * v.cell));
@@ -405,7 +408,7 @@ class SceneDrawer {
   }
 
   double legend_height() const { return (legend_rows() + kLegendTitleRows) * kLegendRow; }
-  int legend_rows() const { return kLegendFixedRows + (voxels_.empty() ? 0 : 1); }
+  int legend_rows() const { return kLegendFixedRows + (voxels_.empty() ? 0 : 1) + (scene_.people.empty() ? 0 : 1); }
 
   void open_document() {
     out_ += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(page_w_) + "\" height=\"" + num(page_h_) +
@@ -449,6 +452,10 @@ class SceneDrawer {
     out_ += std::string(".railing.solid { stroke: ") + kRailingColour + "; stroke-linecap: butt; }\n";
     out_ += std::string(".railing.bars line { stroke: ") + kRailingColour + "; }\n";
     out_ += std::string(".railing.glass { stroke: ") + kGlassColour + "; stroke-linecap: butt; }\n";
+    out_ += std::string(".person { fill: none; stroke: ") + kPersonColour +
+            "; stroke-width: 1.5; stroke-dasharray: 4 3; }\n";
+    out_ += std::string(".person-start { fill: ") + kPersonColour + "; fill-opacity: 0.5; stroke: " + kPersonColour +
+            "; stroke-width: 1; }\n";
     out_ += std::string(".path-casing { fill: none; stroke: ") + kPathCasing +
             "; stroke-width: 6; stroke-linejoin: round; stroke-linecap: round; }\n";
     out_ += ".path { fill: none; stroke-width: 3; stroke-linejoin: round; stroke-linecap: round; }\n";
@@ -498,6 +505,7 @@ class SceneDrawer {
     draw_boxes(f, p.level);
     draw_walls(f, p.level);
     draw_railings(f, p.level);
+    draw_people(f, p.level);
     draw_path(f, p.level);
     draw_labels(f, p.level);
     draw_path_ends(f, p.level);  // last: never hidden under a room's name
@@ -599,6 +607,19 @@ class SceneDrawer {
       if (b.level != level) continue;
       out_ += "<polygon class=\"box\" points=\"" + points_attr(f, box_corners(b)) + "\"/>\n";
       if (!b.label.empty()) labels_.push_back({0.5 * (b.min.head<2>() + b.max.head<2>()), b.label, "box-name"});
+    }
+    out_ += "</g>\n";
+  }
+
+  /// Each person's walk (there and back) dashed, and a disc of their size where it starts.
+  void draw_people(const Frame& f, int level) {
+    out_ += "<g class=\"layer-people\">\n";
+    for (const scene::Person& p : scene_.people) {
+      if (p.level != level) continue;
+      out_ += "<polyline class=\"person\" points=\"" + points_attr(f, p.path) + "\"/>\n";
+      const Vec2 c = f.px(p.path.front());
+      out_ += "<circle class=\"person-start\" cx=\"" + num(c.x()) + "\" cy=\"" + num(c.y()) + "\" r=\"" +
+              num(p.radius * kPxPerMetre) + "\"/>\n";
     }
     out_ += "</g>\n";
   }
@@ -848,6 +869,7 @@ class SceneDrawer {
             arrow_path({sx + kSwatchInset, y}, {sx + sw - kSwatchInset, y}) + "\"/>\n",
         "ramp, arrow uphill");
     if (!voxels_.empty()) row(rect("class=\"voxels\"", kSwatchTall), "voxel map (walls, objects)");
+    if (!scene_.people.empty()) row("<line class=\"person\" " + ends() + "/>\n", "a person's walk");
     row(rect("class=\"room\" fill=\"" + room_colour(0) + "\" stroke=\"" + room_colour(0) + "\"", kSwatchTall),
         "ground-truth room");
     row(rect("fill=\"url(#path-ramp)\"", kSwatchLine), "first lap, start to end");

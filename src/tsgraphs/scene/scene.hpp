@@ -127,6 +127,18 @@ struct Room {
   Polygon2 polygon;
 };
 
+/// A person walking through the scans (a moving obstacle): a vertical cylinder standing on its
+/// level's floor, walking its path to the end and back, over and over.
+struct Person {
+  int level = 0;
+  std::vector<Vec2> path;             ///< two or more points
+  double speed = 1.2;                 ///< m/s
+  double offset = 0.0;                ///< m walked along path (there and back) at time 0
+  double height = 1.75;
+  double radius = 0.25;
+  int line = 0;
+};
+
 struct Waypoint {
   Vec2 xy = Vec2::Zero();
   int level = 0;                      ///< the level the waypoint stands on
@@ -155,6 +167,7 @@ struct Scene {
   std::vector<VoxelMap> voxel_maps;
   std::vector<Ramp> ramps;
   std::vector<Room> rooms;
+  std::vector<Person> people;
   TrajectorySpec trajectory;
   std::string file;                   ///< the scene file it was loaded from (or "builtin:NAME")
   std::string source_text;            ///< the YAML text it was read from (copied to sequences)

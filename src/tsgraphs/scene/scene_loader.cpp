@@ -28,6 +28,10 @@ std::string fmt_point(const Vec2& p) {
 
 // 2^24 rays: 16 times an OS0-128 at 2048 columns, far below what runs out of memory.
 constexpr long long kMaxRaysPerScan = 1LL << 24;
+// Bounds of a person (scene `people:`, the messages name them): faster than a sprinter or
+// bigger than a room is a typo.
+constexpr double kMaxPersonSpeed = 10.0;  // m/s
+constexpr double kMaxPersonSize = 5.0;    // m, height or radius
 
 class SceneParser {
  public:
@@ -35,7 +39,7 @@ class SceneParser {
 
   Scene parse() {
     root_.check_keys({"name", "seed", "sensor", "platform", "odometry", "levels", "walls", "railings", "boxes",
-                      "voxel_maps", "ramps", "rooms", "trajectory"});
+                      "voxel_maps", "ramps", "rooms", "people", "trajectory"});
     scene_.file = root_.file();
     scene_.name = root_.get<std::string>("name", std::filesystem::path(root_.file()).stem().string());
     const long long seed = root_.get<long long>("seed", 0);
@@ -51,6 +55,7 @@ class SceneParser {
     for (const YamlMap& m : root_.maps("voxel_maps")) parse_voxel_map(m);
     for (const YamlMap& m : root_.maps("ramps")) parse_ramp(m);
     for (const YamlMap& m : root_.maps("rooms")) parse_room(m);
+    for (const YamlMap& m : root_.maps("people")) parse_person(m);
     parse_trajectory(root_.map("trajectory"));
     join_wall_ends(&scene_);
     warn_about_path();
@@ -383,6 +388,40 @@ class SceneParser {
     r.level = level_index(m, "level");
     r.polygon = simple_polygon(m, "polygon");
     scene_.rooms.push_back(r);
+  }
+
+  void parse_person(const YamlMap& m) {
+    m.check_keys({"level", "path", "speed", "offset", "height", "radius"});
+    Person p;
+    p.line = m.line();
+    p.level = level_index(m, "level");
+    const YAML::Node path = m.raw("path");
+    if (!path.IsDefined() || !path.IsSequence() || path.size() < 2)
+      throw m.error("path", "expected a list of at least two [x, y] points");
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      const std::string where = m.key_path("path") + "[" + std::to_string(i) + "]";
+      const int line = path[i].Mark().line + 1;
+      if (!path[i].IsSequence() || path[i].size() != 2) throw input_error(m.file(), line, where + ": expected [x, y]");
+      const Vec2 xy(m.as<double>(path[i][0], where), m.as<double>(path[i][1], where));
+      double z = 0.0;
+      if (!walkable_height(scene_, p.level, xy, &z))
+        throw input_error(m.file(), line, where + ": " + fmt_point(xy) + " is outside every slab of level " +
+                                              scene_.levels[p.level].name + " (or over one of its voids)");
+      if (!p.path.empty() && (xy - p.path.back()).norm() < 1e-6)
+        throw input_error(m.file(), line, where + ": repeats the previous point");
+      p.path.push_back(xy);
+    }
+    p.speed = m.get<double>("speed", p.speed);
+    require_positive(m, "speed", p.speed);
+    if (p.speed > kMaxPersonSpeed) throw m.error("speed", "must be <= 10 m/s (a sprinter)");
+    p.offset = m.get<double>("offset", p.offset);
+    p.height = m.get<double>("height", p.height);
+    require_positive(m, "height", p.height);
+    p.radius = m.get<double>("radius", p.radius);
+    require_positive(m, "radius", p.radius);
+    if (p.height > kMaxPersonSize || p.radius > kMaxPersonSize)
+      throw m.error(p.height > kMaxPersonSize ? "height" : "radius", "must be <= 5 m");
+    scene_.people.push_back(std::move(p));
   }
 
   void parse_trajectory(const YamlMap& m) {

@@ -183,6 +183,15 @@ std::string scene_yaml(const Scene& scene, const std::string& header) {
       out << "  - {name: " << quoted(r.name) << ", level: " << level_name(r.level) << ", polygon: " << polygon(r.polygon)
           << "}\n";
   }
+  if (!scene.people.empty()) {
+    out << "\npeople:\n";
+    for (const Person& p : scene.people) {
+      out << "  - {level: " << level_name(p.level) << ", path: [";
+      for (std::size_t i = 0; i < p.path.size(); ++i) out << (i ? ", " : "") << point(p.path[i]);
+      out << "], speed: " << fig(p.speed) << ", offset: " << fig(p.offset) << ", height: " << num(p.height)
+          << ", radius: " << num(p.radius) << "}\n";
+    }
+  }
   const TrajectorySpec& t = scene.trajectory;
   out << "\ntrajectory:\n  level: " << level_name(t.level) << "\n  waypoints:\n";
   int level = t.level;

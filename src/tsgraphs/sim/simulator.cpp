@@ -54,6 +54,7 @@ float Reflectivity::of(std::uint32_t label) {
     case PointLabel::kWall: return kWall;
     case PointLabel::kRailing: return kRailing;
     case PointLabel::kBox: return kBox;
+    case PointLabel::kPerson: return kPerson;
     default: return 0.5f;
   }
 }
@@ -63,6 +64,7 @@ Simulator::Simulator(scene::Scene scene, std::uint64_t seed) : scene_(std::move(
   const LabelledMesh mesh = build_scene_mesh(scene_);
   num_triangles_ = mesh.triangles.size();
   caster_ = std::make_unique<RayCaster>(mesh);
+  people_ = std::make_unique<People>(scene_);
   beams_ = BeamPattern::from_sensor(scene_.sensor);
   // Scans every 1 / record_hz s (a recording may keep only every n-th sweep); each sweeps for
   // 1 / rate_hz.
@@ -95,7 +97,13 @@ Pose3 Simulator::sensor_pose_at(double t) const {
 }
 
 PointCloud Simulator::scan(std::size_t k) const {
-  if (!scene_.platform.motion_distortion) return scan_at(truth_.at(k), k);
+  if (!scene_.platform.motion_distortion) {
+    const scene::SensorSpec& s = scene_.sensor;
+    std::vector<RayHit> hits;
+    caster_->cast_scan(truth_.at(k), beams_, static_cast<float>(s.min_range), static_cast<float>(s.max_range), &hits);
+    add_people({truth_.at(k)}, times_.at(k), {}, &hits);
+    return points_of(hits, k, {});
+  }
   // Column c fires c / columns of a period after the stamp, from where the sensor is then.
   const scene::SensorSpec& s = scene_.sensor;
   const double period = 1.0 / s.rate_hz;
@@ -107,6 +115,7 @@ PointCloud Simulator::scan(std::size_t k) const {
   }
   std::vector<RayHit> hits;
   caster_->cast_sweep(poses, beams_, static_cast<float>(s.min_range), static_cast<float>(s.max_range), &hits);
+  add_people(poses, times_.at(k), column_time, &hits);
   return points_of(hits, k, column_time);
 }
 
@@ -115,6 +124,21 @@ PointCloud Simulator::scan_at(const Pose3& sensor_pose, std::uint64_t noise_inde
   std::vector<RayHit> hits;
   caster_->cast_scan(sensor_pose, beams_, static_cast<float>(s.min_range), static_cast<float>(s.max_range), &hits);
   return points_of(hits, noise_index, {});
+}
+
+void Simulator::add_people(const std::vector<Pose3>& column_poses, double stamp, const std::vector<float>& column_time,
+                           std::vector<RayHit>* hits) const {
+  if (people_->empty()) return;
+  const scene::SensorSpec& s = scene_.sensor;
+  tbb::parallel_for(0, beams_.rows, [&](int r) {
+    for (int c = 0; c < beams_.cols; ++c) {
+      const std::size_t i = static_cast<std::size_t>(r) * beams_.cols + c;
+      const Pose3& pose = column_poses.size() == 1 ? column_poses[0] : column_poses[c];
+      const double t = stamp + (column_time.empty() ? 0.0 : column_time[c]);
+      people_->occlude(pose.translation(), pose.linear() * beams_.dirs[i].cast<double>(), t,
+                       static_cast<float>(s.min_range), static_cast<float>(s.max_range), &(*hits)[i]);
+    }
+  });
 }
 
 PointCloud Simulator::points_of(const std::vector<RayHit>& hits, std::uint64_t noise_index,

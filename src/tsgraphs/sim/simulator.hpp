@@ -10,6 +10,7 @@
 
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/sim/people.hpp"
 #include "tsgraphs/sim/ray_caster.hpp"
 #include "tsgraphs/scene/scene.hpp"
 #include "tsgraphs/scene/trajectory.hpp"
@@ -25,6 +26,7 @@ struct Reflectivity {
   static constexpr float kWall = 0.7f;
   static constexpr float kRailing = 0.25f;
   static constexpr float kBox = 0.5f;
+  static constexpr float kPerson = 0.3f;  ///< clothing
   static float of(std::uint32_t label);
 };
 
@@ -54,11 +56,13 @@ class Simulator {
 
   /// Scan k in the sensor frame, with intensity and labels; the same for the same seed and k
   /// whatever the number of threads. Swept (platform.motion_distortion): each column in the
-  /// sensor's frame at its own time, with per-point times from the scan's stamp.
+  /// sensor's frame at its own time, with per-point times from the scan's stamp. People
+  /// (scene `people:`) stand where they are at each column's time.
   PointCloud scan(std::size_t k) const;
   /// The true sensor pose at time t (s, scan time), between and beyond the scans'.
   Pose3 sensor_pose_at(double t) const;
-  /// The same for any sensor pose (noise drawn as for scan `noise_index`).
+  /// The same for any sensor pose (noise drawn as for scan `noise_index`): the static scene,
+  /// without people.
   PointCloud scan_at(const Pose3& sensor_pose, std::uint64_t noise_index) const;
 
  private:
@@ -66,10 +70,15 @@ class Simulator {
   /// from; `column_time` (empty or one per column) fills the points' times.
   PointCloud points_of(const std::vector<RayHit>& hits, std::uint64_t noise_index,
                        const std::vector<float>& column_time) const;
+  /// Puts the people in front of what the rays hit: column c's rays leave from column_poses[c]
+  /// (or all from column_poses[0]) at stamp + column_time[c] (or stamp).
+  void add_people(const std::vector<Pose3>& column_poses, double stamp, const std::vector<float>& column_time,
+                  std::vector<RayHit>* hits) const;
   scene::Scene scene_;
   std::uint64_t seed_;
   std::unique_ptr<scene::Trajectory> trajectory_;
   std::unique_ptr<RayCaster> caster_;
+  std::unique_ptr<People> people_;
   BeamPattern beams_;
   std::size_t num_triangles_ = 0;
   std::vector<double> times_;
