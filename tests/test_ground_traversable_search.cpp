@@ -111,15 +111,17 @@ TEST(SeedNodes, AFaceFootOrABoxEdgeIsNoSeedButARampIs) {
   const int wall_foot = place(6.0, 2.0, floor + 0.02f, Eigen::Vector3f::UnitZ(), true);
   const int floor_patch = place(6.0, -2.0, floor - 0.15f, {tilt, 0.0f, 1.0f}, false);  // a measured slope
   // The edge of a box top 0.78 m high, 3 m away, whose plane the box's side tips by 15 degrees
-  // towards the robot's floor; and a 7 degree ramp the robot stands at the foot of.
-  const float box_tilt = 0.78f / 3.0f, ramp_tilt = std::tan(7.0f * static_cast<float>(kDeg));
+  // towards the robot's floor; and an 11 degree ramp the robot stands at the foot of.
+  const float box_tilt = 0.78f / 3.0f, ramp_tilt = std::tan(11.0f * static_cast<float>(kDeg));
   const int box_edge = place(-3.0, 0.0, floor + 0.78f, {box_tilt, 0.0f, 1.0f}, false);
+  const int box_top = place(3.0, 3.0, floor + 0.78f, Eigen::Vector3f::UnitZ(), false);  // level, too high
   const int ramp = place(0.0, 4.0, floor + 4.0f * ramp_tilt, {0.0f, -ramp_tilt, 1.0f}, false);
   const std::vector<int> seeds = find_seed_nodes(field, config);
   EXPECT_EQ(std::count(seeds.begin(), seeds.end(), void_face), 0);
   EXPECT_EQ(std::count(seeds.begin(), seeds.end(), wall_foot), 1);
   EXPECT_EQ(std::count(seeds.begin(), seeds.end(), floor_patch), 1);
   EXPECT_EQ(std::count(seeds.begin(), seeds.end(), box_edge), 0);
+  EXPECT_EQ(std::count(seeds.begin(), seeds.end(), box_top), 0);
   EXPECT_EQ(std::count(seeds.begin(), seeds.end(), ramp), 1);
 }
 

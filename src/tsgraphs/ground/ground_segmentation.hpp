@@ -43,7 +43,7 @@ struct GroundConfig {
   double foot_height = 0.3;      ///< ...and this above the band is the foot of a wall or a box: an obstacle (m)
   double seed_radius = 3.0;      ///< the search starts at ground-like nodes within this of the robot (m; the pipeline sets it from the platform)...
   double seed_height_tolerance = 0.2;  ///< ...whose plane passes within this of the floor under the robot (m)
-  double seed_max_rise = 0.125;  ///< ...and whose own height is within seed_height_tolerance plus this per metre of distance of it: the steepest ramp buildings have (1:8)
+  double seed_max_slope = 0.21;  ///< ...whose plane rises no more than this per metre, nor its own height more than seed_height_tolerance plus this per metre of distance from that floor: the steepest ramp a robot climbs (12 degrees, the generator's steepest; wheelchair ramps are 1:12)
   double max_gap = 2.0;          ///< the search links nodes across runs of empty or unknown nodes up to this long (m), or across the gap to the next floor ring out where that is longer (link_gap())
   double ring_spacing_deg = 45.0 / 63.0;  ///< angle between neighbouring beams (deg; the pipeline sets it from the platform): far floor rings are this far apart in elevation
   double bgk_length_scale = 1.0; ///< BGK sparse kernel support (m)
@@ -74,7 +74,7 @@ struct GroundConfig {
     v("foot_radius", foot_radius);
     v("foot_height", foot_height);
     v("seed_height_tolerance", seed_height_tolerance);
-    v("seed_max_rise", seed_max_rise);
+    v("seed_max_slope", seed_max_slope);
     v("max_gap", max_gap);
     v("bgk_length_scale", bgk_length_scale);
     v("bgk_prior", bgk_prior);

@@ -55,10 +55,12 @@ std::vector<int> find_seed_nodes(const TriGridField& field, const GroundConfig& 
     if (!node.ground_like) continue;
     const double distance_sq = node.centre.head<2>().cast<double>().squaredNorm();
     if (distance_sq > radius_sq) continue;
-    // The node itself is no higher or lower than a ramp from the robot's floor could take it: a
-    // plane tilted by the edge of a box top, carried to the robot, would otherwise pass.
+    // Ground the robot could stand on: no steeper than the steepest ramp, and no higher or lower
+    // than such a ramp from its floor could take it. A box top's edge, its plane tipped 13-18
+    // degrees by the box's side, carried to the robot, would otherwise pass.
+    if (node.normal.head<2>().norm() > config.seed_max_slope * node.normal.z()) continue;
     const double rise = std::abs(node.centre.z() + config.sensor_height);
-    if (rise > config.seed_height_tolerance + config.seed_max_rise * std::sqrt(distance_sq)) continue;
+    if (rise > config.seed_height_tolerance + config.seed_max_slope * std::sqrt(distance_sq)) continue;
     // A face's foot has the prior's tilt, so its plane carried to the robot says nothing: the
     // face of a void's far edge, a ring below the floor, would pass. It is a seed only at the
     // floor's level where it stands.

@@ -76,9 +76,10 @@ std::vector<std::uint8_t> flood_from(const TriGridField& field, const std::vecto
 }
 
 /// Ground-like nodes within seed_radius (horizontal) of the robot whose plane, at the robot's
-/// (x, y), is within seed_height_tolerance of -sensor_height, whose own height is within
-/// seed_height_tolerance + seed_max_rise * distance of it, and which are no face's foot more
-/// than th_dist off it. Ascending node order.
+/// (x, y), is within seed_height_tolerance of -sensor_height, whose plane rises at most
+/// seed_max_slope per metre, whose own height is within seed_height_tolerance +
+/// seed_max_slope * distance of it, and which are no face's foot more than th_dist off it.
+/// Ascending node order.
 std::vector<int> find_seed_nodes(const TriGridField& field, const GroundConfig& config);
 
 /// TRAVEL's local convexity/concavity test between two modelled nodes with centres c_a, c_b
