@@ -28,6 +28,7 @@ void generate(const GenerateOptions& options) {
   scene::GeneratorConfig config;
   config.laps = options.laps;
   config.size = options.size;
+  config.people = options.people;
   if (options.seed < 0) throw input_error("--seed", 0, "must be >= 0");
   const scene::GeneratedBuilding b =
       scene::generate_building(options.style, static_cast<std::uint64_t>(options.seed), config);

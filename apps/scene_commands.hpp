@@ -12,6 +12,7 @@ struct GenerateOptions {
   std::string out;     ///< scene file to write
   int laps = 2;        ///< laps of the survey path
   double size = 1.0;   ///< scales the building's extent, (0, 1]
+  int people = 0;      ///< people walking through (scene people:)
   bool quiet = false;
 };
 

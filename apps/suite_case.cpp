@@ -68,6 +68,7 @@ scene::Scene generated_scene(const Suite& suite, const SuiteCase& c, const fs::p
   scene::GeneratorConfig config;
   if (suite.laps > 0) config.laps = suite.laps;
   config.size = c.size;
+  config.people = c.people;
   const scene::GeneratedBuilding b = scene::generate_building(c.style, c.seed, config);
   const std::string file = (dir / eval::suite_files::kScene).string();
   std::string text = b.yaml;
@@ -125,6 +126,7 @@ std::vector<std::pair<std::string, std::string>> case_info(const SuiteCase& c, c
             {"seed", std::to_string(c.seed)},
             {"size", eval::fixed_text(c.size, 2)},
             {"platform", c.platform.name.empty() ? "default" : c.platform.name}};
+    if (c.people > 0) info.emplace_back("people", std::to_string(c.people));
   } else {
     info = {{"source", c.source}};
   }
@@ -162,6 +164,7 @@ std::string case_spec(const Suite& suite, const SuiteCase& c) {
   std::string spec = c.kind;
   if (c.kind == "generate") {
     spec += " style=" + c.style + " seed=" + std::to_string(c.seed) + " size=" + size;
+    if (c.people > 0) spec += " people=" + std::to_string(c.people);
     spec += " platform=" + (c.platform.name.empty() ? std::string("default") : c.platform.name);
     if (c.platform.mount_height) {
       char h[32];

@@ -172,13 +172,16 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
 
 void add_generate_cases(const YamlMap& entry, Suite* suite) {
   const YamlMap g = entry.map("generate");
-  g.check_keys({"styles", "seeds", "size", "platforms"});
+  g.check_keys({"styles", "seeds", "size", "people", "platforms"});
   if (!g.has("styles")) throw g.error_here("missing required key 'styles'");
   if (!g.has("seeds")) throw g.error_here("missing required key 'seeds'");
   const std::vector<std::string> styles = read_styles(g);
   const std::vector<std::uint64_t> seeds = read_seeds(g);
   const double size = g.get<double>("size", 1.0);
   if (!(size > 0.0 && size <= 1.0)) throw g.error("size", "must lie in (0, 1]");
+  const int people = g.get<int>("people", 0);
+  if (people < 0 || people > scene::kMaxGeneratedPeople)
+    throw g.error("people", "must lie in [0, " + std::to_string(scene::kMaxGeneratedPeople) + "]");
   const std::vector<SuitePlatform> platforms = read_platforms(g);
   for (const std::string& style : styles) {
     for (const std::uint64_t seed : seeds) {
@@ -189,6 +192,7 @@ void add_generate_cases(const YamlMap& entry, Suite* suite) {
         c.style = style;
         c.seed = seed;
         c.size = size;
+        c.people = people;
         c.platform = platform;
         c.id = style + "-s" + std::to_string(seed) + (platform.name.empty() ? "" : "-" + platform.name);
         suite->cases.push_back(std::move(c));

@@ -29,6 +29,7 @@ struct SuiteCase {
   std::string style;
   std::uint64_t seed = 1;
   double size = 1.0;
+  int people = 0;  ///< generate --people
   SuitePlatform platform;
   // import: the map's YAML (absolute); scene: a scene file (absolute path) or a built-in
   // scene's name; sequence: the folder (absolute)

@@ -78,6 +78,8 @@ int main(int argc, char** argv) {
   generate_cmd->add_option("--laps", opt.generate.laps, "laps of the survey path")->check(CLI::PositiveNumber)->capture_default_str();
   generate_cmd->add_option("--size", opt.generate.size, "scales the building's extent, (0, 1] (small buildings for quick tests)")
       ->capture_default_str();
+  generate_cmd->add_option("--people", opt.generate.people, "people walking stretches of the survey path, there and back (0-50)")
+      ->capture_default_str();
 
   auto* import_cmd = app.add_subcommand(
       "import-map", "a ROS map_server occupancy map (PGM or PNG and its YAML) as a scene file: walls, rooms, a survey path");

@@ -505,4 +505,9 @@ TEST_F(SuiteFileErrors, MissingSceneOrSequence) {
   EXPECT_NE(q.find("not a sequence folder"), std::string::npos) << q;
 }
 
+TEST_F(SuiteFileErrors, PeopleOutOfRange) {
+  const std::string e = error_of("name: bad\ncases:\n  - generate: {styles: [office], seeds: 1, people: 51}\n");
+  EXPECT_NE(e.find("bad.yaml:3: cases[0].generate.people: must lie in [0, 50]"), std::string::npos) << e;
+}
+
 }  // namespace

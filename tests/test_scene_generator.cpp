@@ -12,6 +12,7 @@
 #include "tsgraphs/scene/generator.hpp"
 #include "tsgraphs/scene/scene_geometry.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
+#include "tsgraphs/scene/scene_writer.hpp"
 #include "tsgraphs/scene/survey_path.hpp"
 #include "tsgraphs/scene/trajectory.hpp"
 #include "tsgraphs/scene/walkable_grid.hpp"
@@ -94,6 +95,39 @@ TEST(Generator, TheSameSeedGivesTheSameBuildingAnotherSeedAnother) {
     EXPECT_EQ(generate_building(style, 7).yaml, a.yaml);
     EXPECT_NE(generate_building(style, 8).yaml, a.yaml);
   }
+}
+
+// People walk stretches of the survey path on flat floor, drawn last: the building, its
+// platform and its path are the same without them.
+TEST(Generator, PeopleWalkTheSurveyPathAndChangeNothingElse) {
+  for (const std::string& style : {"office", "multi_storey"}) {
+    GeneratorConfig config;
+    config.size = 0.5;
+    const GeneratedBuilding plain = generate_building(style, 4, config);
+    config.people = 6;
+    const GeneratedBuilding with = generate_building(style, 4, config);
+    EXPECT_EQ(generate_building(style, 4, config).yaml, with.yaml);
+    ASSERT_EQ(with.scene.people.size(), 6u) << style;
+    Scene without = with.scene;
+    without.people.clear();
+    EXPECT_EQ(scene_yaml(without, ""), scene_yaml(plain.scene, "")) << style;
+    for (const Person& p : with.scene.people) {
+      ASSERT_GE(p.path.size(), 2u);
+      EXPECT_GE(p.speed, 0.8);
+      EXPECT_LE(p.speed, 1.5);
+      for (const Vec2& xy : p.path) {
+        const bool on_path = std::any_of(plain.scene.trajectory.waypoints.begin(), plain.scene.trajectory.waypoints.end(),
+                                         [&](const Waypoint& w) { return w.level == p.level && (w.xy - xy).norm() < 1e-9; });
+        EXPECT_TRUE(on_path) << style << ": [" << xy.x() << ", " << xy.y() << "]";
+        double z = 0.0;
+        ASSERT_TRUE(walkable_height(with.scene, p.level, xy, &z));
+        EXPECT_NEAR(z, with.scene.levels[p.level].elevation, 1e-9);  // not on a ramp
+      }
+    }
+  }
+  GeneratorConfig too_many;
+  too_many.people = kMaxGeneratedPeople + 1;
+  EXPECT_THROW(generate_building("office", 4, too_many), InputError);
 }
 
 TEST(Generator, AnUnknownStyleIsAnInputErrorListingTheStyles) {

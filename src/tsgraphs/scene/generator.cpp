@@ -45,6 +45,10 @@ constexpr double kGalleryMax = 2.6;
 constexpr double kRampEndMin = 3.0;          // m of storey beyond each end of a ramp
 
 // The platform.
+constexpr double kPersonSpeedMin = 0.8;      // m/s: people walk at these paces
+constexpr double kPersonSpeedMax = 1.5;
+constexpr int kPersonStretchMax = 5;         // survey waypoints one person walks between (at least 2)
+constexpr int kPersonDraws = 20;             // stretches drawn for one person before giving up on them
 constexpr double kYawRateMin = 60.0;         // deg/s at corners
 constexpr double kYawRateMax = 120.0;
 constexpr double kDriftMin = 0.002;          // odometry drift per metre (and per radian) travelled
@@ -319,6 +323,36 @@ std::uint64_t seed_of(const std::string& style, std::uint64_t seed, int attempt)
 }
 
 /// One attempt: the building, its furniture and its path; throws when any part does not hold.
+/// `count` people, each walking a stretch of two to kPersonStretchMax consecutive waypoints of
+/// the survey path on one level's flat floor (clear of walls and boxes as the path is), there
+/// and back. A person whose draws all fall on ramps or level changes is left out.
+void add_people(int count, Rng& rng, Scene* scene) {
+  const std::vector<Waypoint>& w = scene->trajectory.waypoints;
+  const auto on_flat_floor = [&](int level, const Vec2& xy) {
+    double z = 0.0;
+    return walkable_height(*scene, level, xy, &z) && std::abs(z - scene->levels[level].elevation) < 1e-6;
+  };
+  for (int i = 0; i < count; ++i) {
+    for (int draw = 0; draw < kPersonDraws; ++draw) {
+      const int first = rng.integer(0, static_cast<int>(w.size()) - 2);
+      const std::size_t points = static_cast<std::size_t>(rng.integer(2, kPersonStretchMax));
+      Person p;
+      p.level = w[first].level;
+      for (std::size_t k = first; k < w.size() && p.path.size() < points && w[k].level == p.level; ++k) {
+        if (!on_flat_floor(p.level, w[k].xy)) break;
+        if (p.path.empty() || (w[k].xy - p.path.back()).norm() > 1e-3) p.path.push_back(w[k].xy);
+      }
+      if (p.path.size() < 2) continue;
+      double length = 0.0;
+      for (std::size_t k = 1; k < p.path.size(); ++k) length += (p.path[k] - p.path[k - 1]).norm();
+      p.speed = rng.uniform(kPersonSpeedMin, kPersonSpeedMax);
+      p.offset = rng.uniform(0.0, 2.0 * length);
+      scene->people.push_back(std::move(p));
+      break;
+    }
+  }
+}
+
 GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed, int attempt,
                                    const GeneratorConfig& config) {
   Rng rng(seed_of(style, seed, attempt));
@@ -393,6 +427,11 @@ GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed,
     return raster > near ? raster : obstacle_distance(scene, xy, floor_z, config.clearance + 0.05);
   };
   keep_clearance_on_turns(&scene, clearance_at, survey);
+  // Last, from a draw of its own: a building with people is the same building without them.
+  if (config.people > 0) {
+    Rng walkers = rng.fork(300);
+    add_people(config.people, walkers, &scene);
+  }
 
   GeneratedBuilding out;
   std::ostringstream header;
@@ -427,6 +466,8 @@ GeneratedBuilding generate_building(const std::string& style, std::uint64_t seed
   if (seed > static_cast<std::uint64_t>(std::numeric_limits<long long>::max()))
     throw InputError("--seed: " + std::to_string(seed) + " is more than " +
                      std::to_string(std::numeric_limits<long long>::max()));
+  if (config.people < 0 || config.people > kMaxGeneratedPeople)
+    throw InputError("--people: must lie in [0, " + std::to_string(kMaxGeneratedPeople) + "]");
   std::string last;
   for (int attempt = 0; attempt < config.max_attempts; ++attempt) {
     try {

@@ -27,7 +27,11 @@ struct GeneratorConfig {
   double speed_max = 1.5;
   double coverage_spacing = 8.0;   ///< m: a hall gets a stop in every tile of this size
   double coverage_area = 60.0;     ///< m^2: rooms larger than this get coverage stops too
+  int people = 0;                  ///< people walking stretches of the survey path (scene people:), at most kMaxGeneratedPeople
 };
+
+/// More people than this in one generated building is a typo.
+constexpr int kMaxGeneratedPeople = 50;
 
 struct GeneratedBuilding {
   Scene scene;        ///< parsed from `yaml`, exactly what a scene file of it loads to
