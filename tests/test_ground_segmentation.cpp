@@ -1,7 +1,8 @@
 // The traversable ground of one scan against simulated ground truth and on real returns:
 // point precision and recall on the office and the atrium; nothing traversable in the atrium's
 // void or on the storey below; the bench top below the void is not ground; the two_storeys ramp
-// is; on two real HDL-32e scans the ground is one connected region lying on its local plane.
+// is; a far wall's foot is no ground; on two real HDL-32e scans the ground is one connected
+// region lying on its local plane.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -256,6 +257,35 @@ TEST(TwoStoreysGround, RampIsTraversable) {
 // 1.65 to 1.75 m below it. In each scan the traversable nodes form one connected region
 // (nodes within max_gap of each other are linked, as the search links them) and no ground
 // point is more than 0.3 m above the plane fitted to the ground points around it.
+// A vlp-16's rings meet a wall 10 m away 0.35 m apart (10 m x tan 2 degrees): the ring above a
+// wall's foot is higher than foot_height, so the foot is found only by reaching foot_rings up.
+TEST(WallFoot, AFarWallsFootIsAnObstacleThoughTheNextRingIsAboveFootHeight) {
+  constexpr double kHeight = 0.55, kWallX = 10.2, kRingGap = 0.35, kFootAbove = 0.03;
+  PointCloud cloud;
+  for (double x = 1.3; x < kWallX - 0.03; x += 0.04)
+    for (double y = -2.0; y <= 2.0; y += 0.04) cloud.points.emplace_back(x, y, -kHeight);
+  std::size_t first_foot = cloud.size();
+  for (double y = -2.0; y <= 2.0; y += 0.04) cloud.points.emplace_back(kWallX, y, -kHeight + kFootAbove);
+  const std::size_t end_foot = cloud.size();
+  for (double z = -kHeight + kFootAbove + kRingGap; z < 2.0; z += kRingGap)
+    for (double y = -2.0; y <= 2.0; y += 0.04) cloud.points.emplace_back(kWallX, y, z);
+  GroundConfig config = ground::per_sensor_preset("vlp-16");
+  config.sensor_height = kHeight;
+  const auto foot_ground = [&](const GroundConfig& c) {
+    const GroundScan scan = ground::segment_ground(cloud, Eigen::Matrix3d::Identity(), c);
+    int n = 0;
+    for (std::size_t i = first_foot; i < end_foot; ++i) n += scan.labels[i] == GroundLabel::kGround;
+    int floor = 0;
+    for (std::size_t i = 0; i < first_foot; ++i) floor += scan.labels[i] == GroundLabel::kGround;
+    EXPECT_GT(floor, 0.95 * first_foot);  // the floor up to the wall stays ground
+    return n;
+  };
+  EXPECT_EQ(foot_ground(config), 0);
+  GroundConfig one_window = config;
+  one_window.foot_rings = 0.0;  // foot_height alone
+  EXPECT_GT(foot_ground(one_window), static_cast<int>(0.9 * (end_foot - first_foot)));
+}
+
 TEST(RealGround, Hdl32ScansGiveOneRegionOnItsLocalPlane) {
   constexpr double kSensorHeight = 1.7;   // m, from the data (see above)
   constexpr double kMaxAbovePlane = 0.3;  // m

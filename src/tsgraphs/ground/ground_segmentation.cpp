@@ -178,6 +178,7 @@ GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_
   scan.labels.assign(cloud.size(), GroundLabel::kOther);
   FootMap& feet = ws.feet;
   feet.reset(config.foot_radius, config.max_range);
+  const double foot_rise_per_metre = config.foot_rings * std::tan(config.ring_spacing_deg * M_PI / 180.0);
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const int k = field.point_node[i];
     if (k < 0 || nearest[k] < 0) continue;
@@ -190,7 +191,9 @@ GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_
     const double height = p.z() - plane.height_at(p.x(), p.y());
     if (height <= config.th_dist || height > config.th_obstacle) continue;
     scan.labels[i] = GroundLabel::kObstacle;
-    if (height <= config.th_dist + config.foot_height) feet.add(p);
+    // Far away the rings on a wall are farther apart than foot_height: reach foot_rings of them.
+    const double reach = std::max(config.foot_height, foot_rise_per_metre * p.head<2>().norm());
+    if (height <= config.th_dist + reach) feet.add(p);
   }
   feet.index();
   for (std::size_t i = 0; i < cloud.size(); ++i)

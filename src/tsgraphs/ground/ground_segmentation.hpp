@@ -40,7 +40,8 @@ struct GroundConfig {
   double th_lcc_planar = 0.2;    ///< local convexity/concavity: plane distance term (rad)
   double th_obstacle = 2.0;      ///< obstacle points: at most this above the local ground (m)
   double foot_radius = 0.02;     ///< a ground-band point with obstacle points within this (horizontally)...
-  double foot_height = 0.3;      ///< ...and this above the band is the foot of a wall or a box: an obstacle (m)
+  double foot_height = 0.3;      ///< ...and this above the band is the foot of a wall or a box: an obstacle (m)...
+  double foot_rings = 2.0;       ///< ...or as high as this many rings above it reach on a wall at its range (ring_spacing_deg; one ring may be lost to dropout or land beyond foot_radius by range noise)
   double seed_radius = 3.0;      ///< the search starts at ground-like nodes within this of the robot (m; the pipeline sets it from the platform)...
   double seed_height_tolerance = 0.2;  ///< ...whose plane passes within this of the floor under the robot (m)
   double seed_max_slope = 0.21;  ///< ...whose plane rises no more than this per metre, nor its own height more than seed_height_tolerance plus this per metre of distance from that floor: the steepest ramp a robot climbs (12 degrees, the generator's steepest; wheelchair ramps are 1:12)
@@ -73,6 +74,7 @@ struct GroundConfig {
     v("th_obstacle", th_obstacle);
     v("foot_radius", foot_radius);
     v("foot_height", foot_height);
+    v("foot_rings", foot_rings);
     v("seed_height_tolerance", seed_height_tolerance);
     v("seed_max_slope", seed_max_slope);
     v("max_gap", max_gap);

@@ -142,6 +142,7 @@ void validate(const YamlMap& root, const PipelineConfig& c) {
   check_at_key("floor_levelling", c.floor_levelling);
   check_at_key("room_segmentation", c.rooms.segmentation);
   check_positive(root, "ground", "sparse_min_pts", c.ground.sparse_min_pts);
+  if (!(c.ground.foot_rings >= 0.0)) throw root.map("ground").error("foot_rings", "foot_rings must be >= 0");
   if (!(c.ground.seed_max_slope >= 0.0)) throw root.map("ground").error("seed_max_slope", "seed_max_slope must be >= 0");
   check_positive(root, "keyframes", "delta_trans", c.keyframes.delta_trans);
   check_positive(root, "keyframes", "delta_angle_deg", c.keyframes.delta_angle_deg);
