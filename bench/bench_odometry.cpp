@@ -1,8 +1,10 @@
 // LiDAR odometry over a whole sequence folder: drift against groundtruth.txt and speed.
 //   bench_odometry SEQ_DIR [--threads N] [--voxel-size M] [--convergence X] [--max-iterations N]
-//                  [--point-to-point 1] [--out-tum FILE] [--every N]
+//                  [--point-to-point 1] [--out-tum FILE] [--every N] [--yaw-search DEG]
+//                  [--fine-threshold M] [--recovery-search M]
 // --every N: every N-th scan only (a 10 Hz sequence seen at 10 / N Hz). --yaw-search DEG: the
 // initial guess's search (lidar_odometry.yaw_search_deg; 0: the constant-velocity prediction alone).
+// --fine-threshold, --recovery-search: lidar_odometry.fine_threshold and recovery_search_m (0: off).
 // ATE: the RMS position error over every scan, the estimate anchored at the first ground-truth
 // pose (no further alignment: drift counts). Drift: the estimate is anchored at the first ground-truth pose; the position error is given
 // as a share of the path length travelled so far (at the end of lap 1, and its maximum over the
@@ -36,7 +38,7 @@ int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
                  "usage: %s SEQ_DIR [--threads N] [--voxel-size M] [--convergence X] [--max-iterations N] "
-                 "[--point-to-point 1] [--out-tum FILE] [--every N] [--yaw-search DEG]\n",
+                 "[--point-to-point 1] [--out-tum FILE] [--every N] [--yaw-search DEG] [--fine-threshold M] [--recovery-search M]\n",
                  argv[0]);
     return 2;
   }
@@ -54,6 +56,8 @@ int main(int argc, char** argv) {
     else if (a == "--point-to-point") config.point_to_plane = std::atoi(argv[i + 1]) == 0;
     else if (a == "--out-tum") out_tum = argv[i + 1];
     else if (a == "--yaw-search") config.yaw_search_deg = std::atof(argv[i + 1]);
+    else if (a == "--recovery-search") config.recovery_search_m = std::atof(argv[i + 1]);
+    else if (a == "--fine-threshold") config.fine_threshold = std::atof(argv[i + 1]);
     else if (a == "--every") every = static_cast<std::size_t>(std::max(1, std::atoi(argv[i + 1])));
     else {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());

@@ -94,6 +94,7 @@ void LidarOdometryConfig::validate() const {
   if (!(plane_max_thickness_ratio > 0.0)) fail("plane_max_thickness_ratio must be > 0");
   if (!(initial_threshold > 0.0)) fail("initial_threshold must be > 0");
   if (!(min_threshold >= 0.0)) fail("min_threshold must be >= 0");
+  if (!(fine_threshold >= 0.0) || !std::isfinite(fine_threshold)) fail("fine_threshold must be finite and >= 0");
   if (!(min_motion >= 0.0)) fail("min_motion must be >= 0");
   if (!(correspondence_factor > 0.0)) fail("correspondence_factor must be > 0");
   if (!(kernel_divisor > 0.0)) fail("kernel_divisor must be > 0");
@@ -106,6 +107,10 @@ void LidarOdometryConfig::validate() const {
   if (yaw_search_points < 10 || yaw_search_points > 1000000) fail("yaw_search_points must be in [10, 1000000]");
   if (!(yaw_search_margin >= 0.0 && yaw_search_margin <= 1.0)) fail("yaw_search_margin must be in [0, 1]");
   if (!(min_overlap >= 0.0 && min_overlap <= 1.0)) fail("min_overlap must be in [0, 1]");
+  if (!(recovery_search_m >= 0.0 && recovery_search_m <= 10.0)) fail("recovery_search_m must be in [0, 10]");
+  if (!(recovery_turn_step_deg >= 0.5 && recovery_turn_step_deg <= 90.0))
+    fail("recovery_turn_step_deg must be in [0.5, 90]");
+  if (recovery_points < 10 || recovery_points > 1000000) fail("recovery_points must be in [10, 1000000]");
 }
 
 IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map, const Pose3& initial_guess,
@@ -215,7 +220,7 @@ double voxel_overlap(const std::vector<Eigen::Vector3d>& source, const VoxelHash
 
 Pose3 LidarOdometry::initial_guess(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction) {
   if (config_.yaw_search_deg <= 0.0 || poses_.empty()) return prediction;
-  const std::size_t stride = std::max<std::size_t>(1, source.size() / static_cast<std::size_t>(config_.yaw_search_points));
+  const std::size_t stride = overlap_stride(source);
   const double predicted = voxel_overlap(source, map_, prediction, stride);
   double best = predicted;
   Pose3 best_pose = prediction;
@@ -248,6 +253,67 @@ Pose3 LidarOdometry::initial_guess(const std::vector<Eigen::Vector3d>& source, c
   return best_pose;
 }
 
+IcpResult LidarOdometry::register_from(const std::vector<Eigen::Vector3d>& source, const Pose3& start,
+                                       double sigma) const {
+  IcpResult result = align_to_map(source, map_, start, config_.correspondence_factor * sigma,
+                                  sigma / config_.kernel_divisor, config_);
+  // The threshold is the prediction's uncertainty: at 2 Hz, or swaying, metres, so the kernel
+  // first lets in pairs of wrong neighbours, and they bias the pose they helped to reach.
+  // From there ICP continues with a kernel as narrow as the threshold ever gets.
+  if (config_.fine_threshold > 0.0 && sigma > config_.fine_threshold &&
+      result.num_correspondences >= static_cast<std::size_t>(config_.min_correspondences)) {
+    const double fine = config_.fine_threshold;
+    const IcpResult refined = align_to_map(source, map_, result.pose, config_.correspondence_factor * fine,
+                                           fine / config_.kernel_divisor, config_);
+    if (refined.num_correspondences >= static_cast<std::size_t>(config_.min_correspondences)) {
+      result.pose = refined.pose;
+      result.iterations += refined.iterations;
+      result.num_correspondences = refined.num_correspondences;
+      result.converged = refined.converged;
+    }
+  }
+  result.num_source = source.size();
+  result.overlap = voxel_overlap(source, map_, result.pose, overlap_stride(source));
+  result.lost = result.overlap < config_.min_overlap;
+  return result;
+}
+
+std::size_t LidarOdometry::overlap_stride(const std::vector<Eigen::Vector3d>& source) const {
+  return std::max<std::size_t>(1, source.size() / static_cast<std::size_t>(config_.yaw_search_points));
+}
+
+Pose3 LidarOdometry::recovery_start(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction) const {
+  const std::size_t stride =
+      std::max<std::size_t>(1, source.size() / static_cast<std::size_t>(config_.recovery_points));
+  double best = -1.0;
+  Pose3 best_pose = prediction;
+  constexpr double kDegToRad = M_PI / 180.0;
+  const double step = config_.voxel_size;  // a shift by less changes which voxels the points fall in little
+  const int reach = static_cast<int>(std::floor(config_.recovery_search_m / step + 1e-9));
+  const int turns = static_cast<int>(std::floor(config_.yaw_search_deg / config_.recovery_turn_step_deg + 1e-9));
+  const Pose3& still = poses_.back();
+  for (const Pose3* base : {&prediction, &still}) {
+    for (int t = -turns; t <= turns; ++t) {
+      Pose3 turned = *base;
+      turned.linear() =
+          Eigen::AngleAxisd(t * config_.recovery_turn_step_deg * kDegToRad, Eigen::Vector3d::UnitZ()) * base->linear();
+      for (int i = -reach; i <= reach; ++i) {
+        for (int j = -reach; j <= reach; ++j) {
+          if (i * i + j * j > reach * reach) continue;
+          Pose3 guess = turned;
+          guess.translation() += Eigen::Vector3d(i * step, j * step, 0.0);
+          const double score = voxel_overlap(source, map_, guess, stride);
+          if (score > best) {  // strict: the first of equals in this fixed order wins
+            best = score;
+            best_pose = guess;
+          }
+        }
+      }
+    }
+  }
+  return best_pose;
+}
+
 Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
   const Pose3 prediction = predict();
   last_icp_ = IcpResult{};
@@ -266,20 +332,24 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
   Pose3 pose = prediction;
   if (!map_.empty()) {
     const double sigma = threshold();
-    const Pose3 start = initial_guess(source, prediction);
+    Pose3 start = initial_guess(source, prediction);
     const double turn = last_icp_.turn_searched_deg;
-    last_icp_ = align_to_map(source, map_, start, config_.correspondence_factor * sigma,
-                             sigma / config_.kernel_divisor, config_);
+    last_icp_ = register_from(source, start, sigma);
     last_icp_.turn_searched_deg = turn;
-    last_icp_.num_source = source.size();
+    if (last_icp_.overlap < config_.min_overlap && config_.recovery_search_m > 0.0) {
+      const Pose3 again = recovery_start(source, prediction);
+      const IcpResult retry = register_from(source, again, sigma);
+      if (retry.overlap > last_icp_.overlap) {
+        last_icp_ = retry;
+        last_icp_.recovered = true;
+        start = again;
+      }
+    }
     pose = last_icp_.pose;
     const Pose3 motion = poses_.back().inverse() * pose;
     // The threshold learns from the start ICP was given: a turn the search found is no
     // deviation of the motion model to widen every later search for.
     threshold_.update(start.inverse() * pose, motion);
-    const std::size_t stride =
-        std::max<std::size_t>(1, source.size() / static_cast<std::size_t>(config_.yaw_search_points));
-    last_icp_.overlap = voxel_overlap(source, map_, pose, stride);
     last_icp_.lost = last_icp_.overlap < config_.min_overlap;
   }
   if (last_icp_.lost) {

@@ -29,6 +29,8 @@ struct LidarOdometryConfig {
   double initial_threshold = 2.0;              ///< correspondence threshold (m) until the robot has moved
   double min_threshold = 0.5;                  ///< the adaptive threshold never goes below this (m): turns that start
                                                ///< abruptly (in place, 90 deg/s) must stay within ICP's reach
+  double fine_threshold = 0.5;                 ///< once converged, ICP goes on with this threshold (m) when its own was
+                                               ///< wider, so that the wrong pairs a wide start let in stop pulling (0: off)
   double min_motion = 0.1;                     ///< a scan teaches the threshold only if it moved this much (m, at max_range)
   double correspondence_factor = 3.0;          ///< correspondences farther than threshold * this are ignored
   double kernel_divisor = 3.0;                 ///< Geman-McClure kernel scale = threshold / this (m)
@@ -44,6 +46,12 @@ struct LidarOdometryConfig {
                                                ///< of the points in occupied map voxels (at 10 Hz the prediction stays)
   double min_overlap = 0.3;                    ///< a scan whose share of points in occupied map voxels ends below this
                                                ///< is reported lost (voxel_overlap)
+  double recovery_search_m = 1.5;              ///< a scan left lost is registered again from the best-overlapping of turns
+                                               ///< (up to yaw_search_deg) and horizontal shifts this far (m, one voxel
+                                               ///< apart) of the prediction and of the last pose (the first step of a 2 Hz
+                                               ///< walk: 0.6 m from a prediction of standing still); 0: off
+  double recovery_turn_step_deg = 10.0;        ///< the turns tried there are this far apart (ICP closes the rest)
+  int recovery_points = 250;                   ///< scan points scored per guess there (a few thousand guesses)
   int reduction_grain = 256;                   ///< points per block of the parallel reduction (fixed: the sums are
                                                ///< then added in the same order whatever the threads)
 
@@ -61,6 +69,7 @@ struct LidarOdometryConfig {
     v("plane_max_thickness_ratio", plane_max_thickness_ratio);
     v("initial_threshold", initial_threshold);
     v("min_threshold", min_threshold);
+    v("fine_threshold", fine_threshold);
     v("min_motion", min_motion);
     v("correspondence_factor", correspondence_factor);
     v("kernel_divisor", kernel_divisor);
@@ -72,6 +81,9 @@ struct LidarOdometryConfig {
     v("yaw_search_points", yaw_search_points);
     v("yaw_search_margin", yaw_search_margin);
     v("min_overlap", min_overlap);
+    v("recovery_search_m", recovery_search_m);
+    v("recovery_turn_step_deg", recovery_turn_step_deg);
+    v("recovery_points", recovery_points);
     v("reduction_grain", reduction_grain);
   }
 
@@ -91,6 +103,7 @@ struct IcpResult {
   double turn_searched_deg = 0.0;       ///< the turn from the prediction that the yaw search chose as the start
   double overlap = 1.0;                 ///< share of the points in occupied map voxels at the result (voxel_overlap)
   bool lost = false;                    ///< overlap below min_overlap: reported, see LidarOdometry
+  bool recovered = false;               ///< registered again from recovery_search_m's search
 };
 
 /// Indices of the first point of each voxel of edge `voxel_size`, in input order. Measured
@@ -146,6 +159,12 @@ class LidarOdometry {
   /// The start for ICP: the prediction, or the turn of it or of the last pose (standing still)
   /// that overlaps the map clearly better (yaw_search_*); sets last_icp_.turn_searched_deg.
   Pose3 initial_guess(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction);
+  /// ICP from `start` with threshold `sigma`, then with fine_threshold's; the overlap at the end.
+  IcpResult register_from(const std::vector<Eigen::Vector3d>& source, const Pose3& start, double sigma) const;
+  /// The start that overlaps the map best among turns and shifts (recovery_search_m).
+  Pose3 recovery_start(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction) const;
+  /// Every how many source points voxel_overlap looks at (yaw_search_points of them).
+  std::size_t overlap_stride(const std::vector<Eigen::Vector3d>& source) const;
 
   LidarOdometryConfig config_;
   VoxelHashMap map_;
