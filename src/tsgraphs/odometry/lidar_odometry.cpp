@@ -19,6 +19,7 @@ namespace tsgraphs::odometry {
 namespace {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
+constexpr double kDegToRad = M_PI / 180.0;
 
 const LidarOdometryConfig& validated(const LidarOdometryConfig& c) {
   c.validate();
@@ -225,7 +226,6 @@ Pose3 LidarOdometry::initial_guess(const std::vector<Eigen::Vector3d>& source, c
   double best = predicted;
   Pose3 best_pose = prediction;
   double best_turn = 0.0;
-  constexpr double kDegToRad = M_PI / 180.0;
   const int steps = static_cast<int>(std::floor(config_.yaw_search_deg / config_.yaw_search_step_deg + 1e-9));
   // Turns about the map's z at the sensor's place, from the prediction and from standing
   // still, nearest turns first so that ties keep the smaller turn.
@@ -287,7 +287,6 @@ Pose3 LidarOdometry::recovery_start(const std::vector<Eigen::Vector3d>& source, 
       std::max<std::size_t>(1, source.size() / static_cast<std::size_t>(config_.recovery_points));
   double best = -1.0;
   Pose3 best_pose = prediction;
-  constexpr double kDegToRad = M_PI / 180.0;
   const double step = config_.voxel_size;  // a shift by less changes which voxels the points fall in little
   const int reach = static_cast<int>(std::floor(config_.recovery_search_m / step + 1e-9));
   const int turns = static_cast<int>(std::floor(config_.yaw_search_deg / config_.recovery_turn_step_deg + 1e-9));
