@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "tsgraphs/odometry/deskew.hpp"
-#include "tsgraphs/odometry/sweep_registration.hpp"
+#include "tsgraphs/odometry/sweep_deskewer.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 

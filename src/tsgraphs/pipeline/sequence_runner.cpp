@@ -13,7 +13,7 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/odometry/deskew.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
-#include "tsgraphs/odometry/sweep_registration.hpp"
+#include "tsgraphs/odometry/sweep_deskewer.hpp"
 
 namespace tsgraphs::pipeline {
 namespace {
