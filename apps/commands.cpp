@@ -80,19 +80,19 @@ void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::
 }
 
 void convert(const io::ScanSequence& sequence, const std::string& out, const pipeline::OdometryOptions& odometry,
-             const odometry::LidarOdometryConfig& lidar, bool quiet) {
+             const odometry::LidarOdometryConfig& lidar, const odometry::SweepRegistrationConfig& sweep, bool quiet) {
   io::SequenceWriter writer(out);
   io::SequenceInfo info = sequence.info();
   std::optional<odometry::LidarOdometry> lidar_odometry;
   if (odometry.estimate) {
-    lidar_odometry.emplace(lidar);
+    lidar_odometry.emplace(lidar, odometry.initial_pose, sweep);
     info.odometry.clear();
   }
   app::Progress progress("convert", quiet);
   for (std::size_t i = 0; i < sequence.size(); ++i) {
     const PointCloud scan = sequence.scan(i);
     writer.write_scan(i, scan);
-    if (lidar_odometry) info.odometry.push_back(odometry.initial_pose * lidar_odometry->register_scan(scan));
+    if (lidar_odometry) info.odometry.push_back(lidar_odometry->register_scan(scan));
     progress.update(i + 1, sequence.size());
   }
   writer.commit(info);

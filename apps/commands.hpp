@@ -31,9 +31,10 @@ void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::
                   int laps, io::BagCompression compression, bool quiet);
 /// `convert`: `sequence` (a folder of scans, a bag) written as a sequence folder at `out`:
 /// scans/NNNNNN.bin, times.txt, odom.txt (and groundtruth.txt when it has ground truth). With
-/// `odometry.estimate`, odom.txt is LiDAR odometry (`lidar`) from the scans, in the same pass.
+/// `odometry.estimate`, odom.txt is LiDAR odometry (`lidar`, its sweeps registered with `sweep`)
+/// from the scans, in the same pass.
 void convert(const io::ScanSequence& sequence, const std::string& out, const pipeline::OdometryOptions& odometry,
-             const odometry::LidarOdometryConfig& lidar, bool quiet);
+             const odometry::LidarOdometryConfig& lidar, const odometry::SweepRegistrationConfig& sweep, bool quiet);
 /// `bag-info`: the bag's topics, types, counts and rates on stdout.
 void print_bag_info(const std::string& bag);
 /// `draw-scene`: the bird's-eye SVG of the scene and its path.

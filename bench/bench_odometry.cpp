@@ -1,14 +1,19 @@
 // LiDAR odometry over a whole sequence folder: drift against groundtruth.txt and speed.
 //   bench_odometry SEQ_DIR [--threads N] [--voxel-size M] [--convergence X] [--max-iterations N]
 //                  [--point-to-point 1] [--out-tum FILE] [--every N] [--yaw-search DEG]
-//                  [--fine-threshold M] [--recovery-search M]
+//                  [--fine-threshold M] [--recovery-search M] [--extrapolate-tilt 0|1]
+//                  [--yaw-candidates N] [--sweep-motion 0|1]
 // --every N: every N-th scan only (a 10 Hz sequence seen at 10 / N Hz). --yaw-search DEG: the
 // initial guess's search (lidar_odometry.yaw_search_deg; 0: the constant-velocity prediction alone).
 // --fine-threshold, --recovery-search: lidar_odometry.fine_threshold and recovery_search_m (0: off).
+// --extrapolate-tilt, --yaw-candidates, --sweep-motion: lidar_odometry.extrapolate_tilt,
+// yaw_search_candidates, sweep_motion.
+// The odometry runs in the frame `run` gives it (level with the floor under the first scan).
 // ATE: the RMS position error over every scan, the estimate anchored at the first ground-truth
 // pose (no further alignment: drift counts). Drift: the estimate is anchored at the first ground-truth pose; the position error is given
 // as a share of the path length travelled so far (at the end of lap 1, and its maximum over the
 // run once the path is at least kMinPathForRatio long, so the first metres do not divide by ~0).
+// Step error: each scan's motion from the one before against the truth's (RPE over one scan).
 // Speed: wall time of the whole run (reading included) against the scans' time span.
 #include <tbb/global_control.h>
 
@@ -25,6 +30,7 @@
 
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/subsampled_sequence.hpp"
+#include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/lidar_odometry_sequence.hpp"
 
 using namespace tsgraphs;
@@ -32,6 +38,8 @@ using namespace tsgraphs;
 namespace {
 constexpr double kMinPathForRatio = 10.0;  // m
 constexpr double kRadToDeg = 180.0 / M_PI;
+constexpr double kFailedStepDeg = 5.0;  // a step this far off in rotation is a failure, not noise
+constexpr double kWrongTurnDeg = 15.0;  // a heading this far off is a wrong turn taken, not drift
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -58,6 +66,9 @@ int main(int argc, char** argv) {
     else if (a == "--yaw-search") config.yaw_search_deg = std::atof(argv[i + 1]);
     else if (a == "--recovery-search") config.recovery_search_m = std::atof(argv[i + 1]);
     else if (a == "--fine-threshold") config.fine_threshold = std::atof(argv[i + 1]);
+    else if (a == "--sweep-motion") config.sweep_motion = std::atoi(argv[i + 1]) != 0;
+    else if (a == "--yaw-candidates") config.yaw_search_candidates = std::atoi(argv[i + 1]);
+    else if (a == "--extrapolate-tilt") config.extrapolate_tilt = std::atoi(argv[i + 1]) != 0;
     else if (a == "--every") every = static_cast<std::size_t>(std::max(1, std::atoi(argv[i + 1])));
     else {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());
@@ -72,6 +83,9 @@ int main(int argc, char** argv) {
   const auto& info = seq.info();
   const bool has_truth = info.groundtruth.size() == seq.size();
   const Pose3 anchor = has_truth ? info.groundtruth.front() : Pose3::Identity();
+  // The odometry runs in the frame `run` gives it: level with the floor under the first scan
+  // (its z is up for the yaw search and the prediction's tilt), then is anchored at the truth.
+  const odometry::FloorLevel level = odometry::level_from_floor(seq.scan(0));
 
   using Clock = std::chrono::steady_clock;
   std::vector<double> scan_ms;
@@ -79,14 +93,16 @@ int main(int argc, char** argv) {
   const auto start = last;
   std::vector<std::size_t> lost;
   std::vector<double> overlaps;
-  const std::vector<Pose3> poses = odometry::estimate_odometry(
+  std::vector<Pose3> poses = odometry::estimate_odometry(
       seq, config,
       [&](std::size_t, std::size_t) {
         const auto now = Clock::now();
         scan_ms.push_back(std::chrono::duration<double, std::milli>(now - last).count());
         last = now;
       },
-      anchor, &lost, &overlaps);
+      level.sensor_pose, &lost, &overlaps);
+  const Pose3 to_anchor = anchor * level.sensor_pose.inverse();
+  for (Pose3& pose : poses) pose = to_anchor * pose;
   const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
   const double span_s = info.times.back() - info.times.front();
 
@@ -148,5 +164,34 @@ int main(int argc, char** argv) {
   std::printf("max drift       %.3f %% (at %.1f m; ratios from %.0f m on)\n", 100.0 * max_ratio, max_ratio_at,
               kMinPathForRatio);
   std::printf("final error     %.3f m = %.3f %%, yaw %.3f deg\n", final_err, 100.0 * final_err / path, final_yaw);
+  // Step error (RPE over one scan): each scan's motion from the one before against the truth's.
+  // Unlike ATE it does not hang on the first failure of a walk, so it compares odometries
+  // step by step.
+  std::vector<double> step_deg, step_m;
+  for (std::size_t k = 1; k < poses.size(); ++k) {
+    const Pose3 e = (info.groundtruth[k - 1].inverse() * info.groundtruth[k]).inverse() *
+                    (poses[k - 1].inverse() * poses[k]);
+    step_deg.push_back(Eigen::AngleAxisd(e.linear()).angle() * kRadToDeg);
+    step_m.push_back(e.translation().norm());
+  }
+  if (!step_deg.empty()) {
+    const auto quantile = [](std::vector<double> v, double q) {
+      std::sort(v.begin(), v.end());
+      return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
+    };
+    const auto over = std::count_if(step_deg.begin(), step_deg.end(), [](double d) { return d > kFailedStepDeg; });
+    // The path walked before the heading first went wrong by kWrongTurnDeg: after a wrong turn
+    // the map holds a turned copy of the building, and every later figure depends on how it failed.
+    double before_failure = 0.0;
+    for (std::size_t k = 1; k < poses.size(); ++k) {
+      if (std::abs(wrap_angle(yaw_of(poses[k]) - yaw_of(info.groundtruth[k]))) * kRadToDeg > kWrongTurnDeg) break;
+      before_failure += (info.groundtruth[k].translation() - info.groundtruth[k - 1].translation()).norm();
+    }
+    std::printf("step error      %.3f / %.3f deg, %.3f / %.3f m (median / p95); %zu of %zu steps over %.0f deg\n",
+                quantile(step_deg, 0.5), quantile(step_deg, 0.95), quantile(step_m, 0.5), quantile(step_m, 0.95),
+                static_cast<std::size_t>(over), step_deg.size(), kFailedStepDeg);
+    std::printf("first wrong turn %.1f m of %.1f m (the path before the heading is %.0f deg off)\n", before_failure,
+                path, kWrongTurnDeg);
+  }
   return 0;
 }

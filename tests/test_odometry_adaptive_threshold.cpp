@@ -1,5 +1,5 @@
-// KISS-ICP's adaptive threshold: the initial value, growth with the model deviation, and the
-// minimum motion below which a scan teaches nothing.
+// KISS-ICP's adaptive threshold: the initial value, growth with the model deviation, rotations
+// taken at the points' range, and the minimum motion below which a scan teaches nothing.
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -43,6 +43,22 @@ TEST(AdaptiveThreshold, GrowsWithLargerModelDeviations) {
   t.update(make_pose(Eigen::Vector3d::Zero(), 0.05), motion);  // a rotation error counts at max_range
   EXPECT_GT(t.threshold(), larger);
   EXPECT_EQ(t.num_samples(), 3u);
+}
+
+TEST(AdaptiveThreshold, ARotationCountsWhereTheScansPointsAre) {
+  // A 5 degree sway, taken at the points' 4 m instead of max_range's 30 m: 0.35 m, not 2.6 m.
+  const Pose3 motion = translation(0.6);
+  const Pose3 sway = make_pose(Eigen::Vector3d::Zero(), 0.0, 5.0 * M_PI / 180.0);
+  AdaptiveThreshold near(kInitial, kMinMotion, kMaxRange), far(kInitial, kMinMotion, kMaxRange);
+  near.update(sway, motion, 4.0);
+  far.update(sway, motion);
+  EXPECT_NEAR(near.threshold(), pose_displacement(sway, 4.0), 1e-12);
+  EXPECT_NEAR(far.threshold(), pose_displacement(sway, kMaxRange), 1e-12);
+  EXPECT_LT(near.threshold(), 0.4);
+  EXPECT_GT(far.threshold(), 2.5);
+  // Whether the scan moved enough to teach is still judged at max_range.
+  near.update(sway, translation(0.01), 4.0);
+  EXPECT_EQ(near.num_samples(), 1u);
 }
 
 TEST(AdaptiveThreshold, DisplacementOfARotationIsItsChordAtMaxRange) {

@@ -18,9 +18,9 @@ AdaptiveThreshold::AdaptiveThreshold(double initial_threshold, double min_motion
   if (!(max_range > 0.0)) throw std::invalid_argument("AdaptiveThreshold: max_range must be > 0");
 }
 
-void AdaptiveThreshold::update(const Pose3& model_deviation, const Pose3& motion) {
+void AdaptiveThreshold::update(const Pose3& model_deviation, const Pose3& motion, double range) {
   if (pose_displacement(motion, max_range_) < min_motion_) return;
-  const double error = pose_displacement(model_deviation, max_range_);
+  const double error = pose_displacement(model_deviation, range > 0.0 ? range : max_range_);
   sum_sq_ += error * error;
   ++num_samples_;
 }

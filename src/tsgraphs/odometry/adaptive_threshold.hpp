@@ -21,8 +21,11 @@ class AdaptiveThreshold {
 
   /// Records how far the registered pose was from the prediction (`model_deviation` =
   /// prediction^-1 * registered) when the scan's own motion (`motion` = previous^-1 * current)
-  /// was large enough: standing still says nothing about the prediction's error.
-  void update(const Pose3& model_deviation, const Pose3& motion);
+  /// was large enough: standing still says nothing about the prediction's error. `range` (m,
+  /// > 0) converts the deviation's rotation where the scan's points are (their median range);
+  /// 0: at max_range, KISS-ICP's bound. Indoors the points are a few metres away, and a
+  /// hand-held sensor's sway of a few degrees taken at 50 m made the threshold 5-9 m.
+  void update(const Pose3& model_deviation, const Pose3& motion, double range = 0.0);
   /// The current threshold (m): the root mean square of the recorded deviations, or the
   /// initial value before any was recorded.
   double threshold() const;

@@ -21,7 +21,8 @@ namespace {
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 constexpr double kDegToRad = M_PI / 180.0;
 
-const LidarOdometryConfig& validated(const LidarOdometryConfig& c) {
+template <class Config>
+const Config& validated(const Config& c) {
   c.validate();
   return c;
 }
@@ -55,16 +56,50 @@ std::vector<std::size_t> first_per_voxel(const std::vector<Eigen::Vector3d>& poi
 
 namespace {
 
-std::vector<Eigen::Vector3d> first_point_per_voxel(const std::vector<Eigen::Vector3d>& points, double voxel_size) {
-  std::vector<Eigen::Vector3d> out;
-  for (const std::size_t i : first_per_voxel(points, voxel_size)) out.push_back(points[i]);
-  return out;
+/// The in-range points of `cloud`, one per voxel of `voxel_size`, with their times (empty when
+/// the cloud has none).
+void first_points_in_range(const PointCloud& cloud, double min_range, double max_range, double voxel_size,
+                           std::vector<Eigen::Vector3d>& points, std::vector<double>& times) {
+  std::vector<Eigen::Vector3d> all;
+  std::vector<std::size_t> index;
+  for (const std::size_t i : in_range(cloud, min_range, max_range)) {
+    all.push_back(cloud.points[i].cast<double>());
+    index.push_back(i);
+  }
+  points.clear();
+  times.clear();
+  for (const std::size_t j : first_per_voxel(all, voxel_size)) {
+    points.push_back(all[j]);
+    if (cloud.has_times()) times.push_back(cloud.times[index[j]]);
+  }
 }
 
-std::vector<Eigen::Vector3d> crop(const PointCloud& cloud, double min_range, double max_range) {
-  std::vector<Eigen::Vector3d> out;
-  for (const std::size_t i : in_range(cloud, min_range, max_range)) out.push_back(cloud.points[i].cast<double>());
-  return out;
+/// The first of each voxel of `voxel_size` among `points`, with its time when there are times.
+void thin(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& times, double voxel_size,
+          std::vector<Eigen::Vector3d>& kept, std::vector<double>& kept_times) {
+  kept.clear();
+  kept_times.clear();
+  for (const std::size_t j : first_per_voxel(points, voxel_size)) {
+    kept.push_back(points[j]);
+    if (!times.empty()) kept_times.push_back(times[j]);
+  }
+}
+
+/// The median distance of `points` from the sensor (0 when there are none).
+double median_range(const std::vector<Eigen::Vector3d>& points) {
+  if (points.empty()) return 0.0;
+  std::vector<double> r;
+  r.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) r.push_back(p.norm());
+  std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2), r.end());
+  return r[r.size() / 2];
+}
+
+/// Whether the times span a sweep (a scan taken at one instant has nothing to de-skew).
+bool spans_time(const std::vector<double>& times) {
+  if (times.empty()) return false;
+  const auto [lo, hi] = std::minmax_element(times.begin(), times.end());
+  return std::isfinite(*lo) && std::isfinite(*hi) && *hi > *lo;
 }
 
 }  // namespace
@@ -106,12 +141,16 @@ void LidarOdometryConfig::validate() const {
   if (!(yaw_search_deg >= 0.0 && yaw_search_deg <= 180.0)) fail("yaw_search_deg must be in [0, 180]");
   if (!(yaw_search_step_deg >= 0.5 && yaw_search_step_deg <= 90.0)) fail("yaw_search_step_deg must be in [0.5, 90]");
   if (yaw_search_points < 10 || yaw_search_points > 1000000) fail("yaw_search_points must be in [10, 1000000]");
+  if (yaw_search_candidates < 1 || yaw_search_candidates > 100) fail("yaw_search_candidates must be in [1, 100]");
+  if (yaw_search_candidate_iterations < 1) fail("yaw_search_candidate_iterations must be >= 1");
   if (!(yaw_search_margin >= 0.0 && yaw_search_margin <= 1.0)) fail("yaw_search_margin must be in [0, 1]");
   if (!(min_overlap >= 0.0 && min_overlap <= 1.0)) fail("min_overlap must be in [0, 1]");
   if (!(recovery_search_m >= 0.0 && recovery_search_m <= 10.0)) fail("recovery_search_m must be in [0, 10]");
   if (!(recovery_turn_step_deg >= 0.5 && recovery_turn_step_deg <= 90.0))
     fail("recovery_turn_step_deg must be in [0.5, 90]");
   if (recovery_points < 10 || recovery_points > 1000000) fail("recovery_points must be in [10, 1000000]");
+  if (!(recovery_overlap_ratio >= 0.0 && recovery_overlap_ratio <= 1.0)) fail("recovery_overlap_ratio must be in [0, 1]");
+  if (recovery_window < 1 || recovery_window > 10000) fail("recovery_window must be in [1, 10000]");
 }
 
 IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map, const Pose3& initial_guess,
@@ -190,8 +229,10 @@ IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHa
   return result;
 }
 
-LidarOdometry::LidarOdometry(LidarOdometryConfig config)
+LidarOdometry::LidarOdometry(LidarOdometryConfig config, const Pose3& first_pose, SweepRegistrationConfig sweep)
     : config_(validated(config)),
+      sweep_(validated(sweep)),
+      first_pose_(first_pose),
       map_(config_.voxel_size, static_cast<std::size_t>(config_.max_points_per_voxel), config_.surface()),
       threshold_(config_.initial_threshold, config_.min_motion, config_.max_range) {}
 
@@ -203,11 +244,18 @@ Pose3 LidarOdometry::last_motion() const {
 }
 
 Pose3 LidarOdometry::predict() const {
-  if (poses_.empty()) return Pose3::Identity();
+  if (poses_.empty()) return first_pose_;
   if (poses_.size() == 1) return poses_.back();
   const Pose3& last = poses_.back();
   const Pose3& before = poses_[poses_.size() - 2];
-  return last * (before.inverse() * last);  // constant velocity: repeat the last motion
+  if (config_.extrapolate_tilt) return last * (before.inverse() * last);  // repeat the last motion
+  // The last turn in the map's frame, reduced to its twist about z (swing-twist decomposition).
+  const Eigen::Quaterniond turn(last.linear() * before.linear().transpose());
+  const Eigen::AngleAxisd yaw(2.0 * std::atan2(turn.z(), turn.w()), Eigen::Vector3d::UnitZ());
+  Pose3 next = last;
+  next.linear() = yaw * last.linear();
+  next.translation() = last.translation() + yaw * (last.translation() - before.translation());
+  return next;
 }
 
 double voxel_overlap(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map, const Pose3& pose,
@@ -219,13 +267,16 @@ double voxel_overlap(const std::vector<Eigen::Vector3d>& source, const VoxelHash
   return static_cast<double>(hits) / static_cast<double>(tried);
 }
 
-Pose3 LidarOdometry::initial_guess(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction) {
-  if (config_.yaw_search_deg <= 0.0 || poses_.empty()) return prediction;
+std::vector<LidarOdometry::Start> LidarOdometry::initial_guesses(const std::vector<Eigen::Vector3d>& source,
+                                                                  const Pose3& prediction) const {
+  if (config_.yaw_search_deg <= 0.0 || poses_.empty()) return {{prediction, 0.0}};
   const std::size_t stride = overlap_stride(source);
   const double predicted = voxel_overlap(source, map_, prediction, stride);
-  double best = predicted;
-  Pose3 best_pose = prediction;
-  double best_turn = 0.0;
+  struct Scored {
+    Start start;
+    double score;
+  };
+  std::vector<Scored> tried;
   const int steps = static_cast<int>(std::floor(config_.yaw_search_deg / config_.yaw_search_step_deg + 1e-9));
   // Turns about the map's z at the sensor's place, from the prediction and from standing
   // still, nearest turns first so that ties keep the smaller turn.
@@ -239,18 +290,56 @@ Pose3 LidarOdometry::initial_guess(const std::vector<Eigen::Vector3d>& source, c
         if (k == 0 && base == &prediction) continue;
         Pose3 guess = *base;
         guess.linear() = R * base->linear();
-        const double score = voxel_overlap(source, map_, guess, stride);
-        if (score > best) {
-          best = score;
-          best_pose = guess;
-          best_turn = turn;
-        }
+        tried.push_back({{guess, turn}, voxel_overlap(source, map_, guess, stride)});
       }
     }
   }
-  if (best < predicted + config_.yaw_search_margin) return prediction;
-  last_icp_.turn_searched_deg = best_turn;
-  return best_pose;
+  // Best first; stable, so that of equal scores the smaller turn comes first.
+  std::stable_sort(tried.begin(), tried.end(), [](const Scored& a, const Scored& b) { return a.score > b.score; });
+  if (tried.empty() || tried.front().score < predicted + config_.yaw_search_margin) return {{prediction, 0.0}};
+  // The search's best, the prediction, then the next best turns that are more than two steps
+  // from every turn already taken (a neighbour of a taken turn converges to the same pose).
+  std::vector<Start> starts{tried.front().start};
+  if (config_.yaw_search_candidates >= 2) starts.push_back({prediction, 0.0});
+  for (const Scored& s : tried) {
+    if (starts.size() >= static_cast<std::size_t>(config_.yaw_search_candidates)) break;
+    if (s.score < predicted + config_.yaw_search_margin) break;
+    const bool apart = std::all_of(starts.begin(), starts.end(), [&](const Start& t) {
+      return std::abs(t.turn_deg - s.start.turn_deg) > 2.0 * config_.yaw_search_step_deg;
+    });
+    if (apart) starts.push_back(s.start);
+  }
+  return starts;
+}
+
+std::pair<LidarOdometry::Start, Pose3> LidarOdometry::choose_start(const std::vector<Eigen::Vector3d>& source,
+                                                                    const Pose3& prediction, double sigma) const {
+  const std::vector<Start> starts = initial_guesses(source, prediction);
+  if (starts.size() == 1) return {starts.front(), starts.front().pose};
+  // Each start gets a few ICP iterations; the one whose result overlaps the map most (the
+  // first of equals) is registered to the end from there.
+  LidarOdometryConfig quick = config_;
+  quick.max_iterations = config_.yaw_search_candidate_iterations;
+  const double distance = config_.correspondence_factor * sigma, kernel = sigma / config_.kernel_divisor;
+  const std::size_t stride = overlap_stride(source);
+  double best = -1.0;
+  std::pair<Start, Pose3> chosen{starts.front(), starts.front().pose};
+  for (const Start& s : starts) {
+    const IcpResult result = align_to_map(source, map_, s.pose, distance, kernel, quick);
+    const double overlap = voxel_overlap(source, map_, result.pose, stride);
+    if (overlap > best) {
+      best = overlap;
+      chosen = {s, result.pose};
+    }
+  }
+  return chosen;
+}
+
+double LidarOdometry::usual_overlap() const {
+  if (recent_overlaps_.empty()) return 0.0;
+  std::vector<double> r(recent_overlaps_.begin(), recent_overlaps_.end());
+  std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2), r.end());
+  return r[r.size() / 2];
 }
 
 IcpResult LidarOdometry::register_from(const std::vector<Eigen::Vector3d>& source, const Pose3& start,
@@ -317,25 +406,35 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
   const Pose3 prediction = predict();
   last_icp_ = IcpResult{};
   last_icp_.pose = prediction;
+  last_sweep_ = SweepMotion{};
+  last_sweep_.pose = prediction;
 
   // Two resolutions: a finer one keeps the map detailed, a coarser one makes ICP cheap.
-  std::vector<Eigen::Vector3d> frame = first_point_per_voxel(
-      crop(scan, config_.min_range, config_.max_range), config_.voxel_size * config_.map_voxel_factor);
+  std::vector<Eigen::Vector3d> frame, source;
+  std::vector<double> frame_times, source_times;
+  first_points_in_range(scan, config_.min_range, config_.max_range, config_.voxel_size * config_.map_voxel_factor,
+                        frame, frame_times);
   if (frame.empty()) {
     poses_.push_back(prediction);
     return prediction;
   }
-  const std::vector<Eigen::Vector3d> source =
-      first_point_per_voxel(frame, config_.voxel_size * config_.registration_voxel_factor);
+  thin(frame, frame_times, config_.voxel_size * config_.registration_voxel_factor, source, source_times);
+  const bool swept = config_.sweep_motion && spans_time(frame_times) &&
+                     std::all_of(frame_times.begin(), frame_times.end(), [](double t) { return std::isfinite(t); });
 
   Pose3 pose = prediction;
   if (!map_.empty()) {
     const double sigma = threshold();
-    Pose3 start = initial_guess(source, prediction);
-    const double turn = last_icp_.turn_searched_deg;
-    last_icp_ = register_from(source, start, sigma);
-    last_icp_.turn_searched_deg = turn;
-    if (last_icp_.overlap < config_.min_overlap && config_.recovery_search_m > 0.0) {
+    const auto [start_of_search, from] = choose_start(source, prediction, sigma);
+    Pose3 start = start_of_search.pose;
+    last_icp_ = register_from(source, from, sigma);
+    last_icp_.turn_searched_deg = start_of_search.turn_deg;
+    // Far below the usual overlap ICP ran into a wrong minimum, even above min_overlap (a
+    // walker's turn and step both off the prediction).
+    const double usual = usual_overlap();
+    const bool suspect =
+        last_icp_.overlap < config_.min_overlap || last_icp_.overlap < config_.recovery_overlap_ratio * usual;
+    if (suspect && config_.recovery_search_m > 0.0) {
       const Pose3 again = recovery_start(source, prediction);
       const IcpResult retry = register_from(source, again, sigma);
       if (retry.overlap > last_icp_.overlap) {
@@ -344,11 +443,22 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
         start = again;
       }
     }
+    recent_overlaps_.push_back(last_icp_.overlap);
+    if (recent_overlaps_.size() > static_cast<std::size_t>(config_.recovery_window)) recent_overlaps_.pop_front();
     pose = last_icp_.pose;
+    if (swept && !last_icp_.lost) {
+      // The rigid pose fits the sweep as a whole; the sweep's own motion, found from there,
+      // gives the pose at the stamp and straightens the points the map takes.
+      SweepMotion prior;
+      prior.pose = pose;
+      last_sweep_ = align_sweep_to_map(source, source_times, map_, prior, sweep_);
+      if (last_sweep_.registered) pose = last_sweep_.pose;
+    }
     const Pose3 motion = poses_.back().inverse() * pose;
-    // The threshold learns from the start ICP was given: a turn the search found is no
-    // deviation of the motion model to widen every later search for.
-    threshold_.update(start.inverse() * pose, motion);
+    // The threshold learns what ICP bridged: from the start it was given (a turn the search
+    // found is no deviation of the motion model to widen every later search for) to its own
+    // rigid result (the sweep's stamp pose lies a sweep's motion away from what ICP can fit).
+    threshold_.update(start.inverse() * last_icp_.pose, motion, median_range(source));
     last_icp_.lost = last_icp_.overlap < config_.min_overlap;
   }
   if (last_icp_.lost) {
@@ -357,7 +467,11 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
     return pose;
   }
 
-  for (Eigen::Vector3d& p : frame) p = pose * p;  // to the world, in place: not needed after
+  if (swept && last_sweep_.registered) {
+    for (std::size_t i = 0; i < frame.size(); ++i) frame[i] = pose * (last_sweep_.after(frame_times[i]) * frame[i]);
+  } else {
+    for (Eigen::Vector3d& p : frame) p = pose * p;  // to the world, in place: not needed after
+  }
   map_.add_points(frame);
   map_.remove_far(pose.translation(), config_.max_range);
   poses_.push_back(pose);

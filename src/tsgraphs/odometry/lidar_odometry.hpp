@@ -6,11 +6,14 @@
 /// "no motion" by the scan's own rings on the floor, which move with the sensor (on the
 /// simulated office it lost 1.2 m in the first 2 m of a corridor).
 #include <cstddef>
+#include <deque>
+#include <utility>
 #include <vector>
 
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/odometry/adaptive_threshold.hpp"
+#include "tsgraphs/odometry/sweep_registration.hpp"
 #include "tsgraphs/odometry/voxel_hash_map.hpp"
 
 namespace tsgraphs::odometry {
@@ -31,6 +34,12 @@ struct LidarOdometryConfig {
                                                ///< abruptly (in place, 90 deg/s) must stay within ICP's reach
   double fine_threshold = 0.5;                 ///< once converged, ICP goes on with this threshold (m) when its own was
                                                ///< wider, so that the wrong pairs a wide start let in stop pulling (0: off)
+  bool extrapolate_tilt = false;               ///< the prediction repeats the last change of roll and pitch too; false:
+                                               ///< it repeats the last turn about z and holds the tilt, since a carried
+                                               ///< sensor's tilt swings back at every step (repeating it doubles the error)
+  bool sweep_motion = true;                    ///< a scan with per-point times is registered once more with the sensor's
+                                               ///< motion during its sweep among the unknowns (sweep_registration.hpp):
+                                               ///< its pose is then the stamp's and the map takes it de-skewed
   double min_motion = 0.1;                     ///< a scan teaches the threshold only if it moved this much (m, at max_range)
   double correspondence_factor = 3.0;          ///< correspondences farther than threshold * this are ignored
   double kernel_divisor = 3.0;                 ///< Geman-McClure kernel scale = threshold / this (m)
@@ -42,6 +51,11 @@ struct LidarOdometryConfig {
                                                ///< sensor at 2 Hz turns 45 deg between scans, after a standstill too
   double yaw_search_step_deg = 5.0;            ///< the turns tried are this far apart (ICP closes the rest)
   int yaw_search_points = 1000;                ///< scan points scored per guess (spread over the scan)
+  int yaw_search_candidates = 3;               ///< when the search moves the start, ICP runs from this many starts (its best
+                                               ///< turn, the prediction, the next best turns apart from them) and goes on
+                                               ///< from the result that overlaps the map most: a coarse turn's overlap can
+                                               ///< favour a wrong turn among repeated shelves; after ICP the right one fits
+  int yaw_search_candidate_iterations = 10;    ///< ICP iterations each of those starts gets before one is chosen
   double yaw_search_margin = 0.1;              ///< a guess replaces the prediction when it places this much larger a share
                                                ///< of the points in occupied map voxels (at 10 Hz the prediction stays)
   double min_overlap = 0.3;                    ///< a scan whose share of points in occupied map voxels ends below this
@@ -51,6 +65,10 @@ struct LidarOdometryConfig {
                                                ///< apart) of the prediction and of the last pose (the first step of a 2 Hz
                                                ///< walk: 0.6 m from a prediction of standing still); 0: off
   double recovery_turn_step_deg = 10.0;        ///< the turns tried there are this far apart (ICP closes the rest)
+  double recovery_overlap_ratio = 0.7;         ///< a scan is searched again too when its overlap ends below this share of
+                                               ///< the median of the last recovery_window scans' (ICP ran into a wrong
+                                               ///< minimum: a walker's turn and step both off the prediction); 0: off
+  int recovery_window = 20;                    ///< scans whose overlaps make that median
   int recovery_points = 250;                   ///< scan points scored per guess there (a few thousand guesses)
   int reduction_grain = 256;                   ///< points per block of the parallel reduction (fixed: the sums are
                                                ///< then added in the same order whatever the threads)
@@ -70,6 +88,8 @@ struct LidarOdometryConfig {
     v("initial_threshold", initial_threshold);
     v("min_threshold", min_threshold);
     v("fine_threshold", fine_threshold);
+    v("extrapolate_tilt", extrapolate_tilt);
+    v("sweep_motion", sweep_motion);
     v("min_motion", min_motion);
     v("correspondence_factor", correspondence_factor);
     v("kernel_divisor", kernel_divisor);
@@ -79,10 +99,14 @@ struct LidarOdometryConfig {
     v("yaw_search_deg", yaw_search_deg);
     v("yaw_search_step_deg", yaw_search_step_deg);
     v("yaw_search_points", yaw_search_points);
+    v("yaw_search_candidates", yaw_search_candidates);
+    v("yaw_search_candidate_iterations", yaw_search_candidate_iterations);
     v("yaw_search_margin", yaw_search_margin);
     v("min_overlap", min_overlap);
     v("recovery_search_m", recovery_search_m);
     v("recovery_turn_step_deg", recovery_turn_step_deg);
+    v("recovery_overlap_ratio", recovery_overlap_ratio);
+    v("recovery_window", recovery_window);
     v("recovery_points", recovery_points);
     v("reduction_grain", reduction_grain);
   }
@@ -131,16 +155,24 @@ IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHa
 class LidarOdometry {
  public:
   /// std::invalid_argument for a config out of range (LidarOdometryConfig::validate).
-  explicit LidarOdometry(LidarOdometryConfig config = {});
+  /// `first_pose`: the first scan's pose in the odometry frame. The frame's z is taken as up
+  /// (the yaw search turns about it, the prediction holds the tilt against it), so a caller that
+  /// knows the gravity (floor_levelling.hpp, a level mount) passes a pose that levels the map.
+  /// `sweep`: the sweep registration's settings (sweep_motion).
+  explicit LidarOdometry(LidarOdometryConfig config = {}, const Pose3& first_pose = Pose3::Identity(),
+                         SweepRegistrationConfig sweep = {});
 
   /// Registers the next scan (sensor frame) and returns its sensor pose in the odometry frame
-  /// (the first scan's frame: the first pose is the identity). A scan with no usable point
-  /// keeps the constant-velocity prediction and leaves the map as it is.
+  /// (the first pose is first_pose). A scan with no usable point keeps the prediction and
+  /// leaves the map as it is.
   Pose3 register_scan(const PointCloud& scan);
 
   /// The last motion between two registered scans (the constant-velocity model's), in the
   /// earlier scan's frame; the identity before the second scan.
   Pose3 last_motion() const;
+  /// The prediction of the next pose from the last two: constant velocity, the tilt held
+  /// unless extrapolate_tilt (the first pose before any scan, the last pose after one).
+  Pose3 predict() const;
   /// One pose per registered scan.
   const std::vector<Pose3>& poses() const { return poses_; }
   const VoxelHashMap& local_map() const { return map_; }
@@ -148,6 +180,8 @@ class LidarOdometry {
   double threshold() const;
   /// ICP details of the last scan (iterations 0 when it was not registered).
   const IcpResult& last_icp() const { return last_icp_; }
+  /// The last scan's sweep registration (registered false when it had none: sweep_motion).
+  const SweepMotion& last_sweep() const { return last_sweep_; }
   /// Indices (in registration order) of the scans reported lost: too few of their points matched
   /// the map (a degenerate scan, a turn beyond the search). Their pose is kept as registered,
   /// but the map does not take their points, so a wrong pose is not built into it.
@@ -155,10 +189,20 @@ class LidarOdometry {
   const LidarOdometryConfig& config() const { return config_; }
 
  private:
-  Pose3 predict() const;
-  /// The start for ICP: the prediction, or the turn of it or of the last pose (standing still)
-  /// that overlaps the map clearly better (yaw_search_*); sets last_icp_.turn_searched_deg.
-  Pose3 initial_guess(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction);
+  struct Start {
+    Pose3 pose;
+    double turn_deg;  ///< the turn the yaw search gave it (0: the prediction)
+  };
+  /// The starts for ICP: the prediction alone, or, when a turn of it or of the last pose
+  /// (standing still) overlaps the map clearly better (yaw_search_*), that turn, the prediction
+  /// and the next best turns apart from it, yaw_search_candidates in all.
+  std::vector<Start> initial_guesses(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction) const;
+  /// Of initial_guesses, the start whose result after yaw_search_candidate_iterations of ICP
+  /// overlaps the map most, and that result (the pose full ICP goes on from).
+  std::pair<Start, Pose3> choose_start(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction,
+                                       double sigma) const;
+  /// The median overlap of the last recovery_window registered scans (0 before any).
+  double usual_overlap() const;
   /// ICP from `start` with threshold `sigma`, then with fine_threshold's; the overlap at the end.
   IcpResult register_from(const std::vector<Eigen::Vector3d>& source, const Pose3& start, double sigma) const;
   /// The start that overlaps the map best among turns and shifts (recovery_search_m).
@@ -167,11 +211,15 @@ class LidarOdometry {
   std::size_t overlap_stride(const std::vector<Eigen::Vector3d>& source) const;
 
   LidarOdometryConfig config_;
+  SweepRegistrationConfig sweep_;
+  Pose3 first_pose_;
   VoxelHashMap map_;
   AdaptiveThreshold threshold_;
   std::vector<Pose3> poses_;
   IcpResult last_icp_;
+  SweepMotion last_sweep_;
   std::vector<std::size_t> lost_;
+  std::deque<double> recent_overlaps_;
 };
 
 }  // namespace tsgraphs::odometry

@@ -8,7 +8,7 @@ std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, const Lid
                                      const std::function<void(std::size_t, std::size_t)>& progress,
                                      const Pose3& initial_pose, std::vector<std::size_t>* lost,
                                      std::vector<double>* overlaps) {
-  LidarOdometry odometry(config);
+  LidarOdometry odometry(config, initial_pose);
   const std::size_t n = sequence.size();
   std::vector<Pose3> poses;
   poses.reserve(n);
@@ -21,7 +21,7 @@ std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, const Lid
     tbb::task_group reader;
     if (k + 1 < n) reader.run([&] { next = sequence.scan(k + 1); });
     try {
-      poses.push_back(initial_pose * odometry.register_scan(current));
+      poses.push_back(odometry.register_scan(current));
     } catch (...) {
       reader.wait();
       throw;

@@ -12,8 +12,8 @@ namespace tsgraphs::odometry {
 
 /// Registers every scan of `sequence` in order (as they are: deskew.hpp, sweep_motion) and
 /// returns one sensor pose per scan:
-/// `initial_pose` * (the odometry pose, identity at the first scan), so that a caller can
-/// anchor the odometry frame, e.g. at the first ground-truth pose or the sensor's mount tilt.
+/// the first is `initial_pose`, so that a caller can anchor the odometry frame, e.g. at the
+/// first ground-truth pose or the sensor's mount tilt (LidarOdometry: its z is taken as up).
 /// `progress(done, total)` after each scan. Input errors of the sequence propagate. `lost`
 /// (optional) gets the indices of the scans the odometry reported lost; `overlaps` (optional)
 /// each scan's final voxel overlap.

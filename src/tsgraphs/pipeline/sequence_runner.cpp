@@ -83,7 +83,8 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
   };
   tell_warnings();
   std::optional<odometry::LidarOdometry> lidar_odometry;
-  if (odometry.estimate) lidar_odometry.emplace(pipeline.config().lidar_odometry);
+  if (odometry.estimate)
+    lidar_odometry.emplace(pipeline.config().lidar_odometry, odometry.initial_pose, pipeline.config().deskew.registration);
   // Reading and the per-scan steps (prefilter, ground) run in parallel on the next scans;
   // the odometry and the pipeline take them in order, so the result is the same as one scan
   // at a time.
@@ -129,11 +130,15 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
                                            [&](Loaded l) {
                                              // An unreadable scan is empty here: the odometry keeps its prediction.
                                              l.odom = lidar_odometry
-                                                          ? odometry.initial_pose * lidar_odometry->register_scan(l.scan)
+                                                          ? lidar_odometry->register_scan(l.scan)
                                                           : info.odometry[l.index];
                                              // De-skewed after the odometry: its motion into this scan is the
                                              // nearest to the sweep it knows (deskew.hpp, sweep_motion).
-                                             if (deskew.enabled && l.scan.has_times()) {
+                                             if (deskew.enabled && l.scan.has_times() && lidar_odometry &&
+                                                 lidar_odometry->last_sweep().registered) {
+                                               // The odometry registered the sweep with its motion already.
+                                               l.scan = odometry::deskew(l.scan, lidar_odometry->last_sweep().after(1.0), 1.0);
+                                             } else if (deskew.enabled && l.scan.has_times()) {
                                                const auto [motion, interval] = odometry::sweep_motion(
                                                    l.index, info.times, info.odometry,
                                                    lidar_odometry ? &*lidar_odometry : nullptr);
