@@ -348,7 +348,7 @@ IcpResult LidarOdometry::register_from(const std::vector<Eigen::Vector3d>& sourc
                                   sigma / config_.kernel_divisor, config_);
   // The threshold is the prediction's uncertainty: at 2 Hz, or swaying, metres, so the kernel
   // first lets in pairs of wrong neighbours, and they bias the pose they helped to reach.
-  // From there ICP continues with a kernel as narrow as the threshold ever gets.
+  // From there ICP continues with fine_threshold's narrow kernel.
   if (config_.fine_threshold > 0.0 && sigma > config_.fine_threshold &&
       result.num_correspondences >= static_cast<std::size_t>(config_.min_correspondences)) {
     const double fine = config_.fine_threshold;
@@ -375,6 +375,7 @@ Pose3 LidarOdometry::recovery_start(const std::vector<Eigen::Vector3d>& source, 
   const std::size_t stride =
       std::max<std::size_t>(1, source.size() / static_cast<std::size_t>(config_.recovery_points));
   double best = -1.0;
+  int best_size = 0;  // of equal scores the smallest turn and shift wins: along a corridor every shift fits
   Pose3 best_pose = prediction;
   const double step = config_.voxel_size;  // a shift by less changes which voxels the points fall in little
   const int reach = static_cast<int>(std::floor(config_.recovery_search_m / step + 1e-9));
@@ -391,8 +392,10 @@ Pose3 LidarOdometry::recovery_start(const std::vector<Eigen::Vector3d>& source, 
           Pose3 guess = turned;
           guess.translation() += Eigen::Vector3d(i * step, j * step, 0.0);
           const double score = voxel_overlap(source, map_, guess, stride);
-          if (score > best) {  // strict: the first of equals in this fixed order wins
+          const int size = t * t + i * i + j * j;
+          if (score > best || (score == best && size < best_size)) {  // then the first in this fixed order
             best = score;
+            best_size = size;
             best_pose = guess;
           }
         }

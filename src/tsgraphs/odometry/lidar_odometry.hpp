@@ -30,8 +30,9 @@ struct LidarOdometryConfig {
   double plane_min_spread_factor = 0.15;       ///< a flat voxel spreads >= voxel_size * this (m, sd) both ways
   double plane_max_thickness_ratio = 0.3;      ///< a flat voxel is at most this thick (sd) for its width (sd)
   double initial_threshold = 2.0;              ///< correspondence threshold (m) until the robot has moved
-  double min_threshold = 0.5;                  ///< the adaptive threshold never goes below this (m): turns that start
-                                               ///< abruptly (in place, 90 deg/s) must stay within ICP's reach
+  double min_threshold = 1.0;                  ///< the adaptive threshold never goes below this (m): a scan 0.5 s after the
+                                               ///< last, its carrier 1 m/s off the constant velocity, is 0.5 m off the
+                                               ///< prediction, and the kernel (a third of the threshold) must still reach it
   double fine_threshold = 0.5;                 ///< once converged, ICP goes on with this threshold (m) when its own was
                                                ///< wider, so that the wrong pairs a wide start let in stop pulling (0: off)
   bool extrapolate_tilt = false;               ///< the prediction repeats the last change of roll and pitch too; false:

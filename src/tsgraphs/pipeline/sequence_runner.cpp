@@ -132,11 +132,11 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
                                              l.odom = lidar_odometry
                                                           ? lidar_odometry->register_scan(l.scan)
                                                           : info.odometry[l.index];
-                                             // De-skewed after the odometry: its motion into this scan is the
-                                             // nearest to the sweep it knows (deskew.hpp, sweep_motion).
+                                             // De-skewed after the odometry: with the motion its sweep
+                                             // registration found, else with the poses' motion or a
+                                             // registration of the sweep's own (deskew.hpp, sweep_motion).
                                              if (deskew.enabled && l.scan.has_times() && lidar_odometry &&
                                                  lidar_odometry->last_sweep().registered) {
-                                               // The odometry registered the sweep with its motion already.
                                                l.scan = odometry::deskew(l.scan, lidar_odometry->last_sweep().after(1.0), 1.0);
                                              } else if (deskew.enabled && l.scan.has_times()) {
                                                const auto [motion, interval] = odometry::sweep_motion(
