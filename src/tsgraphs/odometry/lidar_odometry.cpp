@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "tsgraphs/core/voxel_grid.hpp"
 #include "tsgraphs/odometry/se3.hpp"
@@ -85,21 +86,29 @@ void thin(const std::vector<Eigen::Vector3d>& points, const std::vector<double>&
   }
 }
 
+/// The median of `values` (0 when empty).
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
 /// The median distance of `points` from the sensor (0 when there are none).
 double median_range(const std::vector<Eigen::Vector3d>& points) {
-  if (points.empty()) return 0.0;
   std::vector<double> r;
   r.reserve(points.size());
   for (const Eigen::Vector3d& p : points) r.push_back(p.norm());
-  std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2), r.end());
-  return r[r.size() / 2];
+  return median(std::move(r));
 }
 
-/// Whether the times span a sweep (a scan taken at one instant has nothing to de-skew).
+/// Whether the times are all finite and span a sweep (a scan taken at one instant has nothing
+/// to de-skew).
 bool spans_time(const std::vector<double>& times) {
-  if (times.empty()) return false;
+  if (times.empty() || !std::all_of(times.begin(), times.end(), [](double t) { return std::isfinite(t); }))
+    return false;
   const auto [lo, hi] = std::minmax_element(times.begin(), times.end());
-  return std::isfinite(*lo) && std::isfinite(*hi) && *hi > *lo;
+  return *hi > *lo;
 }
 
 }  // namespace
@@ -336,10 +345,7 @@ std::pair<LidarOdometry::Start, Pose3> LidarOdometry::choose_start(const std::ve
 }
 
 double LidarOdometry::usual_overlap() const {
-  if (recent_overlaps_.empty()) return 0.0;
-  std::vector<double> r(recent_overlaps_.begin(), recent_overlaps_.end());
-  std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2), r.end());
-  return r[r.size() / 2];
+  return median(std::vector<double>(recent_overlaps_.begin(), recent_overlaps_.end()));
 }
 
 IcpResult LidarOdometry::register_from(const std::vector<Eigen::Vector3d>& source, const Pose3& start,
@@ -422,8 +428,7 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
     return prediction;
   }
   thin(frame, frame_times, config_.voxel_size * config_.registration_voxel_factor, source, source_times);
-  const bool swept = config_.sweep_motion && spans_time(frame_times) &&
-                     std::all_of(frame_times.begin(), frame_times.end(), [](double t) { return std::isfinite(t); });
+  const bool swept = config_.sweep_motion && spans_time(frame_times);
 
   Pose3 pose = prediction;
   if (!map_.empty()) {
