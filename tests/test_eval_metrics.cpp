@@ -32,6 +32,25 @@ TEST(TrajectoryMetrics, AteRmseAlignsTheFirstPose) {
   EXPECT_THROW(ate_rmse(est, {truth[0]}), std::invalid_argument);
 }
 
+TEST(TrajectoryMetrics, SegmentDriftIsTheRelativeErrorOverEachLength) {
+  // A straight 10 m walk, 1 m a pose, whose estimate is 10 % short: every segment is 10 % off,
+  // wherever it starts and whatever frame the estimate is in.
+  std::vector<Pose3> truth, est;
+  const Pose3 other = make_pose({3, -2, 1}, 0.7);
+  for (int i = 0; i <= 10; ++i) {
+    truth.push_back(make_pose({i * 1.0, 0, 0}, 0.0));
+    est.push_back(other * make_pose({i * 0.9, 0, 0}, 0.0));
+  }
+  EXPECT_NEAR(segment_drift(est, truth, {2.0, 5.0}), 0.1, 1e-9);
+  // A 1 m jump between poses 4 and 5 counts in the segments across it only: of the 2 m ones
+  // (starts 0-8), the two that span it are 1 m off (0.5 of their length), the rest none.
+  std::vector<Pose3> jump = truth;
+  for (int i = 5; i <= 10; ++i) jump[i].translation().y() += 1.0;
+  EXPECT_NEAR(segment_drift(jump, truth, {2.0}), 2 * 0.5 / 9.0, 1e-9);
+  EXPECT_EQ(segment_drift(est, truth, {20.0}), -1.0);  // longer than the path
+  EXPECT_THROW(segment_drift(est, {truth[0]}, {2.0}), std::invalid_argument);
+}
+
 namespace {
 
 const char* kScene = R"(
