@@ -1,18 +1,20 @@
 // LiDAR odometry over a whole sequence folder: drift against groundtruth.txt and speed.
 //   bench_odometry SEQ_DIR [--threads N] [--voxel-size M] [--convergence X] [--max-iterations N]
 //                  [--point-to-point 1] [--out-tum FILE] [--every N] [--yaw-search DEG]
-//                  [--fine-threshold M] [--recovery-search M] [--extrapolate-tilt 0|1]
+//                  [--fine-threshold M] [--recovery-search M] [--tilt hold|repeat|auto]
 //                  [--yaw-candidates N] [--sweep-motion 0|1]
 // --every N: every N-th scan only (a 10 Hz sequence seen at 10 / N Hz). --yaw-search DEG: the
 // initial guess's search (lidar_odometry.yaw_search_deg; 0: the constant-velocity prediction alone).
 // --fine-threshold, --recovery-search: lidar_odometry.fine_threshold and recovery_search_m (0: off).
-// --extrapolate-tilt, --yaw-candidates, --sweep-motion: lidar_odometry.extrapolate_tilt,
+// --tilt, --yaw-candidates, --sweep-motion: lidar_odometry.tilt_prediction,
 // yaw_search_candidates, sweep_motion.
 // The odometry runs in the frame `run` gives it (level with the floor under the first scan).
 // ATE: the RMS position error over every scan, the estimate anchored at the first ground-truth
 // pose (no further alignment: drift counts). Drift: the estimate is anchored at the first ground-truth pose; the position error is given
 // as a share of the path length travelled so far (at the end of lap 1, and its maximum over the
 // run once the path is at least kMinPathForRatio long, so the first metres do not divide by ~0).
+// Segment drift: the KITTI benchmark's relative translation error (eval::segment_drift) over
+// kSegmentLengths.
 // Step error: each scan's motion from the one before against the truth's (RPE over one scan).
 // Speed: wall time of the whole run (reading included) against the scans' time span.
 #include <tbb/global_control.h>
@@ -28,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "tsgraphs/eval/trajectory_metrics.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/subsampled_sequence.hpp"
 #include "tsgraphs/odometry/floor_levelling.hpp"
@@ -40,6 +43,9 @@ constexpr double kMinPathForRatio = 10.0;  // m
 constexpr double kRadToDeg = 180.0 / M_PI;
 constexpr double kFailedStepDeg = 5.0;  // a step this far off in rotation is a failure, not noise
 constexpr double kWrongTurnDeg = 15.0;  // a heading this far off is a wrong turn taken, not drift
+// Segment drift's lengths: KITTI's 100-800 m are longer than a floor's walk; these span a room
+// to a lap of a floor.
+const std::vector<double> kSegmentLengths = {10.0, 20.0, 50.0, 100.0, 200.0};
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -68,7 +74,7 @@ int main(int argc, char** argv) {
     else if (a == "--fine-threshold") config.fine_threshold = std::atof(argv[i + 1]);
     else if (a == "--sweep-motion") config.sweep_motion = std::atoi(argv[i + 1]) != 0;
     else if (a == "--yaw-candidates") config.yaw_search_candidates = std::atoi(argv[i + 1]);
-    else if (a == "--extrapolate-tilt") config.extrapolate_tilt = std::atoi(argv[i + 1]) != 0;
+    else if (a == "--tilt") config.tilt_prediction = argv[i + 1];
     else if (a == "--every") every = static_cast<std::size_t>(std::max(1, std::atoi(argv[i + 1])));
     else {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());
@@ -163,6 +169,8 @@ int main(int argc, char** argv) {
   }
   std::printf("max drift       %.3f %% (at %.1f m; ratios from %.0f m on)\n", 100.0 * max_ratio, max_ratio_at,
               kMinPathForRatio);
+  const double seg = eval::segment_drift(poses, info.groundtruth, kSegmentLengths);
+  std::printf("segment drift   %.3f %% (KITTI-style: mean over segments of 10, 20, 50, 100, 200 m)\n", 100.0 * seg);
   std::printf("final error     %.3f m = %.3f %%, yaw %.3f deg\n", final_err, 100.0 * final_err / path, final_yaw);
   // Step error (RPE over one scan): each scan's motion from the one before against the truth's.
   // Unlike ATE it does not hang on the first failure of a walk, so it compares odometries

@@ -258,9 +258,9 @@ TEST(LidarOdometry, ThePredictionRepeatsTheTurnAboutZAndHoldsTheTilt) {
   Pose3 second = first;
   second.translation() += Eigen::Vector3d(0.3, 0.1, 0.0);
   second.linear() = yaw * first.linear() * Eigen::AngleAxisd(4.0 / kRadToDeg, Eigen::Vector3d::UnitX());
-  const auto predict = [&](bool extrapolate_tilt) {
+  const auto predict = [&](bool repeat) {
     LidarOdometryConfig config;
-    config.extrapolate_tilt = extrapolate_tilt;
+    config.tilt_prediction = repeat ? "repeat" : "hold";
     LidarOdometry odom(config, first);
     odom.register_scan(scan_at(world, first, 1));
     odom.register_scan(scan_at(world, second, 2));
@@ -276,6 +276,33 @@ TEST(LidarOdometry, ThePredictionRepeatsTheTurnAboutZAndHoldsTheTilt) {
   const Eigen::Vector3d step = yaw * (second.translation() - first.translation());
   EXPECT_LT((held.translation() - (second.translation() + step)).norm(), 0.01);
   EXPECT_NEAR(tilt_deg(predict(true)), 8.0, 0.3);  // repeated, the roll doubles
+}
+
+TEST(LidarOdometry, AutoRepeatsTheTiltWhenItsChangeGoesOnAndHoldsItWhenItSwingsBack) {
+  // 3 degrees of roll a scan: swinging back and forth (a carried sensor at 2 Hz) holding
+  // predicts the next tilt better; rolling on (at 10 Hz the sway goes on between scans)
+  // repeating does.
+  const auto world = synthetic_room();
+  const auto truth = arc_poses(8);
+  const auto repeats_after = [&](bool swings) {
+    LidarOdometryConfig config;
+    config.tilt_window = 3;
+    LidarOdometry odom(config, truth[0]);
+    std::vector<bool> repeats;
+    for (std::size_t k = 0; k < truth.size(); ++k) {
+      const double roll_deg = swings ? 3.0 * static_cast<double>(k % 2) : 3.0 * static_cast<double>(k);
+      Pose3 tilted = truth[k];
+      tilted.linear() = tilted.linear() * Eigen::AngleAxisd(roll_deg / kRadToDeg, Eigen::Vector3d::UnitX());
+      odom.register_scan(scan_at(world, tilted, static_cast<std::uint32_t>(k)));
+      repeats.push_back(odom.repeats_tilt());
+    }
+    return repeats;
+  };
+  const std::vector<bool> rolling = repeats_after(false), swinging = repeats_after(true);
+  // Two poses make the first prediction, three scored scans fill the window.
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_FALSE(rolling[k]) << k;  // holds until it knows
+  for (std::size_t k = 4; k < rolling.size(); ++k) EXPECT_TRUE(rolling[k]) << k;
+  for (std::size_t k = 0; k < swinging.size(); ++k) EXPECT_FALSE(swinging[k]) << k;
 }
 
 TEST(LidarOdometry, RejectsBadConfigs) {
@@ -295,6 +322,8 @@ TEST(LidarOdometry, RejectsBadConfigs) {
   EXPECT_THROW(LidarOdometry(bad([](auto& c) { c.recovery_points = 0; })), std::invalid_argument);
   EXPECT_THROW(LidarOdometry(bad([](auto& c) { c.yaw_search_candidates = 0; })), std::invalid_argument);
   EXPECT_THROW(LidarOdometry(bad([](auto& c) { c.min_correspondences = 3; })), std::invalid_argument);
+  EXPECT_THROW(LidarOdometry(bad([](auto& c) { c.tilt_prediction = "extrapolate"; })), std::invalid_argument);
+  EXPECT_THROW(LidarOdometry(bad([](auto& c) { c.tilt_window = 0; })), std::invalid_argument);
   EXPECT_NO_THROW(LidarOdometry{});
 }
 

@@ -160,6 +160,9 @@ void LidarOdometryConfig::validate() const {
   if (recovery_points < 10 || recovery_points > 1000000) fail("recovery_points must be in [10, 1000000]");
   if (!(recovery_overlap_ratio >= 0.0 && recovery_overlap_ratio <= 1.0)) fail("recovery_overlap_ratio must be in [0, 1]");
   if (recovery_window < 1 || recovery_window > 10000) fail("recovery_window must be in [1, 10000]");
+  if (tilt_prediction != "auto" && tilt_prediction != "hold" && tilt_prediction != "repeat")
+    fail("tilt_prediction must be auto, hold or repeat, not '" + tilt_prediction + "'");
+  if (tilt_window < 1 || tilt_window > 10000) fail("tilt_window must be in [1, 10000]");
 }
 
 IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map, const Pose3& initial_guess,
@@ -252,12 +255,25 @@ Pose3 LidarOdometry::last_motion() const {
   return poses_[poses_.size() - 2].inverse() * poses_.back();
 }
 
-Pose3 LidarOdometry::predict() const {
+Pose3 LidarOdometry::predict() const { return predict(repeats_tilt()); }
+
+bool LidarOdometry::repeats_tilt() const {
+  if (config_.tilt_prediction != "auto") return config_.tilt_prediction == "repeat";
+  if (tilt_errors_.size() < static_cast<std::size_t>(config_.tilt_window)) return false;
+  double held = 0.0, repeated = 0.0;
+  for (const auto& [h, r] : tilt_errors_) {
+    held += h;
+    repeated += r;
+  }
+  return repeated < held;
+}
+
+Pose3 LidarOdometry::predict(bool repeat_tilt) const {
   if (poses_.empty()) return first_pose_;
   if (poses_.size() == 1) return poses_.back();
   const Pose3& last = poses_.back();
   const Pose3& before = poses_[poses_.size() - 2];
-  if (config_.extrapolate_tilt) return last * (before.inverse() * last);  // repeat the last motion
+  if (repeat_tilt) return last * (before.inverse() * last);  // repeat the last motion
   // The last turn in the map's frame, reduced to its twist about z (swing-twist decomposition).
   const Eigen::Quaterniond turn(last.linear() * before.linear().transpose());
   const Eigen::AngleAxisd yaw(2.0 * std::atan2(turn.z(), turn.w()), Eigen::Vector3d::UnitZ());
@@ -265,6 +281,17 @@ Pose3 LidarOdometry::predict() const {
   next.linear() = yaw * last.linear();
   next.translation() = last.translation() + yaw * (last.translation() - before.translation());
   return next;
+}
+
+void LidarOdometry::score_tilt_predictions(const Pose3& pose) {
+  if (poses_.size() < 2) return;
+  // The tilt is where the map's up points in the sensor's frame: the turn about z drops out.
+  const auto up = [](const Pose3& T) -> Eigen::Vector3d { return T.linear().transpose() * Eigen::Vector3d::UnitZ(); };
+  const auto error = [&](const Pose3& predicted) {
+    return std::acos(std::clamp(up(predicted).dot(up(pose)), -1.0, 1.0));
+  };
+  tilt_errors_.emplace_back(error(predict(false)), error(predict(true)));
+  if (tilt_errors_.size() > static_cast<std::size_t>(config_.tilt_window)) tilt_errors_.pop_front();
 }
 
 double voxel_overlap(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map, const Pose3& pose,
@@ -482,6 +509,7 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
   }
   map_.add_points(frame);
   map_.remove_far(pose.translation(), config_.max_range);
+  score_tilt_predictions(pose);
   poses_.push_back(pose);
   return pose;
 }

@@ -7,6 +7,7 @@
 /// simulated office it lost 1.2 m in the first 2 m of a corridor).
 #include <cstddef>
 #include <deque>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -35,9 +36,13 @@ struct LidarOdometryConfig {
                                                ///< prediction, and the kernel (a third of the threshold) must still reach it
   double fine_threshold = 0.5;                 ///< once converged, ICP goes on with this threshold (m) when its own was
                                                ///< wider, so that the wrong pairs a wide start let in stop pulling (0: off)
-  bool extrapolate_tilt = false;               ///< the prediction repeats the last change of roll and pitch too; false:
-                                               ///< it repeats the last turn about z and holds the tilt, since a carried
-                                               ///< sensor's tilt swings back at every step (repeating it doubles the error)
+  std::string tilt_prediction = "auto";        ///< the prediction repeats the last turn about z and the last step, and of
+                                               ///< roll and pitch: "hold" holds them (a carried sensor's tilt swings back
+                                               ///< at every step: repeating its change doubles the error at 2 Hz),
+                                               ///< "repeat" repeats their last change (at 10 Hz the sway goes on between
+                                               ///< scans), "auto" does whichever predicted the last tilt_window scans'
+                                               ///< tilt better (hold until it knows)
+  int tilt_window = 10;                        ///< registered scans whose tilt errors "auto" compares
   bool sweep_motion = true;                    ///< a scan with per-point times is registered once more with the sensor's
                                                ///< motion during its sweep among the unknowns (sweep_registration.hpp):
                                                ///< its pose is then the stamp's and the map takes it de-skewed
@@ -89,7 +94,8 @@ struct LidarOdometryConfig {
     v("initial_threshold", initial_threshold);
     v("min_threshold", min_threshold);
     v("fine_threshold", fine_threshold);
-    v("extrapolate_tilt", extrapolate_tilt);
+    v("tilt_prediction", tilt_prediction);
+    v("tilt_window", tilt_window);
     v("sweep_motion", sweep_motion);
     v("min_motion", min_motion);
     v("correspondence_factor", correspondence_factor);
@@ -171,9 +177,11 @@ class LidarOdometry {
   /// The last motion between two registered scans (the constant-velocity model's), in the
   /// earlier scan's frame; the identity before the second scan.
   Pose3 last_motion() const;
-  /// The prediction of the next pose from the last two: constant velocity, the tilt held
-  /// unless extrapolate_tilt (the first pose before any scan, the last pose after one).
+  /// The prediction of the next pose from the last two: constant velocity, the tilt held or
+  /// repeated as tilt_prediction says (the first pose before any scan, the last pose after one).
   Pose3 predict() const;
+  /// Whether predict() repeats the change of tilt now (tilt_prediction; "auto" learns it).
+  bool repeats_tilt() const;
   /// One pose per registered scan.
   const std::vector<Pose3>& poses() const { return poses_; }
   const VoxelHashMap& local_map() const { return map_; }
@@ -208,6 +216,10 @@ class LidarOdometry {
   IcpResult register_from(const std::vector<Eigen::Vector3d>& source, const Pose3& start, double sigma) const;
   /// The start that overlaps the map best among turns and shifts (recovery_search_m).
   Pose3 recovery_start(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction) const;
+  /// predict() with the tilt held or repeated.
+  Pose3 predict(bool repeat_tilt) const;
+  /// Records how far each of the two tilt predictions was from `pose`, the next registered pose.
+  void score_tilt_predictions(const Pose3& pose);
   /// Every how many source points voxel_overlap looks at (yaw_search_points of them).
   std::size_t overlap_stride(const std::vector<Eigen::Vector3d>& source) const;
 
@@ -221,6 +233,7 @@ class LidarOdometry {
   SweepMotion last_sweep_;
   std::vector<std::size_t> lost_;
   std::deque<double> recent_overlaps_;
+  std::deque<std::pair<double, double>> tilt_errors_;  ///< (held, repeated) tilt error of the last scans (rad)
 };
 
 }  // namespace tsgraphs::odometry
