@@ -92,7 +92,7 @@ void convert(const io::ScanSequence& sequence, const std::string& out, const pip
   for (std::size_t i = 0; i < sequence.size(); ++i) {
     const PointCloud scan = sequence.scan(i);
     writer.write_scan(i, scan);
-    if (lidar_odometry) info.odometry.push_back(lidar_odometry->register_scan(scan));
+    if (lidar_odometry) info.odometry.push_back(lidar_odometry->register_scan(scan, info.times[i]));
     progress.update(i + 1, sequence.size());
   }
   writer.commit(info);

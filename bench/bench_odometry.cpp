@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
     else if (a == "--sweep-motion") config.sweep_motion = std::atoi(argv[i + 1]) != 0;
     else if (a == "--yaw-candidates") config.yaw_search_candidates = std::atoi(argv[i + 1]);
     else if (a == "--tilt") config.tilt_prediction = argv[i + 1];
+    else if (a == "--turn-from-sweep") config.turn_from_sweep = std::atoi(argv[i + 1]) != 0;
     else if (a == "--every") every = static_cast<std::size_t>(std::max(1, std::atoi(argv[i + 1])));
     else {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());

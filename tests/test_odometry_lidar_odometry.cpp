@@ -305,6 +305,47 @@ TEST(LidarOdometry, AutoRepeatsTheTiltWhenItsChangeGoesOnAndHoldsItWhenItSwingsB
   for (std::size_t k = 0; k < swinging.size(); ++k) EXPECT_FALSE(swinging[k]) << k;
 }
 
+TEST(LidarOdometry, GivenStampsThePredictionTurnsAtTheLastSweepsTurnRate) {
+  // A walker at 2 Hz: standing still at the first scan, 5 degrees turned at the second, half a
+  // second later, and turning at 40 deg/s during its sweep. Over the next half second that
+  // rate turns 20 degrees; repeating the last turn, 5.
+  const auto world = synthetic_room();
+  const Pose3 first = make_pose(Eigen::Vector3d(-1.0, -0.5, 0.3), 0.2);
+  Pose3 second = first;
+  second.linear() = Eigen::AngleAxisd(5.0 / kRadToDeg, Eigen::Vector3d::UnitZ()) * first.linear();
+  const double rate = 40.0 / kRadToDeg;
+  // The swept scan: each point measured at its azimuth's time in a 0.1 s sweep around the stamp.
+  PointCloud swept;
+  std::mt19937 rng(2);
+  std::bernoulli_distribution keep(0.5);
+  for (const Eigen::Vector3d& p : world) {
+    if (!keep(rng)) continue;
+    const Eigen::Vector3d at_stamp = second.inverse() * p;
+    const double t = 0.1 * (std::atan2(at_stamp.y(), at_stamp.x()) / (2.0 * M_PI));
+    Pose3 at_time = second;
+    at_time.linear() = second.linear() * Eigen::AngleAxisd(rate * t, Eigen::Vector3d::UnitZ());
+    swept.points.push_back((at_time.inverse() * p).cast<float>());
+    swept.times.push_back(static_cast<float>(t));
+  }
+  const auto turn_deg = [](const Pose3& from, const Pose3& to) {
+    const Eigen::Quaterniond q(to.linear() * from.linear().transpose());
+    return 2.0 * std::atan2(q.z(), q.w()) * kRadToDeg;
+  };
+  LidarOdometry odom(LidarOdometryConfig{}, first);
+  odom.register_scan(scan_at(world, first, 1), 0.0);
+  const Pose3 registered = odom.register_scan(swept, 0.5);
+  ASSERT_TRUE(odom.last_sweep().registered);
+  EXPECT_NEAR(turn_deg(first, registered), 5.0, 0.5);
+  EXPECT_NEAR(turn_deg(registered, odom.predict(0.5)), 20.0, 3.0);
+  EXPECT_NEAR(turn_deg(registered, odom.predict()), 5.0, 0.5);  // no time given: the last turn
+  LidarOdometryConfig off;
+  off.turn_from_sweep = false;
+  LidarOdometry without(off, first);
+  without.register_scan(scan_at(world, first, 1), 0.0);
+  without.register_scan(swept, 0.5);
+  EXPECT_NEAR(turn_deg(without.poses().back(), without.predict(0.5)), 5.0, 0.5);
+}
+
 TEST(LidarOdometry, RejectsBadConfigs) {
   auto bad = [](auto change) {
     LidarOdometryConfig c;

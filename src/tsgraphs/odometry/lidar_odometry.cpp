@@ -255,7 +255,7 @@ Pose3 LidarOdometry::last_motion() const {
   return poses_[poses_.size() - 2].inverse() * poses_.back();
 }
 
-Pose3 LidarOdometry::predict() const { return predict(repeats_tilt()); }
+Pose3 LidarOdometry::predict(double seconds) const { return predict_with(repeats_tilt(), seconds); }
 
 bool LidarOdometry::repeats_tilt() const {
   if (config_.tilt_prediction != "auto") return config_.tilt_prediction == "repeat";
@@ -268,15 +268,19 @@ bool LidarOdometry::repeats_tilt() const {
   return repeated < held;
 }
 
-Pose3 LidarOdometry::predict(bool repeat_tilt) const {
+Pose3 LidarOdometry::predict_with(bool repeat_tilt, double seconds) const {
   if (poses_.empty()) return first_pose_;
   if (poses_.size() == 1) return poses_.back();
   const Pose3& last = poses_.back();
   const Pose3& before = poses_[poses_.size() - 2];
   if (repeat_tilt) return last * (before.inverse() * last);  // repeat the last motion
-  // The last turn in the map's frame, reduced to its twist about z (swing-twist decomposition).
+  // The last turn in the map's frame, reduced to its twist about z (swing-twist decomposition);
+  // or the turn at the last sweep's rate about the map's z over the time to the next stamp.
   const Eigen::Quaterniond turn(last.linear() * before.linear().transpose());
-  const Eigen::AngleAxisd yaw(2.0 * std::atan2(turn.z(), turn.w()), Eigen::Vector3d::UnitZ());
+  double angle = 2.0 * std::atan2(turn.z(), turn.w());
+  if (config_.turn_from_sweep && last_sweep_.registered && seconds > 0.0 && std::isfinite(seconds))
+    angle = (last.linear() * last_sweep_.turn_rate).z() * seconds;
+  const Eigen::AngleAxisd yaw(angle, Eigen::Vector3d::UnitZ());
   Pose3 next = last;
   next.linear() = yaw * last.linear();
   next.translation() = last.translation() + yaw * (last.translation() - before.translation());
@@ -290,7 +294,8 @@ void LidarOdometry::score_tilt_predictions(const Pose3& pose) {
   const auto error = [&](const Pose3& predicted) {
     return std::acos(std::clamp(up(predicted).dot(up(pose)), -1.0, 1.0));
   };
-  tilt_errors_.emplace_back(error(predict(false)), error(predict(true)));
+  const double nan = std::numeric_limits<double>::quiet_NaN();  // the tilt does not depend on the turn
+  tilt_errors_.emplace_back(error(predict_with(false, nan)), error(predict_with(true, nan)));
   if (tilt_errors_.size() > static_cast<std::size_t>(config_.tilt_window)) tilt_errors_.pop_front();
 }
 
@@ -439,7 +444,12 @@ Pose3 LidarOdometry::recovery_start(const std::vector<Eigen::Vector3d>& source, 
 }
 
 Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
-  const Pose3 prediction = predict();
+  return register_scan(scan, std::numeric_limits<double>::quiet_NaN());
+}
+
+Pose3 LidarOdometry::register_scan(const PointCloud& scan, double stamp) {
+  const Pose3 prediction = predict(stamp - last_stamp_);
+  last_stamp_ = stamp;
   last_icp_ = IcpResult{};
   last_icp_.pose = prediction;
   last_sweep_ = SweepMotion{};

@@ -7,6 +7,7 @@
 /// simulated office it lost 1.2 m in the first 2 m of a corridor).
 #include <cstddef>
 #include <deque>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,6 +44,10 @@ struct LidarOdometryConfig {
                                                ///< scans), "auto" does whichever predicted the last tilt_window scans'
                                                ///< tilt better (hold until it knows)
   int tilt_window = 10;                        ///< registered scans whose tilt errors "auto" compares
+  bool turn_from_sweep = true;                 ///< when the last scan's sweep registration found its turn rate, the
+                                               ///< scans' stamps are given and the tilt is held, the prediction turns at
+                                               ///< that rate until the next stamp (the turn now) instead of repeating the last turn (the turn
+                                               ///< half an interval ago: at 2 Hz a walker's turn changes within that)
   bool sweep_motion = true;                    ///< a scan with per-point times is registered once more with the sensor's
                                                ///< motion during its sweep among the unknowns (sweep_registration.hpp):
                                                ///< its pose is then the stamp's and the map takes it de-skewed
@@ -96,6 +101,7 @@ struct LidarOdometryConfig {
     v("fine_threshold", fine_threshold);
     v("tilt_prediction", tilt_prediction);
     v("tilt_window", tilt_window);
+    v("turn_from_sweep", turn_from_sweep);
     v("sweep_motion", sweep_motion);
     v("min_motion", min_motion);
     v("correspondence_factor", correspondence_factor);
@@ -173,13 +179,18 @@ class LidarOdometry {
   /// (the first pose is first_pose). A scan with no usable point keeps the prediction and
   /// leaves the map as it is.
   Pose3 register_scan(const PointCloud& scan);
+  /// As above, with the scan's stamp (s): the prediction may then use the last sweep's turn
+  /// rate (turn_from_sweep).
+  Pose3 register_scan(const PointCloud& scan, double stamp);
 
   /// The last motion between two registered scans (the constant-velocity model's), in the
   /// earlier scan's frame; the identity before the second scan.
   Pose3 last_motion() const;
   /// The prediction of the next pose from the last two: constant velocity, the tilt held or
   /// repeated as tilt_prediction says (the first pose before any scan, the last pose after one).
-  Pose3 predict() const;
+  /// `seconds` after the last scan's stamp, the turn about z is the last sweep's turn rate's
+  /// when it has one (turn_from_sweep); NaN: the last turn repeated.
+  Pose3 predict(double seconds = std::numeric_limits<double>::quiet_NaN()) const;
   /// Whether predict() repeats the change of tilt now (tilt_prediction; "auto" learns it).
   bool repeats_tilt() const;
   /// One pose per registered scan.
@@ -217,7 +228,7 @@ class LidarOdometry {
   /// The start that overlaps the map best among turns and shifts (recovery_search_m).
   Pose3 recovery_start(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction) const;
   /// predict() with the tilt held or repeated.
-  Pose3 predict(bool repeat_tilt) const;
+  Pose3 predict_with(bool repeat_tilt, double seconds) const;
   /// Records how far each of the two tilt predictions was from `pose`, the next registered pose.
   void score_tilt_predictions(const Pose3& pose);
   /// Every how many source points voxel_overlap looks at (yaw_search_points of them).
@@ -233,6 +244,7 @@ class LidarOdometry {
   SweepMotion last_sweep_;
   std::vector<std::size_t> lost_;
   std::deque<double> recent_overlaps_;
+  double last_stamp_ = std::numeric_limits<double>::quiet_NaN();  ///< the last registered scan's stamp (s)
   std::deque<std::pair<double, double>> tilt_errors_;  ///< (held, repeated) tilt error of the last scans (rad)
 };
 

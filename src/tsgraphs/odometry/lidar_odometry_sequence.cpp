@@ -21,7 +21,7 @@ std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, const Lid
     tbb::task_group reader;
     if (k + 1 < n) reader.run([&] { next = sequence.scan(k + 1); });
     try {
-      poses.push_back(odometry.register_scan(current));
+      poses.push_back(odometry.register_scan(current, sequence.info().times[k]));
     } catch (...) {
       reader.wait();
       throw;

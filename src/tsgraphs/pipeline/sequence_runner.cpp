@@ -130,7 +130,7 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
                                            [&](Loaded l) {
                                              // An unreadable scan is empty here: the odometry keeps its prediction.
                                              l.odom = lidar_odometry
-                                                          ? lidar_odometry->register_scan(l.scan)
+                                                          ? lidar_odometry->register_scan(l.scan, info.times[l.index])
                                                           : info.odometry[l.index];
                                              // De-skewed after the odometry: with the motion its sweep
                                              // registration found, else with the poses' motion or a
