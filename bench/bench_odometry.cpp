@@ -2,12 +2,12 @@
 //   bench_odometry SEQ_DIR [--threads N] [--voxel-size M] [--convergence X] [--max-iterations N]
 //                  [--point-to-point 1] [--out-tum FILE] [--every N] [--yaw-search DEG]
 //                  [--fine-threshold M] [--recovery-search M] [--tilt hold|repeat|auto]
-//                  [--yaw-candidates N] [--sweep-motion 0|1]
+//                  [--yaw-candidates N] [--sweep-motion 0|1] [--turn-from-sweep 0|1]
 // --every N: every N-th scan only (a 10 Hz sequence seen at 10 / N Hz). --yaw-search DEG: the
 // initial guess's search (lidar_odometry.yaw_search_deg; 0: the constant-velocity prediction alone).
 // --fine-threshold, --recovery-search: lidar_odometry.fine_threshold and recovery_search_m (0: off).
-// --tilt, --yaw-candidates, --sweep-motion: lidar_odometry.tilt_prediction,
-// yaw_search_candidates, sweep_motion.
+// --tilt, --yaw-candidates, --sweep-motion, --turn-from-sweep: lidar_odometry.tilt_prediction,
+// yaw_search_candidates, sweep_motion, turn_from_sweep.
 // The odometry runs in the frame `run` gives it (level with the floor under the first scan).
 // ATE: the RMS position error over every scan, the estimate anchored at the first ground-truth
 // pose (no further alignment: drift counts). Drift: the estimate is anchored at the first ground-truth pose; the position error is given
