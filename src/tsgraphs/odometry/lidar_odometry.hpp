@@ -46,8 +46,9 @@ struct LidarOdometryConfig {
   int tilt_window = 10;                        ///< registered scans whose tilt errors "auto" compares
   bool turn_from_sweep = true;                 ///< when the last scan's sweep registration found its turn rate, the
                                                ///< scans' stamps are given and the tilt is held, the prediction turns at
-                                               ///< that rate until the next stamp (the turn now) instead of repeating the last turn (the turn
-                                               ///< half an interval ago: at 2 Hz a walker's turn changes within that)
+                                               ///< that rate until the next stamp (the turn now) instead of repeating the
+                                               ///< last turn (the turn half an interval ago: at 2 Hz a walker's turn
+                                               ///< changes within that)
   bool sweep_motion = true;                    ///< a scan with per-point times is registered once more with the sensor's
                                                ///< motion during its sweep among the unknowns (sweep_registration.hpp):
                                                ///< its pose is then the stamp's and the map takes it de-skewed
