@@ -7,7 +7,9 @@
 // same for a scan taken at an instant from the stamp's pose, with other noise: the floor of
 // this figure), and the
 // turn rate found against the true one (tilt: about the sensor's x and y; turn: about z).
-//   ./build/bench/bench_sweep_deskew DIR/cases/*-hand2/scene.yaml
+// A fifth row de-skews with the true motion over the sweep at a constant rate: what the model
+// of a sweep (one turn rate, one velocity) can give at best.
+//   ./build/bench/bench_sweep_deskew [--config params.yaml] DIR/cases/*-hand2/scene.yaml
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -83,21 +85,31 @@ double percentile(std::vector<double> v, double p) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s SCENE.yaml...\n", argv[0]);
+  int first = 1;
+  pipeline::PipelineConfig defaults;
+  try {
+    if (argc > 2 && std::string(argv[1]) == "--config") {
+      defaults = pipeline::load_pipeline_config(argv[2]);
+      first = 3;
+    }
+  } catch (const std::exception& ex) {
+    std::fprintf(stderr, "%s\n", ex.what());
     return 2;
   }
-  const pipeline::PipelineConfig defaults;
+  if (argc <= first) {
+    std::fprintf(stderr, "usage: %s [--config params.yaml] SCENE.yaml...\n", argv[0]);
+    return 2;
+  }
   const odometry::LidarOdometryConfig& range = defaults.lidar_odometry;
-  const char* names[4] = {"none", "poses", "registration", "(taken at an instant)"};
+  const char* names[5] = {"none", "poses", "registration", "(taken at an instant)", "(true constant rates)"};
   std::printf("| scene | sweeps | de-skew | points' mean distance (m) | worst decile sweep (m) | tilt rate err (deg/s) | turn rate err (deg/s) |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
-  for (int a = 1; a < argc; ++a) {
+  for (int a = first; a < argc; ++a) {
     try {
       const scene::Scene scene = scene::load_scene(argv[a]);
       const sim::Simulator sim(scene, scene.seed);
       odometry::SweepDeskewer deskewer(range, defaults.deskew.registration);
-      Errors errors[4];
+      Errors errors[5];
       for (std::size_t k = 0; k + 1 < sim.num_scans(); ++k) {
         const PointCloud swept = sim.scan(k);
         if (!swept.has_times() || swept.empty()) continue;
@@ -115,19 +127,22 @@ int main(int argc, char** argv) {
           for (const auto& p : still.points) world.push_back(at * p.cast<double>());
           reference.add_points(world);
         }
-        const Eigen::Vector3d truth = rates_deg(stamp.inverse() * sim.sensor_pose_at(t + sweep), sweep);
+        const Pose3 during = stamp.inverse() * sim.sensor_pose_at(t + sweep);
+        const Eigen::Vector3d truth = rates_deg(during, sweep);
         const PointCloud from_poses = odometry::deskew(swept, between, interval);
         const PointCloud registered = deskewer.deskew(swept, stamp, between, interval);
         score(swept, stamp, reference, range, errors[0]);
         score(from_poses, stamp, reference, range, errors[1]);
         score(registered, stamp, reference, range, errors[2]);
         score(sim.scan_at(stamp, k + 1), stamp, reference, range, errors[3]);
+        score(odometry::deskew(swept, during, sweep), stamp, reference, range, errors[4]);
         errors[0].add_rates(Eigen::Vector3d::Zero(), truth);
         errors[1].add_rates(rates_deg(between, interval), truth);
         errors[2].add_rates(deskewer.last().turn_rate * 180.0 / M_PI, truth);
         errors[3].add_rates(truth, truth);
+        errors[4].add_rates(truth, truth);
       }
-      for (int m = 0; m < 4; ++m) {
+      for (int m = 0; m < 5; ++m) {
         const Errors& e = errors[m];
         const double n = static_cast<double>(std::max<std::size_t>(1, e.sweeps));
         std::printf("| %s | %zu | %s | %.4f | %.4f | %.1f | %.1f |\n", argv[a], e.sweeps, names[m],
