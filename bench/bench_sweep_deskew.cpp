@@ -39,12 +39,15 @@ struct Errors {
   std::size_t points = 0;
   std::vector<double> sweep_mean;          // per sweep
   double sq_tilt = 0.0, sq_turn = 0.0;     // (deg/s)^2, summed over sweeps
+  double sq_velocity = 0.0;                // (m/s)^2, summed over sweeps
   std::size_t sweeps = 0;
 
-  void add_rates(const Eigen::Vector3d& found_deg, const Eigen::Vector3d& truth_deg) {
+  void add_rates(const Eigen::Vector3d& found_deg, const Eigen::Vector3d& truth_deg, const Eigen::Vector3d& found_v,
+                 const Eigen::Vector3d& truth_v) {
     const Eigen::Vector3d d = found_deg - truth_deg;
     sq_tilt += d.head<2>().squaredNorm();
     sq_turn += d.z() * d.z();
+    sq_velocity += (found_v - truth_v).squaredNorm();
     ++sweeps;
   }
 };
@@ -102,8 +105,8 @@ int main(int argc, char** argv) {
   }
   const odometry::LidarOdometryConfig& range = defaults.lidar_odometry;
   const char* names[5] = {"none", "poses", "registration", "(taken at an instant)", "(true constant rates)"};
-  std::printf("| scene | sweeps | de-skew | points' mean distance (m) | worst decile sweep (m) | tilt rate err (deg/s) | turn rate err (deg/s) |\n");
-  std::printf("|---|---|---|---|---|---|---|\n");
+  std::printf("| scene | sweeps | de-skew | points' mean distance (m) | worst decile sweep (m) | tilt rate err (deg/s) | turn rate err (deg/s) | velocity err (m/s) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|\n");
   for (int a = first; a < argc; ++a) {
     try {
       const scene::Scene scene = scene::load_scene(argv[a]);
@@ -136,18 +139,20 @@ int main(int argc, char** argv) {
         score(registered, stamp, reference, range, errors[2]);
         score(sim.scan_at(stamp, k + 1), stamp, reference, range, errors[3]);
         score(odometry::deskew(swept, during, sweep), stamp, reference, range, errors[4]);
-        errors[0].add_rates(Eigen::Vector3d::Zero(), truth);
-        errors[1].add_rates(rates_deg(between, interval), truth);
-        errors[2].add_rates(deskewer.last().turn_rate * 180.0 / M_PI, truth);
-        errors[3].add_rates(truth, truth);
-        errors[4].add_rates(truth, truth);
+        const Eigen::Vector3d velocity = during.translation() / sweep, zero = Eigen::Vector3d::Zero();
+        errors[0].add_rates(zero, truth, zero, velocity);
+        errors[1].add_rates(rates_deg(between, interval), truth, between.translation() / interval, velocity);
+        errors[2].add_rates(deskewer.last().turn_rate * 180.0 / M_PI, truth, deskewer.last().velocity, velocity);
+        errors[3].add_rates(truth, truth, velocity, velocity);
+        errors[4].add_rates(truth, truth, velocity, velocity);
       }
       for (int m = 0; m < 5; ++m) {
         const Errors& e = errors[m];
         const double n = static_cast<double>(std::max<std::size_t>(1, e.sweeps));
-        std::printf("| %s | %zu | %s | %.4f | %.4f | %.1f | %.1f |\n", argv[a], e.sweeps, names[m],
+        std::printf("| %s | %zu | %s | %.4f | %.4f | %.1f | %.1f | %.3f |\n", argv[a], e.sweeps, names[m],
                     e.distance / static_cast<double>(std::max<std::size_t>(1, e.points)),
-                    percentile(e.sweep_mean, 0.9), std::sqrt(e.sq_tilt / n), std::sqrt(e.sq_turn / n));
+                    percentile(e.sweep_mean, 0.9), std::sqrt(e.sq_tilt / n), std::sqrt(e.sq_turn / n),
+                    std::sqrt(e.sq_velocity / n));
       }
       std::fflush(stdout);
     } catch (const std::exception& ex) {
