@@ -113,6 +113,7 @@ TEST(SweepRegistration, KeptEveryHalfSecondItTellsTheSweepsMotionBetterThanThePo
   // motion between the kept poses (what the poses alone would de-skew with).
   odometry::SweepDeskewer deskewer(odometry::LidarOdometryConfig{}, {});
   double sq_prior = 0.0, sq_found = 0.0, worst_prior = 0.0, worst_found = 0.0, sum_prior = 0.0, sum_found = 0.0;
+  double sq_prior_velocity = 0.0, sq_found_velocity = 0.0;
   std::size_t n = 0;
   for (std::size_t k = 0; k + 5 < sim.num_scans(); k += 5) {
     const Pose3& stamp = sim.true_poses()[k];
@@ -129,13 +130,23 @@ TEST(SweepRegistration, KeptEveryHalfSecondItTellsTheSweepsMotionBetterThanThePo
     const Eigen::Vector3d truth = rates_deg(stamp.inverse() * sim.true_poses()[k + 1], period);
     sq_prior += (rates_deg(between, 5 * period) - truth).squaredNorm();
     sq_found += (deskewer.last().turn_rate * 180.0 / M_PI - truth).squaredNorm();
+    const Eigen::Vector3d true_velocity = (stamp.inverse() * sim.true_poses()[k + 1]).translation() / period;
+    sq_prior_velocity += (between.translation() / (5 * period) - true_velocity).squaredNorm();
+    sq_found_velocity += (deskewer.last().velocity - true_velocity).squaredNorm();
     ++n;
   }
   ASSERT_GT(n, 20u);
   const double rms_prior = std::sqrt(sq_prior / n), rms_found = std::sqrt(sq_found / n);
   EXPECT_LT(rms_found, 0.7 * rms_prior) << "turn rate error, deg/s: poses " << rms_prior << ", registered " << rms_found;
+  // The velocity is seen weakly within a sweep: the registration must not trade it for the
+  // tilting it tells poorly (its prior held at 1 m/s: 0.53 m/s off here where the poses are
+  // 0.28 m/s off; 0.6-1.6 m/s on generated buildings, docs/benchmarks.md).
+  const double rms_prior_velocity = std::sqrt(sq_prior_velocity / n), rms_found_velocity = std::sqrt(sq_found_velocity / n);
+  EXPECT_LT(rms_found_velocity, 1.25 * rms_prior_velocity)
+      << "velocity error, m/s: poses " << rms_prior_velocity << ", registered " << rms_found_velocity;
   EXPECT_LT(worst_found, 0.8 * worst_prior) << "walls' rms, worst sweep: poses " << worst_prior << ", registered " << worst_found;
   EXPECT_LT(sum_found, sum_prior) << "walls' rms, sum: poses " << sum_prior << ", registered " << sum_found;
-  std::printf("turn rate error %.1f -> %.1f deg/s; walls' rms worst %.3f -> %.3f m, mean %.4f -> %.4f m\n", rms_prior, rms_found,
-              worst_prior, worst_found, sum_prior / (n + 1), sum_found / (n + 1));
+  std::printf("turn rate error %.1f -> %.1f deg/s; velocity error %.3f -> %.3f m/s; walls' rms worst %.3f -> %.3f m, mean %.4f -> %.4f m\n",
+              rms_prior, rms_found, rms_prior_velocity, rms_found_velocity, worst_prior, worst_found,
+              sum_prior / (n + 1), sum_found / (n + 1));
 }

@@ -27,7 +27,10 @@ struct SweepRegistrationConfig {
   double turn_rate_sigma = 0.2;        ///< the turn rate is expected within this of its prior (rad/s): the prior
                                        ///< decides what the sweep observes weakly (a tilting, seen on floor and
                                        ///< ceiling only); a turn about the vertical is observed on every wall
-  double velocity_sigma = 1.0;         ///< the velocity, within this of its prior (m/s)
+  double velocity_sigma = 0.3;         ///< the velocity, within this of its prior (m/s): a carrier's speed changes
+                                       ///< by a few tenths within a step (a 3 cm bob at 1.8 Hz is 0.34 m/s), and a
+                                       ///< sweep hardly sees it (0.1 m/s moves a point 1 cm in 0.1 s); held loosely,
+                                       ///< it takes up the tilting the sweep sees weakly
   double pose_sigma_deg = 0.5;         ///< the pose at the stamp is expected within this of its prior (deg) ...
   double pose_sigma = 0.1;             ///< ... and this (m): a sweep's own tilt and the tilting during it are
                                        ///< told apart only weakly, and the odometry's pose is close
