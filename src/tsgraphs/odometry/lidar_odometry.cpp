@@ -448,7 +448,9 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan) {
 }
 
 Pose3 LidarOdometry::register_scan(const PointCloud& scan, double stamp) {
-  const Pose3 prediction = predict(stamp - last_stamp_);
+  const double last_interval = last_interval_;  // NaN without stamps
+  last_interval_ = stamp - last_stamp_;
+  const Pose3 prediction = predict(last_interval_);
   last_stamp_ = stamp;
   last_icp_ = IcpResult{};
   last_icp_.pose = prediction;
@@ -496,6 +498,12 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan, double stamp) {
       // gives the pose at the stamp and straightens the points the map takes.
       SweepMotion prior;
       prior.pose = pose;
+      // The velocity's prior is the last interval's, between the last two stamps' poses: a
+      // sweep hardly sees its velocity (deskew.velocity_sigma) and a carrier keeps it.
+      if (last_interval > 0.0 && poses_.size() >= 2) {
+        const Eigen::Vector3d moved = poses_.back().translation() - poses_[poses_.size() - 2].translation();
+        prior.velocity = pose.linear().transpose() * moved / last_interval;
+      }
       last_sweep_ = align_sweep_to_map(source, source_times, map_, prior, sweep_);
       if (last_sweep_.registered) pose = last_sweep_.pose;
     }

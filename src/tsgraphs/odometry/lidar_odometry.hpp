@@ -181,7 +181,8 @@ class LidarOdometry {
   /// leaves the map as it is.
   Pose3 register_scan(const PointCloud& scan);
   /// As above, with the scan's stamp (s): the prediction may then use the last sweep's turn
-  /// rate (turn_from_sweep).
+  /// rate (turn_from_sweep), and a swept scan's registration starts from the last interval's
+  /// velocity.
   Pose3 register_scan(const PointCloud& scan, double stamp);
 
   /// The last motion between two registered scans (the constant-velocity model's), in the
@@ -246,6 +247,7 @@ class LidarOdometry {
   std::vector<std::size_t> lost_;
   std::deque<double> recent_overlaps_;
   double last_stamp_ = std::numeric_limits<double>::quiet_NaN();  ///< the last registered scan's stamp (s)
+  double last_interval_ = std::numeric_limits<double>::quiet_NaN();  ///< between the last two stamps (s)
   std::deque<std::pair<double, double>> tilt_errors_;  ///< (held, repeated) tilt error of the last scans (rad)
 };
 
