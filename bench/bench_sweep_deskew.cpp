@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "tsgraphs/eval/suite_table.hpp"
 #include "tsgraphs/odometry/deskew.hpp"
 #include "tsgraphs/odometry/sweep_deskewer.hpp"
 #include "tsgraphs/odometry/voxel_hash_map.hpp"
@@ -77,12 +78,6 @@ void score(const PointCloud& scan, const Pose3& pose, const odometry::VoxelHashM
   e.distance += sum;
   e.points += n;
   e.sweep_mean.push_back(n ? sum / static_cast<double>(n) : 0.0);
-}
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(std::lround(p * static_cast<double>(v.size() - 1)))];
 }
 
 }  // namespace
@@ -151,7 +146,7 @@ int main(int argc, char** argv) {
         const double n = static_cast<double>(std::max<std::size_t>(1, e.sweeps));
         std::printf("| %s | %zu | %s | %.4f | %.4f | %.1f | %.1f | %.3f |\n", argv[a], e.sweeps, names[m],
                     e.distance / static_cast<double>(std::max<std::size_t>(1, e.points)),
-                    percentile(e.sweep_mean, 0.9), std::sqrt(e.sq_tilt / n), std::sqrt(e.sq_turn / n),
+                    e.sweep_mean.empty() ? NAN : eval::percentile(e.sweep_mean, 90.0), std::sqrt(e.sq_tilt / n), std::sqrt(e.sq_turn / n),
                     std::sqrt(e.sq_velocity / n));
       }
       std::fflush(stdout);
