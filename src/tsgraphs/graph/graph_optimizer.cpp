@@ -372,9 +372,14 @@ class GraphProblem {
   ceres::Problem problem_;  // last: destroyed first
 };
 
-void check_between(const BetweenEdge& e, int num_keyframes) {
-  if (e.from < 0 || e.to < 0 || e.from >= num_keyframes || e.to >= num_keyframes || e.from == e.to)
+void check_between(const BetweenEdge& e, const SituationalGraph& graph) {
+  const int n = static_cast<int>(graph.keyframes().size());
+  if (e.from < 0 || e.to < 0 || e.from >= n || e.to >= n || e.from == e.to)
     throw std::invalid_argument("GraphOptimizer: pose edge with unknown or equal keyframes");
+  if (graph.keyframes()[e.from].retired || graph.keyframes()[e.to].retired)
+    throw std::invalid_argument("GraphOptimizer: pose edge to a retired keyframe");
+  if (e.folded > 0 && !(e.sigmas.trans > 0 && e.sigmas.rot_deg > 0))
+    throw std::invalid_argument("GraphOptimizer: folded pose edge without positive sigmas");
 }
 
 // A room edge names distinct, known, vertical planes, in pairs that face each other (normals
@@ -415,8 +420,9 @@ OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {
   const auto keyframe_free = [first_free](int id) { return id >= first_free; };
   std::set<int> free_planes;
   for (const PlaneEdge& e : graph.plane_edges()) {
-    if (e.keyframe < 0 || e.keyframe >= num_keyframes || !graph.planes().count(e.plane))
-      throw std::invalid_argument("GraphOptimizer: plane edge with unknown keyframe or plane");
+    if (e.keyframe < 0 || e.keyframe >= num_keyframes || !graph.planes().count(e.plane) ||
+        graph.keyframes()[e.keyframe].retired)
+      throw std::invalid_argument("GraphOptimizer: plane edge with an unknown or retired keyframe, or unknown plane");
     if (keyframe_free(e.keyframe)) free_planes.insert(e.plane);
   }
   const auto plane_free = [&free_planes](int id) { return free_planes.count(id) > 0; };
@@ -443,8 +449,13 @@ OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {
   // Only factors touching a free block enter, so a local problem does not grow with the run.
   const auto add_between = [&](const BetweenEdge& e, double sigma_trans, double sigma_rot_deg,
                                ceres::LossFunction* loss) {
-    check_between(e, num_keyframes);
+    check_between(e, graph);
     if (!keyframe_free(e.from) && !keyframe_free(e.to)) return;
+    // An edge that retired keyframes were folded into carries its own, larger noise.
+    if (e.folded > 0) {
+      sigma_trans = e.sigmas.trans;
+      sigma_rot_deg = e.sigmas.rot_deg;
+    }
     problem.AddResidualBlock(
         BetweenResidual::create(e.measurement, sigma_trans, sigma_rot_deg * kDegToRad), loss,
         graph_problem.pose(e.from, keyframe_free(e.from)),
@@ -501,6 +512,7 @@ OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {
   stats.initial_cost = summary.initial_cost;
   stats.final_cost = summary.final_cost;
   graph_problem.write_back();
+  graph.update_retired_poses();
   return stats;
 }
 

@@ -4,7 +4,8 @@
 /// rooms and floors are 2-D centres. A local solve frees only the last keyframes, the planes
 /// they see and the rooms (and their floors) with such a plane, holding the rest fixed, so its
 /// cost does not grow with the run; a full solve frees everything but the anchor (after a loop
-/// closure). Estimates are warm-started from the graph's values.
+/// closure). Estimates are warm-started from the graph's values. Retired keyframes
+/// (keyframe_retirement.hpp) are no variables: their poses follow their anchors' after a solve.
 ///
 /// Room factors (S-Graphs' room-4-planes and room-2-planes): for each facing pair of a room's
 /// walls, the centre's offset from the pair's mid-plane along the pair's normal (for a room with
@@ -85,7 +86,8 @@ class GraphOptimizer {
   /// Optimises `graph` in place (keyframe poses, planes, rooms, floors). With `full` false, only
   /// the last `local_window` keyframes, the planes they observe, the rooms with one of those
   /// planes and the floors of those rooms move. Needs at least one keyframe; throws
-  /// std::invalid_argument for an edge to an unknown node (or a keyframe to itself), a room edge
+  /// std::invalid_argument for an edge to an unknown node, a retired keyframe or a keyframe to
+  /// itself, a folded pose edge without its sigmas, a room edge
   /// with a plane count that does not fit its kind, a horizontal plane or a pair whose normals do
   /// not face each other, and std::runtime_error when Ceres gives no usable solution. A measured
   /// plane must share its map plane's sign convention (the factor compares normals, so a flipped

@@ -24,6 +24,7 @@ std::vector<int> LoopDetector::candidates(const SituationalGraph& graph, int id)
   std::vector<std::pair<double, int>> near;  // (distance, id)
   for (int k = 0; k < id; ++k) {
     const KeyframeNode& earlier = graph.keyframes()[static_cast<std::size_t>(k)];
+    if (earlier.retired) continue;  // out of the graph, and its cloud is gone
     // Far back in travel: odometry alone has had time to drift, so a match is worth a factor.
     if (std::abs(current.accum_distance - earlier.accum_distance) < config_.min_travel) continue;
     const double distance = (current.pose.translation() - earlier.pose.translation()).norm();
@@ -42,9 +43,15 @@ std::optional<BetweenEdge> LoopDetector::detect(const SituationalGraph& graph, i
                                                 const std::function<const PointCloud&(int)>& cloud_of) {
   const KeyframeNode& current = keyframe_at(graph, id);
   if (current.accum_distance - last_loop_travel_ < config_.min_loop_interval) return std::nullopt;
+  return verify(graph, id, candidates(graph, id), cloud_of);
+}
 
-  for (const int k : candidates(graph, id)) {
-    const KeyframeNode& earlier = graph.keyframes()[static_cast<std::size_t>(k)];
+std::optional<BetweenEdge> LoopDetector::verify(const SituationalGraph& graph, int id, const std::vector<int>& candidates,
+                                                const std::function<const PointCloud&(int)>& cloud_of) {
+  const KeyframeNode& current = keyframe_at(graph, id);
+  for (const int k : candidates) {
+    const KeyframeNode& earlier = keyframe_at(graph, k);
+    if (earlier.retired || k == id) continue;
     const Pose3 guess = earlier.pose.inverse() * current.pose;  // T_k_id from the current estimates
     const registration::RegistrationResult r =
         registration::register_clouds(cloud_of(id), cloud_of(k), guess, config_.registration);

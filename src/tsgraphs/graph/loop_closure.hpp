@@ -38,12 +38,17 @@ struct LoopClosureConfig {
 class LoopDetector {
  public:
   explicit LoopDetector(LoopClosureConfig config = {});
-  /// Keyframe ids that may close a loop with keyframe `id`, nearest first.
+  /// Keyframe ids that may close a loop with keyframe `id`, nearest first (never a retired one).
   std::vector<int> candidates(const SituationalGraph& graph, int id) const;
   /// Tries the candidates of keyframe `id`; returns the verified loop edge (from = the older
   /// keyframe, to = `id`, measurement T_from_to) or nothing. `cloud_of(k)` gives keyframe k's
   /// cloud in its own frame.
   std::optional<BetweenEdge> detect(const SituationalGraph& graph, int id,
+                                    const std::function<const PointCloud&(int)>& cloud_of);
+  /// Registers keyframe `id` with each of `candidates` in turn (another proposer's, e.g.
+  /// room_loop_closure.hpp); the first that passes the checks gives the loop edge. Not held
+  /// back by min_loop_interval, but an accepted loop restarts it.
+  std::optional<BetweenEdge> verify(const SituationalGraph& graph, int id, const std::vector<int>& candidates,
                                     const std::function<const PointCloud&(int)>& cloud_of);
   const LoopClosureConfig& config() const { return config_; }
 

@@ -1,6 +1,7 @@
 #include "tsgraphs/graph/situational_graph.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -24,6 +25,17 @@ int SituationalGraph::add_plane(const Plane& plane, bool vertical) {
 
 namespace {
 
+constexpr double kDegToRad = M_PI / 180.0;
+
+PoseSigmas sigmas_of(const BetweenEdge& e, const PoseSigmas& fallback) { return e.folded > 0 ? e.sigmas : fallback; }
+
+// The noise of A then B, B's translation being `lever` (see retire_keyframe's comment).
+PoseSigmas compose(const PoseSigmas& a, const PoseSigmas& b, double lever) {
+  const double rot_a = a.rot_deg * kDegToRad;
+  return {std::sqrt(a.trans * a.trans + b.trans * b.trans + rot_a * rot_a * lever * lever),
+          std::sqrt(a.rot_deg * a.rot_deg + b.rot_deg * b.rot_deg)};
+}
+
 bool names_a_plane_twice(const RoomPlanesEdge& e) {
   std::vector<int> ids = e.planes;
   std::sort(ids.begin(), ids.end());
@@ -42,6 +54,80 @@ void SituationalGraph::merge_planes(int keep, int drop) {
   room_edges_.erase(std::remove_if(room_edges_.begin(), room_edges_.end(), names_a_plane_twice),
                     room_edges_.end());
   planes_.erase(drop);
+}
+
+void SituationalGraph::retire_keyframe(int id, int anchor, const PoseSigmas& odometry, const PoseSigmas& loop) {
+  const int n = static_cast<int>(keyframes_.size());
+  if (id <= 0 || id >= n || keyframes_[id].retired || anchor < 0 || anchor >= id || keyframes_[anchor].retired)
+    throw std::invalid_argument("retire_keyframe: keyframe " + std::to_string(id) + " (anchor " +
+                                std::to_string(anchor) + ") cannot be retired");
+  std::vector<std::size_t> in, out;  // odometry edges into and out of it
+  for (std::size_t i = 0; i < odometry_.size(); ++i) {
+    if (odometry_[i].to == id) in.push_back(i);
+    if (odometry_[i].from == id) out.push_back(i);
+  }
+  if (in.size() != 1 || out.size() != 1)
+    throw std::invalid_argument("retire_keyframe: keyframe " + std::to_string(id) +
+                                " needs one odometry edge in and one out");
+  const BetweenEdge a = odometry_[in[0]], b = odometry_[out[0]];  // predecessor -> id, id -> successor
+  const int successor = b.to;
+  const PoseSigmas sb = sigmas_of(b, odometry);
+
+  BetweenEdge joined;
+  joined.from = a.from;
+  joined.to = successor;
+  joined.measurement = a.measurement * b.measurement;
+  joined.sigmas = compose(sigmas_of(a, odometry), sb, b.measurement.translation().norm());
+  joined.folded = a.folded + b.folded + 1;
+  odometry_[in[0]] = joined;
+  odometry_.erase(odometry_.begin() + static_cast<std::ptrdiff_t>(out[0]));
+
+  // Loop edges naming it move to its successor: T_o_s = T_o_id * T_id_s, T_s_c = T_id_s^-1 * T_id_c.
+  for (BetweenEdge& e : loops_) {
+    if (e.to == id) {
+      e.sigmas = compose(sigmas_of(e, loop), sb, b.measurement.translation().norm());
+      e.measurement = e.measurement * b.measurement;
+      e.to = successor;
+      ++e.folded;
+    } else if (e.from == id) {
+      e.sigmas = compose(sb, sigmas_of(e, loop), e.measurement.translation().norm());
+      e.measurement = b.measurement.inverse() * e.measurement;
+      e.from = successor;
+      ++e.folded;
+    }
+  }
+  loops_.erase(std::remove_if(loops_.begin(), loops_.end(), [](const BetweenEdge& e) { return e.from == e.to; }),
+               loops_.end());
+  // Folded loops on the successor: only the most certain stays (each carries odometry noise
+  // that grows with every keyframe it is moved past; keeping them all would pile them up).
+  const auto folded_on_successor = [successor](const BetweenEdge& e) {
+    return e.folded > 0 && (e.from == successor || e.to == successor);
+  };
+  const auto best = std::min_element(loops_.begin(), loops_.end(), [&](const BetweenEdge& x, const BetweenEdge& y) {
+    const bool fx = folded_on_successor(x), fy = folded_on_successor(y);
+    if (fx != fy) return fx;
+    return x.sigmas.trans < y.sigmas.trans;
+  });
+  if (best != loops_.end() && folded_on_successor(*best)) {
+    const BetweenEdge kept = *best;
+    loops_.erase(std::remove_if(loops_.begin(), loops_.end(), folded_on_successor), loops_.end());
+    loops_.push_back(kept);
+  }
+
+  plane_edges_.erase(std::remove_if(plane_edges_.begin(), plane_edges_.end(),
+                                    [id](const PlaneEdge& e) { return e.keyframe == id; }),
+                     plane_edges_.end());
+  KeyframeNode& k = keyframes_[id];
+  k.retired = true;
+  k.anchor = anchor;
+  k.T_anchor_keyframe = keyframes_[anchor].pose.inverse() * k.pose;
+  ++num_retired_;
+}
+
+void SituationalGraph::update_retired_poses() {
+  // Anchors are older than what they anchor: in id order an anchor is set before its keyframes.
+  for (KeyframeNode& k : keyframes_)
+    if (k.retired) k.pose = keyframes_[k.anchor].pose * k.T_anchor_keyframe;
 }
 
 int SituationalGraph::add_room(const RoomNode& room) {

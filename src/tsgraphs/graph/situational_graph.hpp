@@ -20,6 +20,11 @@ struct KeyframeNode {
   Pose3 pose = Pose3::Identity();   ///< current estimate, map <- keyframe (sensor)
   Pose3 odom = Pose3::Identity();   ///< the input odometry at this keyframe
   double accum_distance = 0.0;  ///< odometry distance travelled from the start (m)
+  /// Retired (keyframe_retirement.hpp): out of the factors, which were folded into its
+  /// neighbours'; its pose follows an older keyframe's, pose = anchor's pose * T_anchor_keyframe.
+  bool retired = false;
+  int anchor = -1;
+  Pose3 T_anchor_keyframe = Pose3::Identity();
 };
 
 struct PlaneNode {
@@ -28,11 +33,21 @@ struct PlaneNode {
   bool vertical = true; ///< wall face; false: floor or ceiling
 };
 
+/// Standard deviations of a relative pose measurement, isotropic in translation and rotation.
+struct PoseSigmas {
+  double trans = 0.0;    ///< m
+  double rot_deg = 0.0;  ///< deg
+};
+
 /// Relative pose measurement T_from_to between keyframes (odometry or loop closure).
 struct BetweenEdge {
   int from = -1, to = -1;
   Pose3 measurement = Pose3::Identity();  ///< T_from_to
   double fitness = 0.0;                   ///< registration fitness (loop closures)
+  /// Its own noise when retired keyframes were folded into it (`folded` of them); zero: the
+  /// optimizer's configured sigmas for its kind.
+  PoseSigmas sigmas;
+  int folded = 0;
 };
 
 /// A plane measured in a keyframe's frame.
@@ -89,6 +104,22 @@ class SituationalGraph {
   /// plane twice no longer describes a room and is removed.
   void merge_planes(int keep, int drop);
 
+  /// Retires keyframe `id` (keyframe_retirement.hpp says which): its plane edges are dropped
+  /// (what it saw, earlier keyframes hold), its odometry edges in and out become one edge from
+  /// its predecessor to its successor, and each loop edge naming it is moved to its successor,
+  /// composed with the odometry between them. Composing A then B adds the variances, and the
+  /// translation's gets A's rotation variance times |t_B|^2 (the lever arm), an isotropic
+  /// bound of the exact propagation (`odometry` and `loop`: the sigmas of edges without their own).
+  /// Of the loop edges folded onto one keyframe only the most certain stays. Its pose then
+  /// follows keyframe `anchor`. Throws std::invalid_argument unless `id` is retired-able: not
+  /// the first, not retired, with one odometry edge in and one out; and `anchor` < `id` is a
+  /// keyframe that is not retired.
+  void retire_keyframe(int id, int anchor, const PoseSigmas& odometry, const PoseSigmas& loop);
+  /// Sets every retired keyframe's pose from its anchor's (after an optimisation).
+  void update_retired_poses();
+  /// Keyframes not retired.
+  std::size_t num_active_keyframes() const { return keyframes_.size() - num_retired_; }
+
   /// Adds a room with the next free id (ids are never reused).
   int add_room(const RoomNode& room);
   /// Adds the floor of `floor.level` with the next free id; throws std::invalid_argument when
@@ -126,6 +157,7 @@ class SituationalGraph {
 
  private:
   std::vector<KeyframeNode> keyframes_;
+  std::size_t num_retired_ = 0;
   std::map<int, PlaneNode> planes_;
   int next_plane_id_ = 0;
   std::vector<BetweenEdge> odometry_;

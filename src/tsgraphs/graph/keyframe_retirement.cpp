@@ -1,0 +1,61 @@
+#include "tsgraphs/graph/keyframe_retirement.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+namespace tsgraphs::graph {
+
+std::vector<Retirement> redundant_keyframes(const SituationalGraph& graph, const std::vector<int>& candidates,
+                                            const KeyframeRetirementConfig& config,
+                                            const std::function<bool(int)>& in_mapped_space) {
+  if (!(config.radius > 0.0) || !(config.min_travel > 0.0))
+    throw std::invalid_argument("keyframe_retirement: radius and min_travel must be > 0");
+  const auto& keyframes = graph.keyframes();
+  const int newest = static_cast<int>(keyframes.size()) - 1;
+  std::vector<int> ids;
+  for (int id : candidates)
+    if (id > 0 && id < newest && !keyframes[id].retired) ids.push_back(id);
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  if (ids.empty()) return {};
+
+  // Each plane's earliest kept observer, in travel: a plane is held by an earlier pass when that
+  // observer is min_travel or more before the keyframe.
+  std::map<int, double> first_seen;
+  for (const PlaneEdge& e : graph.plane_edges()) {
+    const KeyframeNode& k = keyframes[e.keyframe];
+    const auto [it, inserted] = first_seen.emplace(e.plane, k.accum_distance);
+    if (!inserted) it->second = std::min(it->second, k.accum_distance);
+  }
+  std::map<int, std::vector<int>> planes_of;
+  for (const PlaneEdge& e : graph.plane_edges())
+    if (std::binary_search(ids.begin(), ids.end(), e.keyframe)) planes_of[e.keyframe].push_back(e.plane);
+
+  std::vector<Retirement> out;
+  for (int id : ids) {
+    const KeyframeNode& k = keyframes[id];
+    const double earlier = k.accum_distance - config.min_travel;
+    int anchor = -1;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int o = 0; o < id; ++o) {
+      const KeyframeNode& other = keyframes[o];
+      if (other.retired || other.accum_distance > earlier) continue;
+      const double d = (other.pose.translation() - k.pose.translation()).norm();
+      if (d <= config.radius && d < nearest) {
+        nearest = d;
+        anchor = o;
+      }
+    }
+    if (anchor < 0) continue;
+    const std::vector<int>& planes = planes_of[id];
+    const bool all_held = std::all_of(planes.begin(), planes.end(), [&](int p) { return first_seen.at(p) <= earlier; });
+    if (!all_held) continue;
+    if (config.rooms_only && !in_mapped_space(id)) continue;
+    out.push_back({id, anchor});
+  }
+  return out;
+}
+
+}  // namespace tsgraphs::graph
