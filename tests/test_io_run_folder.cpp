@@ -42,6 +42,7 @@ SceneGraph sample_graph() {
   const Pose3 a = make_pose({1.0 / 3.0, -2.5, 0.55}, 0.7), b = make_pose({4.0, 1e-7, 0.5}, -2.9, 0.01);
   g.keyframes.push_back({0, 0, 0.0, 0.0, PoseRecord::of(a), PoseRecord::of(a)});
   g.keyframes.push_back({1, 17, 1.7000000000000002, 1.0 / 7.0, PoseRecord::of(b), PoseRecord::of(a)});
+  g.keyframes.push_back({2, 19, 1.9, 0.5, PoseRecord::of(b), PoseRecord::of(a), 0});  // retired, following 0
   SceneGraph::Plane wall;
   wall.id = 3;
   wall.n = Eigen::Vector3d(0.6, 0.8, 0.0);
@@ -77,6 +78,9 @@ SceneGraph sample_graph() {
   g.levels = {0.0, 1.620951824322115};
   g.odometry_edges.push_back({0, 1, PoseRecord::of(a.inverse() * b)});
   g.loop_edges.push_back({1, 0, 0.0123, PoseRecord::of(b.inverse() * a)});
+  g.loop_edges.push_back({0, 1, 0.0125, PoseRecord::of(a.inverse() * b), 2});
+  g.loop_closures.push_back({0, 2, 0.0125, PoseRecord::of(a.inverse() * b), "distance"});
+  g.loop_closures.push_back({1, 2, 0.0215, PoseRecord::of(a), "room"});
   g.keyframe_plane_edges.push_back({1, 3, Eigen::Vector4d(0.6, 0.8, 0.0, -1.5)});
   g.room_planes_edges.push_back({2, "corridor", {3, 9}, {2.0, 2.5}});
   g.floor_room_edges.push_back({0, 2});
@@ -99,6 +103,14 @@ constexpr const char* kTimingsText =
     "scan,0,0.000000,0,6534,1.675,7.240,0.001,15.869,,,,,,,6.285,152,4547,5,740,0.639\n"
     "scan,1,0.100000,-1,0,0.000,0.000,0.000,0.012,,,,,,\"empty scan: skipped\",0.000,0,-1,-1,-1,0.000\n"
     "optimization,0,0.100000,4,,,,,,0.000453,1,19,58,3,loop,,,,,,\n";
+// The same as `run` writes them since keyframe retirement: the graph's keyframes after a solve.
+constexpr const char* kTimingsTextNow =
+    "kind,index,stamp,keyframe,num_points,prefilter_ms,walls_ms,loop_ms,frontend_ms,optimization_s,full,"
+    "n_variables,n_factors,iterations,reason,ground_ms,ground_nodes,ground_tp,ground_fp,ground_fn,rooms_ms,"
+    "active_keyframes\n"
+    "scan,0,0.000000,0,6534,1.675,7.240,0.001,15.869,,,,,,,6.285,152,4547,5,740,0.639,\n"
+    "scan,1,0.100000,-1,0,0.000,0.000,0.000,0.012,,,,,,\"empty scan: skipped\",0.000,0,-1,-1,-1,0.000,\n"
+    "optimization,0,0.100000,4,,,,,,0.000453,1,19,58,3,loop,,,,,,,57\n";
 
 }  // namespace
 
@@ -111,8 +123,10 @@ TEST_F(SceneGraphFile, RoundTripsByteForByte) {
   const SceneGraph back = read_scene_graph(write_file("scene_graph.json", text));
   EXPECT_EQ(format_scene_graph(back), text);
   // Spot checks of what was read (the text equality covers the rest).
-  ASSERT_EQ(back.keyframes.size(), 2u);
+  ASSERT_EQ(back.keyframes.size(), 3u);
   EXPECT_EQ(back.keyframes[1].scan_index, 17u);
+  EXPECT_EQ(back.keyframes[1].anchor, -1);
+  EXPECT_EQ(back.keyframes[2].anchor, 0);
   EXPECT_EQ(back.keyframes[1].accum_distance, 1.0 / 7.0);
   EXPECT_TRUE(back.keyframes[1].pose.pose().isApprox(make_pose({4.0, 1e-7, 0.5}, -2.9, 0.01), 1e-12));
   ASSERT_EQ(back.planes.size(), 2u);
@@ -127,8 +141,13 @@ TEST_F(SceneGraphFile, RoundTripsByteForByte) {
   EXPECT_EQ(back.rooms[0].walls, (std::vector<int>{3, 4, 9, 12}));
   EXPECT_EQ(back.rooms[1].kind, "corridor");
   EXPECT_EQ(back.levels, (std::vector<double>{0.0, 1.620951824322115}));
-  ASSERT_EQ(back.loop_edges.size(), 1u);
+  ASSERT_EQ(back.loop_edges.size(), 2u);
   EXPECT_EQ(back.loop_edges[0].fitness, 0.0123);
+  EXPECT_EQ(back.loop_edges[0].folded, 0);
+  EXPECT_EQ(back.loop_edges[1].folded, 2);
+  ASSERT_EQ(back.loop_closures.size(), 2u);
+  EXPECT_EQ(back.loop_closures[1].proposer, "room");
+  EXPECT_EQ(back.loop_closures[1].to, 2);
   ASSERT_EQ(back.room_planes_edges.size(), 1u);
   EXPECT_EQ(back.room_planes_edges[0].planes, (std::vector<int>{3, 9}));
   ASSERT_EQ(back.floor_room_edges.size(), 1u);
@@ -170,6 +189,8 @@ TEST_F(SceneGraphFile, MissingKeysAndWrongTypesAreNamed) {
       {"\"scan_index\": 17", "\"scan_index\": -17", "'keyframes[1].scan_index' must not be negative"},
       {"\"probability\": 0.875", "\"probability\": [0.875]", "'traversable_nodes[0].probability' must be a number"},
       {"\"fitness\": 0.0123", "\"fitness\": null", "'edges[1].fitness' must be a number"},
+      {"\"proposer\": \"room\"", "\"proposer\": 2", "'loop_closures[1].proposer' must be a string"},
+      {"\"anchor\": 0", "\"anchor\": 0.5", "'keyframes[2].anchor'"},
   };
   for (const Case& c : cases) {
     const std::string path = write_file("scene_graph.json", replaced(good, c.from, c.to));
@@ -321,7 +342,11 @@ TEST_F(TimingsFile, ReadsWhatRunWroteAndWritesTheSameBytes) {
   EXPECT_EQ(o.n_factors, 58);
   EXPECT_EQ(o.iterations, 3);
   EXPECT_EQ(o.reason, "loop");
-  EXPECT_EQ(format_timings(t), kTimingsText);
+  EXPECT_EQ(o.active_keyframes, -1);  // not in the older layout
+  const Timings now = read_timings(write_file("timings_now.csv", kTimingsTextNow));
+  ASSERT_EQ(now.optimizations.size(), 1u);
+  EXPECT_EQ(now.optimizations[0].active_keyframes, 57);
+  EXPECT_EQ(format_timings(now), kTimingsTextNow);
 }
 
 TEST_F(TimingsFile, WarningsWithCommasAndQuotesRoundTrip) {

@@ -22,7 +22,8 @@ namespace {
 
 struct Outcome {
   double ate_rmse = 0, odom_ate_rmse = 0, ate_loop = 0;
-  std::size_t n_loops = 0, n_loops_correct = 0, n_keyframes = 0;
+  std::size_t n_loops = 0, n_loops_correct = 0, n_keyframes = 0, n_active_keyframes = 0;
+  std::size_t n_loop_solves_full = 0, n_loop_solves_local = 0;
   double ground_precision = 0, ground_recall = 0;
   eval::Consistency rooms_consistency;
   eval::RoomsVsTruth rooms_truth;
@@ -63,7 +64,11 @@ Outcome run_scene(const scene::Scene& scene, std::uint64_t seed) {
   o.ate_loop = eval::ate_loop(est);
   const auto& kfs = slam.graph().keyframes();
   o.n_keyframes = kfs.size();
-  for (const graph::BetweenEdge& e : slam.graph().loop_edges()) {
+  o.n_active_keyframes = slam.graph().num_active_keyframes();
+  for (const pipeline::OptimizationRecord& r : slam.optimizations())
+    if (r.reason == "loop") ++(r.stats.full ? o.n_loop_solves_full : o.n_loop_solves_local);
+  for (const pipeline::LoopClosureRecord& l : slam.loop_closures()) {  // as accepted, before any folding
+    const graph::BetweenEdge& e = l.edge;
     ++o.n_loops;
     const Pose3 truth = sim.true_poses()[kfs[e.from].scan_index].inverse() * sim.true_poses()[kfs[e.to].scan_index];
     const Pose3 err = truth.inverse() * e.measurement;
@@ -155,6 +160,13 @@ void expect_must_show(const Outcome& o) {
               o.rooms_truth.under_segmented, o.rooms_truth.over_segmented, o.rooms_truth.n_rooms_final);
   std::printf("ground precision %.4f recall %.4f, %zu global traversable nodes, %zu in voids\n", o.ground_precision,
               o.ground_recall, o.n_ground_nodes, o.n_nodes_in_voids);
+  // Keyframe retirement: the second lap's keyframes in mapped rooms left the graph. Loops that
+  // agree with the estimate were taken in by local solves, the odometry's drift by full ones.
+  EXPECT_LT(o.n_active_keyframes, o.n_keyframes);
+  EXPECT_GE(o.n_loop_solves_full, 1u);
+  EXPECT_GE(o.n_loop_solves_local, 1u);
+  std::printf("%zu of %zu keyframes in the graph at the end; loop solves: %zu full, %zu local\n", o.n_active_keyframes,
+              o.n_keyframes, o.n_loop_solves_full, o.n_loop_solves_local);
   std::printf("ATE_rmse %.3f (odometry %.3f), ATE_loop %.3f, %zu keyframes, loops %zu/%zu correct, "
               "walls %d/%d mapped, dist err mean %.4f max %.4f, angle err mean %.3f max %.3f deg, %d duplicates\n",
               o.ate_rmse, o.odom_ate_rmse, o.ate_loop, o.n_keyframes, o.n_loops_correct, o.n_loops,

@@ -233,6 +233,29 @@ TEST(PlaneMapper, UpdateMovesPointsWithKeyframesAndRevisitsDoNotGrowThem) {
   EXPECT_NEAR(max_x, 5.0f, voxel);
 }
 
+TEST(PlaneMapper, ARetiredKeyframesObservationsAreForgottenButALandmarksLastStays) {
+  PlaneMapper mapper;
+  const Pose3 T0 = pose_at(2.0, 2.0), T1 = pose_at(6.0, 2.0);
+  // Keyframe 0 saw the west half of the face, keyframe 1 the east half, keyframe 2 a face of its own.
+  mapper.add_landmark(0, observe_rectangle({0.0, 4.9}, {4.0, 4.9}, 2.9, T0), T0, 0);
+  mapper.add_observation(0, observe_rectangle({4.0, 4.9}, {8.0, 4.9}, 2.9, T1), T1, 1);
+  mapper.add_landmark(1, observe_rectangle({0.0, -1.0}, {4.0, -1.0}, 2.9, T1), T1, 2);
+  const std::map<int, Pose3> poses{{0, T0}, {1, T1}, {2, T1}};
+  const auto pose_of = [&](int k) { return poses.at(k); };
+  const auto max_x = [&](int id) {
+    float x = -1e9f;
+    for (const Eigen::Vector3f& p : mapper.landmarks().at(id).points) x = std::max(x, p.x());
+    return x;
+  };
+  EXPECT_NEAR(max_x(0), 8.0f, 0.25f);
+  mapper.forget_keyframe(1, pose_of);
+  EXPECT_EQ(mapper.landmarks().at(0).observations.count(1), 0u);
+  EXPECT_NEAR(max_x(0), 4.0f, 0.25f);  // the east half went with its keyframe
+  mapper.forget_keyframe(2, pose_of);
+  EXPECT_EQ(mapper.landmarks().at(1).observations.size(), 1u);  // its only observation stays
+  EXPECT_FALSE(mapper.landmarks().at(1).points.empty());
+}
+
 // ---- An office lap from simulated scans, scored against the scene's wall faces ----
 
 // The pipeline's own prefilter (NaN drop, range crop, one centroid per voxel).

@@ -61,6 +61,8 @@ std::string metrics_json(const Metrics& m) {
   const auto& l = m.loops;
   j["loops"] = {{"n_loops", value(l.n_loops)},
                 {"n_loops_correct", value(l.n_loops_correct)},
+                {"n_loops_room", value(l.n_loops_room)},
+                {"n_loops_room_correct", value(l.n_loops_room_correct)},
                 {"max_loop_err_m", value(l.max_loop_err_m)},
                 {"max_loop_err_deg", value(l.max_loop_err_deg)}};
   return j.dump(1) + "\n";

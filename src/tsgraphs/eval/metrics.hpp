@@ -38,6 +38,7 @@ struct Metrics {
   } speed;
   struct {
     Figure n_loops, n_loops_correct;  ///< loop closures, and those within tolerance of the truth
+    Figure n_loops_room, n_loops_room_correct;  ///< of them, proposed by a room re-detection (the rest by distance)
     Figure max_loop_err_m, max_loop_err_deg;
   } loops;
 };

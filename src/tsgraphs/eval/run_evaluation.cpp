@@ -251,13 +251,26 @@ Metrics evaluate_run(const EvalOptions& options) {
     w.z1 = (*p.z_range)[1];
     walls.push_back(w);
   }
+  // Loops as accepted (the graph's edges may have moved since: keyframe retirement folds them);
+  // run folders from before the list existed: the graph's loop edges.
   std::vector<std::pair<int, int>> loops;
   std::vector<Pose3> loop_meas;
-  for (const io::SceneGraph::LoopEdge& e : graph.loop_edges) {
-    loops.emplace_back(e.from, e.to);
-    loop_meas.push_back(e.measurement.pose());
+  std::vector<bool> loop_by_room;
+  if (!graph.loop_closures.empty() || graph.loop_edges.empty()) {
+    for (const io::SceneGraph::LoopClosure& l : graph.loop_closures) {
+      loops.emplace_back(l.from, l.to);
+      loop_meas.push_back(l.measurement.pose());
+      loop_by_room.push_back(l.proposer == "room");
+    }
+  } else {
+    for (const io::SceneGraph::LoopEdge& e : graph.loop_edges) {
+      loops.emplace_back(e.from, e.to);
+      loop_meas.push_back(e.measurement.pose());
+      loop_by_room.push_back(false);
+    }
   }
   m.loops.n_loops = static_cast<double>(loops.size());
+  m.loops.n_loops_room = static_cast<double>(std::count(loop_by_room.begin(), loop_by_room.end(), true));
 
   // Rooms: the two-lap consistency from the events; the final rooms for the ground truth.
   const std::string events_file = dir + "/" + io::run_files::kRoomEvents;
@@ -311,7 +324,7 @@ Metrics evaluate_run(const EvalOptions& options) {
 
   // Loop closures against the true relative poses of their keyframes.
   double max_err_m = 0, max_err_deg = 0;
-  int correct = 0;
+  int correct = 0, room_correct = 0;
   for (std::size_t i = 0; i < loops.size(); ++i) {
     const auto [from, to] = loops[i];
     if (from < 0 || to < 0 || static_cast<std::size_t>(std::max(from, to)) >= kf_scan.size())
@@ -322,9 +335,13 @@ Metrics evaluate_run(const EvalOptions& options) {
     const double ed = Eigen::AngleAxisd(err.linear()).angle() * 180.0 / M_PI;
     max_err_m = std::max(max_err_m, em);
     max_err_deg = std::max(max_err_deg, ed);
-    if (em <= options.loop_tolerance_m && ed <= options.loop_tolerance_deg) ++correct;
+    if (em <= options.loop_tolerance_m && ed <= options.loop_tolerance_deg) {
+      ++correct;
+      room_correct += loop_by_room[i] ? 1 : 0;
+    }
   }
   m.loops.n_loops_correct = correct;
+  m.loops.n_loops_room_correct = room_correct;
   if (!loops.empty()) {
     m.loops.max_loop_err_m = max_err_m;
     m.loops.max_loop_err_deg = max_err_deg;

@@ -265,7 +265,8 @@ void add_edge(const json& e, const std::string& name, SceneGraph* g) {
         {integer_at<int>(e, "from", name), integer_at<int>(e, "to", name), pose_at(e, "measurement", name)});
   } else if (type == "loop") {
     g->loop_edges.push_back({integer_at<int>(e, "from", name), integer_at<int>(e, "to", name),
-                             number_at(e, "fitness", name), pose_at(e, "measurement", name)});
+                             number_at(e, "fitness", name), pose_at(e, "measurement", name),
+                             optional_member(e, "folded") ? integer_at<int>(e, "folded", name) : 0});
   } else if (type == "keyframe_plane") {
     g->keyframe_plane_edges.push_back(
         {integer_at<int>(e, "keyframe", name), integer_at<int>(e, "plane", name), vector_at<4>(e, "measurement", name)});
@@ -285,6 +286,8 @@ constexpr const char* kTimingsHeader =
     "kind,index,stamp,keyframe,num_points,prefilter_ms,walls_ms,loop_ms,frontend_ms,"
     "optimization_s,full,n_variables,n_factors,iterations,reason,"
     "ground_ms,ground_nodes,ground_tp,ground_fp,ground_fn,rooms_ms";
+// Columns added later: read when present (older run folders lack them).
+constexpr const char* kActiveKeyframes = "active_keyframes";
 
 // printf into the end of `out` (rows may be longer than any fixed buffer: a long warning).
 void append(std::string* out, const char* format, ...) __attribute__((format(printf, 2, 3)));
@@ -370,6 +373,7 @@ std::string format_scene_graph(const SceneGraph& g) {
                          {"accum_distance", k.accum_distance},
                          {"pose", pose_json(k.pose)},
                          {"odom", pose_json(k.odom)}});
+    if (k.anchor >= 0) keyframes.back()["anchor"] = k.anchor;
   }
   json planes = json::array();
   for (const SceneGraph::Plane& p : g.planes) {
@@ -383,12 +387,14 @@ std::string format_scene_graph(const SceneGraph& g) {
   json edges = json::array();
   for (const SceneGraph::OdometryEdge& e : g.odometry_edges)
     edges.push_back({{"type", "odometry"}, {"from", e.from}, {"to", e.to}, {"measurement", pose_json(e.measurement)}});
-  for (const SceneGraph::LoopEdge& e : g.loop_edges)
+  for (const SceneGraph::LoopEdge& e : g.loop_edges) {
     edges.push_back({{"type", "loop"},
                      {"from", e.from},
                      {"to", e.to},
                      {"fitness", e.fitness},
                      {"measurement", pose_json(e.measurement)}});
+    if (e.folded > 0) edges.back()["folded"] = e.folded;
+  }
   for (const SceneGraph::KeyframePlaneEdge& e : g.keyframe_plane_edges)
     edges.push_back({{"type", "keyframe_plane"},
                      {"keyframe", e.keyframe},
@@ -433,6 +439,13 @@ std::string format_scene_graph(const SceneGraph& g) {
     if (!r.polygon.empty()) room["polygon"] = polygon_json(r.polygon);
     rooms.push_back(std::move(room));
   }
+  json loop_closures = json::array();
+  for (const SceneGraph::LoopClosure& l : g.loop_closures)
+    loop_closures.push_back({{"from", l.from},
+                             {"to", l.to},
+                             {"fitness", l.fitness},
+                             {"measurement", pose_json(l.measurement)},
+                             {"proposer", l.proposer}});
   // nlohmann::json keeps keys sorted: the file's layout since version 1.
   const json doc = {{"format", "tsgraphs-scene-graph"},
                     {"version", 1},
@@ -444,7 +457,8 @@ std::string format_scene_graph(const SceneGraph& g) {
                     {"room_nodes", room_nodes},
                     {"floors", floors},
                     {"levels", g.levels},
-                    {"edges", edges}};
+                    {"edges", edges},
+                    {"loop_closures", loop_closures}};
   return doc.dump(1) + "\n";
 }
 
@@ -464,6 +478,7 @@ SceneGraph read_scene_graph(const std::string& path) {
       kf.accum_distance = number_at(k, "accum_distance", name);
       kf.pose = pose_at(k, "pose", name);
       kf.odom = pose_at(k, "odom", name);
+      if (optional_member(k, "anchor")) kf.anchor = integer_at<int>(k, "anchor", name);
       g.keyframes.push_back(kf);
     });
     for_each_object(doc, "planes", "", true,
@@ -485,6 +500,11 @@ SceneGraph read_scene_graph(const std::string& path) {
         g.levels.push_back(number((*levels)[i], item("levels", i)));
     }
     for_each_object(doc, "edges", "", true, [&](const json& e, const std::string& name) { add_edge(e, name, &g); });
+    for_each_object(doc, "loop_closures", "", false, [&](const json& l, const std::string& name) {
+      g.loop_closures.push_back({integer_at<int>(l, "from", name), integer_at<int>(l, "to", name),
+                                 number_at(l, "fitness", name), pose_at(l, "measurement", name),
+                                 string_at(l, "proposer", name)});
+    });
   } catch (const FieldError& e) {
     throw input_error(path, 0, e.what());
   }
@@ -548,15 +568,15 @@ std::vector<RoomEvent> read_room_events(const std::string& path) {
 // ---- timings.csv --------------------------------------------------------------------------
 
 std::string format_timings(const Timings& t) {
-  std::string out = std::string(kTimingsHeader) + "\n";
+  std::string out = std::string(kTimingsHeader) + "," + kActiveKeyframes + "\n";
   for (const ScanTiming& s : t.scans) {
-    append(&out, "scan,%zu,%.6f,%d,%zu,%.3f,%.3f,%.3f,%.3f,,,,,,%s,%.3f,%zu,%ld,%ld,%ld,%.3f\n", s.index, s.stamp,
+    append(&out, "scan,%zu,%.6f,%d,%zu,%.3f,%.3f,%.3f,%.3f,,,,,,%s,%.3f,%zu,%ld,%ld,%ld,%.3f,\n", s.index, s.stamp,
            s.keyframe, s.num_points, s.prefilter_ms, s.walls_ms, s.loop_ms, s.frontend_ms, quote_csv(s.warning).c_str(),
            s.ground_ms, s.ground_nodes, s.ground_tp, s.ground_fp, s.ground_fn, s.rooms_ms);
   }
   for (const OptimizationTiming& o : t.optimizations) {
-    append(&out, "optimization,%zu,%.6f,%d,,,,,,%.6f,%d,%d,%d,%d,%s,,,,,,\n", o.index, o.stamp, o.keyframe, o.seconds,
-           o.full ? 1 : 0, o.n_variables, o.n_factors, o.iterations, o.reason.c_str());
+    append(&out, "optimization,%zu,%.6f,%d,,,,,,%.6f,%d,%d,%d,%d,%s,,,,,,,%d\n", o.index, o.stamp, o.keyframe, o.seconds,
+           o.full ? 1 : 0, o.n_variables, o.n_factors, o.iterations, o.reason.c_str(), o.active_keyframes);
   }
   return out;
 }
@@ -580,6 +600,8 @@ Timings read_timings(const std::string& path) {
     if (it == header.end()) throw input_error(path, 1, "header has no column '" + name + "'");
     col.push_back(static_cast<std::size_t>(it - header.begin()));
   }
+  const auto active_at = std::find(header.begin(), header.end(), kActiveKeyframes);
+  const std::size_t active_col = active_at == header.end() ? header.size() : static_cast<std::size_t>(active_at - header.begin());
   const std::vector<std::string> names = split_csv(kTimingsHeader);
   enum Column { kIndex = 1, kStamp, kKeyframe, kNumPoints, kPrefilter, kWalls, kLoop, kFrontend, kSeconds, kFull,
                 kVariables, kFactors, kIterations, kReason, kGroundMs, kGroundNodes, kTp, kFp, kFn, kRoomsMs };
@@ -639,6 +661,8 @@ Timings read_timings(const std::string& path) {
         whole(kFactors, &o.n_factors);
         whole(kIterations, &o.iterations);
         o.reason = field(kReason);
+        if (active_col < cols.size() && !parse_whole(cols[active_col], &o.active_keyframes))
+          throw FieldError(std::string("malformed ") + kActiveKeyframes + " in an optimization row");
         t.optimizations.push_back(std::move(o));
       } else {
         throw FieldError("expected a scan or optimization row, got '" + kind + "'");

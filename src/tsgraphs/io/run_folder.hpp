@@ -54,6 +54,7 @@ struct SceneGraph {
     double accum_distance = 0.0;  ///< odometry distance from the start, m
     PoseRecord pose;              ///< optimised, map <- keyframe
     PoseRecord odom;              ///< the input odometry
+    int anchor = -1;              ///< [anchor]: retired (keyframe_retirement), its pose follows this keyframe's; -1: in the graph
   };
   /// A mapped plane; the extent fields exist when it has points (segment: walls only).
   struct Plane {
@@ -108,6 +109,14 @@ struct SceneGraph {
     int from = -1, to = -1;
     double fitness = 0.0;
     PoseRecord measurement;  ///< T_from_to
+    int folded = 0;          ///< [folded]: retired keyframes composed into it (it moved to a later keyframe)
+  };
+  /// A loop closure as it was accepted (the graph's loop edge may since have moved, folded).
+  struct LoopClosure {
+    int from = -1, to = -1;
+    double fitness = 0.0;
+    PoseRecord measurement;  ///< T_from_to, as registered
+    std::string proposer;    ///< who proposed the pair: "distance" (near in the map, far in travel) or "room"
   };
   struct KeyframePlaneEdge {
     int keyframe = -1, plane = -1;
@@ -137,6 +146,7 @@ struct SceneGraph {
   std::vector<KeyframePlaneEdge> keyframe_plane_edges;
   std::vector<RoomPlanesEdge> room_planes_edges;
   std::vector<FloorRoomEdge> floor_room_edges;
+  std::vector<LoopClosure> loop_closures;          ///< [loop_closures]: every accepted loop, in order
 };
 
 /// scene_graph.json's text ("format": "tsgraphs-scene-graph", "version": 1).
@@ -193,6 +203,7 @@ struct OptimizationTiming {
   bool full = false;
   int n_variables = 0, n_factors = 0, iterations = 0;
   std::string reason;     ///< "schedule", "loop", "periodic" or "final"
+  int active_keyframes = -1;  ///< keyframes in the graph after it (retired ones not counted); -1: not recorded
 };
 
 struct Timings {

@@ -7,6 +7,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "tsgraphs/core/polygon.hpp"
 #include "tsgraphs/core/voxel_grid.hpp"
 #include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
@@ -129,13 +130,12 @@ const ScanRecord& Pipeline::process(PreparedScan prepared) {
   scans_.push_back(record);
   // The back-end runs after the front-end bookkeeping so that frontend_ms excludes it.
   if (record.keyframe >= 0) {
-    const bool loop = !graph_.loop_edges().empty() && graph_.loop_edges().back().to == record.keyframe;
+    const bool loop = !loop_closures_.empty() && loop_closures_.back().edge.to == record.keyframe;
     ++keyframes_since_solve_;
-    ++keyframes_since_full_;
+    const int grown = static_cast<int>(graph_.num_active_keyframes()) - active_at_last_full_;
     if (loop) {
-      optimize(true, "loop");
-    } else if (config_.schedule.full_every_keyframes > 0 &&
-               keyframes_since_full_ >= config_.schedule.full_every_keyframes) {
+      optimize(loop_asks_for_full_solve(loop_closures_.back().edge), "loop");
+    } else if (config_.schedule.full_every_keyframes > 0 && grown >= config_.schedule.full_every_keyframes) {
       optimize(true, "periodic");
     } else if (keyframes_since_solve_ >= config_.schedule.optimize_every_keyframes) {
       optimize(false, "schedule");
@@ -199,12 +199,30 @@ void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud,
   check_empty_layers(id, nodes.size(), walls_seen);
 
   const auto rooms_start = std::chrono::steady_clock::now();
+  revisited_room_ = -1;
   add_room_events(rooms_.update(room_input(id)));
   record.rooms_ms = ms_since(rooms_start);
 
+  // Loop closure: a room re-detected with its walls proposes first, then the distance rule.
   const auto loop_start = std::chrono::steady_clock::now();
-  if (auto loop = loop_detector_.detect(graph_, id, [this](int k) -> const PointCloud& { return keyframe_clouds_[k]; }))
+  const auto cloud_of = [this](int k) -> const PointCloud& { return keyframe_clouds_[k]; };
+  std::optional<graph::BetweenEdge> loop;
+  std::string proposer = "room";
+  const auto& mapped = rooms_.room_map().rooms();
+  if (config_.room_loop_closure.enabled && revisited_room_ >= 0 && mapped.count(revisited_room_)) {
+    const std::vector<int> candidates =
+        graph::room_loop_candidates(graph_, id, mapped.at(revisited_room_).footprint(),
+                                    config_.loop_closure.min_travel, config_.room_loop_closure);
+    loop = loop_detector_.verify(graph_, id, candidates, cloud_of);
+  }
+  if (!loop) {
+    loop = loop_detector_.detect(graph_, id, cloud_of);
+    proposer = "distance";
+  }
+  if (loop) {
     graph_.add_loop_edge(*loop);
+    loop_closures_.push_back({*loop, proposer});
+  }
   record.loop_ms = ms_since(loop_start);
 }
 
@@ -244,7 +262,6 @@ void Pipeline::optimize(bool full, const std::string& reason) {
   rec.stats = optimizer_.optimize(graph_, full);
   optimizations_.push_back(rec);
   keyframes_since_solve_ = 0;
-  if (full) keyframes_since_full_ = 0;
 
   std::map<int, Plane> planes;
   for (const auto& [id, node] : graph_.planes()) planes.emplace(id, node.plane);
@@ -259,6 +276,59 @@ void Pipeline::optimize(bool full, const std::string& reason) {
       mapper_.merge(keep, drop, pose_of);
     }
   }
+  retire_redundant_keyframes(pose_of);
+  optimizations_.back().active_keyframes = static_cast<int>(graph_.num_active_keyframes());
+  if (full) active_at_last_full_ = optimizations_.back().active_keyframes;
+}
+
+bool Pipeline::loop_asks_for_full_solve(const graph::BetweenEdge& loop) const {
+  const double sigmas = config_.schedule.full_solve_loop_sigmas;
+  if (sigmas <= 0.0) return true;
+  const auto& kf = graph_.keyframes();
+  const Pose3 error = (kf[loop.from].pose.inverse() * kf[loop.to].pose).inverse() * loop.measurement;
+  const double trans = error.translation().norm() / config_.optimizer.loop_sigma_trans;
+  const double rot = Eigen::AngleAxisd(error.linear()).angle() / (config_.optimizer.loop_sigma_rot_deg * M_PI / 180.0);
+  return std::max(trans, rot) >= sigmas;
+}
+
+void Pipeline::retire_redundant_keyframes(const std::function<Pose3(int)>& pose_of) {
+  const int newest = static_cast<int>(graph_.keyframes().size()) - 1;
+  if (config_.keyframe_retirement.enabled) {
+    // The local window's keyframes: each has just been optimised with what it saw.
+    std::vector<int> candidates;
+    for (int k = std::max(1, newest + 1 - config_.optimizer.local_window); k < newest; ++k) candidates.push_back(k);
+    const graph::PoseSigmas odometry{config_.optimizer.odometry_sigma_trans, config_.optimizer.odometry_sigma_rot_deg};
+    const graph::PoseSigmas loop{config_.optimizer.loop_sigma_trans, config_.optimizer.loop_sigma_rot_deg};
+    const auto in_space = [this](int k) { return in_mapped_space(graph_.keyframes()[k].pose); };
+    for (const graph::Retirement& r :
+         graph::redundant_keyframes(graph_, candidates, config_.keyframe_retirement, in_space)) {
+      graph_.retire_keyframe(r.keyframe, r.anchor, odometry, loop);
+      mapper_.forget_keyframe(r.keyframe, pose_of);
+      rooms_.forget_keyframe(r.keyframe);
+      clouds_to_release_.push_back(r.keyframe);
+    }
+  }
+  // room_input() reads the clouds of the last obstacle_keyframes keyframes.
+  const int oldest_read = newest + 1 - config_.rooms.layer.obstacle_keyframes;
+  const auto release = [&](int k) {
+    if (k >= oldest_read) return false;
+    keyframe_clouds_[k] = PointCloud();  // frees its memory
+    return true;
+  };
+  clouds_to_release_.erase(std::remove_if(clouds_to_release_.begin(), clouds_to_release_.end(), release),
+                           clouds_to_release_.end());
+}
+
+bool Pipeline::in_mapped_space(const Pose3& pose) const {
+  const double floor_z = pose.translation().z() - config_.ground.sensor_height;
+  const Vec2 xy = pose.translation().head<2>();
+  const auto& levels = rooms_.levels();
+  for (const auto& [id, room] : rooms_.room_map().rooms()) {
+    if (room.level < 0 || static_cast<std::size_t>(room.level) >= levels.size()) continue;
+    if (std::abs(levels[static_cast<std::size_t>(room.level)] - floor_z) > config_.rooms.layer.level_tolerance) continue;
+    if (contains(room.footprint(), xy)) return true;
+  }
+  return false;
 }
 
 void Pipeline::finish() {
@@ -337,6 +407,12 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
 void Pipeline::add_room_events(const std::vector<RoomEventRecord>& events) {
   for (const RoomEventRecord& e : events) {
     room_events_.push_back(e);
+    // A re-detection with the walls of the room's previous extraction: a room-based loop candidate.
+    const auto previous = room_walls_.find(e.room_id);
+    if (!e.is_new && previous != room_walls_.end() &&
+        graph::walls_match(e.walls, previous->second, config_.room_loop_closure))
+      revisited_room_ = e.room_id;
+    room_walls_[e.room_id] = e.walls;
     // A duplicate merged in the room map: a kept room without a node takes the duplicate's
     // (its footprint then follows the graph's corrections of that place). A kept room with a
     // node keeps it as it is, and the duplicate's node leaves the graph: its room-planes

@@ -3,6 +3,7 @@
 /// can drive it), prefilter -> keyframe selection -> walls -> graph (loop closure,
 /// optimisation). No file I/O: run_outputs.hpp writes what it holds.
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -49,11 +50,18 @@ struct PreparedScan {
   bool input_empty = false;
 };
 
+/// A loop closure as accepted (the graph's edge may later move: keyframe retirement folds it).
+struct LoopClosureRecord {
+  graph::BetweenEdge edge;
+  std::string proposer;  ///< "distance" or "room"
+};
+
 /// One back-end run.
 struct OptimizationRecord {
   int after_keyframe = -1;    ///< the newest keyframe when it ran
   std::string reason;         ///< "schedule", "loop", "periodic" or "final"
   graph::OptimizationStats stats;
+  int active_keyframes = 0;   ///< keyframes in the graph after it and the retirements that followed
 };
 
 class Pipeline {
@@ -103,6 +111,8 @@ class Pipeline {
   const ground::GroundScan& last_ground() const { return last_ground_; }
   const std::vector<ScanRecord>& scans() const { return scans_; }
   const std::vector<OptimizationRecord>& optimizations() const { return optimizations_; }
+  /// Every loop closure accepted, in order.
+  const std::vector<LoopClosureRecord>& loop_closures() const { return loop_closures_; }
   /// Keyframe `id`'s prefiltered cloud in its own frame.
   const PointCloud& keyframe_cloud(int id) const { return keyframe_clouds_.at(id); }
   /// The corrected pose of every scan processed so far: its reference keyframe's estimate
@@ -117,6 +127,14 @@ class Pipeline {
   void move_rooms_with_graph();
   void score_ground(const PointCloud& scan, const ground::GroundScan& ground, ScanRecord* record) const;
   void optimize(bool full, const std::string& reason);
+  /// Whether a new loop disagrees with the estimate by schedule.full_solve_loop_sigmas or more.
+  bool loop_asks_for_full_solve(const graph::BetweenEdge& loop) const;
+  /// Keyframe retirement after a solve: the redundant keyframes of the local window leave the
+  /// graph, their observations the plane map, their clouds memory (once the room layer's
+  /// obstacle window has passed them).
+  void retire_redundant_keyframes(const std::function<Pose3(int)>& pose_of);
+  /// Whether a pose stands inside a mapped room or corridor of its level.
+  bool in_mapped_space(const Pose3& pose) const;
   /// Counts keyframes in which a layer stayed empty and warns once per layer.
   void check_empty_layers(int keyframe, std::size_t ground_nodes, std::size_t walls);
 
@@ -146,12 +164,16 @@ class Pipeline {
   graph::GraphOptimizer optimizer_;
   graph::LoopDetector loop_detector_;
   std::vector<PointCloud> keyframe_clouds_;
+  std::vector<int> clouds_to_release_;  ///< retired keyframes whose clouds the obstacle window still reads
   std::vector<ScanRecord> scans_;
   std::vector<OptimizationRecord> optimizations_;
+  std::vector<LoopClosureRecord> loop_closures_;
+  std::map<int, std::vector<int>> room_walls_;  ///< room map id -> the walls of its latest extraction
+  int revisited_room_ = -1;                     ///< a mapped room the newest keyframe re-detected with its walls, or -1
   double accum_distance_ = 0.0;
   std::optional<Pose3> last_odom_;
   int keyframes_since_solve_ = 0;
-  int keyframes_since_full_ = 0;
+  int active_at_last_full_ = 0;  ///< keyframes in the graph after the last full solve
 };
 
 }  // namespace tsgraphs::pipeline

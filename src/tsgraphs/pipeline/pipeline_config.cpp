@@ -188,7 +188,14 @@ void validate(const YamlMap& root, const PipelineConfig& c) {
   }
   if (c.diagnostics.empty_layer_keyframes < 0)
     throw root.map("diagnostics").error("empty_layer_keyframes", "empty_layer_keyframes must be >= 0");
+  check_positive(root, "room_loop_closure", "max_candidates", c.room_loop_closure.max_candidates);
+  check_positive(root, "room_loop_closure", "min_common_walls", c.room_loop_closure.min_common_walls);
+  check_positive(root, "room_loop_closure", "max_height_difference", c.room_loop_closure.max_height_difference);
+  check_positive(root, "keyframe_retirement", "radius", c.keyframe_retirement.radius);
+  check_positive(root, "keyframe_retirement", "min_travel", c.keyframe_retirement.min_travel);
   check_positive(root, "schedule", "optimize_every_keyframes", c.schedule.optimize_every_keyframes);
+  if (!(c.schedule.full_solve_loop_sigmas >= 0.0))
+    throw root.map("schedule").error("full_solve_loop_sigmas", "full_solve_loop_sigmas must be >= 0");
   if (c.schedule.full_every_keyframes < 0)
     throw root.map("schedule").error("full_every_keyframes", "full_every_keyframes must be >= 0");
 }

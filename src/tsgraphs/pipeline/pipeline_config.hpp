@@ -7,7 +7,9 @@
 #include "tsgraphs/graph/graph_optimizer.hpp"
 #include "tsgraphs/ground/ground_segmentation.hpp"
 #include "tsgraphs/ground/traversable_node_map.hpp"
+#include "tsgraphs/graph/keyframe_retirement.hpp"
 #include "tsgraphs/graph/loop_closure.hpp"
+#include "tsgraphs/graph/room_loop_closure.hpp"
 #include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
 #include "tsgraphs/odometry/sweep_registration.hpp"
@@ -23,13 +25,17 @@ namespace tsgraphs::pipeline {
 /// When the back-end runs.
 struct ScheduleConfig {
   int optimize_every_keyframes = 5;  ///< a local solve after this many new keyframes
-  int full_every_keyframes = 50;     ///< a full solve after this many (0 = only after loops and at the end)
+  int full_every_keyframes = 50;     ///< a full solve after the graph grew by this many keyframes (retired ones leave it; 0 = only after loops and at the end)
+  /// A loop this many of its sigmas or more from the estimate asks for a full solve (the old
+  /// graph has drift to correct); a nearer one is taken in by a local solve (0: every loop a full solve).
+  double full_solve_loop_sigmas = 3.0;
   bool merge_duplicate_planes = true;///< merge landmarks found to be one face after each solve
 
   template <class V>
   void visit(V& v) {
     v("optimize_every_keyframes", optimize_every_keyframes);
     v("full_every_keyframes", full_every_keyframes);
+    v("full_solve_loop_sigmas", full_solve_loop_sigmas);
     v("merge_duplicate_planes", merge_duplicate_planes);
   }
 };
@@ -79,6 +85,8 @@ struct PipelineConfig {
   walls::PlaneMapperConfig plane_mapping;
   graph::GraphOptimizerConfig optimizer;
   graph::LoopClosureConfig loop_closure;
+  graph::RoomLoopClosureConfig room_loop_closure;       ///< loop candidates from room re-detections
+  graph::KeyframeRetirementConfig keyframe_retirement;  ///< revisits' redundant keyframes leave the graph
   ScheduleConfig schedule;
   RoomLayerSettings rooms;  ///< free space, triggers, extraction and association (room_layer.hpp)
   DiagnosticsConfig diagnostics;
@@ -100,6 +108,8 @@ struct PipelineConfig {
     v.section("plane_mapping", plane_mapping);
     v.section("optimizer", optimizer);
     v.section("loop_closure", loop_closure);
+    v.section("room_loop_closure", room_loop_closure);
+    v.section("keyframe_retirement", keyframe_retirement);
     v.section("schedule", schedule);
     v.section("room_layer", rooms.layer);
     v.section("free_space", rooms.free_space);

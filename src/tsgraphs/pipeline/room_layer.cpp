@@ -262,6 +262,15 @@ std::vector<Eigen::Vector3d> RoomLayer::map_points(const TracedScan& scan) {
   return out;
 }
 
+void RoomLayer::forget_keyframe(int keyframe) {
+  // Scans are traced in keyframe order.
+  const auto it = std::lower_bound(traced_.begin(), traced_.end(), keyframe,
+                                   [](const TracedScan& s, int k) { return s.keyframe < k; });
+  if (it == traced_.end() || it->keyframe != keyframe) return;
+  sight_.at(it->level).remove_scan(it->traced_at.translation(), map_points(*it));
+  traced_.erase(it);
+}
+
 void RoomLayer::retrace(const RoomLayerInput& input) {
   bool any = false;
   for (TracedScan& scan : traced_) {

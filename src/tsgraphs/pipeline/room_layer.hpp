@@ -138,6 +138,9 @@ class RoomLayer {
   const rooms::RoomMap& room_map() const { return map_; }
   /// Moves mapped room `id` (the back-end moved its room node).
   void move_room(int id, const Vec2& center);
+  /// A keyframe retired from the graph (keyframe_retirement.hpp): its rays leave the sight map
+  /// and their points memory; the earlier pass's rays cover where it stood.
+  void forget_keyframe(int keyframe);
   /// Size of the robot's free-space cluster at the last keyframe (vertices).
   std::size_t last_cluster_size() const { return last_cluster_size_; }
   /// Floor height (map frame) of each level index, in order of first visit.

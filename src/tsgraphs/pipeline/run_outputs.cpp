@@ -65,7 +65,7 @@ io::SceneGraph scene_graph_of(const Pipeline& pipeline) {
   io::SceneGraph out;
   for (const graph::KeyframeNode& k : g.keyframes())
     out.keyframes.push_back({k.id, k.scan_index, k.stamp, k.accum_distance, io::PoseRecord::of(k.pose),
-                             io::PoseRecord::of(k.odom)});
+                             io::PoseRecord::of(k.odom), k.retired ? k.anchor : -1});
   std::map<int, std::vector<int>> observers;
   for (const graph::PlaneEdge& e : g.plane_edges()) observers[e.plane].push_back(e.keyframe);
   for (const auto& [id, p] : g.planes()) {
@@ -90,7 +90,9 @@ io::SceneGraph scene_graph_of(const Pipeline& pipeline) {
   for (const graph::BetweenEdge& e : g.odometry_edges())
     out.odometry_edges.push_back({e.from, e.to, io::PoseRecord::of(e.measurement)});
   for (const graph::BetweenEdge& e : g.loop_edges())
-    out.loop_edges.push_back({e.from, e.to, e.fitness, io::PoseRecord::of(e.measurement)});
+    out.loop_edges.push_back({e.from, e.to, e.fitness, io::PoseRecord::of(e.measurement), e.folded});
+  for (const LoopClosureRecord& l : pipeline.loop_closures())
+    out.loop_closures.push_back({l.edge.from, l.edge.to, l.edge.fitness, io::PoseRecord::of(l.edge.measurement), l.proposer});
   for (const graph::PlaneEdge& e : g.plane_edges())
     out.keyframe_plane_edges.push_back(
         {e.keyframe, e.plane, Eigen::Vector4d(e.measurement.n.x(), e.measurement.n.y(), e.measurement.n.z(), e.measurement.d)});
@@ -192,7 +194,7 @@ io::Timings timings_of(const Pipeline& pipeline) {
     const OptimizationRecord& o = pipeline.optimizations()[i];
     t.optimizations.push_back({i, pipeline.graph().keyframes()[o.after_keyframe].stamp, o.after_keyframe,
                                o.stats.wall_time_s, o.stats.full, o.stats.n_variables, o.stats.n_factors,
-                               o.stats.iterations, o.reason});
+                               o.stats.iterations, o.reason, o.active_keyframes});
   }
   return t;
 }

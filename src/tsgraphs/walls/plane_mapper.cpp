@@ -225,6 +225,16 @@ std::vector<std::pair<int, int>> PlaneMapper::find_duplicates() const {
   return pairs;
 }
 
+void PlaneMapper::forget_keyframe(int keyframe_id, const std::function<Pose3(int)>& keyframe_pose) {
+  for (auto& [id, lm] : landmarks_) {
+    const auto it = lm.observations.find(keyframe_id);
+    // The last observation stays: a landmark keeps the points it was mapped from.
+    if (it == lm.observations.end() || lm.observations.size() == 1) continue;
+    lm.observations.erase(it);
+    rebuild(lm, keyframe_pose);
+  }
+}
+
 void PlaneMapper::merge(int keep, int drop, const std::function<Pose3(int)>& keyframe_pose) {
   const auto k = landmarks_.find(keep);
   const auto d = landmarks_.find(drop);
