@@ -208,6 +208,36 @@ TEST(SuiteTable, CsvHasARowPerCaseAndMethodWithEveryFigure) {
   EXPECT_EQ(lines[3].rfind("b,failed,\"x.yaml:3: walls[0]: bad, \"\"quoted\"\"\",scene,", 0), 0u) << lines[3];
 }
 
+TEST(SuiteTable, TpgoRatiosAndLoopTotalsPerMethod) {
+  SuiteResults r = three_cases();
+  // a: 0.2 s against 1.0 s; c: 0.6 against 1.0; d: S-Graphs+ has no T_PGO.
+  r.cases[0].methods[0].figures["pgo.t_pgo_s"] = 0.2;
+  r.cases[0].methods[1].figures["pgo.t_pgo_s"] = 1.0;
+  r.cases[2].methods[0].figures["pgo.t_pgo_s"] = 0.6;
+  r.cases[2].methods[1].figures["pgo.t_pgo_s"] = 1.0;
+  r.cases[3].methods[0].figures["pgo.t_pgo_s"] = 0.6;
+  const auto ratios = pgo_ratios(r, "s-graphs-plus");
+  ASSERT_EQ(ratios.size(), 2u);
+  EXPECT_EQ(ratios[0].first, "a");
+  EXPECT_DOUBLE_EQ(ratios[0].second, 0.2);
+  EXPECT_DOUBLE_EQ(ratios[1].second, 0.6);
+  r.cases[0].methods[0].figures.insert({{"loops.n_loops", 5.0}, {"loops.n_loops_correct", 4.0},
+                                        {"loops.n_loops_room", 2.0}, {"loops.n_loops_room_correct", 2.0}});
+  r.cases[2].methods[0].figures.insert({{"loops.n_loops", 3.0}, {"loops.n_loops_correct", 3.0}});
+  const LoopTotals t = loop_totals(r, "ts-graphs");
+  EXPECT_EQ(t.cases, 2);
+  EXPECT_EQ(t.found, 8.0);
+  EXPECT_EQ(t.correct, 7.0);
+  EXPECT_EQ(t.room_found, 2.0);
+  EXPECT_EQ(t.room_correct, 2.0);
+  const std::string md = suite_markdown(r);
+  EXPECT_NE(md.find("## T_PGO against TS-graphs"), std::string::npos) << md;
+  EXPECT_NE(md.find("| S-Graphs+ | 0.40 | 0.56 | 0.60 | c | 2 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| TS-graphs | 8 | 7 | 2 | 2 | 2 |"), std::string::npos) << md;
+  EXPECT_NE(md.find(" T_PGO TS-graphs / S-Graphs+ |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| a | done | 0.90 | 1.00 | 0.90 | 0.20 | 0.50 | 0.20 |"), std::string::npos) << md;
+}
+
 TEST(SuiteTable, MarkdownHasEveryTable) {
   const std::string md = suite_markdown(three_cases());
   EXPECT_NE(md.find("# Suite hand-made"), std::string::npos);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <tuple>
 
@@ -134,6 +135,34 @@ std::string key_method(const SuiteResults& results) {
   return results.methods.empty() ? "" : results.methods.front().slug;
 }
 
+std::vector<std::pair<std::string, double>> pgo_ratios(const SuiteResults& results, const std::string& other) {
+  const std::string key = key_method(results);
+  std::vector<std::pair<std::string, double>> out;
+  for (const CaseRecord& c : results.cases) {
+    const CaseMethod* a = c.done() ? c.method(key) : nullptr;
+    const CaseMethod* b = c.done() ? c.method(other) : nullptr;
+    if (a == nullptr || b == nullptr) continue;
+    const Figure ta = a->figure("pgo.t_pgo_s"), tb = b->figure("pgo.t_pgo_s");
+    if (ta && tb && *tb > 0.0) out.emplace_back(c.id, *ta / *tb);
+  }
+  return out;
+}
+
+LoopTotals loop_totals(const SuiteResults& results, const std::string& method) {
+  LoopTotals t;
+  for (const CaseRecord& c : results.cases) {
+    const CaseMethod* run = c.done() ? c.method(method) : nullptr;
+    const Figure found = run ? run->figure("loops.n_loops") : std::nullopt;
+    if (!found) continue;
+    ++t.cases;
+    t.found += *found;
+    t.correct += run->figure("loops.n_loops_correct").value_or(0.0);
+    t.room_found += run->figure("loops.n_loops_room").value_or(0.0);
+    t.room_correct += run->figure("loops.n_loops_room_correct").value_or(0.0);
+  }
+  return t;
+}
+
 std::vector<const CaseRecord*> worst_first(const SuiteResults& results) {
   const std::string key = key_method(results);
   const SuiteFigure& f1 = figure_by_key("rooms_gt.f1");
@@ -246,6 +275,32 @@ std::string suite_markdown(const SuiteResults& results) {
   }
 
   const std::string key = key_method(results);
+  std::string key_name = key;
+  for (const SuiteMethod& m : results.methods)
+    if (m.slug == key) key_name = m.name;
+  if (results.methods.size() > 1) {
+    md += "\n## T_PGO against " + md_cell(key_name) + "\n\n";
+    md += "Per case, " + md_cell(key_name) + "'s T_PGO over the other method's on the same sequence (below 1: cheaper); "
+          "the worst decile is the 90th percentile.\n\n";
+    md += "| method | median | worst decile | worst | worst case | cases |\n|---|---|---|---|---|---|\n";
+    for (const SuiteMethod& m : results.methods) {
+      if (m.slug == key) continue;
+      const FigureStats st = figure_stats(pgo_ratios(results, m.slug), Better::kLower);
+      md += "| " + md_cell(m.name) + " | " + figure_text(st.median, 2) + " | " + figure_text(st.worst_decile, 2) + " | " +
+            figure_text(st.worst, 2) + " | " + (st.worst_case.empty() ? "-" : md_cell(st.worst_case)) + " | " +
+            std::to_string(st.n) + " |\n";
+    }
+  }
+  md += "\n## Loop closures\n\n";
+  md += "Summed over the counted cases: found and correct (eval's tolerance of the truth), in all and as the room "
+        "rule proposed them (the rest: the distance rule).\n\n";
+  md += "| method | found | correct | room rule: found | room rule: correct | cases |\n|---|---|---|---|---|---|\n";
+  for (const SuiteMethod& m : results.methods) {
+    const LoopTotals t = loop_totals(results, m.slug);
+    md += "| " + md_cell(m.name) + " | " + fixed_text(t.found, 0) + " | " + fixed_text(t.correct, 0) + " | " +
+          fixed_text(t.room_found, 0) + " | " + fixed_text(t.room_correct, 0) + " | " + std::to_string(t.cases) + " |\n";
+  }
+
   md += "\n## Cases, worst first\n\n";
   md += "By the " + (key.empty() ? std::string("first method") : key) + " run's rooms F1, then its f_re.\n\n";
   std::string header = "| case | status |", rule = "|---|---|";
@@ -260,15 +315,29 @@ std::string suite_markdown(const SuiteResults& results) {
       header += " " + md_cell(m.name) + " " + f->header + " |";
       rule += "---|";
     }
+    if (m.slug != key && !key.empty()) {
+      header += " T_PGO " + md_cell(key_name) + " / " + md_cell(m.name) + " |";
+      rule += "---|";
+    }
     columns.emplace_back(&m, std::move(figures));
   }
   md += header + " wall (s) |\n" + rule + "---|\n";
+  std::vector<std::map<std::string, double>> ratios;
+  for (const auto& [m, figures] : columns) {
+    const auto r = pgo_ratios(results, m->slug);
+    ratios.emplace_back(r.begin(), r.end());
+  }
   for (const CaseRecord* c : worst_first(results)) {
     md += "| " + md_cell(c->id) + " | " + c->status + " |";
-    for (const auto& [m, figures] : columns) {
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      const auto& [m, figures] = columns[i];
       const CaseMethod* run = c->done() ? c->method(m->slug) : nullptr;
       for (const SuiteFigure* f : figures)
         md += " " + (run ? case_figure_text(*run, *f) : std::string("-")) + " |";
+      if (m->slug != key && !key.empty()) {
+        const auto r = ratios[i].find(c->id);
+        md += " " + (r == ratios[i].end() ? std::string("-") : fixed_text(r->second, 2)) + " |";
+      }
     }
     md += " " + fixed_text(c->wall_s, 0) + " |\n";
   }

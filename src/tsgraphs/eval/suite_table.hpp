@@ -75,6 +75,18 @@ std::vector<MethodSummary> summarise(const SuiteResults& results);
 /// runs it, else its first method ("" without methods).
 std::string key_method(const SuiteResults& results);
 
+/// Per done case with both runs' T_PGO (the other's > 0): the key method's T_PGO over
+/// method `other`'s, by case id, in plan order. The paper's claim is that rooms make PGO cheaper.
+std::vector<std::pair<std::string, double>> pgo_ratios(const SuiteResults& results, const std::string& other);
+
+/// Loop closures of one method summed over the done cases: found and correct (within eval's
+/// tolerance of the truth), all of them and those a room re-detection proposed.
+struct LoopTotals {
+  int cases = 0;  ///< cases with the loop figures
+  double found = 0, correct = 0, room_found = 0, room_correct = 0;
+};
+LoopTotals loop_totals(const SuiteResults& results, const std::string& method);
+
 /// The cases worst first: failed ones, then by the key method's rooms F1 (a case without it
 /// first), then its f_re, then plan order.
 std::vector<const CaseRecord*> worst_first(const SuiteResults& results);
