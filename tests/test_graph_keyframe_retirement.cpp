@@ -184,6 +184,51 @@ TEST(KeyframeRetirement, OnTheSecondLapEveryKeyframeIsRedundantButOnesThatSeeANe
   EXPECT_TRUE(std::none_of(r.begin(), r.end(), [&](const Retirement& x) { return x.keyframe == lap + 5; }));
 }
 
+TEST(KeyframeRetirement, OneCallDecidesInIdOrderAgainstWhatStays) {
+  // Three laps of ten keyframes along x, each lap 0.3 m further off in y, every keyframe seeing
+  // plane 0; one call over the whole graph, as after a full solve. Lap 3 lies nearer lap 2 than
+  // lap 1, but lap 2 leaves in the same call: lap 3 must anchor on lap 1.
+  SituationalGraph g;
+  const Plane wall = Plane::from_point_normal({0, 2, 0}, {0, -1, 0});
+  const int plane = g.add_plane(wall, true);
+  for (int k = 0; k < 30; ++k) {
+    KeyframeNode node;
+    node.pose = make_pose({double(k % 10), 0.3 * (k / 10), 0}, 0.0);
+    node.odom = node.pose;
+    node.accum_distance = k;
+    g.add_keyframe(node);
+    if (k > 0) g.add_odometry_edge({k - 1, k, g.keyframes()[k - 1].pose.inverse() * node.pose});
+    g.add_plane_edge({k, plane, wall.transformed(node.pose.inverse()), 50});
+  }
+  // A wall first seen on lap 2 at keyframe 15, seen again on lap 3 at keyframe 25.
+  const Plane other = Plane::from_point_normal({5, -2, 0}, {0, 1, 0});
+  const int seen_late = g.add_plane(other, true);
+  for (int k : {15, 25}) g.add_plane_edge({k, seen_late, other.transformed(g.keyframes()[k].pose.inverse()), 50});
+  std::vector<int> all;
+  for (int k = 0; k < 30; ++k) all.push_back(k);
+  const std::vector<Retirement> r = redundant_keyframes(g, all, KeyframeRetirementConfig{}, [](int) { return true; });
+  std::vector<bool> leaves(30, false);
+  for (const Retirement& x : r) leaves[x.keyframe] = true;
+  for (int k = 0; k < 10; ++k) EXPECT_FALSE(leaves[k]) << k;  // no earlier pass
+  EXPECT_FALSE(leaves[15]);                                  // saw a wall lap 1 did not
+  EXPECT_TRUE(leaves[25]);                                   // that wall is held by 15, which stays
+  EXPECT_FALSE(leaves[29]);                                  // the newest
+  for (const Retirement& x : r) {
+    EXPECT_FALSE(leaves[x.anchor]) << "keyframe " << x.keyframe << " anchored on " << x.anchor << ", which leaves too";
+    if (x.keyframe >= 20 && x.keyframe != 25) {
+      EXPECT_EQ(x.anchor, x.keyframe - 20);
+    }
+  }
+  // Keyframe 25's anchor is 15: nearer than 5, and staying.
+  for (const Retirement& x : r) {
+    if (x.keyframe == 25) {
+      EXPECT_EQ(x.anchor, 15);
+    }
+  }
+  // What one call returns can be carried out in its order.
+  for (const Retirement& x : r) EXPECT_NO_THROW(g.retire_keyframe(x.keyframe, x.anchor, kOdometry, kLoop));
+}
+
 TEST(KeyframeRetirement, TheEstimateMovesLittleAgainstKeepingEveryKeyframe) {
   const Scenario s = corridor_loop(true);
   const SituationalGraph kept = replay(s.graph, false);

@@ -21,18 +21,19 @@ std::vector<Retirement> redundant_keyframes(const SituationalGraph& graph, const
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   if (ids.empty()) return {};
 
-  // Each plane's earliest kept observer, in travel: a plane is held by an earlier pass when that
-  // observer is min_travel or more before the keyframe.
-  std::map<int, double> first_seen;
-  for (const PlaneEdge& e : graph.plane_edges()) {
-    const KeyframeNode& k = keyframes[e.keyframe];
-    const auto [it, inserted] = first_seen.emplace(e.plane, k.accum_distance);
-    if (!inserted) it->second = std::min(it->second, k.accum_distance);
-  }
+  // Each plane's observers; a plane is held by an earlier pass when one of them that stays is
+  // min_travel or more of travel before the keyframe.
+  std::map<int, std::vector<int>> observers;
   std::map<int, std::vector<int>> planes_of;
-  for (const PlaneEdge& e : graph.plane_edges())
+  for (const PlaneEdge& e : graph.plane_edges()) {
+    observers[e.plane].push_back(e.keyframe);
     if (std::binary_search(ids.begin(), ids.end(), e.keyframe)) planes_of[e.keyframe].push_back(e.plane);
+  }
 
+  // In id order, each decided against what stays: a keyframe leaving in this call neither
+  // anchors a later one nor holds its planes.
+  std::vector<bool> leaving(keyframes.size(), false);
+  const auto stays = [&](int o) { return !keyframes[o].retired && !leaving[o]; };
   std::vector<Retirement> out;
   for (int id : ids) {
     const KeyframeNode& k = keyframes[id];
@@ -41,7 +42,7 @@ std::vector<Retirement> redundant_keyframes(const SituationalGraph& graph, const
     double nearest = std::numeric_limits<double>::infinity();
     for (int o = 0; o < id; ++o) {
       const KeyframeNode& other = keyframes[o];
-      if (other.retired || other.accum_distance > earlier) continue;
+      if (!stays(o) || other.accum_distance > earlier) continue;
       const double d = (other.pose.translation() - k.pose.translation()).norm();
       if (d <= config.radius && d < nearest) {
         nearest = d;
@@ -50,9 +51,14 @@ std::vector<Retirement> redundant_keyframes(const SituationalGraph& graph, const
     }
     if (anchor < 0) continue;
     const std::vector<int>& planes = planes_of[id];
-    const bool all_held = std::all_of(planes.begin(), planes.end(), [&](int p) { return first_seen.at(p) <= earlier; });
+    const bool all_held = std::all_of(planes.begin(), planes.end(), [&](int p) {
+      const std::vector<int>& seen_by = observers.at(p);
+      return std::any_of(seen_by.begin(), seen_by.end(),
+                         [&](int o) { return stays(o) && keyframes[o].accum_distance <= earlier; });
+    });
     if (!all_held) continue;
     if (config.rooms_only && !in_mapped_space(id)) continue;
+    leaving[id] = true;
     out.push_back({id, anchor});
   }
   return out;

@@ -46,7 +46,7 @@ struct BetweenEdge {
   double fitness = 0.0;                   ///< registration fitness (loop closures)
   /// Its own noise when retired keyframes were folded into it (`folded` of them); zero: the
   /// optimizer's configured sigmas for its kind.
-  PoseSigmas sigmas;
+  PoseSigmas sigmas = {};
   int folded = 0;
 };
 
