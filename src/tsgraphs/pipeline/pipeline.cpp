@@ -276,7 +276,8 @@ void Pipeline::optimize(bool full, const std::string& reason) {
       mapper_.merge(keep, drop, pose_of);
     }
   }
-  retire_redundant_keyframes(pose_of);
+  if (full || reason == "loop") corrected_at_ = rec.after_keyframe;
+  retire_redundant_keyframes(full, pose_of);
   optimizations_.back().active_keyframes = static_cast<int>(graph_.num_active_keyframes());
   if (full) active_at_last_full_ = optimizations_.back().active_keyframes;
 }
@@ -285,18 +286,34 @@ bool Pipeline::loop_asks_for_full_solve(const graph::BetweenEdge& loop) const {
   const double sigmas = config_.schedule.full_solve_loop_sigmas;
   if (sigmas <= 0.0) return true;
   const auto& kf = graph_.keyframes();
+  // The drift a local solve can take up is that of the keyframes it frees since the last
+  // correction (a full solve or a solve that took in a loop): when that correction lies in the
+  // window, the loop's error is judged against its own noise and the odometry noise of those
+  // keyframes together; when it lies before the window, against the loop's noise alone.
+  const int newest = static_cast<int>(kf.size()) - 1;
+  const int first_free = std::max(1, newest + 1 - config_.optimizer.local_window);
+  // Retired keyframes count: their odometry noise is folded into their neighbours' edges.
+  const int drifting = corrected_at_ >= first_free - 1 ? newest - corrected_at_ : 0;
+  const double loop_trans = config_.optimizer.loop_sigma_trans, odo_trans = config_.optimizer.odometry_sigma_trans;
+  const double loop_rot = config_.optimizer.loop_sigma_rot_deg, odo_rot = config_.optimizer.odometry_sigma_rot_deg;
+  const double sigma_trans = std::sqrt(loop_trans * loop_trans + drifting * odo_trans * odo_trans);
+  const double sigma_rot = std::sqrt(loop_rot * loop_rot + drifting * odo_rot * odo_rot) * M_PI / 180.0;
   const Pose3 error = (kf[loop.from].pose.inverse() * kf[loop.to].pose).inverse() * loop.measurement;
-  const double trans = error.translation().norm() / config_.optimizer.loop_sigma_trans;
-  const double rot = Eigen::AngleAxisd(error.linear()).angle() / (config_.optimizer.loop_sigma_rot_deg * M_PI / 180.0);
+  const double trans = error.translation().norm() / sigma_trans;
+  const double rot = Eigen::AngleAxisd(error.linear()).angle() / sigma_rot;
   return std::max(trans, rot) >= sigmas;
 }
 
-void Pipeline::retire_redundant_keyframes(const std::function<Pose3(int)>& pose_of) {
+void Pipeline::retire_redundant_keyframes(bool whole_graph, const std::function<Pose3(int)>& pose_of) {
   const int newest = static_cast<int>(graph_.keyframes().size()) - 1;
   if (config_.keyframe_retirement.enabled) {
-    // The local window's keyframes: each has just been optimised with what it saw.
+    // The local window's keyframes: each has just been optimised with what it saw. A full
+    // solve asks again of every keyframe: a room mapped or a duplicate wall merged since a
+    // keyframe left the window can make it redundant.
     std::vector<int> candidates;
-    for (int k = std::max(1, newest + 1 - config_.optimizer.local_window); k < newest; ++k) candidates.push_back(k);
+    const int first = whole_graph ? 1 : std::max(1, newest + 1 - config_.optimizer.local_window);
+    for (int k = first; k < newest; ++k)
+      if (!graph_.keyframes()[k].retired) candidates.push_back(k);
     const graph::PoseSigmas odometry{config_.optimizer.odometry_sigma_trans, config_.optimizer.odometry_sigma_rot_deg};
     const graph::PoseSigmas loop{config_.optimizer.loop_sigma_trans, config_.optimizer.loop_sigma_rot_deg};
     const auto in_space = [this](int k) { return in_mapped_space(graph_.keyframes()[k].pose); };

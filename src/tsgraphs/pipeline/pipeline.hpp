@@ -127,12 +127,13 @@ class Pipeline {
   void move_rooms_with_graph();
   void score_ground(const PointCloud& scan, const ground::GroundScan& ground, ScanRecord* record) const;
   void optimize(bool full, const std::string& reason);
-  /// Whether a new loop disagrees with the estimate by schedule.full_solve_loop_sigmas or more.
+  /// Whether a new loop disagrees with the estimate by schedule.full_solve_loop_sigmas or more
+  /// of the noise a local solve can take up (loop_asks_for_full_solve's comment).
   bool loop_asks_for_full_solve(const graph::BetweenEdge& loop) const;
-  /// Keyframe retirement after a solve: the redundant keyframes of the local window leave the
-  /// graph, their observations the plane map, their clouds memory (once the room layer's
-  /// obstacle window has passed them).
-  void retire_redundant_keyframes(const std::function<Pose3(int)>& pose_of);
+  /// Keyframe retirement after a solve: the redundant keyframes of the local window (after a
+  /// full solve, of the whole graph) leave the graph, their observations the plane map, their
+  /// clouds memory (once the room layer's obstacle window has passed them).
+  void retire_redundant_keyframes(bool whole_graph, const std::function<Pose3(int)>& pose_of);
   /// Whether a pose stands inside a mapped room or corridor of its level.
   bool in_mapped_space(const Pose3& pose) const;
   /// Counts keyframes in which a layer stayed empty and warns once per layer.
@@ -174,6 +175,7 @@ class Pipeline {
   std::optional<Pose3> last_odom_;
   int keyframes_since_solve_ = 0;
   int active_at_last_full_ = 0;  ///< keyframes in the graph after the last full solve
+  int corrected_at_ = 0;         ///< newest keyframe at the last full solve or solve that took in a loop
 };
 
 }  // namespace tsgraphs::pipeline
