@@ -4,7 +4,7 @@
 # figures from `eval`. Usage: bench/bench_run.sh [SCENE] [SEED]   (default: atrium 1)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
-bin="$here/build/tsgraphs"
+bin="${TSGRAPHS:-$here/build/tsgraphs}"  # TSGRAPHS: another binary, to compare builds in one run
 scene="${1:-atrium}"
 seed="${2:-1}"
 tmp="${TMPDIR:-/tmp}/tsgraphs-bench"
