@@ -276,7 +276,9 @@ void Pipeline::optimize(bool full, const std::string& reason) {
       mapper_.merge(keep, drop, pose_of);
     }
   }
-  if (full || reason == "loop") corrected_at_ = rec.after_keyframe;
+  // Only a loop ties the newest keyframes to the map's earlier passes: a full solve without one
+  // corrects no drift.
+  if (reason == "loop") corrected_at_ = rec.after_keyframe;
   retire_redundant_keyframes(full, pose_of);
   optimizations_.back().active_keyframes = static_cast<int>(graph_.num_active_keyframes());
   if (full) active_at_last_full_ = optimizations_.back().active_keyframes;
@@ -287,7 +289,7 @@ bool Pipeline::loop_asks_for_full_solve(const graph::BetweenEdge& loop) const {
   if (sigmas <= 0.0) return true;
   const auto& kf = graph_.keyframes();
   // The drift a local solve can take up is that of the keyframes it frees since the last
-  // correction (a full solve or a solve that took in a loop): when that correction lies in the
+  // correction (a solve that took in a loop): when that correction lies in the
   // window, the loop's error is judged against its own noise and the odometry noise of those
   // keyframes together; when it lies before the window, against the loop's noise alone.
   const int newest = static_cast<int>(kf.size()) - 1;

@@ -175,7 +175,7 @@ class Pipeline {
   std::optional<Pose3> last_odom_;
   int keyframes_since_solve_ = 0;
   int active_at_last_full_ = 0;  ///< keyframes in the graph after the last full solve
-  int corrected_at_ = 0;         ///< newest keyframe at the last full solve or solve that took in a loop
+  int corrected_at_ = 0;         ///< newest keyframe at the last solve that took in a loop
 };
 
 }  // namespace tsgraphs::pipeline
