@@ -43,9 +43,9 @@ struct Retirement {
 
 /// The redundant keyframes among `candidates` (ids, any order; retired ones, the first and the
 /// newest are skipped), decided and returned in id order: a keyframe returned neither anchors
-/// nor holds the planes of a later one, so the list can be retired in its order. `in_mapped_space(k)` says whether keyframe k stands in a
-/// mapped room or corridor (asked only with rooms_only). Throws std::invalid_argument for a
-/// radius or min_travel that is not positive.
+/// nor holds the planes of a later one, so the list can be retired in its order.
+/// `in_mapped_space(k)` says whether keyframe k stands in a mapped room or corridor (asked only
+/// with rooms_only). Throws std::invalid_argument for a radius or min_travel that is not positive.
 std::vector<Retirement> redundant_keyframes(const SituationalGraph& graph, const std::vector<int>& candidates,
                                             const KeyframeRetirementConfig& config,
                                             const std::function<bool(int)>& in_mapped_space);
