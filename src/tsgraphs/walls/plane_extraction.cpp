@@ -1,7 +1,6 @@
 #include "tsgraphs/walls/plane_extraction.hpp"
 
 #include <Eigen/Eigenvalues>
-#include <nanoflann.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +8,8 @@
 #include <limits>
 #include <numeric>
 #include <unordered_map>
+
+#include "tsgraphs/core/kd_tree.hpp"
 
 namespace tsgraphs::walls {
 namespace {
@@ -25,22 +26,8 @@ constexpr double kCellPerTolerance = M_SQRT1_2;
 // Cell offsets searched around a cell: up to two cells away (a cell is tolerance / sqrt 2),
 // except the far diagonal corners, which are never closer than the tolerance.
 constexpr int kCellReach = 2;
-// nanoflann's leaf size; 6 to 24 measured the same within noise.
-constexpr std::size_t kKdTreeLeafSize = 16;
 
 enum class NormalClass : std::uint8_t { kNone, kVertical, kHorizontal };
-
-struct CloudAdaptor {
-  const std::vector<Eigen::Vector3f>& pts;
-  std::size_t kdtree_get_point_count() const { return pts.size(); }
-  float kdtree_get_pt(std::size_t i, std::size_t dim) const { return pts[i][static_cast<int>(dim)]; }
-  template <class BBox>
-  bool kdtree_get_bbox(BBox&) const {
-    return false;
-  }
-};
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudAdaptor>, CloudAdaptor, 3,
-                                                   std::uint32_t>;
 
 // Point normals by PCA over the k nearest neighbours, oriented towards the sensor.
 struct Normals {
@@ -86,13 +73,11 @@ Normals estimate_normals(const std::vector<Eigen::Vector3f>& pts, int k) {
   out.reliable.assign(n, false);
   out.neighbours.assign(n * static_cast<std::size_t>(k), 0);
 
-  CloudAdaptor adaptor{pts};
-  KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kKdTreeLeafSize));
-  tree.buildIndex();
+  const KdTree3f tree(pts);
   std::vector<float> d2(static_cast<std::size_t>(k));
   for (std::size_t i = 0; i < n; ++i) {
     std::uint32_t* nb = out.neighbours.data() + i * static_cast<std::size_t>(k);
-    const std::size_t found = tree.knnSearch(pts[i].data(), static_cast<std::size_t>(k), nb, d2.data());
+    const std::size_t found = tree.knn(pts[i].data(), static_cast<std::size_t>(k), nb, d2.data());
     for (std::size_t j = found; j < static_cast<std::size_t>(k); ++j) nb[j] = static_cast<std::uint32_t>(i);
     if (found < 3) continue;
     // Moments relative to the query point: no cancellation far from the sensor.
