@@ -261,3 +261,44 @@ TEST(RegistrationGicp, InvalidConfigThrows) {
 }
 
 }  // namespace
+
+TEST(RegistrationGicp, PreparedCloudsGiveTheSameResultEveryTime) {
+  // Loop closure prepares a keyframe once and registers it against several candidates: a
+  // prepared cloud reused must give exactly what preparing afresh gives, in any order.
+  const Pose3 T_map_target = office_pose(19.5, 6.1, 180.0);
+  const Pose3 T_map_other = office_pose(10.0, 2.2, 0.0);
+  const Pose3 T_map_source = office_pose(18.5, 6.3, 170.0);
+  const PointCloud target = office_scan(T_map_target, 6);
+  const PointCloud other = office_scan(T_map_other, 8);
+  const PointCloud source = office_scan(T_map_source, 7);
+  const RegistrationConfig config;
+
+  const PreparedCloud ps = prepare_cloud(source, config);
+  const PreparedCloud pt = prepare_cloud(target, config);
+  const PreparedCloud po = prepare_cloud(other, config);
+  EXPECT_GT(ps.size(), 100u);
+  EXPECT_LT(ps.size(), source.size());  // thinned to the registration voxel
+  const RegistrationResult fresh = register_clouds(source, target, Pose3::Identity(), config);
+  const RegistrationResult first = register_clouds(ps, pt, Pose3::Identity(), config);
+  register_clouds(ps, po, Pose3::Identity(), config);  // the same source against another target
+  const PreparedCloud copy = ps;                       // copies share the preparation
+  const RegistrationResult again = register_clouds(copy, pt, Pose3::Identity(), config);
+  ASSERT_TRUE(first.converged);
+  EXPECT_EQ(first.T_target_source.matrix(), fresh.T_target_source.matrix());
+  EXPECT_EQ(first.T_target_source.matrix(), again.T_target_source.matrix());
+  EXPECT_EQ(first.fitness, again.fitness);
+  EXPECT_EQ(first.inlier_ratio, again.inlier_ratio);
+  const PoseError e = pose_error(first.T_target_source, T_map_target.inverse() * T_map_source);
+  EXPECT_LT(e.trans, 0.03);
+  EXPECT_LT(e.rot_deg, 0.3);
+
+  // A cloud prepared for another voxel size or neighbourhood is refused, not misused.
+  RegistrationConfig finer = config;
+  finer.voxel_size = 0.1;
+  EXPECT_THROW(register_clouds(ps, pt, Pose3::Identity(), finer), std::invalid_argument);
+  EXPECT_THROW(register_clouds(PreparedCloud(), pt, Pose3::Identity(), config), std::invalid_argument);
+  // Too few points to prepare: registration fails softly.
+  PointCloud clump;
+  for (int i = 0; i < 5; ++i) clump.points.emplace_back(0.1f * static_cast<float>(i), 0.0f, 0.0f);
+  EXPECT_FALSE(register_clouds(prepare_cloud(clump, config), pt, Pose3::Identity(), config).converged);
+}

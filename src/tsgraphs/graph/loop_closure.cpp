@@ -15,6 +15,11 @@ const KeyframeNode& keyframe_at(const SituationalGraph& graph, int id) {
   return graph.keyframes()[static_cast<std::size_t>(id)];
 }
 
+// Prepared clouds kept between keyframes: a keyframe's candidates (max_candidates from each
+// proposer) are mostly its predecessor's, and ~0.3 MB each at the default voxel size bounds
+// the cache at ~10 MB whatever the run's length.
+constexpr std::size_t kPreparedKept = 32;
+
 }  // namespace
 
 LoopDetector::LoopDetector(LoopClosureConfig config) : config_(std::move(config)) {}
@@ -53,8 +58,9 @@ std::optional<BetweenEdge> LoopDetector::verify(const SituationalGraph& graph, i
     const KeyframeNode& earlier = keyframe_at(graph, k);
     if (earlier.retired || k == id) continue;
     const Pose3 guess = earlier.pose.inverse() * current.pose;  // T_k_id from the current estimates
+    const registration::PreparedCloud& source = prepared(id, cloud_of);
     const registration::RegistrationResult r =
-        registration::register_clouds(cloud_of(id), cloud_of(k), guess, config_.registration);
+        registration::register_clouds(source, prepared(k, cloud_of), guess, config_.registration);
     if (!r.converged || r.fitness > config_.max_fitness || r.inlier_ratio < config_.min_inlier_ratio) continue;
     // A large correction means GICP slid to another optimum (a corridor's length, a twin room).
     const double correction = (r.T_target_source.translation() - guess.translation()).norm();
@@ -69,6 +75,29 @@ std::optional<BetweenEdge> LoopDetector::verify(const SituationalGraph& graph, i
     return edge;
   }
   return std::nullopt;
+}
+
+const registration::PreparedCloud& LoopDetector::prepared(int k,
+                                                         const std::function<const PointCloud&(int)>& cloud_of) {
+  prepared_use_[k] = ++uses_;
+  auto it = prepared_.find(k);
+  if (it != prepared_.end()) return it->second;
+  if (prepared_.size() >= kPreparedKept) {
+    // Drop the least recently used (never k's source: it was used just now, and is not cached
+    // yet when it is the one being added).
+    int oldest = -1;
+    long oldest_use = uses_;
+    for (const auto& [id, cloud] : prepared_) {
+      const long use = prepared_use_.at(id);
+      if (use < oldest_use) {
+        oldest_use = use;
+        oldest = id;
+      }
+    }
+    prepared_.erase(oldest);
+    prepared_use_.erase(oldest);
+  }
+  return prepared_.emplace(k, registration::prepare_cloud(cloud_of(k), config_.registration)).first->second;
 }
 
 }  // namespace tsgraphs::graph

@@ -2,6 +2,7 @@
 /// Loop closure: candidates near in space and far in accumulated travel (hdl_graph_slam's
 /// rule), each verified by registering the keyframes' clouds with a fitness check.
 #include <functional>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -53,8 +54,16 @@ class LoopDetector {
   const LoopClosureConfig& config() const { return config_; }
 
  private:
+  /// Keyframe k's cloud prepared for registration, from the cache or made and cached. The
+  /// candidates of consecutive keyframes are mostly the same, so the newest preparations are
+  /// kept (kPreparedKept); the results never depend on the cache, only the time.
+  const registration::PreparedCloud& prepared(int k, const std::function<const PointCloud&(int)>& cloud_of);
+
   LoopClosureConfig config_;
   double last_loop_travel_ = -1e18;
+  std::map<int, registration::PreparedCloud> prepared_;  // keyframe id -> prepared cloud
+  std::map<int, long> prepared_use_;                      // keyframe id -> last use (a counter)
+  long uses_ = 0;
 };
 
 }  // namespace tsgraphs::graph

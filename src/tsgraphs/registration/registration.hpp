@@ -1,6 +1,9 @@
 #pragma once
 /// Pairwise scan registration (generalised ICP, PCL), used by loop closure to measure the
 /// relative pose of two keyframes and to check that the match is good.
+#include <cstddef>
+#include <memory>
+
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/core/pose.hpp"
 
@@ -35,11 +38,45 @@ struct RegistrationResult {
   bool converged = false;
 };
 
-/// Aligns `source` to `target` starting from `initial_guess` (T_target_source). Non-finite
-/// points are dropped. Clouds with fewer than k_correspondences points after downsampling, or a
-/// non-finite guess, give converged = false (T = the guess, inlier_ratio 0), never an exception;
-/// a config out of range (negative sizes, k < 3) is a std::invalid_argument. `converged` is
-/// PCL's: the iterations stopped (by epsilon or by max_iterations) without a numerical failure.
+/// A cloud made ready for registration once, for any number of registrations against others:
+/// thinned to voxel_size, indexed, each point's covariance (GICP's plane-like one) computed.
+/// Loop closure registers a keyframe against several candidates, and a candidate against
+/// several later keyframes: preparing each once is most of a registration's cost saved.
+/// Cheap to copy (shared, immutable).
+class PreparedCloud {
+ public:
+  PreparedCloud();
+  ~PreparedCloud();
+  PreparedCloud(const PreparedCloud&);
+  PreparedCloud& operator=(const PreparedCloud&);
+
+  /// Points after thinning (0: nothing to register).
+  std::size_t size() const;
+
+  struct Data;  ///< PCL's types, private to registration.cpp
+
+ private:
+  friend PreparedCloud prepare_cloud(const PointCloud&, const RegistrationConfig&);
+  friend RegistrationResult register_clouds(const PreparedCloud&, const PreparedCloud&, const Pose3&,
+                                            const RegistrationConfig&);
+  std::shared_ptr<const Data> data_;
+};
+
+/// `cloud` thinned to config.voxel_size (non-finite points dropped), indexed, with its points'
+/// covariances over config.k_correspondences neighbours. A config out of range is a
+/// std::invalid_argument.
+PreparedCloud prepare_cloud(const PointCloud& cloud, const RegistrationConfig& config);
+
+/// Aligns `source` to `target` starting from `initial_guess` (T_target_source). Both must be
+/// prepared with this config's voxel_size and k_correspondences (else std::invalid_argument).
+/// Clouds with fewer than k_correspondences points after thinning, or a non-finite guess, give
+/// converged = false (T = the guess, inlier_ratio 0), never an exception; a config out of range
+/// (negative sizes, k < 3) is a std::invalid_argument. `converged` is PCL's: the iterations
+/// stopped (by epsilon or by max_iterations) without a numerical failure.
+RegistrationResult register_clouds(const PreparedCloud& source, const PreparedCloud& target, const Pose3& initial_guess,
+                                   const RegistrationConfig& config);
+
+/// The same for clouds not prepared yet (prepares both).
 RegistrationResult register_clouds(const PointCloud& source, const PointCloud& target, const Pose3& initial_guess,
                                    const RegistrationConfig& config);
 
