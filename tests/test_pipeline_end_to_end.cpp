@@ -89,7 +89,7 @@ Outcome run_scene(const scene::Scene& scene, std::uint64_t seed) {
   std::vector<double> lap_starts = sim.trajectory().lap_starts();
   for (double& t : lap_starts) t /= sim.time_scale();
   std::vector<double> stamps;
-  for (const pipeline::ScanRecord& s : slam.scans()) stamps.push_back(s.stamp);
+  slam.scan_log().for_each([&](const pipeline::ScanRecord& s) { stamps.push_back(s.stamp); });
   const std::vector<int> laps = pipeline::laps_of(stamps, est, lap_starts);
   std::vector<io::RoomEvent> events;
   for (const pipeline::RoomEventRecord& e : slam.room_events()) {
@@ -119,11 +119,11 @@ Outcome run_scene(const scene::Scene& scene, std::uint64_t seed) {
 
   // Ground: every scan scored against its labels; the global node map against the voids.
   long tp = 0, fp = 0, fn = 0;
-  for (const pipeline::ScanRecord& s : slam.scans()) {
+  slam.scan_log().for_each([&](const pipeline::ScanRecord& s) {
     tp += s.ground_tp;
     fp += s.ground_fp;
     fn += s.ground_fn;
-  }
+  });
   o.ground_precision = static_cast<double>(tp) / (tp + fp);
   o.ground_recall = static_cast<double>(tp) / (tp + fn);
   for (const ground::GlobalNode* n : slam.node_map().nodes()) {

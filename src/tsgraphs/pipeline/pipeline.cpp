@@ -38,7 +38,7 @@ Pipeline::Pipeline(PipelineConfig config)
       loop_detector_(config_.loop_closure) {}
 
 void Pipeline::set_platform(const std::vector<PointCloud>& scans, const std::vector<Eigen::Vector3d>& ups) {
-  if (platform_ || !scans_.empty()) throw std::logic_error("Pipeline::set_platform: once, before the first scan");
+  if (platform_ || !scan_log_.empty()) throw std::logic_error("Pipeline::set_platform: once, before the first scan");
   platform_ = resolve_platform(config_.platform, config_.floor_levelling, config_.ground, scans, ups);
   config_.ground = apply_platform(*platform_, config_.ground, config_.ground_keys_given);
   // The run's parameters record what was used: the same file gives the same run again.
@@ -127,7 +127,8 @@ const ScanRecord& Pipeline::process(PreparedScan prepared) {
     record.warning = "empty scan: skipped";
   }
   record.frontend_ms = record.prefilter_ms + record.ground_ms + prepared_walls_ms + ms_since(start);
-  scans_.push_back(record);
+  scan_log_.append(record);
+  last_record_ = record;
   // The back-end runs after the front-end bookkeeping so that frontend_ms excludes it.
   if (record.keyframe >= 0) {
     const bool loop = !loop_closures_.empty() && loop_closures_.back().edge.to == record.keyframe;
@@ -141,7 +142,7 @@ const ScanRecord& Pipeline::process(PreparedScan prepared) {
       optimize(false, "schedule");
     }
   }
-  return scans_.back();
+  return last_record_;
 }
 
 void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud,
@@ -482,15 +483,15 @@ void Pipeline::move_rooms_with_graph() {
 
 std::vector<Pose3> Pipeline::trajectory() const {
   std::vector<Pose3> poses;
-  poses.reserve(scans_.size());
-  for (const ScanRecord& s : scans_) {
+  poses.reserve(scan_log_.size());
+  scan_log_.for_each([&](const ScanRecord& s) {
     if (s.reference_keyframe < 0) {
       poses.push_back(s.odom);  // before the first keyframe: the map frame is the odometry frame
-      continue;
+      return;
     }
     const graph::KeyframeNode& kf = graph_.keyframes()[s.reference_keyframe];
     poses.push_back(kf.pose * (kf.odom.inverse() * s.odom));
-  }
+  });
   return poses;
 }
 

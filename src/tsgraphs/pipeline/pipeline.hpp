@@ -14,31 +14,11 @@
 #include "tsgraphs/graph/graph_optimizer.hpp"
 #include "tsgraphs/graph/situational_graph.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
+#include "tsgraphs/pipeline/scan_log.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
 #include "tsgraphs/walls/plane_mapper.hpp"
 
 namespace tsgraphs::pipeline {
-
-/// What happened to one scan (one row of timings.csv).
-struct ScanRecord {
-  std::size_t scan_index = 0;
-  double stamp = 0.0;
-  int keyframe = -1;          ///< id of the keyframe made from this scan, or -1
-  int reference_keyframe = -1;///< the keyframe this scan's pose hangs from (-1 before the first)
-  Pose3 odom = Pose3::Identity();
-  std::size_t num_points = 0;       ///< after prefiltering
-  double prefilter_ms = 0.0;
-  double ground_ms = 0.0;           ///< traversable ground of the scan (every scan)
-  std::size_t num_ground_nodes = 0; ///< traversable nodes of the scan
-  double rooms_ms = 0.0;            ///< free space, flush rule and room extraction (keyframes)
-  /// Ground points against the input's labels (1 floor, 2 ramp), over the points within the
-  /// ground layer's range: true positives, false positives, false negatives; -1 without labels.
-  long ground_tp = -1, ground_fp = -1, ground_fn = -1;
-  double walls_ms = 0.0;            ///< plane extraction and association (keyframes)
-  double loop_ms = 0.0;             ///< loop-closure search and registration (keyframes)
-  double frontend_ms = 0.0;         ///< all of the above and bookkeeping, not the back-end (thread time summed)
-  std::string warning;              ///< why the scan was skipped or not made a keyframe
-};
 
 /// A scan after the steps that need nothing but the scan and its odometry (prefilter,
 /// ground): made by Pipeline::prepare, which may run on other threads, ahead of process().
@@ -109,7 +89,8 @@ class Pipeline {
   const std::vector<RoomEventRecord>& room_events() const { return room_events_; }
   /// The ground of the newest scan (level frame of that scan), for callers that draw it.
   const ground::GroundScan& last_ground() const { return last_ground_; }
-  const std::vector<ScanRecord>& scans() const { return scans_; }
+  /// Every scan processed so far, in order (spilled to a temporary file beyond the newest).
+  const ScanLog& scan_log() const { return scan_log_; }
   const std::vector<OptimizationRecord>& optimizations() const { return optimizations_; }
   /// Every loop closure accepted, in order.
   const std::vector<LoopClosureRecord>& loop_closures() const { return loop_closures_; }
@@ -166,7 +147,8 @@ class Pipeline {
   graph::LoopDetector loop_detector_;
   std::vector<PointCloud> keyframe_clouds_;
   std::vector<int> clouds_to_release_;  ///< retired keyframes whose clouds the obstacle window still reads
-  std::vector<ScanRecord> scans_;
+  ScanLog scan_log_;
+  ScanRecord last_record_;  ///< the newest scan's, returned by process()
   std::vector<OptimizationRecord> optimizations_;
   std::vector<LoopClosureRecord> loop_closures_;
   std::map<int, std::vector<int>> room_walls_;  ///< room map id -> the walls of its latest extraction

@@ -158,7 +158,7 @@ std::vector<int> laps_of(const std::vector<double>& stamps, const std::vector<Po
 
 std::vector<io::RoomEvent> room_events_of(const Pipeline& pipeline, const std::vector<double>& lap_starts) {
   std::vector<double> stamps;
-  for (const ScanRecord& s : pipeline.scans()) stamps.push_back(s.stamp);
+  pipeline.scan_log().for_each([&](const ScanRecord& s) { stamps.push_back(s.stamp); });
   const std::vector<int> laps = laps_of(stamps, pipeline.trajectory(), lap_starts);
   std::vector<io::RoomEvent> events;
   for (const RoomEventRecord& e : pipeline.room_events()) {
@@ -185,11 +185,11 @@ std::string room_events_jsonl(const Pipeline& pipeline, const std::vector<double
 
 io::Timings timings_of(const Pipeline& pipeline) {
   io::Timings t;
-  for (const ScanRecord& s : pipeline.scans()) {
+  pipeline.scan_log().for_each([&](const ScanRecord& s) {
     t.scans.push_back({s.scan_index, s.stamp, s.keyframe, s.num_points, s.prefilter_ms, s.walls_ms, s.loop_ms,
                        s.frontend_ms, s.warning, s.ground_ms, s.num_ground_nodes, s.ground_tp, s.ground_fp,
                        s.ground_fn, s.rooms_ms});
-  }
+  });
   for (std::size_t i = 0; i < pipeline.optimizations().size(); ++i) {
     const OptimizationRecord& o = pipeline.optimizations()[i];
     t.optimizations.push_back({i, pipeline.graph().keyframes()[o.after_keyframe].stamp, o.after_keyframe,
@@ -314,11 +314,13 @@ void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std:
   const std::vector<Pose3> poses = pipeline.trajectory();
   std::vector<io::StampedPose> stamped;
   stamped.reserve(poses.size());
-  for (std::size_t i = 0; i < poses.size(); ++i) stamped.push_back({pipeline.scans()[i].stamp, poses[i]});
-  io::write_file_atomic(dir + "/" + run_files::kTrajectory, io::format_tum(stamped));
   std::vector<io::StampedPose> odometry;
-  odometry.reserve(pipeline.scans().size());
-  for (const ScanRecord& r : pipeline.scans()) odometry.push_back({r.stamp, r.odom});
+  odometry.reserve(poses.size());
+  pipeline.scan_log().for_each([&](const ScanRecord& r) {
+    stamped.push_back({r.stamp, poses[stamped.size()]});
+    odometry.push_back({r.stamp, r.odom});
+  });
+  io::write_file_atomic(dir + "/" + run_files::kTrajectory, io::format_tum(stamped));
   io::write_file_atomic(dir + "/" + run_files::kOdometry, io::format_tum(odometry));
   io::write_file_atomic(dir + "/" + run_files::kSceneGraph, scene_graph_json(pipeline));
   io::write_file_atomic(dir + "/" + run_files::kMap, map_ply(pipeline));
