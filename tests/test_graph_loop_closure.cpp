@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 
+#include "cloud_test_support.hpp"
 #include "tsgraphs/pipeline/prefilter.hpp"
 #include "tsgraphs/graph/loop_closure.hpp"
 #include "tsgraphs/scene/builtin_scenes.hpp"
@@ -263,6 +264,31 @@ TEST(GraphLoopClosure, LargeCorrectionIsRejected) {
   const std::optional<BetweenEdge> loop = LoopDetector().detect(graph, 1, cloud_of);
   ASSERT_TRUE(loop.has_value());
   EXPECT_LT(pose_error(loop->measurement, first.inverse() * second).trans, 0.05);
+}
+
+TEST(GraphLoopClosure, AMatchFreeToSlideAlongACorridorIsRejected) {
+  // Twice in a corridor whose ends are out of view, the second estimate 0.3 m off along it:
+  // every check of the match passes (the walls, floor and ceiling fit anywhere along it), but
+  // nothing pins the length, so the loop would carry the estimate's error into the graph.
+  const PointCloud corridor = test_support::corridor(20.0f, false);
+  const auto cloud_of = [&](int) -> const PointCloud& { return corridor; };
+  SituationalGraph graph;
+  graph.add_keyframe(keyframe_at(Pose3::Identity(), 0.0));
+  graph.add_keyframe(keyframe_at(make_pose(Eigen::Vector3d(0.3, 0.0, 0.0), 0.0), 20.0));
+
+  EXPECT_FALSE(LoopDetector().detect(graph, 1, cloud_of).has_value());
+  LoopClosureConfig unchecked;
+  unchecked.min_facing_share = 0.0;
+  const std::optional<BetweenEdge> slid = LoopDetector(unchecked).detect(graph, 1, cloud_of);
+  ASSERT_TRUE(slid.has_value());  // without the check: accepted, and wrong by most of the 0.3 m
+  EXPECT_GT(slid->measurement.translation().norm(), 0.1);
+
+  // With its end walls in view the same 0.3 m is recovered and the loop accepted.
+  const PointCloud closed = test_support::corridor(8.0f, true);
+  const auto closed_of = [&](int) -> const PointCloud& { return closed; };
+  const std::optional<BetweenEdge> pinned = LoopDetector().detect(graph, 1, closed_of);
+  ASSERT_TRUE(pinned.has_value());
+  EXPECT_LT(pinned->measurement.translation().norm(), 0.02);
 }
 
 TEST(GraphLoopClosure, UnknownKeyframeThrows) {

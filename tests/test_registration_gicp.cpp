@@ -14,6 +14,7 @@
 #include <string>
 #include <tuple>
 
+#include "cloud_test_support.hpp"
 #include "tsgraphs/pipeline/prefilter.hpp"
 #include "tsgraphs/graph/loop_closure.hpp"
 #include "tsgraphs/io/pcd.hpp"
@@ -301,4 +302,25 @@ TEST(RegistrationGicp, PreparedCloudsGiveTheSameResultEveryTime) {
   PointCloud clump;
   for (int i = 0; i < 5; ++i) clump.points.emplace_back(0.1f * static_cast<float>(i), 0.0f, 0.0f);
   EXPECT_FALSE(register_clouds(prepare_cloud(clump, config), pt, Pose3::Identity(), config).converged);
+}
+
+TEST(RegistrationGicp, SurfacesThatLeaveADirectionFreeAreMeasured) {
+  // Along a corridor whose ends are out of view nothing pins the match: GICP stays wherever it
+  // was put, and the result must say so; with its end walls in view the length is pinned.
+  const RegistrationConfig config;
+  const Pose3 guess = make_pose(Eigen::Vector3d(0.3, 0.0, 0.0), 0.0);  // 0.3 m off along the corridor
+
+  const PointCloud open = test_support::corridor(20.0f, false);
+  const RegistrationResult slid = register_clouds(open, open, guess, config);
+  ASSERT_TRUE(slid.converged);
+  EXPECT_LT(slid.fitness, 0.01);          // a perfect-looking match...
+  EXPECT_GT(slid.inlier_ratio, 0.95);
+  EXPECT_GT(slid.T_target_source.translation().x(), 0.1);  // ...that kept most of the error
+  EXPECT_LT(slid.weakest_direction_share, 0.002);
+
+  const PointCloud closed = test_support::corridor(8.0f, true);
+  const RegistrationResult pinned = register_clouds(closed, closed, guess, config);
+  ASSERT_TRUE(pinned.converged);
+  EXPECT_LT(pinned.T_target_source.translation().norm(), 0.02);
+  EXPECT_GT(pinned.weakest_direction_share, 0.05);  // the end walls are 10 m^2 of its 82 m^2
 }

@@ -62,6 +62,8 @@ std::optional<BetweenEdge> LoopDetector::verify(const SituationalGraph& graph, i
     const registration::RegistrationResult r =
         registration::register_clouds(source, prepared(k, cloud_of), guess, config_.registration);
     if (!r.converged || r.fitness > config_.max_fitness || r.inlier_ratio < config_.min_inlier_ratio) continue;
+    // Surfaces that leave a direction free let GICP slide along it (a corridor's length).
+    if (r.weakest_direction_share < config_.min_facing_share) continue;
     // A large correction means GICP slid to another optimum (a corridor's length, a twin room).
     const double correction = (r.T_target_source.translation() - guess.translation()).norm();
     if (correction > config_.max_correction) continue;

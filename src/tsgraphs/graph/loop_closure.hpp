@@ -21,6 +21,10 @@ struct LoopClosureConfig {
   double min_inlier_ratio = 0.7;   ///< ...and this share of points found a close match (the figure that
                                    ///< tells a wrong place: floor and ceiling match anywhere indoors)
   double max_correction = 2.0;     ///< reject when registration moves the guess by more than this (m)
+  double min_facing_share = 0.01;  ///< reject when fewer than this share of the matched points lie on surfaces
+                                   ///< facing the direction they pin least (a corridor without its ends in
+                                   ///< view: the match slides along it); 0.01 of a keyframe's few thousand
+                                   ///< matched points is a door frame or a wall's end
   registration::RegistrationConfig registration;  ///< GICP settings for the check
 
   template <class V>
@@ -32,6 +36,7 @@ struct LoopClosureConfig {
     v("max_fitness", max_fitness);
     v("min_inlier_ratio", min_inlier_ratio);
     v("max_correction", max_correction);
+    v("min_facing_share", min_facing_share);
     v.section("registration", registration);
   }
 };

@@ -129,12 +129,14 @@ std::shared_ptr<Covariances> point_covariances(const NanoflannSearch& search, in
 struct Fitness {
   double mean_squared = 0.0;
   double inlier_ratio = 0.0;
+  double weakest_direction_share = 0.0;
 };
 
 /// Nearest target point of every transformed source point: mean squared distance over the
 /// pairs closer than `max_distance`, and their share. No inlier gives the worst mean an
 /// inlier could have, max_distance^2.
-Fitness measure_fitness(const std::vector<Eigen::Vector3f>& source, const Eigen::Matrix4f& T, const KdTree3f& target,
+Fitness measure_fitness(const std::vector<Eigen::Vector3f>& source, const Covariances& source_cov,
+                        const Eigen::Matrix4f& T, const KdTree3f& target, const Covariances& target_cov,
                         double max_distance) {
   const double max_sq = max_distance * max_distance;
   const Eigen::Matrix3f R = T.topLeftCorner<3, 3>();
@@ -143,17 +145,29 @@ Fitness measure_fitness(const std::vector<Eigen::Vector3f>& source, const Eigen:
   float dist_sq = 0.0f;
   double sum = 0.0;
   std::size_t inliers = 0;
-  for (const Eigen::Vector3f& p : source) {
-    const Eigen::Vector3f q = R * p + t;
+  const Eigen::Matrix3d Rd = R.cast<double>();
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    const Eigen::Vector3f q = R * source[i] + t;
     if (target.knn(q.data(), 1, &index, &dist_sq) < 1) continue;
     if (dist_sq <= max_sq) {
       sum += dist_sq;
       ++inliers;
+      H += (Rd * source_cov[i] * Rd.transpose() + target_cov[index]).inverse();
     }
   }
   Fitness f;
   f.mean_squared = inliers > 0 ? sum / static_cast<double>(inliers) : max_sq;
   f.inlier_ratio = source.empty() ? 0.0 : static_cast<double>(inliers) / static_cast<double>(source.size());
+  if (inliers > 0) {
+    // A pair pins a direction along its surfaces' normal with 1 / (2 eps) and across it with
+    // 1 / 2 (GICP's spreads 1, 1, eps): the weakest direction's information per pair says
+    // which share of the pairs face it.
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+    es.computeDirect(H / static_cast<double>(inliers), Eigen::EigenvaluesOnly);
+    const double across = 0.5, facing = 0.5 / kGicpEpsilon;
+    f.weakest_direction_share = std::clamp((es.eigenvalues()(0) - across) / (facing - across), 0.0, 1.0);
+  }
   return f;
 }
 
@@ -246,11 +260,12 @@ RegistrationResult register_clouds(const PreparedCloud& source, const PreparedCl
   estimate.linear() = Eigen::Quaterniond(Td.topLeftCorner<3, 3>()).normalized().toRotationMatrix();
   estimate.translation() = Td.topRightCorner<3, 1>();
 
-  const Fitness fit = measure_fitness(source_search->points(), estimate.matrix().cast<float>(), target_search->tree(),
-                                      config.fitness_distance);
+  const Fitness fit = measure_fitness(source_search->points(), *src.covariances, estimate.matrix().cast<float>(),
+                                      target_search->tree(), *tgt.covariances, config.fitness_distance);
   result.T_target_source = estimate;
   result.fitness = fit.mean_squared;
   result.inlier_ratio = fit.inlier_ratio;
+  result.weakest_direction_share = fit.weakest_direction_share;
   result.converged = true;
   return result;
 }

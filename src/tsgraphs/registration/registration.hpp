@@ -35,6 +35,11 @@ struct RegistrationResult {
   Pose3 T_target_source = Pose3::Identity();  ///< maps source points into the target frame
   double fitness = 0.0;       ///< mean squared distance (m^2) of source points to their nearest target point, over those within fitness_distance
   double inlier_ratio = 0.0;  ///< share of source points within fitness_distance of the target after alignment
+  /// How well the matched surfaces pin the translation: the share of the pairs within
+  /// fitness_distance whose surfaces face the direction they pin least (from GICP's
+  /// translation information, sum of (C_target + R C_source R^T)^-1 over the pairs). Near 0:
+  /// nothing faces it (a corridor's length), and the match may have slid along it.
+  double weakest_direction_share = 0.0;
   bool converged = false;
 };
 
