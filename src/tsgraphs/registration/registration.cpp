@@ -44,8 +44,8 @@ void check_config(const RegistrationConfig& c) {
 }
 
 // GICP's covariance of a point: its neighbourhood's principal directions, with the two largest
-// spreads set to 1 and the smallest to this (the surface's thickness relative to its extent);
-// PCL's default, kept so that fitness thresholds mean what they meant.
+// spreads set to 1 and the smallest to this (the surface's thickness relative to its extent):
+// PCL's default, which the registration used before covariances were prepared here.
 constexpr double kGicpEpsilon = 0.001;
 
 /// PCL's k-d tree interface over the project's nanoflann tree. PCL's own (FLANN) enters an
