@@ -81,25 +81,24 @@ std::optional<BetweenEdge> LoopDetector::verify(const SituationalGraph& graph, i
 
 const registration::PreparedCloud& LoopDetector::prepared(int k,
                                                          const std::function<const PointCloud&(int)>& cloud_of) {
-  prepared_use_[k] = ++uses_;
+  ++uses_;
   auto it = prepared_.find(k);
-  if (it != prepared_.end()) return it->second;
-  if (prepared_.size() >= kPreparedKept) {
-    // Drop the least recently used (never k's source: it was used just now, and is not cached
-    // yet when it is the one being added).
-    int oldest = -1;
-    long oldest_use = uses_;
-    for (const auto& [id, cloud] : prepared_) {
-      const long use = prepared_use_.at(id);
-      if (use < oldest_use) {
-        oldest_use = use;
-        oldest = id;
-      }
-    }
-    prepared_.erase(oldest);
-    prepared_use_.erase(oldest);
+  if (it != prepared_.end()) {
+    it->second.last_use = uses_;
+    return it->second.cloud;
   }
-  return prepared_.emplace(k, registration::prepare_cloud(cloud_of(k), config_.registration)).first->second;
+  if (prepared_.size() >= kPreparedKept) {
+    // Drop the least recently used (never the source of the current verify: it was asked for
+    // just before its candidates).
+    const auto oldest = std::min_element(prepared_.begin(), prepared_.end(), [](const auto& a, const auto& b) {
+      return a.second.last_use < b.second.last_use;
+    });
+    prepared_.erase(oldest);
+  }
+  Prepared& made = prepared_[k];
+  made.cloud = registration::prepare_cloud(cloud_of(k), config_.registration);
+  made.last_use = uses_;
+  return made.cloud;
 }
 
 }  // namespace tsgraphs::graph

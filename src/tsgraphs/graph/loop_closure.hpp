@@ -66,8 +66,11 @@ class LoopDetector {
 
   LoopClosureConfig config_;
   double last_loop_travel_ = -1e18;
-  std::map<int, registration::PreparedCloud> prepared_;  // keyframe id -> prepared cloud
-  std::map<int, long> prepared_use_;                      // keyframe id -> last use (a counter)
+  struct Prepared {
+    registration::PreparedCloud cloud;
+    long last_use = 0;  ///< the value of uses_ when it was last asked for
+  };
+  std::map<int, Prepared> prepared_;  // keyframe id -> its prepared cloud
   long uses_ = 0;
 };
 
