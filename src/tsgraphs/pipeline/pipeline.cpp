@@ -54,27 +54,32 @@ PreparedScan Pipeline::prepare(std::size_t scan_index, double stamp, const Point
   if (!odom.matrix().allFinite() || !std::isfinite(stamp))
     throw std::invalid_argument("scan " + std::to_string(scan_index) + ": non-finite pose or time");
   PreparedScan out;
-  ScanRecord& record = out.record;
-  record.scan_index = scan_index;
-  record.stamp = stamp;
-  record.odom = odom;
+  out.record.scan_index = scan_index;
+  out.record.stamp = stamp;
+  out.record.odom = odom;
   out.input_empty = scan.empty();
+  if (keyframe_candidate) run_keyframe_steps(scan, odom, &out);
+  return out;
+}
+
+void Pipeline::run_keyframe_steps(const PointCloud& scan, const Pose3& odom, PreparedScan* out) const {
+  ScanRecord& record = out->record;
   const auto start = std::chrono::steady_clock::now();
-  out.cloud = prefilter(scan, config_.prefilter);
-  record.num_points = out.cloud.size();
+  out->cloud = prefilter(scan, config_.prefilter);
+  record.num_points = out->cloud.size();
   record.prefilter_ms = ms_since(start);
 
   const auto ground_start = std::chrono::steady_clock::now();
-  out.ground = ground::segment_ground(scan, odom.linear(), config_.ground);
-  for (const ground::GroundNode& n : out.ground.nodes) record.num_ground_nodes += n.traversable ? 1 : 0;
+  out->ground = ground::segment_ground(scan, odom.linear(), config_.ground);
+  for (const ground::GroundNode& n : out->ground.nodes) record.num_ground_nodes += n.traversable ? 1 : 0;
   record.ground_ms = ms_since(ground_start);
-  if (scan.has_labels()) score_ground(scan, out.ground, &record);
-  if (keyframe_candidate && !out.cloud.empty()) {
+  if (scan.has_labels()) score_ground(scan, out->ground, &record);
+  if (!out->cloud.empty()) {
     const auto walls_start = std::chrono::steady_clock::now();
-    out.planes = walls::extract_planes(out.cloud, odom.linear(), config_.plane_extraction);
+    out->planes = walls::extract_planes(out->cloud, odom.linear(), config_.plane_extraction);
     record.walls_ms = ms_since(walls_start);
   }
-  return out;
+  out->keyframe_steps = true;
 }
 
 void Pipeline::score_ground(const PointCloud& scan, const ground::GroundScan& ground, ScanRecord* record) const {
@@ -104,19 +109,22 @@ void Pipeline::score_ground(const PointCloud& scan, const ground::GroundScan& gr
 
 const ScanRecord& Pipeline::process(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom) {
   if (!platform_) set_platform({scan}, {odom.linear().transpose() * Eigen::Vector3d::UnitZ()});
-  return process(prepare(scan_index, stamp, scan, odom, false));
+  return process(prepare(scan_index, stamp, scan, odom, selector_.is_keyframe(odom)), scan);
 }
 
-const ScanRecord& Pipeline::process(PreparedScan prepared) {
+const ScanRecord& Pipeline::process(PreparedScan prepared, const PointCloud& scan) {
   const auto start = std::chrono::steady_clock::now();
-  ScanRecord record = prepared.record;
-  const double prepared_walls_ms = record.walls_ms;
-  last_ground_ = std::move(prepared.ground);
-  if (last_odom_) accum_distance_ += (last_odom_->translation() - record.odom.translation()).norm();
-  last_odom_ = record.odom;
-  record.reference_keyframe = graph_.keyframes().empty() ? -1 : static_cast<int>(graph_.keyframes().size()) - 1;
+  // Thread time of the steps prepare() ran; those run here are inside ms_since(start).
+  const double prepared_ms = prepared.record.prefilter_ms + prepared.record.ground_ms + prepared.record.walls_ms;
+  if (last_odom_) accum_distance_ += (last_odom_->translation() - prepared.record.odom.translation()).norm();
+  last_odom_ = prepared.record.odom;
 
-  if (selector_.is_keyframe(record.odom)) {
+  const bool keyframe = selector_.is_keyframe(prepared.record.odom);
+  if (keyframe && !prepared.keyframe_steps) run_keyframe_steps(scan, prepared.record.odom, &prepared);
+  ScanRecord record = prepared.record;
+  record.reference_keyframe = graph_.keyframes().empty() ? -1 : static_cast<int>(graph_.keyframes().size()) - 1;
+  if (keyframe) {
+    last_ground_ = std::move(prepared.ground);
     if (prepared.cloud.empty()) {
       record.warning = prepared.input_empty ? "empty scan: skipped" : "no point left after prefiltering: skipped";
     } else {
@@ -126,7 +134,7 @@ const ScanRecord& Pipeline::process(PreparedScan prepared) {
   } else if (prepared.input_empty) {
     record.warning = "empty scan: skipped";
   }
-  record.frontend_ms = record.prefilter_ms + record.ground_ms + prepared_walls_ms + ms_since(start);
+  record.frontend_ms = prepared_ms + ms_since(start);
   scan_log_.append(record);
   last_record_ = record;
   // The back-end runs after the front-end bookkeeping so that frontend_ms excludes it.

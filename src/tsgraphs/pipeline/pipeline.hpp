@@ -20,13 +20,15 @@
 
 namespace tsgraphs::pipeline {
 
-/// A scan after the steps that need nothing but the scan and its odometry (prefilter,
-/// ground): made by Pipeline::prepare, which may run on other threads, ahead of process().
+/// A scan after the steps that need nothing but the scan and its odometry: made by
+/// Pipeline::prepare, which may run on other threads, ahead of process(). Only a keyframe's
+/// prefiltered cloud, ground and planes are used, so only keyframe candidates get them here.
 struct PreparedScan {
   ScanRecord record;          ///< with the prepare-time fields filled
+  bool keyframe_steps = false;///< prefilter, ground and planes ran (a keyframe candidate)
   PointCloud cloud;           ///< prefiltered
   ground::GroundScan ground;
-  std::optional<std::vector<walls::PlaneObservation>> planes;  ///< extracted ahead for keyframe candidates
+  std::optional<std::vector<walls::PlaneObservation>> planes;
   bool input_empty = false;
 };
 
@@ -63,14 +65,15 @@ class Pipeline {
   /// usable point is recorded with a warning and only its pose is kept. A non-finite pose
   /// throws std::invalid_argument (the reader is expected to reject it with file and line).
   const ScanRecord& process(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom);
-  /// The same in two halves: prepare() is const and thread-safe (prefilter, ground, scoring
-  /// against labels, and the wall planes when `keyframe_candidate`), so a reader can run it
-  /// for the next scans while process() takes the prepared scans in order. Results are the
-  /// same as process() above. KeyframeSelector, run over the odometry alone, says which
-  /// scans are candidates; a wrong guess only costs time.
+  /// The same in two halves: prepare() is const and thread-safe, so a reader can run it for
+  /// the next scans while process() takes the prepared scans in order. For a keyframe
+  /// candidate it runs the keyframe steps (prefilter, ground, scoring against labels, wall
+  /// planes). Results are the same as process() above. KeyframeSelector, run over the
+  /// odometry alone, says which scans are candidates; a wrong guess only costs time: process()
+  /// runs the steps itself on `scan` (the one given to prepare) for a keyframe not prepared as one.
   PreparedScan prepare(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom,
                        bool keyframe_candidate) const;
-  const ScanRecord& process(PreparedScan prepared);
+  const ScanRecord& process(PreparedScan prepared, const PointCloud& scan);
   /// Final full optimisation; call once after the last scan.
   void finish();
 
@@ -87,7 +90,7 @@ class Pipeline {
   }
   /// Every room extraction so far, in time order.
   const std::vector<RoomEventRecord>& room_events() const { return room_events_; }
-  /// The ground of the newest scan (level frame of that scan), for callers that draw it.
+  /// The ground of the newest keyframe (level frame of its scan), for callers that draw it.
   const ground::GroundScan& last_ground() const { return last_ground_; }
   /// Every scan processed so far, in order (spilled to a temporary file beyond the newest).
   const ScanLog& scan_log() const { return scan_log_; }
@@ -106,6 +109,8 @@ class Pipeline {
   /// Records room events and puts new rooms, and merges, into the graph.
   void add_room_events(const std::vector<RoomEventRecord>& events);
   void move_rooms_with_graph();
+  /// Prefilter, ground (scored against the scan's labels) and wall planes: what a keyframe uses.
+  void run_keyframe_steps(const PointCloud& scan, const Pose3& odom, PreparedScan* out) const;
   void score_ground(const PointCloud& scan, const ground::GroundScan& ground, ScanRecord* record) const;
   void optimize(bool full, const std::string& reason);
   /// Whether a new loop disagrees with the estimate by schedule.full_solve_loop_sigmas or more

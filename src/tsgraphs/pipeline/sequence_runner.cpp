@@ -18,8 +18,10 @@
 namespace tsgraphs::pipeline {
 namespace {
 
-// Scans in flight at once: each holds a raw scan (about 1 MB) while it is read and prepared.
-constexpr std::size_t kTokensPerThread = 2;
+// Scans in flight at once, per thread: enough to reach the next keyframe candidate (1 m at
+// walking pace is ~10 scans at 10 Hz), so that its keyframe steps run beside the processing of
+// the one before; each holds a raw scan (about 1 MB) from reading to processing.
+constexpr std::size_t kTokensPerThread = 8;
 // Lost odometry scans told one by one; more are counted at the end.
 constexpr std::size_t kLostScansTold = 5;
 
@@ -27,7 +29,7 @@ struct Loaded {
   std::size_t index = 0;
   bool keyframe_candidate = false;
   Pose3 odom = Pose3::Identity();
-  PointCloud scan;      ///< as read, until prepared
+  PointCloud scan;      ///< as read (de-skewed), until processed
   PreparedScan prepared;
   std::string error;    ///< why the scan file could not be read
   std::string odometry_warning;  ///< the LiDAR odometry lost this scan
@@ -85,7 +87,7 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
   std::optional<odometry::LidarOdometry> lidar_odometry;
   if (odometry.estimate)
     lidar_odometry.emplace(pipeline.config().lidar_odometry, odometry.initial_pose, pipeline.config().deskew.registration);
-  // Reading and the per-scan steps (prefilter, ground) run in parallel on the next scans;
+  // Reading and the keyframe steps (prefilter, ground, planes of keyframe candidates) run in parallel on the next scans;
   // the odometry and the pipeline take them in order, so the result is the same as one scan
   // at a time.
   const std::size_t tokens = kTokensPerThread * static_cast<std::size_t>(std::max(
@@ -157,7 +159,8 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
                                                    " % of its points fall in the map (below lidar_odometry.min_overlap)"
                                                    "; its pose is kept, its points stay out of the odometry's map";
                                              }
-                                             l.keyframe_candidate = candidates.is_keyframe(l.odom);
+                                             // As Pipeline::process: an empty scan is no keyframe.
+                                             l.keyframe_candidate = !l.scan.empty() && candidates.is_keyframe(l.odom);
                                              if (l.keyframe_candidate) candidates.accept(l.odom);
                                              return l;
                                            }) &
@@ -166,12 +169,11 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
                                              const std::size_t i = l.index;
                                              l.prepared = pipeline.prepare(i, info.times[i], l.scan, l.odom,
                                                                            l.keyframe_candidate);
-                                             l.scan = PointCloud{};
                                              return l;
                                            }) &
           tbb::make_filter<Loaded, void>(tbb::filter_mode::serial_in_order, [&](Loaded l) {
             const std::size_t i = l.index;
-            const ScanRecord& rec = pipeline.process(std::move(l.prepared));
+            const ScanRecord& rec = pipeline.process(std::move(l.prepared), l.scan);
             if (!l.odometry_warning.empty()) {
               ++run.num_odometry_lost;
               if (callbacks.warning && run.num_odometry_lost <= kLostScansTold) callbacks.warning(l.odometry_warning);
