@@ -67,6 +67,12 @@ std::optional<BetweenEdge> LoopDetector::verify(const SituationalGraph& graph, i
     // A large correction means GICP slid to another optimum (a corridor's length, a twin room).
     const double correction = (r.T_target_source.translation() - guess.translation()).norm();
     if (correction > config_.max_correction) continue;
+    // Last, as it costs a second registration: the same pair the other way round must find the same match.
+    const registration::RegistrationResult back =
+        registration::register_clouds(prepared(k, cloud_of), source, guess.inverse(), config_.registration);
+    if (!back.converged ||
+        (r.T_target_source * back.T_target_source).translation().norm() > config_.max_reverse_disagreement)
+      continue;
 
     last_loop_travel_ = current.accum_distance;
     BetweenEdge edge;

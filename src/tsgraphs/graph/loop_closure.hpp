@@ -25,6 +25,10 @@ struct LoopClosureConfig {
                                    ///< facing the direction they pin least (a corridor without its ends in
                                    ///< view: the match slides along it); 0.01 of a keyframe's few thousand
                                    ///< matched points is a door frame or a wall's end
+  double max_reverse_disagreement = 0.02;  ///< reject when registering the pair the other way round, from the
+                                   ///< inverse guess, ends farther than this from the first match (m): a match
+                                   ///< with one optimum is found from both sides alike; partial overlap with
+                                   ///< repeated shelves gave two wrong loops 0.02-0.05 m apart, right ones < 0.01
   registration::RegistrationConfig registration;  ///< GICP settings for the check
 
   template <class V>
@@ -37,6 +41,7 @@ struct LoopClosureConfig {
     v("min_inlier_ratio", min_inlier_ratio);
     v("max_correction", max_correction);
     v("min_facing_share", min_facing_share);
+    v("max_reverse_disagreement", max_reverse_disagreement);
     v.section("registration", registration);
   }
 };
