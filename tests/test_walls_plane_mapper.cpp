@@ -248,12 +248,22 @@ TEST(PlaneMapper, ARetiredKeyframesObservationsAreForgottenButALandmarksLastStay
     return x;
   };
   EXPECT_NEAR(max_x(0), 8.0f, 0.25f);
-  mapper.forget_keyframe(1, pose_of);
+  PlaneMapper both = mapper;
+  mapper.forget_keyframes({1}, pose_of);
   EXPECT_EQ(mapper.landmarks().at(0).observations.count(1), 0u);
   EXPECT_NEAR(max_x(0), 4.0f, 0.25f);  // the east half went with its keyframe
-  mapper.forget_keyframe(2, pose_of);
+  mapper.forget_keyframes({2}, pose_of);
   EXPECT_EQ(mapper.landmarks().at(1).observations.size(), 1u);  // its only observation stays
   EXPECT_FALSE(mapper.landmarks().at(1).points.empty());
+
+  // Keyframes forgotten together go in order: of landmark 0's two, the later one stays.
+  both.forget_keyframes({0, 1, 2}, pose_of);
+  ASSERT_EQ(both.landmarks().at(0).observations.size(), 1u);
+  EXPECT_EQ(both.landmarks().at(0).observations.count(1), 1u);
+  float min_x = 1e9f;
+  for (const Eigen::Vector3f& p : both.landmarks().at(0).points) min_x = std::min(min_x, p.x());
+  EXPECT_NEAR(min_x, 4.0f, 0.25f);  // rebuilt from keyframe 1's east half alone
+  EXPECT_EQ(both.landmarks().at(1).observations.size(), 1u);
 }
 
 // ---- An office lap from simulated scans, scored against the scene's wall faces ----

@@ -328,13 +328,15 @@ void Pipeline::retire_redundant_keyframes(bool whole_graph, const std::function<
     const graph::PoseSigmas odometry{config_.optimizer.odometry_sigma_trans, config_.optimizer.odometry_sigma_rot_deg};
     const graph::PoseSigmas loop{config_.optimizer.loop_sigma_trans, config_.optimizer.loop_sigma_rot_deg};
     const auto in_space = [this](int k) { return in_mapped_space(graph_.keyframes()[k].pose); };
+    std::vector<int> retired;
     for (const graph::Retirement& r :
          graph::redundant_keyframes(graph_, candidates, config_.keyframe_retirement, in_space)) {
       graph_.retire_keyframe(r.keyframe, r.anchor, odometry, loop);
-      mapper_.forget_keyframe(r.keyframe, pose_of);
       rooms_.forget_keyframe(r.keyframe);
       clouds_to_release_.push_back(r.keyframe);
+      retired.push_back(r.keyframe);
     }
+    mapper_.forget_keyframes(retired, pose_of);
   }
   // room_input() reads the clouds of the last obstacle_keyframes keyframes.
   const int oldest_read = newest + 1 - config_.rooms.layer.obstacle_keyframes;

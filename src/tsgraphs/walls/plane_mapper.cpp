@@ -225,13 +225,18 @@ std::vector<std::pair<int, int>> PlaneMapper::find_duplicates() const {
   return pairs;
 }
 
-void PlaneMapper::forget_keyframe(int keyframe_id, const std::function<Pose3(int)>& keyframe_pose) {
+void PlaneMapper::forget_keyframes(const std::vector<int>& keyframe_ids, const std::function<Pose3(int)>& keyframe_pose) {
   for (auto& [id, lm] : landmarks_) {
-    const auto it = lm.observations.find(keyframe_id);
-    // The last observation stays: a landmark keeps the points it was mapped from.
-    if (it == lm.observations.end() || lm.observations.size() == 1) continue;
-    lm.observations.erase(it);
-    rebuild(lm, keyframe_pose);
+    bool forgot = false;
+    for (const int keyframe_id : keyframe_ids) {
+      const auto it = lm.observations.find(keyframe_id);
+      // The last observation stays: a landmark keeps the points it was mapped from.
+      if (it == lm.observations.end() || lm.observations.size() == 1) continue;
+      lm.observations.erase(it);
+      forgot = true;
+    }
+    // Once per landmark, not per keyframe: a full solve's retirements touch the same walls.
+    if (forgot) rebuild(lm, keyframe_pose);
   }
 }
 

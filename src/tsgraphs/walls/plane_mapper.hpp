@@ -67,9 +67,10 @@ class PlaneMapper {
   /// (the lower id on a tie). Landmarks linked by a chain of such pairs form one group with one
   /// keep, so every pair can be merged in turn; sorted by (keep, drop).
   std::vector<std::pair<int, int>> find_duplicates() const;
-  /// Drops the observations of keyframe `keyframe_id` (retired: earlier keyframes hold what it
-  /// saw) and rebuilds the landmarks it saw from the others; a landmark's only observation stays.
-  void forget_keyframe(int keyframe_id, const std::function<Pose3(int)>& keyframe_pose);
+  /// Drops the observations of the keyframes `keyframe_ids`, in order (retired: earlier
+  /// keyframes hold what they saw) and rebuilds each landmark they saw once, from the others; a
+  /// landmark's only observation stays.
+  void forget_keyframes(const std::vector<int>& keyframe_ids, const std::function<Pose3(int)>& keyframe_pose);
   /// Moves drop's observations into keep and removes drop.
   void merge(int keep, int drop, const std::function<Pose3(int)>& keyframe_pose);
 
