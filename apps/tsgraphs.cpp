@@ -3,6 +3,8 @@
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
+#include <malloc.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <thread>
@@ -50,6 +52,14 @@ std::uint64_t seed_for(const scene::Scene& scene, long long cli_seed) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A run allocates and frees about a megabyte per scan (the raw scan as read). By default
+  // glibc hands blocks this large back to the system when they are freed and faults them in
+  // again for the next scan; kept in the process, they are reused (built-in atrium: system
+  // time 2.2 -> 1.3 s, peak memory ~10 MB more).
+  constexpr int kKeepFreed = 1 << 30;
+  mallopt(M_MMAP_THRESHOLD, kKeepFreed);
+  mallopt(M_TRIM_THRESHOLD, kKeepFreed);
+  mallopt(M_TOP_PAD, 64 << 20);
   CLI::App app{"tsgraphs: traversability-aware situational graphs from indoor 3-D LiDAR"};
   app.require_subcommand(1);
   app.fallthrough();  // --quiet and --threads also after the subcommand
