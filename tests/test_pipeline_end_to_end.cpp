@@ -31,6 +31,13 @@ struct Outcome {
   eval::WallErrors walls;
 };
 
+// The fields of a scan's record that the keyframe steps fill.
+struct ScanRecordSummary {
+  int keyframe = -1;
+  std::size_t num_points = 0, num_ground_nodes = 0;
+  long ground_tp = -1;
+};
+
 scene::Scene builtin(const std::string& name) {
   return scene::parse_scene(*scene::builtin_scene_text(name), "builtin:" + name, ".");
 }
@@ -254,6 +261,69 @@ trajectory:
     if ((e.b - e.a).norm() > 20.0) ++long_faces;
   }
   EXPECT_EQ(long_faces, 2);
+}
+
+// Only keyframes are prefiltered and segmented, ahead in prepare() for the scans guessed to be
+// keyframes; a wrong guess either way must give the same run as processing scan by scan.
+TEST(EndToEnd, KeyframeStepsGuessedWrongGiveTheSameRun) {
+  scene::Scene scene = scene::parse_scene(R"(
+name: short_corridor
+sensor: {preset: os1-64, mount_height: 0.55}
+levels:
+  - {name: L0, elevation: 0.0, ceiling: 2.8, slab: [[0, 0], [10, 0], [10, 2.4], [0, 2.4]]}
+walls:
+  - {level: L0, from: [-0.1, 0], to: [10.1, 0]}
+  - {level: L0, from: [-0.1, 2.4], to: [10.1, 2.4]}
+  - {level: L0, from: [0, 0], to: [0, 2.4]}
+  - {level: L0, from: [10, 0], to: [10, 2.4]}
+trajectory: {level: L0, speed: 1.5, closed: false, laps: 1, waypoints: [[1, 1.2], [8, 1.2]]}
+)",
+                                         "short_corridor.yaml", ".");
+  const sim::Simulator sim(scene, 1);
+  // 0: the pipeline's own choice, scan by scan; 1: no scan guessed a keyframe; 2: every one.
+  std::vector<pipeline::Pipeline> runs(3);
+  for (std::size_t k = 0; k < sim.num_scans(); ++k) {
+    const PointCloud scan = sim.scan(k);
+    const Pose3& odom = sim.odometry_poses()[k];
+    runs[0].process(k, sim.times()[k], scan, odom);
+    for (int guess = 0; guess < 2; ++guess) {
+      pipeline::Pipeline& slam = runs[1 + guess];
+      if (k == 0) slam.set_platform({scan}, {odom.linear().transpose() * Eigen::Vector3d::UnitZ()});
+      slam.process(slam.prepare(k, sim.times()[k], scan, odom, guess == 1), scan);
+    }
+  }
+  std::vector<std::vector<ScanRecordSummary>> logs;
+  for (pipeline::Pipeline& slam : runs) {
+    slam.finish();
+    logs.emplace_back();
+    slam.scan_log().for_each([&](const pipeline::ScanRecord& r) {
+      logs.back().push_back({r.keyframe, r.num_points, r.num_ground_nodes, r.ground_tp});
+    });
+  }
+  ASSERT_GE(runs[0].graph().keyframes().size(), 5u);
+  std::size_t scored = 0;
+  for (const ScanRecordSummary& r : logs[0]) {
+    EXPECT_EQ(r.ground_tp >= 0, r.keyframe >= 0);  // the simulator's labels are scored at keyframes only
+    scored += r.ground_tp > 0 ? 1 : 0;
+  }
+  EXPECT_EQ(scored, runs[0].graph().keyframes().size());
+  for (int i = 1; i < 3; ++i) {
+    SCOPED_TRACE("run " + std::to_string(i));
+    EXPECT_EQ(runs[i].graph().keyframes().size(), runs[0].graph().keyframes().size());
+    EXPECT_EQ(runs[i].plane_map().landmarks().size(), runs[0].plane_map().landmarks().size());
+    EXPECT_EQ(runs[i].node_map().size(), runs[0].node_map().size());
+    ASSERT_EQ(logs[i].size(), logs[0].size());
+    for (std::size_t k = 0; k < logs[0].size(); ++k) {
+      if (logs[0][k].keyframe < 0) continue;  // a wrong "keyframe" guess has its steps run, unused
+      EXPECT_EQ(logs[i][k].keyframe, logs[0][k].keyframe);
+      EXPECT_EQ(logs[i][k].num_points, logs[0][k].num_points);
+      EXPECT_EQ(logs[i][k].num_ground_nodes, logs[0][k].num_ground_nodes);
+      EXPECT_EQ(logs[i][k].ground_tp, logs[0][k].ground_tp);
+    }
+    const auto trajectory = runs[i].trajectory(), expected = runs[0].trajectory();
+    ASSERT_EQ(trajectory.size(), expected.size());
+    for (std::size_t k = 0; k < expected.size(); ++k) EXPECT_TRUE(trajectory[k].isApprox(expected[k], 1e-12));
+  }
 }
 
 // Issue 15: a short visit still gives the room. The path walks a corridor, steps through a

@@ -87,9 +87,9 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
   std::optional<odometry::LidarOdometry> lidar_odometry;
   if (odometry.estimate)
     lidar_odometry.emplace(pipeline.config().lidar_odometry, odometry.initial_pose, pipeline.config().deskew.registration);
-  // Reading and the keyframe steps (prefilter, ground, planes of keyframe candidates) run in parallel on the next scans;
-  // the odometry and the pipeline take them in order, so the result is the same as one scan
-  // at a time.
+  // Reading and the keyframe steps (prefilter, ground, planes of keyframe candidates) run in
+  // parallel on the next scans; the odometry and the pipeline take them in order, so the
+  // result is the same as one scan at a time.
   const std::size_t tokens = kTokensPerThread * static_cast<std::size_t>(std::max(
       1, static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))));
   std::size_t next = 0;
