@@ -42,6 +42,25 @@ scene::Scene builtin(const std::string& name) {
   return scene::parse_scene(*scene::builtin_scene_text(name), "builtin:" + name, ".");
 }
 
+// A closed corridor 2.4 m wide and `length` long, walked once along its middle with drifting odometry.
+scene::Scene corridor_scene(double length) {
+  const std::string l = std::to_string(length), wall_end = std::to_string(length + 0.1);
+  return scene::parse_scene(R"(
+name: corridor
+sensor: {preset: os1-64, mount_height: 0.55}
+odometry: {trans_noise_per_m: 0.01, yaw_noise_per_rad: 0.01, yaw_noise_per_m: 0.002}
+levels:
+  - {name: L0, elevation: 0.0, ceiling: 2.8, slab: [[0, 0], [)" + l + R"(, 0], [)" + l + R"(, 2.4], [0, 2.4]]}
+walls:
+  - {level: L0, from: [-0.1, 0], to: [)" + wall_end + R"(, 0]}
+  - {level: L0, from: [-0.1, 2.4], to: [)" + wall_end + R"(, 2.4]}
+  - {level: L0, from: [0, 0], to: [0, 2.4]}
+  - {level: L0, from: [)" + l + R"(, 0], to: [)" + l + R"(, 2.4]}
+trajectory: {level: L0, speed: 1.5, closed: false, laps: 1, waypoints: [[1, 1.2], [)" + std::to_string(length - 2.0) + R"(, 1.2]]}
+)",
+                            "corridor.yaml", ".");
+}
+
 // Nodes are centred on their ground points; at a void's edge range noise (1.5 cm) and the
 // pose error (about 1 cm) put some a few centimetres over it.
 constexpr double kVoidEdgeTolerance = 0.05;
@@ -228,25 +247,7 @@ TEST(EndToEnd, AtriumTwoLaps) {
 }
 
 TEST(EndToEnd, StraightCorridorWithoutRevisitHasNoLoopClosure) {
-  scene::Scene scene = scene::parse_scene(R"(
-name: straight
-sensor: {preset: os1-64, mount_height: 0.55}
-odometry: {trans_noise_per_m: 0.01, yaw_noise_per_rad: 0.01, yaw_noise_per_m: 0.002}
-levels:
-  - {name: L0, elevation: 0.0, ceiling: 2.8, slab: [[0, 0], [40, 0], [40, 2.4], [0, 2.4]]}
-walls:
-  - {level: L0, from: [-0.1, 0], to: [40.1, 0]}
-  - {level: L0, from: [-0.1, 2.4], to: [40.1, 2.4]}
-  - {level: L0, from: [0, 0], to: [0, 2.4]}
-  - {level: L0, from: [40, 0], to: [40, 2.4]}
-trajectory:
-  level: L0
-  speed: 1.5
-  closed: false
-  laps: 1
-  waypoints: [[1, 1.2], [38, 1.2]]
-)",
-                                      "straight.yaml", ".");
+  const scene::Scene scene = corridor_scene(40.0);
   sim::Simulator sim(scene, 3);
   pipeline::Pipeline slam;
   for (std::size_t k = 0; k < sim.num_scans(); ++k) slam.process(k, sim.times()[k], sim.scan(k), sim.odometry_poses()[k]);
@@ -266,19 +267,7 @@ trajectory:
 // Only keyframes are prefiltered and segmented, ahead in prepare() for the scans guessed to be
 // keyframes; a wrong guess either way must give the same run as processing scan by scan.
 TEST(EndToEnd, KeyframeStepsGuessedWrongGiveTheSameRun) {
-  scene::Scene scene = scene::parse_scene(R"(
-name: short_corridor
-sensor: {preset: os1-64, mount_height: 0.55}
-levels:
-  - {name: L0, elevation: 0.0, ceiling: 2.8, slab: [[0, 0], [10, 0], [10, 2.4], [0, 2.4]]}
-walls:
-  - {level: L0, from: [-0.1, 0], to: [10.1, 0]}
-  - {level: L0, from: [-0.1, 2.4], to: [10.1, 2.4]}
-  - {level: L0, from: [0, 0], to: [0, 2.4]}
-  - {level: L0, from: [10, 0], to: [10, 2.4]}
-trajectory: {level: L0, speed: 1.5, closed: false, laps: 1, waypoints: [[1, 1.2], [8, 1.2]]}
-)",
-                                         "short_corridor.yaml", ".");
+  const scene::Scene scene = corridor_scene(10.0);
   const sim::Simulator sim(scene, 1);
   // 0: the pipeline's own choice, scan by scan; 1: no scan guessed a keyframe; 2: every one.
   std::vector<pipeline::Pipeline> runs(3);
