@@ -266,15 +266,22 @@ TEST(GraphLoopClosure, LargeCorrectionIsRejected) {
   EXPECT_LT(pose_error(loop->measurement, first.inverse() * second).trans, 0.05);
 }
 
+// A keyframe and its revisit 20 m of travel later, whose estimate is `dx` off along x (the
+// clouds are the same: the truth is no motion).
+SituationalGraph revisit_off_along_x(double dx) {
+  SituationalGraph graph;
+  graph.add_keyframe(keyframe_at(Pose3::Identity(), 0.0));
+  graph.add_keyframe(keyframe_at(make_pose(Eigen::Vector3d(dx, 0.0, 0.0), 0.0), 20.0));
+  return graph;
+}
+
 TEST(GraphLoopClosure, AMatchFreeToSlideAlongACorridorIsRejected) {
   // Twice in a corridor whose ends are out of view, the second estimate 0.3 m off along it:
   // every check of the match passes (the walls, floor and ceiling fit anywhere along it), but
   // nothing pins the length, so the loop would carry the estimate's error into the graph.
   const PointCloud corridor = test_support::corridor(20.0f, false);
   const auto cloud_of = [&](int) -> const PointCloud& { return corridor; };
-  SituationalGraph graph;
-  graph.add_keyframe(keyframe_at(Pose3::Identity(), 0.0));
-  graph.add_keyframe(keyframe_at(make_pose(Eigen::Vector3d(0.3, 0.0, 0.0), 0.0), 20.0));
+  const SituationalGraph graph = revisit_off_along_x(0.3);
 
   EXPECT_FALSE(LoopDetector().detect(graph, 1, cloud_of).has_value());
   LoopClosureConfig unchecked;
@@ -296,9 +303,7 @@ TEST(GraphLoopClosure, AMatchMustBeFoundAgainTheOtherWayRound) {
   // round the pair has one optimum, and both registrations end on it.
   const PointCloud closed = test_support::corridor(8.0f, true);
   const auto cloud_of = [&](int) -> const PointCloud& { return closed; };
-  SituationalGraph graph;
-  graph.add_keyframe(keyframe_at(Pose3::Identity(), 0.0));
-  graph.add_keyframe(keyframe_at(make_pose(Eigen::Vector3d(0.3, 0.0, 0.0), 0.0), 20.0));
+  const SituationalGraph graph = revisit_off_along_x(0.3);
   LoopClosureConfig config;
   config.max_reverse_disagreement = 0.002;
   EXPECT_TRUE(LoopDetector(config).detect(graph, 1, cloud_of).has_value());
