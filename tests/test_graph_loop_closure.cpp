@@ -245,6 +245,37 @@ TEST(GraphLoopClosure, WrongPlaceIsRejectedByTheFitnessCheck) {
   EXPECT_FALSE(fresh.detect(wrong_only, 2, cloud_of).has_value());
 }
 
+TEST(GraphLoopClosure, TheFirstCandidateThatPassesGivesTheLoop) {
+  // Two earlier keyframes in room_a that would both close the loop: the candidates are
+  // registered side by side, and the loop is the first one's in the order given, the same
+  // as when tried one after another; asked again (clouds now from the cache), the same edge.
+  const Pose3 first = office_pose(4.0, 2.5, 0.0);
+  const Pose3 second = office_pose(4.4, 2.2, 10.0);
+  const Pose3 revisit = office_pose(4.8, 3.0, -15.0);
+  std::map<int, PointCloud> clouds;
+  clouds[0] = voxel_prefilter(office().scan_at(first, 6), kPrefilterVoxel);
+  clouds[1] = voxel_prefilter(office().scan_at(second, 7), kPrefilterVoxel);
+  clouds[2] = voxel_prefilter(office().scan_at(revisit, 8), kPrefilterVoxel);
+  const auto cloud_of = [&](int id) -> const PointCloud& { return clouds.at(id); };
+  SituationalGraph graph;
+  graph.add_keyframe(keyframe_at(first, 0.0));
+  graph.add_keyframe(keyframe_at(second, 1.0));
+  graph.add_keyframe(keyframe_at(revisit, 30.0));
+
+  LoopDetector detector;
+  const std::optional<BetweenEdge> from_second = detector.verify(graph, 2, {1, 0}, cloud_of);
+  ASSERT_TRUE(from_second.has_value());
+  EXPECT_EQ(from_second->from, 1);
+  EXPECT_LT(pose_error(from_second->measurement, second.inverse() * revisit).trans, 0.05);
+  const std::optional<BetweenEdge> from_first = detector.verify(graph, 2, {0, 1}, cloud_of);
+  ASSERT_TRUE(from_first.has_value());
+  EXPECT_EQ(from_first->from, 0);
+  EXPECT_LT(pose_error(from_first->measurement, first.inverse() * revisit).trans, 0.05);
+  const std::optional<BetweenEdge> again = detector.verify(graph, 2, {0, 1}, cloud_of);
+  ASSERT_TRUE(again.has_value());
+  EXPECT_TRUE(again->measurement.isApprox(from_first->measurement, 0.0));
+}
+
 TEST(GraphLoopClosure, LargeCorrectionIsRejected) {
   // The estimate of the revisit is 0.5 m off; GICP recovers it. A max_correction below that
   // rejects the loop, the default accepts it.

@@ -64,10 +64,11 @@ class LoopDetector {
   const LoopClosureConfig& config() const { return config_; }
 
  private:
-  /// Keyframe k's cloud prepared for registration, from the cache or made and cached. The
-  /// candidates of consecutive keyframes are mostly the same, so the newest preparations are
-  /// kept (kPreparedKept); the results never depend on the cache, only the time.
-  const registration::PreparedCloud& prepared(int k, const std::function<const PointCloud&(int)>& cloud_of);
+  /// The keyframes' clouds prepared for registration, from the cache or made (at once) and
+  /// cached. The candidates of consecutive keyframes are mostly the same, so the newest
+  /// preparations are kept (kPreparedKept); the results never depend on the cache, only the time.
+  std::vector<registration::PreparedCloud> prepared(const std::vector<int>& ids,
+                                                   const std::function<const PointCloud&(int)>& cloud_of);
 
   LoopClosureConfig config_;
   double last_loop_travel_ = -1e18;
