@@ -20,7 +20,9 @@
 using namespace tsgraphs;
 using namespace tsgraphs::io;
 using tsgraphs::test::input_error_of;
+using tsgraphs::test::read_file;
 using tsgraphs::test::TempDirTest;
+using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
@@ -260,4 +262,78 @@ TEST_F(Pcd, EncodedCloudsReadBackExactly) {
   EXPECT_EQ(back_i.points, with_i.points);
   EXPECT_EQ(back_i.intensity, with_i.intensity);
   EXPECT_TRUE(read_pcd(write_file("empty.pcd", encode_pcd(PointCloud{}))).empty());
+}
+
+namespace {
+
+// A DATA binary_compressed body: the two little-endian size words, then `lzf` as written.
+std::string compressed_body(std::uint32_t compressed, std::uint32_t uncompressed, const std::string& lzf) {
+  std::string body(8, '\0');
+  std::memcpy(body.data(), &compressed, 4);
+  std::memcpy(body.data() + 4, &uncompressed, 4);
+  return body + lzf;
+}
+
+// Two x y z float points as binary_compressed stores them (field by field: x0 x1 y0 y1 z0 z1)
+// in LZF made of one literal run (a control byte below 32 is "copy the next byte + 1 bytes").
+std::string two_points_lzf() {
+  const float soa[6] = {1.0f, 4.0f, 2.0f, 5.0f, 3.0f, 6.0f};
+  std::string lzf(1, static_cast<char>(sizeof soa - 1));
+  lzf.append(reinterpret_cast<const char*>(soa), sizeof soa);
+  return lzf;
+}
+
+}  // namespace
+
+TEST_F(Pcd, CompressedBlockThatAgreesWithItsHeaderReads) {
+  const std::string path = write_file(
+      "good.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "binary_compressed") + compressed_body(25, 24, two_points_lzf()));
+  const PointCloud cloud = read_pcd(path);
+  ASSERT_EQ(cloud.size(), 2u);
+  EXPECT_EQ(cloud.points[0], Eigen::Vector3f(1, 2, 3));
+  EXPECT_EQ(cloud.points[1], Eigen::Vector3f(4, 5, 6));
+}
+
+// Issue 18: an uncompressed size word of 0 made PCL write the points into an empty buffer
+// (SIGSEGV in run, convert and simulate).
+TEST_F(Pcd, CompressedBlockWithUncompressedSizeZeroIsAnInputError) {
+  const std::string path = write_file(
+      "zero.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "binary_compressed") + compressed_body(25, 0, two_points_lzf()));
+  const std::string message = read_error(path);
+  EXPECT_THAT(message, StartsWith(path + ": "));
+  EXPECT_THAT(message, HasSubstr("uncompressed size 0, expected 24 bytes for POINTS x SIZE"));
+}
+
+TEST_F(Pcd, CompressedBlockSizesThatDisagreeWithTheFileAreInputErrors) {
+  const std::string head = header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "binary_compressed");
+  const std::string larger = write_file("larger.pcd", head + compressed_body(25, 4096, two_points_lzf()));
+  EXPECT_THAT(read_error(larger), HasSubstr("uncompressed size 4096, expected 24 bytes"));
+  const std::string past = write_file("past.pcd", head + compressed_body(0xFFFFFFF0u, 24, two_points_lzf()));
+  EXPECT_THAT(read_error(past), AllOf(StartsWith(past + ": "), HasSubstr("compressed size 4294967280 runs past the end")));
+  const std::string empty = write_file("empty_block.pcd", head + compressed_body(0, 24, ""));
+  EXPECT_THAT(read_error(empty), HasSubstr("compressed size 0"));
+  const std::string no_words = write_file("no_words.pcd", head + "abc");
+  EXPECT_THAT(read_error(no_words), AllOf(StartsWith(no_words + ": "), HasSubstr("size words")));
+}
+
+// Issue 18: "SIZE four" was skipped as "stoll: scan skipped", without the file's name.
+TEST_F(Pcd, NonNumericSizeOrCountNamesTheFileLineAndField) {
+  std::string text = header("x y z", "4 four 4", "F F F", "1 1 1", 1, 1, "ascii") + "1 2 3\n";
+  const std::string size = write_file("size.pcd", text);
+  EXPECT_THAT(read_error(size), StartsWith(size + ":4: PCD header: SIZE 'four' is not a whole number (field y)"));
+  const std::string count = write_file("count.pcd", header("x y z", "4 4 4", "F F F", "1 -1 1", 1, 1, "ascii") + "1 2 3\n");
+  EXPECT_THAT(read_error(count), StartsWith(count + ":6: PCD header: COUNT '-1' is not a whole number (field y)"));
+  const std::string width = write_file("width.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 1, 1, "ascii") + "1 2 3\n");
+  std::string wide = read_file(width);
+  wide.replace(wide.find("WIDTH 1"), 7, "WIDTH 99999999999999999999999");
+  const std::string overflow = write_file("overflow.pcd", wide);
+  EXPECT_THAT(read_error(overflow), StartsWith(overflow + ":7: PCD header: WIDTH"));
+}
+
+// Issue 18: a symlink loop ended in "internal error" (std::filesystem's exception).
+TEST_F(Pcd, SymlinkLoopIsAnInputErrorNamingTheFile) {
+  const std::filesystem::path a = dir_ / "a.pcd", b = dir_ / "b.pcd";
+  std::filesystem::create_symlink(b, a);
+  std::filesystem::create_symlink(a, b);
+  EXPECT_THAT(read_error(a.string()), StartsWith(a.string() + ": "));
 }

@@ -7,14 +7,17 @@
 #include <pcl/point_types.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
+#include <system_error>
 #include <vector>
 
 #include "tsgraphs/core/error.hpp"
@@ -23,13 +26,47 @@
 namespace tsgraphs::io {
 namespace {
 
+// PCD's width, height and uncompressed block size are 32-bit words in PCL; a larger header
+// value cannot be a real cloud, and bounding it keeps the size arithmetic below from overflowing.
+constexpr unsigned long long kMaxPcdDimension = std::numeric_limits<std::uint32_t>::max();
+// A field's COUNT beyond this is no real point layout (PCL's largest, a 308-bin histogram).
+constexpr unsigned long long kMaxPcdFieldCount = 1u << 16;
+// DATA binary_compressed starts with two little-endian words: compressed and uncompressed size.
+constexpr std::size_t kCompressedSizeWords = 8;
+
+// A whole-token, non-negative decimal of a header key; anything else (a word, a sign, a
+// fraction, an overflow) is an InputError naming the file, the header line and the field.
+unsigned long long header_count(const std::string& path, int line_no, const std::string& key,
+                                const std::string& value, const std::string& field) {
+  unsigned long long v = 0;
+  const char* end = value.data() + value.size();
+  const auto [ptr, ec] = std::from_chars(value.data(), end, v);
+  if (value.empty() || ec != std::errc() || ptr != end) {
+    throw input_error(path, line_no,
+                      "PCD header: " + key + " '" + value + "' is not a whole number" +
+                          (field.empty() ? "" : " (field " + field + ")"));
+  }
+  return v;
+}
+
+// Bytes from `body` to the end of the file, or an InputError naming it.
+unsigned long long bytes_after(const std::string& path, std::streamoff body) {
+  std::error_code ec;
+  const auto total = std::filesystem::file_size(path, ec);
+  if (ec) throw input_error(path, 0, "cannot read the file: " + ec.message());
+  if (body < 0 || static_cast<unsigned long long>(body) > total) throw input_error(path, 0, "PCD header runs to the end of the file");
+  return total - static_cast<unsigned long long>(body);
+}
+
 // PCL's reader can crash on a file that is not a PCD (PCL 1.13), so the header is checked
 // here first: every key known, FIELDS / SIZE / TYPE / COUNT consistent, POINTS = WIDTH *
-// HEIGHT, and a binary body long enough for POINTS points.
+// HEIGHT, a binary body long enough for POINTS points, and a binary_compressed block whose
+// size words agree with the header and the file (PCL writes through a 0 uncompressed size).
 void check_pcd_header(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw input_error(path, 0, "cannot open file");
   std::map<std::string, std::vector<std::string>> keys;
+  std::map<std::string, int> key_line;  // where each key was, for messages
   std::string line;
   int line_no = 0;
   while (std::getline(in, line)) {
@@ -45,6 +82,7 @@ void check_pcd_header(const std::string& path) {
     std::vector<std::string> values;
     for (std::string v; s >> v;) values.push_back(v);
     keys[key] = values;
+    key_line[key] = line_no;
     if (key == "DATA") break;
   }
   for (const char* required : {"FIELDS", "SIZE", "TYPE", "WIDTH", "POINTS", "DATA"}) {
@@ -55,41 +93,50 @@ void check_pcd_header(const std::string& path) {
       (keys.count("COUNT") && keys["COUNT"].size() != n_fields)) {
     throw input_error(path, 0, "PCD header: FIELDS, SIZE, TYPE and COUNT disagree in length");
   }
-  auto number = [&](const std::string& key) -> long long {
-    try {
-      if (keys[key].size() != 1) throw std::invalid_argument(key);
-      return std::stoll(keys[key][0]);
-    } catch (const std::exception&) {
-      throw input_error(path, 0, "PCD header: " + key + " is not a number");
+  auto number = [&](const std::string& key) -> unsigned long long {
+    if (keys[key].size() != 1) throw input_error(path, key_line[key], "PCD header: " + key + " is not one number");
+    const unsigned long long v = header_count(path, key_line[key], key, keys[key][0], "");
+    if (v > kMaxPcdDimension) {
+      throw input_error(path, key_line[key], "PCD header: " + key + " " + keys[key][0] + " is larger than " +
+                                                 std::to_string(kMaxPcdDimension));
     }
+    return v;
   };
-  const long long width = number("WIDTH");
-  const long long height = keys.count("HEIGHT") ? number("HEIGHT") : 1;
-  const long long points = number("POINTS");
-  if (width < 0 || height < 0 || points != width * height) {
+  const unsigned long long width = number("WIDTH");
+  const unsigned long long height = keys.count("HEIGHT") ? number("HEIGHT") : 1;
+  const unsigned long long points = number("POINTS");
+  if (points != width * height) {  // no overflow: both are at most 2^32 - 1
     throw input_error(path, 0, "PCD header: POINTS is not WIDTH * HEIGHT");
   }
   const std::string data = keys["DATA"].empty() ? "" : keys["DATA"][0];
   if (data != "ascii" && data != "binary" && data != "binary_compressed") {
     throw input_error(path, line_no, "PCD header: unknown DATA '" + data + "'");
   }
-  long long point_bytes = 0;
+  unsigned long long point_bytes = 0;
+  unsigned long long values_per_point = 0;
   for (std::size_t i = 0; i < n_fields; ++i) {
-    const long long size = std::stoll(keys["SIZE"][i]);
-    const long long count = keys.count("COUNT") ? std::stoll(keys["COUNT"][i]) : 1;
+    const std::string& field = keys["FIELDS"][i];
+    const unsigned long long size = header_count(path, key_line["SIZE"], "SIZE", keys["SIZE"][i], field);
+    const unsigned long long count =
+        keys.count("COUNT") ? header_count(path, key_line["COUNT"], "COUNT", keys["COUNT"][i], field) : 1;
     const std::string& type = keys["TYPE"][i];
-    if ((size != 1 && size != 2 && size != 4 && size != 8) || (type != "F" && type != "I" && type != "U") || count < 1) {
-      throw input_error(path, 0, "PCD header: bad SIZE/TYPE/COUNT for field " + keys["FIELDS"][i]);
+    if ((size != 1 && size != 2 && size != 4 && size != 8) || (type != "F" && type != "I" && type != "U") || count < 1 ||
+        count > kMaxPcdFieldCount) {
+      throw input_error(path, 0, "PCD header: bad SIZE/TYPE/COUNT for field " + field);
     }
     point_bytes += size * count;
+    values_per_point += count;
+  }
+  // At most 2^32 points of at most (fields x 8 x 2^16) bytes: the product can still overflow.
+  unsigned long long body_bytes = 0;
+  if (__builtin_mul_overflow(points, point_bytes, &body_bytes)) {
+    throw input_error(path, 0, "PCD header: POINTS x point size overflows");
   }
   if (data == "ascii") {
-    long long values_per_point = 0;
-    for (std::size_t i = 0; i < n_fields; ++i) values_per_point += keys.count("COUNT") ? std::stoll(keys["COUNT"][i]) : 1;
     for (std::string row; std::getline(in, row);) {
       ++line_no;
       std::istringstream s(row);
-      long long k = 0;
+      unsigned long long k = 0;
       for (std::string tok; s >> tok; ++k) {
         char* end = nullptr;
         std::strtod(tok.c_str(), &end);
@@ -101,11 +148,32 @@ void check_pcd_header(const std::string& path) {
     }
   }
   if (data == "binary") {
-    const std::streamoff body = static_cast<std::streamoff>(in.tellg());
-    const auto total = static_cast<long long>(std::filesystem::file_size(path));
-    if (body < 0 || total - body < points * point_bytes) {
+    if (bytes_after(path, static_cast<std::streamoff>(in.tellg())) < body_bytes) {
       throw input_error(path, 0, "PCD body is shorter than POINTS * point size (truncated file?)");
     }
+  }
+  if (data == "binary_compressed") {
+    const std::streamoff body = static_cast<std::streamoff>(in.tellg());
+    const unsigned long long available = bytes_after(path, body);
+    const std::string what = "binary_compressed block at byte " + std::to_string(body) + ": ";
+    std::uint8_t words[kCompressedSizeWords] = {};
+    if (available < kCompressedSizeWords || !in.read(reinterpret_cast<char*>(words), kCompressedSizeWords)) {
+      throw input_error(path, 0, what + "shorter than its two 4-byte size words");
+    }
+    const auto word = [&](std::size_t at) {  // little-endian, whatever the host
+      return static_cast<unsigned long long>(words[at]) | static_cast<unsigned long long>(words[at + 1]) << 8 |
+             static_cast<unsigned long long>(words[at + 2]) << 16 | static_cast<unsigned long long>(words[at + 3]) << 24;
+    };
+    const unsigned long long compressed = word(0), uncompressed = word(4);
+    if (uncompressed != body_bytes) {
+      throw input_error(path, 0, what + "uncompressed size " + std::to_string(uncompressed) + ", expected " +
+                                     std::to_string(body_bytes) + " bytes for POINTS x SIZE");
+    }
+    if (compressed > available - kCompressedSizeWords) {
+      throw input_error(path, 0, what + "compressed size " + std::to_string(compressed) + " runs past the end of the file (" +
+                                     std::to_string(available - kCompressedSizeWords) + " bytes follow)");
+    }
+    if (compressed == 0 && uncompressed > 0) throw input_error(path, 0, what + "compressed size 0 for a non-empty cloud");
   }
 }
 
@@ -131,7 +199,11 @@ double field_value(const pcl::PCLPointCloud2& blob, const pcl::PCLPointField& f,
 }  // namespace
 
 PointCloud read_pcd(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw input_error(path, 0, "no such file");
+  // The error_code form: a symlink loop or an unreadable folder is the file's error, not ours.
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec && status.type() != std::filesystem::file_type::not_found) throw input_error(path, 0, "cannot open file: " + ec.message());
+  if (!std::filesystem::is_regular_file(status)) throw input_error(path, 0, "no such file");
   check_pcd_header(path);
   pcl::console::setVerbosityLevel(pcl::console::L_ERROR);  // our own errors say what is wrong
   pcl::PCLPointCloud2 blob;
