@@ -159,3 +159,20 @@ TEST(Kitti, PosesReadBackAndRotationsStayOrthonormal) {
   EXPECT_EQ(fields_on_first_line(p.string()), 12);
   fs::remove_all(p.parent_path());
 }
+
+// Issue 18: a scan that is a symlink loop (ln -s a b; ln -s b a) ended in "internal error"
+// (std::filesystem's exception): it is an InputError naming it, in a folder or through --scans.
+TEST_F(ScanFolder, SymlinkLoopScanIsAnInputErrorNamingIt) {
+  write_pcd(dir_ / "000000.pcd", 2);
+  const fs::path a = dir_ / "000001.pcd", b = dir_ / "000002.pcd";
+  fs::create_symlink(b, a);
+  fs::create_symlink(a, b);
+  ScanFolderOptions o;
+  o.folder = dir_.string();
+  const std::string in_folder = test::input_error_of([&] { ScanFolderReader r(o); });
+  EXPECT_EQ(in_folder.rfind(a.string() + ": ", 0), 0u) << in_folder;
+  ScanFolderOptions glob;
+  glob.scans = (dir_ / "*.pcd").string();
+  const std::string in_glob = test::input_error_of([&] { ScanFolderReader r(glob); });
+  EXPECT_EQ(in_glob.rfind(a.string() + ": ", 0), 0u) << in_glob;
+}

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <system_error>
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/kitti.hpp"
@@ -19,15 +20,38 @@ namespace fs = std::filesystem;
 constexpr int kTumFields = 8;     // t x y z qx qy qz qw
 constexpr int kKittiFields = 12;  // a 3x4 matrix
 
+/// Whether `p` is a regular file. The error_code forms throughout this file: a symlink loop or
+/// an unreadable entry is an InputError naming it, not std::filesystem's exception.
+bool is_file(const fs::path& p) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(p, ec);
+  if (ec && status.type() != fs::file_type::not_found) throw input_error(p.string(), 0, "cannot read: " + ec.message());
+  return fs::is_regular_file(status);
+}
+
+/// Whether `p` is a folder; false for anything that cannot be looked at.
+bool is_folder(const fs::path& p) {
+  std::error_code ec;
+  return fs::is_directory(p, ec);
+}
+
+bool is_scan_name(const fs::path& p) { return p.extension() == ".pcd" || p.extension() == ".bin"; }
+
 /// The .pcd and .bin files directly in `dir`, in name order.
 std::vector<std::string> scan_files_in(const fs::path& dir) {
   std::vector<std::string> files;
-  if (!fs::is_directory(dir)) return files;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
-    const std::string ext = e.path().extension().string();
-    if (e.is_regular_file() && (ext == ".pcd" || ext == ".bin")) files.push_back(e.path().string());
+  if (!is_folder(dir)) return files;
+  std::error_code ec;
+  fs::directory_iterator it(dir, ec);
+  if (ec) throw input_error(dir.string(), 0, "cannot list the folder: " + ec.message());
+  std::vector<std::string> names;
+  for (; it != fs::directory_iterator(); it.increment(ec)) {
+    if (is_scan_name(it->path())) names.push_back(it->path().string());
   }
-  std::sort(files.begin(), files.end());
+  if (ec) throw input_error(dir.string(), 0, "cannot list the folder: " + ec.message());
+  std::sort(names.begin(), names.end());  // in name order, so that a bad entry is always the same one
+  for (const std::string& n : names)
+    if (is_file(n)) files.push_back(n);
   return files;
 }
 
@@ -36,7 +60,7 @@ std::vector<std::string> glob_files(const std::string& pattern) {
   std::vector<std::string> files;
   if (::glob(pattern.c_str(), 0, nullptr, &g) == 0) {
     for (std::size_t i = 0; i < g.gl_pathc; ++i)
-      if (fs::is_regular_file(g.gl_pathv[i])) files.emplace_back(g.gl_pathv[i]);
+      if (is_file(g.gl_pathv[i])) files.emplace_back(g.gl_pathv[i]);
   }
   ::globfree(&g);
   std::sort(files.begin(), files.end());
@@ -47,7 +71,7 @@ std::vector<std::string> glob_files(const std::string& pattern) {
 std::string find_beside(const std::vector<fs::path>& dirs, const std::vector<std::string>& names) {
   for (const fs::path& d : dirs)
     for (const std::string& n : names)
-      if (fs::is_regular_file(d / n)) return (d / n).string();
+      if (is_file(d / n)) return (d / n).string();
   return "";
 }
 
@@ -55,7 +79,7 @@ std::string find_beside(const std::vector<fs::path>& dirs, const std::vector<std
 
 bool is_sequence_folder(const std::string& dir) {
   const fs::path d(dir);
-  return fs::is_regular_file(d / "times.txt") && fs::is_regular_file(d / "odom.txt") && fs::is_directory(d / "scans");
+  return is_file(d / "times.txt") && is_file(d / "odom.txt") && is_folder(d / "scans");
 }
 
 ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
@@ -66,7 +90,7 @@ ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
     if (files_.empty()) throw input_error(options.scans, 0, "no scan file matches");
   } else {
     name_ = options.folder;
-    if (!fs::is_directory(options.folder)) throw input_error(options.folder, 0, "not a folder");
+    if (!is_folder(options.folder)) throw input_error(options.folder, 0, "not a folder");
     files_ = scan_files_in(options.folder);
     if (files_.empty()) files_ = scan_files_in(fs::path(options.folder) / "velodyne");
     if (files_.empty())
