@@ -102,3 +102,110 @@ TEST(PointCloud2, LayoutsThatCannotBeReadAreErrorsNamingTheMessage) {
   EXPECT_NE(test::input_error_of([&] { decode_point_cloud2(big, data.data(), data.size(), "m"); }).find("big-endian"),
             std::string::npos);
 }
+
+namespace {
+
+void append_word(std::vector<std::uint8_t>& out, std::uint32_t v) {
+  const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
+  out.insert(out.end(), p, p + 4);
+}
+
+void append_string(std::vector<std::uint8_t>& out, const std::string& s) {
+  append_word(out, static_cast<std::uint32_t>(s.size()));
+  out.insert(out.end(), s.begin(), s.end());
+}
+
+/// The padded cloud as a bag stores a sensor_msgs/PointCloud2 (ROS1 serialization), stamped
+/// 12.5 s in frame "lidar". `fields_at` and `data_at` receive where the field count and the
+/// data length words are.
+std::vector<std::uint8_t> serialized_message(std::size_t* fields_at = nullptr, std::size_t* data_at = nullptr) {
+  const PointCloud2Layout l = padded_layout();
+  const std::vector<std::uint8_t> data = padded_data();
+  std::vector<std::uint8_t> out;
+  append_word(out, 7);            // header.seq
+  append_word(out, 12);           // header.stamp.sec
+  append_word(out, 500000000);    // header.stamp.nsec
+  append_string(out, "lidar");
+  append_word(out, l.height);
+  append_word(out, l.width);
+  if (fields_at) *fields_at = out.size();
+  append_word(out, static_cast<std::uint32_t>(l.fields.size()));
+  for (const PointField2& f : l.fields) {
+    append_string(out, f.name);
+    append_word(out, f.offset);
+    out.push_back(f.datatype);
+    append_word(out, f.count);
+  }
+  out.push_back(0);  // is_bigendian
+  append_word(out, l.point_step);
+  append_word(out, l.row_step);
+  if (data_at) *data_at = out.size();
+  append_word(out, static_cast<std::uint32_t>(data.size()));
+  out.insert(out.end(), data.begin(), data.end());
+  out.push_back(1);  // is_dense
+  return out;
+}
+
+void set_word(std::vector<std::uint8_t>& bytes, std::size_t at, std::uint32_t v) { std::memcpy(bytes.data() + at, &v, 4); }
+
+}  // namespace
+
+TEST(PointCloud2Message, SerializedMessageParsesAndDecodes) {
+  const std::vector<std::uint8_t> bytes = serialized_message();
+  const PointCloud2Message m = parse_point_cloud2_message(bytes.data(), bytes.size(), "test");
+  EXPECT_DOUBLE_EQ(m.stamp, 12.5);
+  EXPECT_EQ(m.frame_id, "lidar");
+  ASSERT_EQ(m.layout.fields.size(), 5u);
+  EXPECT_EQ(m.layout.fields[3].name, "intensity");
+  EXPECT_EQ(m.layout.fields[3].offset, 28u);
+  EXPECT_EQ(m.layout.row_step, 120u);
+  EXPECT_EQ(m.data_size, 240u);
+  const PointCloud cloud = decode_point_cloud2(m.layout, bytes.data() + m.data_offset, m.data_size, "test");
+  ASSERT_EQ(cloud.size(), 5u);
+  EXPECT_FLOAT_EQ(cloud.points[4].x(), 12.125f);
+  EXPECT_FLOAT_EQ(cloud.intensity[4], 102.0f);
+}
+
+// Issue 18: a field count or data length near 2^31 was a bad_alloc or a stream overrun
+// ("internal error") in rosbag's deserializer; checked against the message's bytes, before
+// anything is allocated.
+TEST(PointCloud2Message, LengthsNear2To31AreInputErrorsNamingTheByte) {
+  std::size_t fields_at = 0, data_at = 0;
+  const std::vector<std::uint8_t> good = serialized_message(&fields_at, &data_at);
+  std::vector<std::uint8_t> fields = good;
+  set_word(fields, fields_at, 0x7FFFFFFFu);
+  EXPECT_EQ(test::input_error_of([&] { parse_point_cloud2_message(fields.data(), fields.size(), "a.bag: /points, scan 3"); }),
+            "a.bag: /points, scan 3: field count 2147483647 at byte " + std::to_string(fields_at) + " is more than the message's " +
+                std::to_string(good.size() - fields_at - 4) + " bytes can hold");
+  std::vector<std::uint8_t> data = good;
+  set_word(data, data_at, 0x7FFFFFF0u);
+  EXPECT_EQ(test::input_error_of([&] { parse_point_cloud2_message(data.data(), data.size(), "m"); }),
+            "m: data at byte " + std::to_string(data_at + 4) + " needs 2147483632 bytes, the message has 241 left");
+  std::vector<std::uint8_t> name = good;
+  set_word(name, fields_at + 4, 0xFFFFFFF0u);  // the first field's name length
+  EXPECT_NE(test::input_error_of([&] { parse_point_cloud2_message(name.data(), name.size(), "m"); }).find("field name"),
+            std::string::npos);
+}
+
+TEST(PointCloud2Message, EveryTruncationIsAnInputError) {
+  const std::vector<std::uint8_t> good = serialized_message();
+  for (std::size_t keep = 0; keep < good.size(); ++keep) {
+    SCOPED_TRACE(keep);
+    EXPECT_NE(test::input_error_of([&] { parse_point_cloud2_message(good.data(), keep, "m"); }).find("m: "), std::string::npos);
+  }
+}
+
+// A field count (COUNT, not the number of fields) near 2^32 is a field past point_step, with
+// no overflow; and many empty rows are no work.
+TEST(PointCloud2, HugeFieldCountOrEmptyRowsAreHandled) {
+  const std::vector<std::uint8_t> data = padded_data();
+  PointCloud2Layout counted = padded_layout();
+  counted.fields[3].count = 0xFFFFFFFFu;
+  EXPECT_NE(test::input_error_of([&] { decode_point_cloud2(counted, data.data(), data.size(), "m"); }).find("past point_step"),
+            std::string::npos);
+  PointCloud2Layout empty_rows = padded_layout();
+  empty_rows.height = 0xFFFFFFFFu;
+  empty_rows.width = 0;
+  empty_rows.row_step = 0;
+  EXPECT_TRUE(decode_point_cloud2(empty_rows, data.data(), data.size(), "m").empty());
+}

@@ -89,6 +89,7 @@ PointCloud decode_point_cloud2(const PointCloud2Layout& layout, const std::uint8
     throw input_error(where, 0, "data has " + std::to_string(size) + " bytes, height x row_step needs " +
                                     std::to_string(rows * layout.row_step));
   PointCloud cloud;
+  if (rows == 0 || columns == 0) return cloud;  // no point, however many empty rows it claims
   cloud.reserve(rows * columns, intensity.has_value(), false);
   std::vector<double> seconds;
   for (std::size_t r = 0; r < rows; ++r) {
@@ -108,6 +109,93 @@ PointCloud decode_point_cloud2(const PointCloud2Layout& layout, const std::uint8
   }
   if (time) cloud.times = relative_times(seconds);
   return cloud;
+}
+
+namespace {
+
+// The smallest serialized sensor_msgs/PointField: an empty name's length word, offset (4),
+// datatype (1) and count (4). A field count is checked against it before anything is reserved.
+constexpr std::size_t kMinSerializedFieldBytes = 4 + 4 + 1 + 4;
+
+/// Reads the ROS1 wire format (little-endian, arrays and strings after a 4-byte length) of a
+/// message in memory, refusing any read past its end.
+class WireReader {
+ public:
+  WireReader(const std::uint8_t* bytes, std::size_t size, const std::string& where)
+      : bytes_(bytes), size_(size), where_(where) {}
+
+  template <class T>
+  T next(const char* what) {
+    need(sizeof(T), what);
+    T v;
+    std::memcpy(&v, bytes_ + at_, sizeof(T));
+    at_ += sizeof(T);
+    return v;
+  }
+
+  std::string string(const char* what) {
+    const std::uint32_t length = next<std::uint32_t>(what);
+    need(length, what);
+    std::string s(reinterpret_cast<const char*>(bytes_ + at_), length);
+    at_ += length;
+    return s;
+  }
+
+  /// Fails unless `n` more bytes exist, naming `what` and where it starts.
+  void need(std::size_t n, const char* what) const {
+    if (n > size_ - at_)
+      throw input_error(where_, 0, std::string(what) + " at byte " + std::to_string(at_) + " needs " + std::to_string(n) +
+                                       " bytes, the message has " + std::to_string(size_ - at_) + " left");
+  }
+
+  void skip(std::size_t n, const char* what) {
+    need(n, what);
+    at_ += n;
+  }
+
+  std::size_t at() const { return at_; }
+  std::size_t left() const { return size_ - at_; }
+
+ private:
+  const std::uint8_t* bytes_;
+  std::size_t size_;
+  std::string where_;
+  std::size_t at_ = 0;
+};
+
+}  // namespace
+
+PointCloud2Message parse_point_cloud2_message(const std::uint8_t* bytes, std::size_t size, const std::string& where) {
+  WireReader in(bytes, size, where);
+  PointCloud2Message m;
+  (void)in.next<std::uint32_t>("header.seq");
+  const std::uint32_t sec = in.next<std::uint32_t>("header.stamp");
+  const std::uint32_t nsec = in.next<std::uint32_t>("header.stamp");
+  m.stamp = static_cast<double>(sec) + 1e-9 * static_cast<double>(nsec);
+  m.frame_id = in.string("header.frame_id");
+  m.layout.height = in.next<std::uint32_t>("height");
+  m.layout.width = in.next<std::uint32_t>("width");
+  const std::uint32_t n_fields = in.next<std::uint32_t>("fields");
+  if (n_fields > in.left() / kMinSerializedFieldBytes)
+    throw input_error(where, 0, "field count " + std::to_string(n_fields) + " at byte " + std::to_string(in.at() - 4) +
+                                    " is more than the message's " + std::to_string(in.left()) + " bytes can hold");
+  m.layout.fields.reserve(n_fields);
+  for (std::uint32_t i = 0; i < n_fields; ++i) {
+    PointField2 f;
+    f.name = in.string("field name");
+    f.offset = in.next<std::uint32_t>("field offset");
+    f.datatype = in.next<std::uint8_t>("field datatype");
+    f.count = in.next<std::uint32_t>("field count");
+    m.layout.fields.push_back(std::move(f));
+  }
+  m.layout.is_bigendian = in.next<std::uint8_t>("is_bigendian") != 0;
+  m.layout.point_step = in.next<std::uint32_t>("point_step");
+  m.layout.row_step = in.next<std::uint32_t>("row_step");
+  m.data_size = in.next<std::uint32_t>("data");
+  m.data_offset = in.at();
+  in.skip(m.data_size, "data");
+  (void)in.next<std::uint8_t>("is_dense");
+  return m;
 }
 
 }  // namespace tsgraphs::io

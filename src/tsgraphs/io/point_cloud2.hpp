@@ -36,4 +36,19 @@ struct PointCloud2Layout {
 PointCloud decode_point_cloud2(const PointCloud2Layout& layout, const std::uint8_t* data, std::size_t size,
                                const std::string& where);
 
+/// A serialized sensor_msgs/PointCloud2 (the ROS1 wire format, as a bag stores it) taken
+/// apart without allocating what its lengths claim: the points are data_size bytes at
+/// data_offset of the message.
+struct PointCloud2Message {
+  double stamp = 0.0;  ///< header.stamp, seconds
+  std::string frame_id;
+  PointCloud2Layout layout;
+  std::size_t data_offset = 0, data_size = 0;
+};
+
+/// Every length (frame_id, the field list, each field's name, data) is checked against the
+/// `size` bytes of `bytes` before it is used: a message cut short or claiming more than it
+/// holds is an InputError naming `where` and the byte offset in the message.
+PointCloud2Message parse_point_cloud2_message(const std::uint8_t* bytes, std::size_t size, const std::string& where);
+
 }  // namespace tsgraphs::io
