@@ -3,9 +3,15 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
+#include <type_traits>
+#include <vector>
 
 #include "test_support.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
@@ -31,6 +37,72 @@ std::set<std::string> leaf_keys(const YAML::Node& node, const std::string& prefi
 }
 
 const std::string kParams = std::string(TSGRAPHS_SOURCE_DIR) + "/config/params.yaml";
+
+template <class T>
+struct Unwrapped {
+  using type = T;
+};
+template <class T>
+struct Unwrapped<std::optional<T>> {
+  using type = T;
+};
+
+// Every field's declared limits (config_range.hpp), by "section.key", and the numeric fields
+// that declare none.
+struct DeclaredLimits {
+  struct Numeric {
+    std::string path;
+    Range range;
+    bool integer = false;
+  };
+  std::string prefix;
+  std::vector<Numeric> numeric;
+  std::vector<std::string> undeclared;
+
+  template <class T>
+  void operator()(const char* key, const T&) {
+    using U = typename Unwrapped<T>::type;
+    if constexpr (std::is_arithmetic_v<U> && !std::is_same_v<U, bool>) undeclared.push_back(prefix + key);
+  }
+  template <class T>
+  void operator()(const char* key, const T&, const Range& range) {
+    numeric.push_back({prefix + key, range, std::is_integral_v<typename Unwrapped<T>::type>});
+  }
+  template <class T>
+  void operator()(const char*, const T&, const OneOf&) {}
+  template <class S>
+  void section(const char* key, S& sub) {
+    DeclaredLimits inner{prefix + key + ".", {}, {}};
+    sub.visit(inner);
+    numeric.insert(numeric.end(), inner.numeric.begin(), inner.numeric.end());
+    undeclared.insert(undeclared.end(), inner.undeclared.begin(), inner.undeclared.end());
+  }
+};
+
+DeclaredLimits declared_limits() {
+  DeclaredLimits limits;
+  PipelineConfig config;
+  config.visit(limits);
+  return limits;
+}
+
+// A parameter file setting `path` ("a.b.c") to `value`.
+std::string file_setting(const std::string& path, const std::string& value) {
+  std::string text, indent;
+  std::size_t from = 0;
+  for (std::size_t dot = path.find('.'); dot != std::string::npos; dot = path.find('.', from)) {
+    text += indent + path.substr(from, dot - from) + ":\n";
+    indent += "  ";
+    from = dot + 1;
+  }
+  return text + indent + path.substr(from) + ": " + value + "\n";
+}
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
 
 }  // namespace
 
@@ -80,7 +152,7 @@ TEST(PipelineConfig, ErrorsNameFileLineAndKey) {
   EXPECT_NE(input_error_of([] { load_pipeline_config("/nonexistent/params.yaml"); }).find("/nonexistent/params.yaml"),
             std::string::npos);
   EXPECT_NE(input_error_of([] { parse_pipeline_config("room_layer:\n  free_space_method: voxblox\n", "p.yaml"); })
-                .find("p.yaml:2: room_layer.free_space_method: free_space_method must be traversable or esdf"),
+                .find("p.yaml:2: room_layer.free_space_method: must be traversable or esdf, not 'voxblox'"),
             std::string::npos);
   EXPECT_NE(input_error_of([] { parse_pipeline_config("room_layer:\n\n  room_trigger: often\n", "p.yaml"); })
                 .find("p.yaml:3: room_layer.room_trigger"),
@@ -89,11 +161,89 @@ TEST(PipelineConfig, ErrorsNameFileLineAndKey) {
                 .find("p.yaml:2: room_association.footprint"),
             std::string::npos);
   EXPECT_NE(input_error_of([] { parse_pipeline_config("room_association:\n  min_overlap: 1.5\n", "p.yaml"); })
-                .find("p.yaml:2: room_association.min_overlap: min_overlap must be in (0, 1]"),
+                .find("p.yaml:2: room_association.min_overlap: must be > 0 and <= 1, not 1.5"),
             std::string::npos);
   EXPECT_NE(input_error_of([] { parse_pipeline_config("room_segmentation:\n  wall_joint_gap: -1\n", "p.yaml"); })
                 .find("p.yaml:2: room_segmentation.wall_joint_gap"),
             std::string::npos);
+}
+
+TEST(PipelineConfig, EveryNumericFieldDeclaresItsLimits) {
+  const DeclaredLimits limits = declared_limits();
+  EXPECT_TRUE(limits.undeclared.empty()) << "no limits declared in visit() for " << limits.undeclared.front();
+  EXPECT_GT(limits.numeric.size(), 200u);
+  // Every limit is finite at both ends: a value can neither be negative nonsense nor make a
+  // loop run 2e9 times or a grid hold 1e12 cells.
+  for (const DeclaredLimits::Numeric& n : limits.numeric) {
+    EXPECT_TRUE(std::isfinite(n.range.min) && std::isfinite(n.range.max)) << n.path;
+    EXPECT_GE(n.range.min, 0.0) << n.path;
+  }
+}
+
+TEST(PipelineConfig, AValueOutsideItsLimitsIsAnErrorAtItsLine) {
+  // For every field: the nearest value outside its limits below and above.
+  for (const DeclaredLimits::Numeric& n : declared_limits().numeric) {
+    const double step = n.integer ? 1.0 : std::max(1e-3, 1e-3 * std::abs(n.range.max));
+    const double below = n.range.min_open ? n.range.min : n.range.min - step;
+    const double above = n.range.max_open ? n.range.max : n.range.max + step;
+    for (const double bad : {below, above}) {
+      const std::string text = file_setting(n.path, n.integer ? number(std::round(bad)) : number(bad));
+      const int line = static_cast<int>(std::count(n.path.begin(), n.path.end(), '.')) + 1;
+      const std::string message = test::input_error_of([&] { parse_pipeline_config(text, "p.yaml"); });
+      EXPECT_NE(message.find("p.yaml:" + std::to_string(line) + ": " + n.path + ": must be"), std::string::npos)
+          << text << " -> " << message;
+    }
+  }
+}
+
+TEST(PipelineConfig, ValuesThatWouldHangOrCrashARunAreRefused) {
+  // Found by trying every numeric key with extreme values: each hung or crashed a run.
+  for (const auto& [path, value] : std::vector<std::pair<std::string, std::string>>{
+           {"ground.resolution", "1e-9"},
+           {"ground.num_iter", "2000000000"},
+           {"aisle.width_directions", "100000000"},
+           {"loop_closure.registration.max_iterations", "2000000000"},
+           {"esdf_free_space.voxel_size", "1e-6"},
+           {"sight_map.cell", "1e-9"},
+           {"room_segmentation.cell", "1e-9"},
+           {"plane_extraction.max_planes", "0"},
+           {"plane_extraction.max_range", "-1"},
+           {"ground.resolution", "0"}}) {
+    EXPECT_NE(test::input_error_of([&] { parse_pipeline_config(file_setting(path, value), "p.yaml"); }).find(path + ": must be"),
+              std::string::npos)
+        << path << ": " << value;
+  }
+}
+
+TEST(PipelineConfig, ConfigsBuiltInCodeAreCheckedAgainstTheSameLimits) {
+  odometry::LidarOdometryConfig odometry;
+  odometry.max_iterations = 0;
+  try {
+    odometry.validate();
+    FAIL() << "max_iterations 0 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "LidarOdometryConfig: max_iterations must be in [1, 1000]");
+  }
+  DeskewConfig deskew;
+  deskew.motion = "guess";
+  EXPECT_THROW(deskew.validate(), std::invalid_argument);
+  deskew = DeskewConfig{};
+  deskew.registration.window = 0;
+  try {
+    deskew.validate();
+    FAIL() << "window 0 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "DeskewConfig: window must be in [1, 1000]");
+  }
+  EXPECT_NO_THROW(check_ranges(PipelineConfig{}, "PipelineConfig"));  // the defaults lie within
+  PipelineConfig c;
+  c.loop_closure.registration.voxel_size = -1.0;
+  try {
+    check_ranges(c, "PipelineConfig");
+    FAIL() << "voxel_size -1 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "PipelineConfig: loop_closure.registration.voxel_size must be in [0, 100]");
+  }
 }
 
 TEST(PipelineConfig, BaselineModeIsTwoKeys) {

@@ -130,7 +130,8 @@ TEST_F(PlatformTest, ParameterFileTakesAutoOrANumber) {
   EXPECT_NE(error("platform:\n  sensor_height: tall\n").find("p.yaml:2: platform.sensor_height: expected a number or auto"),
             std::string::npos);
   EXPECT_NE(error("platform:\n  sensor_height: -1\n").find("p.yaml:2"), std::string::npos);
-  EXPECT_NE(error("platform:\n  preset: kinect\n").find("preset must be auto"), std::string::npos);
+  EXPECT_NE(error("platform:\n  preset: kinect\n").find("p.yaml:2: platform.preset: must be auto, none, os1-64"),
+            std::string::npos);
   // The key's old place says where it went.
   EXPECT_NE(error("ground:\n  sensor_height: 1.6\n").find("ground.sensor_height is now platform.sensor_height"),
             std::string::npos);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tsgraphs/freespace/free_space.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::freespace {
 
@@ -21,12 +22,12 @@ struct EsdfFreeSpaceConfig {
 
   template <class V>
   void visit(V& v) {
-    v("voxel_size", voxel_size);
-    v("max_distance", max_distance);
-    v("min_free_distance", min_free_distance);
-    v("slice_height", slice_height);
-    v("robot_radius", robot_radius);
-    v("robot_height_tolerance", robot_height_tolerance);
+    v("voxel_size", voxel_size, between(0.02, 10.0));
+    v("max_distance", max_distance, above(0.0, 100.0));
+    v("min_free_distance", min_free_distance, between(0.0, 100.0));
+    v("slice_height", slice_height, between(0.0, 100.0));
+    v("robot_radius", robot_radius, between(0.0, 1000.0));
+    v("robot_height_tolerance", robot_height_tolerance, between(0.0, 1000.0));
   }
 };
 

@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "tsgraphs/core/grid_frame.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::freespace {
 
@@ -29,8 +30,8 @@ struct SightMapConfig {
 
   template <class V>
   void visit(V& v) {
-    v("cell", cell);
-    v("max_range", max_range);
+    v("cell", cell, between(0.01, 10.0));
+    v("max_range", max_range, above(0.0, 1000.0));
   }
 };
 

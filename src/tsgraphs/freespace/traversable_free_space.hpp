@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tsgraphs/freespace/free_space.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::freespace {
 
@@ -24,14 +25,14 @@ struct TraversableFreeSpaceConfig {
 
   template <class V>
   void visit(V& v) {
-    v("edge_length", edge_length);
-    v("max_height_step", max_height_step);
-    v("lambda_th", lambda_th);
-    v("obstacle_min_height", obstacle_min_height);
-    v("obstacle_max_height", obstacle_max_height);
-    v("ground_search_radius", ground_search_radius);
-    v("robot_radius", robot_radius);
-    v("robot_height_tolerance", robot_height_tolerance);
+    v("edge_length", edge_length, above(0.0, 100.0));
+    v("max_height_step", max_height_step, between(0.0, 100.0));
+    v("lambda_th", lambda_th, between(0.0, 100.0));
+    v("obstacle_min_height", obstacle_min_height, between(0.0, 100.0));
+    v("obstacle_max_height", obstacle_max_height, above(0.0, 100.0));
+    v("ground_search_radius", ground_search_radius, between(0.0, 100.0));
+    v("robot_radius", robot_radius, between(0.0, 1000.0));
+    v("robot_height_tolerance", robot_height_tolerance, between(0.0, 1000.0));
   }
 };
 

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "tsgraphs/graph/situational_graph.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::graph {
 
@@ -45,26 +46,26 @@ struct GraphOptimizerConfig {
 
   template <class V>
   void visit(V& v) {
-    v("odometry_sigma_trans", odometry_sigma_trans);
-    v("odometry_sigma_rot_deg", odometry_sigma_rot_deg);
-    v("loop_sigma_trans", loop_sigma_trans);
-    v("loop_sigma_rot_deg", loop_sigma_rot_deg);
-    v("plane_sigma_angle_deg", plane_sigma_angle_deg);
-    v("plane_sigma_distance", plane_sigma_distance);
-    v("huber_plane", huber_plane);
-    v("huber_loop", huber_loop);
-    v("room_sigma", room_sigma);
-    v("corridor_sigma", corridor_sigma);
-    v("corridor_along_sigma", corridor_along_sigma);
-    v("floor_sigma", floor_sigma);
-    v("huber_room", huber_room);
-    v("huber_floor", huber_floor);
-    v("local_window", local_window);
-    v("max_iterations", max_iterations);
-    v("max_iterations_full", max_iterations_full);
+    v("odometry_sigma_trans", odometry_sigma_trans, above(0.0, 1e6));
+    v("odometry_sigma_rot_deg", odometry_sigma_rot_deg, above(0.0, 1e6));
+    v("loop_sigma_trans", loop_sigma_trans, above(0.0, 1e6));
+    v("loop_sigma_rot_deg", loop_sigma_rot_deg, above(0.0, 1e6));
+    v("plane_sigma_angle_deg", plane_sigma_angle_deg, above(0.0, 1e6));
+    v("plane_sigma_distance", plane_sigma_distance, above(0.0, 1e6));
+    v("huber_plane", huber_plane, above(0.0, 1e6));
+    v("huber_loop", huber_loop, above(0.0, 1e6));
+    v("room_sigma", room_sigma, above(0.0, 1e6));
+    v("corridor_sigma", corridor_sigma, above(0.0, 1e6));
+    v("corridor_along_sigma", corridor_along_sigma, above(0.0, 1e6));
+    v("floor_sigma", floor_sigma, above(0.0, 1e6));
+    v("huber_room", huber_room, above(0.0, 1e6));
+    v("huber_floor", huber_floor, above(0.0, 1e6));
+    v("local_window", local_window, between(1, 100000));
+    v("max_iterations", max_iterations, between(1, 10000));
+    v("max_iterations_full", max_iterations_full, between(1, 10000));
     v("linear_solver", linear_solver);
     v("sparse_library", sparse_library);
-    v("num_threads", num_threads);
+    v("num_threads", num_threads, between(1, 256));
   }
 };
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tsgraphs/graph/situational_graph.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::graph {
 
@@ -29,8 +30,8 @@ struct KeyframeRetirementConfig {
   template <class V>
   void visit(V& v) {
     v("enabled", enabled);
-    v("radius", radius);
-    v("min_travel", min_travel);
+    v("radius", radius, above(0.0, 1000.0));
+    v("min_travel", min_travel, above(0.0, 1e6));
     v("rooms_only", rooms_only);
   }
 };

@@ -9,6 +9,7 @@
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/graph/situational_graph.hpp"
 #include "tsgraphs/registration/registration.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::graph {
 
@@ -33,15 +34,15 @@ struct LoopClosureConfig {
 
   template <class V>
   void visit(V& v) {
-    v("max_distance", max_distance);
-    v("min_travel", min_travel);
-    v("min_loop_interval", min_loop_interval);
-    v("max_candidates", max_candidates);
-    v("max_fitness", max_fitness);
-    v("min_inlier_ratio", min_inlier_ratio);
-    v("max_correction", max_correction);
-    v("min_facing_share", min_facing_share);
-    v("max_reverse_disagreement", max_reverse_disagreement);
+    v("max_distance", max_distance, between(0.0, 1000.0));
+    v("min_travel", min_travel, between(0.0, 1e6));
+    v("min_loop_interval", min_loop_interval, between(0.0, 1e6));
+    v("max_candidates", max_candidates, between(0, 100));
+    v("max_fitness", max_fitness, above(0.0, 100.0));
+    v("min_inlier_ratio", min_inlier_ratio, between(0.0, 1.0));
+    v("max_correction", max_correction, above(0.0, 1000.0));
+    v("min_facing_share", min_facing_share, between(0.0, 1.0));
+    v("max_reverse_disagreement", max_reverse_disagreement, above(0.0, 1000.0));
     v.section("registration", registration);
   }
 };

@@ -10,6 +10,7 @@
 
 #include "tsgraphs/core/polygon.hpp"
 #include "tsgraphs/graph/situational_graph.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::graph {
 
@@ -22,9 +23,9 @@ struct RoomLoopClosureConfig {
   template <class V>
   void visit(V& v) {
     v("enabled", enabled);
-    v("max_candidates", max_candidates);
-    v("min_common_walls", min_common_walls);
-    v("max_height_difference", max_height_difference);
+    v("max_candidates", max_candidates, between(1, 100));
+    v("min_common_walls", min_common_walls, between(1, 4));
+    v("max_height_difference", max_height_difference, above(0.0, 1000.0));
   }
 };
 

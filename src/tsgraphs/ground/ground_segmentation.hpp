@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tsgraphs/core/point_cloud.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::ground {
 
@@ -56,32 +57,32 @@ struct GroundConfig {
   /// pipeline's `platform` section measures or takes them).
   template <class V>
   void visit(V& v) {
-    v("resolution", resolution);
-    v("min_range", min_range);
-    v("max_range", max_range);
-    v("num_iter", num_iter);
-    v("num_lpr", num_lpr);
-    v("num_min_pts", num_min_pts);
-    v("sparse_min_pts", sparse_min_pts);
-    v("th_seeds", th_seeds);
-    v("th_dist", th_dist);
-    v("th_outlier", th_outlier);
-    v("fit_column", fit_column);
-    v("plane_prior_spread", plane_prior_spread);
-    v("th_normal", th_normal);
-    v("th_lcc_normal", th_lcc_normal);
-    v("th_lcc_planar", th_lcc_planar);
-    v("th_obstacle", th_obstacle);
-    v("foot_radius", foot_radius);
-    v("foot_height", foot_height);
-    v("foot_rings", foot_rings);
-    v("seed_height_tolerance", seed_height_tolerance);
-    v("seed_max_slope", seed_max_slope);
-    v("max_gap", max_gap);
-    v("bgk_length_scale", bgk_length_scale);
-    v("bgk_prior", bgk_prior);
-    v("th_traversable", th_traversable);
-    v("bgk_max_height_gap", bgk_max_height_gap);
+    v("resolution", resolution, between(0.05, 10.0));
+    v("min_range", min_range, between(0.0, 1000.0));
+    v("max_range", max_range, above(0.0, 1000.0));
+    v("num_iter", num_iter, between(1, 100));
+    v("num_lpr", num_lpr, between(1, 10000));
+    v("num_min_pts", num_min_pts, between(3, 1000000));
+    v("sparse_min_pts", sparse_min_pts, between(1, 1000000));
+    v("th_seeds", th_seeds, between(0.0, 100.0));
+    v("th_dist", th_dist, above(0.0, 10.0));
+    v("th_outlier", th_outlier, between(0.0, 100.0));
+    v("fit_column", fit_column, between(0.001, 10.0));
+    v("plane_prior_spread", plane_prior_spread, between(0.0, 10.0));
+    v("th_normal", th_normal, between(0.0, 1.0));
+    v("th_lcc_normal", th_lcc_normal, between(0.0, 2.0));
+    v("th_lcc_planar", th_lcc_planar, between(0.0, 3.2));
+    v("th_obstacle", th_obstacle, above(0.0, 100.0));
+    v("foot_radius", foot_radius, between(0.0, 10.0));
+    v("foot_height", foot_height, between(0.0, 100.0));
+    v("foot_rings", foot_rings, between(0.0, 1000.0));
+    v("seed_height_tolerance", seed_height_tolerance, between(0.0, 100.0));
+    v("seed_max_slope", seed_max_slope, between(0.0, 100.0));
+    v("max_gap", max_gap, between(0.0, 100.0));
+    v("bgk_length_scale", bgk_length_scale, above(0.0, 100.0));
+    v("bgk_prior", bgk_prior, between(0.0, 1e6));
+    v("th_traversable", th_traversable, between(0.0, 1.0));
+    v("bgk_max_height_gap", bgk_max_height_gap, between(0.0, 100.0));
   }
 };
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::ground {
 
@@ -22,10 +23,10 @@ struct NodeMapConfig {
 
   template <class V>
   void visit(V& v) {
-    v("cell_size", cell_size);
-    v("level_tolerance", level_tolerance);
-    v("max_keyframes_per_node", max_keyframes_per_node);
-    v("min_probability", min_probability);
+    v("cell_size", cell_size, between(0.01, 100.0));
+    v("level_tolerance", level_tolerance, above(0.0, 100.0));
+    v("max_keyframes_per_node", max_keyframes_per_node, between(1, 10000));
+    v("min_probability", min_probability, between(0.0, 1.0));
   }
 };
 

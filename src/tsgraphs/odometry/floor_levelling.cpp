@@ -18,18 +18,8 @@ constexpr int kRefitRounds = 5;          // least-squares refits at most (they s
 }  // namespace
 
 void FloorLevellingConfig::validate() const {
-  auto fail = [](const std::string& what) { throw std::invalid_argument("FloorLevellingConfig: " + what); };
-  if (!(min_range >= 0.0)) fail("min_range must be >= 0");
-  if (!(max_range > min_range) || !std::isfinite(max_range)) fail("max_range must be finite and > min_range");
-  if (!(min_depth >= 0.0)) fail("min_depth must be >= 0");
-  if (!(max_tilt_deg > 0.0 && max_tilt_deg < 90.0)) fail("max_tilt_deg must be in (0, 90)");
-  if (!(distance_threshold > 0.0)) fail("distance_threshold must be > 0");
-  if (min_inliers < 3) fail("min_inliers must be >= 3");
-  if (!(cell_size > 0.0)) fail("cell_size must be > 0");
-  if (min_cells < 3) fail("min_cells must be >= 3");
-  if (!(below_margin >= 0.0)) fail("below_margin must be >= 0");
-  if (max_iterations < 1) fail("max_iterations must be >= 1");
-  if (!(ransac_probability > 0.0 && ransac_probability < 1.0)) fail("ransac_probability must be in (0, 1)");
+  check_ranges(*this, "FloorLevellingConfig");  // each field's limits, declared in visit()
+  if (!(max_range > min_range)) throw std::invalid_argument("FloorLevellingConfig: max_range must be > min_range");
 }
 
 namespace {

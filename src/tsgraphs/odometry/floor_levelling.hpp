@@ -6,6 +6,7 @@
 
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::odometry {
 
@@ -25,17 +26,17 @@ struct FloorLevellingConfig {
 
   template <class V>
   void visit(V& v) {
-    v("min_range", min_range);
-    v("max_range", max_range);
-    v("min_depth", min_depth);
-    v("max_tilt_deg", max_tilt_deg);
-    v("distance_threshold", distance_threshold);
-    v("min_inliers", min_inliers);
-    v("cell_size", cell_size);
-    v("min_cells", min_cells);
-    v("below_margin", below_margin);
-    v("max_iterations", max_iterations);
-    v("ransac_probability", ransac_probability);
+    v("min_range", min_range, between(0.0, 1000.0));
+    v("max_range", max_range, above(0.0, 1000.0));
+    v("min_depth", min_depth, between(0.0, 100.0));
+    v("max_tilt_deg", max_tilt_deg, above(0.0, 89.0));
+    v("distance_threshold", distance_threshold, above(0.0, 10.0));
+    v("min_inliers", min_inliers, between(3, 10000000));
+    v("cell_size", cell_size, between(0.01, 10.0));
+    v("min_cells", min_cells, between(3, 10000000));
+    v("below_margin", below_margin, between(0.0, 100.0));
+    v("max_iterations", max_iterations, between(1, 1000000));
+    v("ransac_probability", ransac_probability, above(0.0, 0.999999999));
   }
   /// Throws std::invalid_argument naming the first field out of range ("FloorLevellingConfig: key ...").
   void validate() const;

@@ -127,42 +127,8 @@ std::vector<std::size_t> in_range(const PointCloud& cloud, double min_range, dou
 }
 
 void LidarOdometryConfig::validate() const {
-  auto fail = [](const std::string& what) { throw std::invalid_argument("LidarOdometryConfig: " + what); };
-  if (!(min_range >= 0.0)) fail("min_range must be >= 0");
-  if (!(max_range > min_range) || !std::isfinite(max_range)) fail("max_range must be finite and > min_range");
-  if (!(voxel_size > 0.0) || !std::isfinite(voxel_size)) fail("voxel_size must be positive and finite");
-  if (!(map_voxel_factor > 0.0)) fail("map_voxel_factor must be > 0");
-  if (!(registration_voxel_factor > 0.0)) fail("registration_voxel_factor must be > 0");
-  if (max_points_per_voxel < 1) fail("max_points_per_voxel must be >= 1");
-  if (plane_min_points < 3) fail("plane_min_points must be >= 3");
-  if (!(plane_min_spread_factor > 0.0)) fail("plane_min_spread_factor must be > 0");
-  if (!(plane_max_thickness_ratio > 0.0)) fail("plane_max_thickness_ratio must be > 0");
-  if (!(initial_threshold > 0.0)) fail("initial_threshold must be > 0");
-  if (!(min_threshold >= 0.0)) fail("min_threshold must be >= 0");
-  if (!(fine_threshold >= 0.0) || !std::isfinite(fine_threshold)) fail("fine_threshold must be finite and >= 0");
-  if (!(min_motion >= 0.0)) fail("min_motion must be >= 0");
-  if (!(correspondence_factor > 0.0)) fail("correspondence_factor must be > 0");
-  if (!(kernel_divisor > 0.0)) fail("kernel_divisor must be > 0");
-  if (max_iterations < 1) fail("max_iterations must be >= 1");
-  if (!(convergence_criterion > 0.0)) fail("convergence_criterion must be > 0");
-  if (min_correspondences < 6) fail("min_correspondences must be >= 6 (six unknowns)");
-  if (reduction_grain < 1) fail("reduction_grain must be >= 1");
-  if (!(yaw_search_deg >= 0.0 && yaw_search_deg <= 180.0)) fail("yaw_search_deg must be in [0, 180]");
-  if (!(yaw_search_step_deg >= 0.5 && yaw_search_step_deg <= 90.0)) fail("yaw_search_step_deg must be in [0.5, 90]");
-  if (yaw_search_points < 10 || yaw_search_points > 1000000) fail("yaw_search_points must be in [10, 1000000]");
-  if (yaw_search_candidates < 1 || yaw_search_candidates > 100) fail("yaw_search_candidates must be in [1, 100]");
-  if (yaw_search_candidate_iterations < 1) fail("yaw_search_candidate_iterations must be >= 1");
-  if (!(yaw_search_margin >= 0.0 && yaw_search_margin <= 1.0)) fail("yaw_search_margin must be in [0, 1]");
-  if (!(min_overlap >= 0.0 && min_overlap <= 1.0)) fail("min_overlap must be in [0, 1]");
-  if (!(recovery_search_m >= 0.0 && recovery_search_m <= 10.0)) fail("recovery_search_m must be in [0, 10]");
-  if (!(recovery_turn_step_deg >= 0.5 && recovery_turn_step_deg <= 90.0))
-    fail("recovery_turn_step_deg must be in [0.5, 90]");
-  if (recovery_points < 10 || recovery_points > 1000000) fail("recovery_points must be in [10, 1000000]");
-  if (!(recovery_overlap_ratio >= 0.0 && recovery_overlap_ratio <= 1.0)) fail("recovery_overlap_ratio must be in [0, 1]");
-  if (recovery_window < 1 || recovery_window > 10000) fail("recovery_window must be in [1, 10000]");
-  if (tilt_prediction != "auto" && tilt_prediction != "hold" && tilt_prediction != "repeat")
-    fail("tilt_prediction must be auto, hold or repeat, not '" + tilt_prediction + "'");
-  if (tilt_window < 1 || tilt_window > 10000) fail("tilt_window must be in [1, 10000]");
+  check_ranges(*this, "LidarOdometryConfig");  // each field's limits, declared in visit()
+  if (!(max_range > min_range)) throw std::invalid_argument("LidarOdometryConfig: max_range must be > min_range");
 }
 
 IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map, const Pose3& initial_guess,

@@ -17,6 +17,7 @@
 #include "tsgraphs/odometry/adaptive_threshold.hpp"
 #include "tsgraphs/odometry/sweep_registration.hpp"
 #include "tsgraphs/odometry/voxel_hash_map.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::odometry {
 
@@ -87,42 +88,42 @@ struct LidarOdometryConfig {
 
   template <class V>
   void visit(V& v) {
-    v("min_range", min_range);
-    v("max_range", max_range);
-    v("voxel_size", voxel_size);
-    v("map_voxel_factor", map_voxel_factor);
-    v("registration_voxel_factor", registration_voxel_factor);
-    v("max_points_per_voxel", max_points_per_voxel);
+    v("min_range", min_range, between(0.0, 10000.0));
+    v("max_range", max_range, above(0.0, 10000.0));
+    v("voxel_size", voxel_size, between(0.01, 100.0));
+    v("map_voxel_factor", map_voxel_factor, between(0.1, 10.0));
+    v("registration_voxel_factor", registration_voxel_factor, between(0.1, 10.0));
+    v("max_points_per_voxel", max_points_per_voxel, between(1, 1000));
     v("point_to_plane", point_to_plane);
-    v("plane_min_points", plane_min_points);
-    v("plane_min_spread_factor", plane_min_spread_factor);
-    v("plane_max_thickness_ratio", plane_max_thickness_ratio);
-    v("initial_threshold", initial_threshold);
-    v("min_threshold", min_threshold);
-    v("fine_threshold", fine_threshold);
-    v("tilt_prediction", tilt_prediction);
-    v("tilt_window", tilt_window);
+    v("plane_min_points", plane_min_points, between(3, 1000));
+    v("plane_min_spread_factor", plane_min_spread_factor, above(0.0, 1.0));
+    v("plane_max_thickness_ratio", plane_max_thickness_ratio, above(0.0, 1.0));
+    v("initial_threshold", initial_threshold, above(0.0, 100.0));
+    v("min_threshold", min_threshold, between(0.0, 100.0));
+    v("fine_threshold", fine_threshold, between(0.0, 100.0));
+    v("tilt_prediction", tilt_prediction, OneOf{"auto", "hold", "repeat"});
+    v("tilt_window", tilt_window, between(1, 10000));
     v("turn_from_sweep", turn_from_sweep);
     v("sweep_motion", sweep_motion);
-    v("min_motion", min_motion);
-    v("correspondence_factor", correspondence_factor);
-    v("kernel_divisor", kernel_divisor);
-    v("max_iterations", max_iterations);
-    v("convergence_criterion", convergence_criterion);
-    v("min_correspondences", min_correspondences);
-    v("yaw_search_deg", yaw_search_deg);
-    v("yaw_search_step_deg", yaw_search_step_deg);
-    v("yaw_search_points", yaw_search_points);
-    v("yaw_search_candidates", yaw_search_candidates);
-    v("yaw_search_candidate_iterations", yaw_search_candidate_iterations);
-    v("yaw_search_margin", yaw_search_margin);
-    v("min_overlap", min_overlap);
-    v("recovery_search_m", recovery_search_m);
-    v("recovery_turn_step_deg", recovery_turn_step_deg);
-    v("recovery_overlap_ratio", recovery_overlap_ratio);
-    v("recovery_window", recovery_window);
-    v("recovery_points", recovery_points);
-    v("reduction_grain", reduction_grain);
+    v("min_motion", min_motion, between(0.0, 100.0));
+    v("correspondence_factor", correspondence_factor, above(0.0, 100.0));
+    v("kernel_divisor", kernel_divisor, above(0.0, 1000.0));
+    v("max_iterations", max_iterations, between(1, 1000));
+    v("convergence_criterion", convergence_criterion, above(0.0, 1.0));
+    v("min_correspondences", min_correspondences, between(6, 1000000));
+    v("yaw_search_deg", yaw_search_deg, between(0.0, 180.0));
+    v("yaw_search_step_deg", yaw_search_step_deg, between(0.5, 90.0));
+    v("yaw_search_points", yaw_search_points, between(10, 1000000));
+    v("yaw_search_candidates", yaw_search_candidates, between(1, 100));
+    v("yaw_search_candidate_iterations", yaw_search_candidate_iterations, between(1, 1000));
+    v("yaw_search_margin", yaw_search_margin, between(0.0, 1.0));
+    v("min_overlap", min_overlap, between(0.0, 1.0));
+    v("recovery_search_m", recovery_search_m, between(0.0, 10.0));
+    v("recovery_turn_step_deg", recovery_turn_step_deg, between(0.5, 90.0));
+    v("recovery_overlap_ratio", recovery_overlap_ratio, between(0.0, 1.0));
+    v("recovery_window", recovery_window, between(1, 10000));
+    v("recovery_points", recovery_points, between(10, 1000000));
+    v("reduction_grain", reduction_grain, between(1, 1000000));
   }
 
   /// Throws std::invalid_argument naming the first field out of range.

@@ -23,12 +23,7 @@ double median(std::vector<double> v) {
 }  // namespace
 
 void PlatformEstimateConfig::validate() const {
-  auto fail = [](const std::string& what) { throw std::invalid_argument("PlatformEstimateConfig: " + what); };
-  if (scans < 1 || scans > 1000) fail("scans must be in [1, 1000]");
-  if (!(ring_gap_deg > 0.0 && ring_gap_deg < 10.0)) fail("ring_gap_deg must be in (0, 10)");
-  if (!(ring_min_range >= 0.0) || !std::isfinite(ring_min_range)) fail("ring_min_range must be finite and >= 0");
-  if (ring_min_points < 1) fail("ring_min_points must be >= 1");
-  if (!(floor_bin >= 0.001 && floor_bin <= 1.0)) fail("floor_bin must be in [0.001, 1]");
+  check_ranges(*this, "PlatformEstimateConfig");  // each field's limits, declared in visit()
 }
 
 BeamLayout measure_beam_layout(const PointCloud& scan, const PlatformEstimateConfig& config) {

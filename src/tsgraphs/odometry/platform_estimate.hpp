@@ -8,6 +8,7 @@
 
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/odometry/floor_levelling.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::odometry {
 
@@ -24,11 +25,11 @@ struct PlatformEstimateConfig {
 
   template <class V>
   void visit(V& v) {
-    v("scans", scans);
-    v("floor_bin", floor_bin);
-    v("ring_gap_deg", ring_gap_deg);
-    v("ring_min_range", ring_min_range);
-    v("ring_min_points", ring_min_points);
+    v("scans", scans, between(1, 1000));
+    v("floor_bin", floor_bin, between(0.001, 1.0));
+    v("ring_gap_deg", ring_gap_deg, above(0.0, 10.0));
+    v("ring_min_range", ring_min_range, between(0.0, 1000.0));
+    v("ring_min_points", ring_min_points, between(1, 1000000));
   }
   /// Throws std::invalid_argument naming the first field out of range ("PlatformEstimateConfig: key ...").
   void validate() const;

@@ -35,22 +35,9 @@ Eigen::Matrix3d turn(const Eigen::Vector3d& rotation_vector) {
 }  // namespace
 
 void SweepRegistrationConfig::validate() const {
-  auto fail = [](const std::string& what) { throw std::invalid_argument("SweepRegistrationConfig: " + what); };
-  if (!(voxel_size > 0.0 && voxel_size <= 10.0)) fail("voxel_size must be in (0, 10]");
-  if (!(final_distance > 0.0 && final_distance <= 10.0)) fail("final_distance must be in (0, 10]");
-  if (!(initial_distance >= final_distance && initial_distance <= 100.0))
-    fail("initial_distance must be in [final_distance, 100]");
-  if (!(kernel_divisor > 0.0 && kernel_divisor <= 1e3)) fail("kernel_divisor must be in (0, 1000]");
-  if (!(point_sigma > 0.0 && point_sigma <= 10.0)) fail("point_sigma must be in (0, 10]");
-  if (!(turn_rate_sigma > 0.0 && std::isfinite(turn_rate_sigma))) fail("turn_rate_sigma must be positive and finite");
-  if (!(velocity_sigma > 0.0 && std::isfinite(velocity_sigma))) fail("velocity_sigma must be positive and finite");
-  if (!(pose_sigma_deg > 0.0 && std::isfinite(pose_sigma_deg))) fail("pose_sigma_deg must be positive and finite");
-  if (!(pose_sigma > 0.0 && std::isfinite(pose_sigma))) fail("pose_sigma must be positive and finite");
-  if (max_iterations < 1 || max_iterations > 1000) fail("max_iterations must be in [1, 1000]");
-  if (!(convergence_criterion > 0.0)) fail("convergence_criterion must be > 0");
-  if (min_correspondences < 12) fail("min_correspondences must be >= 12 (twelve unknowns)");
-  if (window < 1 || window > 1000) fail("window must be in [1, 1000]");
-  if (reduction_grain < 1) fail("reduction_grain must be >= 1");
+  check_ranges(*this, "SweepRegistrationConfig");  // each field's limits, declared in visit()
+  if (!(initial_distance >= final_distance))
+    throw std::invalid_argument("SweepRegistrationConfig: initial_distance must be >= final_distance");
 }
 
 Pose3 SweepMotion::after(double seconds) const {

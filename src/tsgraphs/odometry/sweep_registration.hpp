@@ -14,6 +14,7 @@
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/odometry/voxel_hash_map.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::odometry {
 
@@ -44,20 +45,20 @@ struct SweepRegistrationConfig {
 
   template <class V>
   void visit(V& v) {
-    v("voxel_size", voxel_size);
-    v("initial_distance", initial_distance);
-    v("final_distance", final_distance);
-    v("kernel_divisor", kernel_divisor);
-    v("point_sigma", point_sigma);
-    v("turn_rate_sigma", turn_rate_sigma);
-    v("velocity_sigma", velocity_sigma);
-    v("pose_sigma_deg", pose_sigma_deg);
-    v("pose_sigma", pose_sigma);
-    v("max_iterations", max_iterations);
-    v("convergence_criterion", convergence_criterion);
-    v("min_correspondences", min_correspondences);
-    v("window", window);
-    v("reduction_grain", reduction_grain);
+    v("voxel_size", voxel_size, above(0.0, 10.0));
+    v("initial_distance", initial_distance, above(0.0, 100.0));
+    v("final_distance", final_distance, above(0.0, 10.0));
+    v("kernel_divisor", kernel_divisor, above(0.0, 1000.0));
+    v("point_sigma", point_sigma, above(0.0, 10.0));
+    v("turn_rate_sigma", turn_rate_sigma, above(0.0, 1e6));
+    v("velocity_sigma", velocity_sigma, above(0.0, 1e6));
+    v("pose_sigma_deg", pose_sigma_deg, above(0.0, 1e6));
+    v("pose_sigma", pose_sigma, above(0.0, 1e6));
+    v("max_iterations", max_iterations, between(1, 1000));
+    v("convergence_criterion", convergence_criterion, above(0.0, 1.0));
+    v("min_correspondences", min_correspondences, between(12, 1000000));
+    v("window", window, between(1, 1000));
+    v("reduction_grain", reduction_grain, between(1, 1000000));
   }
 
   /// Throws std::invalid_argument naming the first field out of range.

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::pipeline {
 
@@ -12,8 +13,8 @@ struct KeyframeConfig {
 
   template <class V>
   void visit(V& v) {
-    v("delta_trans", delta_trans);
-    v("delta_angle_deg", delta_angle_deg);
+    v("delta_trans", delta_trans, above(0.0, 1000.0));
+    v("delta_angle_deg", delta_angle_deg, above(0.0, 360.0));
   }
 };
 

@@ -8,15 +8,27 @@
 #include <stdexcept>
 #include <vector>
 
+#include "tsgraphs/core/config_range.hpp"
 #include "tsgraphs/core/yaml_map.hpp"
 
 namespace tsgraphs::pipeline {
 namespace {
 
+using detail::IsOptional;
+
+// A value as the message about it shows it.
 template <class T>
-struct IsOptional : std::false_type {};
-template <class T>
-struct IsOptional<std::optional<T>> : std::true_type {};
+std::string shown(const T& value) {
+  if constexpr (IsOptional<T>::value) {
+    return value ? shown(*value) : "auto";
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    return "'" + value + "'";
+  } else {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+  }
+}
 
 // The value an optional field has when it is measured rather than given.
 constexpr const char* kAuto = "auto";
@@ -46,6 +58,12 @@ struct Reader {
       field = map.get<T>(key, field);
     }
   }
+  // A field with declared limits (config_range.hpp): a value outside them is an error at its line.
+  template <class T, class L>
+  void operator()(const char* key, T& field, const L& limits) {
+    (*this)(key, field);
+    if (!detail::within(field, limits)) throw map.error(key, limits.describe() + ", not " + shown(field));
+  }
   template <class S>
   void section(const char* key, S& sub) {
     keys.emplace_back(key);
@@ -60,6 +78,10 @@ struct KeyNames {
   std::vector<std::string> keys;
   template <class T>
   void operator()(const char* key, const T&) {
+    keys.emplace_back(key);
+  }
+  template <class T, class L>
+  void operator()(const char* key, const T&, const L&) {
     keys.emplace_back(key);
   }
   template <class S>
@@ -91,6 +113,10 @@ struct Writer {
       out << field;
     }
   }
+  template <class T, class L>
+  void operator()(const char* key, const T& field, const L&) {
+    (*this)(key, field);
+  }
   template <class S>
   void section(const char* key, S& sub) {
     out << YAML::Key << key << YAML::Value << YAML::BeginMap;
@@ -102,29 +128,18 @@ struct Writer {
 }  // namespace
 
 void DeskewConfig::validate() const {
-  if (motion != "auto" && motion != "poses" && motion != "registration")
-    throw std::invalid_argument("DeskewConfig: motion must be auto, poses or registration, not '" + motion + "'");
-  if (!(max_interval_ratio >= 1.0 && max_interval_ratio <= 1e3))
-    throw std::invalid_argument("DeskewConfig: max_interval_ratio must be in [1, 1000]");
-  try {
-    registration.validate();
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what();
-    throw std::invalid_argument("DeskewConfig: " + what.substr(what.find(": ") + 2));
-  }
+  check_ranges(*this, "DeskewConfig");  // each field's limits (and the registration's), declared in visit()
+  if (!(registration.initial_distance >= registration.final_distance))
+    throw std::invalid_argument("DeskewConfig: initial_distance must be >= final_distance");
 }
 
 namespace {
 
-void check_positive(const YamlMap& root, const char* section, const char* key, double value) {
-  if (!(value > 0.0)) throw root.map(section).error(key, std::string(key) + " must be > 0");
-}
-
+// What the fields' declared limits (config_range.hpp, checked as they are read) cannot say:
+// limits between fields, and the names the modules check themselves.
 void validate(const YamlMap& root, const PipelineConfig& c) {
-  check_positive(root, "prefilter", "max_range", c.prefilter.max_range);
   if (c.prefilter.min_range < 0.0 || c.prefilter.min_range >= c.prefilter.max_range)
     throw root.map("prefilter").error("min_range", "min_range must be >= 0 and below max_range");
-  if (c.prefilter.voxel_size < 0.0) throw root.map("prefilter").error("voxel_size", "voxel_size must be >= 0");
   // The odometry's configs check their fields themselves; a message names the key after the
   // struct's name ("LidarOdometryConfig: max_range must be ...").
   const auto check_at_key = [&root](const char* section, const auto& config) {
@@ -141,30 +156,6 @@ void validate(const YamlMap& root, const PipelineConfig& c) {
   check_at_key("lidar_odometry", c.lidar_odometry);
   check_at_key("floor_levelling", c.floor_levelling);
   check_at_key("room_segmentation", c.rooms.segmentation);
-  check_positive(root, "ground", "sparse_min_pts", c.ground.sparse_min_pts);
-  if (!(c.ground.foot_rings >= 0.0)) throw root.map("ground").error("foot_rings", "foot_rings must be >= 0");
-  if (!(c.ground.seed_max_slope >= 0.0)) throw root.map("ground").error("seed_max_slope", "seed_max_slope must be >= 0");
-  check_positive(root, "keyframes", "delta_trans", c.keyframes.delta_trans);
-  check_positive(root, "keyframes", "delta_angle_deg", c.keyframes.delta_angle_deg);
-  check_positive(root, "plane_extraction", "distance_threshold", c.plane_extraction.distance_threshold);
-  check_positive(root, "plane_extraction", "min_inliers", c.plane_extraction.min_inliers);
-  check_positive(root, "plane_mapping", "sigma_distance", c.plane_mapping.sigma_distance);
-  check_positive(root, "plane_mapping", "sigma_angle_deg", c.plane_mapping.sigma_angle_deg);
-  check_positive(root, "optimizer", "odometry_sigma_trans", c.optimizer.odometry_sigma_trans);
-  check_positive(root, "optimizer", "odometry_sigma_rot_deg", c.optimizer.odometry_sigma_rot_deg);
-  check_positive(root, "optimizer", "loop_sigma_trans", c.optimizer.loop_sigma_trans);
-  check_positive(root, "optimizer", "loop_sigma_rot_deg", c.optimizer.loop_sigma_rot_deg);
-  check_positive(root, "optimizer", "plane_sigma_angle_deg", c.optimizer.plane_sigma_angle_deg);
-  check_positive(root, "optimizer", "plane_sigma_distance", c.optimizer.plane_sigma_distance);
-  check_positive(root, "optimizer", "huber_plane", c.optimizer.huber_plane);
-  check_positive(root, "optimizer", "huber_loop", c.optimizer.huber_loop);
-  check_positive(root, "optimizer", "room_sigma", c.optimizer.room_sigma);
-  check_positive(root, "optimizer", "corridor_sigma", c.optimizer.corridor_sigma);
-  check_positive(root, "optimizer", "corridor_along_sigma", c.optimizer.corridor_along_sigma);
-  check_positive(root, "optimizer", "floor_sigma", c.optimizer.floor_sigma);
-  check_positive(root, "optimizer", "huber_room", c.optimizer.huber_room);
-  check_positive(root, "optimizer", "huber_floor", c.optimizer.huber_floor);
-  check_positive(root, "optimizer", "local_window", c.optimizer.local_window);
   // The optimiser checks its solver names itself; its message is placed at the key it names.
   try {
     graph::GraphOptimizer check(c.optimizer);
@@ -186,18 +177,6 @@ void validate(const YamlMap& root, const PipelineConfig& c) {
     const bool association = key == "footprint" || key == "min_overlap" || key == "room_dist_threshold";
     throw root.map(association ? "room_association" : "room_layer").error(key, what);
   }
-  if (c.diagnostics.empty_layer_keyframes < 0)
-    throw root.map("diagnostics").error("empty_layer_keyframes", "empty_layer_keyframes must be >= 0");
-  check_positive(root, "room_loop_closure", "max_candidates", c.room_loop_closure.max_candidates);
-  check_positive(root, "room_loop_closure", "min_common_walls", c.room_loop_closure.min_common_walls);
-  check_positive(root, "room_loop_closure", "max_height_difference", c.room_loop_closure.max_height_difference);
-  check_positive(root, "keyframe_retirement", "radius", c.keyframe_retirement.radius);
-  check_positive(root, "keyframe_retirement", "min_travel", c.keyframe_retirement.min_travel);
-  check_positive(root, "schedule", "optimize_every_keyframes", c.schedule.optimize_every_keyframes);
-  if (!(c.schedule.full_solve_loop_sigmas >= 0.0))
-    throw root.map("schedule").error("full_solve_loop_sigmas", "full_solve_loop_sigmas must be >= 0");
-  if (c.schedule.full_every_keyframes < 0)
-    throw root.map("schedule").error("full_every_keyframes", "full_every_keyframes must be >= 0");
 }
 
 // Keys that moved to another section: an old parameter file gets told where.

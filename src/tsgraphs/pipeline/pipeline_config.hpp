@@ -19,6 +19,7 @@
 #include "tsgraphs/pipeline/room_layer.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
 #include "tsgraphs/walls/plane_mapper.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::pipeline {
 
@@ -35,9 +36,9 @@ struct ScheduleConfig {
 
   template <class V>
   void visit(V& v) {
-    v("optimize_every_keyframes", optimize_every_keyframes);
-    v("full_every_keyframes", full_every_keyframes);
-    v("full_solve_loop_sigmas", full_solve_loop_sigmas);
+    v("optimize_every_keyframes", optimize_every_keyframes, between(1, 100000));
+    v("full_every_keyframes", full_every_keyframes, between(0, 100000));
+    v("full_solve_loop_sigmas", full_solve_loop_sigmas, between(0.0, 1e6));
     v("merge_duplicate_planes", merge_duplicate_planes);
   }
 };
@@ -55,8 +56,8 @@ struct DeskewConfig {
   template <class V>
   void visit(V& v) {
     v("enabled", enabled);
-    v("motion", motion);
-    v("max_interval_ratio", max_interval_ratio);
+    v("motion", motion, OneOf{"auto", "poses", "registration"});
+    v("max_interval_ratio", max_interval_ratio, between(1.0, 1000.0));
     registration.visit(v);
   }
 
@@ -70,7 +71,7 @@ struct DiagnosticsConfig {
 
   template <class V>
   void visit(V& v) {
-    v("empty_layer_keyframes", empty_layer_keyframes);
+    v("empty_layer_keyframes", empty_layer_keyframes, between(0, 1000000));
   }
 };
 

@@ -11,7 +11,6 @@ namespace {
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 /// A beam less steep than this below the horizon meets no floor within any ground range.
 constexpr double kMinDownwardBeamDeg = 0.5;
-constexpr const char* kPresets[] = {"os1-64", "os0-128", "vlp-16", "hesai-xt32"};
 
 std::string fixed(double v, int digits) {
   char text[32];
@@ -22,20 +21,7 @@ std::string fixed(double v, int digits) {
 }  // namespace
 
 void PlatformConfig::validate() const {
-  auto fail = [](const std::string& what) { throw std::invalid_argument("PlatformConfig: " + what); };
-  if (sensor_height && !(*sensor_height > 0.0 && *sensor_height <= 100.0)) fail("sensor_height must be in (0, 100] or auto");
-  if (seed_radius && !(*seed_radius > 0.0 && *seed_radius <= 1000.0)) fail("seed_radius must be in (0, 1000] or auto");
-  if (preset != "auto" && preset != "none" && std::find(std::begin(kPresets), std::end(kPresets), preset) == std::end(kPresets))
-    fail("preset must be auto, none, os1-64, os0-128, vlp-16 or hesai-xt32");
-  if (!(seed_radius_margin >= 0.0 && seed_radius_margin <= 100.0)) fail("seed_radius_margin must be in [0, 100]");
-  if (!(min_seed_radius > 0.0 && min_seed_radius <= 1000.0)) fail("min_seed_radius must be in (0, 1000]");
-  if (!(fallback_sensor_height > 0.0 && fallback_sensor_height <= 100.0)) fail("fallback_sensor_height must be in (0, 100]");
-  try {
-    measure.validate();
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what();
-    fail(what.substr(what.find(": ") + 2));
-  }
+  check_ranges(*this, "PlatformConfig");  // each field's limits (and measure's), declared in visit()
 }
 
 Platform resolve_platform(const PlatformConfig& config, const odometry::FloorLevellingConfig& levelling,

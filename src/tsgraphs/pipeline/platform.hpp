@@ -12,6 +12,7 @@
 #include "tsgraphs/ground/ground_segmentation.hpp"
 #include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/platform_estimate.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::pipeline {
 
@@ -31,12 +32,12 @@ struct PlatformConfig {
 
   template <class V>
   void visit(V& v) {
-    v("sensor_height", sensor_height);
-    v("seed_radius", seed_radius);
-    v("preset", preset);
-    v("seed_radius_margin", seed_radius_margin);
-    v("min_seed_radius", min_seed_radius);
-    v("fallback_sensor_height", fallback_sensor_height);
+    v("sensor_height", sensor_height, above(0.0, 100.0));
+    v("seed_radius", seed_radius, above(0.0, 1000.0));
+    v("preset", preset, OneOf{"auto", "none", "os1-64", "os0-128", "vlp-16", "hesai-xt32"});
+    v("seed_radius_margin", seed_radius_margin, between(0.0, 100.0));
+    v("min_seed_radius", min_seed_radius, above(0.0, 1000.0));
+    v("fallback_sensor_height", fallback_sensor_height, above(0.0, 100.0));
     measure.visit(v);
   }
   /// Throws std::invalid_argument naming the first field out of range ("PlatformConfig: key ...").

@@ -3,6 +3,7 @@
 #include <cstddef>
 
 #include "tsgraphs/core/point_cloud.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::pipeline {
 
@@ -13,9 +14,9 @@ struct PrefilterConfig {
 
   template <class V>
   void visit(V& v) {
-    v("min_range", min_range);
-    v("max_range", max_range);
-    v("voxel_size", voxel_size);
+    v("min_range", min_range, between(0.0, 10000.0));
+    v("max_range", max_range, above(0.0, 10000.0));
+    v("voxel_size", voxel_size, between(0.0, 100.0));
   }
 };
 

@@ -34,6 +34,7 @@
 #include "tsgraphs/rooms/room_segmentation.hpp"
 #include "tsgraphs/rooms/room_timer_trigger.hpp"
 #include "tsgraphs/rooms/sgraphs_room_extraction.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::pipeline {
 
@@ -63,20 +64,20 @@ struct RoomLayerConfig {
 
   template <class V>
   void visit(V& v) {
-    v("free_space_method", free_space_method);
-    v("room_trigger", room_trigger);
-    v("free_space_radius", free_space_radius);
-    v("obstacle_keyframes", obstacle_keyframes);
-    v("level_tolerance", level_tolerance);
-    v("obstacle_voxel", obstacle_voxel);
-    v("segment_radius", segment_radius);
-    v("context_radius", context_radius);
-    v("min_segment_length", min_segment_length);
-    v("min_visit_length", min_visit_length);
-    v("max_frontier", max_frontier);
-    v("level_band", level_band);
-    v("max_floor_slope", max_floor_slope);
-    v("floor_window", floor_window);
+    v("free_space_method", free_space_method, OneOf{"traversable", "esdf"});
+    v("room_trigger", room_trigger, OneOf{"flush", "timer"});
+    v("free_space_radius", free_space_radius, above(0.0, 100.0));
+    v("obstacle_keyframes", obstacle_keyframes, between(1, 1000));
+    v("level_tolerance", level_tolerance, above(0.0, 100.0));
+    v("obstacle_voxel", obstacle_voxel, between(0.01, 10.0));
+    v("segment_radius", segment_radius, between(0.0, 1000.0));
+    v("context_radius", context_radius, between(0.0, 1000.0));
+    v("min_segment_length", min_segment_length, between(0.0, 1000.0));
+    v("min_visit_length", min_visit_length, between(0.0, 1000.0));
+    v("max_frontier", max_frontier, between(0.0, 1.0));
+    v("level_band", level_band, between(0.0, 100.0));
+    v("max_floor_slope", max_floor_slope, between(0.0, 100.0));
+    v("floor_window", floor_window, above(0.0, 1000.0));
   }
 };
 

@@ -6,6 +6,7 @@
 
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::registration {
 
@@ -21,13 +22,13 @@ struct RegistrationConfig {
 
   template <class V>
   void visit(V& v) {
-    v("voxel_size", voxel_size);
-    v("max_correspondence_distance", max_correspondence_distance);
-    v("fine_correspondence_distance", fine_correspondence_distance);
-    v("max_iterations", max_iterations);
-    v("k_correspondences", k_correspondences);
-    v("transformation_epsilon", transformation_epsilon);
-    v("fitness_distance", fitness_distance);
+    v("voxel_size", voxel_size, between(0.0, 100.0));
+    v("max_correspondence_distance", max_correspondence_distance, above(0.0, 100.0));
+    v("fine_correspondence_distance", fine_correspondence_distance, between(0.0, 100.0));
+    v("max_iterations", max_iterations, between(1, 1000));
+    v("k_correspondences", k_correspondences, between(3, 100));
+    v("transformation_epsilon", transformation_epsilon, above(0.0, 1.0));
+    v("fitness_distance", fitness_distance, above(0.0, 100.0));
   }
 };
 

@@ -11,6 +11,7 @@
 
 #include "tsgraphs/core/rect.hpp"
 #include "tsgraphs/rooms/room.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::rooms {
 
@@ -26,9 +27,9 @@ struct RoomAssociationConfig {
 
   template <class V>
   void visit(V& v) {
-    v("min_overlap", min_overlap);
-    v("room_dist_threshold", room_dist_threshold);
-    v("footprint", footprint);
+    v("min_overlap", min_overlap, above(0.0, 1.0));
+    v("room_dist_threshold", room_dist_threshold, between(0.0, 1000.0));
+    v("footprint", footprint, OneOf{"first", "latest", "largest"});
   }
 };
 

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "tsgraphs/core/polygon.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::rooms {
 
@@ -22,12 +23,12 @@ struct AisleMeasureConfig {
 
   template <class V>
   void visit(V& v) {
-    v("neighbourhood_radius", neighbourhood_radius);
-    v("min_anisotropy", min_anisotropy);
-    v("slice_half_width", slice_half_width);
-    v("max_gap", max_gap);
-    v("min_points", min_points);
-    v("width_directions", width_directions);
+    v("neighbourhood_radius", neighbourhood_radius, above(0.0, 100.0));
+    v("min_anisotropy", min_anisotropy, between(1.0, 1e6));
+    v("slice_half_width", slice_half_width, above(0.0, 100.0));
+    v("max_gap", max_gap, above(0.0, 100.0));
+    v("min_points", min_points, between(1, 10000000));
+    v("width_directions", width_directions, between(1, 360));
   }
 };
 
@@ -56,11 +57,11 @@ struct RoomFlushConfig {
 
   template <class V>
   void visit(V& v) {
-    v("width_change_ratio", width_change_ratio);
-    v("direction_change_deg", direction_change_deg);
-    v("max_aisle_width", max_aisle_width);
-    v("confirm_keyframes", confirm_keyframes);
-    v("doorway_ratio", doorway_ratio);
+    v("width_change_ratio", width_change_ratio, between(0.0, 100.0));
+    v("direction_change_deg", direction_change_deg, between(0.0, 180.0));
+    v("max_aisle_width", max_aisle_width, above(0.0, 1000.0));
+    v("confirm_keyframes", confirm_keyframes, between(1, 1000));
+    v("doorway_ratio", doorway_ratio, between(0.0, 1.0));
   }
 };
 

@@ -608,24 +608,7 @@ bool crosses_a_wall(const OrientedRect& rect, const std::vector<WallLine>& walls
 }  // namespace
 
 void RoomSegmentationConfig::validate() const {
-  const auto fail = [](const std::string& what) { throw std::invalid_argument("RoomSegmentationConfig: " + what); };
-  if (!(cell > 0.0)) fail("cell must be > 0");
-  if (!(rect_fill > 0.0 && rect_fill <= 1.0)) fail("rect_fill must be in (0, 1]");
-  if (!(min_wall_overlap >= 0.0 && min_wall_overlap <= 1.0)) fail("min_wall_overlap must be in [0, 1]");
-  if (!(corridor_aspect >= 1.0)) fail("corridor_aspect must be >= 1");
-  if (!(wall_snap >= 0.0)) fail("wall_snap must be >= 0");
-  if (!(min_region_area >= 0.0)) fail("min_region_area must be >= 0");
-  if (!(simplify_tolerance >= 0.0)) fail("simplify_tolerance must be >= 0");
-  if (!(bend_tolerance >= 0.0)) fail("bend_tolerance must be >= 0");
-  if (!(parallel_tolerance_deg >= 0.0 && parallel_tolerance_deg < 90.0)) fail("parallel_tolerance_deg must be in [0, 90)");
-  if (!(max_normal_z >= 0.0 && max_normal_z < 1.0)) fail("max_normal_z must be in [0, 1)");
-  if (!(min_bend_deg > 0.0 && min_bend_deg < 180.0)) fail("min_bend_deg must be in (0, 180)");
-  if (!(min_fit_share >= 0.0)) fail("min_fit_share must be >= 0");
-  if (!(wall_top_margin >= 0.0)) fail("wall_top_margin must be >= 0");
-  if (!(wall_top_beyond >= 0.0)) fail("wall_top_beyond must be >= 0");
-  if (!(wall_top_share > 0.0 && wall_top_share <= 1.0)) fail("wall_top_share must be in (0, 1]");
-  if (!(wall_joint_gap >= 0.0)) fail("wall_joint_gap must be >= 0");
-  if (!(frontier_reach >= 0.0)) fail("frontier_reach must be >= 0");
+  check_ranges(*this, "RoomSegmentationConfig");  // each field's limits, declared in visit()
 }
 
 bool short_of_reach(const WallCandidate& wall, double floor_z, const RoomSegmentationConfig& cfg) {

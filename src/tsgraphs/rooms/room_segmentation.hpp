@@ -24,6 +24,7 @@
 
 #include "tsgraphs/core/grid_frame.hpp"
 #include "tsgraphs/rooms/room.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::rooms {
 
@@ -73,27 +74,27 @@ struct RoomSegmentationConfig {
 
   template <class V>
   void visit(V& v) {
-    v("cell", cell);
-    v("max_normal_z", max_normal_z);
-    v("min_wall_height", min_wall_height);
-    v("wall_reach_height", wall_reach_height);
-    v("wall_top_margin", wall_top_margin);
-    v("wall_top_beyond", wall_top_beyond);
-    v("wall_top_share", wall_top_share);
-    v("wall_joint_gap", wall_joint_gap);
-    v("max_door_width", max_door_width);
-    v("min_door_post", min_door_post);
-    v("min_region_area", min_region_area);
-    v("rect_fill", rect_fill);
-    v("wall_snap", wall_snap);
-    v("parallel_tolerance_deg", parallel_tolerance_deg);
-    v("min_wall_overlap", min_wall_overlap);
-    v("corridor_aspect", corridor_aspect);
-    v("simplify_tolerance", simplify_tolerance);
-    v("bend_tolerance", bend_tolerance);
-    v("min_bend_deg", min_bend_deg);
-    v("min_fit_share", min_fit_share);
-    v("frontier_reach", frontier_reach);
+    v("cell", cell, between(0.02, 10.0));
+    v("max_normal_z", max_normal_z, between(0.0, 0.99));
+    v("min_wall_height", min_wall_height, between(0.0, 100.0));
+    v("wall_reach_height", wall_reach_height, between(0.0, 100.0));
+    v("wall_top_margin", wall_top_margin, between(0.0, 100.0));
+    v("wall_top_beyond", wall_top_beyond, between(0.0, 100.0));
+    v("wall_top_share", wall_top_share, above(0.0, 1.0));
+    v("wall_joint_gap", wall_joint_gap, between(0.0, 100.0));
+    v("max_door_width", max_door_width, between(0.0, 100.0));
+    v("min_door_post", min_door_post, between(0.0, 100.0));
+    v("min_region_area", min_region_area, between(0.0, 1e6));
+    v("rect_fill", rect_fill, above(0.0, 1.0));
+    v("wall_snap", wall_snap, between(0.0, 100.0));
+    v("parallel_tolerance_deg", parallel_tolerance_deg, between(0.0, 89.0));
+    v("min_wall_overlap", min_wall_overlap, between(0.0, 1.0));
+    v("corridor_aspect", corridor_aspect, between(1.0, 1e6));
+    v("simplify_tolerance", simplify_tolerance, between(0.0, 100.0));
+    v("bend_tolerance", bend_tolerance, between(0.0, 100.0));
+    v("min_bend_deg", min_bend_deg, above(0.0, 179.0));
+    v("min_fit_share", min_fit_share, between(0.0, 100.0));
+    v("frontier_reach", frontier_reach, between(0.0, 100.0));
   }
 };
 

@@ -1,5 +1,7 @@
 #pragma once
 /// The S-Graphs+ baseline's room trigger: extract rooms at a fixed period of the data's time.
+#include "tsgraphs/core/config_range.hpp"
+
 namespace tsgraphs::rooms {
 
 struct RoomTimerConfig {
@@ -7,7 +9,7 @@ struct RoomTimerConfig {
 
   template <class V>
   void visit(V& v) {
-    v("period_s", period_s);
+    v("period_s", period_s, above(0.0, 1e6));
   }
 };
 

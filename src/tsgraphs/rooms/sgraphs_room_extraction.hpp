@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 
 #include "tsgraphs/rooms/room.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::rooms {
 
@@ -33,12 +34,12 @@ struct SgraphsRoomExtractionConfig {
 
   template <class V>
   void visit(V& v) {
-    v("point_distance", point_distance);
-    v("min_points", min_points);
-    v("min_width", min_width);
-    v("min_cluster_extent", min_cluster_extent);
-    v("max_center_offset", max_center_offset);
-    v("max_normal_z", max_normal_z);
+    v("point_distance", point_distance, above(0.0, 100.0));
+    v("min_points", min_points, between(1, 10000000));
+    v("min_width", min_width, between(0.0, 1000.0));
+    v("min_cluster_extent", min_cluster_extent, between(0.0, 1000.0));
+    v("max_center_offset", max_center_offset, above(0.0, 1000.0));
+    v("max_normal_z", max_normal_z, between(0.0, 0.99));
   }
 };
 

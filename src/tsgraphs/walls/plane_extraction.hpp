@@ -8,6 +8,7 @@
 
 #include "tsgraphs/core/plane.hpp"
 #include "tsgraphs/core/point_cloud.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::walls {
 
@@ -28,17 +29,17 @@ struct PlaneExtractionConfig {
 
   template <class V>
   void visit(V& v) {
-    v("normal_neighbours", normal_neighbours);
-    v("max_vertical_normal_z", max_vertical_normal_z);
-    v("min_horizontal_normal_z", min_horizontal_normal_z);
-    v("distance_threshold", distance_threshold);
-    v("normal_angle_threshold_deg", normal_angle_threshold_deg);
-    v("min_inliers", min_inliers);
-    v("min_extent", min_extent);
-    v("cluster_tolerance", cluster_tolerance);
-    v("max_planes", max_planes);
-    v("max_range", max_range);
-    v("point_voxel", point_voxel);
+    v("normal_neighbours", normal_neighbours, between(3, 100));
+    v("max_vertical_normal_z", max_vertical_normal_z, between(0.0, 1.0));
+    v("min_horizontal_normal_z", min_horizontal_normal_z, between(0.0, 1.0));
+    v("distance_threshold", distance_threshold, above(0.0, 10.0));
+    v("normal_angle_threshold_deg", normal_angle_threshold_deg, above(0.0, 90.0));
+    v("min_inliers", min_inliers, between(3, 10000000));
+    v("min_extent", min_extent, between(0.0, 1000.0));
+    v("cluster_tolerance", cluster_tolerance, between(0.0, 100.0));
+    v("max_planes", max_planes, between(1, 1000));
+    v("max_range", max_range, above(0.0, 10000.0));
+    v("point_voxel", point_voxel, between(0.01, 100.0));
   }
 };
 

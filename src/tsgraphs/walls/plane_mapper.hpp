@@ -11,6 +11,7 @@
 
 #include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
+#include "tsgraphs/core/config_range.hpp"
 
 namespace tsgraphs::walls {
 
@@ -27,15 +28,15 @@ struct PlaneMapperConfig {
 
   template <class V>
   void visit(V& v) {
-    v("sigma_angle_deg", sigma_angle_deg);
-    v("sigma_distance", sigma_distance);
-    v("max_mahalanobis", max_mahalanobis);
-    v("overlap_distance", overlap_distance);
-    v("min_overlap_ratio", min_overlap_ratio);
-    v("merge_angle_deg", merge_angle_deg);
-    v("merge_distance", merge_distance);
-    v("merge_overlap_distance", merge_overlap_distance);
-    v("landmark_voxel", landmark_voxel);
+    v("sigma_angle_deg", sigma_angle_deg, above(0.0, 90.0));
+    v("sigma_distance", sigma_distance, above(0.0, 100.0));
+    v("max_mahalanobis", max_mahalanobis, above(0.0, 1e6));
+    v("overlap_distance", overlap_distance, between(0.01, 100.0));
+    v("min_overlap_ratio", min_overlap_ratio, between(0.0, 1.0));
+    v("merge_angle_deg", merge_angle_deg, between(0.0, 90.0));
+    v("merge_distance", merge_distance, between(0.0, 100.0));
+    v("merge_overlap_distance", merge_overlap_distance, between(0.01, 100.0));
+    v("landmark_voxel", landmark_voxel, between(0.01, 100.0));
   }
 };
 
