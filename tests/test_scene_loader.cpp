@@ -215,6 +215,22 @@ TEST(SceneLoader, OutOfRangeValuesAndTypes) {
   EXPECT_THAT(error_of("levels: [\n"), HasSubstr("YAML syntax error"));
 }
 
+TEST(SceneLoader, ARecordingThatWouldFillTheDiskIsRefused) {
+  // Each of these made `simulate` allocate or write without end (bad_alloc, gigabytes).
+  EXPECT_THAT(error_of(replace(kRoom, "levels:", "sensor: {rate_hz: 1e9}\nlevels:")),
+              HasSubstr("sensor.rate_hz: must be <= 1000 Hz"));
+  EXPECT_THAT(error_of(replace(kRoom, "waypoints:", "speed: 1000\n  waypoints:")),
+              HasSubstr("trajectory.speed: must be <= 30 m/s"));
+  EXPECT_THAT(error_of(replace(kRoom, "waypoints:", "laps: 2000000000\n  waypoints:")),
+              HasSubstr("trajectory.laps: must be in [1, 10000]"));
+  // Each value within its bounds, but together: 10,000 laps of a 16 m path at 1 m/s, 10 Hz.
+  const std::string text = replace(kRoom, "waypoints:", "laps: 10000\n  waypoints:");
+  EXPECT_THAT(error_of(text), HasSubstr("test.yaml:" + std::to_string(line_of(text, "laps:")) + ": trajectory.laps:"));
+  EXPECT_THAT(error_of(text), HasSubstr("more than 1000000 (speed, laps)"));
+  EXPECT_THAT(error_of(replace(kRoom, "waypoints:", "speed: 1e-9\n  waypoints:")), HasSubstr("more than 1000000"));
+  EXPECT_NO_THROW(parse_scene(replace(kRoom, "waypoints:", "laps: 100\n  waypoints:"), "test.yaml", "."));
+}
+
 TEST(SceneLoader, MissingFileAndVoxelMapFile) {
   try {
     load_scene("/nonexistent/scene.yaml");

@@ -16,6 +16,7 @@
 #include "tsgraphs/scene/platform_presets.hpp"
 #include "tsgraphs/scene/sensor_presets.hpp"
 #include "tsgraphs/scene/scene_geometry.hpp"
+#include "tsgraphs/scene/trajectory.hpp"
 
 namespace tsgraphs::scene {
 namespace {
@@ -32,6 +33,13 @@ constexpr long long kMaxRaysPerScan = 1LL << 24;
 // bigger than a room is a typo.
 constexpr double kMaxPersonSpeed = 10.0;  // m/s
 constexpr double kMaxPersonSize = 5.0;    // m, height or radius
+// Bounds of the recording: LiDARs sweep at 5-20 Hz, platforms indoors walk or drive at a few
+// m/s; beyond these a value is a typo. A sequence of more than kMaxScans scans (28 hours at
+// 10 Hz, terabytes of scans) is refused before any is written.
+constexpr double kMaxRateHz = 1000.0;
+constexpr double kMaxPlatformSpeed = 30.0;  // m/s, a car
+constexpr int kMaxLaps = 10000;
+constexpr double kMaxScans = 1e6;
 
 class SceneParser {
  public:
@@ -57,6 +65,7 @@ class SceneParser {
     for (const YamlMap& m : root_.maps("rooms")) parse_room(m);
     for (const YamlMap& m : root_.maps("people")) parse_person(m);
     parse_trajectory(root_.map("trajectory"));
+    check_sequence_length();
     join_wall_ends(&scene_);
     warn_about_path();
     warn_about_storeys();
@@ -64,6 +73,23 @@ class SceneParser {
   }
 
  private:
+  // The number of scans the path makes, against kMaxScans: a slow speed or many laps of a long
+  // path could otherwise fill the disk.
+  void check_sequence_length() const {
+    const double hz = scene_.sensor.record_hz > 0.0 ? scene_.sensor.record_hz : scene_.sensor.rate_hz;
+    const double seconds = Trajectory(scene_).duration();
+    const double scans = seconds * hz + 1.0;
+    if (scans > kMaxScans) {
+      char what[160];
+      std::snprintf(what, sizeof what, "the path takes %.3g s: %.3g scans at %g Hz, more than %.0f (speed, laps)", seconds,
+                    scans, hz, kMaxScans);
+      const YamlMap m = root_.map("trajectory");
+      for (const char* key : {"laps", "speed"})
+        if (m.has(key)) throw m.error(key, what);
+      throw m.error_here(what);
+    }
+  }
+
   static void require_positive(const YamlMap& m, const std::string& key, double v) {
     if (!(v > 0.0)) throw m.error(key, "must be > 0");
   }
@@ -169,6 +195,7 @@ class SceneParser {
     require_non_negative(m, "min_range", s.min_range);
     if (s.min_range >= s.max_range) throw m.error("min_range", "must be below max_range");
     require_positive(m, "rate_hz", s.rate_hz);
+    if (s.rate_hz > kMaxRateHz) throw m.error("rate_hz", "must be <= 1000 Hz");
     if (m.has("record_hz") && !(s.record_hz > 0.0 && s.record_hz <= s.rate_hz))
       throw m.error("record_hz", "must lie in (0, rate_hz]");
     require_non_negative(m, "range_noise_std", s.range_noise_std);
@@ -431,9 +458,10 @@ class SceneParser {
     t.level = m.has("level") ? level_index(m, "level") : 0;
     t.closed = m.get<bool>("closed", true);
     t.laps = m.get<int>("laps", 2);
-    if (t.laps < 1) throw m.error("laps", "must be >= 1");
+    if (t.laps < 1 || t.laps > kMaxLaps) throw m.error("laps", "must be in [1, 10000]");
     t.speed = m.get<double>("speed", 1.0);
     require_positive(m, "speed", t.speed);
+    if (t.speed > kMaxPlatformSpeed) throw m.error("speed", "must be <= 30 m/s");
     t.yaw_rate_deg = m.get<double>("yaw_rate_deg", 90.0);
     require_positive(m, "yaw_rate_deg", t.yaw_rate_deg);
     const YAML::Node wps = m.raw("waypoints");
