@@ -96,7 +96,7 @@ TEST_F(AtomicWrite, MissingFolderThrowsNamingThePath) {
 TEST_F(AtomicWrite, TargetThatIsAFolderThrowsAndLeavesNoTemporaryFile) {
   fs::create_directories(dir_ / "taken");
   std::ofstream(dir_ / "taken" / "inside.txt") << "keep";
-  EXPECT_THROW(write_file_atomic((dir_ / "taken").string(), "x"), std::runtime_error);
+  EXPECT_THROW(write_file_atomic((dir_ / "taken").string(), "x"), InputError);  // bad input: exit 2
   EXPECT_EQ(names_in(dir_), std::set<std::string>{"taken"});
   EXPECT_EQ(read_file(dir_ / "taken" / "inside.txt"), "keep");
 }
@@ -166,6 +166,18 @@ TEST_F(AtomicDir, RefusesAFile) {
   EXPECT_THROW(AtomicDirectory(final_path.string(), "done.txt"), InputError);
   EXPECT_EQ(read_file(final_path), "data");
   EXPECT_EQ(names_in(dir_), std::set<std::string>{"file"});
+}
+
+TEST_F(AtomicDir, RefusesTheRootAndNoName) {
+  // `run --out /` ran the whole sequence, then failed to rename its output onto "" (exit 1).
+  for (const std::string bad : {"/", "//", "/..", ""}) {
+    try {
+      AtomicDirectory d(bad, "done.txt");
+      FAIL() << "'" << bad << "' accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("not a folder to write into"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST_F(AtomicDir, AcceptsAnEmptyFolder) {

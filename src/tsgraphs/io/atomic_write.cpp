@@ -41,6 +41,8 @@ void remove_stale_temporaries(const std::string& final_path) {
 }  // namespace
 
 void write_file_atomic(const std::string& path, const std::string& content) {
+  // Checked first: a rename onto a folder fails only after the content was written.
+  if (fs::is_directory(path)) throw InputError(path + ": is a folder; give a file name to write");
   const std::string tmp = path + unique_suffix();
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
@@ -64,6 +66,10 @@ void write_file_atomic(const std::string& path, const std::string& content) {
 AtomicDirectory::AtomicDirectory(std::string final_path, const std::string& marker_file)
     : final_path_(fs::path(std::move(final_path)).lexically_normal().string()) {
   if (!final_path_.empty() && final_path_.back() == '/') final_path_.pop_back();
+  // "/" (or "", ".." above it) names no folder that a temporary sibling could be renamed to.
+  if (fs::path(final_path_).filename().empty() || fs::absolute(fs::path(final_path_)).lexically_normal() == "/")
+    throw InputError((final_path_.empty() ? std::string("/") : final_path_) +
+                     ": not a folder to write into; give a new folder, or an earlier output to replace");
   if (fs::exists(final_path_)) {
     if (!fs::is_directory(final_path_)) throw InputError(final_path_ + ": exists and is not a folder");
     const bool empty = fs::is_empty(final_path_);
