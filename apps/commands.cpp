@@ -2,6 +2,7 @@
 #include "commands.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -48,7 +49,15 @@ scene::Scene load_and_warn(const std::string& arg) {
 
 void simulate(const scene::Scene& scene_in, const std::string& out, std::uint64_t seed, int laps, bool quiet) {
   scene::Scene scene = scene_in;
-  if (laps > 0) scene.trajectory.laps = laps;
+  if (laps > 0) {
+    if (laps > scene::kMaxLaps) throw input_error("--laps", 0, "must be in [1, 10000]");
+    scene.trajectory.laps = laps;
+    // The scene's own laps passed this check when it was loaded; these must too.
+    const double scans = scene::sequence_scans(scene);
+    if (scans > scene::kMaxSequenceScans)
+      throw input_error("--laps", 0, std::to_string(laps) + " laps make " + std::to_string(std::llround(scans)) +
+                                         " scans, more than 1000000");
+  }
   sim::Simulator simulator(scene, seed);
   print_warnings(scene.file + ": trajectory: ", simulator.trajectory().warnings());
   if (!quiet) {

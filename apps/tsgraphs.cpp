@@ -6,6 +6,8 @@
 #include <malloc.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <thread>
 
@@ -20,6 +22,10 @@ using namespace tsgraphs;
 using namespace tsgraphs::app;
 
 namespace {
+
+// Bounds of --sensor-to-base: a mount this far from the base, or a quaternion this short, is a typo.
+constexpr double kMaxMountOffset = 100.0;  // m
+constexpr double kMinQuaternionNorm = 1e-3;
 
 struct Options {
   bool quiet = false;
@@ -122,8 +128,9 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"tum", "kitti", "auto"}))
         ->capture_default_str();
     cmd->add_option("--times", opt.folder.times, "times of the scans, one a line (default: times.txt beside them, or the TUM stamps)");
+    // An hour between scans is no sweep rate: a typo (1e308 overflowed the scan stamps).
     cmd->add_option("--scan-period", opt.folder.scan_period, "s between scans when nothing gives their times")
-        ->check(CLI::PositiveNumber)
+        ->check(CLI::Range(1e-6, 3600.0).description("in [1e-6, 3600] s"))
         ->capture_default_str();
     cmd->add_option("--bag", opt.bag.bag, "a ROS1 bag instead of SEQ_DIR (see bag-info for its topics)");
     cmd->add_option("--points-topic", opt.bag.points_topic, "bag: the sensor_msgs/PointCloud2 topic");
@@ -229,6 +236,12 @@ int main(int argc, char** argv) {
       std::optional<Pose3> mount;
       if (!opt.sensor_to_base.empty()) {
         const auto& v = opt.sensor_to_base;
+        // A mount farther than kMaxMountOffset from the base, or a rotation that is not one, is a typo.
+        const bool finite = std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+        if (!finite || Eigen::Vector3d(v[0], v[1], v[2]).norm() > kMaxMountOffset)
+          throw input_error("--sensor-to-base", 0, "x y z must be finite and within 100 m of the base");
+        if (!(Eigen::Vector4d(v[3], v[4], v[5], v[6]).norm() > kMinQuaternionNorm))
+          throw input_error("--sensor-to-base", 0, "qx qy qz qw must be a rotation (a quaternion of norm about 1)");
         mount = Pose3::Identity();
         mount->translation() = Eigen::Vector3d(v[0], v[1], v[2]);
         mount->linear() = Eigen::Quaterniond(v[6], v[3], v[4], v[5]).normalized().toRotationMatrix();

@@ -362,6 +362,28 @@ TEST_F(RunCli, BadParameterFileAndUnrelatedOutputFolderAreRefused) {
   EXPECT_NE(err.find("nothing"), std::string::npos) << err;
 }
 
+TEST_F(RunCli, ArgumentsOutOfRangeAreRefusedBeforeAnyWork) {
+  // Each of these ran to the end and failed there (exit 1), or overflowed, or wrote without end.
+  std::string err;
+  const std::string seq = (base_ / "seq").string();
+  EXPECT_EQ(cli("-q run " + seq + " --out /", &err), 2);
+  EXPECT_NE(err.find("/: not a folder to write into"), std::string::npos) << err;
+  EXPECT_EQ(cli("-q run " + seq + " --out " + (dir_ / "run").string() + " --sensor-to-base nan 0 0 0 0 0 1", &err), 2);
+  EXPECT_NE(err.find("--sensor-to-base: x y z must be finite"), std::string::npos) << err;
+  EXPECT_EQ(cli("-q run " + seq + " --out " + (dir_ / "run").string() + " --sensor-to-base 0 0 0 0 0 0 0", &err), 2);
+  EXPECT_NE(err.find("must be a rotation"), std::string::npos) << err;
+  EXPECT_EQ(cli("-q run --scans '" + seq + "/scans/*.bin' --out " + (dir_ / "run").string() + " --scan-period 1e308", &err),
+            2);
+  EXPECT_NE(err.find("--scan-period"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "run"));
+  const std::string scene = (base_ / "room.yaml").string();
+  EXPECT_EQ(cli("-q simulate " + scene + " --laps 10000 --out " + (dir_ / "sim").string(), &err), 2);
+  EXPECT_NE(err.find("--laps: 10000 laps make"), std::string::npos) << err;
+  EXPECT_EQ(cli("-q simulate " + scene + " --laps 100000 --out " + (dir_ / "sim").string(), &err), 2);
+  EXPECT_NE(err.find("--laps: must be in [1, 10000]"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "sim"));
+}
+
 // A scene whose voxel map lies in another folder: its sequence carries the map, so it runs
 // where it was written, and again after it is moved and the map's folder is gone.
 TEST_F(RunCli, ASequenceCarriesItsSceneVoxelMapsAndRunsAfterItMoves) {

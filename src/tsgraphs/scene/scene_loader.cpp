@@ -33,13 +33,10 @@ constexpr long long kMaxRaysPerScan = 1LL << 24;
 // bigger than a room is a typo.
 constexpr double kMaxPersonSpeed = 10.0;  // m/s
 constexpr double kMaxPersonSize = 5.0;    // m, height or radius
-// Bounds of the recording: LiDARs sweep at 5-20 Hz, platforms indoors walk or drive at a few
-// m/s; beyond these a value is a typo. A sequence of more than kMaxScans scans (28 hours at
-// 10 Hz, terabytes of scans) is refused before any is written.
+// Bounds of the recording (and kMaxLaps, kMaxSequenceScans): LiDARs sweep at 5-20 Hz,
+// platforms indoors walk or drive at a few m/s; beyond these a value is a typo.
 constexpr double kMaxRateHz = 1000.0;
 constexpr double kMaxPlatformSpeed = 30.0;  // m/s, a car
-constexpr int kMaxLaps = 10000;
-constexpr double kMaxScans = 1e6;
 
 class SceneParser {
  public:
@@ -73,16 +70,14 @@ class SceneParser {
   }
 
  private:
-  // The number of scans the path makes, against kMaxScans: a slow speed or many laps of a long
-  // path could otherwise fill the disk.
+  // The number of scans the path makes, against kMaxSequenceScans: a slow speed or many laps
+  // of a long path could otherwise fill the disk.
   void check_sequence_length() const {
-    const double hz = scene_.sensor.record_hz > 0.0 ? scene_.sensor.record_hz : scene_.sensor.rate_hz;
-    const double seconds = Trajectory(scene_).duration();
-    const double scans = seconds * hz + 1.0;
-    if (scans > kMaxScans) {
+    const double scans = sequence_scans(scene_);
+    if (scans > kMaxSequenceScans) {
       char what[160];
-      std::snprintf(what, sizeof what, "the path takes %.3g s: %.3g scans at %g Hz, more than %.0f (speed, laps)", seconds,
-                    scans, hz, kMaxScans);
+      std::snprintf(what, sizeof what, "the path makes %.3g scans, more than %.0f (speed, laps)", scans,
+                    kMaxSequenceScans);
       const YamlMap m = root_.map("trajectory");
       for (const char* key : {"laps", "speed"})
         if (m.has(key)) throw m.error(key, what);
@@ -627,6 +622,11 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::s
   Scene scene = SceneParser(root, base_dir).parse();
   scene.source_text = text;
   return scene;
+}
+
+double sequence_scans(const Scene& scene) {
+  const double hz = scene.sensor.record_hz > 0.0 ? scene.sensor.record_hz : scene.sensor.rate_hz;
+  return Trajectory(scene).duration() * hz + 1.0;
 }
 
 Scene load_scene(const std::string& file) {

@@ -16,4 +16,12 @@ Scene load_scene(const std::string& file);
 /// `base_dir`.
 Scene parse_scene(const std::string& text, const std::string& file, const std::string& base_dir);
 
+/// Bounds of a recording: laps of the path, and scans in all (28 hours at 10 Hz, terabytes of
+/// scans); a scene beyond them is refused before any scan is made.
+inline constexpr int kMaxLaps = 10000;
+inline constexpr double kMaxSequenceScans = 1e6;
+
+/// The scans the scene's path makes at its recording rate (sensor.record_hz, else rate_hz).
+double sequence_scans(const Scene& scene);
+
 }  // namespace tsgraphs::scene
