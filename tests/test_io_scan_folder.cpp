@@ -160,6 +160,23 @@ TEST(Kitti, PosesReadBackAndRotationsStayOrthonormal) {
   fs::remove_all(p.parent_path());
 }
 
+// Issue 18: a zero, scaled or reflected 3x3 part was accepted (and turned into some rotation).
+TEST(Kitti, PoseRowsThatAreNoRotationAreRefusedNamingTheLine) {
+  const fs::path dir = test::fresh_temp_dir("kitti_bad_rotation");
+  const auto error_of_row = [&](const std::string& row) {
+    const fs::path p = dir / "poses.txt";
+    std::ofstream(p) << kitti_row(pose_k(3)) << row << "\n";
+    return test::input_error_of([&] { read_kitti_poses(p.string()); });
+  };
+  EXPECT_NE(error_of_row("0 0 0 1 0 0 0 2 0 0 0 3").find("poses.txt:2: the 3x3 part is not a rotation"),
+            std::string::npos);
+  EXPECT_NE(error_of_row("2 0 0 1 0 2 0 2 0 0 2 3").find("poses.txt:2: the 3x3 part is not a rotation"),
+            std::string::npos);
+  EXPECT_NE(error_of_row("1 0 0 1 0 1 0 2 0 0 -1 3").find("poses.txt:2: the 3x3 part is a reflection"),
+            std::string::npos);
+  fs::remove_all(dir);
+}
+
 // Issue 18: a scan that is a symlink loop (ln -s a b; ln -s b a) ended in "internal error"
 // (std::filesystem's exception): it is an InputError naming it, in a folder or through --scans.
 TEST_F(ScanFolder, SymlinkLoopScanIsAnInputErrorNamingIt) {

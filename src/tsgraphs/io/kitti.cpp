@@ -14,6 +14,9 @@ namespace {
 
 constexpr std::size_t kFloatsPerPoint = 4;  // x y z intensity
 constexpr int kPoseFields = 12;             // row-major 3x4
+// A pose row's 3x3 part is a rotation when R^T R is I within this (rows printed with six
+// digits are off by ~1e-6; a scaled or sheared matrix by far more) and det(R) is +1.
+constexpr double kOrthonormalTolerance = 1e-3;
 
 bool is_data_line(const std::string& text) {
   const std::size_t first = text.find_first_not_of(" \t\r");
@@ -74,6 +77,12 @@ std::vector<Pose3> read_kitti_poses(const std::string& path) {
       for (int c = 0; c < 3; ++c) T.linear()(r, c) = v[4 * r + c];
       T.translation()(r) = v[4 * r + 3];
     }
+    // A zero, scaled or reflected matrix is no rotation; its nearest rotation would be a guess.
+    const Eigen::Matrix3d R = T.linear();
+    const double off = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+    if (!(off <= kOrthonormalTolerance))
+      throw input_error(path, line, "the 3x3 part is not a rotation (R^T R differs from I by " + std::to_string(off) + ")");
+    if (R.determinant() < 0.0) throw input_error(path, line, "the 3x3 part is a reflection (determinant -1), not a rotation");
     // Rows printed with few digits are not exactly orthonormal: take the nearest rotation.
     const Eigen::Quaterniond q(T.linear());
     T.linear() = q.normalized().toRotationMatrix();
