@@ -99,6 +99,41 @@ TEST_F(ScanFolder, PcdScansWithTumPosesTakeTheTumStamps) {
   EXPECT_FLOAT_EQ(reader.scan(1).intensity[2], 0.2f);
 }
 
+// Issue 18: times.txt 100 s off the TUM poses' stamps was accepted (the poses then belonged
+// to other scans). One offset for all is allowed: times.txt may count from the start.
+TEST_F(ScanFolder, TimesThatDisagreeWithThePoseStampsAreRefused) {
+  std::string tum;
+  for (int k = 0; k < 3; ++k) {
+    write_pcd(dir_ / ("scan_" + std::to_string(k) + ".pcd"), 4);
+    const Eigen::Quaterniond q(pose_k(k).linear());
+    tum += std::to_string(1000.0 + 0.1 * k) + " " + std::to_string(k) + " 0 0 " + std::to_string(q.x()) + " " +
+           std::to_string(q.y()) + " " + std::to_string(q.z()) + " " + std::to_string(q.w()) + "\n";
+  }
+  write_file("trajectory.tum", tum);
+  ScanFolderOptions o;
+  o.scans = (dir_ / "*.pcd").string();
+  o.poses = (dir_ / "trajectory.tum").string();
+  o.times = (dir_ / "t.txt").string();
+  write_file("t.txt", "0.0\n0.1\n0.2\n");  // from the start: one offset
+  EXPECT_EQ(ScanFolderReader(o).info().times, (std::vector<double>{0.0, 0.1, 0.2}));
+  write_file("t.txt", "0.0\n0.1\n100.2\n");
+  const std::string error = test::input_error_of([&] { ScanFolderReader r(o); });
+  EXPECT_NE(error.find("trajectory.tum: pose 3: stamp 1000.200000 is 100 s from the scan's time"), std::string::npos)
+      << error;
+}
+
+// Issue 18: a sequence folder without odom.txt said "no scans" though scans/ held them.
+TEST_F(ScanFolder, ASequenceFolderMissingAFileSaysWhich) {
+  fs::create_directories(dir_ / "scans");
+  write_bin(dir_ / "scans" / "000000.bin", 2);
+  write_bin(dir_ / "scans" / "000001.bin", 2);
+  write_file("times.txt", "0.0\n0.1\n");
+  ScanFolderOptions o;
+  o.folder = dir_.string();
+  const std::string error = test::input_error_of([&] { ScanFolderReader r(o); });
+  EXPECT_NE(error.find("scans/ holds 2 scans but odom.txt is missing"), std::string::npos) << error;
+}
+
 TEST_F(ScanFolder, NoTimesGiveOneScanEveryPeriod) {
   write_bin(dir_ / "a.bin", 2);
   write_bin(dir_ / "b.bin", 2);

@@ -3,7 +3,10 @@
 #include <glob.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <system_error>
 
 #include "tsgraphs/core/error.hpp"
@@ -19,6 +22,8 @@ namespace fs = std::filesystem;
 
 constexpr int kTumFields = 8;     // t x y z qx qy qz qw
 constexpr int kKittiFields = 12;  // a 3x4 matrix
+// Stamps written with microseconds agree to this whatever their precision (s).
+constexpr double kStampTolerance = 1e-6;
 
 /// Whether `p` is a regular file. The error_code forms throughout this file: a symlink loop or
 /// an unreadable entry is an InputError naming it, not std::filesystem's exception.
@@ -82,6 +87,30 @@ bool is_sequence_folder(const std::string& dir) {
   return is_file(d / "times.txt") && is_file(d / "odom.txt") && is_folder(d / "scans");
 }
 
+namespace {
+
+// TUM poses carry their own stamps: each must be its scan's time, up to one offset for all
+// (times.txt may count from the start, the poses in Unix time). A pose nearer another scan's
+// time than its own (half the gap to a neighbour) belongs to another scan.
+void check_stamps_agree(const std::string& poses, const std::vector<double>& pose_stamps, const std::string& times,
+                        const std::vector<double>& scan_times) {
+  const double offset = pose_stamps.front() - scan_times.front();
+  for (std::size_t i = 0; i < scan_times.size(); ++i) {
+    double gap = std::numeric_limits<double>::infinity();
+    if (i > 0) gap = std::min(gap, scan_times[i] - scan_times[i - 1]);
+    if (i + 1 < scan_times.size()) gap = std::min(gap, scan_times[i + 1] - scan_times[i]);
+    const double off = std::abs(pose_stamps[i] - offset - scan_times[i]);
+    if (off > kStampTolerance && !(off < 0.5 * gap)) {
+      char what[200];
+      std::snprintf(what, sizeof what, "pose %zu: stamp %.6f is %.6g s from the scan's time in %s (offset %.6f s): "
+                    "not this scan's pose", i + 1, pose_stamps[i], off, times.c_str(), offset);
+      throw input_error(poses, 0, what);
+    }
+  }
+}
+
+}  // namespace
+
 ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
   // The scans.
   if (!options.scans.empty()) {
@@ -93,10 +122,24 @@ ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
     if (!is_folder(options.folder)) throw input_error(options.folder, 0, "not a folder");
     files_ = scan_files_in(options.folder);
     if (files_.empty()) files_ = scan_files_in(fs::path(options.folder) / "velodyne");
-    if (files_.empty())
+    if (files_.empty()) {
+      // A sequence folder that lost a file: say which, not "no scans".
+      const fs::path d(options.folder);
+      const std::size_t in_scans = scan_files_in(d / "scans").size();
+      if (in_scans > 0) {
+        std::string missing;
+        for (const char* f : {"times.txt", "odom.txt"})
+          if (!is_file(d / f)) missing += std::string(missing.empty() ? "" : " and ") + f;
+        throw input_error(options.folder, 0,
+                          "scans/ holds " + std::to_string(in_scans) + " scans but " + missing +
+                              (missing.find(" and ") != std::string::npos ? " are" : " is") +
+                              " missing: a sequence folder needs times.txt and odom.txt (to run the scans alone, "
+                              "--scans '" + (d / "scans").string() + "/*')");
+      }
       throw input_error(options.folder, 0,
                         "no scans: neither a sequence folder (times.txt, odom.txt, scans/) nor .pcd or .bin files "
                         "(in it or in velodyne/)");
+    }
   }
   const auto is_pcd = [](const std::string& f) { return fs::path(f).extension() == ".pcd"; };
   pcd_ = is_pcd(files_.front());
@@ -142,6 +185,7 @@ ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
     info_.times = read_times(times);
     if (info_.times.size() != n)
       throw input_error(times, 0, "has " + std::to_string(info_.times.size()) + " times for " + std::to_string(n) + " scans");
+    if (!pose_stamps.empty()) check_stamps_agree(poses, pose_stamps, times, info_.times);
   } else if (!pose_stamps.empty()) {
     for (std::size_t i = 1; i < n; ++i)
       if (pose_stamps[i] < pose_stamps[i - 1]) throw input_error(poses, static_cast<int>(i) + 1, "times go backwards");
