@@ -322,13 +322,13 @@ TEST_F(RunCli, MissingOdometryLineIsAnErrorNamingTheFileAndNoOutput) {
 
 TEST_F(RunCli, TruncatedNaNAndEmptyScansAreSkippedWithWarningsAndNoNaNPose) {
   const fs::path seq = copy_sequence();
-  // Scan 3: truncated mid-point. Scan 0 (a keyframe): every point NaN. Scan 20: empty.
+  // Scan 3: truncated mid-point. Scans 0 (a keyframe) and 5 (none): every point NaN. Scan 20: empty.
   {
     const fs::path p = seq / "scans" / "000003.bin";
     fs::resize_file(p, fs::file_size(p) - 6);
   }
-  {
-    const fs::path p = seq / "scans" / "000000.bin";
+  for (const char* name : {"000000.bin", "000005.bin"}) {
+    const fs::path p = seq / "scans" / name;
     std::string bin = read_file(p);
     const float nan = std::nanf("");
     for (std::size_t i = 0; i + 16 <= bin.size(); i += 16) std::memcpy(&bin[i], &nan, sizeof nan);
@@ -340,8 +340,9 @@ TEST_F(RunCli, TruncatedNaNAndEmptyScansAreSkippedWithWarningsAndNoNaNPose) {
   std::string err;
   ASSERT_EQ(cli("-q run " + seq.string() + " --out " + out.string(), &err), 0) << err;
   EXPECT_NE(err.find("000003.bin"), std::string::npos) << err;
-  EXPECT_NE(err.find("scan 0:"), std::string::npos) << err;
-  EXPECT_NE(err.find("scan 20:"), std::string::npos) << err;
+  EXPECT_NE(err.find("scan 0: no finite point (all NaN): skipped"), std::string::npos) << err;
+  EXPECT_NE(err.find("scan 5: no finite point (all NaN): skipped"), std::string::npos) << err;
+  EXPECT_NE(err.find("scan 20: empty scan: skipped"), std::string::npos) << err;
   const auto traj = io::read_tum((out / "trajectory.txt").string());  // read_tum rejects non-finite values
   EXPECT_EQ(traj.size(), io::read_tum((seq / "odom.txt").string()).size());
 }

@@ -57,7 +57,7 @@ PreparedScan Pipeline::prepare(std::size_t scan_index, double stamp, const Point
   out.record.scan_index = scan_index;
   out.record.stamp = stamp;
   out.record.odom = odom;
-  out.input_empty = scan.empty();
+  out.input_empty = !has_finite_point(scan);
   if (keyframe_candidate) run_keyframe_steps(scan, odom, &out);
   return out;
 }
@@ -126,13 +126,15 @@ const ScanRecord& Pipeline::process(PreparedScan prepared, const PointCloud& sca
   if (keyframe) {
     last_ground_ = std::move(prepared.ground);
     if (prepared.cloud.empty()) {
-      record.warning = prepared.input_empty ? "empty scan: skipped" : "no point left after prefiltering: skipped";
+      record.warning = !prepared.input_empty ? "no point left after prefiltering: skipped"
+                       : scan.empty()        ? "empty scan: skipped"
+                                             : "no finite point (all NaN): skipped";
     } else {
       selector_.accept(record.odom);
       add_keyframe(record, std::move(prepared.cloud), std::move(prepared.planes));
     }
   } else if (prepared.input_empty) {
-    record.warning = "empty scan: skipped";
+    record.warning = scan.empty() ? "empty scan: skipped" : "no finite point (all NaN): skipped";
   }
   record.frontend_ms = prepared_ms + ms_since(start);
   scan_log_.append(record);

@@ -29,7 +29,7 @@ struct PreparedScan {
   PointCloud cloud;           ///< prefiltered
   ground::GroundScan ground;
   std::optional<std::vector<walls::PlaneObservation>> planes;
-  bool input_empty = false;
+  bool input_empty = false;   ///< no finite point (empty or all NaN): skipped with a warning
 };
 
 /// A loop closure as accepted (the graph's edge may later move: keyframe retirement folds it).

@@ -159,8 +159,9 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
                                                    " % of its points fall in the map (below lidar_odometry.min_overlap)"
                                                    "; its pose is kept, its points stay out of the odometry's map";
                                              }
-                                             // As Pipeline::process: an empty scan is no keyframe.
-                                             l.keyframe_candidate = !l.scan.empty() && candidates.is_keyframe(l.odom);
+                                             // As Pipeline::process: a scan without a finite point is no keyframe.
+                                             l.keyframe_candidate =
+                                                 has_finite_point(l.scan) && candidates.is_keyframe(l.odom);
                                              if (l.keyframe_candidate) candidates.accept(l.odom);
                                              return l;
                                            }) &
