@@ -231,6 +231,15 @@ TEST(SceneLoader, ARecordingThatWouldFillTheDiskIsRefused) {
   EXPECT_NO_THROW(parse_scene(replace(kRoom, "waypoints:", "laps: 100\n  waypoints:"), "test.yaml", "."));
 }
 
+TEST(SceneLoader, ASceneBeyondTheBoundsOfABuildingIsRefused) {
+  // A slab vertex at 1e12 m made a 4e13-pixel drawing.
+  const std::string far = replace(kRoom, "[10,0],[10,8]", "[1e12,0],[1e12,8]");
+  EXPECT_THAT(error_of(far), HasSubstr("test.yaml:" + std::to_string(line_of(far, "slab:")) + ": levels[0].slab:"));
+  EXPECT_THAT(error_of(far), HasSubstr("is not a coordinate within 1e7 m"));
+  EXPECT_THAT(error_of(replace(kRoom, "[10,0],[10,8]", "[20000,0],[20000,8]")), HasSubstr("more than 10 km"));
+  EXPECT_THAT(error_of(replace(kRoom, "to: [10, 0]", "to: [50000, 0]")), HasSubstr("walls[0].to: the scene spans"));
+}
+
 TEST(SceneLoader, MissingFileAndVoxelMapFile) {
   try {
     load_scene("/nonexistent/scene.yaml");

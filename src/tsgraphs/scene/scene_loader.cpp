@@ -36,6 +36,11 @@ constexpr double kMaxPersonSize = 5.0;    // m, height or radius
 // Bounds of the recording (and kMaxLaps, kMaxSequenceScans): LiDARs sweep at 5-20 Hz,
 // platforms indoors walk or drive at a few m/s; beyond these a value is a typo.
 constexpr double kMaxRateHz = 1000.0;
+// Bounds of a building: no slab or wall reaches beyond kMaxSceneCoordinate (UTM northings
+// stay below 1e7 m), and together they span at most kMaxSceneExtent (no building is 10 km
+// across); drawings and rasters of the scene are sized by its extent.
+constexpr double kMaxSceneCoordinate = 1e7;
+constexpr double kMaxSceneExtent = 1e4;
 constexpr double kMaxPlatformSpeed = 30.0;  // m/s, a car
 
 class SceneParser {
@@ -83,6 +88,19 @@ class SceneParser {
         if (m.has(key)) throw m.error(key, what);
       throw m.error_here(what);
     }
+  }
+
+  // Grows the scene's box by `points` (of `key` in `m`) and refuses a coordinate or a box
+  // beyond the bounds of a building.
+  void check_extent(const YamlMap& m, const std::string& key, const Polygon2& points) {
+    for (const Vec2& p : points) {
+      if (!(p.cwiseAbs().maxCoeff() <= kMaxSceneCoordinate))
+        throw m.error(key, fmt_point(p) + " is not a coordinate within 1e7 m");
+      lo_ = lo_.cwiseMin(p);
+      hi_ = hi_.cwiseMax(p);
+    }
+    if ((hi_ - lo_).maxCoeff() > kMaxSceneExtent)
+      throw m.error(key, "the scene spans " + fmt_point(hi_ - lo_) + " m: more than 10 km, no building");
   }
 
   static void require_positive(const YamlMap& m, const std::string& key, double v) {
@@ -263,6 +281,7 @@ class SceneParser {
       require_positive(m, "ceiling", l.ceiling);
       if (!m.has("slab")) throw m.error_here("level '" + l.name + "' has no slab (the outline of its floor)");
       l.slab = simple_polygon(m, "slab");
+      check_extent(m, "slab", l.slab);
       if (m.has("voids")) {
         const YAML::Node vs = m.raw("voids");
         if (!vs.IsSequence()) throw m.error("voids", "expected a list of polygons");
@@ -281,6 +300,8 @@ class SceneParser {
     w.level = level_index(m, "level");
     w.from = m.vec2("from");
     w.to = m.vec2("to");
+    check_extent(m, "from", {w.from});
+    check_extent(m, "to", {w.to});
     const double length = (w.to - w.from).norm();
     if (length < 1e-6) throw m.error("to", "zero-length wall: from and to are the same point " + fmt_point(w.from));
     w.thickness = m.get<double>("thickness", 0.2);
@@ -611,6 +632,8 @@ class SceneParser {
   const YamlMap& root_;
   std::string base_dir_;
   Scene scene_;
+  Vec2 lo_ = Vec2::Constant(std::numeric_limits<double>::infinity());  // the slabs' and walls' box so far
+  Vec2 hi_ = -Vec2::Constant(std::numeric_limits<double>::infinity());
 };
 
 }  // namespace
