@@ -5,7 +5,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "test_support.hpp"
@@ -200,6 +203,69 @@ TEST_F(SceneGraphFile, MissingKeysAndWrongTypesAreNamed) {
   }
 }
 
+// Positions no building has (1e308 made eval divide by zero drawing the bird's-eye) are refused
+// where they are read, named by their path; a UTM-sized position is still a position.
+TEST_F(SceneGraphFile, CoordinatesBeyondAnyBuildingAreNamed) {
+  const nlohmann::json good = nlohmann::json::parse(format_scene_graph(sample_graph()));
+  struct Case {
+    const char* pointer;
+    double value;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {"/rooms/0/rect/center/0", 1e308, "'rooms[0].rect.center[0]' is 1e+308: not a coordinate within 1e8 m"},
+      {"/rooms/1/rect/size/1", 1e300, "'rooms[1].rect.size[1]' is 1e+300"},
+      {"/planes/0/segment/0/0", -1e9, "'planes[0].segment[0][0]' is -1e+09"},
+      {"/planes/0/d", 1e308, "'planes[0].d' is 1e+308"},
+      {"/traversable_nodes/0/position/2", 1e308, "'traversable_nodes[0].position[2]'"},
+      {"/keyframes/1/pose/t/0", -1e308, "'keyframes[1].pose.t[0]'"},
+      {"/levels/1", 1e308, "'levels[1]'"},
+      {"/room_nodes/0/center/1", 1e308, "'room_nodes[0].center[1]'"},
+  };
+  for (const Case& c : cases) {
+    nlohmann::json bad = good;
+    bad[nlohmann::json::json_pointer(c.pointer)] = c.value;
+    const std::string path = write_file("scene_graph.json", bad.dump(1));
+    const std::string msg = input_error_of([&] { read_scene_graph(path); });
+    EXPECT_THAT(msg, StartsWith(path + ": ")) << c.pointer;
+    EXPECT_THAT(msg, HasSubstr(c.says));
+  }
+  nlohmann::json utm = good;
+  utm[nlohmann::json::json_pointer("/keyframes/1/pose/t/1")] = 5.8e6;  // a UTM northing
+  EXPECT_EQ(read_scene_graph(write_file("scene_graph.json", utm.dump(1))).keyframes[1].pose.t.y(), 5.8e6);
+}
+
+// A number beyond a double (nlohmann::json throws out_of_range, not a parse error) names its line.
+TEST_F(SceneGraphFile, NumbersBeyondADoubleNameTheLine) {
+  const std::string good = format_scene_graph(sample_graph());
+  const std::size_t at = good.find("1.620951824322115");
+  ASSERT_NE(at, std::string::npos);
+  const int line = 1 + static_cast<int>(std::count(good.begin(), good.begin() + static_cast<long>(at), '\n'));
+  const std::string path = write_file("scene_graph.json", replaced(good, "1.620951824322115", "1e400"));
+  EXPECT_EQ(input_error_of([&] { read_scene_graph(path); }),
+            path + ":" + std::to_string(line) + ": number out of the range of a double: '1e400'");
+  // A string holding digits is no number: the line is the number's.
+  const std::string quoted = write_file("quoted.json", "{\"frame\": \"9e999\",\n \"keyframes\": [-2e400]}");
+  EXPECT_THAT(input_error_of([&] { read_scene_graph(quoted); }), StartsWith(quoted + ":2: number out of the range"));
+}
+
+// Each file of the run folder that is a folder says so (it was read as empty, or as a
+// missing file).
+TEST_F(SceneGraphFile, FilesThatAreFoldersAreNamed) {
+  for (const char* name : {"scene_graph.json", "rooms_events.jsonl", "timings.csv", "run_info.json"}) {
+    const std::filesystem::path folder = dir_ / name;
+    std::filesystem::create_directories(folder);
+    const std::string msg = input_error_of([&] {
+      const std::string f = folder.string();
+      if (f.find("scene_graph") != std::string::npos) read_scene_graph(f);
+      if (f.find("rooms_events") != std::string::npos) read_room_events(f);
+      if (f.find("timings") != std::string::npos) read_timings(f);
+      if (f.find("run_info") != std::string::npos) read_run_summary(f);
+    });
+    EXPECT_EQ(msg, folder.string() + ": is a folder, not a file");
+  }
+}
+
 TEST_F(SceneGraphFile, SyntaxErrorsNameTheLine) {
   const std::string path = write_file("scene_graph.json", "{\n \"keyframes\": [],\n \"planes\": [,\n}\n");
   EXPECT_THAT(input_error_of([&] { read_scene_graph(path); }), StartsWith(path + ":3: malformed JSON"));
@@ -296,6 +362,15 @@ TEST_F(RoomEventsFile, MalformedLinesNameTheFileAndLine) {
     EXPECT_THAT(msg, StartsWith(path + ":3: "));
     EXPECT_THAT(msg, HasSubstr(c.says));
   }
+  // A coordinate beyond any building and a number beyond a double, on the third line.
+  const std::string huge = write_file(
+      "rooms_events.jsonl", good + "\n\n" + replaced(good, "\"center\":[2.0,2.0]", "\"center\":[2.0,1e308]") + "\n");
+  EXPECT_THAT(input_error_of([&] { read_room_events(huge); }),
+              StartsWith(huge + ":3: 'center[1]' is 1e+308: not a coordinate within 1e8 m"));
+  const std::string overflow = write_file(
+      "rooms_events.jsonl", good + "\n\n" + replaced(good, "\"center\":[2.0,2.0]", "\"center\":[2.0,1e400]") + "\n");
+  EXPECT_THAT(input_error_of([&] { read_room_events(overflow); }),
+              StartsWith(overflow + ":3: number out of the range of a double"));
   const std::string missing = (dir_ / "none.jsonl").string();
   EXPECT_THAT(input_error_of([&] { read_room_events(missing); }), StartsWith(missing + ": "));
 }
@@ -441,6 +516,9 @@ TEST_F(RunSummaryFile, MissingKeysAndWrongTypesAreNamed) {
   EXPECT_THAT(input_error_of([&] { read_run_summary(path); }), HasSubstr("'num_loops' must be an integer"));
   path = write_file("run_info.json", "[]");
   EXPECT_THAT(input_error_of([&] { read_run_summary(path); }), HasSubstr("expected a JSON object"));
+  path = write_file("run_info.json", replaced(good, "\"rtf\": 0.0", "\"rtf\": 1e400"));
+  EXPECT_THAT(input_error_of([&] { read_run_summary(path); }), StartsWith(path + ":"));
+  EXPECT_THAT(input_error_of([&] { read_run_summary(path); }), HasSubstr(": number out of the range of a double: '1e400'"));
   // Extra keys: a newer writer's.
   path = write_file("run_info.json", replaced(good, "{", "{\"gpu\": \"none\", "));
   EXPECT_EQ(read_run_summary(path).num_scans, 0u);

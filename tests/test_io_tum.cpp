@@ -192,3 +192,35 @@ TEST_F(Tum, MissingFileNamesTheFile) {
     EXPECT_THAT(e.what(), StartsWith(path + ": "));
   }
 }
+
+// A number beyond a double names its field (a stream read it as "not 8 numbers").
+TEST_F(Tum, NumbersBeyondADoubleNameTheirField) {
+  EXPECT_EQ(error_reading("1 0 0 0 0 0 0 1\n2 1e400 0 0 0 0 0 1\n"),
+            bad_path() + ":2: x is 1e400: out of the range of a double");
+  EXPECT_EQ(error_reading("-1e999 0 0 0 0 0 0 1\n"), bad_path() + ":1: t is -1e999: out of the range of a double");
+}
+
+// Positions no place on Earth has (1e308 made eval divide by zero drawing the bird's-eye) are
+// refused; UTM-sized positions, Unix stamps and a '+' sign are read.
+TEST_F(Tum, PositionsBeyondAnyPlaceAreRefused) {
+  EXPECT_EQ(error_reading("1 0 0 0 0 0 0 1\n2 0 1e308 0 0 0 0 1\n"),
+            bad_path() + ":2: y is 1e308: not a coordinate within 1e8 m");
+  EXPECT_EQ(error_reading("1 0 0 -2e8 0 0 0 1\n"), bad_path() + ":1: z is -2e8: not a coordinate within 1e8 m");
+  const std::vector<StampedPose> utm =
+      read_tum(write_file("poses.txt", "1.7e9 4.5e5 5.8e6 +12.5 0 0 0 1\n"));
+  ASSERT_EQ(utm.size(), 1u);
+  EXPECT_EQ(utm[0].t, 1.7e9);
+  EXPECT_EQ(utm[0].pose.translation(), Eigen::Vector3d(4.5e5, 5.8e6, 12.5));
+}
+
+// A folder where the file should be says so (a stream opened it and read no poses).
+TEST_F(Tum, AFolderIsNotAFile) {
+  std::filesystem::create_directories(dir_ / "poses.txt");
+  const std::string path = (dir_ / "poses.txt").string();
+  try {
+    read_tum(path);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": is a folder, not a file");
+  }
+}

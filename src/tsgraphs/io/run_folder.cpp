@@ -6,6 +6,8 @@
 #include <cstdarg>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -15,6 +17,7 @@
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/core/text_file.hpp"
+#include "tsgraphs/io/coordinate_limit.hpp"
 
 namespace tsgraphs::io {
 namespace {
@@ -30,10 +33,34 @@ struct FieldError : std::runtime_error {
 std::string quoted(const std::string& name) { return "'" + name + "'"; }
 
 std::string read_text(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw input_error(path, 0, "is a folder, not a file");
   return read_text_file(path, "cannot open (is this a run folder written by `tsgraphs run`?)");
 }
 
-// The document in `text`; a syntax error names the line it is on.
+// The line (from 1) of the first JSON number in `text` too large for a double, 0 for none.
+// nlohmann::json reports such an overflow without its place.
+int line_of_overflowing_number(const std::string& text) {
+  int line = 1;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+    } else if (c == '"') {  // skip a string, escapes included
+      for (++i; i < text.size() && text[i] != '"'; ++i) i += text[i] == '\\' ? 1 : 0;
+    } else if (c == '-' || (c >= '0' && c <= '9')) {
+      const char* start = text.c_str() + i;
+      char* end = nullptr;
+      const double v = std::strtod(start, &end);
+      if (end == start) continue;
+      if (!std::isfinite(v)) return line;
+      i += static_cast<std::size_t>(end - start) - 1;
+    }
+  }
+  return 0;
+}
+
+// The document in `text`; a syntax error or a number beyond a double names the line it is on.
 json parse_json(const std::string& text, const std::string& path, int line = 0) {
   try {
     return json::parse(text);
@@ -44,6 +71,12 @@ json parse_json(const std::string& text, const std::string& path, int line = 0) 
       for (std::size_t i = 0; i < end; ++i) line += text[i] == '\n' ? 1 : 0;
     }
     throw input_error(path, line, std::string("malformed JSON: ") + e.what());
+  } catch (const json::out_of_range& e) {  // 406: a number such as 1e400
+    if (line == 0) line = line_of_overflowing_number(text);
+    const std::string what = e.what();
+    const std::size_t quote = what.find('\'');
+    throw input_error(path, line,
+                      "number out of the range of a double" + (quote == std::string::npos ? "" : ": " + what.substr(quote)));
   }
 }
 
@@ -75,7 +108,20 @@ const json& array(const json& v, const std::string& name) {
 
 double number(const json& v, const std::string& name) {
   if (!v.is_number()) throw FieldError(quoted(name) + " must be a number");
-  return v.get<double>();
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) throw FieldError(quoted(name) + " must be finite");
+  return x;
+}
+
+// A number in metres of the map (or a unit vector's or quaternion's component), bounded.
+double coordinate(const json& v, const std::string& name) {
+  const double x = number(v, name);
+  if (std::abs(x) > kMaxCoordinate) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%g", x);
+    throw FieldError(quoted(name) + " is " + text + ": not a coordinate within 1e8 m");
+  }
+  return x;
 }
 
 template <class Int>
@@ -115,7 +161,7 @@ Eigen::Matrix<double, N, 1> vector_of(const json& v, const std::string& name) {
   Eigen::Matrix<double, N, 1> out;
   for (int i = 0; i < N; ++i) {
     if (!v[i].is_number()) throw FieldError(quoted(name) + " must be " + kShape[N]);
-    out[i] = v[i].get<double>();
+    out[i] = coordinate(v[i], item(name, static_cast<std::size_t>(i)));
   }
   return out;
 }
@@ -211,7 +257,7 @@ SceneGraph::Plane plane_of(const json& p, const std::string& name) {
   out.id = integer_at<int>(p, "id", name);
   out.kind = string_at(p, "kind", name);
   out.n = vector_at<3>(p, "n", name);
-  out.d = number_at(p, "d", name);
+  out.d = coordinate(member(p, "d", name), child(name, "d"));
   out.keyframes = ints(member(p, "keyframes", name), child(name, "keyframes"));
   if (const json* v = optional_member(p, "num_points")) out.num_points = integer<std::size_t>(*v, child(name, "num_points"));
   if (const json* v = optional_member(p, "centroid")) out.centroid = vector_of<3>(*v, child(name, "centroid"));
@@ -497,7 +543,7 @@ SceneGraph read_scene_graph(const std::string& path) {
     });
     if (const json* levels = optional_member(doc, "levels")) {
       for (std::size_t i = 0; i < array(*levels, "levels").size(); ++i)
-        g.levels.push_back(number((*levels)[i], item("levels", i)));
+        g.levels.push_back(coordinate((*levels)[i], item("levels", i)));
     }
     for_each_object(doc, "edges", "", true, [&](const json& e, const std::string& name) { add_edge(e, name, &g); });
     for_each_object(doc, "loop_closures", "", false, [&](const json& l, const std::string& name) {

@@ -3,7 +3,9 @@
 /// and report read back, as plain structs, each with the one formatter and the one reader of
 /// its file. Readers throw InputError naming the file, the line (text files) and the key;
 /// unknown JSON keys and unknown CSV columns are ignored, so an older reader takes a newer
-/// folder.
+/// folder. Every number must be finite and every position, size and plane offset of
+/// scene_graph.json and rooms_events.jsonl within kMaxCoordinate (coordinate_limit.hpp); a
+/// number beyond a double names its line, a folder in a file's place says so.
 #include <array>
 #include <cstddef>
 #include <optional>

@@ -14,8 +14,9 @@ struct StampedPose {
 
 /// TUM text for the poses (full double precision, so files round-trip).
 std::string format_tum(const std::vector<StampedPose>& poses);
-/// Reads a TUM file; '#' lines and blank lines are skipped; a malformed line or a
-/// non-finite value is an InputError naming the file and line.
+/// Reads a TUM file; '#' lines and blank lines are skipped; a malformed line, a non-finite
+/// value, a number beyond a double or a position beyond kMaxCoordinate (coordinate_limit.hpp)
+/// is an InputError naming the file, line and field; so is a folder in the file's place.
 std::vector<StampedPose> read_tum(const std::string& path);
 
 }  // namespace tsgraphs::io
