@@ -215,9 +215,22 @@ eval::Metrics evaluate(const std::string& run_dir, const std::string& seq_dir, b
   options.run_dir = run_dir;
   options.seq_dir = seq_dir;
   const eval::Metrics metrics = eval::evaluate_run(options);
-  io::write_file_atomic((fs::path(run_dir) / pipeline::run_files::kMetrics).string(), eval::metrics_json(metrics));
+  const std::string metrics_text = eval::metrics_json(metrics);
   // The report gets the metrics table (and the ground truth when the sequence is given).
-  report::write_run_report(run_dir, seq_dir, fs::weakly_canonical(run_dir).filename().string());
+  const report::RunReportFiles report =
+      report::run_report_files(run_dir, seq_dir, fs::weakly_canonical(run_dir).filename().string(), metrics_text);
+  // Everything is made before anything is written, and metrics.json is written last: a failed
+  // eval leaves the run folder as it was, an earlier metrics.json and report included.
+  const fs::path dir(run_dir);
+  const fs::path birdseye = dir / "birdseye.svg", html = dir / "report.html";
+  const fs::path metrics_file = dir / pipeline::run_files::kMetrics;
+  for (const fs::path& p : {birdseye, html, metrics_file}) {
+    std::error_code ec;
+    if (fs::is_directory(p, ec)) throw input_error(p.string(), 0, "is a folder; eval writes a file there");
+  }
+  io::write_file_atomic(birdseye.string(), report.birdseye_svg);
+  io::write_file_atomic(html.string(), report.report_html);
+  io::write_file_atomic(metrics_file.string(), metrics_text);
   if (print) std::printf("%s", eval::metrics_table(metrics).c_str());
   if (!quiet) std::fprintf(stderr, "eval: wrote %s\n", (fs::path(run_dir) / pipeline::run_files::kMetrics).c_str());
   return metrics;

@@ -168,3 +168,40 @@ TEST_F(EvalCli, AFileThatIsAFolderIsNamed) {
     fs::rename(saved, file);
   }
 }
+
+// metrics.json is written last, after the report: a report that cannot be written left a new
+// metrics.json beside the old report.
+TEST_F(EvalCli, AReportThatCannotBeWrittenLeavesNoMetrics) {
+  const std::string birdseye = read_file(run_ / "birdseye.svg");
+  fs::remove(run_ / "report.html");
+  fs::create_directories(run_ / "report.html" / "inside");
+  expect_refused({(run_ / "report.html").string() + ": is a folder"});
+  EXPECT_EQ(read_file(run_ / "birdseye.svg"), birdseye);
+}
+
+// A failed eval leaves the run folder as it was: an earlier metrics.json and its report stay
+// (they describe the run as it was evaluated then). A malformed earlier one is replaced.
+TEST_F(EvalCli, AFailedEvalKeepsTheEarlierMetricsAndReport) {
+  std::string err;
+  ASSERT_EQ(cli("-q eval " + run_.string() + " --seq " + seq_.string(), &err), 0) << err;
+  const std::string metrics = read_file(run_ / "metrics.json"), html = read_file(run_ / "report.html"),
+                    birdseye = read_file(run_ / "birdseye.svg");
+  set_in_scene_graph("/rooms/0/rect/center/0", "1e308");
+  EXPECT_EQ(cli("-q eval " + run_.string() + " --seq " + seq_.string(), &err), 2) << err;
+  EXPECT_EQ(read_file(run_ / "metrics.json"), metrics);
+  EXPECT_EQ(read_file(run_ / "report.html"), html);
+  EXPECT_EQ(read_file(run_ / "birdseye.svg"), birdseye);
+  fs::copy_file(base_ / "run" / "scene_graph.json", run_ / "scene_graph.json", fs::copy_options::overwrite_existing);
+
+  // Failing after the figures are made (the report cannot be written): the earlier file stays.
+  std::ofstream(run_ / "metrics.json") << "{\"written\": \"earlier\"}\n";
+  fs::remove(run_ / "report.html");
+  fs::create_directories(run_ / "report.html" / "inside");
+  EXPECT_EQ(cli("-q eval " + run_.string() + " --seq " + seq_.string(), &err), 2) << err;
+  EXPECT_EQ(read_file(run_ / "metrics.json"), "{\"written\": \"earlier\"}\n");
+  fs::remove_all(run_ / "report.html");
+
+  std::ofstream(run_ / "metrics.json") << "{ half a file";
+  ASSERT_EQ(cli("-q eval " + run_.string() + " --seq " + seq_.string(), &err), 0) << err;
+  EXPECT_EQ(read_file(run_ / "metrics.json"), metrics);
+}

@@ -181,12 +181,19 @@ std::string method_table_html(const std::vector<eval::MethodResult>& results,
   return out + "</tbody>\n</table>\n";
 }
 
-void write_run_report(const std::string& run_dir, const std::string& seq_dir, const std::string& title) {
-  RunView run = read_run_view(run_dir, seq_dir);
+RunReportFiles run_report_files(const std::string& run_dir, const std::string& seq_dir, const std::string& title,
+                                const std::optional<std::string>& metrics_json) {
+  RunView run = read_run_view(run_dir, seq_dir, !metrics_json.has_value());
+  if (metrics_json) run.metrics_json = *metrics_json;
   run.label = title;
+  return {birdseye_svg(run, main_level(run)), run_report_html(run, title)};
+}
+
+void write_run_report(const std::string& run_dir, const std::string& seq_dir, const std::string& title) {
+  const RunReportFiles files = run_report_files(run_dir, seq_dir, title);
   const std::filesystem::path dir(run_dir);
-  io::write_file_atomic((dir / "birdseye.svg").string(), birdseye_svg(run, main_level(run)));
-  io::write_file_atomic((dir / "report.html").string(), run_report_html(run, title));
+  io::write_file_atomic((dir / "birdseye.svg").string(), files.birdseye_svg);
+  io::write_file_atomic((dir / "report.html").string(), files.report_html);
 }
 
 }  // namespace tsgraphs::report

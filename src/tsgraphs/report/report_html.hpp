@@ -1,6 +1,7 @@
 #pragma once
 /// HTML pages of runs: one self-contained page (inline CSS and SVG, no script, no external
 /// URL, UTF-8) per run, and the demo's page comparing runs scene by scene.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,18 @@ std::string html_escape(const std::string& text);
 /// The cells of eval::markdown_table as an HTML <table class="metrics">.
 std::string method_table_html(const std::vector<eval::MethodResult>& results,
                               const std::vector<eval::TableColumn>& columns);
+
+/// The two files of a run's report, as text.
+struct RunReportFiles {
+  std::string birdseye_svg;  ///< the main level
+  std::string report_html;
+};
+
+/// The report write_run_report writes, made but written nowhere. `metrics_json`, when given,
+/// stands for RUN/metrics.json (an earlier one is not read): eval makes the report of the
+/// metrics it has yet to write.
+RunReportFiles run_report_files(const std::string& run_dir, const std::string& seq_dir, const std::string& title,
+                                const std::optional<std::string>& metrics_json = std::nullopt);
 
 /// Writes RUN_DIR/report.html (run_report_html) and RUN_DIR/birdseye.svg (the main level)
 /// from the run's files and, when `seq_dir` is not empty, the sequence's ground truth; `title`

@@ -70,7 +70,7 @@ void take_timings(const io::Timings& timings, RunView* run) {
 
 }  // namespace
 
-RunView read_run_view(const std::string& run_dir, const std::string& seq_dir) {
+RunView read_run_view(const std::string& run_dir, const std::string& seq_dir, bool read_metrics) {
   if (!fs::is_directory(run_dir)) throw input_error(run_dir, 0, "not a run folder");
   const fs::path dir(run_dir);
   RunView run;
@@ -92,7 +92,7 @@ RunView read_run_view(const std::string& run_dir, const std::string& seq_dir) {
     }
   }
   const fs::path metrics = dir / io::run_files::kMetrics;
-  if (fs::exists(metrics)) {
+  if (read_metrics && fs::exists(metrics)) {
     run.metrics_json = read_text(metrics.string());
     parse_json(run.metrics_json, metrics.string());  // refuse a malformed one here, not in the page
   }

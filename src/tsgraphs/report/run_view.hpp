@@ -72,8 +72,9 @@ struct RunView {
 /// Reads `run_dir` (scene_graph.json, trajectory.txt and timings.csv required;
 /// rooms_events.jsonl and metrics.json optional) and, when `seq_dir` is not empty, the
 /// sequence folder it ran on. A missing required file or a malformed file is an InputError
-/// naming the file (and the line, for text files).
-RunView read_run_view(const std::string& run_dir, const std::string& seq_dir = "");
+/// naming the file (and the line, for text files). `read_metrics` false leaves metrics.json
+/// unread (eval, about to replace it).
+RunView read_run_view(const std::string& run_dir, const std::string& seq_dir = "", bool read_metrics = true);
 
 /// A point is on a level when it is at most this far below the level's floor (a floor
 /// point's noise, a wall plane starting under the slab)...
