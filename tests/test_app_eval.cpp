@@ -158,7 +158,8 @@ TEST_F(EvalCli, ANumberBeyondADoubleIsNamedWithItsLine) {
 // A folder where a file should be was read as an empty file ("0 poses") or as a missing one.
 TEST_F(EvalCli, AFileThatIsAFolderIsNamed) {
   for (const fs::path& file : {run_ / "scene_graph.json", run_ / "trajectory.txt", run_ / "odometry.txt",
-                               run_ / "rooms_events.jsonl", seq_ / "groundtruth.txt"}) {
+                               run_ / "rooms_events.jsonl", seq_ / "groundtruth.txt", seq_ / "times.txt",
+                               seq_ / "laps.txt"}) {
     SCOPED_TRACE(file.string());
     const fs::path saved = dir_ / "saved";
     fs::rename(file, saved);
@@ -167,6 +168,15 @@ TEST_F(EvalCli, AFileThatIsAFolderIsNamed) {
     fs::remove_all(file);
     fs::rename(saved, file);
   }
+  fs::create_directories(seq_ / "rooms_gt.json" / "inside");  // optional, so absent until now
+  expect_refused({(seq_ / "rooms_gt.json").string() + ": is a folder, not a file"});
+}
+
+// A true room at 1e308 was blamed on the sequence folder ("ground truth: polygon too large").
+TEST_F(EvalCli, ATrueRoomNoBuildingHasIsNamed) {
+  std::ofstream(seq_ / "rooms_gt.json")
+      << R"([{"name": "hall", "level": "L0", "elevation": 0, "polygon": [[0, 0], [1e308, 0], [6, 5]]}])";
+  expect_refused({(seq_ / "rooms_gt.json").string() + ": room 0 (hall): polygon vertex 1 is not a coordinate within 1e8 m"});
 }
 
 // metrics.json is written last, after the report: a report that cannot be written left a new

@@ -92,6 +92,8 @@ std::vector<Pose3> read_kitti_poses(const std::string& path) {
 }
 
 std::vector<double> read_times(const std::string& path) {
+  std::error_code ec;  // a stream opens a folder and reads it as empty
+  if (std::filesystem::is_directory(path, ec)) throw input_error(path, 0, "is a folder, not a file");
   std::ifstream in(path);
   if (!in) throw input_error(path, 0, "cannot open file");
   std::vector<double> values;

@@ -11,6 +11,7 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/core/text_file.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
+#include "tsgraphs/io/coordinate_limit.hpp"
 #include "tsgraphs/io/kitti.hpp"
 
 namespace fs = std::filesystem;
@@ -144,6 +145,7 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
   }
   if (fs::exists(d / "rooms_gt.json")) {
     const std::string path = (d / "rooms_gt.json").string();
+    if (fs::is_directory(path)) throw input_error(path, 0, "is a folder, not a file");
     info_.has_rooms = true;
     try {
       const nlohmann::json rooms = nlohmann::json::parse(read_all(path));
@@ -154,7 +156,13 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
         room.name = r.at("name").get<std::string>();
         room.level = r.at("level").get<std::string>();
         room.elevation = r.value("elevation", 0.0);
-        for (const auto& p : r.at("polygon")) room.polygon.emplace_back(p.at(0).get<double>(), p.at(1).get<double>());
+        for (const auto& p : r.at("polygon")) {
+          const Vec2 v(p.at(0).get<double>(), p.at(1).get<double>());
+          if (!v.allFinite() || v.cwiseAbs().maxCoeff() > kMaxCoordinate)
+            throw input_error(path, 0, "room " + std::to_string(i) + " (" + room.name + "): polygon vertex " +
+                                           std::to_string(room.polygon.size()) + " is not a coordinate within 1e8 m");
+          room.polygon.push_back(v);
+        }
         if (room.polygon.size() < 3) throw input_error(path, 0, "room " + std::to_string(i) + ": polygon needs 3 points");
         info_.rooms.push_back(std::move(room));
       }
