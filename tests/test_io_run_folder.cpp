@@ -459,6 +459,8 @@ TEST_F(TimingsFile, MalformedLinesNameTheLineAndColumn) {
       {",15.869,", ",15.8x9,", 2, "malformed frontend_ms in a scan row"},
       {",6534,", ",-6534,", 2, "malformed num_points in a scan row"},
       {",4547,5,740,", ",4547,5,,", 2, "malformed ground_fn in a scan row"},
+      {",4547,5,740,", ",9000000000000000000,5,740,", 2, "ground_tp in a scan row must be -1 (no labels) or a count"},
+      {",4547,5,740,", ",4547,-5,740,", 2, "ground_fp in a scan row must be -1"},
       {",0.000453,1,", ",0.000453,2,", 4, "full must be 0 or 1"},
       {",19,58,3,loop", ",19,5.8,3,loop", 4, "malformed n_factors in an optimization row"},
       {"optimization,0,", "optimisation,0,", 4, "expected a scan or optimization row, got 'optimisation'"},

@@ -332,6 +332,9 @@ constexpr const char* kTimingsHeader =
     "kind,index,stamp,keyframe,num_points,prefilter_ms,walls_ms,loop_ms,frontend_ms,"
     "optimization_s,full,n_variables,n_factors,iterations,reason,"
     "ground_ms,ground_nodes,ground_tp,ground_fp,ground_fn,rooms_ms";
+// The most points one scan can hold (a 128-beam sensor gives a few million): bounds the ground
+// counts of timings.csv.
+constexpr long kMaxScanPoints = 1'000'000'000;
 // Columns added later: read when present (older run folders lack them).
 constexpr const char* kActiveKeyframes = "active_keyframes";
 
@@ -691,6 +694,11 @@ Timings read_timings(const std::string& path) {
         whole(kTp, &s.ground_tp);
         whole(kFp, &s.ground_fp);
         whole(kFn, &s.ground_fn);
+        // eval sums these over the scans: a corrupt count must not overflow the sum.
+        for (const auto& [c, v] : {std::pair{kTp, s.ground_tp}, {kFp, s.ground_fp}, {kFn, s.ground_fn}}) {
+          if (v < -1 || v > kMaxScanPoints)
+            throw FieldError(names[c] + " in a scan row must be -1 (no labels) or a count of a scan's points");
+        }
         s.rooms_ms = real(kRoomsMs);
         t.scans.push_back(std::move(s));
       } else if (kind == "optimization") {
