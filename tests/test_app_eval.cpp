@@ -215,3 +215,19 @@ TEST_F(EvalCli, AFailedEvalKeepsTheEarlierMetricsAndReport) {
   ASSERT_EQ(cli("-q eval " + run_.string() + " --seq " + seq_.string(), &err), 0) << err;
   EXPECT_EQ(read_file(run_ / "metrics.json"), metrics);
 }
+
+// A loop closure's keyframe whose scan lies beyond the sequence was read out of bounds
+// (SIGSEGV): only the first keyframe's scan was checked.
+TEST_F(EvalCli, AKeyframeScanBeyondTheSequenceIsNamed) {
+  nlohmann::json g = nlohmann::json::parse(read_file(run_ / "scene_graph.json"));
+  ASSERT_GE(g["keyframes"].size(), 2u);
+  g["keyframes"][1]["scan_index"] = 1000000000;
+  g["loop_closures"].push_back({{"from", 0},
+                                {"to", 1},
+                                {"fitness", 0.01},
+                                {"measurement", {{"t", {0, 0, 0}}, {"q", {0, 0, 0, 1}}}},
+                                {"proposer", "distance"}});
+  std::ofstream(run_ / "scene_graph.json") << g.dump(1);
+  expect_refused({(run_ / "scene_graph.json").string() +
+                  ": 'keyframes[1].scan_index' is 1000000000: beyond the sequence's "});
+}

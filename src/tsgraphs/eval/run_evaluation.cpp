@@ -296,8 +296,13 @@ Metrics evaluate_run(const EvalOptions& options) {
   const std::string scene_file = seq.scene_path();
   const std::optional<scene::Scene> scene =
       scene_file.empty() ? std::nullopt : std::optional<scene::Scene>(scene::load_scene(scene_file));
-  if (!kf_scan.empty() && !si.groundtruth.empty() && kf_scan[0] >= si.groundtruth.size())
-    throw input_error(graph_file, 0, "keyframe scan index beyond the sequence");
+  // Every keyframe's scan is indexed below (its true pose, its scan): all checked here.
+  for (std::size_t k = 0; k < kf_scan.size(); ++k) {
+    if (kf_scan[k] >= si.odometry.size() || (!si.groundtruth.empty() && kf_scan[k] >= si.groundtruth.size()))
+      throw input_error(graph_file, 0,
+                        "'keyframes[" + std::to_string(k) + "].scan_index' is " + std::to_string(kf_scan[k]) +
+                            ": beyond the sequence's " + std::to_string(si.odometry.size()) + " scans");
+  }
   if (!kf_pose.empty() && !si.groundtruth.empty() && (si.has_rooms || scene)) {
     const std::vector<TruthFrameRoom> placed =
         in_truth_frame(final_rooms, level_heights, si.groundtruth[kf_scan.at(0)] * kf_pose[0].inverse());
