@@ -231,3 +231,15 @@ TEST_F(EvalCli, AKeyframeScanBeyondTheSequenceIsNamed) {
   expect_refused({(run_ / "scene_graph.json").string() +
                   ": 'keyframes[1].scan_index' is 1000000000: beyond the sequence's "});
 }
+
+// A room polygon too large to rasterise was blamed on the sequence ("ground truth: polygon too
+// large to rasterise").
+TEST_F(EvalCli, ARoomPolygonTooLargeIsBlamedOnTheRun) {
+  nlohmann::json g = nlohmann::json::parse(read_file(run_ / "scene_graph.json"));
+  ASSERT_GE(g["rooms"].size(), 1u);
+  g["rooms"][0]["polygon"] = {{0, 0}, {9e7, 0}, {9e7, 9e7}, {0, 9e7}};
+  std::ofstream(run_ / "scene_graph.json") << g.dump(1);
+  std::ofstream(seq_ / "rooms_gt.json")
+      << R"([{"name": "hall", "level": "L0", "elevation": 0, "polygon": [[0, 0], [6, 0], [6, 5], [0, 5]]}])";
+  expect_refused({(run_ / "scene_graph.json").string() + ": 'rooms[0].polygon' is too large for a room"});
+}

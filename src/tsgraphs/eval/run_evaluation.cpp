@@ -306,9 +306,16 @@ Metrics evaluate_run(const EvalOptions& options) {
   if (!kf_pose.empty() && !si.groundtruth.empty() && (si.has_rooms || scene)) {
     const std::vector<TruthFrameRoom> placed =
         in_truth_frame(final_rooms, level_heights, si.groundtruth[kf_scan.at(0)] * kf_pose[0].inverse());
+    // A room the raster would refuse is the run's fault, not the ground truth's (the catch below).
     for (std::size_t i = 0; i < placed.size(); ++i) {
       if (placed[i].rect.area() > kMaxRasterCells * kRasterCell * kRasterCell)
         throw input_error(graph_file, 0, "'rooms[" + std::to_string(i) + "].rect.size' is too large for a room");
+      if (placed[i].polygon.empty()) continue;
+      double y_min = placed[i].polygon[0].y(), y_max = y_min;
+      for (const Vec2& p : placed[i].polygon) y_min = std::min(y_min, p.y()), y_max = std::max(y_max, p.y());
+      if (area(placed[i].polygon) > kMaxRasterCells * kRasterCell * kRasterCell ||
+          (y_max - y_min) / kRasterCell + 1 > kMaxRasterCells)
+        throw input_error(graph_file, 0, "'rooms[" + std::to_string(i) + "].polygon' is too large for a room");
     }
     try {
       truth_room_figures(placed, si, scene ? &*scene : nullptr, &m);
