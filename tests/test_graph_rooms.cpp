@@ -129,7 +129,7 @@ Building building(bool with_rooms, const Eigen::Vector2d& room_offset) {
     room.center = wall_midpoint(b.graph, b.wall_ids[r]) + room_offset;
     b.room_ids.push_back(b.graph.add_room(room));
     const auto& w = b.wall_ids[r];
-    b.graph.add_room_edge({b.room_ids[r], rooms::RoomKind::room, {w[0], w[1], w[2], w[3]}, {}});
+    b.graph.add_room_edge({b.room_ids[r], RoomKind::room, {w[0], w[1], w[2], w[3]}, {}});
   }
   return b;
 }
@@ -186,10 +186,10 @@ Corridor corridor(const Eigen::Vector2d& initial, const Eigen::Vector2d& cluster
     }
   }
   RoomNode room;
-  room.kind = rooms::RoomKind::corridor;
+  room.kind = RoomKind::corridor;
   room.center = initial;
   c.room = c.graph.add_room(room);
-  c.graph.add_room_edge({c.room, rooms::RoomKind::corridor, {c.walls[0], c.walls[1]}, cluster_center});
+  c.graph.add_room_edge({c.room, RoomKind::corridor, {c.walls[0], c.walls[1]}, cluster_center});
   return c;
 }
 
@@ -356,7 +356,7 @@ TEST(GraphRooms, WrongRoomAssociationIsDownWeightedByHuber) {
     Building b = building(true);
     const auto& w = b.wall_ids[1];
     if (wrong_edge)
-      b.graph.add_room_edge({b.room_ids[0], rooms::RoomKind::room, {w[0], w[1], w[2], w[3]}, {}});
+      b.graph.add_room_edge({b.room_ids[0], RoomKind::room, {w[0], w[1], w[2], w[3]}, {}});
     GraphOptimizerConfig config;
     config.huber_room = huber_room;
     GraphOptimizer(config).optimize(b.graph, true);
@@ -388,7 +388,7 @@ TEST(GraphRooms, MergedRoomKeepsBothEdgesAndConverges) {
   duplicate.center = true_center(b, 2) + Eigen::Vector2d(0.3, 0.3);
   const int dup = b.graph.add_room(duplicate);
   const auto& w = b.wall_ids[2];
-  b.graph.add_room_edge({dup, rooms::RoomKind::room, {w[0], w[1], w[2], w[3]}, {}});
+  b.graph.add_room_edge({dup, RoomKind::room, {w[0], w[1], w[2], w[3]}, {}});
   b.graph.merge_rooms(b.room_ids[2], dup);
   const OptimizationStats stats = GraphOptimizer().optimize(b.graph, true);
   EXPECT_EQ(b.graph.rooms().size(), std::size_t(kRooms));

@@ -123,8 +123,8 @@ SituationalGraph with_rooms() {
   FloorNode floor;
   floor.level = 0;
   g.add_floor(floor);
-  g.add_room_edge({0, rooms::RoomKind::room, {3, 0, 4, 5}, {}});
-  g.add_room_edge({1, rooms::RoomKind::room, {3, 1, 4, 5}, {}});
+  g.add_room_edge({0, RoomKind::room, {3, 0, 4, 5}, {}});
+  g.add_room_edge({1, RoomKind::room, {3, 1, 4, 5}, {}});
   g.add_floor_room_edge({0, 0});
   g.add_floor_room_edge({0, 1});
   return g;
@@ -139,10 +139,10 @@ TEST(SituationalGraph, RoomAndFloorIdsAreNeverReused) {
   g.remove_room(1);
   RoomNode corridor;
   corridor.id = 0;  // ignored: the graph assigns ids
-  corridor.kind = rooms::RoomKind::corridor;
+  corridor.kind = RoomKind::corridor;
   corridor.level = 1;
   EXPECT_EQ(g.add_room(corridor), 2);
-  EXPECT_EQ(g.rooms().at(2).kind, rooms::RoomKind::corridor);
+  EXPECT_EQ(g.rooms().at(2).kind, RoomKind::corridor);
   EXPECT_EQ(g.rooms().at(2).level, 1);
   EXPECT_EQ(g.floor_of_level(0), 0);
   EXPECT_EQ(g.floor_of_level(1), -1);
@@ -155,25 +155,25 @@ TEST(SituationalGraph, RoomAndFloorIdsAreNeverReused) {
   g.remove_floor(0);
   second.level = 0;
   EXPECT_EQ(g.add_floor(second), 2);
-  EXPECT_EQ(planes_of(rooms::RoomKind::room), 4u);
-  EXPECT_EQ(planes_of(rooms::RoomKind::corridor), 2u);
+  EXPECT_EQ(planes_of(RoomKind::room), 4u);
+  EXPECT_EQ(planes_of(RoomKind::corridor), 2u);
 }
 
 TEST(SituationalGraph, RoomEdgesAreChecked) {
   SituationalGraph g = with_rooms();
-  EXPECT_THROW(g.add_room_edge({7, rooms::RoomKind::room, {3, 0, 4, 5}, {}}), std::invalid_argument);
-  EXPECT_THROW(g.add_room_edge({0, rooms::RoomKind::room, {3, 0}, {}}), std::invalid_argument);
-  EXPECT_THROW(g.add_room_edge({0, rooms::RoomKind::corridor, {3, 0, 4, 5}, {}}),
+  EXPECT_THROW(g.add_room_edge({7, RoomKind::room, {3, 0, 4, 5}, {}}), std::invalid_argument);
+  EXPECT_THROW(g.add_room_edge({0, RoomKind::room, {3, 0}, {}}), std::invalid_argument);
+  EXPECT_THROW(g.add_room_edge({0, RoomKind::corridor, {3, 0, 4, 5}, {}}),
                std::invalid_argument);
-  EXPECT_THROW(g.add_room_edge({0, rooms::RoomKind::room, {3, 0, 4, 9}, {}}), std::invalid_argument);
-  EXPECT_THROW(g.add_room_edge({0, rooms::RoomKind::room, {3, 0, 4, 3}, {}}), std::invalid_argument);
+  EXPECT_THROW(g.add_room_edge({0, RoomKind::room, {3, 0, 4, 9}, {}}), std::invalid_argument);
+  EXPECT_THROW(g.add_room_edge({0, RoomKind::room, {3, 0, 4, 3}, {}}), std::invalid_argument);
   EXPECT_THROW(g.add_floor_room_edge({3, 0}), std::invalid_argument);
   EXPECT_THROW(g.add_floor_room_edge({0, 3}), std::invalid_argument);
   g.add_floor_room_edge({0, 1});  // already there: not repeated
   EXPECT_EQ(g.floor_room_edges().size(), 2u);
-  g.add_room_edge({1, rooms::RoomKind::corridor, {4, 5}, {2.0, 2.5}});
+  g.add_room_edge({1, RoomKind::corridor, {4, 5}, {2.0, 2.5}});
   ASSERT_EQ(g.room_edges().size(), 3u);
-  EXPECT_EQ(g.room_edges()[2].kind, rooms::RoomKind::corridor);
+  EXPECT_EQ(g.room_edges()[2].kind, RoomKind::corridor);
   EXPECT_DOUBLE_EQ(g.room_edges()[2].cluster_center.y(), 2.5);
 }
 

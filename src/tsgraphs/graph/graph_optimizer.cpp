@@ -479,7 +479,7 @@ OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {
     std::vector<double*> walls;
     for (int id : e.planes) walls.push_back(graph_problem.plane(id, plane_free(id)));
     double* center = graph_problem.room(e.room, true);
-    if (e.kind == rooms::RoomKind::room)
+    if (e.kind == RoomKind::room)
       problem.AddResidualBlock(RoomResidual::create(config_.room_sigma), graph_problem.room_loss(),
                                center, walls[0], walls[1], walls[2], walls[3]);
     else

@@ -9,7 +9,7 @@
 
 #include "tsgraphs/core/plane.hpp"
 #include "tsgraphs/core/pose.hpp"
-#include "tsgraphs/rooms/room.hpp"
+#include "tsgraphs/core/room_kind.hpp"
 
 namespace tsgraphs::graph {
 
@@ -59,13 +59,13 @@ struct PlaneEdge {
 
 /// Planes a room-planes edge of this kind names: 4 for a room (two facing pairs), 2 for a
 /// corridor segment (one facing pair).
-inline std::size_t planes_of(rooms::RoomKind kind) { return kind == rooms::RoomKind::room ? 4 : 2; }
+inline std::size_t planes_of(RoomKind kind) { return kind == RoomKind::room ? 4 : 2; }
 
 struct RoomNode {
   int id = -1;
   Eigen::Vector2d center = Eigen::Vector2d::Zero();  ///< current estimate, map x-y (m)
   int level = 0;                                     ///< storey index
-  rooms::RoomKind kind = rooms::RoomKind::room;
+  RoomKind kind = RoomKind::room;
 };
 
 /// One per storey, at the mean of its rooms' centres.
@@ -79,7 +79,7 @@ struct FloorNode {
 /// mid-plane of each facing pair. Planes are vertical, normals into the room.
 struct RoomPlanesEdge {
   int room = -1;
-  rooms::RoomKind kind = rooms::RoomKind::room;
+  RoomKind kind = RoomKind::room;
   /// room: 4 ids, the first pair then the second pair; corridor: 2 ids, the one pair.
   std::vector<int> planes;
   /// Corridor only: the measured centre (the free-space cluster's), map x-y; only its position

@@ -6,13 +6,12 @@
 
 #include "tsgraphs/core/plane.hpp"
 #include "tsgraphs/core/rect.hpp"
+#include "tsgraphs/core/room_kind.hpp"
 
 namespace tsgraphs::rooms {
 
-enum class RoomKind { room, corridor };
-
-/// "room" or "corridor".
-std::string to_string(RoomKind kind);
+using tsgraphs::RoomKind;  // core/room_kind.hpp: graph/ sees it without rooms/
+using tsgraphs::to_string;
 
 /// A mapped vertical wall plane near the cluster.
 struct WallCandidate {
