@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "small_room_test_support.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -18,34 +19,14 @@ namespace {
 using test::cli;
 using test::read_file;
 
-// A small room walked once round: quick to simulate and run.
-const char* kScene = R"(
-name: small_room
-seed: 5
-sensor: {preset: vlp-16, mount_height: 0.55}
-levels:
-  - {name: L0, elevation: 0.0, ceiling: 2.8, slab: [[0, 0], [6, 0], [6, 5], [0, 5]]}
-walls:
-  - {level: L0, from: [-0.1, 0], to: [6.1, 0]}
-  - {level: L0, from: [-0.1, 5], to: [6.1, 5]}
-  - {level: L0, from: [0, 0], to: [0, 5]}
-  - {level: L0, from: [6, 0], to: [6, 5]}
-trajectory:
-  level: L0
-  speed: 1.0
-  laps: 1
-  waypoints: [[1.5, 1.5], [4.5, 1.5], [4.5, 3.5], [1.5, 3.5]]
-)";
 
 class EvalCli : public test::TempDirTest {
  protected:
   // One sequence and one run of it, shared; each test damages its own copies.
   static void SetUpTestSuite() {
     base_ = test::fresh_temp_dir("eval_cli_base");
-    std::ofstream(base_ / "room.yaml") << kScene;
     std::string err;
-    ASSERT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --out " + (base_ / "seq").string(), &err), 0)
-        << err;
+    ASSERT_TRUE(test::simulate_small_room(base_, &err)) << err;
     ASSERT_EQ(cli("-q run " + (base_ / "seq").string() + " --out " + (base_ / "run").string(), &err), 0) << err;
   }
   static void TearDownTestSuite() { fs::remove_all(base_); }

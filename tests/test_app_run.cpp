@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "small_room_test_support.hpp"
 #include "test_support.hpp"
 #include "tsgraphs/eval/room_metrics.hpp"
 #include "tsgraphs/io/ros_bag.hpp"
@@ -29,36 +30,14 @@ namespace {
 using test::cli;
 using test::read_file;
 
-// A small room walked once round: a few hundred VLP-16 scans, quick to simulate and run.
-const char* kScene = R"(
-name: small_room
-seed: 5
-sensor: {preset: vlp-16, mount_height: 0.55}
-odometry: {trans_noise_per_m: 0.01, yaw_noise_per_rad: 0.01, yaw_noise_per_m: 0.002}
-levels:
-  - {name: L0, elevation: 0.0, ceiling: 2.8, slab: [[0, 0], [8, 0], [8, 6], [0, 6]]}
-walls:
-  - {level: L0, from: [-0.1, 0], to: [8.1, 0]}
-  - {level: L0, from: [-0.1, 6], to: [8.1, 6]}
-  - {level: L0, from: [0, 0], to: [0, 6]}
-  - {level: L0, from: [8, 0], to: [8, 6]}
-  - {level: L0, from: [4, 0], to: [4, 2.5]}
-trajectory:
-  level: L0
-  speed: 1.0
-  laps: 1
-  waypoints: [[1.5, 1.5], [6.5, 1.5], [6.5, 4.5], [1.5, 4.5]]
-)";
 
 class RunCli : public test::TempDirTest {
  protected:
   // One simulated sequence shared by the tests of this file (copied where a test damages it).
   static void SetUpTestSuite() {
     base_ = test::fresh_temp_dir("run_cli_base");
-    std::ofstream(base_ / "room.yaml") << kScene;
     std::string err;
-    ASSERT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --out " + (base_ / "seq").string(), &err), 0)
-        << err;
+    ASSERT_TRUE(test::simulate_small_room(base_, &err)) << err;
   }
   static void TearDownTestSuite() { fs::remove_all(base_); }
 
@@ -399,7 +378,7 @@ TEST_F(RunCli, ASequenceCarriesItsSceneVoxelMapsAndRunsAfterItMoves) {
   }
   pcd << "WIDTH " << n << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << n << "\nDATA ascii\n" << points.str();
   std::ofstream(dir_ / "maps" / "wall.pcd") << pcd.str();
-  std::string scene = kScene;
+  std::string scene = test::kSmallRoomScene;
   scene.replace(scene.find("trajectory:"), 11,
                 "voxel_maps:\n  - {file: ../maps/wall.pcd, voxel_size: 0.1, level: L0, label: wall}\ntrajectory:");
   std::ofstream(dir_ / "scenes" / "room.yaml") << scene;
