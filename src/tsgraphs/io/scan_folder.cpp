@@ -62,12 +62,12 @@ std::vector<std::string> scan_files_in(const fs::path& dir) {
 
 std::vector<std::string> glob_files(const std::string& pattern) {
   glob_t g{};
+  std::vector<std::string> matches;
+  if (::glob(pattern.c_str(), 0, nullptr, &g) == 0) matches.assign(g.gl_pathv, g.gl_pathv + g.gl_pathc);
+  ::globfree(&g);  // before is_file, which throws for a symlink loop (LeakSanitizer found the leak)
   std::vector<std::string> files;
-  if (::glob(pattern.c_str(), 0, nullptr, &g) == 0) {
-    for (std::size_t i = 0; i < g.gl_pathc; ++i)
-      if (is_file(g.gl_pathv[i])) files.emplace_back(g.gl_pathv[i]);
-  }
-  ::globfree(&g);
+  for (const std::string& m : matches)
+    if (is_file(m)) files.push_back(m);
   std::sort(files.begin(), files.end());
   return files;
 }
