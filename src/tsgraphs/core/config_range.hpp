@@ -46,9 +46,7 @@ struct Range {
 /// [lo, hi].
 inline Range between(double lo, double hi) { return {lo, hi, false, false}; }
 /// (lo, hi].
-inline Range above(double lo, double hi = std::numeric_limits<double>::infinity()) { return {lo, hi, true, false}; }
-/// [lo, hi] with hi often left open-ended: at_least(1, 1000).
-inline Range at_least(double lo, double hi = std::numeric_limits<double>::infinity()) { return {lo, hi, false, false}; }
+inline Range above(double lo, double hi) { return {lo, hi, true, false}; }
 
 /// The words a parameter may take.
 struct OneOf {
