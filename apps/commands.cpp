@@ -222,7 +222,7 @@ eval::Metrics evaluate(const std::string& run_dir, const std::string& seq_dir, b
   // Everything is made before anything is written, and metrics.json is written last: a failed
   // eval leaves the run folder as it was, an earlier metrics.json and report included.
   const fs::path dir(run_dir);
-  const fs::path birdseye = dir / "birdseye.svg", html = dir / "report.html";
+  const fs::path birdseye = dir / report::kBirdseyeFile, html = dir / report::kReportFile;
   const fs::path metrics_file = dir / pipeline::run_files::kMetrics;
   for (const fs::path& p : {birdseye, html, metrics_file}) {
     std::error_code ec;

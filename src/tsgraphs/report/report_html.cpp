@@ -192,8 +192,8 @@ RunReportFiles run_report_files(const std::string& run_dir, const std::string& s
 void write_run_report(const std::string& run_dir, const std::string& seq_dir, const std::string& title) {
   const RunReportFiles files = run_report_files(run_dir, seq_dir, title);
   const std::filesystem::path dir(run_dir);
-  io::write_file_atomic((dir / "birdseye.svg").string(), files.birdseye_svg);
-  io::write_file_atomic((dir / "report.html").string(), files.report_html);
+  io::write_file_atomic((dir / kBirdseyeFile).string(), files.birdseye_svg);
+  io::write_file_atomic((dir / kReportFile).string(), files.report_html);
 }
 
 }  // namespace tsgraphs::report

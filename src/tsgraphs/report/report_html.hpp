@@ -35,6 +35,10 @@ std::string html_escape(const std::string& text);
 std::string method_table_html(const std::vector<eval::MethodResult>& results,
                               const std::vector<eval::TableColumn>& columns);
 
+/// The names of a run's report files in its folder.
+inline constexpr const char* kBirdseyeFile = "birdseye.svg";
+inline constexpr const char* kReportFile = "report.html";
+
 /// The two files of a run's report, as text.
 struct RunReportFiles {
   std::string birdseye_svg;  ///< the main level

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "tsgraphs/io/atomic_write.hpp"
+#include "tsgraphs/report/report_html.hpp"
 #include "tsgraphs/report/svg_writer.hpp"
 
 namespace tsgraphs::report {
@@ -125,7 +126,7 @@ std::string suite_report_html(const eval::SuiteResults& results, const BirdseyeS
 }
 
 std::string read_birdseye(const std::string& run_dir) {
-  std::ifstream in(std::filesystem::path(run_dir) / "birdseye.svg", std::ios::binary);
+  std::ifstream in(std::filesystem::path(run_dir) / kBirdseyeFile, std::ios::binary);
   if (!in) return "";
   std::ostringstream s;
   s << in.rdbuf();
