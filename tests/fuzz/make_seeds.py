@@ -1,0 +1,178 @@
+#!/usr/bin/env python3
+"""Writes the fuzz targets' seed corpora (corpus/<target>/): small valid inputs of every format
+each reader takes, so the fuzzers start from files that get past the first checks.
+Usage: python3 tests/fuzz/make_seeds.py TSGRAPHS_BINARY  (from the repository's root)
+The bags and scans come from `tsgraphs simulate` on tiny.yaml (2 x 8 beams); the rest is
+written here from the formats' definitions (standard library only)."""
+import json
+import os
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import zlib
+
+ROOT = os.getcwd()
+HERE = os.path.join(ROOT, "tests", "fuzz")
+CORPUS = os.path.join(HERE, "corpus")
+
+
+def put(target, name, data):
+    os.makedirs(os.path.join(CORPUS, target), exist_ok=True)
+    with open(os.path.join(CORPUS, target, name), "wb") as f:
+        f.write(data.encode() if isinstance(data, str) else data)
+
+
+POINTS = [(1.0 + 0.25 * i, -0.5 * i, 0.1 * (i % 3), float(i)) for i in range(6)]
+
+
+def pcd_header(fields, sizes, types, counts, n, data):
+    return (f"# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS {fields}\nSIZE {sizes}\n"
+            f"TYPE {types}\nCOUNT {counts}\nWIDTH {n}\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS {n}\nDATA {data}\n")
+
+
+def lzf_literals(raw):
+    """LZF with literal runs only (a control byte c < 32, then c + 1 bytes): valid for any decoder."""
+    out = bytearray()
+    for i in range(0, len(raw), 32):
+        piece = raw[i:i + 32]
+        out.append(len(piece) - 1)
+        out += piece
+    return bytes(out)
+
+
+def pcd_seeds():
+    n = len(POINTS)
+    ascii_body = "".join(f"{x} {y} {z} {i}\n" for x, y, z, i in POINTS)
+    put("pcd", "ascii.pcd", pcd_header("x y z intensity", "4 4 4 4", "F F F F", "1 1 1 1", n, "ascii") + ascii_body)
+    binary = b"".join(struct.pack("<4f", *p) for p in POINTS)
+    put("pcd", "binary.pcd", pcd_header("x y z intensity", "4 4 4 4", "F F F F", "1 1 1 1", n, "binary").encode() + binary)
+    xyz_double = b"".join(struct.pack("<3d", *p[:3]) for p in POINTS)
+    put("pcd", "binary_double.pcd", pcd_header("x y z", "8 8 8", "F F F", "1 1 1", n, "binary").encode() + xyz_double)
+    # binary_compressed stores the fields one after another (all x, then all y, ...).
+    soa = b"".join(struct.pack(f"<{n}f", *[p[k] for p in POINTS]) for k in range(4))
+    lzf = lzf_literals(soa)
+    put("pcd", "binary_compressed.pcd",
+        pcd_header("x y z intensity", "4 4 4 4", "F F F F", "1 1 1 1", n, "binary_compressed").encode()
+        + struct.pack("<II", len(lzf), len(soa)) + lzf)
+
+
+def kitti_seeds(seq):
+    with open(os.path.join(seq, "scans", "000000.bin"), "rb") as f:
+        put("kitti", "000000.bin", f.read())
+    rows = []
+    for k in range(3):
+        rows.append(" ".join(f"{v:.6e}" for v in [1, 0, 0, 0.1 * k, 0, 1, 0, 0, 0, 0, 1, 0]))
+    put("kitti", "poses.txt", "\n".join(rows) + "\n")
+    with open(os.path.join(seq, "times.txt")) as f:
+        put("kitti", "times.txt", "".join(f.readlines()[:4]))
+
+
+def tum_seeds(seq):
+    with open(os.path.join(seq, "odom.txt")) as f:
+        put("tum", "odom.txt", "".join(f.readlines()[:4]))
+    put("tum", "commented.txt", "# timestamp tx ty tz qx qy qz qw\n0.0 0 0 0 0 0 0 1\n0.1 0.1 0 0 0 0 0.0499792 0.9987503\n")
+
+
+def ros_string(s):
+    return struct.pack("<I", len(s)) + s.encode()
+
+
+def point_cloud2_seeds():
+    def message(fields, point_step, points, bigendian=0, height=1):
+        body = struct.pack("<III", 7, 100, 5000) + ros_string("lidar")
+        body += struct.pack("<II", height, len(points) // height) + struct.pack("<I", len(fields))
+        for name, offset, datatype, count in fields:
+            body += ros_string(name) + struct.pack("<IBI", offset, datatype, count)
+        data = b"".join(points)
+        body += struct.pack("<BII", bigendian, point_step, point_step * len(points) // height)
+        return body + struct.pack("<I", len(data)) + data + b"\x01"
+    xyzi = [("x", 0, 7, 1), ("y", 4, 7, 1), ("z", 8, 7, 1), ("intensity", 12, 7, 1)]
+    put("point_cloud2", "xyzi.msg", message(xyzi, 16, [struct.pack("<4f", *p) for p in POINTS]))
+    padded = [("x", 0, 8, 1), ("y", 8, 8, 1), ("z", 16, 8, 1), ("t", 24, 7, 1), ("ring", 28, 4, 1)]
+    put("point_cloud2", "double_time_ring.msg",
+        message(padded, 32, [struct.pack("<3dfH2x", *p[:3], 0.01 * k, k % 2) for k, p in enumerate(POINTS)]))
+    put("point_cloud2", "organised.msg", message(xyzi, 16, [struct.pack("<4f", *p) for p in POINTS], height=2))
+
+
+def png(width, height, rows, colour_type=0):
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    raw = b"".join(b"\x00" + row for row in rows)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def occupancy_map_seeds():
+    grey = [bytes([0 if x in (0, 7) or y in (0, 5) else 254 for x in range(8)]) for y in range(6)]
+    put("occupancy_map", "map.png", png(8, 6, grey))
+    rgba = [b"".join(bytes([v, v, v, 255]) for v in row) for row in grey]
+    put("occupancy_map", "map_rgba.png", png(8, 6, rgba, colour_type=6))
+    put("occupancy_map", "map.pgm", b"P5\n8 6\n255\n" + b"".join(grey))
+    put("occupancy_map", "map.yaml",
+        "image: map.png\nresolution: 0.05\norigin: [-1.0, -2.0, 0.0]\nnegate: 0\n"
+        "occupied_thresh: 0.65\nfree_thresh: 0.196\nmode: trinary\n")
+
+
+def run_folder_seeds(run):
+    graph = json.load(open(os.path.join(run, "scene_graph.json")))
+    for key, value in graph.items():
+        if isinstance(value, list):
+            graph[key] = value[:3]
+    for room in graph.get("rooms", []):  # a room's own lists (free space, outline) cut short too
+        for key, value in room.items():
+            if isinstance(value, list) and len(value) > 4 and isinstance(value[0], list):
+                room[key] = value[:4]
+    put("run_folder", "scene_graph.json", json.dumps(graph, indent=1))
+    with open(os.path.join(run, "rooms_events.jsonl")) as f:
+        put("run_folder", "rooms_events.jsonl", "".join(f.readlines()[:4]))
+    with open(os.path.join(run, "timings.csv")) as f:
+        lines = f.readlines()
+    scans = [l for l in lines[1:] if l.startswith("scan")][:3]
+    solves = [l for l in lines[1:] if not l.startswith("scan")][:2]
+    put("run_folder", "timings.csv", "".join([lines[0]] + scans + solves))
+    with open(os.path.join(run, "run_info.json")) as f:
+        put("run_folder", "run_info.json", f.read())
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    tsgraphs = os.path.abspath(sys.argv[1])
+    shutil.rmtree(CORPUS, ignore_errors=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        tiny = os.path.join(HERE, "tiny.yaml")
+        seq, run = os.path.join(tmp, "seq"), os.path.join(tmp, "run")
+        subprocess.run([tsgraphs, "simulate", tiny, "--out", seq], check=True, capture_output=True)
+        for compression in ("none", "bz2", "lz4"):
+            bag = os.path.join(tmp, f"{compression}.bag")
+            subprocess.run([tsgraphs, "simulate", tiny, "--bag", bag, "--compression", compression],
+                           check=True, capture_output=True)
+            with open(bag, "rb") as f:
+                put("ros_bag", f"{compression}.bag", f.read())
+        two_rooms_seq = os.path.join(tmp, "two_rooms")
+        subprocess.run([tsgraphs, "simulate", os.path.join(ROOT, "tests", "data", "scenes", "two_rooms.yaml"),
+                        "--out", two_rooms_seq], check=True, capture_output=True)
+        subprocess.run([tsgraphs, "run", two_rooms_seq, "--out", run], check=True, capture_output=True)
+        pcd_seeds()
+        kitti_seeds(seq)
+        tum_seeds(seq)
+        point_cloud2_seeds()
+        occupancy_map_seeds()
+        run_folder_seeds(run)
+        with open(os.path.join(run, "params.yaml")) as f:
+            put("params", "run_params.yaml", f.read())
+    shutil.copy(os.path.join(ROOT, "config", "params.yaml"), os.path.join(CORPUS, "params", "params.yaml"))
+    put("params", "few_keys.yaml", "ground:\n  resolution: 0.5\nroom_loop_closure:\n  enabled: false\nplatform:\n  sensor_height: 1.2\n")
+    os.makedirs(os.path.join(CORPUS, "scene"), exist_ok=True)
+    for name in ("office.yaml", "two_storeys.yaml"):
+        shutil.copy(os.path.join(ROOT, "scenes", name), os.path.join(CORPUS, "scene", name))
+    shutil.copy(os.path.join(ROOT, "tests", "data", "scenes", "two_rooms.yaml"), os.path.join(CORPUS, "scene"))
+    shutil.copy(os.path.join(HERE, "tiny.yaml"), os.path.join(CORPUS, "scene"))
+    subprocess.run([tsgraphs, "generate", "--style", "open_plan", "--seed", "5", "--out",
+                    os.path.join(CORPUS, "scene", "open_plan.yaml")], check=True, capture_output=True)
+
+
+if __name__ == "__main__":
+    main()
