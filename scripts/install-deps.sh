@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages tsgraphs needs, only those that are missing.
 # Idempotent: when everything is present it installs nothing and touches no package list.
+# Usage: bash scripts/install-deps.sh [--sanitize]   (--sanitize: also clang with its sanitizer
+# and libFuzzer runtimes, for scripts/sanitize.sh and scripts/fuzz.sh)
 set -euo pipefail
 
 PACKAGES=(
@@ -23,6 +25,12 @@ PACKAGES=(
   libbenchmark-dev     # benchmarks
   chromium             # headless, to check that the HTML reports render (tests)
 )
+if [ "${1:-}" = "--sanitize" ]; then
+  PACKAGES+=(clang libclang-rt-dev)   # ASan, UBSan and libFuzzer builds
+elif [ $# -gt 0 ]; then
+  echo "install-deps: unknown argument '$1' (the only option is --sanitize)" >&2
+  exit 2
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
