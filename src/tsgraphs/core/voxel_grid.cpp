@@ -52,15 +52,6 @@ class VoxelTable {
 
 }  // namespace
 
-std::uint64_t voxel_key(const Eigen::Vector3f& p, double inv_size) {
-  constexpr std::int64_t kOffset = 1 << 20;
-  constexpr std::uint64_t kMask = (1u << 21) - 1;
-  auto axis = [&](float v) {
-    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv_size)) + kOffset) & kMask;
-  };
-  return axis(p.x()) | (axis(p.y()) << 21) | (axis(p.z()) << 42);
-}
-
 PointCloud voxel_downsample(const PointCloud& scan, double voxel_size, double min_range, double max_range,
                             std::size_t* num_non_finite) {
   const bool with_intensity = scan.has_intensity(), with_labels = scan.has_labels();

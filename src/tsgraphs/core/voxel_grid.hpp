@@ -1,17 +1,14 @@
 #pragma once
-/// Voxel grids over points: the key of a point's voxel, and downsampling to one centroid per
-/// voxel. Shared by the prefilter, registration, the map output and the room layer.
+/// Downsampling to one centroid per voxel. Shared by the prefilter, registration, the map
+/// output and the room layer.
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 
 #include "tsgraphs/core/point_cloud.hpp"
+#include "tsgraphs/core/voxel_key.hpp"
 
 namespace tsgraphs {
-
-/// Key of the voxel (edge 1 / inv_size) that holds p: 21 bits per axis, so +-1e6 voxels,
-/// far beyond any LiDAR range at useful voxel sizes.
-std::uint64_t voxel_key(const Eigen::Vector3f& p, double inv_size);
 
 /// The finite points of `cloud` whose distance from the origin is in [min_range, max_range],
 /// one per voxel of edge `voxel_size`: the centroid of its points, their mean intensity and

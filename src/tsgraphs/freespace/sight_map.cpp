@@ -5,12 +5,10 @@
 #include <limits>
 #include <stdexcept>
 
+#include "tsgraphs/core/voxel_key.hpp"
+
 namespace tsgraphs::freespace {
 namespace {
-
-std::uint64_t tile_key(long tc, long tr) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(tc)) << 32) | static_cast<std::uint32_t>(tr);
-}
 
 void bump(std::uint32_t& count, int delta) {
   if (delta > 0) ++count;
@@ -44,7 +42,7 @@ inline SightMap::Tile& SightMap::tile_at(long c, long r, std::size_t* i) {
   *i = index_in_tile(c, r);
   // A ray walks many cells of one tile in a row: look the tile up only when it changes (the
   // map's nodes stay put when it grows).
-  const std::uint64_t key = tile_key(c >> kTileBits, r >> kTileBits);
+  const std::uint64_t key = cell_key(c >> kTileBits, r >> kTileBits);
   if (last_.tile != nullptr && key == last_.key) return *last_.tile;
   return tile_miss(key);
 }
@@ -70,7 +68,7 @@ void SightMap::mark(long c, long r, Mark m, int delta, double z) {
 }
 
 const SightMap::Tile* SightMap::tile(long tc, long tr) const {
-  const auto it = tiles_.find(tile_key(tc, tr));
+  const auto it = tiles_.find(cell_key(tc, tr));
   return it == tiles_.end() ? nullptr : &it->second;
 }
 

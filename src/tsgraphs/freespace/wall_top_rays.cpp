@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "tsgraphs/core/polygon.hpp"
+#include "tsgraphs/core/voxel_key.hpp"
 
 namespace tsgraphs::freespace {
 
@@ -15,7 +16,7 @@ WallTopRays::WallTopRays(double cell) : cell_(cell) {
 
 std::uint64_t WallTopRays::key(const Eigen::Vector2d& p) const {
   const auto c = static_cast<std::int64_t>(std::floor(p.x() / cell_)), r = static_cast<std::int64_t>(std::floor(p.y() / cell_));
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c)) << 32) | static_cast<std::uint32_t>(r);
+  return cell_key(c, r);
 }
 
 void WallTopRays::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points,

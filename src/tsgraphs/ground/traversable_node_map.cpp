@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "tsgraphs/core/voxel_key.hpp"
+
 namespace tsgraphs::ground {
 
 namespace {
@@ -15,11 +17,6 @@ Eigen::Vector3d mean_normal(const Eigen::Vector3d& a, double wa, const Eigen::Ve
   const Eigen::Vector3d sum = wa * a + (a.dot(b) < 0.0 ? -wb : wb) * b;
   const double norm = sum.norm();
   return norm > 0.0 ? Eigen::Vector3d(sum / norm) : a;
-}
-
-/// The hash key of grid cell (ix, iy): two 32-bit indices side by side.
-std::uint64_t pack_cell(std::int64_t ix, std::int64_t iy) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(ix)) << 32) | static_cast<std::uint32_t>(iy);
 }
 
 /// Drops the oldest entries beyond `cap` (a negative cap keeps none).
@@ -43,7 +40,7 @@ TraversableNodeMap::TraversableNodeMap(NodeMapConfig config) : config_(std::move
 }
 
 std::uint64_t TraversableNodeMap::cell_key(const Eigen::Vector3d& p) const {
-  return pack_cell(static_cast<std::int64_t>(std::floor(p.x() / config_.cell_size)),
+  return tsgraphs::cell_key(static_cast<std::int64_t>(std::floor(p.x() / config_.cell_size)),
                    static_cast<std::int64_t>(std::floor(p.y() / config_.cell_size)));
 }
 
@@ -196,7 +193,7 @@ std::vector<const GlobalNode*> TraversableNodeMap::nodes_near(const Eigen::Vecto
     } else {
       for (auto ix = static_cast<std::int64_t>(x0); ix <= static_cast<std::int64_t>(x1); ++ix) {
         for (auto iy = static_cast<std::int64_t>(y0); iy <= static_cast<std::int64_t>(y1); ++iy) {
-          const auto it = cells_.find(pack_cell(ix, iy));
+          const auto it = cells_.find(tsgraphs::cell_key(ix, iy));
           if (it == cells_.end()) continue;
           for (int i = it->second; i >= 0; i = next_in_cell_[i]) consider(i);
         }

@@ -45,7 +45,7 @@ struct NormalEquations {
 
 std::vector<std::size_t> first_per_voxel(const std::vector<Eigen::Vector3d>& points, double voxel_size) {
   const double inv = 1.0 / voxel_size;
-  tsl::robin_set<std::uint64_t, VoxelKeyHash> seen;
+  tsl::robin_set<std::uint64_t, KeyHash> seen;
   seen.reserve(points.size());
   std::vector<std::size_t> out;
   out.reserve(points.size());

@@ -6,23 +6,9 @@
 #include <stdexcept>
 
 namespace tsgraphs::odometry {
-namespace {
-constexpr int kAxisBits = 21;
-constexpr std::int64_t kAxisOffset = std::int64_t{1} << (kAxisBits - 1);
-constexpr std::uint64_t kAxisMask = (std::uint64_t{1} << kAxisBits) - 1;
-}  // namespace
+std::uint64_t VoxelHashMap::pack(const VoxelIndex& v) { return voxel_key(v.x(), v.y(), v.z()); }
 
-std::uint64_t VoxelHashMap::pack(const VoxelIndex& v) {
-  auto axis = [](int c) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(c) + kAxisOffset) & kAxisMask; };
-  return axis(v.x()) | axis(v.y()) << kAxisBits | axis(v.z()) << (2 * kAxisBits);
-}
-
-VoxelIndex VoxelHashMap::unpack(std::uint64_t key) {
-  auto axis = [&](int shift) {
-    return static_cast<int>(static_cast<std::int64_t>((key >> shift) & kAxisMask) - kAxisOffset);
-  };
-  return VoxelIndex(axis(0), axis(kAxisBits), axis(2 * kAxisBits));
-}
+VoxelIndex VoxelHashMap::unpack(std::uint64_t key) { return voxel_of_key(key); }
 
 VoxelHashMap::VoxelHashMap(double voxel_size, std::size_t max_points_per_voxel, const SurfaceConfig& surface)
     : voxel_size_(voxel_size),

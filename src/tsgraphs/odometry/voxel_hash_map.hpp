@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "tsgraphs/core/voxel_key.hpp"
+
 namespace tsgraphs::odometry {
 
 /// Integer coordinates of a voxel.
@@ -26,20 +28,6 @@ struct SurfaceConfig {
   double min_spread_factor = 0.15;///< a plane spreads at least voxel_size * this (m, second principal sd) in
                                   ///< both directions; less is a line, such as one ring of a scan on the floor
   double max_thickness_ratio = 0.3;///< a plane is at most this thick (smallest sd) for its width (second sd)
-};
-
-/// Hash of a packed voxel key for open-addressing tables: a full-avalanche mix (splitmix64's
-/// finaliser). Neighbouring voxels differ in few bits; with the identity hash of std::hash
-/// they pile into the same slots of a power-of-two table.
-struct VoxelKeyHash {
-  std::size_t operator()(std::uint64_t k) const {
-    k ^= k >> 30;
-    k *= 0xBF58476D1CE4E5B9ULL;
-    k ^= k >> 27;
-    k *= 0x94D049BB133111EBULL;
-    k ^= k >> 31;
-    return static_cast<std::size_t>(k);
-  }
 };
 
 /// Result of VoxelHashMap::nearest.
@@ -108,7 +96,7 @@ class VoxelHashMap {
   SurfaceConfig surface_;
   // Robin Hood open addressing (what KISS-ICP uses): the neighbour lookups of ICP are most of
   // the odometry's time, and a node-based map costs a cache miss per lookup more.
-  tsl::robin_map<std::uint64_t, Voxel, VoxelKeyHash> voxels_;
+  tsl::robin_map<std::uint64_t, Voxel, KeyHash> voxels_;
 };
 
 }  // namespace tsgraphs::odometry

@@ -8,6 +8,7 @@
 #include <unordered_set>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/voxel_key.hpp"
 #include "tsgraphs/io/pcd.hpp"
 #include "tsgraphs/scene/scene_geometry.hpp"
 
@@ -76,13 +77,6 @@ void add_ramp(LabelledMesh* mesh, const scene::Scene& scene, const scene::Ramp& 
   }
 }
 
-struct KeyHash {
-  std::size_t operator()(const Eigen::Vector3i& k) const {
-    return (static_cast<std::size_t>(k.x()) * 73856093u) ^ (static_cast<std::size_t>(k.y()) * 19349663u) ^
-           (static_cast<std::size_t>(k.z()) * 83492791u);
-  }
-};
-
 void add_voxel_map(LabelledMesh* mesh, const scene::Scene& scene, const scene::VoxelMap& vm) {
   const PointCloud cloud = io::read_pcd(vm.file);
   if (cloud.empty()) throw InputError(vm.file + ": voxel map has no finite points");
@@ -91,7 +85,11 @@ void add_voxel_map(LabelledMesh* mesh, const scene::Scene& scene, const scene::V
   // a dense cloud becomes one cube per occupied voxel.
   const Eigen::Vector3d origin = cloud.points.front().cast<double>();
   const double s = vm.voxel_size;
-  std::unordered_set<Eigen::Vector3i, KeyHash> occupied;
+  // Exact indices (a packed key wraps far out); the shared key only hashes them.
+  struct IndexHash {
+    std::size_t operator()(const Eigen::Vector3i& k) const { return KeyHash{}(voxel_key(k.x(), k.y(), k.z())); }
+  };
+  std::unordered_set<Eigen::Vector3i, IndexHash> occupied;
   std::vector<Eigen::Vector3i> keys;
   for (const Eigen::Vector3f& p : cloud.points) {
     const Eigen::Vector3i k = ((p.cast<double>() - origin) / s).array().round().cast<int>();

@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "tsgraphs/core/kd_tree.hpp"
+#include "tsgraphs/core/voxel_key.hpp"
 
 namespace tsgraphs::walls {
 namespace {
@@ -124,15 +125,12 @@ std::vector<std::vector<std::uint32_t>> euclidean_clusters(const std::vector<Eig
   std::unordered_map<std::uint64_t, std::uint32_t> cell_index;
   std::vector<std::vector<std::uint32_t>> cells;  // local indices into idx
   std::vector<std::pair<std::int64_t, std::int64_t>> cell_coord;
-  auto key = [](std::int64_t a, std::int64_t b) {
-    return (static_cast<std::uint64_t>(a) << 32) ^ (static_cast<std::uint64_t>(b) & 0xffffffffULL);
-  };
   for (std::size_t j = 0; j < m; ++j) {
     const Eigen::Vector3d p = pts[idx[j]].cast<double>();
     uv[j] = {u.dot(p), v.dot(p)};
     const std::int64_t a = static_cast<std::int64_t>(std::floor(uv[j].x() / cell));
     const std::int64_t b = static_cast<std::int64_t>(std::floor(uv[j].y() / cell));
-    const auto [it, fresh] = cell_index.emplace(key(a, b), static_cast<std::uint32_t>(cells.size()));
+    const auto [it, fresh] = cell_index.emplace(cell_key(a, b), static_cast<std::uint32_t>(cells.size()));
     if (fresh) {
       cells.emplace_back();
       cell_coord.emplace_back(a, b);
@@ -150,7 +148,7 @@ std::vector<std::vector<std::uint32_t>> euclidean_clusters(const std::vector<Eig
     for (int da = -kCellReach; da <= kCellReach; ++da) {
       for (int db = -kCellReach; db <= kCellReach; ++db) {
         if (std::abs(da) == kCellReach && std::abs(db) == kCellReach) continue;
-        const auto it = cell_index.find(key(cell_coord[c].first + da, cell_coord[c].second + db));
+        const auto it = cell_index.find(cell_key(cell_coord[c].first + da, cell_coord[c].second + db));
         if (it == cell_index.end() || it->second <= c) continue;  // each pair once
         const std::uint32_t ra = find(c), rb = find(it->second);
         if (ra == rb) continue;
@@ -192,19 +190,13 @@ std::vector<Eigen::Vector3f> downsample(const std::vector<Eigen::Vector3f>& pts,
     for (const std::uint32_t i : idx) out.push_back(pts[i]);
     return out;
   }
-  // 21 bits per axis: +-1e6 voxels, far beyond any LiDAR range at useful voxel sizes.
-  constexpr std::int64_t kOffset = 1 << 20;
-  constexpr std::uint64_t kMask = (1u << 21) - 1;
   const double inv = 1.0 / voxel;
-  auto axis = [&](float x) {
-    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(x * inv)) + kOffset) & kMask;
-  };
   std::unordered_map<std::uint64_t, std::uint32_t> slot;
   std::vector<Eigen::Vector3d> sum;
   std::vector<int> count;
   for (const std::uint32_t i : idx) {
     const Eigen::Vector3f& p = pts[i];
-    const auto [it, fresh] = slot.emplace(axis(p.x()) | (axis(p.y()) << 21) | (axis(p.z()) << 42),
+    const auto [it, fresh] = slot.emplace(voxel_key(p, inv),
                                           static_cast<std::uint32_t>(sum.size()));
     if (fresh) {
       sum.emplace_back(Eigen::Vector3d::Zero());

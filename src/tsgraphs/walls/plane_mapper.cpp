@@ -8,25 +8,15 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "tsgraphs/core/voxel_key.hpp"
+
 namespace tsgraphs::walls {
 namespace {
-
-// 21 bits per axis: +-1e6 cells, far beyond any building at useful cell sizes.
-std::uint64_t cell_key(std::int64_t a, std::int64_t b, std::int64_t c) {
-  constexpr std::int64_t kOffset = 1 << 20;
-  constexpr std::uint64_t kMask = (1u << 21) - 1;
-  auto axis = [](std::int64_t v) { return static_cast<std::uint64_t>(v + kOffset) & kMask; };
-  return axis(a) | (axis(b) << 21) | (axis(c) << 42);
-}
 
 Eigen::Array3i cell_of(const Eigen::Vector3f& p, double inv_size) {
   return (p.cast<double>() * inv_size).array().floor().cast<int>();
 }
 
-std::uint64_t key_of(const Eigen::Vector3f& p, double inv_size) {
-  const Eigen::Array3i c = cell_of(p, inv_size);
-  return cell_key(c.x(), c.y(), c.z());
-}
 
 // Smallest cell of a hash (m): keeps cell keys finite for a zero radius or voxel.
 constexpr double kMinCell = 1e-3;
@@ -36,14 +26,14 @@ class PointHash {
  public:
   PointHash(const std::vector<Eigen::Vector3f>& pts, double radius)
       : inv_(1.0 / std::max(radius, kMinCell)), r2_(static_cast<float>(radius * radius)) {
-    for (const Eigen::Vector3f& p : pts) cells_[key_of(p, inv_)].push_back(p);
+    for (const Eigen::Vector3f& p : pts) cells_[voxel_key(p, inv_)].push_back(p);
   }
   bool any_within(const Eigen::Vector3f& q) const {
     const Eigen::Array3i c = cell_of(q, inv_);
     for (int dx = -1; dx <= 1; ++dx) {
       for (int dy = -1; dy <= 1; ++dy) {
         for (int dz = -1; dz <= 1; ++dz) {
-          const auto it = cells_.find(cell_key(c.x() + dx, c.y() + dy, c.z() + dz));
+          const auto it = cells_.find(voxel_key(c.x() + dx, c.y() + dy, c.z() + dz));
           if (it == cells_.end()) continue;
           for (const Eigen::Vector3f& p : it->second) {
             if ((p - q).squaredNorm() <= r2_) return true;
@@ -148,7 +138,7 @@ void PlaneMapper::add_points(PlaneLandmark& lm, const std::vector<Eigen::Vector3
   index.poses[keyframe_id] = T_map_keyframe;
   const double inv = 1.0 / std::max(config_.landmark_voxel, kMinCell);
   for (const Eigen::Vector3f& p : transform_points(pts_keyframe, T_map_keyframe)) {
-    if (index.occupied.insert(key_of(p, inv)).second) lm.points.push_back(p);
+    if (index.occupied.insert(voxel_key(p, inv)).second) lm.points.push_back(p);
   }
 }
 
