@@ -118,7 +118,9 @@ std::vector<double> costs_to(const PlanningGraph& graph, std::size_t source, con
   cost[source] = 0.0;
   queue.push({0.0, source});
   while (!queue.empty() && left > 0) {
-    const auto [c, node] = queue.top();
+    // Plain names, not a structured binding: the lambda below captures them (C++17).
+    const double c = queue.top().first;
+    const std::size_t node = queue.top().second;
     queue.pop();
     if (c > cost[node]) continue;
     if (is_target[node] == 2) {
@@ -147,7 +149,8 @@ std::vector<std::size_t> cheapest_path(const PlanningGraph& graph, std::size_t s
   cost[source] = 0.0;
   queue.push({(graph.xy(source) - goal).norm(), source});
   while (!queue.empty()) {
-    const auto [f, node] = queue.top();
+    const double f = queue.top().first;
+    const std::size_t node = queue.top().second;
     queue.pop();
     const double c = cost[node];
     if (f > c + (graph.xy(node) - goal).norm() + 1e-12) continue;  // a stale entry
