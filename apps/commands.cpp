@@ -131,6 +131,7 @@ std::unique_ptr<io::ScanSequence> open_sequence(const io::ScanFolderOptions& opt
 
 std::unique_ptr<io::BagSequence> open_bag(const io::BagOptions& options, bool quiet) {
   auto bag = std::make_unique<io::BagSequence>(options);
+  print_warnings(options.bag + ": ", bag->warnings());
   if (!quiet && bag->dropped_scans() > 0)
     std::fprintf(stderr, "run: %zu scans of %s lie outside the odometry's time span and are left out\n",
                  bag->dropped_scans(), options.bag.c_str());

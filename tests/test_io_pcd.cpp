@@ -337,3 +337,38 @@ TEST_F(Pcd, SymlinkLoopIsAnInputErrorNamingTheFile) {
   std::filesystem::create_symlink(a, b);
   EXPECT_THAT(read_error(a.string()), StartsWith(a.string() + ": "));
 }
+
+// Issue 18: PCL printed its own lines ("[pcl::PCDReader::readHeader] ...") before ours. The
+// headers PCL refuses are named by our check, at their line, and PCL says nothing; a block
+// that does not decompress to its stated size is our one line too.
+TEST_F(Pcd, HeadersPclRefusesAreOurErrorsAndPclIsSilent) {
+  const std::string good = header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "ascii");
+  const auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string h = good;
+    h.replace(h.find(from), from.size(), to);
+    return h + "1 2 3\n4 5 6\n";
+  };
+  struct Case {
+    std::string name, text, error;
+  };
+  const std::vector<Case> cases = {
+      {"viewpoint.pcd", replaced("VIEWPOINT 0 0 0 1 0 0 0", "VIEWPOINT 0 0 0"),
+       ":9: PCD header: VIEWPOINT needs 7 numbers (tx ty tz qw qx qy qz)"},
+      {"type_first.pcd", replaced("SIZE 4 4 4\nTYPE F F F", "TYPE F F F\nSIZE 4 4 4"), ":4: PCD header: TYPE comes before SIZE"},
+      {"count_first.pcd", replaced("FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1", "COUNT 1 1 1\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F"),
+       ":3: PCD header: COUNT comes before FIELDS"},
+      {"few_rows.pcd", good + "1 2 3\n", ":12: PCD body has 1 points, POINTS says 2"},
+      {"bad_lzf.pcd",
+       header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "binary_compressed") +
+           compressed_body(25, 24, std::string(1, '\x1f') + std::string(24, '\0')),
+       ": PCD body does not match its header (for binary_compressed: the block does not decompress to the size its header "
+       "gives)"},
+  };
+  for (const Case& c : cases) {
+    const std::string path = write_file(c.name, c.text);
+    testing::internal::CaptureStderr();
+    const std::string error = read_error(path);
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << c.name;
+    EXPECT_EQ(error, path + c.error);
+  }
+}

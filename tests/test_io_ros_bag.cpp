@@ -32,7 +32,7 @@ namespace {
 
 constexpr std::size_t kScans = 3, kPointsPerScan = 20;
 constexpr std::size_t kMagicBytes = 13;  // "#ROSBAG V2.0\n"
-constexpr std::uint8_t kOpChunk = 0x05, kOpMessageData = 0x02;
+constexpr std::uint8_t kOpChunk = 0x05, kOpMessageData = 0x02, kOpIndexData = 0x04;
 
 /// Three small scans 0.1 s apart, moving 0.2 m along x.
 class TinySequence : public ScanSequence {
@@ -167,6 +167,40 @@ TEST_F(RosBag, ChunkHeaderLengthNear2To32NamesTheByte) {
             path + ": byte " + std::to_string(chunk.pos) + ": record header length 4294967280 runs past the end of the file (" +
                 std::to_string(bytes.size()) + " bytes)");
   EXPECT_THAT(read_all(path), StartsWith(path + ": byte " + std::to_string(chunk.pos) + ": "));
+}
+
+// Issue 18: rosbag's own log lines (console_bridge) were printed before ours. An index entry
+// whose time is 0 makes rosbag log an error and skip that message: the line now reaches the
+// user as the sequence's warning (printed by the front end), and nothing else is on stderr.
+TEST_F(RosBag, RosbagsOwnLogLinesBecomeTheSequencesWarnings) {
+  std::string bytes = bag_bytes(BagCompression::none);
+  bool patched = false;
+  for (const Record& r : records(bytes, kMagicBytes, bytes.size())) {
+    if (r.op != kOpIndexData) continue;
+    const std::size_t first_entry = r.pos + 8 + r.header_len;  // time: sec, nsec; then the offset
+    put_word(bytes, first_entry, 0);
+    put_word(bytes, first_entry + 4, 0);
+    patched = true;
+    break;
+  }
+  ASSERT_TRUE(patched) << "no index data record";
+  const std::string path = write_file("zero_time.bag", bytes);
+  BagOptions o;
+  o.bag = path;
+  o.points_topic = "/points";
+  o.odom_topic = "/odom";
+  testing::internal::CaptureStderr();
+  std::vector<std::string> warnings;
+  std::string info;
+  try {
+    warnings = BagSequence(o).warnings();
+    info = bag_info(path);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << e.what();
+  }
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_THAT(warnings, ::testing::Contains(StartsWith("rosbag: Index entry for topic ")));
+  EXPECT_THAT(info, HasSubstr("  warning: rosbag: Index entry for topic "));
 }
 
 // Issue 18: one flipped byte in a chunk header was a SIGSEGV in bag-info, run --bag and

@@ -67,6 +67,9 @@ void only_input_errors(const char* reader, Read&& read) {
   } catch (const InputError& e) {
     ++tally().refusals;
     tally().refusal = e.what();
+    // To see what the readers answer: TSGRAPHS_FUZZ_PRINT_REFUSALS=1 fuzz_<target> ...
+    static const bool print = std::getenv("TSGRAPHS_FUZZ_PRINT_REFUSALS") != nullptr;
+    if (print) std::fprintf(stderr, "refused: %s\n", e.what());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fuzz: %s threw something other than an InputError: %s\n", reader, e.what());
     std::abort();

@@ -88,6 +88,18 @@ void check_pcd_header(const std::string& path) {
   for (const char* required : {"FIELDS", "SIZE", "TYPE", "WIDTH", "POINTS", "DATA"}) {
     if (!keys.count(required)) throw input_error(path, line_no, std::string("PCD header has no ") + required);
   }
+  // PCL's order: the field list before its sizes and counts, sizes before types.
+  const auto before = [&](const char* first, const char* then) {
+    if (keys.count(then) && key_line[then] < key_line[first]) {
+      throw input_error(path, key_line[then], std::string("PCD header: ") + then + " comes before " + first);
+    }
+  };
+  before("FIELDS", "SIZE");
+  before("FIELDS", "COUNT");
+  before("SIZE", "TYPE");
+  if (keys.count("VIEWPOINT") && keys["VIEWPOINT"].size() != 7) {
+    throw input_error(path, key_line["VIEWPOINT"], "PCD header: VIEWPOINT needs 7 numbers (tx ty tz qw qx qy qz)");
+  }
   const std::size_t n_fields = keys["FIELDS"].size();
   if (n_fields == 0 || keys["SIZE"].size() != n_fields || keys["TYPE"].size() != n_fields ||
       (keys.count("COUNT") && keys["COUNT"].size() != n_fields)) {
@@ -133,6 +145,7 @@ void check_pcd_header(const std::string& path) {
     throw input_error(path, 0, "PCD header: POINTS x point size overflows");
   }
   if (data == "ascii") {
+    unsigned long long rows = 0;
     for (std::string row; std::getline(in, row);) {
       ++line_no;
       std::istringstream s(row);
@@ -145,6 +158,10 @@ void check_pcd_header(const std::string& path) {
       if (k != 0 && k != values_per_point) {
         throw input_error(path, line_no, "expected " + std::to_string(values_per_point) + " values");
       }
+      if (k != 0) ++rows;
+    }
+    if (rows < points) {
+      throw input_error(path, line_no, "PCD body has " + std::to_string(rows) + " points, POINTS says " + std::to_string(points));
     }
   }
   if (data == "binary") {
@@ -205,10 +222,15 @@ PointCloud read_pcd(const std::string& path) {
   if (ec && status.type() != std::filesystem::file_type::not_found) throw input_error(path, 0, "cannot open file: " + ec.message());
   if (!std::filesystem::is_regular_file(status)) throw input_error(path, 0, "no such file");
   check_pcd_header(path);
-  pcl::console::setVerbosityLevel(pcl::console::L_ERROR);  // our own errors say what is wrong
+  // PCL's own lines would come before ours on stderr (its 1.13 has no hook to take them): it
+  // is silenced, check_pcd_header has found what it would say, and what is left is named here.
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   pcl::PCLPointCloud2 blob;
   pcl::PCDReader reader;
-  if (reader.read(path, blob) < 0) throw input_error(path, 0, "not a readable PCD file");
+  if (reader.read(path, blob) < 0) {
+    throw input_error(path, 0, "PCD body does not match its header (for binary_compressed: the block does not "
+                               "decompress to the size its header gives)");
+  }
   const pcl::PCLPointField* fx = nullptr;
   const pcl::PCLPointField* fy = nullptr;
   const pcl::PCLPointField* fz = nullptr;

@@ -3,6 +3,7 @@
 
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
+#include <console_bridge/console.h>
 #include <ros/exception.h>
 #include <ros/serialization.h>
 #include <rosbag/bag.h>
@@ -366,6 +367,45 @@ bool is_bag_file(const std::string& path) {
   return fs::is_regular_file(status);
 }
 
+/// rosbag's own log lines (console_bridge) gathered instead of printed on stderr, so they
+/// reach the user as part of our messages: an error's text, or the sequence's warnings. A
+/// reading operation collects the lines of its thread while a RosbagLines is alive.
+class RosbagLines {
+ public:
+  RosbagLines() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+      static Forwarder forwarder;
+      console_bridge::useOutputHandler(&forwarder);
+      console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_WARN);
+    });
+    previous_ = sink_;
+    sink_ = &lines_;
+  }
+  ~RosbagLines() { sink_ = previous_; }
+  RosbagLines(const RosbagLines&) = delete;
+  RosbagLines& operator=(const RosbagLines&) = delete;
+  const std::vector<std::string>& lines() const { return lines_; }
+  /// " (rosbag: last line)" for an error's text, "" when rosbag said nothing.
+  std::string last() const { return lines_.empty() ? "" : " (rosbag: " + lines_.back() + ")"; }
+
+ private:
+  /// The handler console_bridge calls, from the logging thread.
+  struct Forwarder : console_bridge::OutputHandler {
+    void log(const std::string& text, console_bridge::LogLevel, const char*, int) override {
+      if (sink_ != nullptr) {
+        sink_->push_back(text);
+      } else {  // outside any reading operation (not expected): still one line of ours
+        std::fprintf(stderr, "tsgraphs: rosbag: %s\n", text.c_str());
+      }
+    }
+  };
+  static thread_local std::vector<std::string>* sink_;
+  std::vector<std::string>* previous_ = nullptr;
+  std::vector<std::string> lines_;
+};
+thread_local std::vector<std::string>* RosbagLines::sink_ = nullptr;
+
 }  // namespace
 
 struct BagSequence::Impl {
@@ -380,6 +420,7 @@ BagSequence::BagSequence(const BagOptions& options) : impl_(std::make_unique<Imp
   if (!is_bag_file(path)) throw input_error(path, 0, "no such bag");
   if (options.points_topic.empty()) throw input_error(path, 0, "no points topic given (--points-topic; see bag-info)");
   impl_->limits = BagChecker(path).check();
+  const RosbagLines rosbag_lines;
   try {
     impl_->bag.open(path, rosbag::bagmode::Read);
     rosbag::View all(impl_->bag);
@@ -484,8 +525,9 @@ BagSequence::BagSequence(const BagOptions& options) : impl_(std::make_unique<Imp
     }
     if (info_.times.empty())
       throw input_error(path, 0, "no scan on " + options.points_topic + " lies within the odometry's time span");
+    for (const std::string& line : rosbag_lines.lines()) warnings_.push_back("rosbag: " + line);
   } catch (const ros::Exception& e) {  // rosbag's, and the deserializer's stream overruns
-    throw input_error(path, 0, std::string("cannot read the bag: ") + e.what());
+    throw input_error(path, 0, std::string("cannot read the bag: ") + e.what() + rosbag_lines.last());
   } catch (const std::bad_alloc&) {  // a message length that no memory holds: a corrupt bag
     throw input_error(path, 0, "cannot read the bag: a message claims more memory than there is (corrupt?)");
   } catch (const std::length_error&) {
@@ -501,10 +543,11 @@ PointCloud BagSequence::scan(std::size_t index) const {
   std::vector<std::uint8_t> bytes;
   {
     const std::lock_guard<std::mutex> lock(impl_->mutex);
+    const RosbagLines rosbag_lines;
     try {
       bytes = message_bytes(m, impl_->limits, where);
     } catch (const ros::Exception& e) {
-      throw input_error(where, 0, e.what());
+      throw input_error(where, 0, e.what() + rosbag_lines.last());
     }
   }
   const PointCloud2Message msg = parse_point_cloud2_message(bytes.data(), bytes.size(), where);
@@ -514,6 +557,7 @@ PointCloud BagSequence::scan(std::size_t index) const {
 std::string bag_info(const std::string& path) {
   if (!is_bag_file(path)) throw input_error(path, 0, "no such bag");
   BagChecker(path).check();
+  const RosbagLines rosbag_lines;
   try {
     rosbag::Bag bag(path, rosbag::bagmode::Read);
     rosbag::View view(bag);
@@ -540,9 +584,10 @@ std::string bag_info(const std::string& path) {
                     rate);
       out += line;
     }
+    for (const std::string& line : rosbag_lines.lines()) out += "  warning: rosbag: " + line + "\n";
     return out;
   } catch (const ros::Exception& e) {
-    throw input_error(path, 0, std::string("cannot read the bag: ") + e.what());
+    throw input_error(path, 0, std::string("cannot read the bag: ") + e.what() + rosbag_lines.last());
   }
 }
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "tsgraphs/io/scan_sequence.hpp"
 
@@ -36,6 +37,9 @@ class BagSequence : public ScanSequence {
   const std::string& dir() const override { return name_; }
   PointCloud scan(std::size_t index) const override;
   std::size_t dropped_scans() const { return dropped_; }
+  /// What rosbag itself warned about while the bag was opened (e.g. an index entry with an
+  /// invalid time: that message is not read), each "rosbag: ...", for the front end to print.
+  const std::vector<std::string>& warnings() const { return warnings_; }
   /// The sensor-to-base transform used.
   const Pose3& sensor_to_base() const { return sensor_to_base_; }
   /// Whether it came from the options or /tf_static (else it is the identity by default).
@@ -49,6 +53,7 @@ class BagSequence : public ScanSequence {
   Pose3 sensor_to_base_ = Pose3::Identity();
   bool sensor_to_base_known_ = false;
   std::size_t dropped_ = 0;
+  std::vector<std::string> warnings_;
 };
 
 /// `tsgraphs bag-info`: per topic its type, message count and mean rate, one line each.
