@@ -12,6 +12,7 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/eval/run_evaluation.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
+#include "tsgraphs/io/odometry_checks.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
@@ -124,14 +125,19 @@ std::unique_ptr<io::ScanSequence> open_sequence(const io::ScanFolderOptions& opt
     if (!options.poses.empty() || !options.times.empty() || options.pose_format != "auto")
       throw input_error(options.folder, 0, "a sequence folder has its own poses and times: --poses, --times and "
                                            "--pose-format are for folders of scans");
-    return std::make_unique<io::SequenceReader>(options.folder);
+    auto sequence = std::make_unique<io::SequenceReader>(options.folder);
+    io::check_odometry_motion(sequence->info(), sequence->dir());
+    return sequence;
   }
-  return std::make_unique<io::ScanFolderReader>(options);
+  auto sequence = std::make_unique<io::ScanFolderReader>(options);
+  io::check_odometry_motion(sequence->info(), sequence->dir());
+  return sequence;
 }
 
 std::unique_ptr<io::BagSequence> open_bag(const io::BagOptions& options, bool quiet) {
   auto bag = std::make_unique<io::BagSequence>(options);
   print_warnings(options.bag + ": ", bag->warnings());
+  io::check_odometry_motion(bag->info(), options.bag);
   if (!quiet && bag->dropped_scans() > 0)
     std::fprintf(stderr, "run: %zu scans of %s lie outside the odometry's time span and are left out\n",
                  bag->dropped_scans(), options.bag.c_str());
@@ -197,10 +203,14 @@ void run(const io::ScanSequence& sequence, const std::string& out, const pipelin
   if (!quiet) callbacks.note = [](const std::string& n) { std::fprintf(stderr, "run: platform: %s\n", n.c_str()); };
   pipeline::RunInfo info = pipeline::run_sequence(sequence, slam, callbacks, odometry);
   info.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  pipeline::write_run_outputs(slam, info, dir.path());
-  // Ground truth for the report comes with a sequence folder only.
-  const bool has_truth = dynamic_cast<const io::SequenceReader*>(&sequence) != nullptr;
-  report::write_run_report(dir.path(), has_truth ? seq_dir : "", fs::path(out).filename().string());
+  try {
+    pipeline::write_run_outputs(slam, info, dir.path());
+    // Ground truth for the report comes with a sequence folder only.
+    const bool has_truth = dynamic_cast<const io::SequenceReader*>(&sequence) != nullptr;
+    report::write_run_report(dir.path(), has_truth ? seq_dir : "", fs::path(out).filename().string());
+  } catch (const InputError& e) {
+    throw dir.named_as_final(e);
+  }
   dir.commit();
   if (!quiet) {
     std::fprintf(stderr, "run: %zu keyframes, %zu planes, %zu loop closures, %zu optimisations; %.1f s (%.1fx real time)\n",

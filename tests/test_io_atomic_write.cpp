@@ -129,6 +129,16 @@ TEST_F(AtomicDir, UncommittedIsRemoved) {
   EXPECT_TRUE(names_in(dir_).empty());
 }
 
+// Issue 18: an error met while the run wrote and read back its outputs named the temporary
+// folder, which the user never sees (and which is removed).
+TEST_F(AtomicDir, ErrorsNameTheFinalFolder) {
+  const std::string out = (dir_ / "out").string();
+  AtomicDirectory d(out, "done.txt");
+  const InputError e = d.named_as_final(InputError(d.path() + "/scene_graph.json: keyframes[3]: not finite (" + d.path() + ")"));
+  EXPECT_EQ(std::string(e.what()), out + "/scene_graph.json: keyframes[3]: not finite (" + out + ")");
+  EXPECT_EQ(std::string(d.named_as_final(InputError("other.txt:2: bad")).what()), "other.txt:2: bad");
+}
+
 TEST_F(AtomicDir, ReplacesAnEarlierOutput) {
   const fs::path final_path = dir_ / "out";
   fs::create_directories(final_path / "old_sub");

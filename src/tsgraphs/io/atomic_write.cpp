@@ -109,4 +109,12 @@ void AtomicDirectory::commit() {
   committed_ = true;
 }
 
+InputError AtomicDirectory::named_as_final(const InputError& error) const {
+  std::string message = error.what();
+  for (std::size_t at = message.find(tmp_path_); at != std::string::npos; at = message.find(tmp_path_, at + final_path_.size())) {
+    message.replace(at, tmp_path_.size(), final_path_);
+  }
+  return InputError(message);
+}
+
 }  // namespace tsgraphs::io

@@ -2,6 +2,8 @@
 /// Outputs that appear whole or not at all: write to a temporary sibling, then rename.
 #include <string>
 
+#include "tsgraphs/core/error.hpp"
+
 namespace tsgraphs::io {
 
 /// Writes `content` to `path` through a temporary file in the same folder and a rename.
@@ -27,6 +29,9 @@ class AtomicDirectory {
   const std::string& final_path() const { return final_path_; }
   /// Moves the temporary folder to the final path (replacing an earlier output).
   void commit();
+  /// `error` with the temporary folder's name replaced by the final one: an error met while
+  /// writing (or reading back) the outputs names the folder the user asked for, not ours.
+  InputError named_as_final(const InputError& error) const;
 
  private:
   std::string final_path_;
