@@ -299,6 +299,24 @@ TEST_F(RunCli, MissingOdometryLineIsAnErrorNamingTheFileAndNoOutput) {
   EXPECT_FALSE(fs::exists(dir_ / "run"));
 }
 
+// Issue 18: an odometry line 5e7 m off ended in "internal error: std::bad_alloc" (exit 1).
+TEST_F(RunCli, OdometryJumpNoPlatformMakesIsRefusedBeforeTheRun) {
+  const fs::path seq = copy_sequence();
+  std::istringstream lines(read_file(seq / "odom.txt"));
+  std::ostringstream odom;
+  int n = 0;
+  for (std::string line; std::getline(lines, line); ++n) {
+    if (n == 2) line.replace(line.find(' '), line.find(' ', line.find(' ') + 1) - line.find(' '), " 5e7");  // x of scan 2
+    odom << line << "\n";
+  }
+  std::ofstream(seq / "odom.txt") << odom.str();
+  std::string err;
+  EXPECT_EQ(cli("-q run " + seq.string() + " --out " + (dir_ / "run").string(), &err), 2);
+  EXPECT_NE(err.find(seq.string() + ": odometry of scan 2 "), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "run"));
+}
+
 TEST_F(RunCli, TruncatedNaNAndEmptyScansAreSkippedWithWarningsAndNoNaNPose) {
   const fs::path seq = copy_sequence();
   // Scan 3: truncated mid-point. Scans 0 (a keyframe) and 5 (none): every point NaN. Scan 20: empty.
