@@ -372,3 +372,11 @@ TEST_F(Pcd, HeadersPclRefusesAreOurErrorsAndPclIsSilent) {
     EXPECT_EQ(error, path + c.error);
   }
 }
+
+// Found by fuzzing (issue 18): a binary body whose first bytes are "DATA" made PCL's header
+// parser throw std::out_of_range, which reached the user as "internal error" (exit 1).
+TEST_F(Pcd, PclsOwnExceptionsAreInputErrors) {
+  const std::string body = "DATA" + std::string(2 * 12 - 4, '\0');
+  const std::string path = write_file("data_body.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "binary") + body);
+  EXPECT_THAT(read_error(path), StartsWith(path + ": PCL's reader failed on this file ("));
+}
