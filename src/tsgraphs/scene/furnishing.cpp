@@ -210,7 +210,10 @@ void furnish_lobby(const Polygon2& face, int level, double ceiling, Rng& rng, Sc
   }
   for (int k = 0; k < 4; ++k) {
     OrientedRect r;
-    r.center = Vec2(rng.uniform(lo.x() + 2, hi.x() - 2), rng.uniform(lo.y() + 2, hi.y() - 2));
+    // One draw per statement (a call's argument order is unspecified): y first, as gcc drew it.
+    const double cy = rng.uniform(lo.y() + 2, hi.y() - 2);
+    const double cx = rng.uniform(lo.x() + 2, hi.x() - 2);
+    r.center = Vec2(cx, cy);
     r.size = Vec2(rng.uniform(1.5, 3.0), 0.5);
     r.yaw = rng.chance(0.5) ? 0.0 : M_PI_2;
     if (placer.try_place(r, 1.0)) scene->boxes.push_back(box_of(r, 0.0, 0.45, level, "bench"));

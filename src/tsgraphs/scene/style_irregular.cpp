@@ -24,7 +24,9 @@ constexpr double kMergeChance = 0.55;      // of a front room taking in the room
 constexpr double kMergeStep = 1.0;         // m: the least step in an L or T room's outline
 
 void fill_diagonal(FloorPlan* plan, const Region& region, Rng& rng, const std::string& prefix) {
-  const double a = rng.uniform(kDiagonalMinDeg, kDiagonalMaxDeg) * M_PI / 180.0 * (rng.chance(0.5) ? 1.0 : -1.0);
+  // One draw per statement (the operands' order is unspecified): the angle, then its sign.
+  const double degrees = rng.uniform(kDiagonalMinDeg, kDiagonalMaxDeg);
+  const double a = degrees * M_PI / 180.0 * (rng.chance(0.5) ? 1.0 : -1.0);
   const double cw = rng.uniform(kCorridorMin, kCorridorMax);
   const Vec2 d(std::cos(a), std::sin(a)), n(-d.y(), d.x());
   const Vec2 c = 0.5 * (region.lo + region.hi) + rng.uniform(-0.15, 0.15) * region.width() * Vec2::UnitX();

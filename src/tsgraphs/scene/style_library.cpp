@@ -50,7 +50,10 @@ void fill_library(FloorPlan* plan, const Region& region, Rng& rng, const std::st
   };
   halls(0, xs, cn, narrow);
   halls(xs, W, cwide, wide);
-  mirror_spaces(plan, first, region, rng.chance(0.5), rng.chance(0.5));
+  // One draw per statement (a call's argument order is unspecified): my first, as gcc drew it.
+  const bool my = rng.chance(0.5);
+  const bool mx = rng.chance(0.5);
+  mirror_spaces(plan, first, region, mx, my);
 }
 
 }  // namespace tsgraphs::scene

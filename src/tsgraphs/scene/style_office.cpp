@@ -66,7 +66,10 @@ void fill_office(FloorPlan* plan, const Region& region, Rng& rng, const std::str
       break;
     }
   }
-  mirror_spaces(plan, first, region, rng.chance(0.5), rng.chance(0.5));
+  // One draw per statement (a call's argument order is unspecified): my first, as gcc drew it.
+  const bool my = rng.chance(0.5);
+  const bool mx = rng.chance(0.5);
+  mirror_spaces(plan, first, region, mx, my);
 }
 
 }  // namespace tsgraphs::scene

@@ -21,7 +21,12 @@ std::vector<Pose3> drift_odometry(const std::vector<Pose3>& truth, const scene::
     const double yaw_std = std::sqrt(noise.yaw_noise_per_rad * noise.yaw_noise_per_rad * a +
                                      noise.yaw_noise_per_m * noise.yaw_noise_per_m * d);
     // Draw all four numbers every step, so a zero std changes no later draw.
-    const Eigen::Vector3d dt(gauss(rng), gauss(rng), gauss(rng));
+    // One draw per statement: the order of a call's arguments is unspecified (gcc and clang
+    // differ); z, y, x is the order gcc took, kept so that sequences stay as they were.
+    const double dz = gauss(rng);
+    const double dy = gauss(rng);
+    const double dx = gauss(rng);
+    const Eigen::Vector3d dt(dx, dy, dz);
     const double dyaw = gauss(rng);
     Pose3 noisy = delta;
     noisy.translation() += trans_std * dt;
