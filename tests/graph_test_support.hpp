@@ -100,7 +100,8 @@ inline void fill_graph(Scenario& s, const std::vector<Pose3>& odom, bool with_pl
     for (std::size_t w = 0; w < s.surfaces.size(); ++w) {
       if (!sees(s.surfaces[w], s.truth[k].translation())) continue;
       Plane measured = s.surfaces[w].plane.transformed(s.truth[k].inverse());
-      const Eigen::Vector3d tilt(angle(rng), angle(rng), angle(rng));
+      const double tz = angle(rng), ty = angle(rng), tx = angle(rng);  // the last first, as gcc drew them
+      const Eigen::Vector3d tilt(tx, ty, tz);
       measured.n = Eigen::AngleAxisd(tilt.norm(), tilt.normalized()) * measured.n;
       measured.d += dist(rng);
       if (s.plane_of[w] < 0)
@@ -121,7 +122,8 @@ inline Scenario corridor_loop(bool with_planes) {
   std::vector<Pose3> odom{s.truth[0]};
   for (int k = 1; k < n; ++k) {
     Pose3 step = s.truth[k - 1].inverse() * s.truth[k];
-    step.translation() += Eigen::Vector3d(trans(rng), trans(rng), 0);
+    const double sy = trans(rng), sx = trans(rng);  // the last first, as gcc drew them
+    step.translation() += Eigen::Vector3d(sx, sy, 0);
     step.linear() = Eigen::AngleAxisd(yaw(rng), Eigen::Vector3d::UnitZ()) * step.linear();
     odom.push_back(odom.back() * step);
   }

@@ -75,7 +75,9 @@ void check_triangulation(const std::vector<Polygon2>& include, const std::vector
   constexpr double kMargin = 1e-7;
   int checked = 0, inside = 0;
   for (int k = 0; k < 4000; ++k) {
-    const Vec2 p(ux(rng), uy(rng));
+    // one draw per statement, the last argument first: a call's argument order is unspecified (gcc's kept)
+    const double py = uy(rng), px = ux(rng);
+    const Vec2 p(px, py);
     // Skip points on (or numerically next to) any outline or triangle edge.
     bool near_edge = false;
     for (const auto* set : {&include, &exclude}) {

@@ -155,7 +155,11 @@ TEST(FreespaceEsdf, MatchesBruteForceOnRandomVoxels) {
   std::uniform_int_distribution<int> horizontal(0, 39), vertical(-30, 30);
   const int layer = static_cast<int>(std::floor(1.0 / kVoxel));
   Points pts;
-  for (int n = 0; n < 60; ++n) pts.push_back(voxel_centre(horizontal(rng), horizontal(rng), layer + vertical(rng)));
+  for (int n = 0; n < 60; ++n) {
+    // one draw per statement, the last argument first: a call's argument order is unspecified (gcc's kept)
+    const int k = layer + vertical(rng), j = horizontal(rng), i = horizontal(rng);
+    pts.push_back(voxel_centre(i, j, k));
+  }
   EsdfFreeSpaceConfig config;
   config.max_distance = 2.0;  // small enough that some cells are capped
   const EsdfFreeSpace e = esdf_free_space(pts, 0.0, Eigen::Vector3d::Zero(), config);

@@ -27,7 +27,11 @@ TEST(PlanarIndex, FindsWhatASearchOverEveryPointFinds) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> xy(-8.0, 8.0), z(-3.0, 3.0);
   std::vector<Eigen::Vector3d> points;
-  for (int i = 0; i < 2000; ++i) points.emplace_back(xy(rng), xy(rng), z(rng));
+  for (int i = 0; i < 2000; ++i) {
+    // one draw per statement, the last argument first: a call's argument order is unspecified (gcc's kept)
+    const double pz = z(rng), py = xy(rng), px = xy(rng);
+    points.emplace_back(px, py, pz);
+  }
   points.emplace_back(1.0, 1.0, 0.0);  // twice the same place: both are found
   points.emplace_back(1.0, 1.0, 2.0);
   points.emplace_back(std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0);  // never found
@@ -36,7 +40,8 @@ TEST(PlanarIndex, FindsWhatASearchOverEveryPointFinds) {
   std::size_t total = 0;
   for (const double radius : {0.1, 0.5, 0.75, 1.3, 3.0}) {
     for (int q = 0; q < 200; ++q) {
-      const Eigen::Vector3d p(1.2 * xy(rng), 1.2 * xy(rng), 0.0);  // some outside the points' box
+      const double py = 1.2 * xy(rng), px = 1.2 * xy(rng);  // the last argument first, as gcc drew them
+      const Eigen::Vector3d p(px, py, 0.0);                  // some outside the points' box
       index.within(p, radius, found);
       EXPECT_EQ(found, brute_force(points, p, radius)) << "radius " << radius << " at " << p.transpose();
       total += found.size();

@@ -262,7 +262,11 @@ TEST(FreespaceTraversable, ObstacleSelectionAgreesWithASearchOverEveryNode) {
     const double storey = k % 3 == 0 ? 3.0 : 0.0;
     nodes.emplace_back(x, y, storey + (x > 6.0 ? 0.4 * (x - 6.0) : 0.0) + 0.05 * u(rng));
   }
-  for (int k = 0; k < 3000; ++k) raw.emplace_back(9.0 * u(rng) - 0.5, 7.0 * u(rng) - 0.5, 7.0 * u(rng) - 1.0);
+  for (int k = 0; k < 3000; ++k) {
+    // one draw per statement, the last argument first: a call's argument order is unspecified (gcc's kept)
+    const double z = 7.0 * u(rng) - 1.0, y = 7.0 * u(rng) - 0.5, x = 9.0 * u(rng) - 0.5;
+    raw.emplace_back(x, y, z);
+  }
   const TraversableFreeSpaceConfig config;
   const GroundHeight every_node = [&](const Eigen::Vector3d& p) -> std::optional<double> {
     std::optional<double> ground;

@@ -98,7 +98,8 @@ Building building(bool with_rooms, const Eigen::Vector2d& room_offset) {
   std::vector<Pose3> odom{b.truth[0]};
   for (std::size_t k = 1; k < b.truth.size(); ++k) {
     Pose3 step = b.truth[k - 1].inverse() * b.truth[k];
-    step.translation() += Eigen::Vector3d(trans(rng), trans(rng), 0);
+    const double sy = trans(rng), sx = trans(rng);  // the last first, as gcc drew them
+    step.translation() += Eigen::Vector3d(sx, sy, 0);
     step.linear() = Eigen::AngleAxisd(yaw(rng), Eigen::Vector3d::UnitZ()) * step.linear();
     odom.push_back(odom.back() * step);
   }
@@ -113,7 +114,8 @@ Building building(bool with_rooms, const Eigen::Vector2d& room_offset) {
     if (r < 0) continue;
     for (int w = 0; w < 4; ++w) {
       Plane measured = b.true_walls[r][w].transformed(b.truth[k].inverse());
-      const Eigen::Vector3d tilt(angle(rng), angle(rng), angle(rng));
+      const double tz = angle(rng), ty = angle(rng), tx = angle(rng);  // the last first, as gcc drew them
+      const Eigen::Vector3d tilt(tx, ty, tz);
       measured.n = Eigen::AngleAxisd(tilt.norm(), tilt.normalized()) * measured.n;
       measured.d += dist(rng);
       int& id = b.wall_ids[r][w];
@@ -178,7 +180,8 @@ Corridor corridor(const Eigen::Vector2d& initial, const Eigen::Vector2d& cluster
           {k - 1, k, c.graph.keyframes()[k - 1].pose.inverse() * node.pose});
     for (int w = 0; w < 2; ++w) {
       Plane measured = walls[w].transformed(node.pose.inverse());
-      const Eigen::Vector3d tilt(angle(rng), angle(rng), angle(rng));
+      const double tz = angle(rng), ty = angle(rng), tx = angle(rng);  // the last first, as gcc drew them
+      const Eigen::Vector3d tilt(tx, ty, tz);
       measured.n = Eigen::AngleAxisd(tilt.norm(), tilt.normalized()) * measured.n;
       measured.d += dist(rng);
       if (k == 0) c.walls[w] = c.graph.add_plane(measured.transformed(node.pose), true);

@@ -90,7 +90,9 @@ void drive_laps(TraversableNodeMap& map, int first_lap, int laps, std::mt19937& 
     for (int i = 0; i < kKeyframesPerLap; ++i) {
       const Pose3 truth = lap_pose(i, lap % 2 == 1);
       Pose3 estimate = truth;
-      estimate.translation() += Eigen::Vector3d(kNoiseXY * unit(rng), kNoiseXY * unit(rng), kNoiseZ * unit(rng));
+      // one draw per statement, the last argument first: a call's argument order is unspecified (gcc's kept)
+      const double nz = kNoiseZ * unit(rng), ny = kNoiseXY * unit(rng), nx = kNoiseXY * unit(rng);
+      estimate.translation() += Eigen::Vector3d(nx, ny, nz);
       estimate.linear() = Eigen::AngleAxisd(kNoiseYaw * unit(rng), Eigen::Vector3d::UnitZ()) * truth.linear();
       map.fuse(lap * kKeyframesPerLap + i, estimate, observe(truth, Surface{}, kHalf));
     }

@@ -51,7 +51,9 @@ PointCloud random_cloud(std::mt19937& rng, std::size_t n, bool intensity, bool l
   std::uniform_int_distribution<std::uint32_t> label(0, 6);
   PointCloud c;
   for (std::size_t i = 0; i < n; ++i) {
-    c.points.emplace_back(u(rng), u(rng), u(rng));
+    // one draw per statement, the last argument first: a call's argument order is unspecified (gcc's kept)
+    const float z = u(rng), y = u(rng), x = u(rng);
+    c.points.emplace_back(x, y, z);
     if (intensity) c.intensity.push_back(u(rng) + 50.0f);
     if (labels) c.labels.push_back(label(rng));
   }

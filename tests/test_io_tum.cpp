@@ -36,11 +36,14 @@ class Tum : public TempDirTest {
 Pose3 random_pose(std::mt19937& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
   std::uniform_real_distribution<double> u(-100.0, 100.0);
-  Eigen::Quaterniond q(n(rng), n(rng), n(rng), n(rng));
+  // one draw per statement, the last argument first: a call's argument order is unspecified (gcc's kept)
+  const double qz = n(rng), qy = n(rng), qx = n(rng), qw = n(rng);
+  Eigen::Quaterniond q(qw, qx, qy, qz);
   q.normalize();
   Pose3 T = Pose3::Identity();
   T.linear() = q.toRotationMatrix();
-  T.translation() = Eigen::Vector3d(u(rng), u(rng), u(rng));
+  const double tz = u(rng), ty = u(rng), tx = u(rng);
+  T.translation() = Eigen::Vector3d(tx, ty, tz);
   return T;
 }
 

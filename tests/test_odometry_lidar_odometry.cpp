@@ -421,7 +421,9 @@ TEST(LidarOdometry, AFirstStepBeyondICPsReachIsFoundBySearchingAround) {
   std::uniform_real_distribution<double> where(-6.0, 6.0);
   std::vector<Eigen::Vector3d> world;
   for (int i = 0; i < 25; ++i) {
-    const Eigen::Vector3d c(where(rng), where(rng), 0.0);
+    // one draw per statement, the last argument first: a call's argument order is unspecified (gcc's kept)
+    const double cy = where(rng), cx = where(rng);
+    const Eigen::Vector3d c(cx, cy, 0.0);
     add_box(c + Eigen::Vector3d(-0.2, -0.2, -1.0), c + Eigen::Vector3d(0.2, 0.2, 2.0), &rng, &world);
   }
   const Pose3 first = make_pose(Eigen::Vector3d(0.0, 0.0, 0.0), 0.2);

@@ -19,7 +19,11 @@ std::vector<Eigen::Vector3d> random_points(std::size_t n, double half_extent, st
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-half_extent, half_extent);
   std::vector<Eigen::Vector3d> pts(n);
-  for (auto& p : pts) p = Eigen::Vector3d(u(rng), u(rng), u(rng));
+  for (auto& p : pts) {
+    // one draw per statement, the last argument first: a call's argument order is unspecified (gcc's kept)
+    const double z = u(rng), y = u(rng), x = u(rng);
+    p = Eigen::Vector3d(x, y, z);
+  }
   return pts;
 }
 
@@ -125,7 +129,10 @@ std::vector<Eigen::Vector3d> sample(std::size_t n, std::uint32_t seed, F f) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0.05, 0.95);
   std::vector<Eigen::Vector3d> pts;
-  for (std::size_t i = 0; i < n; ++i) pts.push_back(f(u(rng), u(rng)));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double b = u(rng), a = u(rng);  // the last argument first, as gcc drew them
+    pts.push_back(f(a, b));
+  }
   return pts;
 }
 
@@ -159,7 +166,8 @@ TEST(VoxelHashMap, ALineIsUnknownACornerIsScattered) {
   std::mt19937 rng(3);
   std::normal_distribution<double> noise(0.0, 0.005);
   line.add_points(sample(20, 2, [&](double a, double) -> Eigen::Vector3d {
-    return Eigen::Vector3d(a, 0.5 + noise(rng), 0.2 + noise(rng));
+    const double dz = noise(rng), dy = noise(rng);  // the last argument first, as gcc drew them
+    return Eigen::Vector3d(a, 0.5 + dy, 0.2 + dz);
   }));
   EXPECT_EQ(line.surface_of(VoxelIndex(0, 0, 0)), Surface::unknown);
 
