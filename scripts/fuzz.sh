@@ -20,6 +20,8 @@ out=fuzz-out
 fuzz_one() {
   local t="$1" dir="$out/$1"
   mkdir -p "$dir/corpus"
+  # What an earlier run found is not this run's finding (the corpus it grew is kept).
+  find "$dir" -maxdepth 1 -type f \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) -delete
   # -use_value_profile: compares of length words against the bytes left guide the search.
   "$sanitize_build/tests/fuzz/fuzz_$t" "$dir/corpus" "tests/fuzz/corpus/$t" -max_total_time="$seconds" \
     -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 -use_value_profile=1 -print_final_stats=1 \
