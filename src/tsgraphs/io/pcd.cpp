@@ -164,6 +164,22 @@ void check_pcd_header(const std::string& path) {
       throw input_error(path, line_no, "PCD body has " + std::to_string(rows) + " points, POINTS says " + std::to_string(points));
     }
   }
+  if (data == "binary" || data == "binary_compressed") {
+    // PCL's reader takes a binary body whose first bytes spell a header word for one more
+    // header line: it misreads the file, and for FIELDS or COLUMNS writes out of bounds (found
+    // by fuzzing). Such a body (its first floats' bytes, a one-in-billions accident) is refused.
+    const std::streamoff body = static_cast<std::streamoff>(in.tellg());
+    char first[10] = {};
+    in.read(first, 9);
+    in.clear();
+    in.seekg(body);
+    for (const char* word : {"FIELDS", "COLUMNS", "SIZE", "TYPE", "COUNT", "WIDTH", "HEIGHT", "VIEWPOINT", "POINTS", "DATA"}) {
+      if (std::strncmp(first, word, std::strlen(word)) == 0) {
+        throw input_error(path, 0, std::string("the binary body at byte ") + std::to_string(body) + " starts with '" + word +
+                                       "', which PCL's reader takes for a header line: it cannot be read");
+      }
+    }
+  }
   if (data == "binary") {
     if (bytes_after(path, static_cast<std::streamoff>(in.tellg())) < body_bytes) {
       throw input_error(path, 0, "PCD body is shorter than POINTS * point size (truncated file?)");
