@@ -387,3 +387,12 @@ TEST_F(Pcd, BinaryBodiesThatPclTakesForHeaderLinesAreRefused) {
   const std::string path = write_file("later.pcd", head + std::string(12, '\0') + "FIELDS" + std::string(6, '\0'));
   EXPECT_EQ(read_pcd(path).size(), 2u);  // the second point's bytes spell "FIELDS": finite floats, read
 }
+
+// Found by fuzzing (issue 18): a 2-byte float field was read as 4 bytes, past the end of the
+// last point (heap-buffer-overflow under ASan).
+TEST_F(Pcd, FieldTypesPclDoesNotReadAreRefusedAtTheSizeLine) {
+  for (const auto& [size, type] : std::vector<std::pair<std::string, std::string>>{{"4 4 2", "F F F"}, {"4 4 8", "F F I"}}) {
+    const std::string path = write_file("types.pcd", header("x y z", size, type, "1 1 1", 1, 1, "binary") + std::string(16, '\0'));
+    EXPECT_THAT(read_error(path), StartsWith(path + ":4: PCD header: field z of TYPE "));
+  }
+}

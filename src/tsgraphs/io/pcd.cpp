@@ -136,6 +136,12 @@ void check_pcd_header(const std::string& path) {
         count > kMaxPcdFieldCount) {
       throw input_error(path, 0, "PCD header: bad SIZE/TYPE/COUNT for field " + field);
     }
+    // The types PCL 1.13 reads: floats of 4 or 8 bytes, integers of 1, 2 or 4 (found by
+    // fuzzing: a 2-byte F field was read as 4 bytes, past the end of the last point).
+    if ((type == "F" && size != 4 && size != 8) || (type != "F" && size == 8)) {
+      throw input_error(path, key_line["SIZE"], "PCD header: field " + field + " of TYPE " + type + " and SIZE " +
+                                                    std::to_string(size) + ": not a type PCL reads (F 4 or 8, I and U 1, 2 or 4)");
+    }
     point_bytes += size * count;
     values_per_point += count;
   }
