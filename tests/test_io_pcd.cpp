@@ -380,9 +380,16 @@ TEST_F(Pcd, BinaryBodiesThatPclTakesForHeaderLinesAreRefused) {
   const std::string head = header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "binary");
   for (const std::string word : {"DATA", "FIELDS", "COLUMNS", "VIEWPOINT"}) {
     const std::string path = write_file(word + ".pcd", head + word + std::string(2 * 12 - word.size(), '\0'));
-    EXPECT_EQ(read_error(path), path + ": the binary body at byte " + std::to_string(head.size()) + " starts with '" + word +
-                                    "', which PCL's reader takes for a header line: it cannot be read");
+    EXPECT_EQ(read_error(path), path + ": the binary body after byte " + std::to_string(head.size()) + " has a line starting '" +
+                                    word + "', which PCL's reader takes for a header line: it cannot be read");
   }
+  // PCL reads on past empty and comment lines, and past VERSION (found by fuzzing).
+  const std::string head4 = header("x y z", "4 4 4", "F F F", "1 1 1", 4, 1, "binary");  // 48 bytes of body
+  const std::string hidden =
+      write_file("hidden.pcd", head4 + "VERSION x\n\n# c\n  FIELDS a" + std::string(4 * 12 - 25, '\0'));
+  EXPECT_THAT(read_error(hidden), HasSubstr("has a line starting 'VERSION'"));
+  const std::string after_comment = write_file("after_comment.pcd", head4 + "#\nFIELDS" + std::string(4 * 12 - 8, '\0'));
+  EXPECT_THAT(read_error(after_comment), HasSubstr("has a line starting 'FIELDS'"));
   // A body whose bytes only look like a word further on is read.
   const std::string path = write_file("later.pcd", head + std::string(12, '\0') + "FIELDS" + std::string(6, '\0'));
   EXPECT_EQ(read_pcd(path).size(), 2u);  // the second point's bytes spell "FIELDS": finite floats, read
