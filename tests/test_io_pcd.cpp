@@ -403,3 +403,12 @@ TEST_F(Pcd, FieldTypesPclDoesNotReadAreRefusedAtTheSizeLine) {
     EXPECT_THAT(read_error(path), StartsWith(path + ":4: PCD header: field z of TYPE "));
   }
 }
+
+// Found by fuzzing (issue 18): a header with a second POINTS line (and the rest again) passed
+// this check with one and made PCL size the cloud by the other (an allocation of 1e18 bytes).
+TEST_F(Pcd, AHeaderKeyGivenTwiceIsRefused) {
+  std::string text = header("x y z", "4 4 4", "F F F", "1 1 1", 1, 1, "binary");
+  text.insert(text.find("POINTS"), "POINTS 99999999999\n");
+  const std::string path = write_file("twice.pcd", text + std::string(12, '\0'));
+  EXPECT_EQ(read_error(path), path + ":11: PCD header: POINTS given twice (first on line 10)");
+}

@@ -81,6 +81,11 @@ void check_pcd_header(const std::string& path) {
     if (!kKnown.count(key)) throw input_error(path, line_no, "not a PCD header line: '" + line.substr(0, 40) + "'");
     std::vector<std::string> values;
     for (std::string v; s >> v;) values.push_back(v);
+    // A key given twice is ambiguous: PCL and this check could read different headers (found
+    // by fuzzing: a second POINTS line, and PCL sized the cloud by the other one).
+    if (keys.count(key)) {
+      throw input_error(path, line_no, "PCD header: " + key + " given twice (first on line " + std::to_string(key_line[key]) + ")");
+    }
     keys[key] = values;
     key_line[key] = line_no;
     if (key == "DATA") break;
