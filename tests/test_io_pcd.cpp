@@ -390,6 +390,9 @@ TEST_F(Pcd, BinaryBodiesThatPclTakesForHeaderLinesAreRefused) {
   EXPECT_THAT(read_error(hidden), HasSubstr("has a line starting 'VERSION'"));
   const std::string after_comment = write_file("after_comment.pcd", head4 + "#\nFIELDS" + std::string(4 * 12 - 8, '\0'));
   EXPECT_THAT(read_error(after_comment), HasSubstr("has a line starting 'FIELDS'"));
+  // and past lines it does not know (found by fuzzing: a later DATA line, SIGSEGV).
+  const std::string later_line = write_file("later_line.pcd", head4 + "\x8d\x8d\nV1\nDATA b" + std::string(4 * 12 - 13, '\0'));
+  EXPECT_THAT(read_error(later_line), HasSubstr("has a line starting 'DATA'"));
   // A body whose bytes only look like a word further on is read.
   const std::string path = write_file("later.pcd", head + std::string(12, '\0') + "FIELDS" + std::string(6, '\0'));
   EXPECT_EQ(read_pcd(path).size(), 2u);  // the second point's bytes spell "FIELDS": finite floats, read

@@ -176,24 +176,23 @@ void check_pcd_header(const std::string& path) {
     }
   }
   if (data == "binary" || data == "binary_compressed") {
-    // PCL's header parser does not stop at DATA: it reads on while lines are empty, comments
-    // or begin with a header word, and takes those words as header (found by fuzzing: it
-    // misreads the body, and with FIELDS or COLUMNS writes out of bounds). A binary body whose
-    // lines, read that way, reach a header word (its bytes spelling one by accident) is refused.
+    // PCL's header parser does not stop at DATA: it reads the body's lines on, and takes any
+    // that begins with a header word for header (found by fuzzing: it misreads the body, and
+    // with FIELDS, COLUMNS or a second DATA writes or reads out of bounds). A binary body with
+    // such a line (its bytes spelling one after a newline by accident) is refused.
     const std::streamoff body = static_cast<std::streamoff>(in.tellg());
     static const char* const kHeaderWords[] = {"VERSION", "FIELDS", "COLUMNS", "SIZE", "TYPE", "COUNT",
                                                "WIDTH",   "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
     for (std::string row; std::getline(in, row);) {
       std::istringstream words(row);
       std::string word;
-      if (!(words >> word) || word[0] == '#') continue;  // PCL skips these and reads on
+      if (!(words >> word) || word[0] == '#') continue;
       for (const char* header_word : kHeaderWords) {
         if (word.rfind(header_word, 0) == 0) {
           throw input_error(path, 0, std::string("the binary body after byte ") + std::to_string(body) + " has a line starting '" +
                                          header_word + "', which PCL's reader takes for a header line: it cannot be read");
         }
       }
-      break;  // PCL stops at the first other line
     }
     in.clear();
     in.seekg(body);
