@@ -8,7 +8,8 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config
   libeigen3-dev        # linear algebra, poses
-  libpcl-dev           # point-cloud filters, kd-trees, registration, PCD I/O
+  libpcl-dev           # point-cloud filters, kd-trees, registration
+  liblzf-dev           # PCD binary_compressed blocks
   libceres-dev         # factor-graph back-end
   libnanoflann-dev     # small kd-trees
   robin-map-dev        # the LiDAR odometry's voxel hash map (tsl::robin_map, as KISS-ICP)

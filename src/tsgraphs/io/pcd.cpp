@@ -1,38 +1,59 @@
 #include "tsgraphs/io/pcd.hpp"
 
-#include <pcl/PCLPointCloud2.h>
-#include <pcl/console/print.h>
-#include <pcl/conversions.h>
-#include <pcl/io/pcd_io.h>
-#include <pcl/point_types.h>
+#include <lzf.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
-#include <set>
 #include <sstream>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/text_file.hpp"
 #include "tsgraphs/io/point_time.hpp"
 
 namespace tsgraphs::io {
 namespace {
 
-// PCD's width, height and uncompressed block size are 32-bit words in PCL; a larger header
-// value cannot be a real cloud, and bounding it keeps the size arithmetic below from overflowing.
+// Width, height and a block's uncompressed size are 32-bit words in PCD as PCL writes it; a
+// larger header value cannot be a real cloud, and bounding it keeps the size arithmetic exact.
 constexpr unsigned long long kMaxPcdDimension = std::numeric_limits<std::uint32_t>::max();
 // A field's COUNT beyond this is no real point layout (PCL's largest, a 308-bin histogram).
 constexpr unsigned long long kMaxPcdFieldCount = 1u << 16;
 // DATA binary_compressed starts with two little-endian words: compressed and uncompressed size.
 constexpr std::size_t kCompressedSizeWords = 8;
+// LZF's longest back-reference, 264 bytes, takes 3 bytes: no block expands more than this, so a
+// larger uncompressed size word is refused before its buffer is allocated.
+constexpr unsigned long long kLzfMaxExpansion = 88;
+
+/// One field of the header, and where its first value is in a point (binary) or a block
+/// (binary_compressed stores field after field, each for all points).
+struct PcdField {
+  std::string name;
+  char type = 'F';          // F, I or U
+  unsigned size = 4;        // bytes of one value
+  unsigned long long count = 1;
+  std::size_t offset = 0;   // bytes from the start of a point (binary)
+  std::size_t value = 0;    // values from the start of a row (ascii)
+};
+
+struct PcdHeader {
+  std::vector<PcdField> fields;
+  unsigned long long points = 0;
+  std::string data;             // ascii, binary or binary_compressed
+  std::size_t point_bytes = 0;  // bytes of one point
+  std::size_t row_values = 0;   // numbers on one ascii row
+  std::size_t body = 0;         // byte where the body starts
+  int lines = 0;                // lines up to and including DATA
+};
 
 // A whole-token, non-negative decimal of a header key; anything else (a word, a sign, a
 // fraction, an overflow) is an InputError naming the file, the header line and the field.
@@ -49,51 +70,46 @@ unsigned long long header_count(const std::string& path, int line_no, const std:
   return v;
 }
 
-// Bytes from `body` to the end of the file, or an InputError naming it.
-unsigned long long bytes_after(const std::string& path, std::streamoff body) {
-  std::error_code ec;
-  const auto total = std::filesystem::file_size(path, ec);
-  if (ec) throw input_error(path, 0, "cannot read the file: " + ec.message());
-  if (body < 0 || static_cast<unsigned long long>(body) > total) throw input_error(path, 0, "PCD header runs to the end of the file");
-  return total - static_cast<unsigned long long>(body);
-}
-
-// PCL's reader can crash on a file that is not a PCD (PCL 1.13), so the header is checked
-// here first: every key known, FIELDS / SIZE / TYPE / COUNT consistent, POINTS = WIDTH *
-// HEIGHT, a binary body long enough for POINTS points, and a binary_compressed block whose
-// size words agree with the header and the file (PCL writes through a 0 uncompressed size).
-void check_pcd_header(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw input_error(path, 0, "cannot open file");
+// The header (PCD v0.7: every key known and given once, in the specification's order, FIELDS /
+// SIZE / TYPE / COUNT of one length, POINTS = WIDTH * HEIGHT), or an InputError at its line.
+PcdHeader parse_header(const std::string& path, const std::string& bytes) {
   std::map<std::string, std::vector<std::string>> keys;
   std::map<std::string, int> key_line;  // where each key was, for messages
-  std::string line;
+  PcdHeader h;
+  std::size_t at = 0;
   int line_no = 0;
-  while (std::getline(in, line)) {
+  while (!keys.count("DATA")) {
+    if (at >= bytes.size()) {
+      throw input_error(path, line_no, bytes.empty() ? "empty file, not a PCD" : "PCD header has no DATA line");
+    }
+    const std::size_t eol = std::min(bytes.find('\n', at), bytes.size());
+    std::string line = bytes.substr(at, eol - at);
+    at = eol + 1;
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line[0] == '#') continue;
     std::istringstream s(line);
     std::string key;
     s >> key;
-    static const std::set<std::string> kKnown = {"VERSION", "FIELDS", "SIZE", "TYPE", "COUNT",
-                                                 "WIDTH", "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
-    if (!kKnown.count(key)) throw input_error(path, line_no, "not a PCD header line: '" + line.substr(0, 40) + "'");
+    static const char* const kKnown[] = {"VERSION", "FIELDS", "SIZE", "TYPE", "COUNT",
+                                         "WIDTH", "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+    if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown)) {
+      throw input_error(path, line_no, "not a PCD header line: '" + line.substr(0, 40) + "'");
+    }
     std::vector<std::string> values;
     for (std::string v; s >> v;) values.push_back(v);
-    // A key given twice is ambiguous: PCL and this check could read different headers (found
-    // by fuzzing: a second POINTS line, and PCL sized the cloud by the other one).
-    if (keys.count(key)) {
+    if (keys.count(key)) {  // ambiguous: which one holds?
       throw input_error(path, line_no, "PCD header: " + key + " given twice (first on line " + std::to_string(key_line[key]) + ")");
     }
     keys[key] = values;
     key_line[key] = line_no;
-    if (key == "DATA") break;
   }
-  for (const char* required : {"FIELDS", "SIZE", "TYPE", "WIDTH", "POINTS", "DATA"}) {
+  h.body = std::min(at, bytes.size());
+  h.lines = line_no;
+  for (const char* required : {"FIELDS", "SIZE", "TYPE", "WIDTH", "POINTS"}) {
     if (!keys.count(required)) throw input_error(path, line_no, std::string("PCD header has no ") + required);
   }
-  // PCL's order: the field list before its sizes and counts, sizes before types.
+  // The specification's order: the field list before its sizes and counts, sizes before types.
   const auto before = [&](const char* first, const char* then) {
     if (keys.count(then) && key_line[then] < key_line[first]) {
       throw input_error(path, key_line[then], std::string("PCD header: ") + then + " comes before " + first);
@@ -108,7 +124,7 @@ void check_pcd_header(const std::string& path) {
   const std::size_t n_fields = keys["FIELDS"].size();
   if (n_fields == 0 || keys["SIZE"].size() != n_fields || keys["TYPE"].size() != n_fields ||
       (keys.count("COUNT") && keys["COUNT"].size() != n_fields)) {
-    throw input_error(path, 0, "PCD header: FIELDS, SIZE, TYPE and COUNT disagree in length");
+    throw input_error(path, key_line["FIELDS"], "PCD header: FIELDS, SIZE, TYPE and COUNT disagree in length");
   }
   auto number = [&](const std::string& key) -> unsigned long long {
     if (keys[key].size() != 1) throw input_error(path, key_line[key], "PCD header: " + key + " is not one number");
@@ -121,130 +137,170 @@ void check_pcd_header(const std::string& path) {
   };
   const unsigned long long width = number("WIDTH");
   const unsigned long long height = keys.count("HEIGHT") ? number("HEIGHT") : 1;
-  const unsigned long long points = number("POINTS");
-  if (points != width * height) {  // no overflow: both are at most 2^32 - 1
-    throw input_error(path, 0, "PCD header: POINTS is not WIDTH * HEIGHT");
+  h.points = number("POINTS");
+  if (h.points != width * height) {  // no overflow: both are at most 2^32 - 1
+    throw input_error(path, key_line["POINTS"], "PCD header: POINTS " + std::to_string(h.points) + " is not WIDTH * HEIGHT (" +
+                                                    std::to_string(width) + " x " + std::to_string(height) + ")");
   }
-  const std::string data = keys["DATA"].empty() ? "" : keys["DATA"][0];
-  if (data != "ascii" && data != "binary" && data != "binary_compressed") {
-    throw input_error(path, line_no, "PCD header: unknown DATA '" + data + "'");
+  h.data = keys["DATA"].size() == 1 ? keys["DATA"][0] : "";
+  if (h.data != "ascii" && h.data != "binary" && h.data != "binary_compressed") {
+    throw input_error(path, key_line["DATA"], "PCD header: DATA must be ascii, binary or binary_compressed");
   }
-  unsigned long long point_bytes = 0;
-  unsigned long long values_per_point = 0;
   for (std::size_t i = 0; i < n_fields; ++i) {
-    const std::string& field = keys["FIELDS"][i];
-    const unsigned long long size = header_count(path, key_line["SIZE"], "SIZE", keys["SIZE"][i], field);
-    const unsigned long long count =
-        keys.count("COUNT") ? header_count(path, key_line["COUNT"], "COUNT", keys["COUNT"][i], field) : 1;
+    PcdField f;
+    f.name = keys["FIELDS"][i];
+    const unsigned long long size = header_count(path, key_line["SIZE"], "SIZE", keys["SIZE"][i], f.name);
+    f.count = keys.count("COUNT") ? header_count(path, key_line["COUNT"], "COUNT", keys["COUNT"][i], f.name) : 1;
     const std::string& type = keys["TYPE"][i];
-    if ((size != 1 && size != 2 && size != 4 && size != 8) || (type != "F" && type != "I" && type != "U") || count < 1 ||
-        count > kMaxPcdFieldCount) {
-      throw input_error(path, 0, "PCD header: bad SIZE/TYPE/COUNT for field " + field);
+    if (type != "F" && type != "I" && type != "U") {
+      throw input_error(path, key_line["TYPE"], "PCD header: TYPE '" + type + "' of field " + f.name + " is not F, I or U");
     }
-    // The types PCL 1.13 reads: floats of 4 or 8 bytes, integers of 1, 2 or 4 (found by
-    // fuzzing: a 2-byte F field was read as 4 bytes, past the end of the last point).
-    if ((type == "F" && size != 4 && size != 8) || (type != "F" && size == 8)) {
-      throw input_error(path, key_line["SIZE"], "PCD header: field " + field + " of TYPE " + type + " and SIZE " +
-                                                    std::to_string(size) + ": not a type PCL reads (F 4 or 8, I and U 1, 2 or 4)");
+    // The specification's types: floats of 4 or 8 bytes, integers of 1, 2, 4 or 8 (a 2-byte
+    // float is no C type, and was read past the last point by PCL: found by fuzzing).
+    const bool known = type == "F" ? (size == 4 || size == 8) : (size == 1 || size == 2 || size == 4 || size == 8);
+    if (!known) {
+      throw input_error(path, key_line["SIZE"], "PCD header: field " + f.name + " of TYPE " + type + " and SIZE " +
+                                                    std::to_string(size) + ": not a PCD type (F 4 or 8, I and U 1, 2, 4 or 8)");
     }
-    point_bytes += size * count;
-    values_per_point += count;
+    if (f.count < 1 || f.count > kMaxPcdFieldCount) {
+      throw input_error(path, key_line.count("COUNT") ? key_line["COUNT"] : key_line["FIELDS"],
+                        "PCD header: COUNT of field " + f.name + " must be 1 to " + std::to_string(kMaxPcdFieldCount));
+    }
+    f.type = type[0];
+    f.size = static_cast<unsigned>(size);
+    f.offset = h.point_bytes;
+    f.value = h.row_values;
+    h.point_bytes += f.size * f.count;  // at most (fields x 8 x 2^16): no overflow
+    h.row_values += f.count;
+    h.fields.push_back(f);
   }
-  // At most 2^32 points of at most (fields x 8 x 2^16) bytes: the product can still overflow.
-  unsigned long long body_bytes = 0;
-  if (__builtin_mul_overflow(points, point_bytes, &body_bytes)) {
-    throw input_error(path, 0, "PCD header: POINTS x point size overflows");
-  }
-  if (data == "ascii") {
-    unsigned long long rows = 0;
-    for (std::string row; std::getline(in, row);) {
-      ++line_no;
-      std::istringstream s(row);
-      unsigned long long k = 0;
-      for (std::string tok; s >> tok; ++k) {
-        char* end = nullptr;
-        std::strtod(tok.c_str(), &end);
-        if (end == tok.c_str() || *end != '\0') throw input_error(path, line_no, "not a number: '" + tok + "'");
+  return h;
+}
+
+// A value of field `f` at `p` as a double, whatever its numeric type.
+double decode(const std::uint8_t* p, const PcdField& f) {
+  auto get = [p](auto v) {
+    std::memcpy(&v, p, sizeof v);
+    return static_cast<double>(v);
+  };
+  switch (f.type) {
+    case 'F': return f.size == 4 ? get(float{}) : get(double{});
+    case 'I':
+      switch (f.size) {
+        case 1: return get(std::int8_t{});
+        case 2: return get(std::int16_t{});
+        case 4: return get(std::int32_t{});
+        default: return get(std::int64_t{});
       }
-      if (k != 0 && k != values_per_point) {
-        throw input_error(path, line_no, "expected " + std::to_string(values_per_point) + " values");
+    default:
+      switch (f.size) {
+        case 1: return get(std::uint8_t{});
+        case 2: return get(std::uint16_t{});
+        case 4: return get(std::uint32_t{});
+        default: return get(std::uint64_t{});
+      }
+  }
+}
+
+/// The body's values: value(f, i) is the first value of field f of point i.
+class PcdBody {
+ public:
+  PcdBody(const std::string& path, const std::string& bytes, const PcdHeader& h) : h_(h), ascii_body_(h.data == "ascii") {
+    if (ascii_body_) read_ascii(path, bytes);
+    if (h.data == "binary") {
+      const unsigned long long available = bytes.size() - h.body;
+      if (available / std::max<std::size_t>(h.point_bytes, 1) < h.points) {
+        throw input_error(path, 0, "PCD body after byte " + std::to_string(h.body) + " has " + std::to_string(available) +
+                                       " bytes, POINTS x point size is " + std::to_string(h.points * h.point_bytes) +
+                                       " (truncated file?)");
+      }
+      binary_ = reinterpret_cast<const std::uint8_t*>(bytes.data()) + h.body;
+    }
+    if (h.data == "binary_compressed") read_compressed(path, bytes);
+  }
+
+  double value(const PcdField& f, std::size_t i) const {
+    if (ascii_body_) return ascii_[i * h_.row_values + f.value];
+    if (binary_) return decode(binary_ + i * h_.point_bytes + f.offset, f);
+    // Field after field: a field's block starts after all points' values of the ones before.
+    return decode(block_.data() + f.offset * h_.points + i * f.size * f.count, f);
+  }
+
+ private:
+  void read_ascii(const std::string& path, const std::string& bytes) {
+    ascii_.reserve(std::min<unsigned long long>(h_.points * h_.row_values, bytes.size()));
+    unsigned long long rows = 0;
+    int line_no = h_.lines;
+    std::string token;
+    for (std::size_t at = h_.body; at < bytes.size();) {
+      const std::size_t eol = std::min(bytes.find('\n', at), bytes.size());
+      const std::string_view line(bytes.data() + at, eol - at);
+      at = eol + 1;
+      ++line_no;
+      std::size_t k = 0;
+      for (std::size_t t = line.find_first_not_of(" \t\r"); t != std::string_view::npos;
+           t = line.find_first_not_of(" \t\r", t)) {
+        const std::size_t end = std::min(line.find_first_of(" \t\r", t), line.size());
+        token.assign(line.substr(t, end - t));
+        t = end;
+        char* stop = nullptr;
+        const double v = std::strtod(token.c_str(), &stop);  // reads nan and inf, as PCD writers do
+        if (stop == token.c_str() || *stop != '\0') throw input_error(path, line_no, "not a number: '" + token.substr(0, 40) + "'");
+        if (rows >= h_.points) throw input_error(path, line_no, "PCD body has more points than POINTS (" + std::to_string(h_.points) + ")");
+        ascii_.push_back(v);
+        ++k;
+      }
+      if (k != 0 && k != h_.row_values) {
+        throw input_error(path, line_no, "expected " + std::to_string(h_.row_values) + " values, found " + std::to_string(k));
       }
       if (k != 0) ++rows;
     }
-    if (rows < points) {
-      throw input_error(path, line_no, "PCD body has " + std::to_string(rows) + " points, POINTS says " + std::to_string(points));
+    if (rows < h_.points) {
+      throw input_error(path, line_no, "PCD body has " + std::to_string(rows) + " points, POINTS says " + std::to_string(h_.points));
     }
   }
-  if (data == "binary" || data == "binary_compressed") {
-    // PCL's header parser does not stop at DATA: it reads the body's lines on, and takes any
-    // that begins with a header word for header (found by fuzzing: it misreads the body, and
-    // with FIELDS, COLUMNS or a second DATA writes or reads out of bounds). A binary body with
-    // such a line (its bytes spelling one after a newline by accident) is refused.
-    const std::streamoff body = static_cast<std::streamoff>(in.tellg());
-    static const char* const kHeaderWords[] = {"VERSION", "FIELDS", "COLUMNS", "SIZE", "TYPE", "COUNT",
-                                               "WIDTH",   "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
-    for (std::string row; std::getline(in, row);) {
-      std::istringstream words(row);
-      std::string word;
-      if (!(words >> word) || word[0] == '#') continue;
-      for (const char* header_word : kHeaderWords) {
-        if (word.rfind(header_word, 0) == 0) {
-          throw input_error(path, 0, std::string("the binary body after byte ") + std::to_string(body) + " has a line starting '" +
-                                         header_word + "', which PCL's reader takes for a header line: it cannot be read");
-        }
-      }
-    }
-    in.clear();
-    in.seekg(body);
-  }
-  if (data == "binary") {
-    if (bytes_after(path, static_cast<std::streamoff>(in.tellg())) < body_bytes) {
-      throw input_error(path, 0, "PCD body is shorter than POINTS * point size (truncated file?)");
-    }
-  }
-  if (data == "binary_compressed") {
-    const std::streamoff body = static_cast<std::streamoff>(in.tellg());
-    const unsigned long long available = bytes_after(path, body);
-    const std::string what = "binary_compressed block at byte " + std::to_string(body) + ": ";
-    std::uint8_t words[kCompressedSizeWords] = {};
-    if (available < kCompressedSizeWords || !in.read(reinterpret_cast<char*>(words), kCompressedSizeWords)) {
-      throw input_error(path, 0, what + "shorter than its two 4-byte size words");
-    }
+
+  void read_compressed(const std::string& path, const std::string& bytes) {
+    const unsigned long long available = bytes.size() - h_.body;
+    const std::string what = "binary_compressed block at byte " + std::to_string(h_.body) + ": ";
+    if (available < kCompressedSizeWords) throw input_error(path, 0, what + "shorter than its two 4-byte size words");
+    const auto* words = reinterpret_cast<const std::uint8_t*>(bytes.data()) + h_.body;
     const auto word = [&](std::size_t at) {  // little-endian, whatever the host
       return static_cast<unsigned long long>(words[at]) | static_cast<unsigned long long>(words[at + 1]) << 8 |
              static_cast<unsigned long long>(words[at + 2]) << 16 | static_cast<unsigned long long>(words[at + 3]) << 24;
     };
     const unsigned long long compressed = word(0), uncompressed = word(4);
-    if (uncompressed != body_bytes) {
+    const unsigned long long expected = h_.points * h_.point_bytes;  // < 2^32 x 2^22: no overflow
+    if (uncompressed != expected) {
       throw input_error(path, 0, what + "uncompressed size " + std::to_string(uncompressed) + ", expected " +
-                                     std::to_string(body_bytes) + " bytes for POINTS x SIZE");
+                                     std::to_string(expected) + " bytes for POINTS x SIZE");
     }
     if (compressed > available - kCompressedSizeWords) {
       throw input_error(path, 0, what + "compressed size " + std::to_string(compressed) + " runs past the end of the file (" +
                                      std::to_string(available - kCompressedSizeWords) + " bytes follow)");
     }
-    if (compressed == 0 && uncompressed > 0) throw input_error(path, 0, what + "compressed size 0 for a non-empty cloud");
+    if (expected == 0) return;
+    if (compressed == 0) throw input_error(path, 0, what + "compressed size 0 for a non-empty cloud");
+    if (uncompressed > compressed * kLzfMaxExpansion) {
+      throw input_error(path, 0, what + std::to_string(compressed) + " compressed bytes cannot hold " +
+                                     std::to_string(uncompressed) + " (LZF expands at most " + std::to_string(kLzfMaxExpansion) + " times)");
+    }
+    block_.resize(uncompressed);
+    // liblzf checks every back-reference and length against both buffers (CHECK_INPUT).
+    const unsigned int got = lzf_decompress(words + kCompressedSizeWords, static_cast<unsigned int>(compressed), block_.data(),
+                                            static_cast<unsigned int>(uncompressed));
+    if (got != uncompressed) {
+      throw input_error(path, 0, what + "corrupt LZF data: it decompresses to " + std::to_string(got) + " of " +
+                                     std::to_string(uncompressed) + " bytes");
+    }
   }
-}
 
-// Value of field `f` of point `i` as a double, whatever the field's numeric type.
-double field_value(const pcl::PCLPointCloud2& blob, const pcl::PCLPointField& f, std::size_t i) {
-  const std::uint8_t* p = blob.data.data() + i * blob.point_step + f.offset;
-  auto get = [p](auto v) {
-    std::memcpy(&v, p, sizeof v);
-    return static_cast<double>(v);
-  };
-  switch (f.datatype) {
-    case pcl::PCLPointField::INT8: return get(std::int8_t{});
-    case pcl::PCLPointField::UINT8: return get(std::uint8_t{});
-    case pcl::PCLPointField::INT16: return get(std::int16_t{});
-    case pcl::PCLPointField::UINT16: return get(std::uint16_t{});
-    case pcl::PCLPointField::INT32: return get(std::int32_t{});
-    case pcl::PCLPointField::UINT32: return get(std::uint32_t{});
-    case pcl::PCLPointField::FLOAT64: return get(double{});
-    default: return get(float{});
-  }
-}
+  const PcdHeader& h_;
+  const bool ascii_body_;
+  std::vector<double> ascii_;               // ascii: row after row
+  const std::uint8_t* binary_ = nullptr;    // binary: the file's bytes, point after point
+  std::vector<std::uint8_t> block_;         // binary_compressed: decompressed, field after field
+};
 
 }  // namespace
 
@@ -254,38 +310,21 @@ PointCloud read_pcd(const std::string& path) {
   const auto status = std::filesystem::status(path, ec);
   if (ec && status.type() != std::filesystem::file_type::not_found) throw input_error(path, 0, "cannot open file: " + ec.message());
   if (!std::filesystem::is_regular_file(status)) throw input_error(path, 0, "no such file");
-  check_pcd_header(path);
-  // PCL's own lines would come before ours on stderr (its 1.13 has no hook to take them): it
-  // is silenced, check_pcd_header has found what it would say, and what is left is named here.
-  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-  pcl::PCLPointCloud2 blob;
-  pcl::PCDReader reader;
-  int read_status = 0;
-  try {
-    read_status = reader.read(path, blob);
-  } catch (const std::exception& e) {
-    // PCL's header parser indexes past a line's words in some files our check accepts (a
-    // binary body that starts with the bytes "DATA", found by fuzzing): its error, our line.
-    throw input_error(path, 0, std::string("PCL's reader failed on this file (") + e.what() + ")");
-  }
-  if (read_status < 0) {
-    throw input_error(path, 0, "PCD body does not match its header (for binary_compressed: the block does not "
-                               "decompress to the size its header gives)");
-  }
-  const pcl::PCLPointField* fx = nullptr;
-  const pcl::PCLPointField* fy = nullptr;
-  const pcl::PCLPointField* fz = nullptr;
-  const pcl::PCLPointField* fi = nullptr;
-  const pcl::PCLPointField* ft = nullptr;
+  const std::string bytes = read_text_file(path);
+  const PcdHeader h = parse_header(path, bytes);
+  const PcdField* fx = nullptr;
+  const PcdField* fy = nullptr;
+  const PcdField* fz = nullptr;
+  const PcdField* fi = nullptr;
+  const PcdField* ft = nullptr;
   double time_scale = 0.0;
   std::size_t time_rank = time_field_names().size();
-  for (const auto& f : blob.fields) {
+  for (const auto& f : h.fields) {
     if (f.name == "x") fx = &f;
     if (f.name == "y") fy = &f;
     if (f.name == "z") fz = &f;
     if (f.name == "intensity") fi = &f;
-    const auto scale = time_field_scale(f.name, f.datatype != pcl::PCLPointField::FLOAT32 &&
-                                                    f.datatype != pcl::PCLPointField::FLOAT64);
+    const auto scale = time_field_scale(f.name, f.type != 'F');
     const auto rank = static_cast<std::size_t>(
         std::find(time_field_names().begin(), time_field_names().end(), f.name) - time_field_names().begin());
     if (scale && rank < time_rank) {
@@ -295,22 +334,22 @@ PointCloud read_pcd(const std::string& path) {
     }
   }
   if (!fx || !fy || !fz) throw input_error(path, 0, "PCD has no x y z fields");
-  const std::size_t n = static_cast<std::size_t>(blob.width) * blob.height;
-  if (blob.data.size() < n * blob.point_step) throw input_error(path, 0, "PCD body is shorter than its header says");
+  const PcdBody body(path, bytes, h);
+  const auto n = static_cast<std::size_t>(h.points);
   PointCloud cloud;
   cloud.reserve(n, fi != nullptr, false);
   std::vector<double> seconds;
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d p(field_value(blob, *fx, i), field_value(blob, *fy, i), field_value(blob, *fz, i));
+    const Eigen::Vector3d p(body.value(*fx, i), body.value(*fy, i), body.value(*fz, i));
     const Eigen::Vector3f pf = p.cast<float>();
-    if (!pf.allFinite()) continue;
+    if (!pf.allFinite()) continue;  // organised clouds carry NaNs for missing returns
     cloud.points.push_back(pf);
     if (fi) {
-      const auto v = static_cast<float>(field_value(blob, *fi, i));
+      const auto v = static_cast<float>(body.value(*fi, i));
       cloud.intensity.push_back(std::isfinite(v) ? v : 0.0f);
     }
     if (ft) {
-      const double t = field_value(blob, *ft, i) * time_scale;
+      const double t = body.value(*ft, i) * time_scale;
       if (!std::isfinite(t))
         throw input_error(path, 0, "point " + std::to_string(i) + ": field '" + ft->name + "' is not a finite number");
       seconds.push_back(t);

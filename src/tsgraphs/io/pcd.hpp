@@ -1,5 +1,5 @@
 #pragma once
-/// PCD files (ASCII, binary, binary_compressed), read through PCL; written as binary PCD.
+/// PCD files (v0.7: ascii, binary, binary_compressed), read and written without PCL.
 #include <string>
 
 #include "tsgraphs/core/point_cloud.hpp"

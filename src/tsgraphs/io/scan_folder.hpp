@@ -1,5 +1,5 @@
 #pragma once
-/// A folder of scans as recordings come: PCD files (any of PCL's layouts: ASCII, binary,
+/// A folder of scans as recordings come: PCD files (any of PCD's encodings: ascii, binary,
 /// binary_compressed) or KITTI .bin files, with a pose file (TUM, or KITTI 3x4 rows) or none
 /// (the odometry is then empty, for `run` to estimate from the scans).
 ///
