@@ -8,9 +8,12 @@
 #include <cmath>
 #include <cstring>
 #include <cstdlib>
+#include <Eigen/Geometry>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <tuple>
 
 #include "small_room_test_support.hpp"
 #include "test_support.hpp"
@@ -50,6 +53,31 @@ class RunCli : public test::TempDirTest {
 };
 fs::path RunCli::base_;
 
+struct PlyVertex {
+  Eigen::Vector3d p;
+  unsigned char r, g, b;
+};
+
+// map.ply's vertices (double x y z, uchar r g b, as run writes it).
+std::vector<PlyVertex> read_map_ply(const fs::path& file) {
+  const std::string ply = read_file(file);
+  EXPECT_NE(ply.find("property double x\nproperty double y\nproperty double z\n"), std::string::npos);
+  const std::size_t body = ply.find("end_header\n") + std::strlen("end_header\n");
+  std::vector<PlyVertex> out;
+  for (std::size_t at = body; at + 27 <= ply.size(); at += 27) {
+    PlyVertex v;
+    std::memcpy(v.p.data(), ply.data() + at, 24);
+    v.r = static_cast<unsigned char>(ply[at + 24]), v.g = static_cast<unsigned char>(ply[at + 25]),
+    v.b = static_cast<unsigned char>(ply[at + 26]);
+    out.push_back(v);
+  }
+  const std::size_t count = ply.find("element vertex ");
+  EXPECT_NE(count, std::string::npos);
+  EXPECT_EQ(std::stoul(ply.substr(count + std::strlen("element vertex "))), out.size());
+  EXPECT_EQ(ply.size() - body, 27 * out.size());
+  return out;
+}
+
 }  // namespace
 
 TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
@@ -83,15 +111,10 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
               std::hypot(r["rect"]["size"][0].get<double>(), r["rect"]["size"][1].get<double>()));
   }
   // map.ply draws the rooms (cyan or orange outlines) and the floor node (a yellow cross).
-  const std::string ply = read_file(out / "map.ply");
-  const std::size_t body = ply.find("end_header\n") + std::strlen("end_header\n");
-  constexpr std::size_t kVertexBytes = 15;  // 3 floats and 3 colour bytes
   int outline = 0, floor_cross = 0;
-  for (std::size_t at = body; at + kVertexBytes <= ply.size(); at += kVertexBytes) {
-    const auto r = static_cast<unsigned char>(ply[at + 12]), g = static_cast<unsigned char>(ply[at + 13]),
-               b = static_cast<unsigned char>(ply[at + 14]);
-    if ((r == 0 && g == 200 && b == 255) || (r == 255 && g == 150 && b == 0)) ++outline;
-    if (r == 255 && g == 255 && b == 0) ++floor_cross;
+  for (const PlyVertex& v : read_map_ply(out / "map.ply")) {
+    if ((v.r == 0 && v.g == 200 && v.b == 255) || (v.r == 255 && v.g == 150 && v.b == 0)) ++outline;
+    if (v.r == 255 && v.g == 255 && v.b == 0) ++floor_cross;
   }
   EXPECT_GE(outline, 100);  // 0.05 m apart round rooms metres wide
   EXPECT_GE(floor_cross, 20);
@@ -315,6 +338,68 @@ TEST_F(RunCli, OdometryJumpNoPlatformMakesIsRefusedBeforeTheRun) {
   EXPECT_NE(err.find(seq.string() + ": odometry of scan 2 "), std::string::npos) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   EXPECT_FALSE(fs::exists(dir_ / "run"));
+}
+
+// Issue 18: map.ply stored float32, so a run at UTM coordinates was quantised to 1/4 m, and the
+// pipeline's own float32 points with it (its trajectory 2.4 cm from the same run elsewhere). The
+// pipeline runs in a map frame at the first pose rounded to whole kilometres and the outputs are
+// moved back: the sequence 512 km east and 4,012 km north gives the run of the sequence 345 m
+// east and north, moved by the whole kilometres (a shift of its own, 345 m, changes a run by
+// millimetres: float rounding, amplified by registration).
+TEST_F(RunCli, ASequenceAtUtmCoordinatesRunsAsNearTheOrigin) {
+  const auto shifted = [&](const std::string& name, const Eigen::Vector3d& by) {
+    const fs::path seq = dir_ / name;
+    fs::copy(base_ / "seq", seq, fs::copy_options::recursive);
+    std::istringstream lines(read_file(seq / "odom.txt"));
+    std::ostringstream odom;
+    for (std::string line; std::getline(lines, line);) {
+      std::istringstream v(line);
+      double t, x, y, z, qx, qy, qz, qw;
+      EXPECT_TRUE(v >> t >> x >> y >> z >> qx >> qy >> qz >> qw) << line;
+      char text[400];
+      std::snprintf(text, sizeof text, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", t, x + by.x(), y + by.y(),
+                    z + by.z(), qx, qy, qz, qw);
+      odom << text;
+    }
+    std::ofstream(seq / "odom.txt") << odom.str();
+    return seq;
+  };
+  const Eigen::Vector3d near(345.0, 345.0, 0.0), kilometres(512000.0, 4012000.0, 0.0);
+  std::string err;
+  const fs::path here = dir_ / "run_near", far = dir_ / "run_far";
+  ASSERT_EQ(cli("-q run " + shifted("near", near).string() + " --out " + here.string(), &err), 0) << err;
+  ASSERT_EQ(cli("-q run " + shifted("far", near + kilometres).string() + " --out " + far.string(), &err), 0) << err;
+
+  const auto a = io::read_tum((here / "trajectory.txt").string()), b = io::read_tum((far / "trajectory.txt").string());
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_LT((b[i].pose.translation() - kilometres - a[i].pose.translation()).norm(), 1e-6) << "scan " << i;
+  }
+  // The map: the same points, not on float32's grid at 4e6 m (every y a multiple of 1/4 m).
+  const std::vector<PlyVertex> ma = read_map_ply(here / "map.ply"), mb = read_map_ply(far / "map.ply");
+  ASSERT_GT(ma.size(), 1000u);
+  ASSERT_EQ(ma.size(), mb.size());
+  std::size_t on_quarter_grid = 0;
+  for (std::size_t i = 0; i < ma.size(); ++i) {
+    ASSERT_LT((mb[i].p - kilometres - ma[i].p).norm(), 1e-6) << "vertex " << i;
+    ASSERT_EQ(std::tie(mb[i].r, mb[i].g, mb[i].b), std::tie(ma[i].r, ma[i].g, ma[i].b)) << "vertex " << i;
+    on_quarter_grid += std::fmod(mb[i].p.y(), 0.25) == 0.0;
+  }
+  EXPECT_LT(on_quarter_grid, mb.size() / 10);
+  // The scene graph: the same planes (n.x + d = 0 moved), rooms and levels.
+  const io::SceneGraph ga = io::read_scene_graph((here / "scene_graph.json").string());
+  const io::SceneGraph gb = io::read_scene_graph((far / "scene_graph.json").string());
+  ASSERT_EQ(ga.planes.size(), gb.planes.size());
+  for (std::size_t i = 0; i < ga.planes.size(); ++i) {
+    EXPECT_NEAR(gb.planes[i].d + gb.planes[i].n.dot(kilometres), ga.planes[i].d, 1e-6) << "plane " << i;
+  }
+  ASSERT_EQ(ga.rooms.size(), gb.rooms.size());
+  ASSERT_GE(ga.rooms.size(), 1u);
+  for (std::size_t i = 0; i < ga.rooms.size(); ++i) {
+    EXPECT_LT((gb.rooms[i].rect.center - kilometres.head<2>() - ga.rooms[i].rect.center).norm(), 1e-6) << "room " << i;
+  }
+  ASSERT_EQ(ga.traversable_nodes.size(), gb.traversable_nodes.size());
+  EXPECT_EQ(ga.levels, gb.levels);
 }
 
 TEST_F(RunCli, TruncatedNaNAndEmptyScansAreSkippedWithWarningsAndNoNaNPose) {

@@ -37,6 +37,39 @@ constexpr double kFloorCross = 0.5;    // half the arm of a floor node's cross (
 // Keyframe points are thinned to this grid in the map, so map.ply stays small on long runs.
 constexpr double kMapVoxel = 0.1;
 
+Pose3 moved(Pose3 pose, const Eigen::Vector3d& origin) {
+  pose.translation() += origin;
+  return pose;
+}
+
+void move(Polygon2& polygon, const Vec2& by) {
+  for (Vec2& v : polygon) v += by;
+}
+
+// Everything of the graph that has a place, from the map frame into the input's (relative
+// measurements, normals and ids stay). A zero origin leaves it untouched (0 + -0 is 0).
+void move(io::SceneGraph& g, const Eigen::Vector3d& o) {
+  if (o.isZero()) return;
+  const Vec2 o2 = o.head<2>();
+  for (auto& k : g.keyframes) k.pose.t += o, k.odom.t += o;
+  for (auto& p : g.planes) {
+    p.d -= p.n.dot(o);  // n.x + d = 0 holds for x + o
+    if (p.centroid) *p.centroid += o;
+    if (p.segment) (*p.segment)[0] += o2, (*p.segment)[1] += o2;
+    if (p.z_range) (*p.z_range)[0] += o.z(), (*p.z_range)[1] += o.z();
+  }
+  for (auto& n : g.traversable_nodes) n.position += o;
+  for (auto& r : g.rooms) {
+    r.rect.center += o2;
+    move(r.polygon, o2);
+    for (Eigen::Vector3d& v : r.free_space) v += o;
+  }
+  for (auto& r : g.room_nodes) r.center += o2;
+  for (auto& f : g.floors) f.center += o2;
+  for (double& z : g.levels) z += o.z();
+  for (auto& e : g.room_planes_edges) e.cluster_center += o2;
+}
+
 }  // namespace
 
 PlaneExtent plane_extent(const Plane& plane, const std::vector<Eigen::Vector3f>& points) {
@@ -60,7 +93,7 @@ PlaneExtent plane_extent(const Plane& plane, const std::vector<Eigen::Vector3f>&
   return e;
 }
 
-io::SceneGraph scene_graph_of(const Pipeline& pipeline) {
+io::SceneGraph scene_graph_of(const Pipeline& pipeline, const Eigen::Vector3d& origin) {
   const graph::SituationalGraph& g = pipeline.graph();
   io::SceneGraph out;
   for (const graph::KeyframeNode& k : g.keyframes())
@@ -123,10 +156,13 @@ io::SceneGraph scene_graph_of(const Pipeline& pipeline) {
     out.rooms.push_back(std::move(room));
   }
   out.levels = pipeline.room_layer().levels();
+  move(out, origin);
   return out;
 }
 
-std::string scene_graph_json(const Pipeline& pipeline) { return io::format_scene_graph(scene_graph_of(pipeline)); }
+std::string scene_graph_json(const Pipeline& pipeline, const Eigen::Vector3d& origin) {
+  return io::format_scene_graph(scene_graph_of(pipeline, origin));
+}
 
 std::vector<int> laps_of(const std::vector<double>& stamps, const std::vector<Pose3>& poses,
                          const std::vector<double>& lap_starts) {
@@ -156,7 +192,8 @@ std::vector<int> laps_of(const std::vector<double>& stamps, const std::vector<Po
   return laps;
 }
 
-std::vector<io::RoomEvent> room_events_of(const Pipeline& pipeline, const std::vector<double>& lap_starts) {
+std::vector<io::RoomEvent> room_events_of(const Pipeline& pipeline, const std::vector<double>& lap_starts,
+                                          const Eigen::Vector3d& origin) {
   std::vector<double> stamps;
   pipeline.scan_log().for_each([&](const ScanRecord& s) { stamps.push_back(s.stamp); });
   const std::vector<int> laps = laps_of(stamps, pipeline.trajectory(), lap_starts);
@@ -174,13 +211,19 @@ std::vector<io::RoomEvent> room_events_of(const Pipeline& pipeline, const std::v
     ev.polygon = e.outline;
     ev.walls = e.walls;
     ev.kind = rooms::to_string(e.kind);
+    if (!origin.isZero()) {
+      ev.center += origin.head<2>();
+      ev.rect.center += origin.head<2>();
+      move(ev.polygon, origin.head<2>());
+    }
     events.push_back(std::move(ev));
   }
   return events;
 }
 
-std::string room_events_jsonl(const Pipeline& pipeline, const std::vector<double>& lap_starts) {
-  return io::format_room_events(room_events_of(pipeline, lap_starts));
+std::string room_events_jsonl(const Pipeline& pipeline, const std::vector<double>& lap_starts,
+                              const Eigen::Vector3d& origin) {
+  return io::format_room_events(room_events_of(pipeline, lap_starts, origin));
 }
 
 io::Timings timings_of(const Pipeline& pipeline) {
@@ -201,9 +244,9 @@ io::Timings timings_of(const Pipeline& pipeline) {
 
 std::string timings_csv(const Pipeline& pipeline) { return io::format_timings(timings_of(pipeline)); }
 
-std::string map_ply(const Pipeline& pipeline) {
+std::string map_ply(const Pipeline& pipeline, const Eigen::Vector3d& origin) {
   struct Vertex {
-    Eigen::Vector3f p;
+    Eigen::Vector3f p;  // map frame (near its origin: float32 is precise there)
     Rgb c;
   };
   std::vector<Vertex> vertices;
@@ -255,17 +298,18 @@ std::string map_ply(const Pipeline& pipeline) {
                     "coloured wall faces, beige floors and ceilings, magenta traversable nodes, cyan room and orange "
                     "corridor outlines, yellow floor-node crosses\nelement vertex " +
                     std::to_string(vertices.size()) +
-                    "\nproperty float x\nproperty float y\nproperty float z\n"
+                    "\nproperty double x\nproperty double y\nproperty double z\n"
                     "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
   const std::size_t header = out.size();
-  constexpr std::size_t kVertexBytes = 3 * sizeof(float) + 3;
+  constexpr std::size_t kVertexBytes = 3 * sizeof(double) + 3;
   out.resize(header + vertices.size() * kVertexBytes);
   char* dst = out.data() + header;
   for (const Vertex& v : vertices) {
-    std::memcpy(dst, v.p.data(), 3 * sizeof(float));  // x86 and ARM are little-endian
-    dst[12] = static_cast<char>(v.c.r);
-    dst[13] = static_cast<char>(v.c.g);
-    dst[14] = static_cast<char>(v.c.b);
+    const Eigen::Vector3d p = v.p.cast<double>() + origin;  // the input's frame, to the millimetre at UTM coordinates
+    std::memcpy(dst, p.data(), 3 * sizeof(double));  // x86 and ARM are little-endian
+    dst[24] = static_cast<char>(v.c.r);
+    dst[25] = static_cast<char>(v.c.g);
+    dst[26] = static_cast<char>(v.c.b);
     dst += kVertexBytes;
   }
   return out;
@@ -312,20 +356,21 @@ io::RunSummary run_summary_of(const Pipeline& pipeline, const RunInfo& info) {
 
 void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std::string& dir) {
   const std::vector<Pose3> poses = pipeline.trajectory();
+  const Eigen::Vector3d& origin = info.map_origin;
   std::vector<io::StampedPose> stamped;
   stamped.reserve(poses.size());
   std::vector<io::StampedPose> odometry;
   odometry.reserve(poses.size());
   pipeline.scan_log().for_each([&](const ScanRecord& r) {
-    stamped.push_back({r.stamp, poses[stamped.size()]});
-    odometry.push_back({r.stamp, r.odom});
+    stamped.push_back({r.stamp, origin.isZero() ? poses[stamped.size()] : moved(poses[stamped.size()], origin)});
+    odometry.push_back({r.stamp, origin.isZero() ? r.odom : moved(r.odom, origin)});
   });
   io::write_file_atomic(dir + "/" + run_files::kTrajectory, io::format_tum(stamped));
   io::write_file_atomic(dir + "/" + run_files::kOdometry, io::format_tum(odometry));
-  io::write_file_atomic(dir + "/" + run_files::kSceneGraph, scene_graph_json(pipeline));
-  io::write_file_atomic(dir + "/" + run_files::kMap, map_ply(pipeline));
+  io::write_file_atomic(dir + "/" + run_files::kSceneGraph, scene_graph_json(pipeline, origin));
+  io::write_file_atomic(dir + "/" + run_files::kMap, map_ply(pipeline, origin));
   io::write_file_atomic(dir + "/" + run_files::kTimings, timings_csv(pipeline));
-  io::write_file_atomic(dir + "/" + run_files::kRoomEvents, room_events_jsonl(pipeline, info.lap_starts));
+  io::write_file_atomic(dir + "/" + run_files::kRoomEvents, room_events_jsonl(pipeline, info.lap_starts, origin));
   io::write_file_atomic(dir + "/" + run_files::kParams, dump_pipeline_config(pipeline.config()));
 
   io::write_file_atomic(dir + "/" + run_files::kRunInfo, io::format_run_summary(run_summary_of(pipeline, info)));

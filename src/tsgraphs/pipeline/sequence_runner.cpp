@@ -24,6 +24,9 @@ namespace {
 constexpr std::size_t kTokensPerThread = 8;
 // Lost odometry scans told one by one; more are counted at the end.
 constexpr std::size_t kLostScansTold = 5;
+// The map frame's origin is on this grid (map_origin_of): whole kilometres, so that it reads
+// plainly and a building-sized run near its frame's origin keeps that frame.
+constexpr double kMapOriginGrid = 1000.0;
 
 struct Loaded {
   std::size_t index = 0;
@@ -62,6 +65,10 @@ void measure_platform(const io::ScanSequence& sequence, bool poses_estimated, Pi
   pipeline.set_platform(scans, ups);
 }
 
+Eigen::Vector3d map_origin_of(const Pose3& first) {
+  return (first.translation() / kMapOriginGrid).array().round().matrix() * kMapOriginGrid;
+}
+
 RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const RunCallbacks& callbacks,
                      const OdometryOptions& odometry) {
   const auto start = std::chrono::steady_clock::now();
@@ -74,6 +81,13 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
   run.num_scans = sequence.size();
   run.lap_starts = info.lap_starts;
   run.estimated_odometry = odometry.estimate;
+  if (odometry.estimate || !info.odometry.empty())
+    run.map_origin = map_origin_of(odometry.estimate ? odometry.initial_pose : info.odometry.front());
+  // Input poses into the map frame (relative motions, as the de-skewing's, need no change).
+  const auto in_map = [origin = run.map_origin](Pose3 pose) {
+    pose.translation() -= origin;
+    return pose;
+  };
   if (!pipeline.platform()) {
     measure_platform(sequence, odometry.estimate, pipeline);
     if (callbacks.note) callbacks.note(describe(*pipeline.platform()));
@@ -86,7 +100,7 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
   tell_warnings();
   std::optional<odometry::LidarOdometry> lidar_odometry;
   if (odometry.estimate)
-    lidar_odometry.emplace(pipeline.config().lidar_odometry, odometry.initial_pose, pipeline.config().deskew.registration);
+    lidar_odometry.emplace(pipeline.config().lidar_odometry, in_map(odometry.initial_pose), pipeline.config().deskew.registration);
   // Reading and the keyframe steps (prefilter, ground, planes of keyframe candidates) run in
   // parallel on the next scans; the odometry and the pipeline take them in order, so the
   // result is the same as one scan at a time.
@@ -133,7 +147,7 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
                                              // An unreadable scan is empty here: the odometry keeps its prediction.
                                              l.odom = lidar_odometry
                                                           ? lidar_odometry->register_scan(l.scan, info.times[l.index])
-                                                          : info.odometry[l.index];
+                                                          : in_map(info.odometry[l.index]);
                                              // De-skewed after the odometry: with the motion its sweep
                                              // registration found, else with the poses' motion or a
                                              // registration of the sweep's own (deskew.hpp, sweep_motion).

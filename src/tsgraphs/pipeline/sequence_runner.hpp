@@ -33,8 +33,16 @@ struct OdometryOptions {
 /// sequence's poses unless `poses_estimated`. Unreadable scans are left out.
 void measure_platform(const io::ScanSequence& sequence, bool poses_estimated, Pipeline& pipeline);
 
+/// The origin of the pipeline's map frame for a run whose first pose is `first`: its position
+/// rounded to whole kilometres. The pipeline keeps points in float32, precise to 30 um within
+/// 500 m of its origin but to 1/4 m at UTM coordinates (4e6 m); runs near their frame's origin
+/// get 0, so their map frame is the input's.
+Eigen::Vector3d map_origin_of(const Pose3& first);
+
 /// Feeds every scan of `sequence` with its odometry pose to `pipeline`, then finishes it. The
-/// platform is measured first (measure_platform) unless the pipeline already has it.
+/// platform is measured first (measure_platform) unless the pipeline already has it. The
+/// pipeline runs in a map frame at map_origin_of(first pose) (RunInfo::map_origin; its poses
+/// and maps are relative to it, write_run_outputs adds it back).
 /// A scan file that cannot be read (truncated, wrong label count) is skipped with a warning;
 /// its pose still comes from the odometry (estimated: the constant-velocity prediction).
 /// Returns the run's facts for run_info.json. A sequence without odometry and
