@@ -10,6 +10,7 @@
 
 #include "report_test_support.hpp"
 #include "tsgraphs/report/run_svg.hpp"
+#include "tsgraphs/report/svg_writer.hpp"
 #include "tsgraphs/scene/scene_geometry.hpp"
 #include "tsgraphs/sim/scene_mesh.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
@@ -201,6 +202,28 @@ TEST(ReportRunSvg, ManyNodesStayOnePathWithTheirCount) {
   EXPECT_LT(count(d, "h0"), 10000u);
   EXPECT_GT(count(d, "h0"), 2000u);
   EXPECT_LT(svg.size(), 200000u);
+}
+
+// Issue 18: a run kilometres long (up to 10 km is accepted) was drawn at 24 px per metre, a
+// page of 240,000 px. A building keeps its scale; a longer run is drawn smaller, within
+// report::svg::kMaxDrawingPx, and says so.
+TEST(ReportRunSvg, ARunKilometresLongFitsThePage) {
+  const RunView building = two_level_run();
+  EXPECT_NE(report::birdseye_svg(building, 0).find("24 px per metre"), std::string::npos);
+  RunView run = two_level_run();
+  run.nodes.push_back({Eigen::Vector3d(8000.0, 3000.0, 0.0)});
+  for (const std::string& svg : {report::birdseye_svg(run, 0), report::side_view_svg(run)}) {
+    EXPECT_EQ(nesting_error(svg), "");
+    const std::smatch w = [&] {
+      std::smatch m;
+      std::regex_search(svg, m, std::regex("<svg [^>]*width=\"([0-9.]+)\" height=\"([0-9.]+)\""));
+      return m;
+    }();
+    ASSERT_EQ(w.size(), 3u);
+    EXPECT_LE(std::stod(w[1].str()), report::svg::kMaxDrawingPx + 1000.0);
+    EXPECT_LE(std::stod(w[2].str()), report::svg::kMaxDrawingPx + 1000.0);
+    EXPECT_GT(std::stod(w[1].str()), 0.9 * report::svg::kMaxDrawingPx);  // the long side fills it
+  }
 }
 
 TEST(ReportRunSvg, SideViewShowsEveryLevelsPointsAndTheSlabsGaps) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tsgraphs/report/scene_svg.hpp"
+#include "tsgraphs/report/svg_writer.hpp"
 #include "tsgraphs/scene/scene_geometry.hpp"
 #include "tsgraphs/sim/scene_mesh.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
@@ -151,6 +152,21 @@ Scene corridor(double length, int laps) {
 }
 
 }  // namespace
+
+// Issue 18: a scene's slab vertex at 1e12 m made a 4e13-pixel drawing. Scenes are bounded
+// (10 km across), and a scene kilometres long is drawn smaller, within svg::kMaxDrawingPx.
+TEST(SceneSvg, ASceneKilometresLongFitsThePage) {
+  const auto page = [](const std::string& svg) {
+    std::smatch m;
+    EXPECT_TRUE(std::regex_search(svg, m, std::regex("<svg [^>]*width=\"([0-9.]+)\" height=\"([0-9.]+)\"")));
+    return std::pair<double, double>(std::stod(m[1].str()), std::stod(m[2].str()));
+  };
+  EXPECT_NE(draw(corridor(30.0, 1)).find("40 px per metre"), std::string::npos);  // a building keeps its scale
+  const auto [w, h] = page(draw(corridor(5000.0, 1)));
+  EXPECT_LE(w, report::svg::kMaxDrawingPx + 1000.0);
+  EXPECT_LE(h, report::svg::kMaxDrawingPx + 1000.0);
+  EXPECT_GT(w, 0.9 * report::svg::kMaxDrawingPx);
+}
 
 TEST(SceneSvg, IsWellFormedXml) {
   const std::string svg = draw(two_storeys());

@@ -44,7 +44,7 @@ constexpr double kSwatchThin = 6.0;         // floors seen from the side
 constexpr double kTextBaselineShift = 4.0;  // a row's text baseline below the row's middle
 
 // Bird's-eye
-constexpr double kPlanPxPerMetre = 24.0;
+constexpr double kPlanPxPerMetre = 24.0;    // lowered for runs kilometres long (svg::drawing_scale)
 constexpr double kPlanPaddingM = 0.8;       // around what is drawn
 constexpr double kMinPlanWidth = 2.0 * kLegendColumnWidth;
 constexpr int kScaleBarMetres = 5;
@@ -369,7 +369,7 @@ class BirdseyeDrawer {
     for (const RunView::Room* r : rooms_) n_rooms += is_corridor(*r) ? 0 : 1;
     out_ += text(kPageMargin, kPageMargin + kSubtitleBaseline, "subtitle",
                  std::to_string(n_rooms) + " rooms, " + std::to_string(rooms_.size() - n_rooms) + " corridors, " +
-                     std::to_string(walls_.size()) + " wall planes on this level; " + short_num(kPlanPxPerMetre) +
+                     std::to_string(walls_.size()) + " wall planes on this level; " + short_num(frame_.scale) +
                      " px per metre, y up");
     out_ += "<g class=\"plan\">\n";
     draw_scene();
@@ -382,7 +382,7 @@ class BirdseyeDrawer {
     draw_labels();
     out_ += "</g>\n";
     svg::ScaleBarStyle bar;
-    bar.px_per_metre = kPlanPxPerMetre;
+    bar.px_per_metre = frame_.scale;
     bar.metres = kScaleBarMetres;
     bar.thickness = kScaleBarThickness;
     bar.text_gap = kScaleTextGap;
@@ -424,13 +424,14 @@ class BirdseyeDrawer {
     if (e.empty()) e.add(Vec2::Zero());
     e.min_x -= kPlanPaddingM, e.min_y -= kPlanPaddingM;
     e.max_x += kPlanPaddingM, e.max_y += kPlanPaddingM;
-    plan_w_ = std::max((e.max_x - e.min_x) * kPlanPxPerMetre, kMinPlanWidth);
-    plan_h_ = (e.max_y - e.min_y) * kPlanPxPerMetre;
-    frame_.min_x = e.min_x - 0.5 * (plan_w_ / kPlanPxPerMetre - (e.max_x - e.min_x));  // centred when widened
+    const double scale = svg::drawing_scale(e, kPlanPxPerMetre);
+    plan_w_ = std::max((e.max_x - e.min_x) * scale, kMinPlanWidth);
+    plan_h_ = (e.max_y - e.min_y) * scale;
+    frame_.min_x = e.min_x - 0.5 * (plan_w_ / scale - (e.max_x - e.min_x));  // centred when widened
     frame_.max_y = e.max_y;
     frame_.left = kPageMargin;
     frame_.top = kPageMargin + kTitleHeight;
-    frame_.scale = kPlanPxPerMetre;
+    frame_.scale = scale;
     page_w_ = plan_w_ + 2.0 * kPageMargin;
     page_h_ = frame_.top + plan_h_ + kScaleBarGap + kScaleBarHeight + legend_height(legend().size(), plan_w_) +
               kPageMargin;
@@ -528,7 +529,7 @@ class BirdseyeDrawer {
   void draw_free_space() {
     out_ += "<g class=\"layer-free-space\">\n";
     for (const RunView::Room* r : rooms_) {
-      Dots dots(kFreeSpaceCellM * kPlanPxPerMetre, kFreeSpaceDotPx);
+      Dots dots(kFreeSpaceCellM * frame_.scale, kFreeSpaceDotPx);
       for (const Eigen::Vector3d& p : r->free_space) dots.add(frame_.px(p.head<2>()));
       out_ += dots.path("free-space",
                         " data-room=\"" + std::to_string(r->id) + "\" stroke=\"" + room_colour(*r) + "\"");
@@ -671,7 +672,7 @@ class SideViewDrawer {
                  run_.label + " \xE2\x80\x94 side view (x\xE2\x80\x93z, every y projected)");
     out_ += text(kPageMargin, kPageMargin + kSubtitleBaseline, "subtitle",
                  "grey bars: the scene's floors, gaps where a void opens; dashed: the run's levels; " +
-                     short_num(kSidePxPerMetre) + " px per metre in x and z");
+                     short_num(frame_.scale) + " px per metre in x and z");
     draw_axes();
     draw_slabs();
     draw_levels();
@@ -709,13 +710,14 @@ class SideViewDrawer {
     e.min_x -= kSidePaddingM, e.max_x += kSidePaddingM;
     e.min_y -= kSidePaddingM, e.max_y += kSidePaddingM;
     extent_ = e;
-    plot_w_ = (e.max_x - e.min_x) * kSidePxPerMetre;
-    plot_h_ = (e.max_y - e.min_y) * kSidePxPerMetre;
+    const double scale = svg::drawing_scale(e, kSidePxPerMetre);
+    plot_w_ = (e.max_x - e.min_x) * scale;
+    plot_h_ = (e.max_y - e.min_y) * scale;
     frame_.min_x = e.min_x;
     frame_.max_y = e.max_y;
     frame_.left = kPageMargin + kAxisLeft;
     frame_.top = kPageMargin + kTitleHeight;
-    frame_.scale = kSidePxPerMetre;
+    frame_.scale = scale;
     page_w_ = std::max(frame_.left + plot_w_, kPageMargin + kMinPlanWidth) + kPageMargin;
     page_h_ = plot_bottom() + kAxisBottom + kLegendGap +
               legend_height(legend().size(), page_w_ - 2.0 * kPageMargin) + kPageMargin;

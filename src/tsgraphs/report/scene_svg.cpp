@@ -32,7 +32,7 @@ using scene::Scene;
 // ---------------------------------------------------------------------------------------
 // Layout (pixels unless the name says metres or seconds)
 
-constexpr double kPxPerMetre = 40.0;          // common scale of every panel
+constexpr double kPxPerMetre = 40.0;          // common scale of every panel (svg::drawing_scale may lower it)
 constexpr double kWorldPaddingM = 0.6;        // free space around the scene's extent
 constexpr double kPageMargin = 20.0;          // around the whole picture
 constexpr double kTitleHeight = 56.0;         // scene name and subtitle
@@ -166,8 +166,9 @@ using svg::Extent;
 struct Frame {
   double min_x = 0.0, max_y = 0.0;  // world corner drawn at (left, top)
   double left = 0.0, top = 0.0;     // pixel position of that corner
+  double scale = kPxPerMetre;       // px per metre
   Vec2 px(const Vec2& p) const {
-    return {left + (p.x() - min_x) * kPxPerMetre, top + (max_y - p.y()) * kPxPerMetre};
+    return {left + (p.x() - min_x) * scale, top + (max_y - p.y()) * scale};
   }
 };
 
@@ -370,8 +371,9 @@ class SceneDrawer {
   /// Panels side by side, or stacked when that makes the page closer to square.
   void layout() {
     const Extent e = world_extent();
-    const double plan_w = std::max((e.max_x - e.min_x) * kPxPerMetre, kMinPlanWidth);
-    const double plan_h = (e.max_y - e.min_y) * kPxPerMetre;
+    scale_ = svg::drawing_scale(e, kPxPerMetre);
+    const double plan_w = std::max((e.max_x - e.min_x) * scale_, kMinPlanWidth);
+    const double plan_h = (e.max_y - e.min_y) * scale_;
     const double panel_w = plan_w + 2.0 * kPanelPadding;
     const double panel_h = kPanelTitleHeight + plan_h + kScaleBarHeight + 2.0 * kPanelPadding;
     const auto n = static_cast<double>(std::max<std::size_t>(scene_.levels.size(), 1));
@@ -401,6 +403,7 @@ class SceneDrawer {
       p.frame.max_y = e.max_y;
       p.frame.left = kPanelPadding;  // panel-local pixels (the panel group is translated)
       p.frame.top = kPanelPadding + kPanelTitleHeight;
+      p.frame.scale = scale_;
       panels_.push_back(p);
     }
     legend_x_ = kPageMargin + (stacked ? panel_w : n * panel_w + (n - 1.0) * kPanelGap) + kPanelGap;
@@ -423,7 +426,7 @@ class SceneDrawer {
     out_ += text(kPageMargin, kPageMargin + kSubtitleBaseline, "subtitle",
                  std::to_string(scene_.levels.size()) + (scene_.levels.size() == 1 ? " level" : " levels") +
                      "; first lap of the path: " + num(lap_m) + " m in " + num(lap_s) + " s; " +
-                     short_num(kPxPerMetre) + " px per metre, y up");
+                     short_num(scale_) + " px per metre, y up");
   }
 
   void write_defs() {
@@ -619,7 +622,7 @@ class SceneDrawer {
       out_ += "<polyline class=\"person\" points=\"" + points_attr(f, p.path) + "\"/>\n";
       const Vec2 c = f.px(p.path.front());
       out_ += "<circle class=\"person-start\" cx=\"" + num(c.x()) + "\" cy=\"" + num(c.y()) + "\" r=\"" +
-              num(p.radius * kPxPerMetre) + "\"/>\n";
+              num(p.radius * scale_) + "\"/>\n";
     }
     out_ += "</g>\n";
   }
@@ -660,7 +663,7 @@ class SceneDrawer {
     const Vec2 h = f.px(hinge);
     const Vec2 a = open - h, b = jamb - h;
     const int sweep = a.x() * b.y() - a.y() * b.x() > 0.0 ? 1 : 0;  // turning direction on the page
-    const std::string r = num(o.width * kPxPerMetre);
+    const std::string r = num(o.width * f.scale);
     return "<path class=\"door\" d=\"M" + xy(h) + " L" + xy(open) + " A" + r + "," + r + " 0 0," +
            std::to_string(sweep) + " " + xy(jamb) + "\"/>\n";
   }
@@ -682,7 +685,7 @@ class SceneDrawer {
       const std::string ends = "x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) +
                                "\" y2=\"" + num(b.y()) + "\"";
       if (r.style != scene::RailingStyle::kBars) {
-        const double width = std::max(scene::RailingGeometry::kSolidThickness * kPxPerMetre, kMinRailingWidth);
+        const double width = std::max(scene::RailingGeometry::kSolidThickness * scale_, kMinRailingWidth);
         const char* cls = r.style == scene::RailingStyle::kGlass ? "railing glass" : "railing solid";
         out_ += std::string("<line class=\"") + cls + "\" " + ends + " stroke-width=\"" + num(width) + "\"/>\n";
       } else {
@@ -811,7 +814,7 @@ class SceneDrawer {
   /// kScaleBarMetres long, alternating dark and light metres, labelled 0, 1 and the length.
   void draw_scale_bar(double x, double y) {
     svg::ScaleBarStyle style;
-    style.px_per_metre = kPxPerMetre;
+    style.px_per_metre = scale_;
     style.metres = static_cast<int>(kScaleBarMetres);
     style.thickness = kScaleBarThickness;
     style.text_gap = kScaleTextGap;
@@ -892,6 +895,7 @@ class SceneDrawer {
   std::vector<Panel> panels_;
   std::vector<Label> labels_;
   double page_w_ = 0.0, page_h_ = 0.0, legend_x_ = 0.0, plan_h_ = 0.0;
+  double scale_ = kPxPerMetre;  // px per metre of every panel (layout)
   std::string out_;
 };
 

@@ -115,6 +115,17 @@ struct Extent {
   bool empty() const { return !(min_x <= max_x); }
 };
 
+/// The larger side of a drawing at most, px: browsers stop drawing far beyond (Chromium at
+/// 32,767 px), and a building shown larger is no more readable.
+inline constexpr double kMaxDrawingPx = 16384.0;
+
+/// px per metre for a drawing of `e`: `preferred`, or less when the drawing's larger side would
+/// exceed kMaxDrawingPx at it (a run kilometres long; a building keeps `preferred`).
+inline double drawing_scale(const Extent& e, double preferred) {
+  const double side = std::max(e.max_x - e.min_x, e.max_y - e.min_y);
+  return side * preferred > kMaxDrawingPx ? kMaxDrawingPx / side : preferred;
+}
+
 /// A text element of class `cls` with its baseline starting at (x, y).
 inline std::string text(double x, double y, const std::string& cls, const std::string& what) {
   return "<text class=\"" + cls + "\" x=\"" + num(x) + "\" y=\"" + num(y) + "\">" + xml_escape(what) + "</text>\n";
