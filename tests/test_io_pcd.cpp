@@ -62,7 +62,7 @@ std::vector<std::array<float, 4>> parse_binary_xyzi(const std::string& path) {
 }
 
 std::string header(const std::string& fields, const std::string& size, const std::string& type,
-                   const std::string& count, int width, int height, const std::string& data) {
+                   const std::string& count, unsigned long long width, unsigned long long height, const std::string& data) {
   std::ostringstream s;
   s << "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS " << fields << "\nSIZE " << size
     << "\nTYPE " << type << "\nCOUNT " << count << "\nWIDTH " << width << "\nHEIGHT " << height
@@ -441,6 +441,18 @@ TEST_F(Pcd, CompressedFieldsOfMixedSizesAndCounts) {
   EXPECT_EQ(cloud.points[1], Eigen::Vector3f(4, 5, 6));
   EXPECT_EQ(cloud.points[2], Eigen::Vector3f(7, 8, 9));
   EXPECT_EQ(cloud.intensity[2], 60.0f);
+}
+
+// POINTS x point size beyond 64 bits (8,200 fields of COUNT 65536 and 2^32 - 1 points) is
+// refused at the POINTS line, not wrapped round into a small size.
+TEST_F(Pcd, PointsTimesPointSizeOverflowIsRefused) {
+  std::string fields, sizes, types, counts;
+  for (int i = 0; i < 8200; ++i) {
+    fields += (i < 3 ? std::string(1, "xyz"[i]) : "f" + std::to_string(i)) + " ";
+    sizes += "8 ", types += "F ", counts += "65536 ";
+  }
+  const std::string path = write_file("overflow.pcd", header(fields, sizes, types, counts, 4294967295u, 1, "binary"));
+  EXPECT_EQ(read_error(path), path + ":10: PCD header: POINTS x point size overflows");
 }
 
 // A size word no LZF block of this length can reach is refused before its buffer is made.

@@ -156,7 +156,7 @@ PcdHeader parse_header(const std::string& path, const std::string& bytes) {
       throw input_error(path, key_line["TYPE"], "PCD header: TYPE '" + type + "' of field " + f.name + " is not F, I or U");
     }
     // The specification's types: floats of 4 or 8 bytes, integers of 1, 2, 4 or 8 (a 2-byte
-    // float is no C type, and was read past the last point by PCL: found by fuzzing).
+    // float has no C type; one was read as 4 bytes, past the last point: found by fuzzing).
     const bool known = type == "F" ? (size == 4 || size == 8) : (size == 1 || size == 2 || size == 4 || size == 8);
     if (!known) {
       throw input_error(path, key_line["SIZE"], "PCD header: field " + f.name + " of TYPE " + type + " and SIZE " +
@@ -170,9 +170,15 @@ PcdHeader parse_header(const std::string& path, const std::string& bytes) {
     f.size = static_cast<unsigned>(size);
     f.offset = h.point_bytes;
     f.value = h.row_values;
-    h.point_bytes += f.size * f.count;  // at most (fields x 8 x 2^16): no overflow
+    h.point_bytes += f.size * f.count;  // fields (< file size) x 8 x 2^16: no overflow
     h.row_values += f.count;
     h.fields.push_back(f);
+  }
+  // POINTS (< 2^32) times that can overflow: a header this large describes no file.
+  unsigned long long body_bytes = 0, body_values = 0;
+  if (__builtin_mul_overflow(h.points, h.point_bytes, &body_bytes) ||
+      __builtin_mul_overflow(h.points, h.row_values, &body_values)) {
+    throw input_error(path, key_line["POINTS"], "PCD header: POINTS x point size overflows");
   }
   return h;
 }
@@ -209,10 +215,10 @@ class PcdBody {
     if (ascii_body_) read_ascii(path, bytes);
     if (h.data == "binary") {
       const unsigned long long available = bytes.size() - h.body;
-      if (available / std::max<std::size_t>(h.point_bytes, 1) < h.points) {
+      const unsigned long long needed = h.points * h.point_bytes;  // no overflow (parse_header)
+      if (available < needed) {
         throw input_error(path, 0, "PCD body after byte " + std::to_string(h.body) + " has " + std::to_string(available) +
-                                       " bytes, POINTS x point size is " + std::to_string(h.points * h.point_bytes) +
-                                       " (truncated file?)");
+                                       " bytes, POINTS x point size is " + std::to_string(needed) + " (truncated file?)");
       }
       binary_ = reinterpret_cast<const std::uint8_t*>(bytes.data()) + h.body;
     }
@@ -270,7 +276,7 @@ class PcdBody {
              static_cast<unsigned long long>(words[at + 2]) << 16 | static_cast<unsigned long long>(words[at + 3]) << 24;
     };
     const unsigned long long compressed = word(0), uncompressed = word(4);
-    const unsigned long long expected = h_.points * h_.point_bytes;  // < 2^32 x 2^22: no overflow
+    const unsigned long long expected = h_.points * h_.point_bytes;  // no overflow (parse_header)
     if (uncompressed != expected) {
       throw input_error(path, 0, what + "uncompressed size " + std::to_string(uncompressed) + ", expected " +
                                      std::to_string(expected) + " bytes for POINTS x SIZE");
