@@ -136,6 +136,66 @@ def run_folder_seeds(run):
         put("run_folder", "run_info.json", f.read())
 
 
+def mcap_file(compression, chunk_messages=3, messages=7, summary=True, crcs=True):
+    """An MCAP (mcap.dev/spec): two channels, messages in chunks of chunk_messages with their
+    message indexes, a Data End with the data CRC, a summary (schemas, channels, chunk indexes,
+    statistics) with summary offsets and its CRC. Chunks are compressed by the zstd or lz4 command.
+    Without crcs every CRC is 0 (not checked), so that mutations reach the fields behind them."""
+    crc32 = zlib.crc32 if crcs else (lambda b: 0)
+    u16, u32, u64 = (lambda v: struct.pack("<H", v)), (lambda v: struct.pack("<I", v)), (lambda v: struct.pack("<Q", v))
+    string = lambda b: u32(len(b)) + b
+    record = lambda op, content: bytes([op]) + u64(len(content)) + content
+    magic = b"\x89MCAP0\r\n"
+    schema = record(0x03, u16(1) + string(b"pkg/msg/A") + string(b"ros2msg") + string(b"int32 a\n"))
+    channels = [record(0x04, u16(c) + u16(1) + string(b"/t%d" % c) + string(b"cdr") + u32(0)) for c in (1, 2)]
+    out = magic + record(0x01, string(b"ros2") + string(b"seeds"))
+    chunk_indexes = []
+    for first in range(0, messages, chunk_messages):
+        records = schema + b"".join(channels) if first == 0 else b""
+        index = {}
+        for i in range(first, min(first + chunk_messages, messages)):
+            channel = 1 + i % 2
+            index.setdefault(channel, []).append((100 + i, len(records)))
+            records += record(0x05, u16(channel) + u32(i) + u64(100 + i) + u64(100 + i) + bytes([i]) * (3 + i))
+        packed = records
+        if compression:
+            packed = subprocess.run([compression, "-c", "-q"], input=records, check=True, capture_output=True).stdout
+        times = [t for entries in index.values() for t, _ in entries]
+        chunk_at = len(out)
+        chunk = record(0x06, u64(min(times)) + u64(max(times)) + u64(len(records)) + u32(crc32(records))
+                       + string(compression.encode()) + u64(len(packed)) + packed)
+        out += chunk
+        offsets, indexes_at = b"", len(out)
+        for channel in sorted(index):
+            offsets += u16(channel) + u64(len(out))
+            out += record(0x07, u16(channel) + string(b"".join(u64(t) + u64(o) for t, o in index[channel])))
+        chunk_indexes.append(record(0x08, u64(min(times)) + u64(max(times)) + u64(chunk_at) + u64(len(chunk))
+                                    + string(offsets) + u64(len(out) - indexes_at) + string(compression.encode())
+                                    + u64(len(packed)) + u64(len(records))))
+    out += record(0x0F, u32(crc32(out)))
+    summary_start, summary_offsets = len(out), b""
+    if summary:
+        stats = record(0x0B, u64(messages) + u16(1) + u32(2) + u32(0) + u32(0) + u32(len(chunk_indexes)) + u64(100)
+                       + u64(100 + messages - 1) + string(b""))
+        for op, group in ((0x03, schema), (0x04, b"".join(channels)), (0x08, b"".join(chunk_indexes)), (0x0B, stats)):
+            summary_offsets += record(0x0E, bytes([op]) + u64(len(out)) + u64(len(group)))
+            out += group
+    offsets_start = len(out)
+    out += summary_offsets
+    footer = bytes([0x02]) + u64(20) + u64(summary_start if summary else 0) + u64(offsets_start if summary else 0)
+    crc = crc32(out[summary_start:] + footer) if summary else 0
+    return out + footer + u32(crc) + magic
+
+
+def mcap_seeds():
+    for compression in ("", "zstd", "lz4"):
+        put("mcap", f"chunked_{compression or 'none'}.mcap", mcap_file(compression))
+    put("mcap", "no_summary.mcap", mcap_file("", summary=False))
+    put("mcap", "one_chunk.mcap", mcap_file("zstd", chunk_messages=100, messages=3))
+    put("mcap", "no_crcs.mcap", mcap_file("", crcs=False))
+    put("mcap", "no_crcs_no_summary.mcap", mcap_file("", summary=False, crcs=False))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -156,6 +216,7 @@ def main():
                         "--out", two_rooms_seq], check=True, capture_output=True)
         subprocess.run([tsgraphs, "run", two_rooms_seq, "--out", run], check=True, capture_output=True)
         pcd_seeds()
+        mcap_seeds()
         kitti_seeds(seq)
         tum_seeds(seq)
         point_cloud2_seeds()
