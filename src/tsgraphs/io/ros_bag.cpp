@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/io/bag_placement.hpp"
 #include "tsgraphs/io/point_cloud2.hpp"
 #include "tsgraphs/io/tum.hpp"
 
@@ -40,11 +41,6 @@ constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
 constexpr const char* kOdometryType = "nav_msgs/Odometry";
 constexpr const char* kPoseType = "geometry_msgs/PoseStamped";
 constexpr const char* kTfStaticTopic = "/tf_static";
-
-struct StampedBase {
-  double t = 0.0;
-  Pose3 pose = Pose3::Identity();
-};
 
 Pose3 pose_of(const geometry_msgs::Pose& p) {
   Pose3 T = Pose3::Identity();
@@ -66,15 +62,6 @@ geometry_msgs::Pose message_of(const Pose3& T) {
   p.orientation.y = q.y();
   p.orientation.z = q.z();
   return p;
-}
-
-/// The pose at time t between two samples: position linear, rotation slerp.
-Pose3 interpolate(const StampedBase& a, const StampedBase& b, double t) {
-  const double s = b.t > a.t ? (t - a.t) / (b.t - a.t) : 0.0;
-  Pose3 T = Pose3::Identity();
-  T.translation() = (1.0 - s) * a.pose.translation() + s * b.pose.translation();
-  T.linear() = Eigen::Quaterniond(a.pose.linear()).slerp(s, Eigen::Quaterniond(b.pose.linear())).toRotationMatrix();
-  return T;
 }
 
 /// rosbag's record time: the stamp, or its earliest allowed time for a stamp of 0.
@@ -454,7 +441,6 @@ BagSequence::BagSequence(const BagOptions& options) : impl_(std::make_unique<Imp
     } else if (!options.odom_tum.empty()) {
       for (const StampedPose& p : read_tum(options.odom_tum)) odom.push_back({p.t, p.pose});
     }
-    std::stable_sort(odom.begin(), odom.end(), [](const StampedBase& a, const StampedBase& b) { return a.t < b.t; });
     const bool has_odometry = !options.odom_topic.empty() || !options.odom_tum.empty();
     if (has_odometry && odom.empty())
       throw input_error(path, 0, "no odometry messages on " + (options.odom_topic.empty() ? options.odom_tum : options.odom_topic));
@@ -477,10 +463,6 @@ BagSequence::BagSequence(const BagOptions& options) : impl_(std::make_unique<Imp
       clouds.push_back({c.stamp, m});
     }
     if (clouds.empty()) throw input_error(path, 0, "no messages on " + options.points_topic);
-    // In stamp order (messages cannot be reassigned: order their indices).
-    std::vector<std::size_t> order(clouds.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return clouds[a].t < clouds[b].t; });
 
     if (options.sensor_to_base) {
       sensor_to_base_ = *options.sensor_to_base;
@@ -505,24 +487,13 @@ BagSequence::BagSequence(const BagOptions& options) : impl_(std::make_unique<Imp
 
     // Each scan's sensor pose, the odometry interpolated to its stamp (none without odometry:
     // run estimates it from the scans).
-    std::size_t k = 0;
-    for (const std::size_t i : order) {
-      const Cloud& c = clouds[i];
-      if (!has_odometry) {
-        info_.times.push_back(c.t);
-        impl_->clouds.push_back(c.message);
-        continue;
-      }
-      if (c.t < odom.front().t || c.t > odom.back().t) {
-        ++dropped_;
-        continue;
-      }
-      while (k + 1 < odom.size() && odom[k + 1].t < c.t) ++k;
-      const Pose3 base = k + 1 < odom.size() ? interpolate(odom[k], odom[k + 1], c.t) : odom[k].pose;
-      info_.times.push_back(c.t);
-      info_.odometry.push_back(base * sensor_to_base_);
-      impl_->clouds.push_back(c.message);
-    }
+    std::vector<double> stamps;
+    for (const Cloud& c : clouds) stamps.push_back(c.t);
+    ScanPlacement placed = place_scans(stamps, std::move(odom), has_odometry, sensor_to_base_);
+    for (const std::size_t i : placed.kept) impl_->clouds.push_back(clouds[i].message);
+    info_.times = std::move(placed.times);
+    info_.odometry = std::move(placed.odometry);
+    dropped_ = placed.dropped;
     if (info_.times.empty())
       throw input_error(path, 0, "no scan on " + options.points_topic + " lies within the odometry's time span");
     for (const std::string& line : rosbag_lines.lines()) warnings_.push_back("rosbag: " + line);

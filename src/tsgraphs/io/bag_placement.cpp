@@ -1,0 +1,43 @@
+#include "tsgraphs/io/bag_placement.hpp"
+
+#include <algorithm>
+
+namespace tsgraphs::io {
+
+Pose3 interpolate(const StampedBase& a, const StampedBase& b, double t) {
+  const double s = b.t > a.t ? (t - a.t) / (b.t - a.t) : 0.0;
+  Pose3 T = Pose3::Identity();
+  T.translation() = (1.0 - s) * a.pose.translation() + s * b.pose.translation();
+  T.linear() = Eigen::Quaterniond(a.pose.linear()).slerp(s, Eigen::Quaterniond(b.pose.linear())).toRotationMatrix();
+  return T;
+}
+
+ScanPlacement place_scans(const std::vector<double>& cloud_stamps, std::vector<StampedBase> odom, bool has_odometry,
+                          const Pose3& sensor_to_base) {
+  std::stable_sort(odom.begin(), odom.end(), [](const StampedBase& a, const StampedBase& b) { return a.t < b.t; });
+  std::vector<std::size_t> order(cloud_stamps.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cloud_stamps[a] < cloud_stamps[b]; });
+  ScanPlacement out;
+  std::size_t k = 0;
+  for (const std::size_t i : order) {
+    const double t = cloud_stamps[i];
+    if (!has_odometry) {
+      out.kept.push_back(i);
+      out.times.push_back(t);
+      continue;
+    }
+    if (odom.empty() || t < odom.front().t || t > odom.back().t) {
+      ++out.dropped;
+      continue;
+    }
+    while (k + 1 < odom.size() && odom[k + 1].t < t) ++k;
+    const Pose3 base = k + 1 < odom.size() ? interpolate(odom[k], odom[k + 1], t) : odom[k].pose;
+    out.kept.push_back(i);
+    out.times.push_back(t);
+    out.odometry.push_back(base * sensor_to_base);
+  }
+  return out;
+}
+
+}  // namespace tsgraphs::io

@@ -1,0 +1,33 @@
+#pragma once
+/// What every bag reader (ROS 1, rosbag2) does with its messages once decoded: the scans in
+/// stamp order, each placed by the base's odometry interpolated to its stamp and the sensor's
+/// mount. No ROS type here.
+#include <cstddef>
+#include <vector>
+
+#include "tsgraphs/core/pose.hpp"
+
+namespace tsgraphs::io {
+
+/// The base's pose in a fixed frame at a stamp (s), as an odometry topic gives it.
+struct StampedBase {
+  double t = 0.0;
+  Pose3 pose = Pose3::Identity();
+};
+
+/// The pose at time t between two samples: position linear, rotation slerp.
+Pose3 interpolate(const StampedBase& a, const StampedBase& b, double t);
+
+struct ScanPlacement {
+  std::vector<std::size_t> kept;  ///< indices into the clouds, in stamp order (file order among equal stamps)
+  std::vector<double> times;      ///< their stamps
+  std::vector<Pose3> odometry;    ///< the sensor's poses (empty without odometry)
+  std::size_t dropped = 0;        ///< clouds outside the odometry's time span, left out
+};
+
+/// The clouds stamped `cloud_stamps` placed by `odom` (sorted here by stamp) times
+/// `sensor_to_base`; without odometry (`has_odometry` false) they keep their stamps only.
+ScanPlacement place_scans(const std::vector<double>& cloud_stamps, std::vector<StampedBase> odom, bool has_odometry,
+                          const Pose3& sensor_to_base);
+
+}  // namespace tsgraphs::io
