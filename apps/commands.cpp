@@ -1,11 +1,14 @@
 // The commands of the `tsgraphs` program (commands.hpp).
 #include "commands.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <optional>
+#include <vector>
 #include <unistd.h>
 
 #include "progress.hpp"
@@ -74,13 +77,36 @@ void simulate(const scene::Scene& scene_in, const std::string& out, std::uint64_
 }
 
 void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
-                  int laps, io::BagCompression compression, bool quiet) {
+                  int laps, const std::string& format_option, const std::string& compression, bool quiet) {
+  std::string format = format_option;
+  if (format == "auto") {
+    const std::string ext = fs::path(bag).extension().string();
+    format = ext == ".mcap" ? "ros2-mcap" : ext == ".db3" ? "ros2-sqlite" : ext == ".bag" ? "ros1" : "";
+    if (format.empty()) throw input_error(bag, 0, "give the bag a .bag, .mcap or .db3 name, or --bag-format");
+  }
+  const std::map<std::string, std::vector<std::string>> kCompressions = {
+      {"ros1", {"lz4", "none", "bz2"}}, {"ros2-mcap", {"zstd", "none", "lz4"}}, {"ros2-sqlite", {"none"}}};
+  const std::vector<std::string>& allowed = kCompressions.at(format);  // the first: the default
+  const std::string c = compression.empty() ? allowed.front() : compression;
+  if (std::find(allowed.begin(), allowed.end(), c) == allowed.end()) {
+    std::string list;
+    for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+    throw input_error("--compression", 0, c + " is not a " + format + " compression (" + list + ")");
+  }
   // The LiDAR 0.3 m above and 0.1 m ahead of base_link, so that /tf_static is not the identity.
   const Pose3 sensor_to_base = make_pose(Eigen::Vector3d(0.1, 0.0, 0.3), 0.0);
   const std::string folder = seq_dir.empty() ? bag + ".sequence-tmp-" + std::to_string(::getpid()) : seq_dir;
   simulate(scene, folder, seed, laps, quiet);
   try {
-    io::write_bag(io::SequenceReader(folder), bag, compression, sensor_to_base);
+    const io::SequenceReader sequence(folder);
+    if (format == "ros1") {
+      io::write_bag(sequence, bag, c == "bz2" ? io::BagCompression::bz2 : c == "lz4" ? io::BagCompression::lz4 : io::BagCompression::none,
+                    sensor_to_base);
+    } else {
+      io::write_rosbag2(sequence, bag, format == "ros2-mcap" ? io::Rosbag2Storage::mcap : io::Rosbag2Storage::sqlite,
+                        c == "zstd" ? io::mcap::Compression::zstd : c == "lz4" ? io::mcap::Compression::lz4 : io::mcap::Compression::none,
+                        sensor_to_base);
+    }
   } catch (...) {
     if (seq_dir.empty()) fs::remove_all(folder);
     throw;
@@ -111,7 +137,9 @@ void convert(const io::ScanSequence& sequence, const std::string& out, const pip
                  lidar_odometry ? ", odom.txt from LiDAR odometry" : "");
 }
 
-void print_bag_info(const std::string& bag) { std::printf("%s", io::bag_info(bag).c_str()); }
+void print_bag_info(const std::string& bag) {
+  std::printf("%s", (io::is_rosbag2(bag) ? io::rosbag2_info(bag) : io::bag_info(bag)).c_str());
+}
 
 void draw_scene(const scene::Scene& scene, const std::string& out, bool quiet) {
   const scene::Trajectory trajectory(scene);
@@ -134,14 +162,31 @@ std::unique_ptr<io::ScanSequence> open_sequence(const io::ScanFolderOptions& opt
   return sequence;
 }
 
-std::unique_ptr<io::BagSequence> open_bag(const io::BagOptions& options, bool quiet) {
-  auto bag = std::make_unique<io::BagSequence>(options);
-  print_warnings(options.bag + ": ", bag->warnings());
+namespace {
+
+template <class Bag>
+OpenedBag opened(std::unique_ptr<Bag> bag, const io::BagOptions& options, bool quiet) {
   io::check_odometry_motion(bag->info(), options.bag);
   if (!quiet && bag->dropped_scans() > 0)
     std::fprintf(stderr, "run: %zu scans of %s lie outside the odometry's time span and are left out\n",
                  bag->dropped_scans(), options.bag.c_str());
-  return bag;
+  OpenedBag out;
+  if (bag->sensor_to_base_known()) out.mount = bag->sensor_to_base();
+  out.sequence = std::move(bag);
+  return out;
+}
+
+}  // namespace
+
+OpenedBag open_bag(const io::BagOptions& options, bool quiet) {
+  if (io::is_rosbag2(options.bag)) {
+    auto bag = std::make_unique<io::Rosbag2Sequence>(options);
+    print_warnings("", bag->warnings());  // each names its file
+    return opened(std::move(bag), options, quiet);
+  }
+  auto bag = std::make_unique<io::BagSequence>(options);
+  print_warnings(options.bag + ": ", bag->warnings());
+  return opened(std::move(bag), options, quiet);
 }
 
 pipeline::OdometryOptions choose_odometry(const io::ScanSequence& sequence, const std::string& mode,

@@ -9,6 +9,7 @@
 #include "tsgraphs/eval/metrics.hpp"
 #include "tsgraphs/eval/room_metrics.hpp"
 #include "tsgraphs/io/ros_bag.hpp"
+#include "tsgraphs/io/rosbag2.hpp"
 #include "tsgraphs/io/scan_folder.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
 #include "tsgraphs/pipeline/sequence_runner.hpp"
@@ -25,26 +26,36 @@ void print_warnings(const std::string& where, const std::vector<std::string>& wa
 
 /// `simulate`: the scene's sequence folder at `out` (laps <= 0: the scene's).
 void simulate(const scene::Scene& scene, const std::string& out, std::uint64_t seed, int laps, bool quiet);
-/// `simulate --bag`: the simulated sequence as a ROS1 bag (io::write_bag), through a sequence
-/// folder at `seq_dir` (kept) or, when it is empty, a temporary one.
+/// `simulate --bag`: the simulated sequence as a bag, through a sequence folder at `seq_dir`
+/// (kept) or, when it is empty, a temporary one. `format`: ros1 (io::write_bag), ros2-mcap or
+/// ros2-sqlite (io::write_rosbag2), or auto (by the file's extension: .bag, .mcap, .db3).
+/// `compression`: "" for the format's default (ros1 lz4, ros2-mcap zstd, ros2-sqlite none),
+/// else none, bz2 or lz4 for ros1, none, lz4 or zstd for ros2-mcap, none for ros2-sqlite.
 void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
-                  int laps, io::BagCompression compression, bool quiet);
+                  int laps, const std::string& format, const std::string& compression, bool quiet);
 /// `convert`: `sequence` (a folder of scans, a bag) written as a sequence folder at `out`:
 /// scans/NNNNNN.bin, times.txt, odom.txt (and groundtruth.txt when it has ground truth). With
 /// `odometry.estimate`, odom.txt is LiDAR odometry (`lidar`, its sweeps registered with `sweep`)
 /// from the scans, in the same pass.
 void convert(const io::ScanSequence& sequence, const std::string& out, const pipeline::OdometryOptions& odometry,
              const odometry::LidarOdometryConfig& lidar, const odometry::SweepRegistrationConfig& sweep, bool quiet);
-/// `bag-info`: the bag's topics, types, counts and rates on stdout.
+/// `bag-info`: the topics, types, counts and rates of a ROS 1 bag or a rosbag2 recording on stdout.
 void print_bag_info(const std::string& bag);
 /// `draw-scene`: the bird's-eye SVG of the scene and its path.
 void draw_scene(const scene::Scene& scene, const std::string& out, bool quiet);
 /// What `run` reads: a sequence folder (docs/scene-format.md) when `options.folder` is one and
 /// no scan glob is given, else a folder of PCD / KITTI scans with a pose file.
 std::unique_ptr<io::ScanSequence> open_sequence(const io::ScanFolderOptions& options);
-/// What `run --bag` reads: the bag's scans with their odometry; says how many scans lay
-/// outside the odometry's time span unless quiet.
-std::unique_ptr<io::BagSequence> open_bag(const io::BagOptions& options, bool quiet);
+/// A bag opened for `run` and `convert`, and the sensor's mount when the bag (/tf_static) or
+/// the options gave it.
+struct OpenedBag {
+  std::unique_ptr<io::ScanSequence> sequence;
+  std::optional<Pose3> mount;
+};
+/// What `run --bag` reads: a ROS 1 bag or a rosbag2 recording (folder, .db3 or .mcap, told
+/// apart by content), its scans with their odometry; says how many scans lay outside the
+/// odometry's time span unless quiet.
+OpenedBag open_bag(const io::BagOptions& options, bool quiet);
 /// `--odometry`: where the poses come from. "input": the sequence's own (an InputError when it
 /// has none); "lidar": LiDAR odometry from the scans; "auto": the input's when it has them,
 /// else LiDAR odometry. Estimated poses start at the input's first pose when it has one, else

@@ -44,7 +44,8 @@ struct Options {
   std::vector<double> sensor_to_base;  ///< run: x y z qx qy qz qw
   std::string odometry = "auto";       ///< run, convert: auto, input or lidar
   std::string bag_out;           ///< simulate: write a bag
-  std::string compression = "lz4";
+  std::string bag_format = "auto";  ///< simulate --bag: ros1, ros2-mcap, ros2-sqlite or auto (by extension)
+  std::string compression;          ///< simulate --bag: "" for the format's default
   DemoOptions demo;
   GenerateOptions generate;
   ImportMapOptions import_map;
@@ -78,10 +79,15 @@ int main(int argc, char** argv) {
   auto* simulate_cmd = app.add_subcommand("simulate", "turn a scene into a LiDAR sequence folder");
   simulate_cmd->add_option("SCENE", opt.scene, "scene YAML file or built-in scene name")->required();
   simulate_cmd->add_option("--out", opt.out, "sequence folder to write (with --bag: kept beside the bag)");
-  simulate_cmd->add_option("--bag", opt.bag_out, "write the sequence as a ROS1 bag: /points, /odom, /tf_static, /groundtruth");
-  simulate_cmd->add_option("--compression", opt.compression, "bag compression: none, bz2 or lz4")
-      ->check(CLI::IsMember({"none", "bz2", "lz4"}))
+  simulate_cmd->add_option("--bag", opt.bag_out,
+                            "write the sequence as a bag (.bag ROS1, .mcap or .db3 rosbag2): /points, /odom, /tf_static, "
+                            "/groundtruth");
+  simulate_cmd->add_option("--bag-format", opt.bag_format, "ros1, ros2-mcap, ros2-sqlite, or auto: by --bag's extension")
+      ->check(CLI::IsMember({"auto", "ros1", "ros2-mcap", "ros2-sqlite"}))
       ->capture_default_str();
+  simulate_cmd->add_option("--compression", opt.compression,
+                           "bag compression: ros1 none, bz2 or lz4 (default lz4); ros2-mcap none, lz4 or zstd (default zstd)")
+      ->check(CLI::IsMember({"none", "bz2", "lz4", "zstd"}));
   simulate_cmd->add_option("--seed", opt.seed, "random seed (default: the scene's)")->check(CLI::NonNegativeNumber);
   simulate_cmd->add_option("--laps", opt.laps, "laps of the path (default: the scene's)")->check(CLI::PositiveNumber);
 
@@ -132,7 +138,8 @@ int main(int argc, char** argv) {
     cmd->add_option("--scan-period", opt.folder.scan_period, "s between scans when nothing gives their times")
         ->check(CLI::Range(1e-6, 3600.0).description("in [1e-6, 3600] s"))
         ->capture_default_str();
-    cmd->add_option("--bag", opt.bag.bag, "a ROS1 bag instead of SEQ_DIR (see bag-info for its topics)");
+    cmd->add_option("--bag", opt.bag.bag,
+                    "a ROS1 bag or a rosbag2 recording (folder, .db3 or .mcap) instead of SEQ_DIR (see bag-info for its topics)");
     cmd->add_option("--points-topic", opt.bag.points_topic, "bag: the sensor_msgs/PointCloud2 topic");
     cmd->add_option("--odom-topic", opt.bag.odom_topic, "bag: the nav_msgs/Odometry or geometry_msgs/PoseStamped topic");
     cmd->add_option("--odom-tum", opt.bag.odom_tum, "bag: odometry of the base from a TUM file instead");
@@ -168,8 +175,8 @@ int main(int argc, char** argv) {
                        "RUN_DIR/comparison.json")
       ->excludes(seq_opt);
 
-  auto* bag_info_cmd = app.add_subcommand("bag-info", "topics of a ROS1 bag: types, message counts, rates");
-  bag_info_cmd->add_option("BAG", opt.bag.bag, "the .bag file")->required();
+  auto* bag_info_cmd = app.add_subcommand("bag-info", "topics of a ROS1 bag or a rosbag2 recording: types, message counts, rates");
+  bag_info_cmd->add_option("BAG", opt.bag.bag, "the .bag file, or the rosbag2 folder, .db3 or .mcap file")->required();
 
   auto* demo_cmd = app.add_subcommand(
       "demo", "TS-graphs, S-Graphs+ and the ablations on simulated atrium and office: Table 1 and a report");
@@ -215,10 +222,8 @@ int main(int argc, char** argv) {
         if (opt.out.empty()) throw input_error("simulate", 0, "give --out SEQ_DIR or --bag FILE.bag");
         simulate(scene, opt.out, seed_for(scene, opt.seed), opt.laps, opt.quiet);
       } else {
-        const io::BagCompression c = opt.compression == "bz2"   ? io::BagCompression::bz2
-                                     : opt.compression == "lz4" ? io::BagCompression::lz4
-                                                                : io::BagCompression::none;
-        simulate_bag(scene, opt.bag_out, opt.out, seed_for(scene, opt.seed), opt.laps, c, opt.quiet);
+        simulate_bag(scene, opt.bag_out, opt.out, seed_for(scene, opt.seed), opt.laps, opt.bag_format, opt.compression,
+                     opt.quiet);
       }
     } else if (*generate_cmd) {
       opt.generate.quiet = opt.quiet;
@@ -249,9 +254,9 @@ int main(int argc, char** argv) {
       std::unique_ptr<io::ScanSequence> sequence;
       if (!opt.bag.bag.empty()) {
         opt.bag.sensor_to_base = mount;
-        auto bag = open_bag(opt.bag, opt.quiet);
-        if (bag->sensor_to_base_known()) mount = bag->sensor_to_base();
-        sequence = std::move(bag);
+        OpenedBag bag = open_bag(opt.bag, opt.quiet);
+        if (bag.mount) mount = bag.mount;
+        sequence = std::move(bag.sequence);
       } else {
         opt.folder.folder = opt.seq;
         sequence = open_sequence(opt.folder);

@@ -11,6 +11,7 @@ PACKAGES=(
   libpcl-dev           # point-cloud filters, kd-trees, registration
   liblzf-dev           # PCD binary_compressed blocks
   liblz4-dev libzstd-dev zlib1g-dev   # MCAP chunks (lz4 frames, zstd) and CRC32s
+  libsqlite3-dev       # rosbag2 SQLite (.db3) recordings
   libceres-dev         # factor-graph back-end
   libnanoflann-dev     # small kd-trees
   robin-map-dev        # the LiDAR odometry's voxel hash map (tsl::robin_map, as KISS-ICP)

@@ -19,6 +19,7 @@
 #include "test_support.hpp"
 #include "tsgraphs/eval/room_metrics.hpp"
 #include "tsgraphs/io/ros_bag.hpp"
+#include "tsgraphs/io/rosbag2.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
 #include "tsgraphs/pipeline/pipeline.hpp"
@@ -308,6 +309,54 @@ TEST_F(RunCli, BagOfTheSequenceInEachCompressionGivesTheSameRun) {
   EXPECT_NE(err.find("cut.bag"), std::string::npos) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   EXPECT_FALSE(fs::exists(dir_ / "x"));
+}
+
+// Issue 19: the same sequence as a ROS 1 bag, a rosbag2 SQLite file and rosbag2 MCAP files in
+// each chunk compression (and a rosbag2 folder) runs to byte-identical outputs.
+TEST_F(RunCli, Ros2BagsInEveryStorageRunAsTheRos1Bag) {
+  const io::SequenceReader reader((base_ / "seq").string());
+  const Pose3 sensor_to_base = make_pose(Eigen::Vector3d(0.1, 0.0, 0.3), 0.2);
+  std::string err;
+  const auto run_bag = [&](const fs::path& bag, const std::string& name) {
+    const fs::path out = dir_ / ("run_" + name);
+    EXPECT_EQ(cli("-q run --bag " + bag.string() + " --points-topic /points --odom-topic /odom --out " + out.string(), &err), 0)
+        << name << ": " << err;
+    return out;
+  };
+  io::write_bag(reader, (dir_ / "ros1.bag").string(), io::BagCompression::lz4, sensor_to_base);
+  const fs::path ros1 = run_bag(dir_ / "ros1.bag", "ros1");
+  std::vector<std::pair<std::string, fs::path>> bags;
+  io::write_rosbag2(reader, (dir_ / "ros2.db3").string(), io::Rosbag2Storage::sqlite, io::mcap::Compression::none, sensor_to_base);
+  bags.emplace_back("sqlite", dir_ / "ros2.db3");
+  for (const auto& [name, c] : {std::pair{"none", io::mcap::Compression::none}, std::pair{"lz4", io::mcap::Compression::lz4},
+                                std::pair{"zstd", io::mcap::Compression::zstd}}) {
+    const fs::path bag = dir_ / (std::string("ros2_") + name + ".mcap");
+    io::write_rosbag2(reader, bag.string(), io::Rosbag2Storage::mcap, c, sensor_to_base);
+    bags.emplace_back(std::string("mcap_") + name, bag);
+  }
+  // A rosbag2 folder: metadata.yaml naming its file.
+  fs::create_directories(dir_ / "folder_bag");
+  fs::copy_file(dir_ / "ros2_zstd.mcap", dir_ / "folder_bag" / "folder_bag_0.mcap");
+  std::ofstream(dir_ / "folder_bag" / "metadata.yaml")
+      << "rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: mcap\n  relative_file_paths:\n"
+         "    - folder_bag_0.mcap\n  compression_format: \"\"\n  compression_mode: \"\"\n";
+  bags.emplace_back("folder", dir_ / "folder_bag");
+  for (const auto& [name, bag] : bags) {
+    SCOPED_TRACE(name);
+    const fs::path out = run_bag(bag, name);
+    for (const char* f : {"trajectory.txt", "scene_graph.json", "rooms_events.jsonl"}) EXPECT_EQ(read_file(out / f), read_file(ros1 / f)) << f;
+  }
+  std::string out;
+  ASSERT_EQ(test::run_tsgraphs("bag-info " + (dir_ / "ros2.db3").string(), &out, &err), 0) << err;
+  EXPECT_NE(out.find("sensor_msgs/msg/PointCloud2"), std::string::npos) << out;
+  EXPECT_NE(out.find(std::to_string(reader.size()) + " msgs"), std::string::npos) << out;
+  // simulate --bag by extension, and a compression the format has not.
+  ASSERT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --bag " + (dir_ / "sim.mcap").string(), &err), 0) << err;
+  ASSERT_EQ(test::run_tsgraphs("bag-info " + (dir_ / "sim.mcap").string(), &out, &err), 0) << err;
+  EXPECT_NE(out.find("nav_msgs/msg/Odometry"), std::string::npos) << out;
+  EXPECT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --bag " + (dir_ / "sim.db3").string() + " --compression zstd", &err), 2);
+  EXPECT_NE(err.find("--compression: zstd is not a ros2-sqlite compression (none)"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "sim.db3"));
 }
 
 TEST_F(RunCli, MissingOdometryLineIsAnErrorNamingTheFileAndNoOutput) {

@@ -1,13 +1,27 @@
 #pragma once
-/// What every bag reader (ROS 1, rosbag2) does with its messages once decoded: the scans in
+/// What every bag reader (ROS 1, rosbag2) is asked for, and does with its messages once decoded: the scans in
 /// stamp order, each placed by the base's odometry interpolated to its stamp and the sensor's
 /// mount. No ROS type here.
 #include <cstddef>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "tsgraphs/core/pose.hpp"
 
 namespace tsgraphs::io {
+
+/// What to read from a bag (ROS 1 or rosbag2).
+struct BagOptions {
+  std::string bag;            ///< the .bag file, or the rosbag2 folder, .db3 or .mcap file
+  std::string points_topic;   ///< sensor_msgs/PointCloud2
+  std::string odom_topic;     ///< nav_msgs/Odometry or geometry_msgs/PoseStamped: the base in a fixed frame
+  std::string odom_tum;       ///< or a TUM file of the same (used when odom_topic is empty); with
+                              ///< neither, the scans come without odometry (run estimates it)
+  /// T_base_sensor; when empty, the /tf_static transform whose child is the clouds' frame (one
+  /// hop), else identity.
+  std::optional<Pose3> sensor_to_base;
+};
 
 /// The base's pose in a fixed frame at a stamp (s), as an odometry topic gives it.
 struct StampedBase {

@@ -76,9 +76,9 @@ double stamp_of(CdrReader& r) {
 }
 
 void put_header(CdrWriter& w, double stamp, const std::string& frame_id) {
-  const long long ns = std::llround(stamp * 1e9);
-  w.i32(static_cast<std::int32_t>(ns / 1000000000LL));
-  w.u32(static_cast<std::uint32_t>(ns % 1000000000LL));
+  const std::uint64_t ns = stamp_nanoseconds(stamp);
+  w.i32(static_cast<std::int32_t>(ns / 1000000000ull));
+  w.u32(static_cast<std::uint32_t>(ns % 1000000000ull));
   w.string(frame_id);
 }
 
@@ -106,6 +106,12 @@ void put_pose(CdrWriter& w, const Pose3& pose) {
 }
 
 }  // namespace
+
+std::uint64_t stamp_nanoseconds(double t) {
+  const auto sec = static_cast<std::uint64_t>(std::floor(t));
+  const auto nsec = static_cast<std::uint64_t>(std::llround((t - static_cast<double>(sec)) * 1e9));
+  return sec * 1000000000ull + nsec;  // a nanosecond part rounded to 1e9 carries into the seconds
+}
 
 const std::string& definition(const std::string& type) {
   static const std::map<std::string, std::string> kDefinitions = [] {
@@ -221,21 +227,23 @@ std::string encode_point_cloud2(double stamp, const std::string& frame_id, const
   put_header(w, stamp, frame_id);
   const auto n = static_cast<std::uint32_t>(cloud.size());
   w.u32(1), w.u32(n);
-  w.sequence(4);
-  const char* const names[] = {"x", "y", "z", "intensity"};
-  for (std::uint32_t i = 0; i < 4; ++i) {
+  const bool timed = cloud.has_times();
+  const std::uint32_t fields = timed ? 5 : 4;
+  w.sequence(fields);
+  const char* const names[] = {"x", "y", "z", "intensity", "time"};
+  for (std::uint32_t i = 0; i < fields; ++i) {
     w.string(names[i]);
     w.u32(4 * i), w.u8(static_cast<std::uint8_t>(FieldType::float32)), w.u32(1);
   }
   w.boolean(false);
-  constexpr std::uint32_t kPointStep = 16;
-  w.u32(kPointStep), w.u32(kPointStep * n);
-  w.sequence(kPointStep * n);
-  std::string data(static_cast<std::size_t>(kPointStep) * n, '\0');
+  const std::uint32_t point_step = 4 * fields;
+  w.u32(point_step), w.u32(point_step * n);
+  w.sequence(point_step * n);
+  std::string data(static_cast<std::size_t>(point_step) * n, '\0');
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const float v[4] = {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z(),
-                        cloud.has_intensity() ? cloud.intensity[i] : 0.0f};
-    std::memcpy(data.data() + kPointStep * i, v, sizeof v);  // little-endian hosts (x86, ARM)
+    const float v[5] = {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z(),
+                        cloud.has_intensity() ? cloud.intensity[i] : 0.0f, timed ? cloud.times[i] : 0.0f};
+    std::memcpy(data.data() + point_step * i, v, point_step);  // little-endian hosts (x86, ARM)
   }
   w.raw(data);
   w.boolean(true);

@@ -3,6 +3,7 @@
 /// sensor_msgs/msg/PointCloud2, nav_msgs/msg/Odometry, geometry_msgs/msg/PoseStamped and
 /// tf2_msgs/msg/TFMessage; and their definitions (ros2msg) as rosbag2 keeps them beside a
 /// topic, so that a topic of another layout under the same name is refused.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,10 @@ const std::string& definition(const std::string& type);
 /// An empty text (storages that keep none) is accepted.
 std::string definition_mismatch(const std::string& type, const std::string& text);
 
+/// A time in seconds as ROS splits it (ros::Time::fromSec: whole seconds, nanoseconds rounded),
+/// in nanoseconds; header stamps are written so and read back as sec + 1e-9 nanosec, as ROS 1's.
+std::uint64_t stamp_nanoseconds(double t);
+
 /// A PointCloud2 message taken apart; data_offset counts from the start of `cdr`.
 PointCloud2Message parse_point_cloud2(const std::string& cdr, const std::string& where);
 
@@ -47,7 +52,8 @@ struct TransformMessage {
 std::vector<TransformMessage> parse_tf_message(const std::string& cdr, const std::string& where);
 
 /// Little-endian CDR of the same messages. A cloud is written as x y z intensity float32
-/// (intensity 0 when it has none), unorganised, dense.
+/// (intensity 0 when it has none), and a swept scan's per-point times as float32 `time`
+/// (seconds after the stamp, as Velodyne's driver writes them), unorganised, dense.
 std::string encode_point_cloud2(double stamp, const std::string& frame_id, const PointCloud& cloud);
 std::string encode_odometry(const StampedPoseMessage& m);
 std::string encode_pose_stamped(const StampedPoseMessage& m);

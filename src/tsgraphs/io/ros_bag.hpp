@@ -8,20 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "tsgraphs/io/bag_placement.hpp"
 #include "tsgraphs/io/scan_sequence.hpp"
 
 namespace tsgraphs::io {
-
-struct BagOptions {
-  std::string bag;            ///< the .bag file
-  std::string points_topic;   ///< sensor_msgs/PointCloud2
-  std::string odom_topic;     ///< nav_msgs/Odometry or geometry_msgs/PoseStamped: the base in a fixed frame
-  std::string odom_tum;       ///< or a TUM file of the same (used when odom_topic is empty); with
-                              ///< neither, the scans come without odometry (run estimates it)
-  /// T_base_sensor; when empty, the /tf_static transform whose child is the clouds' frame (one
-  /// hop), else identity.
-  std::optional<Pose3> sensor_to_base;
-};
 
 /// The scans of a bag with their odometry. Scans outside the odometry's time span are left
 /// out (dropped_scans() counts them). Scans are read when asked for (thread-safe).

@@ -1,0 +1,550 @@
+#include "tsgraphs/io/rosbag2.hpp"
+
+#include <sqlite3.h>
+#include <unistd.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <set>
+
+#include "tsgraphs/core/error.hpp"
+#include "tsgraphs/io/point_cloud2.hpp"
+#include "tsgraphs/io/ros2_messages.hpp"
+#include "tsgraphs/io/tum.hpp"
+
+namespace tsgraphs::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kTfStaticTopic = "/tf_static";
+constexpr const char* kMetadataFile = "metadata.yaml";
+constexpr char kSqliteMagic[] = "SQLite format 3";  // and a NUL: the first 16 bytes of every SQLite file
+constexpr char kMcapMagic[] = "\x89MCAP0\r\n";
+
+/// A topic as a storage records it.
+struct Topic {
+  std::string name, type, format;
+  std::string definition;  ///< ros2msg text when the storage keeps one
+  std::uint64_t count = 0;
+};
+
+/// A message's place: its file, and its row (SQLite) or record (MCAP) there.
+struct Located {
+  std::size_t file = 0;
+  std::uint64_t time = 0;  ///< ns
+  std::int64_t row = 0;
+  mcap::MessageRef ref;
+};
+
+class Storage {
+ public:
+  virtual ~Storage() = default;
+  virtual std::vector<Topic> topics() const = 0;
+  /// The messages of `topic`, by receive time.
+  virtual std::vector<Located> messages(const std::string& topic, std::size_t file) const = 0;
+  virtual std::string read(const Located& m) const = 0;
+  virtual std::vector<std::string> warnings() const { return {}; }
+};
+
+std::string head_of(const std::string& path, std::size_t n) {
+  std::ifstream in(path, std::ios::binary);
+  std::string s(n, '\0');
+  in.read(s.data(), static_cast<std::streamsize>(n));
+  s.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+  return s;
+}
+
+bool is_sqlite(const std::string& path) { return head_of(path, sizeof kSqliteMagic) == std::string(kSqliteMagic, sizeof kSqliteMagic); }
+bool is_mcap(const std::string& path) { return head_of(path, 8) == std::string(kMcapMagic, 8); }
+
+/// rosbag2's SQLite storage: tables topics (id, name, type, serialization_format, ...) and
+/// messages (id, topic_id, timestamp, data); message_definitions where rosbag2 (Iron on) keeps them.
+class SqliteStorage : public Storage {
+ public:
+  explicit SqliteStorage(const std::string& path) : path_(path) {
+    if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_FULLMUTEX, nullptr) != SQLITE_OK) {
+      const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
+      sqlite3_close(db_);
+      throw input_error(path, 0, "cannot open the SQLite file: " + why);
+    }
+    for (const char* table : {"topics", "messages"}) {
+      if (!has_table(table)) throw input_error(path, 0, std::string("not a rosbag2 SQLite file: no table '") + table + "'");
+    }
+  }
+  ~SqliteStorage() override { sqlite3_close(db_); }
+
+  std::vector<Topic> topics() const override {
+    std::map<std::string, std::string> definitions;
+    if (has_table("message_definitions")) {
+      query("SELECT topic_type, encoding, encoded_message_definition FROM message_definitions", {}, [&](sqlite3_stmt* s) {
+        if (text(s, 1) == "ros2msg") definitions[text(s, 0)] = text(s, 2);
+      });
+    }
+    std::map<std::int64_t, std::uint64_t> counts;
+    query("SELECT topic_id, COUNT(*) FROM messages GROUP BY topic_id", {},
+          [&](sqlite3_stmt* s) { counts[sqlite3_column_int64(s, 0)] = static_cast<std::uint64_t>(sqlite3_column_int64(s, 1)); });
+    std::vector<Topic> out;
+    query("SELECT id, name, type, serialization_format FROM topics ORDER BY id", {}, [&](sqlite3_stmt* s) {
+      Topic t{text(s, 1), text(s, 2), text(s, 3), "", counts[sqlite3_column_int64(s, 0)]};
+      if (const auto it = definitions.find(t.type); it != definitions.end()) t.definition = it->second;
+      out.push_back(t);
+    });
+    return out;
+  }
+
+  std::vector<Located> messages(const std::string& topic, std::size_t file) const override {
+    std::vector<Located> out;
+    query("SELECT m.id, m.timestamp FROM messages m JOIN topics t ON m.topic_id = t.id WHERE t.name = ?1 "
+          "ORDER BY m.timestamp, m.id",
+          {topic}, [&](sqlite3_stmt* s) {
+            Located m;
+            m.file = file;
+            m.row = sqlite3_column_int64(s, 0);
+            m.time = static_cast<std::uint64_t>(sqlite3_column_int64(s, 1));
+            out.push_back(m);
+          });
+    return out;
+  }
+
+  std::string read(const Located& m) const override {
+    std::string data;
+    bool found = false;
+    query("SELECT data FROM messages WHERE id = " + std::to_string(m.row), {}, [&](sqlite3_stmt* s) {
+      const auto* blob = static_cast<const char*>(sqlite3_column_blob(s, 0));
+      data.assign(blob ? blob : "", static_cast<std::size_t>(sqlite3_column_bytes(s, 0)));
+      found = true;
+    });
+    if (!found) throw input_error(path_, 0, "message row " + std::to_string(m.row) + " is gone");
+    return data;
+  }
+
+ private:
+  static std::string text(sqlite3_stmt* s, int column) {
+    const auto* t = reinterpret_cast<const char*>(sqlite3_column_text(s, column));
+    return t ? std::string(t, static_cast<std::size_t>(sqlite3_column_bytes(s, column))) : "";
+  }
+  bool has_table(const std::string& name) const {
+    bool found = false;
+    query("SELECT name FROM sqlite_master WHERE type = 'table' AND name = ?1", {name}, [&](sqlite3_stmt*) { found = true; });
+    return found;
+  }
+  /// Runs `sql` with text parameters, calling `row` for each result row; SQLite's errors (a
+  /// corrupt file, a missing column) are InputErrors naming the file.
+  template <class Row>
+  void query(const std::string& sql, const std::vector<std::string>& params, Row&& row) const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    sqlite3_stmt* s = nullptr;
+    if (sqlite3_prepare_v2(db_, sql.c_str(), -1, &s, nullptr) != SQLITE_OK) {
+      throw input_error(path_, 0, std::string("SQLite: ") + sqlite3_errmsg(db_));
+    }
+    for (std::size_t i = 0; i < params.size(); ++i) {
+      sqlite3_bind_text(s, static_cast<int>(i + 1), params[i].c_str(), -1, SQLITE_TRANSIENT);
+    }
+    int rc;
+    while ((rc = sqlite3_step(s)) == SQLITE_ROW) {
+      try {
+        row(s);
+      } catch (...) {
+        sqlite3_finalize(s);
+        throw;
+      }
+    }
+    sqlite3_finalize(s);
+    if (rc != SQLITE_DONE) throw input_error(path_, 0, std::string("SQLite: ") + sqlite3_errmsg(db_));
+  }
+
+  std::string path_;
+  sqlite3* db_ = nullptr;
+  mutable std::mutex mutex_;
+};
+
+/// rosbag2's MCAP storage: a channel per topic (message encoding cdr), its schema the type's
+/// name and ros2msg definition.
+class McapStorage : public Storage {
+ public:
+  explicit McapStorage(const std::string& path) : reader_(path) {}
+  std::vector<Topic> topics() const override {
+    std::map<std::string, Topic> by_name;
+    std::map<std::uint16_t, std::uint64_t> counts;
+    for (const mcap::MessageRef& m : reader_.messages()) ++counts[m.channel_id];
+    for (const auto& [id, c] : reader_.channels()) {
+      Topic& t = by_name[c.topic];
+      t.name = c.topic;
+      t.format = c.message_encoding;
+      if (const auto s = reader_.schemas().find(c.schema_id); s != reader_.schemas().end()) {
+        t.type = s->second.name;
+        if (s->second.encoding == "ros2msg") t.definition = s->second.data;
+      }
+      t.count += counts[id];
+    }
+    std::vector<Topic> out;
+    for (auto& [name, t] : by_name) out.push_back(std::move(t));
+    return out;
+  }
+  std::vector<Located> messages(const std::string& topic, std::size_t file) const override {
+    std::vector<Located> out;
+    for (const mcap::MessageRef& m : reader_.messages()) {
+      if (reader_.channels().at(m.channel_id).topic != topic) continue;
+      Located l;
+      l.file = file;
+      l.time = m.log_time;
+      l.ref = m;
+      out.push_back(l);
+    }
+    return out;
+  }
+  std::string read(const Located& m) const override { return reader_.read(m.ref).data; }
+  std::vector<std::string> warnings() const override { return reader_.warnings(); }
+
+ private:
+  mcap::Reader reader_;
+};
+
+std::unique_ptr<Storage> open_storage(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw input_error(path, 0, "no such file");
+  if (is_sqlite(path)) return std::make_unique<SqliteStorage>(path);
+  if (is_mcap(path)) return std::make_unique<McapStorage>(path);
+  throw input_error(path, 0, "neither an SQLite (.db3) nor an MCAP file");
+}
+
+/// The storages of a recording: a folder's files in metadata.yaml's order, or the one file.
+std::vector<std::unique_ptr<Storage>> open_recording(const std::string& path) {
+  std::vector<std::unique_ptr<Storage>> out;
+  std::error_code ec;
+  if (!fs::is_directory(path, ec)) {
+    out.push_back(open_storage(path));
+    return out;
+  }
+  const std::string metadata = (fs::path(path) / kMetadataFile).string();
+  if (!fs::is_regular_file(metadata, ec)) throw input_error(path, 0, "a folder without metadata.yaml: not a rosbag2 bag");
+  YAML::Node info;
+  try {
+    info = YAML::LoadFile(metadata)["rosbag2_bagfile_information"];
+  } catch (const YAML::Exception& e) {
+    throw input_error(metadata, e.mark.line + 1, std::string("not YAML: ") + e.msg);
+  }
+  if (!info || !info["relative_file_paths"] || !info["relative_file_paths"].IsSequence()) {
+    throw input_error(metadata, 0, "no rosbag2_bagfile_information.relative_file_paths");
+  }
+  if (const YAML::Node c = info["compression_format"]; c && c.IsScalar() && !c.as<std::string>().empty()) {
+    throw input_error(metadata, 0, "a compressed rosbag2 bag (compression_format " + c.as<std::string>() +
+                                       ") is not read: decompress it first (ros2 bag convert), or record MCAP with "
+                                       "chunk compression");
+  }
+  for (const YAML::Node& f : info["relative_file_paths"]) {
+    const std::string file = (fs::path(path) / f.as<std::string>()).string();
+    if (!fs::is_regular_file(file, ec)) throw input_error(metadata, 0, "lists " + f.as<std::string>() + ", which is not in the folder");
+    out.push_back(open_storage(file));
+  }
+  if (out.empty()) throw input_error(metadata, 0, "lists no files");
+  return out;
+}
+
+/// Topics of every file, merged by name; a topic of two types is an error.
+std::map<std::string, Topic> topics_of(const std::vector<std::unique_ptr<Storage>>& storages, const std::string& path) {
+  std::map<std::string, Topic> out;
+  for (const auto& s : storages) {
+    for (const Topic& t : s->topics()) {
+      auto [it, fresh] = out.emplace(t.name, t);
+      if (fresh) continue;
+      if (it->second.type != t.type) throw input_error(path, 0, t.name + " is " + it->second.type + " in one file, " + t.type + " in another");
+      it->second.count += t.count;
+    }
+  }
+  return out;
+}
+
+std::vector<Located> messages_of(const std::vector<std::unique_ptr<Storage>>& storages, const std::string& topic) {
+  std::vector<Located> out;
+  for (std::size_t i = 0; i < storages.size(); ++i) {
+    const std::vector<Located> m = storages[i]->messages(topic, i);
+    out.insert(out.end(), m.begin(), m.end());
+  }
+  std::stable_sort(out.begin(), out.end(), [](const Located& a, const Located& b) { return a.time < b.time; });
+  return out;
+}
+
+
+}  // namespace
+
+bool is_rosbag2(const std::string& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return fs::is_regular_file(fs::path(path) / kMetadataFile, ec);
+  return fs::is_regular_file(path, ec) && (is_sqlite(path) || is_mcap(path));
+}
+
+struct Rosbag2Sequence::Impl {
+  std::vector<std::unique_ptr<Storage>> storages;
+  std::vector<Located> clouds;  ///< one per kept scan
+  std::string topic;
+};
+
+Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options) : impl_(std::make_unique<Impl>()), name_(options.bag) {
+  const std::string& path = options.bag;
+  if (options.points_topic.empty()) throw input_error(path, 0, "no points topic given (--points-topic; see bag-info)");
+  impl_->storages = open_recording(path);
+  for (const auto& s : impl_->storages) {
+    for (const std::string& w : s->warnings()) warnings_.push_back(w);
+  }
+  const std::map<std::string, Topic> topics = topics_of(impl_->storages, path);
+  const auto require = [&](const std::string& topic, const std::vector<const char*>& wanted) -> const Topic& {
+    const auto it = topics.find(topic);
+    if (it == topics.end()) {
+      std::string list;
+      for (const auto& [t, info] : topics) list += (list.empty() ? "" : ", ") + t;
+      throw input_error(path, 0, "no topic " + topic + " (topics: " + list + ")");
+    }
+    const Topic& t = it->second;
+    if (std::find(wanted.begin(), wanted.end(), t.type) == wanted.end()) {
+      std::string names;
+      for (const char* w : wanted) names += std::string(names.empty() ? "" : " or ") + w;
+      throw input_error(path, 0, topic + " is " + t.type + ", expected " + names);
+    }
+    if (t.format != "cdr") throw input_error(path, 0, topic + " is serialized as '" + t.format + "', expected cdr");
+    if (const std::string why = ros2::definition_mismatch(t.type, t.definition); !why.empty()) {
+      throw input_error(path, 0, topic + " (" + t.type + "): " + why);
+    }
+    return t;
+  };
+  impl_->topic = options.points_topic;
+  require(options.points_topic, {ros2::kPointCloud2});
+  const auto where = [&](const std::string& topic, std::size_t i) { return path + ": " + topic + ", message " + std::to_string(i); };
+  const auto read = [&](const Located& m) { return impl_->storages[m.file]->read(m); };
+
+  std::vector<StampedBase> odom;
+  if (!options.odom_topic.empty()) {
+    const Topic& t = require(options.odom_topic, {ros2::kOdometry, ros2::kPoseStamped});
+    const bool is_odometry = t.type == ros2::kOdometry;
+    std::size_t i = 0;
+    for (const Located& m : messages_of(impl_->storages, options.odom_topic)) {
+      const std::string cdr = read(m);
+      const ros2::StampedPoseMessage p = is_odometry ? ros2::parse_odometry(cdr, where(options.odom_topic, i))
+                                                     : ros2::parse_pose_stamped(cdr, where(options.odom_topic, i));
+      odom.push_back({p.stamp, p.pose});
+      ++i;
+    }
+  } else if (!options.odom_tum.empty()) {
+    for (const StampedPose& p : read_tum(options.odom_tum)) odom.push_back({p.t, p.pose});
+  }
+  const bool has_odometry = !options.odom_topic.empty() || !options.odom_tum.empty();
+  if (has_odometry && odom.empty())
+    throw input_error(path, 0, "no odometry messages on " + (options.odom_topic.empty() ? options.odom_tum : options.odom_topic));
+
+  const std::vector<Located> clouds = messages_of(impl_->storages, options.points_topic);
+  if (clouds.empty()) throw input_error(path, 0, "no messages on " + options.points_topic);
+  std::vector<double> stamps;
+  std::string cloud_frame;
+  for (std::size_t i = 0; i < clouds.size(); ++i) {
+    const PointCloud2Message c = ros2::parse_point_cloud2(read(clouds[i]), where(options.points_topic, i));
+    if (cloud_frame.empty()) cloud_frame = c.frame_id;
+    stamps.push_back(c.stamp);
+  }
+
+  if (options.sensor_to_base) {
+    sensor_to_base_ = *options.sensor_to_base;
+    sensor_to_base_known_ = true;
+  } else if (topics.count(kTfStaticTopic)) {
+    require(kTfStaticTopic, {ros2::kTfMessage});
+    std::size_t i = 0;
+    for (const Located& m : messages_of(impl_->storages, kTfStaticTopic)) {
+      for (const ros2::TransformMessage& t : ros2::parse_tf_message(read(m), where(kTfStaticTopic, i++))) {
+        if (t.child != cloud_frame) continue;
+        sensor_to_base_ = t.transform;
+        sensor_to_base_known_ = true;
+      }
+    }
+  }
+
+  ScanPlacement placed = place_scans(stamps, std::move(odom), has_odometry, sensor_to_base_);
+  for (const std::size_t i : placed.kept) impl_->clouds.push_back(clouds[i]);
+  info_.times = std::move(placed.times);
+  info_.odometry = std::move(placed.odometry);
+  dropped_ = placed.dropped;
+  if (info_.times.empty()) throw input_error(path, 0, "no scan on " + options.points_topic + " lies within the odometry's time span");
+}
+
+Rosbag2Sequence::~Rosbag2Sequence() = default;
+
+PointCloud Rosbag2Sequence::scan(std::size_t index) const {
+  const Located& m = impl_->clouds.at(index);
+  const std::string where = name_ + ": " + impl_->topic + ", scan " + std::to_string(index);
+  const std::string cdr = impl_->storages[m.file]->read(m);
+  const PointCloud2Message msg = ros2::parse_point_cloud2(cdr, where);
+  return decode_point_cloud2(msg.layout, reinterpret_cast<const std::uint8_t*>(cdr.data()) + msg.data_offset, msg.data_size,
+                             where);
+}
+
+std::string rosbag2_info(const std::string& path) {
+  const auto storages = open_recording(path);
+  std::string out = path + ": rosbag2, " + std::to_string(storages.size()) + " file" + (storages.size() == 1 ? "" : "s") + "\n";
+  for (const auto& [name, t] : topics_of(storages, path)) {
+    const std::vector<Located> m = messages_of(storages, name);
+    const double span = m.size() >= 2 ? 1e-9 * static_cast<double>(m.back().time - m.front().time) : 0.0;
+    char line[512];
+    std::snprintf(line, sizeof line, "  %-24s %-32s %8zu msgs", name.c_str(), t.type.c_str(), m.size());
+    out += line;
+    if (span > 0) {
+      std::snprintf(line, sizeof line, "  %8.2f Hz", static_cast<double>(m.size() - 1) / span);
+      out += line;
+    }
+    out += "\n";
+  }
+  for (const auto& s : storages) {
+    for (const std::string& w : s->warnings()) out += "  warning: " + w + "\n";
+  }
+  return out;
+}
+
+// ---- writing -------------------------------------------------------------------------------
+
+namespace {
+
+/// Offered QoS as rosbag2 records it (YAML): reliable; /tf_static transient local, as tf2 publishes it.
+std::string qos_profile(bool transient_local) {
+  return std::string("- history: 3\n  depth: 0\n  reliability: 1\n  durability: ") + (transient_local ? "1" : "2") +
+         "\n  deadline:\n    sec: 2147483647\n    nsec: 4294967295\n  lifespan:\n    sec: 2147483647\n"
+         "    nsec: 4294967295\n  liveliness: 1\n  liveliness_lease_duration:\n    sec: 2147483647\n"
+         "    nsec: 4294967295\n  avoid_ros_namespace_conventions: false";
+}
+
+struct TopicToWrite {
+  std::string name, type;
+  bool transient_local = false;
+};
+
+/// One message to write: its topic's index in the list and its CDR.
+struct Out {
+  std::size_t topic;
+  std::uint64_t time;
+  std::string cdr;
+};
+
+/// Every message of `sequence` in write_bag's order: /tf_static, then per scan /points, /odom
+/// and /groundtruth.
+template <class Sink>
+void for_each_message(const ScanSequence& sequence, const Pose3& sensor_to_base, Sink&& sink) {
+  const SequenceInfo& info = sequence.info();
+  const double first = info.times.empty() ? 0.0 : info.times.front();
+  const auto stamp_ns = ros2::stamp_nanoseconds;
+  sink(Out{2, stamp_ns(first), ros2::encode_tf_message({{first, "base_link", "lidar", sensor_to_base}})});
+  const Pose3 base_to_sensor = sensor_to_base.inverse();
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    sink(Out{0, stamp_ns(info.times[i]), ros2::encode_point_cloud2(info.times[i], "lidar", sequence.scan(i))});
+    sink(Out{1, stamp_ns(info.times[i]), ros2::encode_odometry({info.times[i], "odom", "base_link", info.odometry[i] * base_to_sensor})});
+    if (i < info.groundtruth.size())
+      sink(Out{3, stamp_ns(info.times[i]), ros2::encode_pose_stamped({info.times[i], "world", "", info.groundtruth[i]})});
+  }
+}
+
+void write_sqlite(const ScanSequence& sequence, const std::string& tmp, const std::vector<TopicToWrite>& topics,
+                  const Pose3& sensor_to_base) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(tmp.c_str(), &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
+    sqlite3_close(db);
+    throw input_error(tmp, 0, "cannot create the SQLite file");
+  }
+  const auto exec = [&](const std::string& sql) {
+    char* error = nullptr;
+    if (sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error) != SQLITE_OK) {
+      const std::string why = error ? error : "unknown";
+      sqlite3_free(error);
+      throw std::runtime_error(tmp + ": SQLite: " + why);
+    }
+  };
+  try {
+    exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; BEGIN;"
+         "CREATE TABLE schema(schema_version INTEGER PRIMARY KEY, ros_distro TEXT NOT NULL);"
+         "INSERT INTO schema VALUES (3, 'humble');"
+         "CREATE TABLE metadata(id INTEGER PRIMARY KEY, metadata_version INTEGER NOT NULL, metadata TEXT NOT NULL);"
+         "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, "
+         "serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);"
+         "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT NULL, "
+         "data BLOB NOT NULL);"
+         "CREATE INDEX timestamp_idx ON messages (timestamp ASC);");
+    for (std::size_t i = 0; i < topics.size(); ++i) {
+      sqlite3_stmt* s = nullptr;
+      sqlite3_prepare_v2(db, "INSERT INTO topics VALUES (?1, ?2, ?3, 'cdr', ?4)", -1, &s, nullptr);
+      sqlite3_bind_int64(s, 1, static_cast<sqlite3_int64>(i + 1));
+      sqlite3_bind_text(s, 2, topics[i].name.c_str(), -1, SQLITE_TRANSIENT);
+      sqlite3_bind_text(s, 3, topics[i].type.c_str(), -1, SQLITE_TRANSIENT);
+      sqlite3_bind_text(s, 4, qos_profile(topics[i].transient_local).c_str(), -1, SQLITE_TRANSIENT);
+      const int rc = sqlite3_step(s);
+      sqlite3_finalize(s);
+      if (rc != SQLITE_DONE) throw std::runtime_error(tmp + ": SQLite: " + sqlite3_errmsg(db));
+    }
+    sqlite3_stmt* insert = nullptr;
+    sqlite3_prepare_v2(db, "INSERT INTO messages (topic_id, timestamp, data) VALUES (?1, ?2, ?3)", -1, &insert, nullptr);
+    try {
+      for_each_message(sequence, sensor_to_base, [&](const Out& m) {
+        sqlite3_reset(insert);
+        sqlite3_bind_int64(insert, 1, static_cast<sqlite3_int64>(m.topic + 1));
+        sqlite3_bind_int64(insert, 2, static_cast<sqlite3_int64>(m.time));
+        sqlite3_bind_blob(insert, 3, m.cdr.data(), static_cast<int>(m.cdr.size()), SQLITE_TRANSIENT);
+        if (sqlite3_step(insert) != SQLITE_DONE) throw std::runtime_error(tmp + ": SQLite: " + sqlite3_errmsg(db));
+      });
+    } catch (...) {
+      sqlite3_finalize(insert);
+      throw;
+    }
+    sqlite3_finalize(insert);
+    exec("COMMIT;");
+  } catch (...) {
+    sqlite3_close(db);
+    throw;
+  }
+  if (sqlite3_close(db) != SQLITE_OK) throw std::runtime_error(tmp + ": SQLite: cannot close");
+}
+
+void write_mcap(const ScanSequence& sequence, const std::string& path, const std::vector<TopicToWrite>& topics,
+                mcap::Compression compression, const Pose3& sensor_to_base) {
+  mcap::WriterOptions o;
+  o.profile = "ros2";
+  o.compression = compression;
+  mcap::Writer w(path, o);
+  std::map<std::string, std::uint16_t> schemas;
+  std::vector<std::uint16_t> channels;
+  for (const TopicToWrite& t : topics) {
+    if (!schemas.count(t.type)) schemas[t.type] = w.add_schema(t.type, "ros2msg", ros2::definition(t.type));
+    channels.push_back(w.add_channel(schemas[t.type], t.name, "cdr", {{"offered_qos_profiles", qos_profile(t.transient_local)}}));
+  }
+  for_each_message(sequence, sensor_to_base, [&](const Out& m) { w.write(channels[m.topic], m.time, m.time, m.cdr); });
+  w.finish();
+}
+
+}  // namespace
+
+void write_rosbag2(const ScanSequence& sequence, const std::string& path, Rosbag2Storage storage,
+                   mcap::Compression compression, const Pose3& sensor_to_base) {
+  std::vector<TopicToWrite> topics = {{"/points", ros2::kPointCloud2, false},
+                                      {"/odom", ros2::kOdometry, false},
+                                      {kTfStaticTopic, ros2::kTfMessage, true}};
+  if (!sequence.info().groundtruth.empty()) topics.push_back({"/groundtruth", ros2::kPoseStamped, false});
+  if (storage == Rosbag2Storage::mcap) {
+    write_mcap(sequence, path, topics, compression, sensor_to_base);  // mcap::Writer renames into place
+    return;
+  }
+  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+  std::error_code ec;
+  fs::remove(tmp, ec);
+  try {
+    write_sqlite(sequence, tmp, topics, sensor_to_base);
+  } catch (...) {
+    fs::remove(tmp, ec);
+    throw;
+  }
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw input_error(path, 0, "cannot rename into place: " + ec.message());
+  }
+}
+
+}  // namespace tsgraphs::io

@@ -1,0 +1,139 @@
+// rosbag2 recordings (io/rosbag2.hpp): a small sequence written as SQLite and MCAP files and
+// read back, and what a user gets for a topic that is missing, of another type or of another
+// definition, a damaged SQLite file, and bag folders that are not whole.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "test_support.hpp"
+#include "tsgraphs/core/error.hpp"
+#include "tsgraphs/io/mcap.hpp"
+#include "tsgraphs/io/ros2_messages.hpp"
+#include "tsgraphs/io/rosbag2.hpp"
+
+namespace fs = std::filesystem;
+using namespace tsgraphs;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+namespace {
+
+/// Five scans of a few points, 0.1 s apart, the sensor moving along x.
+class FiveScans : public io::ScanSequence {
+ public:
+  FiveScans() {
+    for (int i = 0; i < 5; ++i) {
+      info_.times.push_back(100.0 + 0.1 * i);
+      Pose3 p = Pose3::Identity();
+      p.translation() = Eigen::Vector3d(0.2 * i, 0, 1);
+      info_.odometry.push_back(p);
+    }
+  }
+  std::size_t size() const override { return info_.times.size(); }
+  const io::SequenceInfo& info() const override { return info_; }
+  const std::string& dir() const override { return name_; }
+  PointCloud scan(std::size_t index) const override {
+    PointCloud c;
+    for (int k = 0; k < 10; ++k) {
+      c.points.emplace_back(1.0f + k, static_cast<float>(index), 0.5f);
+      c.intensity.push_back(static_cast<float>(k));
+    }
+    return c;
+  }
+
+ private:
+  io::SequenceInfo info_;
+  std::string name_ = "five";
+};
+
+class Rosbag2 : public test::TempDirTest {
+ protected:
+  std::string write(const std::string& name, io::Rosbag2Storage storage) const {
+    const std::string path = (dir_ / name).string();
+    io::write_rosbag2(FiveScans(), path, storage, io::mcap::Compression::zstd, Pose3::Identity());
+    return path;
+  }
+  static io::BagOptions options(const std::string& bag, const std::string& odom = "/odom") {
+    io::BagOptions o;
+    o.bag = bag;
+    o.points_topic = "/points";
+    o.odom_topic = odom;
+    return o;
+  }
+  static std::string error_of(const io::BagOptions& o) {
+    try {
+      const io::Rosbag2Sequence s(o);
+      for (std::size_t i = 0; i < s.size(); ++i) s.scan(i);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+};
+
+}  // namespace
+
+TEST_F(Rosbag2, BothStoragesReadBackTheSequence) {
+  const FiveScans five;
+  for (const auto storage : {io::Rosbag2Storage::sqlite, io::Rosbag2Storage::mcap}) {
+    const std::string path = write(storage == io::Rosbag2Storage::sqlite ? "five.db3" : "five.mcap", storage);
+    EXPECT_TRUE(io::is_rosbag2(path));
+    const io::Rosbag2Sequence s(options(path));
+    ASSERT_EQ(s.size(), 5u);
+    EXPECT_TRUE(s.sensor_to_base_known());
+    for (std::size_t i = 0; i < 5; ++i) {
+      EXPECT_EQ(s.info().times[i], five.info().times[i]);
+      EXPECT_TRUE(s.info().odometry[i].isApprox(five.info().odometry[i], 1e-12));
+      const PointCloud c = s.scan(i);
+      ASSERT_EQ(c.size(), 10u);
+      EXPECT_EQ(c.points[3], five.scan(i).points[3]);
+    }
+    EXPECT_THAT(io::rosbag2_info(path), HasSubstr("/points                  sensor_msgs/msg/PointCloud2             5 msgs     10.00 Hz"));
+  }
+  EXPECT_FALSE(io::is_rosbag2((dir_ / "none.db3").string()));
+  std::ofstream(dir_ / "text.db3") << "not a database";
+  EXPECT_FALSE(io::is_rosbag2((dir_ / "text.db3").string()));
+}
+
+TEST_F(Rosbag2, TopicsMissingOrOfAnotherTypeOrDefinitionAreNamed) {
+  const std::string path = write("five.mcap", io::Rosbag2Storage::mcap);
+  EXPECT_EQ(error_of(options(path, "/nope")), path + ": no topic /nope (topics: /odom, /points, /tf_static)");
+  EXPECT_EQ(error_of(options(path, "/points")),
+            path + ": /points is sensor_msgs/msg/PointCloud2, expected nav_msgs/msg/Odometry or geometry_msgs/msg/PoseStamped");
+  // A topic named PointCloud2 whose recorded definition is another message's.
+  const std::string other = (dir_ / "other.mcap").string();
+  {
+    io::mcap::Writer w(other, {"ros2", "test", io::mcap::Compression::none, 1 << 20});
+    const auto schema = w.add_schema(io::ros2::kPointCloud2, "ros2msg", io::ros2::definition(io::ros2::kPoseStamped));
+    w.write(w.add_channel(schema, "/points", "cdr"), 1, 1, io::ros2::encode_pose_stamped({1.0, "map", "", Pose3::Identity()}));
+    w.finish();
+  }
+  io::BagOptions o = options(other, "");
+  EXPECT_THAT(error_of(o), AllOf(StartsWith(other + ": /points (sensor_msgs/msg/PointCloud2): its definition declares (Header header, Pose pose)")));
+}
+
+TEST_F(Rosbag2, DamagedFilesAndIncompleteFoldersAreNamed) {
+  const std::string db = write("five.db3", io::Rosbag2Storage::sqlite);
+  std::string bytes;
+  {
+    std::ifstream in(db, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::string cut = (dir_ / "cut.db3").string();
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  EXPECT_THAT(error_of(options(cut)), StartsWith(cut + ": "));
+  // Folders: no metadata.yaml is no rosbag2 bag; one naming a file it lacks, or compressed.
+  fs::create_directories(dir_ / "bag");
+  EXPECT_FALSE(io::is_rosbag2((dir_ / "bag").string()));
+  const std::string metadata = (dir_ / "bag" / "metadata.yaml").string();
+  std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [bag_0.db3]\n";
+  EXPECT_TRUE(io::is_rosbag2((dir_ / "bag").string()));
+  EXPECT_EQ(error_of(options((dir_ / "bag").string())), metadata + ": lists bag_0.db3, which is not in the folder");
+  std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [bag_0.db3.zstd]\n  compression_format: zstd\n";
+  EXPECT_THAT(error_of(options((dir_ / "bag").string())), StartsWith(metadata + ": a compressed rosbag2 bag (compression_format zstd)"));
+  std::ofstream(metadata) << "rosbag2_bagfile_information: [\n";
+  EXPECT_THAT(error_of(options((dir_ / "bag").string())), StartsWith(metadata + ":"));
+}
