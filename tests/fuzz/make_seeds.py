@@ -196,6 +196,55 @@ def mcap_seeds():
     put("mcap", "no_crcs_no_summary.mcap", mcap_file("", summary=False, crcs=False))
 
 
+class Cdr:
+    """Little-endian CDR (XCDR1): each value aligned to its size, counted after the 4-byte header."""
+    def __init__(self):
+        self.body = bytearray()
+
+    def put(self, fmt, value):
+        size = struct.calcsize("<" + fmt)
+        self.body += b"\0" * (-len(self.body) % size)
+        self.body += struct.pack("<" + fmt, value)
+
+    def string(self, s):
+        self.put("I", len(s) + 1)
+        self.body += s.encode() + b"\0"
+
+    def bytes(self):
+        return b"\x00\x01\x00\x00" + bytes(self.body)
+
+
+def ros2_message_seeds():
+    def header(c, frame):
+        c.put("i", 12), c.put("I", 500000000), c.string(frame)
+    def pose(c, xyz, q):
+        for v in tuple(xyz) + tuple(q):
+            c.put("d", v)
+    c = Cdr()
+    header(c, "odom"), c.string("base_link"), pose(c, (1, 2, 3), (0, 0, 0.2474, 0.9689))
+    for _ in range(36 + 6 + 36):
+        c.put("d", 0.0)
+    put("ros2_messages", "odometry.cdr", c.bytes())
+    c = Cdr()
+    header(c, "map"), pose(c, (-1, 0.5, 0), (0, 0, 0, 1))
+    put("ros2_messages", "pose_stamped.cdr", c.bytes())
+    c = Cdr()
+    c.put("I", 2)
+    for parent, child in (("base_link", "lidar"), ("map", "odom")):
+        header(c, parent), c.string(child), pose(c, (0.1, 0, 0.3), (0, 0, 0, 1))
+    put("ros2_messages", "tf_message.cdr", c.bytes())
+    c = Cdr()
+    header(c, "lidar"), c.put("I", 1), c.put("I", len(POINTS))
+    c.put("I", 4)
+    for i, name in enumerate(("x", "y", "z", "intensity")):
+        c.string(name), c.put("I", 4 * i), c.put("B", 7), c.put("I", 1)
+    c.put("B", 0), c.put("I", 16), c.put("I", 16 * len(POINTS))
+    c.put("I", 16 * len(POINTS))
+    c.body += b"".join(struct.pack("<4f", *p) for p in POINTS)
+    c.put("B", 1)
+    put("ros2_messages", "point_cloud2.cdr", c.bytes())
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -217,6 +266,7 @@ def main():
         subprocess.run([tsgraphs, "run", two_rooms_seq, "--out", run], check=True, capture_output=True)
         pcd_seeds()
         mcap_seeds()
+        ros2_message_seeds()
         kitti_seeds(seq)
         tum_seeds(seq)
         point_cloud2_seeds()
