@@ -82,7 +82,9 @@ void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::
   if (format == "auto") {
     const std::string ext = fs::path(bag).extension().string();
     format = ext == ".mcap" ? "ros2-mcap" : ext == ".db3" ? "ros2-sqlite" : ext == ".bag" ? "ros1" : "";
-    if (format.empty()) throw input_error(bag, 0, "give the bag a .bag, .mcap or .db3 name, or --bag-format");
+    if (format.empty())
+      throw input_error(bag, 0, "give the bag a .bag, .mcap or .db3 name, or --bag-format (ros2 formats write a bag "
+                                "folder under another name)");
   }
   const std::map<std::string, std::vector<std::string>> kCompressions = {
       {"ros1", {"lz4", "none", "bz2"}}, {"ros2-mcap", {"zstd", "none", "lz4"}}, {"ros2-sqlite", {"none"}}};

@@ -341,6 +341,11 @@ TEST_F(RunCli, Ros2BagsInEveryStorageRunAsTheRos1Bag) {
       << "rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: mcap\n  relative_file_paths:\n"
          "    - folder_bag_0.mcap\n  compression_format: \"\"\n  compression_mode: \"\"\n";
   bags.emplace_back("folder", dir_ / "folder_bag");
+  // And as rosbag2 writes one: metadata.yaml and NAME_0.db3.
+  io::write_rosbag2(reader, (dir_ / "written_bag").string(), io::Rosbag2Storage::sqlite, io::mcap::Compression::none,
+                    sensor_to_base);
+  ASSERT_TRUE(fs::exists(dir_ / "written_bag" / "written_bag_0.db3"));
+  bags.emplace_back("written_folder", dir_ / "written_bag");
   for (const auto& [name, bag] : bags) {
     SCOPED_TRACE(name);
     const fs::path out = run_bag(bag, name);

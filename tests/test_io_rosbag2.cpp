@@ -8,6 +8,8 @@
 #include <fstream>
 #include <string>
 
+#include <yaml-cpp/yaml.h>
+
 #include "test_support.hpp"
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/mcap.hpp"
@@ -93,6 +95,17 @@ TEST_F(Rosbag2, BothStoragesReadBackTheSequence) {
     }
     EXPECT_THAT(io::rosbag2_info(path), HasSubstr("/points                  sensor_msgs/msg/PointCloud2             5 msgs     10.00 Hz"));
   }
+  // A bag folder: metadata.yaml (rosbag2's BagMetadata) naming its one file, with the counts.
+  write("folder", io::Rosbag2Storage::mcap);
+  const YAML::Node meta = YAML::LoadFile((dir_ / "folder" / "metadata.yaml").string())["rosbag2_bagfile_information"];
+  EXPECT_EQ(meta["storage_identifier"].as<std::string>(), "mcap");
+  EXPECT_EQ(meta["relative_file_paths"][0].as<std::string>(), "folder_0.mcap");
+  EXPECT_EQ(meta["message_count"].as<int>(), 5 + 5 + 1);
+  EXPECT_EQ(meta["topics_with_message_count"][0]["topic_metadata"]["type"].as<std::string>(), "sensor_msgs/msg/PointCloud2");
+  EXPECT_EQ(meta["duration"]["nanoseconds"].as<std::uint64_t>(), 400000000u);
+  EXPECT_EQ(io::Rosbag2Sequence(options((dir_ / "folder").string())).size(), 5u);
+  // A bag folder is not written over.
+  EXPECT_THROW(write("folder", io::Rosbag2Storage::sqlite), InputError);
   EXPECT_FALSE(io::is_rosbag2((dir_ / "none.db3").string()));
   std::ofstream(dir_ / "text.db3") << "not a database";
   EXPECT_FALSE(io::is_rosbag2((dir_ / "text.db3").string()));

@@ -427,6 +427,60 @@ struct Out {
   std::string cdr;
 };
 
+/// What metadata.yaml says of the messages: per topic its count, and the time span.
+struct Tally {
+  std::vector<std::uint64_t> counts;
+  std::uint64_t first = 0, last = 0, total = 0;
+  void add(const Out& m) {
+    if (counts.size() <= m.topic) counts.resize(m.topic + 1, 0);
+    ++counts[m.topic];
+    first = total ? std::min(first, m.time) : m.time;
+    last = total ? std::max(last, m.time) : m.time;
+    ++total;
+  }
+};
+
+/// rosbag2's BagMetadata (version 5, as Humble writes it) for one file.
+std::string bag_metadata(const std::string& storage_id, const std::string& file, const std::vector<TopicToWrite>& topics,
+                         const Tally& tally) {
+  YAML::Emitter y;
+  const auto duration = [&] {
+    y << YAML::BeginMap << YAML::Key << "nanoseconds" << YAML::Value << tally.last - tally.first << YAML::EndMap;
+  };
+  const auto starting = [&] {
+    y << YAML::BeginMap << YAML::Key << "nanoseconds_since_epoch" << YAML::Value << tally.first << YAML::EndMap;
+  };
+  y << YAML::BeginMap << YAML::Key << "rosbag2_bagfile_information" << YAML::Value << YAML::BeginMap;
+  y << YAML::Key << "version" << YAML::Value << 5;
+  y << YAML::Key << "storage_identifier" << YAML::Value << storage_id;
+  y << YAML::Key << "duration" << YAML::Value, duration();
+  y << YAML::Key << "starting_time" << YAML::Value, starting();
+  y << YAML::Key << "message_count" << YAML::Value << tally.total;
+  y << YAML::Key << "topics_with_message_count" << YAML::Value << YAML::BeginSeq;
+  for (std::size_t i = 0; i < topics.size(); ++i) {
+    y << YAML::BeginMap << YAML::Key << "topic_metadata" << YAML::Value << YAML::BeginMap;
+    y << YAML::Key << "name" << YAML::Value << topics[i].name;
+    y << YAML::Key << "type" << YAML::Value << topics[i].type;
+    y << YAML::Key << "serialization_format" << YAML::Value << "cdr";
+    y << YAML::Key << "offered_qos_profiles" << YAML::Value << YAML::DoubleQuoted << qos_profile(topics[i].transient_local);
+    y << YAML::EndMap;
+    y << YAML::Key << "message_count" << YAML::Value << (i < tally.counts.size() ? tally.counts[i] : 0);
+    y << YAML::EndMap;
+  }
+  y << YAML::EndSeq;
+  y << YAML::Key << "compression_format" << YAML::Value << YAML::DoubleQuoted << "";
+  y << YAML::Key << "compression_mode" << YAML::Value << YAML::DoubleQuoted << "";
+  y << YAML::Key << "relative_file_paths" << YAML::Value << YAML::BeginSeq << file << YAML::EndSeq;
+  y << YAML::Key << "files" << YAML::Value << YAML::BeginSeq << YAML::BeginMap;
+  y << YAML::Key << "path" << YAML::Value << file;
+  y << YAML::Key << "starting_time" << YAML::Value, starting();
+  y << YAML::Key << "duration" << YAML::Value, duration();
+  y << YAML::Key << "message_count" << YAML::Value << tally.total;
+  y << YAML::EndMap << YAML::EndSeq;
+  y << YAML::EndMap << YAML::EndMap;
+  return std::string(y.c_str()) + "\n";
+}
+
 /// Every message of `sequence` in write_bag's order: /tf_static, then per scan /points, /odom
 /// and /groundtruth.
 template <class Sink>
@@ -444,8 +498,10 @@ void for_each_message(const ScanSequence& sequence, const Pose3& sensor_to_base,
   }
 }
 
-void write_sqlite(const ScanSequence& sequence, const std::string& tmp, const std::vector<TopicToWrite>& topics,
-                  const Pose3& sensor_to_base) {
+/// Returns the bag's metadata (for metadata.yaml); `file` is the name it lists.
+std::string write_sqlite(const ScanSequence& sequence, const std::string& tmp, const std::string& file,
+                         const std::vector<TopicToWrite>& topics, const Pose3& sensor_to_base) {
+  std::string metadata;
   sqlite3* db = nullptr;
   if (sqlite3_open_v2(tmp.c_str(), &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
     sqlite3_close(db);
@@ -482,8 +538,10 @@ void write_sqlite(const ScanSequence& sequence, const std::string& tmp, const st
     }
     sqlite3_stmt* insert = nullptr;
     sqlite3_prepare_v2(db, "INSERT INTO messages (topic_id, timestamp, data) VALUES (?1, ?2, ?3)", -1, &insert, nullptr);
+    Tally tally;
     try {
       for_each_message(sequence, sensor_to_base, [&](const Out& m) {
+        tally.add(m);
         sqlite3_reset(insert);
         sqlite3_bind_int64(insert, 1, static_cast<sqlite3_int64>(m.topic + 1));
         sqlite3_bind_int64(insert, 2, static_cast<sqlite3_int64>(m.time));
@@ -495,16 +553,24 @@ void write_sqlite(const ScanSequence& sequence, const std::string& tmp, const st
       throw;
     }
     sqlite3_finalize(insert);
+    metadata = bag_metadata("sqlite3", file, topics, tally);
+    sqlite3_stmt* s = nullptr;
+    sqlite3_prepare_v2(db, "INSERT INTO metadata (metadata_version, metadata) VALUES (5, ?1)", -1, &s, nullptr);
+    sqlite3_bind_text(s, 1, metadata.c_str(), -1, SQLITE_TRANSIENT);
+    const int rc = sqlite3_step(s);
+    sqlite3_finalize(s);
+    if (rc != SQLITE_DONE) throw std::runtime_error(tmp + ": SQLite: " + sqlite3_errmsg(db));
     exec("COMMIT;");
   } catch (...) {
     sqlite3_close(db);
     throw;
   }
   if (sqlite3_close(db) != SQLITE_OK) throw std::runtime_error(tmp + ": SQLite: cannot close");
+  return metadata;
 }
 
-void write_mcap(const ScanSequence& sequence, const std::string& path, const std::vector<TopicToWrite>& topics,
-                mcap::Compression compression, const Pose3& sensor_to_base) {
+std::string write_mcap(const ScanSequence& sequence, const std::string& path, const std::string& file,
+                       const std::vector<TopicToWrite>& topics, mcap::Compression compression, const Pose3& sensor_to_base) {
   mcap::WriterOptions o;
   o.profile = "ros2";
   o.compression = compression;
@@ -515,8 +581,15 @@ void write_mcap(const ScanSequence& sequence, const std::string& path, const std
     if (!schemas.count(t.type)) schemas[t.type] = w.add_schema(t.type, "ros2msg", ros2::definition(t.type));
     channels.push_back(w.add_channel(schemas[t.type], t.name, "cdr", {{"offered_qos_profiles", qos_profile(t.transient_local)}}));
   }
-  for_each_message(sequence, sensor_to_base, [&](const Out& m) { w.write(channels[m.topic], m.time, m.time, m.cdr); });
+  Tally tally;
+  for_each_message(sequence, sensor_to_base, [&](const Out& m) {
+    tally.add(m);
+    w.write(channels[m.topic], m.time, m.time, m.cdr);
+  });
+  const std::string metadata = bag_metadata("mcap", file, topics, tally);
+  w.add_metadata("rosbag2", {{"serialized_metadata", metadata}, {"ROS_DISTRO", "humble"}});
   w.finish();
+  return metadata;
 }
 
 }  // namespace
@@ -527,22 +600,32 @@ void write_rosbag2(const ScanSequence& sequence, const std::string& path, Rosbag
                                       {"/odom", ros2::kOdometry, false},
                                       {kTfStaticTopic, ros2::kTfMessage, true}};
   if (!sequence.info().groundtruth.empty()) topics.push_back({"/groundtruth", ros2::kPoseStamped, false});
-  if (storage == Rosbag2Storage::mcap) {
-    write_mcap(sequence, path, topics, compression, sensor_to_base);  // mcap::Writer renames into place
-    return;
-  }
+  const std::string ext = storage == Rosbag2Storage::mcap ? ".mcap" : ".db3";
+  const bool folder = fs::path(path).extension() != ext;
+  // A folder is made under a temporary name; a single file is written to one.
   const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+  const std::string file = folder ? fs::path(path).filename().string() + "_0" + ext : fs::path(path).filename().string();
+  const std::string target = folder ? (fs::path(tmp) / file).string() : tmp;
   std::error_code ec;
-  fs::remove(tmp, ec);
+  if (folder && fs::exists(path, ec)) throw input_error(path, 0, "exists: a bag folder is not written over");
+  fs::remove_all(tmp, ec);
   try {
-    write_sqlite(sequence, tmp, topics, sensor_to_base);
+    if (folder && !fs::create_directory(tmp, ec)) throw input_error(path, 0, "cannot make the bag folder: " + ec.message());
+    const std::string metadata = storage == Rosbag2Storage::mcap
+                                     ? write_mcap(sequence, target, file, topics, compression, sensor_to_base)
+                                     : write_sqlite(sequence, target, file, topics, sensor_to_base);
+    if (folder) {
+      std::ofstream out(fs::path(tmp) / kMetadataFile);
+      out << metadata;
+      if (!out) throw std::runtime_error(tmp + ": cannot write metadata.yaml");
+    }
   } catch (...) {
-    fs::remove(tmp, ec);
+    fs::remove_all(tmp, ec);
     throw;
   }
   fs::rename(tmp, path, ec);
   if (ec) {
-    fs::remove(tmp, ec);
+    fs::remove_all(tmp, ec);
     throw input_error(path, 0, "cannot rename into place: " + ec.message());
   }
 }

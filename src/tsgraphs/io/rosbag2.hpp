@@ -54,10 +54,13 @@ std::string rosbag2_info(const std::string& path);
 
 enum class Rosbag2Storage { sqlite, mcap };
 
-/// Writes `sequence` as one rosbag2 file, SQLite (.db3, rosbag2's Humble layout) or MCAP
-/// (profile ros2, cdr messages, ros2msg schemas, chunks compressed by `compression`), with
-/// the topics write_bag writes to ROS 1 bags: /points, /odom, /tf_static and /groundtruth.
-/// Written under a temporary name and renamed, so a failed write leaves nothing.
+/// Writes `sequence` as rosbag2 writes a recording: SQLite (rosbag2's Humble layout, the bag's
+/// metadata in its metadata table) or MCAP (profile ros2, cdr messages, ros2msg schemas, chunks
+/// compressed by `compression`, the bag's metadata in a "rosbag2" Metadata record), with the
+/// topics write_bag writes to ROS 1 bags: /points, /odom, /tf_static and /groundtruth. A `path`
+/// ending in .db3 or .mcap is that one file; any other is a bag folder: metadata.yaml and
+/// NAME_0.db3 or NAME_0.mcap. Written under a temporary name and renamed, so a failed write
+/// leaves nothing.
 void write_rosbag2(const ScanSequence& sequence, const std::string& path, Rosbag2Storage storage,
                    mcap::Compression compression, const Pose3& sensor_to_base);
 
