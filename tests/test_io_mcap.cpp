@@ -284,6 +284,22 @@ TEST_F(Mcap, TheSpecificationsOneMessageInEveryLayout) {
   EXPECT_EQ(layouts, 80);
 }
 
+// Messages outside chunks have no index entry: when the statistics count more messages than
+// the index holds, the file is read from the start instead.
+TEST_F(Mcap, AnIndexShortOfTheStatisticsCountIsNotUsed) {
+  Layout l;
+  l.chunked = l.chunk_index = l.message_index = l.repeated = l.statistics = true;
+  std::string bytes = one_message(l);
+  const std::size_t stats = bytes.find(std::string("\x0b", 1) + std::string("\x38\x00\x00\x00\x00\x00\x00\x00", 8));
+  ASSERT_NE(stats, std::string::npos);
+  bytes[stats + 9] = '\x02';  // message_count 2
+  const mcap::Reader r(write_bytes("short_index.mcap", bytes));
+  EXPECT_FALSE(r.indexed());
+  ASSERT_EQ(r.warnings().size(), 1u);
+  EXPECT_THAT(r.warnings()[0], HasSubstr("its index holds 1 of the 2 messages its statistics count"));
+  EXPECT_EQ(r.messages().size(), 1u);
+}
+
 TEST_F(Mcap, DamagedFilesAreInputErrorsNamingTheFileAndTheRecord) {
   const std::string path = (dir_ / "good.mcap").string();
   {

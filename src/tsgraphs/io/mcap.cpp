@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <optional>
 #include <tuple>
 
 #include "tsgraphs/core/error.hpp"
@@ -334,6 +335,7 @@ bool Reader::read_index(std::string* why) {
     std::map<std::uint16_t, std::uint64_t> message_indexes;
   };
   std::vector<ChunkIndex> chunks;
+  std::optional<std::uint64_t> message_count;  // the Statistics record's, when there is one
   for (std::uint64_t at = 0; at < summary.size();) {
     const std::uint64_t abs = summary_start + at;
     if (summary.size() - at < kPrefixBytes) throw input_error(path_, 0, "a record at byte " + std::to_string(abs) + " is cut short");
@@ -366,6 +368,8 @@ bool Reader::read_index(std::string* why) {
         throw input_error(path_, 0, record_at(op, abs) + ": its chunk is outside the data section");
       }
       chunks.push_back(std::move(c));
+    } else if (op == kStatistics) {
+      message_count = r.num<std::uint64_t>("message_count");
     }
     at += kPrefixBytes + n;
   }
@@ -393,6 +397,12 @@ bool Reader::read_index(std::string* why) {
         messages_.push_back({channel, little<std::uint64_t>(e), c.offset, little<std::uint64_t>(e + 8)});
       }
     }
+  }
+  // Messages outside chunks have no index: the statistics tell whether there are any.
+  if (message_count && *message_count != messages_.size()) {
+    *why = "its index holds " + std::to_string(messages_.size()) + " of the " + std::to_string(*message_count) +
+           " messages its statistics count";
+    return false;
   }
   return true;
 }
