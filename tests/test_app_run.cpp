@@ -54,29 +54,12 @@ class RunCli : public test::TempDirTest {
 };
 fs::path RunCli::base_;
 
-struct PlyVertex {
-  Eigen::Vector3d p;
-  unsigned char r, g, b;
-};
+using PlyVertex = io::MapVertex;
 
-// map.ply's vertices (double x y z, uchar r g b, as run writes it).
+// map.ply's vertices, written as doubles (UTM coordinates to the millimetre).
 std::vector<PlyVertex> read_map_ply(const fs::path& file) {
-  const std::string ply = read_file(file);
-  EXPECT_NE(ply.find("property double x\nproperty double y\nproperty double z\n"), std::string::npos);
-  const std::size_t body = ply.find("end_header\n") + std::strlen("end_header\n");
-  std::vector<PlyVertex> out;
-  for (std::size_t at = body; at + 27 <= ply.size(); at += 27) {
-    PlyVertex v;
-    std::memcpy(v.p.data(), ply.data() + at, 24);
-    v.r = static_cast<unsigned char>(ply[at + 24]), v.g = static_cast<unsigned char>(ply[at + 25]),
-    v.b = static_cast<unsigned char>(ply[at + 26]);
-    out.push_back(v);
-  }
-  const std::size_t count = ply.find("element vertex ");
-  EXPECT_NE(count, std::string::npos);
-  EXPECT_EQ(std::stoul(ply.substr(count + std::strlen("element vertex "))), out.size());
-  EXPECT_EQ(ply.size() - body, 27 * out.size());
-  return out;
+  EXPECT_NE(read_file(file).find("property double x\nproperty double y\nproperty double z\n"), std::string::npos);
+  return io::read_map_ply(file.string());
 }
 
 }  // namespace

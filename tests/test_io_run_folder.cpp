@@ -525,3 +525,27 @@ TEST_F(RunSummaryFile, MissingKeysAndWrongTypesAreNamed) {
   path = write_file("run_info.json", replaced(good, "{", "{\"gpu\": \"none\", "));
   EXPECT_EQ(read_run_summary(path).num_scans, 0u);
 }
+
+// map.ply as run writes it now (double) and wrote it before the map frame (float).
+TEST_F(SceneGraphFile, MapPlyOfDoublesOrFloats) {
+  const auto ply = [](const std::string& type, std::size_t count, const std::string& body) {
+    return "ply\nformat binary_little_endian 1.0\ncomment test\nelement vertex " + std::to_string(count) + "\nproperty " + type +
+           " x\nproperty " + type + " y\nproperty " + type + " z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n" + body;
+  };
+  std::string doubles, floats;
+  const double d[3] = {512345.125, 4012345.25, 1.5};
+  const float f[3] = {1.5f, -2.0f, 0.25f};
+  doubles.append(reinterpret_cast<const char*>(d), 24) += std::string("\x01\x02\x03", 3);
+  floats.append(reinterpret_cast<const char*>(f), 12) += std::string("\xff\x00\x10", 3);
+  const auto a = read_map_ply(write_file("d.ply", ply("double", 1, doubles)));
+  ASSERT_EQ(a.size(), 1u);
+  EXPECT_EQ(a[0].p, Eigen::Vector3d(512345.125, 4012345.25, 1.5));
+  EXPECT_EQ(a[0].b, 3);
+  const auto b = read_map_ply(write_file("f.ply", ply("float", 1, floats)));
+  ASSERT_EQ(b.size(), 1u);
+  EXPECT_EQ(b[0].p, Eigen::Vector3d(1.5, -2.0, 0.25));
+  EXPECT_EQ(b[0].r, 255);
+  const std::string short_body = write_file("short.ply", ply("double", 2, doubles));
+  EXPECT_THROW(read_map_ply(short_body), InputError);
+  EXPECT_THROW(read_map_ply(write_file("text.ply", "ply\nformat ascii 1.0\nend_header\n")), InputError);
+}

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -819,6 +820,53 @@ RunSummary read_run_summary(const std::string& path) {
     throw input_error(path, 0, e.what());
   }
   return s;
+}
+
+std::vector<MapVertex> read_map_ply(const std::string& path) {
+  const std::string bytes = read_text_file(path);
+  const std::string end = "end_header\n";
+  const std::size_t body = bytes.find(end);
+  if (bytes.rfind("ply\nformat binary_little_endian 1.0\n", 0) != 0 || body == std::string::npos) {
+    throw input_error(path, 1, "not a binary little-endian PLY file");
+  }
+  std::istringstream header(bytes.substr(0, body));
+  std::size_t count = 0;
+  std::vector<std::string> properties;
+  int line_no = 0;
+  for (std::string line; std::getline(header, line);) {
+    ++line_no;
+    std::istringstream words(line);
+    std::string key, a, b;
+    words >> key >> a >> b;
+    if (key == "element" && a == "vertex") {
+      unsigned long long n = 0;
+      const auto [ptr, ec] = std::from_chars(b.data(), b.data() + b.size(), n);
+      if (ec != std::errc() || ptr != b.data() + b.size()) throw input_error(path, line_no, "vertex count '" + b + "' is not a whole number");
+      count = static_cast<std::size_t>(n);
+    }
+    if (key == "property") properties.push_back(a + " " + b);
+  }
+  const bool doubles = properties == std::vector<std::string>{"double x", "double y", "double z", "uchar red", "uchar green", "uchar blue"};
+  const bool floats = properties == std::vector<std::string>{"float x", "float y", "float z", "uchar red", "uchar green", "uchar blue"};
+  if (!doubles && !floats) throw input_error(path, 0, "vertices are not x y z (float or double) then red green blue (uchar)");
+  const std::size_t stride = doubles ? 27 : 15, at = body + end.size();
+  if ((bytes.size() - at) / stride < count) {
+    throw input_error(path, 0, "holds " + std::to_string((bytes.size() - at) / stride) + " vertices, its header says " + std::to_string(count));
+  }
+  std::vector<MapVertex> out(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const char* v = bytes.data() + at + i * stride;
+    if (doubles) {
+      std::memcpy(out[i].p.data(), v, 24);
+    } else {
+      float f[3];
+      std::memcpy(f, v, 12);
+      out[i].p = Eigen::Vector3f(f[0], f[1], f[2]).cast<double>();
+    }
+    const std::size_t c = doubles ? 24 : 12;
+    out[i].r = static_cast<std::uint8_t>(v[c]), out[i].g = static_cast<std::uint8_t>(v[c + 1]), out[i].b = static_cast<std::uint8_t>(v[c + 2]);
+  }
+  return out;
 }
 
 }  // namespace tsgraphs::io

@@ -8,6 +8,7 @@
 /// number beyond a double names its line, a folder in a file's place says so.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -255,5 +256,17 @@ struct RunSummary {
 std::string format_run_summary(const RunSummary& summary);
 /// Reads run_info.json; every key above is required but `platform` and `warnings`.
 RunSummary read_run_summary(const std::string& path);
+
+// ---- map.ply --------------------------------------------------------------------------------
+
+/// A vertex of map.ply: where, and its layer's colour.
+struct MapVertex {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  std::uint8_t r = 0, g = 0, b = 0;
+};
+/// map.ply's vertices: binary little-endian, x y z (double, or float as runs wrote before the
+/// map frame) then uchar red green blue. Anything else, or a body short of its vertex count, is
+/// an InputError naming the file.
+std::vector<MapVertex> read_map_ply(const std::string& path);
 
 }  // namespace tsgraphs::io
