@@ -21,6 +21,7 @@
 #include "tsgraphs/odometry/lidar_odometry.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
 #include "tsgraphs/pipeline/sequence_runner.hpp"
+#include "tsgraphs/report/foxglove_export.hpp"
 #include "tsgraphs/report/report_html.hpp"
 #include "tsgraphs/report/scene_svg.hpp"
 #include "tsgraphs/scene/builtin_scenes.hpp"
@@ -137,6 +138,11 @@ void convert(const io::ScanSequence& sequence, const std::string& out, const pip
   if (!quiet)
     std::fprintf(stderr, "convert: wrote %s (%zu scans%s)\n", out.c_str(), sequence.size(),
                  lidar_odometry ? ", odom.txt from LiDAR odometry" : "");
+}
+
+void export_mcap(const std::string& run_dir, const std::string& out, bool quiet) {
+  report::export_foxglove_mcap(run_dir, out);
+  if (!quiet) std::fprintf(stderr, "export: wrote %s\n", out.c_str());
 }
 
 void print_bag_info(const std::string& bag) {

@@ -41,6 +41,8 @@ void convert(const io::ScanSequence& sequence, const std::string& out, const pip
              const odometry::LidarOdometryConfig& lidar, const odometry::SweepRegistrationConfig& sweep, bool quiet);
 /// `bag-info`: the topics, types, counts and rates of a ROS 1 bag or a rosbag2 recording on stdout.
 void print_bag_info(const std::string& bag);
+/// `export --mcap`: the run folder as an MCAP file for Foxglove (report/foxglove_export.hpp).
+void export_mcap(const std::string& run_dir, const std::string& out, bool quiet);
 /// `draw-scene`: the bird's-eye SVG of the scene and its path.
 void draw_scene(const scene::Scene& scene, const std::string& out, bool quiet);
 /// What `run` reads: a sequence folder (docs/scene-format.md) when `options.folder` is one and

@@ -44,6 +44,7 @@ struct Options {
   std::vector<double> sensor_to_base;  ///< run: x y z qx qy qz qw
   std::string odometry = "auto";       ///< run, convert: auto, input or lidar
   std::string bag_out;           ///< simulate: write a bag
+  std::string mcap_out;          ///< export: the Foxglove MCAP file
   std::string bag_format = "auto";  ///< simulate --bag: ros1, ros2-mcap, ros2-sqlite or auto (by extension)
   std::string compression;          ///< simulate --bag: "" for the format's default
   DemoOptions demo;
@@ -178,6 +179,11 @@ int main(int argc, char** argv) {
   auto* bag_info_cmd = app.add_subcommand("bag-info", "topics of a ROS1 bag or a rosbag2 recording: types, message counts, rates");
   bag_info_cmd->add_option("BAG", opt.bag.bag, "the .bag file, or the rosbag2 folder, .db3 or .mcap file")->required();
 
+  auto* export_cmd = app.add_subcommand("export", "a run folder as an MCAP file Foxglove opens: trajectory, map, walls, "
+                                                  "traversable nodes, rooms as they were extracted");
+  export_cmd->add_option("RUN_DIR", opt.out, "run folder")->required();
+  export_cmd->add_option("--mcap", opt.mcap_out, "MCAP file to write")->required();
+
   auto* demo_cmd = app.add_subcommand(
       "demo", "TS-graphs, S-Graphs+ and the ablations on simulated atrium and office: Table 1 and a report");
   demo_cmd->add_option("--out", opt.demo.out, "output folder")->capture_default_str();
@@ -233,6 +239,8 @@ int main(int argc, char** argv) {
       import_map(opt.import_map);
     } else if (*bag_info_cmd) {
       print_bag_info(opt.bag.bag);
+    } else if (*export_cmd) {
+      export_mcap(opt.out, opt.mcap_out, opt.quiet);
     } else if (*draw_cmd) {
       draw_scene(load_and_warn(opt.scene), opt.out, opt.quiet);
     } else if (*run_cmd || *convert_cmd) {

@@ -18,6 +18,7 @@
 #include "small_room_test_support.hpp"
 #include "test_support.hpp"
 #include "tsgraphs/eval/room_metrics.hpp"
+#include "tsgraphs/io/mcap.hpp"
 #include "tsgraphs/io/ros_bag.hpp"
 #include "tsgraphs/io/rosbag2.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
@@ -25,6 +26,7 @@
 #include "tsgraphs/pipeline/pipeline.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
 #include "tsgraphs/pipeline/sequence_runner.hpp"
+#include "tsgraphs/report/foxglove_export.hpp"
 
 namespace fs = std::filesystem;
 using namespace tsgraphs;
@@ -345,6 +347,91 @@ TEST_F(RunCli, Ros2BagsInEveryStorageRunAsTheRos1Bag) {
   EXPECT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --bag " + (dir_ / "sim.db3").string() + " --compression zstd", &err), 2);
   EXPECT_NE(err.find("--compression: zstd is not a ros2-sqlite compression (none)"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir_ / "sim.db3"));
+}
+
+namespace {
+
+// What `value` breaks of JSON Schema `schema` ("" when nothing): type, properties, required,
+// additionalProperties false, items, minimum, maximum, maxItems: what the export's schemas use.
+std::string schema_error(const nlohmann::json& schema, const nlohmann::json& value, const std::string& at = "$") {
+  if (schema.contains("type")) {
+    const std::string t = schema["type"];
+    const bool ok = t == "object"    ? value.is_object()
+                    : t == "array"   ? value.is_array()
+                    : t == "string"  ? value.is_string()
+                    : t == "boolean" ? value.is_boolean()
+                    : t == "integer" ? value.is_number_integer()
+                    : t == "number"  ? value.is_number()
+                                     : false;
+    if (!ok) return at + ": not " + t;
+  }
+  if (schema.contains("minimum") && value.get<double>() < schema["minimum"].get<double>()) return at + ": below minimum";
+  if (schema.contains("maximum") && value.get<double>() > schema["maximum"].get<double>()) return at + ": above maximum";
+  if (schema.contains("maxItems") && value.size() > schema["maxItems"].get<std::size_t>()) return at + ": too many items";
+  if (value.is_object()) {
+    for (const auto& r : schema.value("required", nlohmann::json::array()))
+      if (!value.contains(r.get<std::string>())) return at + ": no " + r.get<std::string>();
+    for (const auto& [key, v] : value.items()) {
+      if (schema.contains("properties") && schema["properties"].contains(key)) {
+        if (std::string e = schema_error(schema["properties"][key], v, at + "." + key); !e.empty()) return e;
+      } else if (schema.value("additionalProperties", true) == false) {
+        return at + ": unknown field " + key;
+      }
+    }
+  }
+  if (value.is_array() && schema.contains("items")) {
+    for (std::size_t i = 0; i < value.size(); ++i)
+      if (std::string e = schema_error(schema["items"], value[i], at + "[" + std::to_string(i) + "]"); !e.empty()) return e;
+  }
+  return "";
+}
+
+}  // namespace
+
+// Issue 19: a run as an MCAP file for Foxglove: every message is JSON of its channel's schema,
+// the poses and room extractions at their times, the map and nodes whole.
+TEST_F(RunCli, ExportWritesARunForFoxgloveWithEveryMessageOfItsSchema) {
+  const fs::path run = dir_ / "run", out = dir_ / "run.mcap";
+  std::string err;
+  ASSERT_EQ(cli("-q run " + (base_ / "seq").string() + " --out " + run.string(), &err), 0) << err;
+  ASSERT_EQ(cli("-q export " + run.string() + " --mcap " + out.string(), &err), 0) << err;
+  const io::mcap::Reader mcap(out.string());
+  EXPECT_TRUE(mcap.indexed());
+  std::map<std::string, std::size_t> count;
+  std::map<std::string, nlohmann::json> last;
+  mcap.read_each(mcap.messages(), [&](const io::mcap::MessageRef& ref, const io::mcap::Message& m) {
+    const io::mcap::Channel& c = mcap.channels().at(ref.channel_id);
+    const io::mcap::Schema& s = mcap.schemas().at(c.schema_id);
+    EXPECT_EQ(c.message_encoding, "json");
+    EXPECT_EQ(s.encoding, "jsonschema");
+    const auto message = nlohmann::json::parse(m.data);
+    EXPECT_EQ(schema_error(nlohmann::json::parse(s.data), message), "") << c.topic;
+    EXPECT_EQ(s.name, c.topic == "/tf" ? "foxglove.FrameTransform"
+                      : c.topic == "/map" || c.topic == "/traversable_nodes" ? "foxglove.PointCloud"
+                                                                              : "foxglove.SceneUpdate");
+    ++count[c.topic];
+    last[c.topic] = message;
+  });
+  const auto trajectory = io::read_tum((run / "trajectory.txt").string());
+  const auto events = io::read_room_events((run / "rooms_events.jsonl").string());
+  const auto graph = io::read_scene_graph((run / "scene_graph.json").string());
+  ASSERT_GE(events.size(), 1u);
+  EXPECT_EQ(count["/tf"], trajectory.size());
+  EXPECT_EQ(count["/rooms"], events.size());
+  EXPECT_EQ(count["/map"], 1u);
+  EXPECT_EQ(count["/scene"], 1u);
+  // The node cloud holds every node, 12 bytes each (base64: 4 characters per 3 bytes).
+  EXPECT_EQ(last["/traversable_nodes"]["data"].get<std::string>().size(), (12 * graph.traversable_nodes.size() + 2) / 3 * 4);
+  EXPECT_EQ(last["/tf"]["translation"]["x"].get<double>(), trajectory.back().pose.translation().x());
+  // A schema check that could fail: a field Foxglove does not know.
+  nlohmann::json bad = last["/tf"];
+  bad["extra"] = 1;
+  EXPECT_NE(schema_error(nlohmann::json::parse(report::foxglove_schema("foxglove.FrameTransform")), bad), "");
+  // A run folder without its files is one error line.
+  fs::remove(run / "map.ply");
+  EXPECT_EQ(cli("-q export " + run.string() + " --mcap " + (dir_ / "again.mcap").string(), &err), 2);
+  EXPECT_NE(err.find("map.ply"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "again.mcap"));
 }
 
 TEST_F(RunCli, MissingOdometryLineIsAnErrorNamingTheFileAndNoOutput) {

@@ -384,7 +384,7 @@ PointCloud Rosbag2Sequence::scan(std::size_t index) const {
 
 std::string rosbag2_info(const std::string& path) {
   const auto storages = open_recording(path);
-  std::string out = path + ": rosbag2, " + std::to_string(storages.size()) + " file" + (storages.size() == 1 ? "" : "s") + "\n";
+  std::string out = path + ": " + std::to_string(storages.size()) + " file" + (storages.size() == 1 ? "" : "s") + "\n";
   for (const auto& [name, t] : topics_of(storages, path)) {
     const std::vector<Located> m = messages_of(storages, name);
     const double span = m.size() >= 2 ? 1e-9 * static_cast<double>(m.back().time - m.front().time) : 0.0;
