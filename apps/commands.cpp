@@ -172,8 +172,7 @@ std::unique_ptr<io::ScanSequence> open_sequence(const io::ScanFolderOptions& opt
 
 namespace {
 
-template <class Bag>
-OpenedBag opened(std::unique_ptr<Bag> bag, const io::BagOptions& options, bool quiet) {
+OpenedBag opened(std::unique_ptr<io::RecordedSequence> bag, const io::BagOptions& options, bool quiet) {
   io::check_odometry_motion(bag->info(), options.bag);
   if (!quiet && bag->dropped_scans() > 0)
     std::fprintf(stderr, "run: %zu scans of %s lie outside the odometry's time span and are left out\n",

@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/io/bag_placement.hpp"
+#include "tsgraphs/io/recorded_sequence.hpp"
 #include "tsgraphs/io/point_cloud2.hpp"
 #include "tsgraphs/io/tum.hpp"
 
@@ -402,7 +402,7 @@ struct BagSequence::Impl {
   mutable std::mutex mutex;                     ///< rosbag reads seek one file
 };
 
-BagSequence::BagSequence(const BagOptions& options) : impl_(std::make_unique<Impl>()), name_(options.bag) {
+BagSequence::BagSequence(const BagOptions& options) : RecordedSequence(options.bag), impl_(std::make_unique<Impl>()) {
   const std::string& path = options.bag;
   if (!is_bag_file(path)) throw input_error(path, 0, "no such bag");
   if (options.points_topic.empty()) throw input_error(path, 0, "no points topic given (--points-topic; see bag-info)");

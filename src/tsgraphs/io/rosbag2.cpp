@@ -287,7 +287,7 @@ struct Rosbag2Sequence::Impl {
   std::string topic;
 };
 
-Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options) : impl_(std::make_unique<Impl>()), name_(options.bag) {
+Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options) : RecordedSequence(options.bag), impl_(std::make_unique<Impl>()) {
   const std::string& path = options.bag;
   if (options.points_topic.empty()) throw input_error(path, 0, "no points topic given (--points-topic; see bag-info)");
   impl_->storages = open_recording(path);

@@ -3,12 +3,12 @@
 /// order), or one SQLite (.db3, through Debian's libsqlite3) or MCAP (mcap.hpp) file, told
 /// apart by their content. Scans from a sensor_msgs/msg/PointCloud2 topic, odometry from a
 /// nav_msgs/msg/Odometry or geometry_msgs/msg/PoseStamped topic (or a TUM file), the mount from
-/// /tf_static: as BagSequence reads ROS 1 bags (bag_placement.hpp).
+/// /tf_static: as BagSequence reads ROS 1 bags (recorded_sequence.hpp).
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "tsgraphs/io/bag_placement.hpp"
+#include "tsgraphs/io/recorded_sequence.hpp"
 #include "tsgraphs/io/mcap.hpp"
 #include "tsgraphs/io/scan_sequence.hpp"
 
@@ -18,34 +18,21 @@ namespace tsgraphs::io {
 /// starts as SQLite or MCAP files do.
 bool is_rosbag2(const std::string& path);
 
-/// The scans of a rosbag2 recording with their odometry. Scans outside the odometry's time
-/// span are left out (dropped_scans()). Scans are read when asked for (thread-safe).
-class Rosbag2Sequence : public ScanSequence {
+/// The scans of a rosbag2 recording with their odometry. Scans are read when asked for
+/// (thread-safe). Its warnings are what a storage noted while opening (an MCAP index not used,
+/// so the file was read from the start), each naming its file.
+class Rosbag2Sequence : public RecordedSequence {
  public:
   /// InputError naming the recording (and topic, message or record) for one that cannot be
   /// read, a topic that is missing, of another type or of another definition under the type's
   /// name, an odometry topic with no pose, or no scan within the odometry's time span.
   explicit Rosbag2Sequence(const BagOptions& options);
   ~Rosbag2Sequence() override;
-  std::size_t size() const override { return info_.times.size(); }
-  const SequenceInfo& info() const override { return info_; }
-  const std::string& dir() const override { return name_; }
   PointCloud scan(std::size_t index) const override;
-  std::size_t dropped_scans() const { return dropped_; }
-  /// What the storage noted while opening (an MCAP index unusable, so the file was scanned).
-  const std::vector<std::string>& warnings() const { return warnings_; }
-  const Pose3& sensor_to_base() const { return sensor_to_base_; }
-  bool sensor_to_base_known() const { return sensor_to_base_known_; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  std::string name_;
-  SequenceInfo info_;
-  Pose3 sensor_to_base_ = Pose3::Identity();
-  bool sensor_to_base_known_ = false;
-  std::size_t dropped_ = 0;
-  std::vector<std::string> warnings_;
 };
 
 /// `tsgraphs bag-info` of a rosbag2 recording: its storage, then per topic its type, message

@@ -1,13 +1,15 @@
 #pragma once
-/// What every bag reader (ROS 1, rosbag2) is asked for, and does with its messages once decoded: the scans in
-/// stamp order, each placed by the base's odometry interpolated to its stamp and the sensor's
-/// mount. No ROS type here.
+/// A bag as a sequence, whatever its format (ROS 1, rosbag2): what is asked of it (BagOptions),
+/// what it gives (RecordedSequence), and what every reader does with its messages once decoded
+/// (place_scans: the scans in stamp order, each placed by the base's odometry interpolated to
+/// its stamp and the sensor's mount). No ROS type here.
 #include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/io/scan_sequence.hpp"
 
 namespace tsgraphs::io {
 
@@ -21,6 +23,33 @@ struct BagOptions {
   /// T_base_sensor; when empty, the /tf_static transform whose child is the clouds' frame (one
   /// hop), else identity.
   std::optional<Pose3> sensor_to_base;
+};
+
+/// A bag's scans placed by its odometry, whatever the bag's format (BagSequence for ROS 1,
+/// Rosbag2Sequence for rosbag2): what `run` and `convert` ask of either. Scans outside the
+/// odometry's time span are left out (dropped_scans() counts them).
+class RecordedSequence : public ScanSequence {
+ public:
+  std::size_t size() const override { return info_.times.size(); }
+  const SequenceInfo& info() const override { return info_; }
+  const std::string& dir() const override { return name_; }
+  std::size_t dropped_scans() const { return dropped_; }
+  /// What the reader noted while opening (rosbag's own lines, an MCAP index not used), for
+  /// the front end to print.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  /// The sensor-to-base transform used.
+  const Pose3& sensor_to_base() const { return sensor_to_base_; }
+  /// Whether it came from the options or /tf_static (else it is the identity by default).
+  bool sensor_to_base_known() const { return sensor_to_base_known_; }
+
+ protected:
+  explicit RecordedSequence(std::string name) : name_(std::move(name)) {}
+  std::string name_;
+  SequenceInfo info_;
+  Pose3 sensor_to_base_ = Pose3::Identity();
+  bool sensor_to_base_known_ = false;
+  std::size_t dropped_ = 0;
+  std::vector<std::string> warnings_;
 };
 
 /// The base's pose in a fixed frame at a stamp (s), as an odometry topic gives it.

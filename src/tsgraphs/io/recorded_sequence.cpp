@@ -1,4 +1,4 @@
-#include "tsgraphs/io/bag_placement.hpp"
+#include "tsgraphs/io/recorded_sequence.hpp"
 
 #include <algorithm>
 
