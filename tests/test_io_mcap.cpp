@@ -340,6 +340,29 @@ TEST_F(Mcap, DamagedFilesAreInputErrorsNamingTheFileAndTheRecord) {
   EXPECT_THAT(error_of(big), HasSubstr("uncompressed size 1099511627776 is beyond"));
 }
 
+// Found by fuzzing (issue 19): a chunk claiming 512 MiB was given a zero-filled buffer of that
+// size before its data was found wanting (seconds, and a 10 s timeout under ASan). Output now
+// grows with what the data decompresses to.
+TEST_F(Mcap, AChunkClaimingMoreThanItsDataHoldsIsRefusedAsItDecompresses) {
+  for (const mcap::Compression c : {mcap::Compression::none, mcap::Compression::zstd, mcap::Compression::lz4}) {
+    SCOPED_TRACE(mcap::compression_name(c));
+    const std::string path = (dir_ / "claim.mcap").string();
+    {
+      mcap::Writer w(path, {"", "t", c, 1 << 20});
+      w.add_channel(0, "/x", "raw");
+      w.write(1, 1, 1, std::string(300, 'q'));
+      w.finish();
+    }
+    std::string bytes = read_bytes(path);
+    const std::size_t chunk_at = 8 + 9 + 9;  // after the magic and the Header ("" and "t")
+    ASSERT_EQ(bytes[chunk_at], '\x06');
+    const std::uint64_t claim = 512ull << 20;
+    for (int i = 0; i < 8; ++i) bytes[chunk_at + 9 + 16 + i] = static_cast<char>(claim >> (8 * i));
+    const std::string damaged = write_bytes("claim_damaged.mcap", bytes);
+    EXPECT_THAT(error_of(damaged), AllOf(StartsWith(damaged + ": Chunk record at byte 26: "), HasSubstr("536870912")));
+  }
+}
+
 TEST_F(Mcap, AWriterDestroyedUnfinishedLeavesNothing) {
   const fs::path path = dir_ / "half.mcap";
   {

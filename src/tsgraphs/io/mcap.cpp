@@ -126,6 +126,35 @@ std::string record_at(std::uint8_t op, std::uint64_t offset, const std::string& 
   return op_name(op) + " record at byte " + std::to_string(offset) + in;
 }
 
+/// Output of at most `size` bytes that grows as a decompressor fills it: what is allocated
+/// follows what the data holds, not what a (possibly corrupt) size field claims (found by
+/// fuzzing: a chunk claiming 1 GiB of garbage was zero-filled before failing to decompress).
+class GrowingOutput {
+ public:
+  explicit GrowingOutput(std::uint64_t size) : size_(size) {}
+  /// Room for more: false when `size` bytes are already there.
+  bool room() {
+    if (produced_ < out_.size()) return true;
+    if (out_.size() == size_) return false;
+    out_.resize(static_cast<std::size_t>(std::min<std::uint64_t>(size_, std::max<std::uint64_t>(2 * out_.size(), kFirstBytes))));
+    return true;
+  }
+  char* next() { return out_.data() + produced_; }
+  std::size_t free() const { return out_.size() - produced_; }
+  void advance(std::size_t n) { produced_ += n; }
+  std::uint64_t produced() const { return produced_; }
+  std::string take() {
+    out_.resize(produced_);
+    return std::move(out_);
+  }
+
+ private:
+  static constexpr std::uint64_t kFirstBytes = 1u << 16;
+  std::uint64_t size_;
+  std::string out_;
+  std::size_t produced_ = 0;
+};
+
 /// `src` decompressed to exactly `size` bytes, or an InputError naming `where`.
 std::string decompress(const std::string& compression, const char* src, std::uint64_t n, std::uint64_t size,
                        const std::string& path, const std::string& where) {
@@ -133,44 +162,51 @@ std::string decompress(const std::string& compression, const char* src, std::uin
     throw input_error(path, 0, where + ": uncompressed size " + std::to_string(size) + " is beyond " +
                                    std::to_string(kMaxChunkBytes) + " bytes (corrupt?)");
   }
-  std::string out(size, '\0');
+  const auto wrong_size = [&](const std::string& why) {
+    return input_error(path, 0, where + ": " + compression + " data does not decompress to its " + std::to_string(size) +
+                                    " bytes" + (why.empty() ? "" : " (" + why + ")"));
+  };
   if (compression.empty()) {
     if (n != size) {
       throw input_error(path, 0, where + ": uncompressed records of " + std::to_string(n) + " bytes, its size field says " +
                                      std::to_string(size));
     }
-    std::memcpy(out.data(), src, n);
-    return out;
+    return std::string(src, n);
   }
+  GrowingOutput out(size);
   if (compression == "zstd") {
-    const std::size_t got = ZSTD_decompress(out.data(), out.size(), src, n);
-    if (ZSTD_isError(got) || got != size) {
-      throw input_error(path, 0, where + ": zstd data does not decompress to its " + std::to_string(size) + " bytes" +
-                                     (ZSTD_isError(got) ? std::string(" (") + ZSTD_getErrorName(got) + ")" : ""));
+    const std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> ctx(ZSTD_createDCtx(), ZSTD_freeDCtx);
+    if (!ctx) throw std::bad_alloc();
+    ZSTD_inBuffer in{src, n, 0};
+    while (in.pos < in.size) {
+      if (!out.room()) throw wrong_size("more data than that");
+      ZSTD_outBuffer o{out.next(), out.free(), 0};
+      const std::size_t ret = ZSTD_decompressStream(ctx.get(), &o, &in);
+      if (ZSTD_isError(ret)) throw wrong_size(ZSTD_getErrorName(ret));
+      out.advance(o.pos);
+      if (ret != 0 && in.pos == in.size && o.pos < o.size) throw wrong_size("the data ends inside a frame");
     }
-    return out;
+  } else if (compression == "lz4") {
+    const auto free_ctx = [](LZ4F_dctx* c) { LZ4F_freeDecompressionContext(c); };
+    LZ4F_dctx* raw = nullptr;
+    if (LZ4F_isError(LZ4F_createDecompressionContext(&raw, LZ4F_VERSION))) throw std::bad_alloc();
+    const std::unique_ptr<LZ4F_dctx, decltype(free_ctx)> ctx(raw, free_ctx);
+    std::size_t in_at = 0, hint = 1;
+    while (in_at < n) {
+      if (!out.room()) throw wrong_size("more data than that");
+      std::size_t out_n = out.free(), in_n = n - in_at;
+      hint = LZ4F_decompress(ctx.get(), out.next(), &out_n, src + in_at, &in_n, nullptr);
+      if (LZ4F_isError(hint)) throw wrong_size(LZ4F_getErrorName(hint));
+      in_at += in_n;
+      out.advance(out_n);
+      if (in_n == 0 && out_n == 0) throw wrong_size("no progress");
+    }
+    if (hint != 0) throw wrong_size("the data ends inside a frame");
+  } else {
+    throw input_error(path, 0, where + ": unknown compression '" + compression + "' (expected none, lz4 or zstd)");
   }
-  if (compression == "lz4") {
-    LZ4F_dctx* ctx = nullptr;
-    if (LZ4F_isError(LZ4F_createDecompressionContext(&ctx, LZ4F_VERSION))) throw std::bad_alloc();
-    std::size_t in_at = 0, out_at = 0, hint = 1;
-    while (hint != 0 && in_at < n) {
-      std::size_t out_n = out.size() - out_at, in_n = n - in_at;
-      hint = LZ4F_decompress(ctx, out.data() + out_at, &out_n, src + in_at, &in_n, nullptr);
-      if (LZ4F_isError(hint)) {
-        LZ4F_freeDecompressionContext(ctx);
-        throw input_error(path, 0, where + ": lz4 data does not decompress (" + LZ4F_getErrorName(hint) + ")");
-      }
-      in_at += in_n, out_at += out_n;
-      if (in_n == 0 && out_n == 0) break;  // no progress: more output than the size field allows
-    }
-    LZ4F_freeDecompressionContext(ctx);
-    if (hint != 0 || out_at != size) {
-      throw input_error(path, 0, where + ": lz4 data does not decompress to its " + std::to_string(size) + " bytes");
-    }
-    return out;
-  }
-  throw input_error(path, 0, where + ": unknown compression '" + compression + "' (expected none, lz4 or zstd)");
+  if (out.produced() != size) throw wrong_size(std::to_string(out.produced()) + " bytes");
+  return out.take();
 }
 
 // ---- writing -------------------------------------------------------------------------------
