@@ -12,6 +12,7 @@
 #include <map>
 #include <mutex>
 #include <set>
+#include <tuple>
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/point_cloud2.hpp"
@@ -319,34 +320,51 @@ Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options) : RecordedSequence(o
   const auto where = [&](const std::string& topic, std::size_t i) { return path + ": " + topic + ", message " + std::to_string(i); };
   const auto read = [&](const Located& m) { return impl_->storages[m.file]->read(m); };
 
-  std::vector<StampedBase> odom;
+  bool is_odometry = false;
+  std::vector<Located> odom_messages;
   if (!options.odom_topic.empty()) {
-    const Topic& t = require(options.odom_topic, {ros2::kOdometry, ros2::kPoseStamped});
-    const bool is_odometry = t.type == ros2::kOdometry;
-    std::size_t i = 0;
-    for (const Located& m : messages_of(impl_->storages, options.odom_topic)) {
-      const std::string cdr = read(m);
-      const ros2::StampedPoseMessage p = is_odometry ? ros2::parse_odometry(cdr, where(options.odom_topic, i))
-                                                     : ros2::parse_pose_stamped(cdr, where(options.odom_topic, i));
-      odom.push_back({p.stamp, p.pose});
-      ++i;
+    is_odometry = require(options.odom_topic, {ros2::kOdometry, ros2::kPoseStamped}).type == ros2::kOdometry;
+    odom_messages = messages_of(impl_->storages, options.odom_topic);
+  }
+  const std::vector<Located> clouds = messages_of(impl_->storages, options.points_topic);
+  if (clouds.empty()) throw input_error(path, 0, "no messages on " + options.points_topic);
+
+  // The odometry and the clouds' stamps read in one pass in file order, so that an MCAP chunk
+  // holding both is decompressed once.
+  struct Read {
+    const Located* m;
+    bool cloud;
+    std::size_t i;  ///< index in its topic, by time
+  };
+  std::vector<Read> reads;
+  for (std::size_t i = 0; i < odom_messages.size(); ++i) reads.push_back({&odom_messages[i], false, i});
+  for (std::size_t i = 0; i < clouds.size(); ++i) reads.push_back({&clouds[i], true, i});
+  const auto position = [](const Located& m) {
+    const bool chunked = m.ref.chunk != mcap::MessageRef::kNoChunk;
+    return std::make_tuple(m.file, chunked ? m.ref.chunk : m.ref.offset, chunked ? m.ref.offset : 0, m.row);
+  };
+  std::sort(reads.begin(), reads.end(), [&](const Read& a, const Read& b) { return position(*a.m) < position(*b.m); });
+  std::vector<StampedBase> odom(odom_messages.size());
+  std::vector<double> stamps(clouds.size());
+  std::string cloud_frame;  // the first cloud's
+  for (const Read& r : reads) {
+    const std::string cdr = read(*r.m);
+    if (r.cloud) {
+      const PointCloud2Message c = ros2::parse_point_cloud2(cdr, where(options.points_topic, r.i));
+      stamps[r.i] = c.stamp;
+      if (r.i == 0) cloud_frame = c.frame_id;
+    } else {
+      const ros2::StampedPoseMessage p = is_odometry ? ros2::parse_odometry(cdr, where(options.odom_topic, r.i))
+                                                     : ros2::parse_pose_stamped(cdr, where(options.odom_topic, r.i));
+      odom[r.i] = {p.stamp, p.pose};
     }
-  } else if (!options.odom_tum.empty()) {
+  }
+  if (options.odom_topic.empty() && !options.odom_tum.empty()) {
     for (const StampedPose& p : read_tum(options.odom_tum)) odom.push_back({p.t, p.pose});
   }
   const bool has_odometry = !options.odom_topic.empty() || !options.odom_tum.empty();
   if (has_odometry && odom.empty())
     throw input_error(path, 0, "no odometry messages on " + (options.odom_topic.empty() ? options.odom_tum : options.odom_topic));
-
-  const std::vector<Located> clouds = messages_of(impl_->storages, options.points_topic);
-  if (clouds.empty()) throw input_error(path, 0, "no messages on " + options.points_topic);
-  std::vector<double> stamps;
-  std::string cloud_frame;
-  for (std::size_t i = 0; i < clouds.size(); ++i) {
-    const PointCloud2Message c = ros2::parse_point_cloud2(read(clouds[i]), where(options.points_topic, i));
-    if (cloud_frame.empty()) cloud_frame = c.frame_id;
-    stamps.push_back(c.stamp);
-  }
 
   if (options.sensor_to_base) {
     sensor_to_base_ = *options.sensor_to_base;
