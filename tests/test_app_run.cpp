@@ -347,6 +347,18 @@ TEST_F(RunCli, Ros2BagsInEveryStorageRunAsTheRos1Bag) {
   EXPECT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --bag " + (dir_ / "sim.db3").string() + " --compression zstd", &err), 2);
   EXPECT_NE(err.find("--compression: zstd is not a ros2-sqlite compression (none)"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir_ / "sim.db3"));
+  // A damaged MCAP (cut in its data section) and a missing topic: one line naming the file, exit 2, no run.
+  const std::string bytes = read_file(dir_ / "ros2_zstd.mcap");
+  std::ofstream(dir_ / "cut.mcap", std::ios::binary) << bytes.substr(0, bytes.size() / 3);
+  EXPECT_EQ(cli("-q run --bag " + (dir_ / "cut.mcap").string() + " --points-topic /points --odom-topic /odom --out " +
+                    (dir_ / "run_cut").string(),
+                &err),
+            2);
+  EXPECT_EQ(err.rfind("tsgraphs: error: " + (dir_ / "cut.mcap").string() + ": ", 0), 0u) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "run_cut"));
+  EXPECT_EQ(cli("-q run --bag " + (dir_ / "ros2.db3").string() + " --points-topic /scan --out " + (dir_ / "run_topic").string(), &err), 2);
+  EXPECT_NE(err.find("no topic /scan (topics: /groundtruth, /odom, /points, /tf_static)"), std::string::npos) << err;
 }
 
 namespace {
@@ -407,8 +419,8 @@ TEST_F(RunCli, ExportWritesARunForFoxgloveWithEveryMessageOfItsSchema) {
     const auto message = nlohmann::json::parse(m.data);
     EXPECT_EQ(schema_error(nlohmann::json::parse(s.data), message), "") << c.topic;
     EXPECT_EQ(s.name, c.topic == "/tf" ? "foxglove.FrameTransform"
-                      : c.topic == "/map" || c.topic == "/traversable_nodes" ? "foxglove.PointCloud"
-                                                                              : "foxglove.SceneUpdate");
+                      : c.topic == "/map" || c.topic == "/traversable_nodes" || c.topic == "/free_space" ? "foxglove.PointCloud"
+                                                                                                          : "foxglove.SceneUpdate");
     ++count[c.topic];
     last[c.topic] = message;
   });
@@ -422,6 +434,10 @@ TEST_F(RunCli, ExportWritesARunForFoxgloveWithEveryMessageOfItsSchema) {
   EXPECT_EQ(count["/scene"], 1u);
   // The node cloud holds every node, 12 bytes each (base64: 4 characters per 3 bytes).
   EXPECT_EQ(last["/traversable_nodes"]["data"].get<std::string>().size(), (12 * graph.traversable_nodes.size() + 2) / 3 * 4);
+  std::size_t free_points = 0;
+  for (const auto& r : graph.rooms) free_points += r.free_space.size();
+  ASSERT_GT(free_points, 0u);
+  EXPECT_EQ(last["/free_space"]["data"].get<std::string>().size(), (16 * free_points + 2) / 3 * 4);
   EXPECT_EQ(last["/tf"]["translation"]["x"].get<double>(), trajectory.back().pose.translation().x());
   // A schema check that could fail: a field Foxglove does not know.
   nlohmann::json bad = last["/tf"];

@@ -204,7 +204,8 @@ void export_foxglove_mcap(const std::string& run_dir, const std::string& out) {
     schema[type] = w.add_schema(type, "jsonschema", foxglove_schema(type));
   const auto channel = [&](const char* topic, const char* type) { return w.add_channel(schema.at(type), topic, "json"); };
   const std::uint16_t tf = channel("/tf", "foxglove.FrameTransform"), map_ch = channel("/map", "foxglove.PointCloud"),
-                      nodes_ch = channel("/traversable_nodes", "foxglove.PointCloud"), scene = channel("/scene", "foxglove.SceneUpdate"),
+                      nodes_ch = channel("/traversable_nodes", "foxglove.PointCloud"),
+                      free_ch = channel("/free_space", "foxglove.PointCloud"), scene = channel("/scene", "foxglove.SceneUpdate"),
                       rooms = channel("/rooms", "foxglove.SceneUpdate");
   const auto put = [&](std::uint16_t ch, double t, const json& message) { w.write(ch, nanoseconds(t), nanoseconds(t), message.dump()); };
 
@@ -238,6 +239,16 @@ void export_foxglove_mcap(const std::string& run_dir, const std::string& out) {
   std::vector<io::MapVertex> nodes;
   for (const auto& n : graph.traversable_nodes) nodes.push_back({n.position, 255, 0, 255});
   put(nodes_ch, end, point_cloud(end, origin, nodes, false));
+  // Each room's free space (its latest extraction's vertices), coloured as its outline.
+  std::vector<io::MapVertex> free_space;
+  for (const auto& r : graph.rooms) {
+    const bool corridor = r.kind == "corridor";
+    for (const Eigen::Vector3d& v : r.free_space)
+      free_space.push_back({v, 0, static_cast<std::uint8_t>(corridor ? 150 : 200), static_cast<std::uint8_t>(corridor ? 0 : 255)});
+    if (corridor)
+      for (std::size_t k = free_space.size() - r.free_space.size(); k < free_space.size(); ++k) free_space[k].r = 255;
+  }
+  put(free_ch, end, point_cloud(end, origin, free_space, true));
 
   json walls = entity(end, "walls");
   for (const auto& p : graph.planes) {

@@ -5,6 +5,7 @@
 ///   /tf                 map -> sensor at every scan (trajectory.txt)
 ///   /map                the thinned map, coloured by layer (map.ply), at the end
 ///   /traversable_nodes  the traversable nodes (scene_graph.json), at the end
+///   /free_space         each room's free space (its latest extraction), at the end
 ///   /scene              wall planes, the trajectory, floor nodes, at the end
 ///   /rooms              each room and corridor as it is extracted (rooms_events.jsonl): outline
 ///                       and label on its level, replaced when it is extracted again
