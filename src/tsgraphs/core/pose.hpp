@@ -29,4 +29,12 @@ inline double wrap_angle(double a) {
   return a <= -M_PI ? a + 2.0 * M_PI : a;
 }
 
+/// The origin of a frame near `p` in which float32 stays precise (30 um within 500 m, against
+/// 1/4 m at UTM coordinates): `p` rounded to whole kilometres, so it reads plainly and is 0 for
+/// anything within 500 m of its own frame's origin. The pipeline's map frame, the export's clouds.
+inline Eigen::Vector3d float_safe_origin(const Eigen::Vector3d& p) {
+  constexpr double kGrid = 1000.0;
+  return (p / kGrid).array().round().matrix() * kGrid;
+}
+
 }  // namespace tsgraphs

@@ -120,10 +120,10 @@ const std::string& definition(const std::string& type) {
     for (const char* top : {kPointCloud2, kOdometry, kPoseStamped, kTfMessage}) {
       // The type's own fields, then every type it uses, depth first, each once.
       std::string text = texts.at(short_name(top));
-      std::vector<std::string> seen{short_name(top)}, todo{short_name(top)};
-      while (!todo.empty()) {
-        const std::string t = todo.back();
-        todo.pop_back();
+      std::vector<std::string> seen{short_name(top)}, pending{short_name(top)};
+      while (!pending.empty()) {
+        const std::string t = pending.back();
+        pending.pop_back();
         std::vector<std::string> used;
         std::istringstream lines(texts.at(t));
         for (std::string line; std::getline(lines, line);) {
@@ -135,7 +135,7 @@ const std::string& definition(const std::string& type) {
             text += "\n" + std::string(80, '=') + "\nMSG: " + field_type + "\n" + texts.at(field_type);
           }
         }
-        todo.insert(todo.end(), used.rbegin(), used.rend());
+        pending.insert(pending.end(), used.rbegin(), used.rend());
       }
       out[top] = text;
     }

@@ -24,9 +24,6 @@ namespace {
 constexpr std::size_t kTokensPerThread = 8;
 // Lost odometry scans told one by one; more are counted at the end.
 constexpr std::size_t kLostScansTold = 5;
-// The map frame's origin is on this grid (map_origin_of): whole kilometres, so that it reads
-// plainly and a building-sized run near its frame's origin keeps that frame.
-constexpr double kMapOriginGrid = 1000.0;
 
 struct Loaded {
   std::size_t index = 0;
@@ -66,7 +63,7 @@ void measure_platform(const io::ScanSequence& sequence, bool poses_estimated, Pi
 }
 
 Eigen::Vector3d map_origin_of(const Pose3& first) {
-  return (first.translation() / kMapOriginGrid).array().round().matrix() * kMapOriginGrid;
+  return float_safe_origin(first.translation());
 }
 
 RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const RunCallbacks& callbacks,

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/io/mcap.hpp"
 #include "tsgraphs/io/run_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
@@ -19,9 +20,6 @@ namespace {
 
 using json = nlohmann::ordered_json;  // keys in the order written: the same run gives the same bytes
 
-// PointCloud positions are float32 relative to the cloud's pose, which is put on this grid near
-// the run's start (as the pipeline's map frame): UTM-sized coordinates stay precise.
-constexpr double kOriginGrid = 1000.0;
 constexpr double kOutlineLift = 0.05;   // room outlines this far above their floor (m), as in map.ply
 constexpr double kLabelLift = 0.6;      // room labels above their outline (m)
 constexpr double kWallThickness = 0.05; // a wall plane drawn as a box this thick (m)
@@ -196,7 +194,8 @@ void export_foxglove_mcap(const std::string& run_dir, const std::string& out) {
   const std::vector<io::MapVertex> map = io::read_map_ply(file(io::run_files::kMap));
   if (trajectory.empty()) throw input_error(file(io::run_files::kTrajectory), 0, "no poses: nothing to export");
   const double end = trajectory.back().t;
-  const Eigen::Vector3d origin = (trajectory.front().pose.translation() / kOriginGrid).array().round().matrix() * kOriginGrid;
+  // PointCloud positions are float32 relative to the cloud's pose, put near the run's start.
+  const Eigen::Vector3d origin = float_safe_origin(trajectory.front().pose.translation());
 
   io::mcap::Writer w(out, {"", "tsgraphs", io::mcap::Compression::zstd, 1u << 20});
   std::map<std::string, std::uint16_t> schema;
