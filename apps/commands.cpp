@@ -80,21 +80,28 @@ void simulate(const scene::Scene& scene_in, const std::string& out, std::uint64_
 void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
                   int laps, const std::string& format_option, const std::string& compression, bool quiet) {
   std::string format = format_option;
+  const std::string ext = fs::path(bag).extension().string();
   if (format == "auto") {
-    const std::string ext = fs::path(bag).extension().string();
     format = ext == ".mcap" ? "ros2-mcap" : ext == ".db3" ? "ros2-sqlite" : ext == ".bag" ? "ros1" : "";
     if (format.empty())
       throw input_error(bag, 0, "give the bag a .bag, .mcap or .db3 name, or --bag-format (ros2 formats write a bag "
                                 "folder under another name)");
   }
+  // zstd-file and zstd-message: rosbag2's own compression (a bag folder only), MCAP chunks then uncompressed.
   const std::map<std::string, std::vector<std::string>> kCompressions = {
-      {"ros1", {"lz4", "none", "bz2"}}, {"ros2-mcap", {"zstd", "none", "lz4"}}, {"ros2-sqlite", {"none"}}};
+      {"ros1", {"lz4", "none", "bz2"}},
+      {"ros2-mcap", {"zstd", "none", "lz4", "zstd-file", "zstd-message"}},
+      {"ros2-sqlite", {"none", "zstd-file", "zstd-message"}}};
   const std::vector<std::string>& allowed = kCompressions.at(format);  // the first: the default
   const std::string c = compression.empty() ? allowed.front() : compression;
   if (std::find(allowed.begin(), allowed.end(), c) == allowed.end()) {
     std::string list;
     for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
     throw input_error("--compression", 0, c + " is not a " + format + " compression (" + list + ")");
+  }
+  if ((c == "zstd-file" || c == "zstd-message") && (ext == ".db3" || ext == ".mcap")) {
+    throw input_error(bag, 0, "--compression " + c + " is rosbag2's own, for a bag folder (its metadata.yaml records it): give "
+                              "a name without " + ext);
   }
   // The LiDAR 0.3 m above and 0.1 m ahead of base_link, so that /tf_static is not the identity.
   const Pose3 sensor_to_base = make_pose(Eigen::Vector3d(0.1, 0.0, 0.3), 0.0);
@@ -108,7 +115,10 @@ void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::
     } else {
       io::write_rosbag2(sequence, bag, format == "ros2-mcap" ? io::Rosbag2Storage::mcap : io::Rosbag2Storage::sqlite,
                         c == "zstd" ? io::mcap::Compression::zstd : c == "lz4" ? io::mcap::Compression::lz4 : io::mcap::Compression::none,
-                        sensor_to_base);
+                        sensor_to_base,
+                        c == "zstd-file"      ? io::Rosbag2Compression::file
+                        : c == "zstd-message" ? io::Rosbag2Compression::message
+                                              : io::Rosbag2Compression::none);
     }
   } catch (...) {
     if (seq_dir.empty()) fs::remove_all(folder);

@@ -87,8 +87,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "ros1", "ros2-mcap", "ros2-sqlite"}))
       ->capture_default_str();
   simulate_cmd->add_option("--compression", opt.compression,
-                           "bag compression: ros1 none, bz2 or lz4 (default lz4); ros2-mcap none, lz4 or zstd (default zstd)")
-      ->check(CLI::IsMember({"none", "bz2", "lz4", "zstd"}));
+                           "bag compression: ros1 none, bz2 or lz4 (default lz4); ros2-mcap chunks none, lz4 or zstd (default zstd); "
+                           "ros2 folders also zstd-file or zstd-message, rosbag2's own (default none for ros2-sqlite)")
+      ->check(CLI::IsMember({"none", "bz2", "lz4", "zstd", "zstd-file", "zstd-message"}));
   simulate_cmd->add_option("--seed", opt.seed, "random seed (default: the scene's)")->check(CLI::NonNegativeNumber);
   simulate_cmd->add_option("--laps", opt.laps, "laps of the path (default: the scene's)")->check(CLI::PositiveNumber);
 

@@ -297,7 +297,8 @@ TEST_F(RunCli, BagOfTheSequenceInEachCompressionGivesTheSameRun) {
 }
 
 // Issue 19: the same sequence as a ROS 1 bag, a rosbag2 SQLite file and rosbag2 MCAP files in
-// each chunk compression (and a rosbag2 folder) runs to byte-identical outputs.
+// each chunk compression (and rosbag2 folders, plain and under rosbag2's own compression) runs to
+// byte-identical outputs.
 TEST_F(RunCli, Ros2BagsInEveryStorageRunAsTheRos1Bag) {
   const io::SequenceReader reader((base_ / "seq").string());
   const Pose3 sensor_to_base = make_pose(Eigen::Vector3d(0.1, 0.0, 0.3), 0.2);
@@ -331,6 +332,13 @@ TEST_F(RunCli, Ros2BagsInEveryStorageRunAsTheRos1Bag) {
                     sensor_to_base);
   ASSERT_TRUE(fs::exists(dir_ / "written_bag" / "written_bag_0.db3"));
   bags.emplace_back("written_folder", dir_ / "written_bag");
+  // Under rosbag2's own compression: the SQLite file compressed whole, MCAP messages one by one.
+  io::write_rosbag2(reader, (dir_ / "file_bag").string(), io::Rosbag2Storage::sqlite, io::mcap::Compression::none,
+                    sensor_to_base, io::Rosbag2Compression::file);
+  bags.emplace_back("zstd_file_folder", dir_ / "file_bag");
+  io::write_rosbag2(reader, (dir_ / "message_bag").string(), io::Rosbag2Storage::mcap, io::mcap::Compression::none,
+                    sensor_to_base, io::Rosbag2Compression::message);
+  bags.emplace_back("zstd_message_folder", dir_ / "message_bag");
   for (const auto& [name, bag] : bags) {
     SCOPED_TRACE(name);
     const fs::path out = run_bag(bag, name);
@@ -345,7 +353,14 @@ TEST_F(RunCli, Ros2BagsInEveryStorageRunAsTheRos1Bag) {
   ASSERT_EQ(test::run_tsgraphs("bag-info " + (dir_ / "sim.mcap").string(), &out, &err), 0) << err;
   EXPECT_NE(out.find("nav_msgs/msg/Odometry"), std::string::npos) << out;
   EXPECT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --bag " + (dir_ / "sim.db3").string() + " --compression zstd", &err), 2);
-  EXPECT_NE(err.find("--compression: zstd is not a ros2-sqlite compression (none)"), std::string::npos) << err;
+  EXPECT_NE(err.find("--compression: zstd is not a ros2-sqlite compression (none, zstd-file, zstd-message)"), std::string::npos)
+      << err;
+  EXPECT_FALSE(fs::exists(dir_ / "sim.db3"));
+  EXPECT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --bag " + (dir_ / "sim.db3").string() +
+                    " --compression zstd-message",
+                &err),
+            2);
+  EXPECT_NE(err.find("sim.db3: --compression zstd-message is rosbag2's own, for a bag folder"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir_ / "sim.db3"));
   // A damaged MCAP (cut in its data section) and a missing topic: one line naming the file, exit 2, no run.
   const std::string bytes = read_file(dir_ / "ros2_zstd.mcap");

@@ -1,11 +1,9 @@
 #include "tsgraphs/io/mcap.hpp"
 
 #include <fcntl.h>
-#include <lz4frame.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
-#include <zstd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -17,6 +15,7 @@
 #include <tuple>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/io/compression.hpp"
 
 namespace tsgraphs::io::mcap {
 namespace {
@@ -126,87 +125,14 @@ std::string record_at(std::uint8_t op, std::uint64_t offset, const std::string& 
   return op_name(op) + " record at byte " + std::to_string(offset) + in;
 }
 
-/// Output of at most `size` bytes that grows as a decompressor fills it: what is allocated
-/// follows what the data holds, not what a (possibly corrupt) size field claims (found by
-/// fuzzing: a chunk claiming 1 GiB of garbage was zero-filled before failing to decompress).
-class GrowingOutput {
- public:
-  explicit GrowingOutput(std::uint64_t size) : size_(size) {}
-  /// Room for more: false when `size` bytes are already there.
-  bool room() {
-    if (produced_ < out_.size()) return true;
-    if (out_.size() == size_) return false;
-    out_.resize(static_cast<std::size_t>(std::min<std::uint64_t>(size_, std::max<std::uint64_t>(2 * out_.size(), kFirstBytes))));
-    return true;
-  }
-  char* next() { return out_.data() + produced_; }
-  std::size_t free() const { return out_.size() - produced_; }
-  void advance(std::size_t n) { produced_ += n; }
-  std::uint64_t produced() const { return produced_; }
-  std::string take() {
-    out_.resize(produced_);
-    return std::move(out_);
-  }
-
- private:
-  static constexpr std::uint64_t kFirstBytes = 1u << 16;
-  std::uint64_t size_;
-  std::string out_;
-  std::size_t produced_ = 0;
-};
-
-/// `src` decompressed to exactly `size` bytes, or an InputError naming `where`.
-std::string decompress(const std::string& compression, const char* src, std::uint64_t n, std::uint64_t size,
-                       const std::string& path, const std::string& where) {
+/// A chunk's records: `src` decompressed to exactly `size` bytes, a size beyond kMaxChunkBytes refused first.
+std::string unpack(const std::string& compression, const char* src, std::uint64_t n, std::uint64_t size,
+                   const std::string& path, const std::string& where) {
   if (size > kMaxChunkBytes) {
     throw input_error(path, 0, where + ": uncompressed size " + std::to_string(size) + " is beyond " +
                                    std::to_string(kMaxChunkBytes) + " bytes (corrupt?)");
   }
-  const auto wrong_size = [&](const std::string& why) {
-    return input_error(path, 0, where + ": " + compression + " data does not decompress to its " + std::to_string(size) +
-                                    " bytes" + (why.empty() ? "" : " (" + why + ")"));
-  };
-  if (compression.empty()) {
-    if (n != size) {
-      throw input_error(path, 0, where + ": uncompressed records of " + std::to_string(n) + " bytes, its size field says " +
-                                     std::to_string(size));
-    }
-    return std::string(src, n);
-  }
-  GrowingOutput out(size);
-  if (compression == "zstd") {
-    const std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> ctx(ZSTD_createDCtx(), ZSTD_freeDCtx);
-    if (!ctx) throw std::bad_alloc();
-    ZSTD_inBuffer in{src, n, 0};
-    while (in.pos < in.size) {
-      if (!out.room()) throw wrong_size("more data than that");
-      ZSTD_outBuffer o{out.next(), out.free(), 0};
-      const std::size_t ret = ZSTD_decompressStream(ctx.get(), &o, &in);
-      if (ZSTD_isError(ret)) throw wrong_size(ZSTD_getErrorName(ret));
-      out.advance(o.pos);
-      if (ret != 0 && in.pos == in.size && o.pos < o.size) throw wrong_size("the data ends inside a frame");
-    }
-  } else if (compression == "lz4") {
-    const auto free_ctx = [](LZ4F_dctx* c) { LZ4F_freeDecompressionContext(c); };
-    LZ4F_dctx* raw = nullptr;
-    if (LZ4F_isError(LZ4F_createDecompressionContext(&raw, LZ4F_VERSION))) throw std::bad_alloc();
-    const std::unique_ptr<LZ4F_dctx, decltype(free_ctx)> ctx(raw, free_ctx);
-    std::size_t in_at = 0, hint = 1;
-    while (in_at < n) {
-      if (!out.room()) throw wrong_size("more data than that");
-      std::size_t out_n = out.free(), in_n = n - in_at;
-      hint = LZ4F_decompress(ctx.get(), out.next(), &out_n, src + in_at, &in_n, nullptr);
-      if (LZ4F_isError(hint)) throw wrong_size(LZ4F_getErrorName(hint));
-      in_at += in_n;
-      out.advance(out_n);
-      if (in_n == 0 && out_n == 0) throw wrong_size("no progress");
-    }
-    if (hint != 0) throw wrong_size("the data ends inside a frame");
-  } else {
-    throw input_error(path, 0, where + ": unknown compression '" + compression + "' (expected none, lz4 or zstd)");
-  }
-  if (out.produced() != size) throw wrong_size(std::to_string(out.produced()) + " bytes");
-  return out.take();
+  return io::decompress(compression, src, n, size, path, where);
 }
 
 // ---- writing -------------------------------------------------------------------------------
@@ -234,22 +160,8 @@ std::string record(std::uint8_t op, const std::string& content) {
 }
 
 std::string compress(Compression c, const std::string& in) {
-  if (c == Compression::zstd) {
-    std::string out(ZSTD_compressBound(in.size()), '\0');
-    const std::size_t n = ZSTD_compress(out.data(), out.size(), in.data(), in.size(), kZstdLevel);
-    if (ZSTD_isError(n)) throw std::runtime_error(std::string("zstd: ") + ZSTD_getErrorName(n));
-    out.resize(n);
-    return out;
-  }
-  if (c == Compression::lz4) {
-    LZ4F_preferences_t prefs{};
-    prefs.frameInfo.contentSize = in.size();
-    std::string out(LZ4F_compressFrameBound(in.size(), &prefs), '\0');
-    const std::size_t n = LZ4F_compressFrame(out.data(), out.size(), in.data(), in.size(), &prefs);
-    if (LZ4F_isError(n)) throw std::runtime_error(std::string("lz4: ") + LZ4F_getErrorName(n));
-    out.resize(n);
-    return out;
-  }
+  if (c == Compression::zstd) return compress_zstd(in, kZstdLevel);
+  if (c == Compression::lz4) return compress_lz4(in);
   return in;
 }
 
@@ -300,20 +212,22 @@ struct Reader::File {
   }
 };
 
-Reader::Reader(const std::string& path) : path_(path), file_(std::make_unique<File>()) {
-  file_->path = path;
+Reader::Reader(const std::string& path) : Reader(path, path) {}
+
+Reader::Reader(const std::string& path, const std::string& shown) : path_(shown), file_(std::make_unique<File>()) {
+  file_->path = shown;
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw input_error(path, 0, "is a folder, not an MCAP file");
+  if (std::filesystem::is_directory(path, ec)) throw input_error(shown, 0, "is a folder, not an MCAP file");
   file_->fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (file_->fd < 0) throw input_error(path, 0, std::string("cannot open file: ") + std::strerror(errno));
+  if (file_->fd < 0) throw input_error(shown, 0, std::string("cannot open file: ") + std::strerror(errno));
   struct stat st {};
-  if (::fstat(file_->fd, &st) != 0) throw input_error(path, 0, std::string("cannot read file: ") + std::strerror(errno));
+  if (::fstat(file_->fd, &st) != 0) throw input_error(shown, 0, std::string("cannot read file: ") + std::strerror(errno));
   file_->size = static_cast<std::uint64_t>(st.st_size);
   if (file_->read(0, std::min<std::uint64_t>(kMagicBytes, file_->size), "the magic") != std::string(kMagic, kMagicBytes)) {
-    throw input_error(path, 0, "not an MCAP file (no MCAP magic at its start)");
+    throw input_error(shown, 0, "not an MCAP file (no MCAP magic at its start)");
   }
   const auto [op, content] = file_->record(kMagicBytes, "the Header record");
-  if (op != kHeader) throw input_error(path, 0, "byte 8: expected the Header record, found " + op_name(op));
+  if (op != kHeader) throw input_error(shown, 0, "byte 8: expected the Header record, found " + op_name(op));
   Fields h(content.data(), content.size(), path_, record_at(op, kMagicBytes));
   profile_ = h.str("profile");
   read_summary_or_scan();
@@ -532,7 +446,7 @@ std::shared_ptr<const std::string> Reader::unpack_chunk(const std::string& conte
   const auto crc = r.num<std::uint32_t>("uncompressed_crc");
   const std::string compression = r.str("compression");
   const auto [start, n] = r.span64("records");
-  auto records = std::make_shared<const std::string>(decompress(compression, content.data() + start, n, size, path_, where));
+  auto records = std::make_shared<const std::string>(unpack(compression, content.data() + start, n, size, path_, where));
   if (crc != 0 && crc_of(records->data(), records->size()) != crc) {
     throw input_error(path_, 0, where + ": its records do not match their CRC (corrupt)");
   }

@@ -58,6 +58,9 @@ struct Message {
 class Reader {
  public:
   explicit Reader(const std::string& path);
+  /// Reads the file at `path`, naming it `shown` in errors and warnings (a file decompressed to
+  /// a temporary place is named as the user knows it).
+  Reader(const std::string& path, const std::string& shown);
   ~Reader();
   Reader(const Reader&) = delete;
   Reader& operator=(const Reader&) = delete;

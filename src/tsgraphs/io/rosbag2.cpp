@@ -5,6 +5,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +17,7 @@
 #include <tuple>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/io/compression.hpp"
 #include "tsgraphs/io/point_cloud2.hpp"
 #include "tsgraphs/io/ros2_messages.hpp"
 #include "tsgraphs/io/tum.hpp"
@@ -28,6 +31,11 @@ constexpr const char* kTfStaticTopic = "/tf_static";
 constexpr const char* kMetadataFile = "metadata.yaml";
 constexpr char kSqliteMagic[] = "SQLite format 3";  // and a NUL: the first 16 bytes of every SQLite file
 constexpr char kMcapMagic[] = "\x89MCAP0\r\n";
+// A message decompressed (compression_mode MESSAGE) at most this large, as MCAP chunks: a
+// larger one is corrupt, and would allocate what the file does not hold.
+constexpr std::uint64_t kMaxMessageBytes = std::uint64_t{1} << 30;
+// The zstd level rosbag2 compresses with by default: the fastest.
+constexpr int kZstdLevel = 1;
 
 /// A topic as a storage records it.
 struct Topic {
@@ -69,14 +77,15 @@ bool is_mcap(const std::string& path) { return head_of(path, 8) == std::string(k
 /// messages (id, topic_id, timestamp, data); message_definitions where rosbag2 (Iron on) keeps them.
 class SqliteStorage : public Storage {
  public:
-  explicit SqliteStorage(const std::string& path) : path_(path) {
+  /// The file at `path`, named `shown` in errors.
+  SqliteStorage(const std::string& path, const std::string& shown) : path_(shown) {
     if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_FULLMUTEX, nullptr) != SQLITE_OK) {
       const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
       sqlite3_close(db_);
-      throw input_error(path, 0, "cannot open the SQLite file: " + why);
+      throw input_error(shown, 0, "cannot open the SQLite file: " + why);
     }
     for (const char* table : {"topics", "messages"}) {
-      if (!has_table(table)) throw input_error(path, 0, std::string("not a rosbag2 SQLite file: no table '") + table + "'");
+      if (!has_table(table)) throw input_error(shown, 0, std::string("not a rosbag2 SQLite file: no table '") + table + "'");
     }
   }
   ~SqliteStorage() override { sqlite3_close(db_); }
@@ -170,7 +179,7 @@ class SqliteStorage : public Storage {
 /// name and ros2msg definition.
 class McapStorage : public Storage {
  public:
-  explicit McapStorage(const std::string& path) : reader_(path) {}
+  McapStorage(const std::string& path, const std::string& shown) : reader_(path, shown) {}
   std::vector<Topic> topics() const override {
     std::map<std::string, Topic> by_name;
     std::map<std::uint16_t, std::uint64_t> counts;
@@ -208,12 +217,74 @@ class McapStorage : public Storage {
   mcap::Reader reader_;
 };
 
-std::unique_ptr<Storage> open_storage(const std::string& path) {
+/// Messages rosbag2 compressed one by one (compression_mode MESSAGE), decompressed as read.
+class ZstdMessages : public Storage {
+ public:
+  ZstdMessages(std::unique_ptr<Storage> inner, std::string path) : inner_(std::move(inner)), path_(std::move(path)) {}
+  std::vector<Topic> topics() const override { return inner_->topics(); }
+  std::vector<Located> messages(const std::string& topic, std::size_t file) const override {
+    return inner_->messages(topic, file);
+  }
+  std::string read(const Located& m) const override {
+    const std::string packed = inner_->read(m);
+    return decompress_zstd(packed.data(), packed.size(), kMaxMessageBytes, path_,
+                           "the message received at " + std::to_string(m.time) + " ns");
+  }
+  std::vector<std::string> warnings() const override { return inner_->warnings(); }
+
+ private:
+  std::unique_ptr<Storage> inner_;
+  std::string path_;
+};
+
+/// The storage in the file at `path` (SQLite or MCAP, by content), named `shown` in errors.
+std::unique_ptr<Storage> open_storage(const std::string& path, const std::string& shown) {
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw input_error(path, 0, "no such file");
-  if (is_sqlite(path)) return std::make_unique<SqliteStorage>(path);
-  if (is_mcap(path)) return std::make_unique<McapStorage>(path);
-  throw input_error(path, 0, "neither an SQLite (.db3) nor an MCAP file");
+  if (!fs::is_regular_file(path, ec)) throw input_error(shown, 0, "no such file");
+  if (is_sqlite(path)) return std::make_unique<SqliteStorage>(path, shown);
+  if (is_mcap(path)) return std::make_unique<McapStorage>(path, shown);
+  throw input_error(shown, 0, "neither an SQLite (.db3) nor an MCAP file");
+}
+
+/// A storage file rosbag2 compressed whole (compression_mode FILE): decompressed to a temporary
+/// file that is unlinked as soon as the storage holds it open, so that nothing is left behind
+/// however the run ends (the open descriptor keeps it readable).
+std::unique_ptr<Storage> open_compressed_storage(const std::string& path) {
+  static std::atomic<unsigned> count{0};
+  const fs::path tmp = fs::temp_directory_path() / ("tsgraphs-" + std::to_string(::getpid()) + "-" + std::to_string(count++) +
+                                                    "-" + fs::path(path).stem().string());
+  struct Unlink {
+    fs::path path;
+    ~Unlink() {
+      std::error_code ec;
+      fs::remove(path, ec);
+    }
+  } unlink{tmp};
+  decompress_zstd_file(path, tmp.string());
+  return open_storage(tmp.string(), path);
+}
+
+/// rosbag2's own compression of a recording, as metadata.yaml states it (file:line naming it).
+Rosbag2Compression compression_of(const YAML::Node& info, const std::string& metadata) {
+  const auto scalar = [&](const char* key) {
+    const YAML::Node n = info[key];
+    return std::make_pair(n && n.IsScalar() ? n.as<std::string>() : std::string(), n ? n.Mark().line + 1 : 0);
+  };
+  auto [mode, mode_line] = scalar("compression_mode");
+  std::transform(mode.begin(), mode.end(), mode.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  Rosbag2Compression out;
+  if (mode.empty() || mode == "none") return Rosbag2Compression::none;
+  if (mode == "file") {
+    out = Rosbag2Compression::file;
+  } else if (mode == "message") {
+    out = Rosbag2Compression::message;
+  } else {
+    throw input_error(metadata, mode_line, "compression_mode " + mode + ": expected FILE, MESSAGE or none");
+  }
+  if (const auto [format, line] = scalar("compression_format"); format != "zstd") {
+    throw input_error(metadata, line, "compression_format '" + format + "': only zstd, rosbag2's own compressor, is read");
+  }
+  return out;
 }
 
 /// The storages of a recording: a folder's files in metadata.yaml's order, or the one file.
@@ -221,7 +292,7 @@ std::vector<std::unique_ptr<Storage>> open_recording(const std::string& path) {
   std::vector<std::unique_ptr<Storage>> out;
   std::error_code ec;
   if (!fs::is_directory(path, ec)) {
-    out.push_back(open_storage(path));
+    out.push_back(open_storage(path, path));
     return out;
   }
   const std::string metadata = (fs::path(path) / kMetadataFile).string();
@@ -235,15 +306,19 @@ std::vector<std::unique_ptr<Storage>> open_recording(const std::string& path) {
   if (!info || !info["relative_file_paths"] || !info["relative_file_paths"].IsSequence()) {
     throw input_error(metadata, 0, "no rosbag2_bagfile_information.relative_file_paths");
   }
-  if (const YAML::Node c = info["compression_format"]; c && c.IsScalar() && !c.as<std::string>().empty()) {
-    throw input_error(metadata, 0, "a compressed rosbag2 bag (compression_format " + c.as<std::string>() +
-                                       ") is not read: decompress it first (ros2 bag convert), or record MCAP with "
-                                       "chunk compression");
-  }
+  const Rosbag2Compression compression = compression_of(info, metadata);
   for (const YAML::Node& f : info["relative_file_paths"]) {
     const std::string file = (fs::path(path) / f.as<std::string>()).string();
-    if (!fs::is_regular_file(file, ec)) throw input_error(metadata, 0, "lists " + f.as<std::string>() + ", which is not in the folder");
-    out.push_back(open_storage(file));
+    if (!fs::is_regular_file(file, ec)) {
+      throw input_error(metadata, f.Mark().line + 1, "lists " + f.as<std::string>() + ", which is not in the folder");
+    }
+    if (compression == Rosbag2Compression::file) {
+      out.push_back(open_compressed_storage(file));
+    } else if (compression == Rosbag2Compression::message) {
+      out.push_back(std::make_unique<ZstdMessages>(open_storage(file, file), file));
+    } else {
+      out.push_back(open_storage(file, file));
+    }
   }
   if (out.empty()) throw input_error(metadata, 0, "lists no files");
   return out;
@@ -458,9 +533,9 @@ struct Tally {
   }
 };
 
-/// rosbag2's BagMetadata (version 5, as Humble writes it) for one file.
+/// rosbag2's BagMetadata (version 5, as Humble writes it) for one file, listed as `file`.
 std::string bag_metadata(const std::string& storage_id, const std::string& file, const std::vector<TopicToWrite>& topics,
-                         const Tally& tally) {
+                         const Tally& tally, Rosbag2Compression compression) {
   YAML::Emitter y;
   const auto duration = [&] {
     y << YAML::BeginMap << YAML::Key << "nanoseconds" << YAML::Value << tally.last - tally.first << YAML::EndMap;
@@ -486,8 +561,10 @@ std::string bag_metadata(const std::string& storage_id, const std::string& file,
     y << YAML::EndMap;
   }
   y << YAML::EndSeq;
-  y << YAML::Key << "compression_format" << YAML::Value << YAML::DoubleQuoted << "";
-  y << YAML::Key << "compression_mode" << YAML::Value << YAML::DoubleQuoted << "";
+  const bool compressed = compression != Rosbag2Compression::none;
+  y << YAML::Key << "compression_format" << YAML::Value << YAML::DoubleQuoted << (compressed ? "zstd" : "");
+  y << YAML::Key << "compression_mode" << YAML::Value << YAML::DoubleQuoted
+    << (!compressed ? "" : compression == Rosbag2Compression::file ? "FILE" : "MESSAGE");
   y << YAML::Key << "relative_file_paths" << YAML::Value << YAML::BeginSeq << file << YAML::EndSeq;
   y << YAML::Key << "files" << YAML::Value << YAML::BeginSeq << YAML::BeginMap;
   y << YAML::Key << "path" << YAML::Value << file;
@@ -499,10 +576,21 @@ std::string bag_metadata(const std::string& storage_id, const std::string& file,
   return std::string(y.c_str()) + "\n";
 }
 
+/// How a bag is laid out: the name metadata.yaml lists its file under, rosbag2's own compression.
+struct Layout {
+  std::string file;
+  Rosbag2Compression compression = Rosbag2Compression::none;
+};
+
 /// Every message of `sequence` in write_bag's order: /tf_static, then per scan /points, /odom
-/// and /groundtruth.
+/// and /groundtruth; each message's data zstd-compressed in MESSAGE mode.
 template <class Sink>
-void for_each_message(const ScanSequence& sequence, const Pose3& sensor_to_base, Sink&& sink) {
+void for_each_message(const ScanSequence& sequence, const Pose3& sensor_to_base, Rosbag2Compression compression,
+                      Sink&& write) {
+  const auto sink = [&](Out m) {
+    if (compression == Rosbag2Compression::message) m.cdr = compress_zstd(m.cdr, kZstdLevel);
+    write(m);
+  };
   const SequenceInfo& info = sequence.info();
   const double first = info.times.empty() ? 0.0 : info.times.front();
   const auto stamp_ns = ros2::stamp_nanoseconds;
@@ -517,7 +605,7 @@ void for_each_message(const ScanSequence& sequence, const Pose3& sensor_to_base,
 }
 
 /// Returns the bag's metadata (for metadata.yaml); `file` is the name it lists.
-std::string write_sqlite(const ScanSequence& sequence, const std::string& tmp, const std::string& file,
+std::string write_sqlite(const ScanSequence& sequence, const std::string& tmp, const Layout& layout,
                          const std::vector<TopicToWrite>& topics, const Pose3& sensor_to_base) {
   std::string metadata;
   sqlite3* db = nullptr;
@@ -558,7 +646,7 @@ std::string write_sqlite(const ScanSequence& sequence, const std::string& tmp, c
     sqlite3_prepare_v2(db, "INSERT INTO messages (topic_id, timestamp, data) VALUES (?1, ?2, ?3)", -1, &insert, nullptr);
     Tally tally;
     try {
-      for_each_message(sequence, sensor_to_base, [&](const Out& m) {
+      for_each_message(sequence, sensor_to_base, layout.compression, [&](const Out& m) {
         tally.add(m);
         sqlite3_reset(insert);
         sqlite3_bind_int64(insert, 1, static_cast<sqlite3_int64>(m.topic + 1));
@@ -571,7 +659,7 @@ std::string write_sqlite(const ScanSequence& sequence, const std::string& tmp, c
       throw;
     }
     sqlite3_finalize(insert);
-    metadata = bag_metadata("sqlite3", file, topics, tally);
+    metadata = bag_metadata("sqlite3", layout.file, topics, tally, layout.compression);
     sqlite3_stmt* s = nullptr;
     sqlite3_prepare_v2(db, "INSERT INTO metadata (metadata_version, metadata) VALUES (5, ?1)", -1, &s, nullptr);
     sqlite3_bind_text(s, 1, metadata.c_str(), -1, SQLITE_TRANSIENT);
@@ -587,7 +675,7 @@ std::string write_sqlite(const ScanSequence& sequence, const std::string& tmp, c
   return metadata;
 }
 
-std::string write_mcap(const ScanSequence& sequence, const std::string& path, const std::string& file,
+std::string write_mcap(const ScanSequence& sequence, const std::string& path, const Layout& layout,
                        const std::vector<TopicToWrite>& topics, mcap::Compression compression, const Pose3& sensor_to_base) {
   mcap::WriterOptions o;
   o.profile = "ros2";
@@ -600,11 +688,11 @@ std::string write_mcap(const ScanSequence& sequence, const std::string& path, co
     channels.push_back(w.add_channel(schemas[t.type], t.name, "cdr", {{"offered_qos_profiles", qos_profile(t.transient_local)}}));
   }
   Tally tally;
-  for_each_message(sequence, sensor_to_base, [&](const Out& m) {
+  for_each_message(sequence, sensor_to_base, layout.compression, [&](const Out& m) {
     tally.add(m);
     w.write(channels[m.topic], m.time, m.time, m.cdr);
   });
-  const std::string metadata = bag_metadata("mcap", file, topics, tally);
+  const std::string metadata = bag_metadata("mcap", layout.file, topics, tally, layout.compression);
   w.add_metadata("rosbag2", {{"serialized_metadata", metadata}, {"ROS_DISTRO", "humble"}});
   w.finish();
   return metadata;
@@ -613,7 +701,7 @@ std::string write_mcap(const ScanSequence& sequence, const std::string& path, co
 }  // namespace
 
 void write_rosbag2(const ScanSequence& sequence, const std::string& path, Rosbag2Storage storage,
-                   mcap::Compression compression, const Pose3& sensor_to_base) {
+                   mcap::Compression compression, const Pose3& sensor_to_base, Rosbag2Compression bag_compression) {
   std::vector<TopicToWrite> topics = {{"/points", ros2::kPointCloud2, false},
                                       {"/odom", ros2::kOdometry, false},
                                       {kTfStaticTopic, ros2::kTfMessage, true}};
@@ -624,14 +712,24 @@ void write_rosbag2(const ScanSequence& sequence, const std::string& path, Rosbag
   const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
   const std::string file = folder ? fs::path(path).filename().string() + "_0" + ext : fs::path(path).filename().string();
   const std::string target = folder ? (fs::path(tmp) / file).string() : tmp;
+  const bool file_compressed = bag_compression == Rosbag2Compression::file;
+  const Layout layout{file_compressed ? file + ".zstd" : file, bag_compression};
   std::error_code ec;
+  if (!folder && bag_compression != Rosbag2Compression::none) {
+    throw input_error(path, 0, "rosbag2's own compression is for a bag folder, whose metadata.yaml records it: give a "
+                               "name without " + ext);
+  }
   if (folder && fs::exists(path, ec)) throw input_error(path, 0, "exists: a bag folder is not written over");
   fs::remove_all(tmp, ec);
   try {
     if (folder && !fs::create_directory(tmp, ec)) throw input_error(path, 0, "cannot make the bag folder: " + ec.message());
     const std::string metadata = storage == Rosbag2Storage::mcap
-                                     ? write_mcap(sequence, target, file, topics, compression, sensor_to_base)
-                                     : write_sqlite(sequence, target, file, topics, sensor_to_base);
+                                     ? write_mcap(sequence, target, layout, topics, compression, sensor_to_base)
+                                     : write_sqlite(sequence, target, layout, topics, sensor_to_base);
+    if (file_compressed) {  // as rosbag2 does once a file is closed: the file replaced by its .zstd
+      compress_zstd_file(target, target + ".zstd", kZstdLevel);
+      fs::remove(target);
+    }
     if (folder) {
       std::ofstream out(fs::path(tmp) / kMetadataFile);
       out << metadata;

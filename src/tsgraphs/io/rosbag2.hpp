@@ -41,14 +41,21 @@ std::string rosbag2_info(const std::string& path);
 
 enum class Rosbag2Storage { sqlite, mcap };
 
+/// rosbag2's own compression, zstd, as `ros2 bag record --compression-mode file|message` writes
+/// it: each storage file compressed whole (read by decompressing it to TMPDIR first), or each
+/// message's data. Only a bag folder records it (metadata.yaml); MCAP's chunk compression is
+/// another matter, and the two can be combined.
+enum class Rosbag2Compression { none, file, message };
+
 /// Writes `sequence` as rosbag2 writes a recording: SQLite (rosbag2's Humble layout, the bag's
 /// metadata in its metadata table) or MCAP (profile ros2, cdr messages, ros2msg schemas, chunks
 /// compressed by `compression`, the bag's metadata in a "rosbag2" Metadata record), with the
 /// topics write_bag writes to ROS 1 bags: /points, /odom, /tf_static and /groundtruth. A `path`
 /// ending in .db3 or .mcap is that one file; any other is a bag folder: metadata.yaml and
-/// NAME_0.db3 or NAME_0.mcap. Written under a temporary name and renamed, so a failed write
-/// leaves nothing.
+/// NAME_0.db3 or NAME_0.mcap (NAME_0.db3.zstd or NAME_0.mcap.zstd under `bag_compression`
+/// file). Written under a temporary name and renamed, so a failed write leaves nothing.
 void write_rosbag2(const ScanSequence& sequence, const std::string& path, Rosbag2Storage storage,
-                   mcap::Compression compression, const Pose3& sensor_to_base);
+                   mcap::Compression compression, const Pose3& sensor_to_base,
+                   Rosbag2Compression bag_compression = Rosbag2Compression::none);
 
 }  // namespace tsgraphs::io

@@ -1,0 +1,33 @@
+#pragma once
+/// Compressed bytes as recordings hold them: zstd (Debian's libzstd) and lz4 frames (liblz4).
+/// MCAP's chunks and rosbag2's own compression (a whole file, or each message) share these.
+/// What is allocated follows what the data decompresses to, never more than the size the
+/// caller allows: a corrupt size word costs an error, not its gigabytes.
+#include <cstdint>
+#include <string>
+
+namespace tsgraphs::io {
+
+/// `src` (n bytes) decompressed to exactly `size` bytes: `compression` is "" (stored as is),
+/// "lz4" or "zstd", as an MCAP chunk names it. InputError naming `path` and `where` otherwise.
+std::string decompress(const std::string& compression, const char* src, std::uint64_t n, std::uint64_t size,
+                       const std::string& path, const std::string& where);
+
+/// zstd frames (n bytes) decompressed to whatever they hold, at most `max_size` bytes.
+std::string decompress_zstd(const char* src, std::uint64_t n, std::uint64_t max_size, const std::string& path,
+                            const std::string& where);
+
+/// A zstd-compressed file decompressed into `to` (created or truncated), streamed: any size.
+/// InputError naming `from` for data that is not zstd or ends inside a frame.
+void decompress_zstd_file(const std::string& from, const std::string& to);
+
+/// zstd at `level` (1: fastest), one frame that records its content size.
+std::string compress_zstd(const std::string& in, int level);
+
+/// One lz4 frame that records its content size.
+std::string compress_lz4(const std::string& in);
+
+/// A file compressed with zstd at `level` into `to` (created or truncated), streamed.
+void compress_zstd_file(const std::string& from, const std::string& to, int level);
+
+}  // namespace tsgraphs::io
