@@ -7,6 +7,7 @@
 #include <map>
 #include <unordered_set>
 
+#include "tsgraphs/core/map_style.hpp"
 #include "tsgraphs/core/voxel_grid.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/io/tum.hpp"
@@ -14,25 +15,7 @@
 namespace tsgraphs::pipeline {
 namespace {
 
-struct Rgb {
-  unsigned char r, g, b;
-};
-
-// Distinct colours for neighbouring wall ids; the map's other layers use fixed colours.
-Rgb wall_colour(int id) {
-  static constexpr Rgb kPalette[] = {{230, 25, 75},  {60, 180, 75},  {0, 130, 200}, {245, 130, 48},
-                                     {145, 30, 180}, {70, 240, 240}, {240, 50, 230}, {210, 245, 60},
-                                     {0, 128, 128},  {170, 110, 40}, {128, 0, 0},    {0, 0, 128}};
-  return kPalette[static_cast<std::size_t>(id) % (sizeof kPalette / sizeof kPalette[0])];
-}
-constexpr Rgb kKeyframePoint{150, 150, 150};
-constexpr Rgb kHorizontalPlane{222, 200, 160};
-constexpr Rgb kTraversableNode{255, 0, 255};  // magenta, as DESIGN.md's outputs say
-constexpr Rgb kRoomOutline{0, 200, 255};
-constexpr Rgb kCorridorOutline{255, 150, 0};
-constexpr double kOutlineLift = 0.05;  // room outlines this far above their floor (m)
 constexpr double kOutlineStep = 0.05;  // one outline point per this length (m)
-constexpr Rgb kFloorNode{255, 255, 0};
 constexpr double kFloorCross = 0.5;    // half the arm of a floor node's cross (m)
 // Keyframe points are thinned to this grid in the map, so map.ply stays small on long runs.
 constexpr double kMapVoxel = 0.1;
@@ -257,15 +240,15 @@ std::string map_ply(const Pipeline& pipeline, const Eigen::Vector3d& origin) {
     const Eigen::Isometry3f T = k.pose.cast<float>();
     for (const Eigen::Vector3f& p : pipeline.keyframe_cloud(k.id).points) {
       const Eigen::Vector3f q = T * p;
-      if (occupied.insert(voxel_key(q, 1.0 / kMapVoxel)).second) vertices.push_back({q, kKeyframePoint});
+      if (occupied.insert(voxel_key(q, 1.0 / kMapVoxel)).second) vertices.push_back({q, kKeyframePointColour});
     }
   }
   for (const auto& [id, lm] : pipeline.plane_map().landmarks()) {
-    const Rgb c = lm.vertical ? wall_colour(id) : kHorizontalPlane;
+    const Rgb c = lm.vertical ? wall_colour(id) : kHorizontalPlaneColour;
     for (const Eigen::Vector3f& p : lm.points) vertices.push_back({p, c});
   }
   for (const ground::GlobalNode* n : pipeline.node_map().nodes())
-    vertices.push_back({n->position.cast<float>(), kTraversableNode});
+    vertices.push_back({n->position.cast<float>(), kTraversableNodeColour});
   // Floor nodes: a cross at their centre, on their level.
   for (const auto& [id, f] : pipeline.graph().floors()) {
     const auto& levels = pipeline.room_layer().levels();
@@ -273,16 +256,16 @@ std::string map_ply(const Pipeline& pipeline, const Eigen::Vector3d& origin) {
     const float z = static_cast<float>(levels[static_cast<std::size_t>(f.level)] + kOutlineLift);
     for (double t = -kFloorCross; t <= kFloorCross; t += kOutlineStep) {
       vertices.push_back({Eigen::Vector3f(static_cast<float>(f.center.x() + t), static_cast<float>(f.center.y()), z),
-                          kFloorNode});
+                          kFloorNodeColour});
       vertices.push_back({Eigen::Vector3f(static_cast<float>(f.center.x()), static_cast<float>(f.center.y() + t), z),
-                          kFloorNode});
+                          kFloorNodeColour});
     }
   }
   // Room and corridor footprints: their outlines just above their level's floor.
   for (const auto& [id, r] : pipeline.room_map().rooms()) {
     const auto& levels = pipeline.room_layer().levels();
     const float z = static_cast<float>(levels.at(static_cast<std::size_t>(r.level)) + kOutlineLift);
-    const Rgb c = r.kind == rooms::RoomKind::room ? kRoomOutline : kCorridorOutline;
+    const Rgb c = r.kind == rooms::RoomKind::room ? kRoomOutlineColour : kCorridorOutlineColour;
     const Polygon2 corners = r.footprint();
     for (std::size_t i = 0; i < corners.size(); ++i) {
       const Vec2& a = corners[i];

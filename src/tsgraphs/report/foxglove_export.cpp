@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/map_style.hpp"
 #include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/io/mcap.hpp"
 #include "tsgraphs/io/run_folder.hpp"
@@ -20,9 +21,9 @@ namespace {
 
 using json = nlohmann::ordered_json;  // keys in the order written: the same run gives the same bytes
 
-constexpr double kOutlineLift = 0.05;   // room outlines this far above their floor (m), as in map.ply
 constexpr double kLabelLift = 0.6;      // room labels above their outline (m)
 constexpr double kWallThickness = 0.05; // a wall plane drawn as a box this thick (m)
+constexpr double kWallAlpha = 0.6;      // walls half seen through, so that the rooms behind them show
 constexpr double kLineWidth = 0.05;     // outlines and the trajectory (m)
 constexpr double kLabelSize = 0.5;      // text height (m)
 constexpr std::size_t kMaxTrajectoryPoints = 5000;  // the trajectory line thinned to at most this many vertices
@@ -108,6 +109,7 @@ json pose_of(const Eigen::Vector3d& p, const Eigen::Quaterniond& q = Eigen::Quat
   return {{"position", vec3(p)}, {"orientation", quat(q)}};
 }
 json rgba(double r, double g, double b, double a = 1.0) { return {{"r", r}, {"g", g}, {"b", b}, {"a", a}}; }
+json rgba(const Rgb& c, double a = 1.0) { return rgba(c.r / 255.0, c.g / 255.0, c.b / 255.0, a); }
 
 std::string base64(const std::string& in) {
   static const char* const kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -165,12 +167,6 @@ json point_cloud(double t, const Eigen::Vector3d& origin, const std::vector<io::
           {"fields", fields}, {"data", base64(data)}};
 }
 
-json wall_colour(int id) {  // as map.ply's palette, in [0, 1]
-  static const int kPalette[][3] = {{230, 25, 75},  {60, 180, 75},  {0, 130, 200}, {245, 130, 48}, {145, 30, 180}, {70, 240, 240},
-                                    {240, 50, 230}, {210, 245, 60}, {0, 128, 128}, {170, 110, 40}, {128, 0, 0},   {0, 0, 128}};
-  const int* c = kPalette[static_cast<std::size_t>(id) % 12];
-  return rgba(c[0] / 255.0, c[1] / 255.0, c[2] / 255.0, 0.6);
-}
 
 }  // namespace
 
@@ -215,7 +211,7 @@ void export_foxglove_mcap(const std::string& run_dir, const std::string& out) {
   };
   const auto room_update = [&](const io::RoomEvent& ev) {
     const bool corridor = ev.kind == "corridor";
-    const json colour = corridor ? rgba(1.0, 150 / 255.0, 0.0) : rgba(0.0, 200 / 255.0, 1.0);
+    const json colour = rgba(corridor ? kCorridorOutlineColour : kRoomOutlineColour);
     const double z = level_z(ev.level) + kOutlineLift;
     std::vector<Eigen::Vector3d> outline;
     for (const Vec2& v : ev.polygon.size() >= 3 ? ev.polygon : ev.rect.corners()) outline.emplace_back(v.x(), v.y(), z);
@@ -236,16 +232,14 @@ void export_foxglove_mcap(const std::string& run_dir, const std::string& out) {
 
   put(map_ch, end, point_cloud(end, origin, map, true));
   std::vector<io::MapVertex> nodes;
-  for (const auto& n : graph.traversable_nodes) nodes.push_back({n.position, 255, 0, 255});
+  for (const auto& n : graph.traversable_nodes)
+    nodes.push_back({n.position, kTraversableNodeColour.r, kTraversableNodeColour.g, kTraversableNodeColour.b});
   put(nodes_ch, end, point_cloud(end, origin, nodes, false));
   // Each room's free space (its latest extraction's vertices), coloured as its outline.
   std::vector<io::MapVertex> free_space;
   for (const auto& r : graph.rooms) {
-    const bool corridor = r.kind == "corridor";
-    for (const Eigen::Vector3d& v : r.free_space)
-      free_space.push_back({v, 0, static_cast<std::uint8_t>(corridor ? 150 : 200), static_cast<std::uint8_t>(corridor ? 0 : 255)});
-    if (corridor)
-      for (std::size_t k = free_space.size() - r.free_space.size(); k < free_space.size(); ++k) free_space[k].r = 255;
+    const Rgb c = r.kind == "corridor" ? kCorridorOutlineColour : kRoomOutlineColour;
+    for (const Eigen::Vector3d& v : r.free_space) free_space.push_back({v, c.r, c.g, c.b});
   }
   put(free_ch, end, point_cloud(end, origin, free_space, true));
 
@@ -257,7 +251,7 @@ void export_foxglove_mcap(const std::string& run_dir, const std::string& out) {
     const Eigen::Quaterniond yaw(Eigen::AngleAxisd(std::atan2(b.y() - a.y(), b.x() - a.x()), Eigen::Vector3d::UnitZ()));
     walls["cubes"].push_back({{"pose", pose_of(Eigen::Vector3d(0.5 * (a.x() + b.x()), 0.5 * (a.y() + b.y()), 0.5 * (z0 + z1)), yaw)},
                               {"size", vec3(Eigen::Vector3d((b - a).norm(), kWallThickness, std::max(z1 - z0, kWallThickness)))},
-                              {"color", wall_colour(p.id)}});
+                              {"color", rgba(wall_colour(p.id), kWallAlpha)}});
   }
   json path = entity(end, "trajectory");
   std::vector<Eigen::Vector3d> points;
@@ -268,7 +262,7 @@ void export_foxglove_mcap(const std::string& run_dir, const std::string& out) {
   json floors = entity(end, "floors");
   for (const auto& f : graph.floors)
     floors["texts"].push_back(text(Eigen::Vector3d(f.center.x(), f.center.y(), level_z(f.level) + 2 * kLabelLift),
-                                   "floor " + std::to_string(f.id), rgba(1.0, 1.0, 0.0)));
+                                   "floor " + std::to_string(f.id), rgba(kFloorNodeColour)));
   put(scene, end, {{"deletions", json::array()}, {"entities", json::array({walls, path, floors})}});
   w.finish();
 }
