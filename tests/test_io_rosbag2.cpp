@@ -156,7 +156,7 @@ TEST_F(Rosbag2, DamagedFilesAndIncompleteFoldersAreNamed) {
             metadata + ":3: compression_format 'lz4': only zstd, rosbag2's own compressor, is read");
   std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [bag_0.db3]\n"
                              "  compression_format: zstd\n  compression_mode: CHUNK\n";
-  EXPECT_EQ(error_of(options((dir_ / "bag").string())), metadata + ":4: compression_mode chunk: expected FILE, MESSAGE or none");
+  EXPECT_EQ(error_of(options((dir_ / "bag").string())), metadata + ":4: compression_mode CHUNK: expected FILE, MESSAGE or none");
   std::ofstream(metadata) << "rosbag2_bagfile_information: [\n";
   EXPECT_THAT(error_of(options((dir_ / "bag").string())), StartsWith(metadata + ":"));
 }

@@ -84,8 +84,13 @@ class SqliteStorage : public Storage {
       sqlite3_close(db_);
       throw input_error(shown, 0, "cannot open the SQLite file: " + why);
     }
-    for (const char* table : {"topics", "messages"}) {
-      if (!has_table(table)) throw input_error(shown, 0, std::string("not a rosbag2 SQLite file: no table '") + table + "'");
+    try {
+      for (const char* table : {"topics", "messages"}) {
+        if (!has_table(table)) throw input_error(shown, 0, std::string("not a rosbag2 SQLite file: no table '") + table + "'");
+      }
+    } catch (...) {  // no destructor runs for an object whose constructor throws (LeakSanitizer found it)
+      sqlite3_close(db_);
+      throw;
     }
   }
   ~SqliteStorage() override { sqlite3_close(db_); }
@@ -270,7 +275,8 @@ Rosbag2Compression compression_of(const YAML::Node& info, const std::string& met
     const YAML::Node n = info[key];
     return std::make_pair(n && n.IsScalar() ? n.as<std::string>() : std::string(), n ? n.Mark().line + 1 : 0);
   };
-  auto [mode, mode_line] = scalar("compression_mode");
+  const auto [written, mode_line] = scalar("compression_mode");
+  std::string mode = written;  // rosbag2 writes FILE and MESSAGE; its reader takes any case
   std::transform(mode.begin(), mode.end(), mode.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   Rosbag2Compression out;
   if (mode.empty() || mode == "none") return Rosbag2Compression::none;
@@ -279,7 +285,7 @@ Rosbag2Compression compression_of(const YAML::Node& info, const std::string& met
   } else if (mode == "message") {
     out = Rosbag2Compression::message;
   } else {
-    throw input_error(metadata, mode_line, "compression_mode " + mode + ": expected FILE, MESSAGE or none");
+    throw input_error(metadata, mode_line, "compression_mode " + written + ": expected FILE, MESSAGE or none");
   }
   if (const auto [format, line] = scalar("compression_format"); format != "zstd") {
     throw input_error(metadata, line, "compression_format '" + format + "': only zstd, rosbag2's own compressor, is read");
