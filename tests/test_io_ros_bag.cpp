@@ -295,6 +295,21 @@ TEST_F(RosBag, PointCloudLengthsNear2To31AreInputErrors) {
   EXPECT_THAT(read_all(b), AllOf(StartsWith(b + ": /points, "), HasSubstr("data at byte")));
 }
 
+// /tf_static: rosbag's deserializer sizes the transforms array from its length word before
+// reading a byte of it (found by fuzzing under ASan: 584 GB asked for); a count the message
+// cannot hold is refused, naming the message.
+TEST_F(RosBag, TransformCountBeyondItsMessageIsAnInputError) {
+  const std::string bytes = bag_bytes(BagCompression::none);
+  // The one transform: header (seq, stamp, "base_link"), then child "lidar"; its count before.
+  const std::string frames = std::string("\x09\x00\x00\x00", 4) + "base_link" + std::string("\x05\x00\x00\x00", 4) + "lidar";
+  const std::size_t at = bytes.find(frames);
+  ASSERT_NE(at, std::string::npos);
+  std::string many = bytes;
+  put_word(many, at - 16, 0xFFFFFFF7u);
+  const std::string a = write_file("tf.bag", many);
+  EXPECT_THAT(read_all(a), AllOf(StartsWith(a + ": /tf_static, message 0: "), HasSubstr("claims 4294967287 transforms")));
+}
+
 // The same through the command line: one line naming the bag and the byte, exit 2, and no
 // output folder.
 TEST_F(RosBag, CorruptBagIsExitTwoForEveryCommand) {

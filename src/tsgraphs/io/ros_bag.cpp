@@ -76,6 +76,9 @@ constexpr std::uint8_t kOpMessageData = 0x02, kOpBagHeader = 0x03, kOpIndexData 
                        kOpChunkInfo = 0x06, kOpConnection = 0x07;
 constexpr std::uint64_t kLengthBytes = 4;          // every length word
 constexpr std::uint64_t kIndexEntryBytes = 12;     // index data entry: time (8), offset (4)
+// A TransformStamped serialized at its smallest: header (seq 4, stamp 8, empty frame_id 4), an
+// empty child_frame_id (4), translation and rotation (7 doubles, 56).
+constexpr std::uint64_t kMinTransformBytes = 76;
 constexpr std::uint64_t kChunkInfoEntryBytes = 8;  // chunk info entry: conn (4), count (4)
 constexpr std::uint32_t kIndexVersion = 1;         // `ver` of index data and chunk info
 // ROS's own header parser refuses a field over 1e6 bytes; real record headers are tens of bytes.
@@ -469,7 +472,19 @@ BagSequence::BagSequence(const BagOptions& options) : RecordedSequence(options.b
       sensor_to_base_known_ = true;
     } else if (types.count(kTfStaticTopic)) {
       rosbag::View tf(impl_->bag, rosbag::TopicQuery(kTfStaticTopic));
+      std::size_t index = 0;
       for (const rosbag::MessageInstance& m : tf) {
+        if (!m.isType<tf2_msgs::TFMessage>()) continue;
+        // rosbag's deserializer sizes the transforms array from its length word before reading
+        // a byte of it (found by fuzzing: 584 GB asked for): the word is checked here first.
+        const std::string where = path + ": " + kTfStaticTopic + ", message " + std::to_string(index++);
+        const std::vector<std::uint8_t> bytes = message_bytes(m, impl_->limits, where);
+        const std::uint64_t count =
+            bytes.size() < kLengthBytes ? 0 : little_endian(std::string(bytes.begin(), bytes.begin() + kLengthBytes));
+        if (bytes.size() < kLengthBytes || count > (bytes.size() - kLengthBytes) / kMinTransformBytes) {
+          throw input_error(where, 0, "claims " + std::to_string(count) + " transforms, more than its " +
+                                          std::to_string(bytes.size()) + " bytes hold");
+        }
         const auto msg = m.instantiate<tf2_msgs::TFMessage>();
         if (!msg) continue;
         for (const geometry_msgs::TransformStamped& t : msg->transforms) {
