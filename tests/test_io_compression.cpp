@@ -3,9 +3,11 @@
 // naming the file.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <zstd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 
 #include "test_support.hpp"
@@ -41,6 +43,15 @@ TEST_F(Compression, RoundTripsInMemory) {
   EXPECT_EQ(io::decompress("", s.data(), s.size(), s.size(), "f", "chunk"), s);
   EXPECT_EQ(io::decompress_zstd(z.data(), z.size(), s.size(), "f", "message"), s);
   EXPECT_EQ(io::decompress_zstd(z.data(), 0, s.size(), "f", "message"), "");
+  // Two frames end to end, and frames with a content checksum (4 bytes after the last block
+  // that hold no output: read with the output already full).
+  EXPECT_EQ(io::decompress_zstd((z + z).data(), 2 * z.size(), 2 * s.size(), "f", "message"), s + s);
+  std::string c(ZSTD_compressBound(s.size()), '\0');
+  const std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)> ctx(ZSTD_createCCtx(), ZSTD_freeCCtx);
+  ZSTD_CCtx_setParameter(ctx.get(), ZSTD_c_checksumFlag, 1);
+  c.resize(ZSTD_compress2(ctx.get(), c.data(), c.size(), s.data(), s.size()));
+  EXPECT_EQ(io::decompress("zstd", c.data(), c.size(), s.size(), "f", "chunk"), s);
+  EXPECT_EQ(io::decompress_zstd(c.data(), c.size(), s.size(), "f", "message"), s);
 }
 
 TEST_F(Compression, DataCutShortOrLargerThanAllowedIsNamed) {

@@ -54,25 +54,19 @@ ZstdDecoder zstd_decoder() {
 
 /// zstd frames into `out` until the input ends; the error's reason, or "" when whole frames fit.
 std::string zstd_into(const char* src, std::uint64_t n, GrowingOutput& out) {
+  if (n == 0) return "";  // no frame: nothing
   const ZstdDecoder ctx = zstd_decoder();
   ZSTD_inBuffer in{src, static_cast<std::size_t>(n), 0};
-  std::size_t ret = 0;
-  while (in.pos < in.size) {
-    if (!out.room()) return "more data than that";
-    ZSTD_outBuffer o{out.next(), out.free(), 0};
-    ret = ZSTD_decompressStream(ctx.get(), &o, &in);
-    if (ZSTD_isError(ret)) return ZSTD_getErrorName(ret);
-    out.advance(o.pos);
-  }
-  // Input used up before the decoder called its frame whole: output it still holds is
-  // flushed (asking with no room when there is none), or the data is cut.
-  while (ret != 0) {
+  // Until the input is used up and the decoder calls its last frame whole (0). With no room
+  // left it is still asked (with none), as a frame's last bytes may hold no output.
+  for (std::size_t ret = 1; in.pos < in.size || ret != 0;) {
     const bool space = out.room();
     ZSTD_outBuffer o{space ? out.next() : nullptr, space ? out.free() : 0, 0};
+    const std::size_t used = in.pos;
     ret = ZSTD_decompressStream(ctx.get(), &o, &in);
     if (ZSTD_isError(ret)) return ZSTD_getErrorName(ret);
-    if (ret != 0 && o.pos == 0) return space ? "the data ends inside a frame" : "more data than that";
     out.advance(o.pos);
+    if (o.pos == 0 && in.pos == used) return space ? "the data ends inside a frame" : "more data than that";
   }
   return "";
 }
