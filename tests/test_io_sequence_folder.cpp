@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <set>
 #include <sstream>
@@ -429,6 +430,50 @@ TEST_F(SequenceFolder, ReaderRejectsALabelFileOfTheWrongCount) {
   // Not a whole number of labels either.
   write_text(seq_ / "scans/000001.label", std::string(7 * 4 + 2, '\0'));
   EXPECT_THAT(input_error_of([&] { r.scan(1); }), StartsWith((seq_ / "scans/000001.label").string()));
+}
+
+// What a run asks of a scan that is no keyframe (presence): the same as reading it tells, and
+// the same errors, without building the cloud. Scans: 50 points, none (empty), 2 all NaN, one
+// NaN then a finite point, 3000 NaN points then a finite one (past the first block read), and
+// one with per-point times.
+TEST_F(SequenceFolder, PresenceTellsWhatTheScanHoldsWithScansErrors) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  PointCloud nans, late, timed;
+  nans.points = {Eigen::Vector3f(nan, 0, 0), Eigen::Vector3f(0, nan, 1)};
+  late.points = {Eigen::Vector3f(nan, nan, nan), Eigen::Vector3f(1, 2, 3)};
+  PointCloud far_late;
+  far_late.points.assign(3000, Eigen::Vector3f(0, 0, nan));
+  far_late.points.emplace_back(1, 1, 1);
+  timed.points = {Eigen::Vector3f(1, 2, 3)};
+  timed.times = {0.05f};
+  make_clouds();
+  const std::vector<PointCloud> scans = {clouds_[0], PointCloud(), nans, late, far_late, timed};
+  {
+    SequenceWriter w(seq_.string());
+    for (std::size_t i = 0; i < scans.size(); ++i) w.write_scan(i, scans[i]);
+    w.commit(make_info(scans.size()));
+  }
+  const SequenceReader r(seq_.string());
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    SCOPED_TRACE(i);
+    const PointCloud read = r.scan(i);
+    const ScanPresence p = r.presence(i);
+    const ScanPresence from_scan = r.ScanSequence::presence(i);  // the default: the scan read whole
+    EXPECT_EQ(p.empty, read.empty());
+    EXPECT_EQ(p.has_times, read.has_times());
+    EXPECT_EQ(p.has_finite, i == 0 || i == 3 || i == 4 || i == 5);
+    EXPECT_EQ(p.empty, from_scan.empty);
+    EXPECT_EQ(p.has_finite, from_scan.has_finite);
+    EXPECT_EQ(p.has_times, from_scan.has_times);
+  }
+  // A .bin of odd size and a label file of the wrong count: scan()'s errors, word for word.
+  write_text(seq_ / "scans/000001.bin", std::string(17, '\0'));
+  EXPECT_EQ(input_error_of([&] { r.presence(1); }), input_error_of([&] { r.scan(1); }));
+  write_text(seq_ / "scans/000000.label", std::string(3 * 4, '\0'));
+  EXPECT_EQ(input_error_of([&] { r.presence(0); }), input_error_of([&] { r.scan(0); }));
+  EXPECT_THAT(input_error_of([&] { r.presence(0); }), HasSubstr("3 labels for 50 points"));
+  fs::remove(seq_ / "scans/000003.bin");
+  EXPECT_EQ(input_error_of([&] { r.presence(3); }), input_error_of([&] { r.scan(3); }));
 }
 
 TEST_F(SequenceFolder, ReaderRejectsMalformedRooms) {

@@ -1,5 +1,6 @@
 #include "tsgraphs/io/kitti.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -13,6 +14,8 @@ namespace tsgraphs::io {
 namespace {
 
 constexpr std::size_t kFloatsPerPoint = 4;  // x y z intensity
+constexpr std::size_t kRecordBytes = kFloatsPerPoint * sizeof(float);
+constexpr std::size_t kProbeBlockPoints = 1024;  // points read at a time looking for a finite one
 constexpr int kPoseFields = 12;             // row-major 3x4
 // A pose row's 3x3 part is a rotation when R^T R is I within this (rows printed with six
 // digits are off by ~1e-6; a scaled or sheared matrix by far more) and det(R) is +1.
@@ -25,21 +28,31 @@ bool is_data_line(const std::string& text) {
 
 }  // namespace
 
-PointCloud read_kitti_bin(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+namespace {
+
+/// Opens a KITTI .bin scan and checks its size: its number of points. read_kitti_bin and
+/// probe_kitti_bin refuse the same files with the same words.
+std::size_t open_kitti_bin(const std::string& path, std::ifstream& in) {
+  in.open(path, std::ios::binary);
   if (!in) throw input_error(path, 0, "cannot open scan");
-  // Straight into the floats: a scan is read every 0.1 s of data, and copying it through a
-  // string stream took more time than the ground stage's slowest step.
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path, error);
   if (error) throw input_error(path, 0, "cannot read scan (" + error.message() + ")");
-  constexpr std::size_t kRecord = kFloatsPerPoint * sizeof(float);
   const std::size_t bytes = static_cast<std::size_t>(size);
-  if (bytes % kRecord != 0)
+  if (bytes % kRecordBytes != 0)
     throw input_error(path, 0, "size is not a multiple of 16 bytes (x y z intensity float32)");
-  const std::size_t n = bytes / kRecord;
+  return bytes / kRecordBytes;
+}
+
+}  // namespace
+
+PointCloud read_kitti_bin(const std::string& path) {
+  std::ifstream in;
+  const std::size_t n = open_kitti_bin(path, in);
+  // Straight into the floats: a scan is read every 0.1 s of data, and copying it through a
+  // string stream took more time than the ground stage's slowest step.
   std::vector<float> data(kFloatsPerPoint * n);
-  if (!in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(bytes)))
+  if (!in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(n * kRecordBytes)))
     throw input_error(path, 0, "cannot read scan");
   PointCloud cloud;
   cloud.reserve(n, true, false);
@@ -48,6 +61,23 @@ PointCloud read_kitti_bin(const std::string& path) {
     cloud.intensity.push_back(data[4 * i + 3]);
   }
   return cloud;
+}
+
+KittiBinPresence probe_kitti_bin(const std::string& path) {
+  std::ifstream in;
+  KittiBinPresence out;
+  out.points = open_kitti_bin(path, in);
+  // Points read a block at a time until one is finite: for most scans the first block.
+  std::vector<float> block(kFloatsPerPoint * kProbeBlockPoints);
+  for (std::size_t done = 0; done < out.points && !out.has_finite;) {
+    const std::size_t m = std::min(kProbeBlockPoints, out.points - done);
+    if (!in.read(reinterpret_cast<char*>(block.data()), static_cast<std::streamsize>(m * kRecordBytes)))
+      throw input_error(path, 0, "cannot read scan");
+    for (std::size_t i = 0; i < m && !out.has_finite; ++i)
+      out.has_finite = std::isfinite(block[4 * i]) && std::isfinite(block[4 * i + 1]) && std::isfinite(block[4 * i + 2]);
+    done += m;
+  }
+  return out;
 }
 
 std::vector<Pose3> read_kitti_poses(const std::string& path) {

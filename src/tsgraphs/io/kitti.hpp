@@ -14,6 +14,15 @@ namespace tsgraphs::io {
 /// (the pipeline's prefilter drops them).
 PointCloud read_kitti_bin(const std::string& path);
 
+/// What read_kitti_bin would find, as far as a run needs it of a scan it does not process:
+/// its number of points and whether one has finite coordinates, read no further than the
+/// first that has. The same InputErrors as read_kitti_bin.
+struct KittiBinPresence {
+  std::size_t points = 0;
+  bool has_finite = false;
+};
+KittiBinPresence probe_kitti_bin(const std::string& path);
+
 /// Reads KITTI poses: 12 numbers a line; blank and '#' lines are skipped. A line with another
 /// count, a non-number or a non-finite value is an InputError naming the file and line.
 std::vector<Pose3> read_kitti_poses(const std::string& path);

@@ -10,6 +10,14 @@
 
 namespace tsgraphs::io {
 
+/// What a run needs of a scan it will not process (no keyframe): whether it holds points,
+/// finite ones, and per-point times (de-skewing needs the scan itself).
+struct ScanPresence {
+  bool empty = true;        ///< no point at all
+  bool has_finite = false;  ///< a point with finite coordinates
+  bool has_times = false;   ///< per-point times
+};
+
 class ScanSequence {
  public:
   virtual ~ScanSequence() = default;
@@ -23,6 +31,17 @@ class ScanSequence {
   /// Scan `index` in the sensor frame. Safe to call from several threads at once. A scan that
   /// cannot be read is an InputError naming its file.
   virtual PointCloud scan(std::size_t index) const = 0;
+  /// What scan(index) holds as far as ScanPresence tells, with scan()'s InputErrors. This
+  /// reads the scan; a source that can tell more cheaply overrides it (a sequence folder: from
+  /// the file's size and its first finite point). Safe to call from several threads at once.
+  virtual ScanPresence presence(std::size_t index) const {
+    const PointCloud cloud = scan(index);
+    ScanPresence p;
+    p.empty = cloud.empty();
+    p.has_times = cloud.has_times();
+    for (const Eigen::Vector3f& q : cloud.points) p.has_finite = p.has_finite || q.allFinite();
+    return p;
+  }
   /// Path of the simulator's scene.yaml, "" for real data.
   virtual std::string scene_path() const { return ""; }
 };

@@ -177,6 +177,33 @@ std::string SequenceReader::scene_path() const {
   return fs::exists(p) ? p.string() : "";
 }
 
+namespace {
+
+/// A scan's .label file holding `bytes` for `n` points: an InputError unless one label a point.
+void check_label_count(const std::string& path, std::uintmax_t bytes, std::size_t n) {
+  if (bytes != n * sizeof(std::uint32_t))
+    throw input_error(path, 0, "has " + std::to_string(bytes / 4) + " labels for " + std::to_string(n) + " points");
+}
+
+}  // namespace
+
+ScanPresence SequenceReader::presence(std::size_t index) const {
+  const fs::path stem = fs::path(dir_) / "scans" / scan_stem(index);
+  const KittiBinPresence bin = probe_kitti_bin(stem.string() + ".bin");
+  const std::string label_path = stem.string() + ".label";
+  if (fs::exists(label_path)) {
+    std::error_code error;
+    const std::uintmax_t bytes = fs::file_size(label_path, error);
+    if (error) throw input_error(label_path, 0, "cannot read (" + error.message() + ")");
+    check_label_count(label_path, bytes, bin.points);
+  }
+  ScanPresence p;
+  p.empty = bin.points == 0;
+  p.has_finite = bin.has_finite;
+  p.has_times = fs::exists(stem.string() + ".time");  // its checks are scan()'s, which reads such a scan
+  return p;
+}
+
 PointCloud SequenceReader::scan(std::size_t index) const {
   const fs::path stem = fs::path(dir_) / "scans" / scan_stem(index);
   PointCloud cloud = read_kitti_bin(stem.string() + ".bin");
@@ -184,9 +211,7 @@ PointCloud SequenceReader::scan(std::size_t index) const {
   const std::string label_path = stem.string() + ".label";
   if (fs::exists(label_path)) {
     const std::string raw = read_all(label_path);
-    if (raw.size() != n * sizeof(std::uint32_t)) {
-      throw input_error(label_path, 0, "has " + std::to_string(raw.size() / 4) + " labels for " + std::to_string(n) + " points");
-    }
+    check_label_count(label_path, raw.size(), n);
     cloud.labels.resize(n);
     std::memcpy(cloud.labels.data(), raw.data(), raw.size());
     for (std::uint32_t& l : cloud.labels) l &= 0xFFFFu;  // SemanticKITTI: class in the low 16 bits

@@ -41,6 +41,9 @@ class SequenceReader : public ScanSequence {
   std::string scene_path() const override;
   /// Reads scan `index` with intensity, and labels when the .label file exists.
   PointCloud scan(std::size_t index) const override;
+  /// From the .bin's size and its first finite point, the .label's size and whether a .time
+  /// is there: the same InputErrors as scan() for what it checks, without building the cloud.
+  ScanPresence presence(std::size_t index) const override;
 
  private:
   std::string dir_;

@@ -58,6 +58,7 @@ PreparedScan Pipeline::prepare(std::size_t scan_index, double stamp, const Point
   out.record.stamp = stamp;
   out.record.odom = odom;
   out.input_empty = !has_finite_point(scan);
+  out.input_no_points = scan.empty();
   if (keyframe_candidate) run_keyframe_steps(scan, odom, &out);
   return out;
 }
@@ -127,14 +128,14 @@ const ScanRecord& Pipeline::process(PreparedScan prepared, const PointCloud& sca
     last_ground_ = std::move(prepared.ground);
     if (prepared.cloud.empty()) {
       record.warning = !prepared.input_empty ? "no point left after prefiltering: skipped"
-                       : scan.empty()        ? "empty scan: skipped"
+                       : prepared.input_no_points ? "empty scan: skipped"
                                              : "no finite point (all NaN): skipped";
     } else {
       selector_.accept(record.odom);
       add_keyframe(record, std::move(prepared.cloud), std::move(prepared.planes));
     }
   } else if (prepared.input_empty) {
-    record.warning = scan.empty() ? "empty scan: skipped" : "no finite point (all NaN): skipped";
+    record.warning = prepared.input_no_points ? "empty scan: skipped" : "no finite point (all NaN): skipped";
   }
   record.frontend_ms = prepared_ms + ms_since(start);
   scan_log_.append(record);

@@ -30,6 +30,7 @@ struct PreparedScan {
   ground::GroundScan ground;
   std::optional<std::vector<walls::PlaneObservation>> planes;
   bool input_empty = false;   ///< no finite point (empty or all NaN): skipped with a warning
+  bool input_no_points = false;  ///< no point at all (the warning says "empty", not "all NaN")
 };
 
 /// A loop closure as accepted (the graph's edge may later move: keyframe retirement folds it).
@@ -73,7 +74,13 @@ class Pipeline {
   /// runs the steps itself on `scan` (the one given to prepare) for a keyframe not prepared as one.
   PreparedScan prepare(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom,
                        bool keyframe_candidate) const;
+  /// `scan` is used only when the scan is a keyframe (would_be_keyframe): a caller may pass
+  /// an empty cloud for another, with the prepared scan's input_empty and input_no_points
+  /// saying what it held.
   const ScanRecord& process(PreparedScan prepared, const PointCloud& scan);
+  /// Whether process() will take a scan at `odom` (the next, in order) as a keyframe, if it
+  /// has points left after prefiltering.
+  bool would_be_keyframe(const Pose3& odom) const { return selector_.is_keyframe(odom); }
   /// Final full optimisation; call once after the last scan.
   void finish();
 

@@ -29,6 +29,8 @@ struct Loaded {
   std::size_t index = 0;
   bool keyframe_candidate = false;
   Pose3 odom = Pose3::Identity();
+  io::ScanPresence presence;
+  bool loaded = false;  ///< `scan` read whole (else only its presence: no keyframe is expected)
   PointCloud scan;      ///< as read (de-skewed), until processed
   PreparedScan prepared;
   std::string error;    ///< why the scan file could not be read
@@ -118,6 +120,22 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
     const double sweep = static_cast<double>(*hi - *lo);
     return sweep > 0.0 && interval > deskew.max_interval_ratio * sweep;
   };
+  // With the odometry given, a scan is first asked only whether it holds points: most scans
+  // are no keyframe, and that is all the run needs of them (read whole, they were 9 % of the
+  // built-in atrium's CPU). The LiDAR odometry needs every scan whole.
+  const bool presence_first = !odometry.estimate;
+  const auto read_whole = [&](Loaded& l) {
+    l.scan = sequence.scan(l.index);
+    l.loaded = true;
+    l.presence.empty = l.scan.empty();
+    l.presence.has_finite = has_finite_point(l.scan);
+    l.presence.has_times = l.scan.has_times();
+  };
+  // A scan not read whole: what process() says of it comes from its presence.
+  const auto tell_presence = [](Loaded& l) {
+    l.prepared.input_empty = !l.presence.has_finite;
+    l.prepared.input_no_points = l.presence.empty;
+  };
   tbb::parallel_pipeline(
       tokens,
       tbb::make_filter<void, Loaded>(tbb::filter_mode::serial_in_order,
@@ -133,7 +151,12 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
           tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::parallel,
                                            [&](Loaded l) {
                                              try {
-                                               l.scan = sequence.scan(l.index);
+                                               if (presence_first) {
+                                                 l.presence = sequence.presence(l.index);
+                                                 if (l.presence.has_times) read_whole(l);  // de-skewed in order
+                                               } else {
+                                                 read_whole(l);
+                                               }
                                              } catch (const std::exception& e) {
                                                l.error = e.what();
                                              }
@@ -172,19 +195,37 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
                                              }
                                              // As Pipeline::process: a scan without a finite point is no keyframe.
                                              l.keyframe_candidate =
-                                                 has_finite_point(l.scan) && candidates.is_keyframe(l.odom);
+                                                 l.presence.has_finite && candidates.is_keyframe(l.odom);
                                              if (l.keyframe_candidate) candidates.accept(l.odom);
                                              return l;
                                            }) &
           tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::parallel,
                                            [&](Loaded l) {
                                              const std::size_t i = l.index;
+                                             if (l.keyframe_candidate && !l.loaded) {
+                                               try {
+                                                 read_whole(l);
+                                               } catch (const std::exception& e) {
+                                                 l.error = e.what();
+                                                 l.keyframe_candidate = false;
+                                               }
+                                             }
                                              l.prepared = pipeline.prepare(i, info.times[i], l.scan, l.odom,
                                                                            l.keyframe_candidate);
+                                             if (!l.loaded && l.error.empty()) tell_presence(l);
                                              return l;
                                            }) &
           tbb::make_filter<Loaded, void>(tbb::filter_mode::serial_in_order, [&](Loaded l) {
             const std::size_t i = l.index;
+            // A keyframe the guess missed (after a scan without points) is read whole now.
+            if (!l.loaded && l.error.empty() && pipeline.would_be_keyframe(l.odom)) {
+              try {
+                read_whole(l);
+              } catch (const std::exception& e) {
+                l.error = e.what();
+                l.prepared.input_empty = l.prepared.input_no_points = true;  // as an unreadable scan
+              }
+            }
             const ScanRecord& rec = pipeline.process(std::move(l.prepared), l.scan);
             if (!l.odometry_warning.empty()) {
               ++run.num_odometry_lost;
