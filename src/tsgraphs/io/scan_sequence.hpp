@@ -34,6 +34,8 @@ class ScanSequence {
   /// What scan(index) holds as far as ScanPresence tells, with scan()'s InputErrors. This
   /// reads the scan; a source that can tell more cheaply overrides it (a sequence folder: from
   /// the file's size and its first finite point). Safe to call from several threads at once.
+  /// Whether presence() is cheaper than scan(): only then does a run ask it first.
+  virtual bool presence_is_cheap() const { return false; }
   virtual ScanPresence presence(std::size_t index) const {
     const PointCloud cloud = scan(index);
     ScanPresence p;

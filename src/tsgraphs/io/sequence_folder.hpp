@@ -44,6 +44,7 @@ class SequenceReader : public ScanSequence {
   /// From the .bin's size and its first finite point, the .label's size and whether a .time
   /// is there: the same InputErrors as scan() for what it checks, without building the cloud.
   ScanPresence presence(std::size_t index) const override;
+  bool presence_is_cheap() const override { return true; }
 
  private:
   std::string dir_;

@@ -120,10 +120,11 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
     const double sweep = static_cast<double>(*hi - *lo);
     return sweep > 0.0 && interval > deskew.max_interval_ratio * sweep;
   };
-  // With the odometry given, a scan is first asked only whether it holds points: most scans
-  // are no keyframe, and that is all the run needs of them (read whole, they were 9 % of the
-  // built-in atrium's CPU). The LiDAR odometry needs every scan whole.
-  const bool presence_first = !odometry.estimate;
+  // With the odometry given, a scan is first asked only whether it holds points where the
+  // source tells that cheaply: most scans are no keyframe, and that is all the run needs of
+  // them (read whole, they were 9 % of the built-in atrium's CPU). The LiDAR odometry needs
+  // every scan whole.
+  const bool presence_first = !odometry.estimate && sequence.presence_is_cheap();
   const auto read_whole = [&](Loaded& l) {
     l.scan = sequence.scan(l.index);
     l.loaded = true;
