@@ -21,13 +21,17 @@ std::string decompress_zstd(const char* src, std::uint64_t n, std::uint64_t max_
 /// InputError naming `from` for data that is not zstd or ends inside a frame.
 void decompress_zstd_file(const std::string& from, const std::string& to);
 
-/// zstd at `level` (1: fastest), one frame that records its content size.
-std::string compress_zstd(const std::string& in, int level);
+/// The zstd level recordings are written with: the fastest (bags are written once by simulate,
+/// read many times), and rosbag2's own default.
+constexpr int kZstdLevel = 1;
+
+/// zstd at `level`, one frame that records its content size.
+std::string compress_zstd(const std::string& in, int level = kZstdLevel);
 
 /// One lz4 frame that records its content size.
 std::string compress_lz4(const std::string& in);
 
 /// A file compressed with zstd at `level` into `to` (created or truncated), streamed.
-void compress_zstd_file(const std::string& from, const std::string& to, int level);
+void compress_zstd_file(const std::string& from, const std::string& to, int level = kZstdLevel);
 
 }  // namespace tsgraphs::io

@@ -27,8 +27,6 @@ constexpr std::uint64_t kFooterContentBytes = 20; // summary_start, summary_offs
 // A chunk's uncompressed records at most (as ROS1 bag chunks): a larger size word is corrupt,
 // and decompressing it would allocate what the file does not hold.
 constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{1} << 30;
-// The fastest zstd level: bags are written once by simulate, read many times.
-constexpr int kZstdLevel = 1;
 
 enum Op : std::uint8_t {
   kHeader = 0x01, kFooter = 0x02, kSchema = 0x03, kChannel = 0x04, kMessage = 0x05, kChunk = 0x06,
@@ -160,7 +158,7 @@ std::string record(std::uint8_t op, const std::string& content) {
 }
 
 std::string compress(Compression c, const std::string& in) {
-  if (c == Compression::zstd) return compress_zstd(in, kZstdLevel);
+  if (c == Compression::zstd) return compress_zstd(in);
   if (c == Compression::lz4) return compress_lz4(in);
   return in;
 }

@@ -34,8 +34,6 @@ constexpr char kMcapMagic[] = "\x89MCAP0\r\n";
 // A message decompressed (compression_mode MESSAGE) at most this large, as MCAP chunks: a
 // larger one is corrupt, and would allocate what the file does not hold.
 constexpr std::uint64_t kMaxMessageBytes = std::uint64_t{1} << 30;
-// The zstd level rosbag2 compresses with by default: the fastest.
-constexpr int kZstdLevel = 1;
 
 /// A topic as a storage records it.
 struct Topic {
@@ -594,7 +592,7 @@ template <class Sink>
 void for_each_message(const ScanSequence& sequence, const Pose3& sensor_to_base, Rosbag2Compression compression,
                       Sink&& write) {
   const auto sink = [&](Out m) {
-    if (compression == Rosbag2Compression::message) m.cdr = compress_zstd(m.cdr, kZstdLevel);
+    if (compression == Rosbag2Compression::message) m.cdr = compress_zstd(m.cdr);
     write(m);
   };
   const SequenceInfo& info = sequence.info();
@@ -733,7 +731,7 @@ void write_rosbag2(const ScanSequence& sequence, const std::string& path, Rosbag
                                      ? write_mcap(sequence, target, layout, topics, compression, sensor_to_base)
                                      : write_sqlite(sequence, target, layout, topics, sensor_to_base);
     if (file_compressed) {  // as rosbag2 does once a file is closed: the file replaced by its .zstd
-      compress_zstd_file(target, target + ".zstd", kZstdLevel);
+      compress_zstd_file(target, target + ".zstd");
       fs::remove(target);
     }
     if (folder) {
