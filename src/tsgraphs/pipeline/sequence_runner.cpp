@@ -22,6 +22,10 @@ namespace {
 // walking pace is ~10 scans at 10 Hz), so that its keyframe steps run beside the processing of
 // the one before; each holds a raw scan (about 1 MB) from reading to processing.
 constexpr std::size_t kTokensPerThread = 8;
+// The same when scans are asked their presence first: a scan that is no keyframe then holds a
+// few bytes in flight, so the look-ahead reaches several keyframe candidates, whose steps fill
+// the other core while the in-order stage takes a slow keyframe (a room's segmentation, a loop).
+constexpr std::size_t kTokensPerThreadPresenceFirst = 32;
 // Lost odometry scans told one by one; more are counted at the end.
 constexpr std::size_t kLostScansTold = 5;
 
@@ -103,8 +107,6 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
   // Reading and the keyframe steps (prefilter, ground, planes of keyframe candidates) run in
   // parallel on the next scans; the odometry and the pipeline take them in order, so the
   // result is the same as one scan at a time.
-  const std::size_t tokens = kTokensPerThread * static_cast<std::size_t>(std::max(
-      1, static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))));
   std::size_t next = 0;
   KeyframeSelector candidates(pipeline.config().keyframes);  // guesses the keyframes from odometry alone
   const DeskewConfig& deskew = pipeline.config().deskew;
@@ -125,6 +127,9 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
   // them (read whole, they were 9 % of the built-in atrium's CPU). The LiDAR odometry needs
   // every scan whole.
   const bool presence_first = !odometry.estimate && sequence.presence_is_cheap();
+  const std::size_t tokens = (presence_first ? kTokensPerThreadPresenceFirst : kTokensPerThread) *
+                             static_cast<std::size_t>(std::max(1, static_cast<int>(tbb::global_control::active_value(
+                                                                      tbb::global_control::max_allowed_parallelism))));
   const auto read_whole = [&](Loaded& l) {
     l.scan = sequence.scan(l.index);
     l.loaded = true;
