@@ -233,6 +233,34 @@ TEST(PlaneMapper, UpdateMovesPointsWithKeyframesAndRevisitsDoNotGrowThem) {
   EXPECT_NEAR(max_x, 5.0f, voxel);
 }
 
+TEST(PlaneMapper, AssociationOverlapsTheLandmarksPointsWhereTheyAreNow) {
+  // The overlap test reads each landmark's points hashed once and kept beside them: a landmark
+  // moved by update() is overlapped where it is now, not where it was mapped.
+  PlaneMapper mapper;
+  const Pose3 T0 = pose_at(2.0, 2.0);
+  mapper.add_landmark(0, observe_rectangle({0.0, 4.9}, {4.0, 4.9}, 2.9, T0), T0, 0);
+  const PlaneObservation west = observe_rectangle({0.0, 4.9}, {2.0, 4.9}, 2.9, T0);
+  const PlaneObservation east = observe_rectangle({5.5, 4.9}, {6.5, 4.9}, 2.9, T0);
+  EXPECT_EQ(mapper.associate(west, T0), 0);
+  EXPECT_EQ(mapper.associate(east, T0), -1);  // 1.5 m beyond the face's end
+
+  // The keyframe turns out 3 m further east: the face now spans x 3..7.
+  Pose3 moved = T0;
+  moved.translation().x() += 3.0;
+  mapper.update({}, [&](int) { return moved; });
+  EXPECT_EQ(mapper.associate(west, T0), -1);  // 1 m short of the face's new west end
+  EXPECT_EQ(mapper.associate(east, T0), 0);
+
+  // And so after a merge, which rebuilds the kept landmark from both.
+  mapper.add_landmark(1, observe_rectangle({-6.0, 4.9}, {-4.0, 4.9}, 2.9, T0), T0, 1);
+  const PlaneObservation far_west = observe_rectangle({-3.0, 4.9}, {-2.0, 4.9}, 2.9, T0);
+  EXPECT_EQ(mapper.associate(far_west, T0), -1);
+  mapper.merge(0, 1, [&](int kf) { return kf == 0 ? moved : T0; });
+  EXPECT_EQ(mapper.associate(far_west, T0), -1);
+  EXPECT_EQ(mapper.associate(observe_rectangle({-5.0, 4.9}, {-4.5, 4.9}, 2.9, T0), T0), 0);
+  EXPECT_EQ(mapper.associate(east, T0), 0);
+}
+
 TEST(PlaneMapper, ARetiredKeyframesObservationsAreForgottenButALandmarksLastStays) {
   PlaneMapper mapper;
   const Pose3 T0 = pose_at(2.0, 2.0), T1 = pose_at(6.0, 2.0);

@@ -21,35 +21,6 @@ Eigen::Array3i cell_of(const Eigen::Vector3f& p, double inv_size) {
 // Smallest cell of a hash (m): keeps cell keys finite for a zero radius or voxel.
 constexpr double kMinCell = 1e-3;
 
-// Points hashed on cells of edge `radius`: "is any point within radius of q" looks at 27 cells.
-class PointHash {
- public:
-  PointHash(const std::vector<Eigen::Vector3f>& pts, double radius)
-      : inv_(1.0 / std::max(radius, kMinCell)), r2_(static_cast<float>(radius * radius)) {
-    for (const Eigen::Vector3f& p : pts) cells_[voxel_key(p, inv_)].push_back(p);
-  }
-  bool any_within(const Eigen::Vector3f& q) const {
-    const Eigen::Array3i c = cell_of(q, inv_);
-    for (int dx = -1; dx <= 1; ++dx) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dz = -1; dz <= 1; ++dz) {
-          const auto it = cells_.find(voxel_key(c.x() + dx, c.y() + dy, c.z() + dz));
-          if (it == cells_.end()) continue;
-          for (const Eigen::Vector3f& p : it->second) {
-            if ((p - q).squaredNorm() <= r2_) return true;
-          }
-        }
-      }
-    }
-    return false;
-  }
-
- private:
-  double inv_;
-  float r2_;
-  std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3f>> cells_;
-};
-
 // Angle between two unit normals, robust near zero (acos is not).
 double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
@@ -69,22 +40,44 @@ std::vector<Eigen::Vector3f> transform_points(const std::vector<Eigen::Vector3f>
   return out;
 }
 
-// Adds `pts` to the voxel-downsampled set `dst` (one point per voxel of edge `voxel`, the
-// first one that fell in it), so a landmark's point set grows with the area seen, not with
-// the number of visits.
 // Share of `pts` that lie within the hash's radius of one of its points.
-double overlap_ratio(const std::vector<Eigen::Vector3f>& pts, const PointHash& hash) {
+template <class Hash>
+double overlap_ratio(const std::vector<Eigen::Vector3f>& pts, const Hash& hash) {
   if (pts.empty()) return 0.0;
   std::size_t hits = 0;
   for (const Eigen::Vector3f& p : pts) hits += hash.any_within(p) ? 1 : 0;
   return static_cast<double>(hits) / static_cast<double>(pts.size());
 }
 
-bool any_within(const std::vector<Eigen::Vector3f>& pts, const PointHash& hash) {
+template <class Hash>
+bool any_within(const std::vector<Eigen::Vector3f>& pts, const Hash& hash) {
   return std::any_of(pts.begin(), pts.end(), [&](const Eigen::Vector3f& p) { return hash.any_within(p); });
 }
 
 }  // namespace
+
+PlaneMapper::PointHash::PointHash(const std::vector<Eigen::Vector3f>& pts, double radius)
+    : inv_(1.0 / std::max(radius, kMinCell)), r2_(static_cast<float>(radius * radius)) {
+  for (const Eigen::Vector3f& p : pts) add(p);
+}
+
+void PlaneMapper::PointHash::add(const Eigen::Vector3f& p) { cells_[voxel_key(p, inv_)].push_back(p); }
+
+bool PlaneMapper::PointHash::any_within(const Eigen::Vector3f& q) const {
+  const Eigen::Array3i c = cell_of(q, inv_);
+  for (int dx = -1; dx <= 1; ++dx) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dz = -1; dz <= 1; ++dz) {
+        const auto it = cells_.find(voxel_key(c.x() + dx, c.y() + dy, c.z() + dz));
+        if (it == cells_.end()) continue;
+        for (const Eigen::Vector3f& p : it->second) {
+          if ((p - q).squaredNorm() <= r2_) return true;
+        }
+      }
+    }
+  }
+  return false;
+}
 
 PlaneMapper::PlaneMapper(PlaneMapperConfig config) : config_(config) {}
 
@@ -104,8 +97,7 @@ int PlaneMapper::associate(const PlaneObservation& obs, const Pose3& T_map_keyfr
     const double mahalanobis = std::sqrt(da * da + dd * dd);
     if (mahalanobis > best_mahalanobis || (best >= 0 && mahalanobis == best_mahalanobis)) continue;
     if (pts.empty()) pts = transform_points(obs.points, T_map_keyframe);
-    const PointHash hash(lm.points, config_.overlap_distance);
-    if (overlap_ratio(pts, hash) < config_.min_overlap_ratio) continue;
+    if (overlap_ratio(pts, index_.at(id).near) < config_.min_overlap_ratio) continue;
     best = id;
     best_mahalanobis = mahalanobis;
   }
@@ -118,7 +110,7 @@ void PlaneMapper::add_landmark(int id, const PlaneObservation& obs, const Pose3&
   lm.plane = obs.plane.transformed(T_map_keyframe);
   lm.vertical = obs.vertical;
   landmarks_[id] = std::move(lm);
-  index_[id] = {};
+  index_.insert_or_assign(id, PointIndex{{}, {}, PointHash({}, config_.overlap_distance)});
   add_observation(id, obs, T_map_keyframe, keyframe_id);
 }
 
@@ -134,18 +126,21 @@ void PlaneMapper::add_observation(int id, const PlaneObservation& obs, const Pos
 
 void PlaneMapper::add_points(PlaneLandmark& lm, const std::vector<Eigen::Vector3f>& pts_keyframe,
                              const Pose3& T_map_keyframe, int keyframe_id) {
-  PointIndex& index = index_[lm.id];
+  PointIndex& index = index_.at(lm.id);
   index.poses[keyframe_id] = T_map_keyframe;
   const double inv = 1.0 / std::max(config_.landmark_voxel, kMinCell);
   for (const Eigen::Vector3f& p : transform_points(pts_keyframe, T_map_keyframe)) {
-    if (index.occupied.insert(voxel_key(p, inv)).second) lm.points.push_back(p);
+    if (!index.occupied.insert(voxel_key(p, inv)).second) continue;
+    lm.points.push_back(p);
+    index.near.add(p);
   }
 }
 
 void PlaneMapper::rebuild(PlaneLandmark& lm, const std::function<Pose3(int)>& keyframe_pose) {
-  PointIndex& index = index_[lm.id];
+  PointIndex& index = index_.at(lm.id);
   index.occupied.clear();
   index.poses.clear();
+  index.near.clear();
   lm.points.clear();
   for (const auto& [kf, pts] : lm.observations) add_points(lm, pts, keyframe_pose(kf), kf);
 }
@@ -156,7 +151,7 @@ void PlaneMapper::update(const std::map<int, Plane>& planes, const std::function
     if (it != landmarks_.end()) it->second.plane = plane;
   }
   for (auto& [id, lm] : landmarks_) {
-    const PointIndex& index = index_[id];
+    const PointIndex& index = index_.at(id);
     bool moved = false;
     for (const auto& [kf, pts] : lm.observations) {
       const auto used = index.poses.find(kf);
@@ -169,6 +164,7 @@ void PlaneMapper::update(const std::map<int, Plane>& planes, const std::function
 
 std::vector<std::pair<int, int>> PlaneMapper::find_duplicates() const {
   const double cos_merge = std::cos(config_.merge_angle_deg * M_PI / 180.0);
+  const bool same_radius = config_.merge_overlap_distance == config_.overlap_distance;
   std::vector<int> ids;
   std::vector<const PlaneLandmark*> lms;
   std::vector<Eigen::Vector3d> centroids;
@@ -186,7 +182,10 @@ std::vector<std::pair<int, int>> PlaneMapper::find_duplicates() const {
   };
   for (std::size_t a = 0; a < lms.size(); ++a) {
     if (lms[a]->points.empty()) continue;
-    std::optional<PointHash> hash;  // made when a pair first passes the plane tests
+    // A's points hashed at the merge radius: association's hash when the two radii agree
+    // (the default), else made when a pair first passes the plane tests.
+    std::optional<PointHash> own;
+    const PointHash* hash = same_radius ? &index_.at(ids[a]).near : nullptr;
     for (std::size_t b = a + 1; b < lms.size(); ++b) {
       const PlaneLandmark& A = *lms[a];
       const PlaneLandmark& B = *lms[b];
@@ -195,7 +194,7 @@ std::vector<std::pair<int, int>> PlaneMapper::find_duplicates() const {
       if (std::abs(A.plane.signed_distance(centroids[b])) > config_.merge_distance) continue;
       if (std::abs(B.plane.signed_distance(centroids[a])) > config_.merge_distance) continue;
       if (find(a) == find(b)) continue;
-      if (!hash) hash.emplace(A.points, config_.merge_overlap_distance);
+      if (!hash) hash = &own.emplace(A.points, config_.merge_overlap_distance);
       if (!any_within(B.points, *hash)) continue;
       parent[std::max(find(a), find(b))] = std::min(find(a), find(b));
     }

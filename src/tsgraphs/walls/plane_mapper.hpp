@@ -4,6 +4,7 @@
 /// finding duplicate landmarks of one face so they can be merged.
 #include <cstdint>
 #include <functional>
+#include <unordered_map>
 #include <unordered_set>
 #include <map>
 #include <utility>
@@ -79,11 +80,29 @@ class PlaneMapper {
   const PlaneMapperConfig& config() const { return config_; }
 
  private:
+  /// Points hashed on cells of edge `radius`: whether any lies within radius of a point
+  /// looks at 27 cells.
+  class PointHash {
+   public:
+    PointHash(const std::vector<Eigen::Vector3f>& pts, double radius);
+    void add(const Eigen::Vector3f& p);
+    void clear() { cells_.clear(); }
+    bool any_within(const Eigen::Vector3f& q) const;
+
+   private:
+    double inv_;
+    float r2_;
+    std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3f>> cells_;
+  };
   /// Per landmark: the voxels its points occupy and the keyframe poses they were placed with,
-  /// so that adding an observation is cheap and update() redoes only landmarks that moved.
+  /// so that adding an observation is cheap and update() redoes only landmarks that moved;
+  /// and its points hashed at overlap_distance, kept with them: association asks every
+  /// landmark in its gate, and hashing each one's points anew per observation was most of
+  /// its cost.
   struct PointIndex {
     std::unordered_set<std::uint64_t> occupied;
     std::map<int, Pose3> poses;
+    PointHash near;
   };
   void add_points(PlaneLandmark& lm, const std::vector<Eigen::Vector3f>& pts_keyframe, const Pose3& T_map_keyframe,
                   int keyframe_id);
