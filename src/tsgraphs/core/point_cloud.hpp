@@ -1,6 +1,7 @@
 #pragma once
 /// A point cloud with optional per-point intensity, class label and time.
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +32,11 @@ struct PointCloud {
   bool has_intensity() const { return !intensity.empty(); }
   bool has_labels() const { return !labels.empty(); }
   bool has_times() const { return !times.empty(); }
+  /// Whether any point is finite: an empty or all-NaN scan is skipped with a warning (and is no
+  /// keyframe), whether or not it is prefiltered.
+  bool has_finite_point() const {
+    return std::any_of(points.begin(), points.end(), [](const Eigen::Vector3f& p) { return p.allFinite(); });
+  }
   void reserve(std::size_t n, bool with_intensity, bool with_labels, bool with_times = false) {
     points.reserve(n);
     if (with_intensity) intensity.reserve(n);

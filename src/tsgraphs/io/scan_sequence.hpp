@@ -41,7 +41,7 @@ class ScanSequence {
     ScanPresence p;
     p.empty = cloud.empty();
     p.has_times = cloud.has_times();
-    for (const Eigen::Vector3f& q : cloud.points) p.has_finite = p.has_finite || q.allFinite();
+    p.has_finite = cloud.has_finite_point();
     return p;
   }
   /// Path of the simulator's scene.yaml, "" for real data.

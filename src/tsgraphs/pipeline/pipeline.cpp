@@ -57,7 +57,7 @@ PreparedScan Pipeline::prepare(std::size_t scan_index, double stamp, const Point
   out.record.scan_index = scan_index;
   out.record.stamp = stamp;
   out.record.odom = odom;
-  out.input_empty = !has_finite_point(scan);
+  out.input_empty = !scan.has_finite_point();
   out.input_no_points = scan.empty();
   if (keyframe_candidate) run_keyframe_steps(scan, odom, &out);
   return out;

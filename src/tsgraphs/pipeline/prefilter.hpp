@@ -25,8 +25,4 @@ struct PrefilterConfig {
 /// `num_non_finite`, when given, receives the number of NaN/inf points dropped.
 PointCloud prefilter(const PointCloud& scan, const PrefilterConfig& config, std::size_t* num_non_finite = nullptr);
 
-/// Whether the scan holds a finite point: an empty or all-NaN scan is skipped with a warning
-/// (and is no keyframe), whether or not it is prefiltered.
-bool has_finite_point(const PointCloud& scan);
-
 }  // namespace tsgraphs::pipeline

@@ -134,7 +134,7 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
     l.scan = sequence.scan(l.index);
     l.loaded = true;
     l.presence.empty = l.scan.empty();
-    l.presence.has_finite = has_finite_point(l.scan);
+    l.presence.has_finite = l.scan.has_finite_point();
     l.presence.has_times = l.scan.has_times();
   };
   // A scan not read whole: what process() says of it comes from its presence.
