@@ -40,7 +40,8 @@ std::vector<Eigen::Vector3f> transform_points(const std::vector<Eigen::Vector3f>
   return out;
 }
 
-// Share of `pts` that lie within the hash's radius of one of its points.
+// Share of `pts` that lie within the hash's radius of one of its points. (Templates only
+// because the hash is PlaneMapper's private type.)
 template <class Hash>
 double overlap_ratio(const std::vector<Eigen::Vector3f>& pts, const Hash& hash) {
   if (pts.empty()) return 0.0;
