@@ -31,11 +31,11 @@ class ScanSequence {
   /// Scan `index` in the sensor frame. Safe to call from several threads at once. A scan that
   /// cannot be read is an InputError naming its file.
   virtual PointCloud scan(std::size_t index) const = 0;
+  /// Whether presence() is cheaper than scan(): only then does a run ask it first.
+  virtual bool presence_is_cheap() const { return false; }
   /// What scan(index) holds as far as ScanPresence tells, with scan()'s InputErrors. This
   /// reads the scan; a source that can tell more cheaply overrides it (a sequence folder: from
   /// the file's size and its first finite point). Safe to call from several threads at once.
-  /// Whether presence() is cheaper than scan(): only then does a run ask it first.
-  virtual bool presence_is_cheap() const { return false; }
   virtual ScanPresence presence(std::size_t index) const {
     const PointCloud cloud = scan(index);
     ScanPresence p;
