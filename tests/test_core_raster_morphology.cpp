@@ -1,5 +1,5 @@
-// Dilation, erosion and closing by a disc: distances between cell centres, the channel widths
-// a closing fills, and nothing seen beyond the raster's edge.
+// Raster morphology for the map import: the dilation by a disc measured between cell centres,
+// and gaps bridged along rows, columns and diagonals up to a length, a dashed line's included.
 #include <gtest/gtest.h>
 
 #include <numeric>
@@ -12,80 +12,78 @@ using namespace tsgraphs;
 
 namespace {
 
-/// A mask from rows of text (any row order: the operations are symmetric): '#' set.
-std::vector<std::uint8_t> mask(const std::vector<std::string>& rows, int* cols, int* n_rows) {
-  *n_rows = static_cast<int>(rows.size());
-  *cols = static_cast<int>(rows.front().size());
-  std::vector<std::uint8_t> out;
-  for (const std::string& r : rows)
-    for (char ch : r) out.push_back(ch == '#');
-  return out;
+/// Two masks from rows of text (the operations do not care which row is the top): 'E' an end
+/// cell, '.' a gap cell, anything else neither.
+void masks(const std::vector<std::string>& text, std::vector<std::uint8_t>* end, std::vector<std::uint8_t>* gap,
+           int* cols, int* rows) {
+  *rows = static_cast<int>(text.size());
+  *cols = static_cast<int>(text.front().size());
+  end->clear();
+  gap->clear();
+  for (const std::string& r : text)
+    for (char ch : r) {
+      end->push_back(ch == 'E');
+      gap->push_back(ch == '.');
+    }
 }
 
 std::size_t count(const std::vector<std::uint8_t>& m) { return std::accumulate(m.begin(), m.end(), std::size_t{0}); }
 
-/// Two 8 x 12 set blocks with a channel of `gap` unset columns between them, and unset margins.
-std::vector<std::uint8_t> blocks_with_channel(int gap, int* cols, int* rows) {
-  *cols = 4 + 8 + gap + 8 + 4;
-  *rows = 20;
-  std::vector<std::uint8_t> m(static_cast<std::size_t>(*cols) * *rows, 0);
-  for (int r = 4; r < 16; ++r)
-    for (int c = 4; c < *cols - 4; ++c) m[static_cast<std::size_t>(r) * *cols + c] = c < 12 || c >= 12 + gap;
-  return m;
+/// The bridged cells as text: 'x' bridged, the rest as given.
+std::vector<std::string> show(const std::vector<std::string>& text, const std::vector<std::uint8_t>& bridged) {
+  std::vector<std::string> out = text;
+  const int cols = static_cast<int>(text.front().size());
+  for (std::size_t i = 0; i < bridged.size(); ++i)
+    if (bridged[i]) out[i / cols][i % cols] = 'x';
+  return out;
 }
 
 }  // namespace
 
-TEST(RasterMorphology, DilationAndErosionMeasureBetweenCellCentres) {
-  int cols, rows;
-  const std::vector<std::uint8_t> dot = mask({".....", ".....", "..#..", ".....", "....."}, &cols, &rows);
-  EXPECT_EQ(count(dilate(dot, cols, rows, 1.0)), 5u);  // the diagonals are sqrt(2) away
-  EXPECT_EQ(count(dilate(dot, cols, rows, 1.5)), 9u);
-  EXPECT_EQ(count(dilate(dot, cols, rows, 2.0)), 13u);
-  const std::vector<std::uint8_t> block = mask({".....", ".###.", ".###.", ".###.", "....."}, &cols, &rows);
-  const std::vector<std::uint8_t> core = erode(block, cols, rows, 1.0);
-  EXPECT_EQ(count(core), 1u);
-  EXPECT_TRUE(core[2 * cols + 2]);
-  // Beyond the raster counts as unset: a full raster erodes from its edge.
-  const std::vector<std::uint8_t> full(25, 1);
-  EXPECT_EQ(count(erode(full, 5, 5, 1.0)), 9u);
+TEST(RasterMorphology, DilationMeasuresBetweenCellCentres) {
+  std::vector<std::uint8_t> dot(25, 0);
+  dot[12] = 1;
+  EXPECT_EQ(count(dilate(dot, 5, 5, 1.0)), 5u);  // the diagonals are sqrt(2) away
+  EXPECT_EQ(count(dilate(dot, 5, 5, 1.5)), 9u);
+  EXPECT_EQ(count(dilate(dot, 5, 5, 2.0)), 13u);
+  EXPECT_EQ(count(dilate(dot, 5, 5, 0.0)), 1u);
+  EXPECT_THROW(dilate(dot, 5, 4, 1.0), std::invalid_argument);
 }
 
-TEST(RasterMorphology, ClosingFillsChannelsUpToTwiceTheRadius) {
-  for (const double radius : {1.0, 2.0, 3.0}) {
-    for (int gap = 1; gap <= 8; ++gap) {
-      int cols, rows;
-      const std::vector<std::uint8_t> m = blocks_with_channel(gap, &cols, &rows);
-      const std::vector<std::uint8_t> c = close(m, cols, rows, radius);
-      const bool filled = c[static_cast<std::size_t>(10) * cols + 12 + gap / 2];  // mid-channel, mid-height
-      EXPECT_EQ(filled, gap <= 2 * radius) << "radius " << radius << ", gap " << gap;
-      for (std::size_t i = 0; i < m.size(); ++i) ASSERT_TRUE(!m[i] || c[i]);  // keeps every set cell
-      // Nothing grows round the blocks' outer edges (straight edges and convex corners).
-      for (int r = 0; r < rows; ++r)
-        for (int col = 0; col < cols; ++col)
-          if (r < 4 || r >= 16 || col < 4 || col >= cols - 4) ASSERT_FALSE(c[static_cast<std::size_t>(r) * cols + col]);
-    }
-  }
+TEST(RasterMorphology, GapsBetweenEndsAreBridgedUpToTheLength) {
+  const std::vector<std::string> text = {"E.E..E...E....E", "###############", "E..#E.........."};
+  std::vector<std::uint8_t> end, gap;
+  int cols, rows;
+  masks(text, &end, &gap, &cols, &rows);
+  // Runs of 1, 2, 3 and 4 gap cells between ends; a run broken by another cell ('#'), and one
+  // open to the raster's edge, are never bridged.
+  EXPECT_EQ(show(text, bridge_gaps(end, gap, cols, rows, 3.0)),
+            (std::vector<std::string>{"ExExxExxxE....E", "###############", "E..#E.........."}));
+  EXPECT_EQ(show(text, bridge_gaps(end, gap, cols, rows, 4.0))[0], "ExExxExxxExxxxE");
+  EXPECT_EQ(count(bridge_gaps(end, gap, cols, rows, 0.5)), 0u);
 }
 
-TEST(RasterMorphology, ClosingSeesNothingBeyondTheRastersEdge) {
+TEST(RasterMorphology, ColumnsAndDiagonalsBridgeTooADiagonalStepCountingSqrtTwo) {
+  const std::vector<std::string> text = {"E#E#E", ".#.##", ".#E##", "E##.#", "####E"};
+  std::vector<std::uint8_t> end, gap;
   int cols, rows;
-  // Set cells along the raster's edge, a pocket open to it: the closing is the one the same
-  // cells get inside a larger raster with nothing set round them.
-  const std::vector<std::uint8_t> m =
-      mask({"###########", "###########", "###.....###", "###.....###", "###.....###"}, &cols, &rows);
-  const int pad = 5, big_cols = cols + 2 * pad, big_rows = rows + 2 * pad;
-  std::vector<std::uint8_t> big(static_cast<std::size_t>(big_cols) * big_rows, 0);
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c) big[static_cast<std::size_t>(r + pad) * big_cols + c + pad] = m[r * cols + c];
-  for (const double radius : {1.0, 2.0, 3.0}) {
-    const std::vector<std::uint8_t> small = close(m, cols, rows, radius), wide = close(big, big_cols, big_rows, radius);
-    for (int r = 0; r < rows; ++r)
-      for (int c = 0; c < cols; ++c)
-        EXPECT_EQ(small[r * cols + c], wide[static_cast<std::size_t>(r + pad) * big_cols + c + pad]) << radius;
-  }
-  EXPECT_FALSE(close(m, cols, rows, 1.0)[4 * cols + 5]);  // the pocket's mouth stays open
-  const std::vector<std::uint8_t> lone = mask({"#....", ".....", "....."}, &cols, &rows);
-  EXPECT_EQ(close(lone, cols, rows, 2.0), lone);
-  EXPECT_THROW(close(lone, cols, rows + 1, 1.0), std::invalid_argument);
+  masks(text, &end, &gap, &cols, &rows);
+  // Column 0: a run of 2 between ends; column 2: a run of 1; the diagonal from (2, 2) to (4, 4)
+  // a run of 1 diagonal step (1.41 cells).
+  EXPECT_EQ(show(text, bridge_gaps(end, gap, cols, rows, 2.0)),
+            (std::vector<std::string>{"E#E#E", "x#x##", "x#E##", "E##x#", "####E"}));
+  EXPECT_EQ(show(text, bridge_gaps(end, gap, cols, rows, 1.4))[3], "E##.#");  // too long for the diagonal
+}
+
+TEST(RasterMorphology, ADashedLineIsJoinedAcrossItsGaps) {
+  // A wall two cells thick seen in dashes, free space above and below: what a disc's closing
+  // leaves open, the gaps along the wall are bridged; nothing beside the wall is.
+  const std::vector<std::string> text = {"fffffffffffffffff", "EEEE..EEE..EEEE..", "EEEE..EEE..EEEE..",
+                                         "fffffffffffffffff"};
+  std::vector<std::uint8_t> end, gap;
+  int cols, rows;
+  masks(text, &end, &gap, &cols, &rows);
+  EXPECT_EQ(show(text, bridge_gaps(end, gap, cols, rows, 2.0)),
+            (std::vector<std::string>{"fffffffffffffffff", "EEEExxEEExxEEEE..", "EEEExxEEExxEEEE..",
+                                      "fffffffffffffffff"}));
 }

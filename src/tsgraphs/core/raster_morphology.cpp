@@ -1,5 +1,6 @@
 #include "tsgraphs/core/raster_morphology.hpp"
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -8,60 +9,69 @@
 namespace tsgraphs {
 namespace {
 
-// Distances are exact square roots of integers; this absorbs their float rounding.
-constexpr float kDistanceSlack = 1e-4f;
+// Distances are exact square roots of integers, and lengths whole steps: this absorbs rounding.
+constexpr double kSlack = 1e-4;
 
-void check(const std::vector<std::uint8_t>& mask, int cols, int rows, double radius) {
-  if (cols < 1 || rows < 1 || mask.size() != static_cast<std::size_t>(cols) * rows || !(radius >= 0.0))
-    throw std::invalid_argument("raster morphology: the mask's size disagrees with the raster, or a negative radius");
+void check(std::size_t size, int cols, int rows, double length) {
+  if (cols < 1 || rows < 1 || size != static_cast<std::size_t>(cols) * rows || !(length >= 0.0))
+    throw std::invalid_argument("raster morphology: a mask's size disagrees with the raster, or a negative length");
 }
 
-/// Distance (cells) from each cell to the nearest cell where `source` holds.
-std::vector<float> distance_to(const std::vector<std::uint8_t>& source, int cols, int rows, bool border_is_source) {
-  GridFrame f;
-  f.resolution = 1.0;
-  f.cols = cols;
-  f.rows = rows;
-  std::vector<std::uint8_t> open(source.size());
-  for (std::size_t i = 0; i < source.size(); ++i) open[i] = !source[i];
-  return distance_transform(f, open, border_is_source);
+/// Marks the gap runs of one line of cells (indices `line`) that qualify (see bridge_gaps).
+void bridge_line(const std::vector<std::size_t>& line, const std::vector<std::uint8_t>& end,
+                 const std::vector<std::uint8_t>& gap, int max_cells, std::vector<std::uint8_t>* out) {
+  long open = -1;  // the position after the last end cell, while only gap cells followed it
+  for (std::size_t k = 0; k < line.size(); ++k) {
+    const std::size_t i = line[k];
+    if (end[i]) {
+      const long run = open < 0 ? 0 : static_cast<long>(k) - open;
+      if (run > 0 && run <= max_cells)
+        for (std::size_t j = static_cast<std::size_t>(open); j < k; ++j) (*out)[line[j]] = 1;
+      open = static_cast<long>(k) + 1;
+    } else if (!gap[i]) {
+      open = -1;
+    }
+  }
 }
 
 }  // namespace
 
 std::vector<std::uint8_t> dilate(const std::vector<std::uint8_t>& mask, int cols, int rows, double radius) {
-  check(mask, cols, rows, radius);
-  const std::vector<float> d = distance_to(mask, cols, rows, false);
-  std::vector<std::uint8_t> out(mask.size());
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = d[i] <= static_cast<float>(radius) + kDistanceSlack;
-  return out;
-}
-
-std::vector<std::uint8_t> erode(const std::vector<std::uint8_t>& mask, int cols, int rows, double radius) {
-  check(mask, cols, rows, radius);
+  check(mask.size(), cols, rows, radius);
+  GridFrame f;
+  f.resolution = 1.0;
+  f.cols = cols;
+  f.rows = rows;
   std::vector<std::uint8_t> unset(mask.size());
   for (std::size_t i = 0; i < mask.size(); ++i) unset[i] = !mask[i];
-  const std::vector<float> d = distance_to(unset, cols, rows, true);
+  const std::vector<float> d = distance_transform(f, unset, false);
   std::vector<std::uint8_t> out(mask.size());
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = mask[i] && d[i] > static_cast<float>(radius) + kDistanceSlack;
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = d[i] <= radius + kSlack;
   return out;
 }
 
-std::vector<std::uint8_t> close(const std::vector<std::uint8_t>& mask, int cols, int rows, double radius) {
-  check(mask, cols, rows, radius);
-  const int pad = static_cast<int>(std::ceil(radius)) + 1;
-  const int pc = cols + 2 * pad, pr = rows + 2 * pad;
-  std::vector<std::uint8_t> padded(static_cast<std::size_t>(pc) * pr, 0);
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c)
-      padded[static_cast<std::size_t>(r + pad) * pc + c + pad] = mask[static_cast<std::size_t>(r) * cols + c];
-  const std::vector<std::uint8_t> closed = erode(dilate(padded, pc, pr, radius), pc, pr, radius);
-  std::vector<std::uint8_t> out(mask.size());
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c) {
-      const std::size_t i = static_cast<std::size_t>(r) * cols + c;
-      out[i] = mask[i] || closed[static_cast<std::size_t>(r + pad) * pc + c + pad];
+std::vector<std::uint8_t> bridge_gaps(const std::vector<std::uint8_t>& end, const std::vector<std::uint8_t>& gap,
+                                      int cols, int rows, double max_length) {
+  check(end.size(), cols, rows, max_length);
+  check(gap.size(), cols, rows, max_length);
+  std::vector<std::uint8_t> out(end.size(), 0);
+  const std::array<std::array<int, 2>, 4> directions = {{{1, 0}, {0, 1}, {1, 1}, {1, -1}}};
+  std::vector<std::size_t> line;
+  for (const auto& d : directions) {
+    const int max_cells = static_cast<int>(std::floor(max_length / std::hypot(d[0], d[1]) + kSlack));
+    if (max_cells < 1) continue;
+    // Each line starts at a cell whose predecessor lies off the raster.
+    for (int r = 0; r < rows; ++r) {
+      for (int c = 0; c < cols; ++c) {
+        const int pc = c - d[0], pr = r - d[1];
+        if (pc >= 0 && pr >= 0 && pc < cols && pr < rows) continue;
+        line.clear();
+        for (int cc = c, rr = r; cc >= 0 && rr >= 0 && cc < cols && rr < rows; cc += d[0], rr += d[1])
+          line.push_back(static_cast<std::size_t>(rr) * cols + cc);
+        bridge_line(line, end, gap, max_cells, &out);
+      }
     }
+  }
   return out;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
-/// Binary morphology on a raster with a disc: dilation, erosion and closing, measured as the
-/// exact Euclidean distance between cell centres (core/grid_frame.hpp's distance transform).
-/// Shared by the occupancy-map import (bridging a laser map's fringe) and its room labels.
+/// Morphology on a raster for the occupancy-map import: the cells near a set of cells (a
+/// dilation by a disc, exact Euclidean distances between cell centres through
+/// core/grid_frame.hpp's distance transform), and the short gaps between cells of one kind
+/// along rows, columns and diagonals (a closing by line segments, which bridges a dashed line's
+/// gaps where a disc would not).
 #include <cstdint>
 #include <vector>
 
@@ -10,15 +12,11 @@ namespace tsgraphs {
 /// The cells (cols x rows, index r * cols + c) within `radius` cells of a set cell of `mask`.
 std::vector<std::uint8_t> dilate(const std::vector<std::uint8_t>& mask, int cols, int rows, double radius);
 
-/// The set cells of `mask` farther than `radius` cells from every cell that is not set. Cells
-/// beyond the raster count as not set.
-std::vector<std::uint8_t> erode(const std::vector<std::uint8_t>& mask, int cols, int rows, double radius);
-
-/// The closing (the dilation, then the erosion, by the same disc) of `mask`: it keeps every
-/// set cell and adds the cells of gaps and notches too narrow for the disc: a channel of unset
-/// cells g cells wide between two set areas is filled when g <= 2 radius. Computed on a raster
-/// padded by the radius: the closing at the edge is what it would be on a larger raster with
-/// nothing set beyond the edge.
-std::vector<std::uint8_t> close(const std::vector<std::uint8_t>& mask, int cols, int rows, double radius);
+/// The `gap` cells that lie on a run of gap cells along a row, a column or a diagonal with an
+/// `end` cell at each end, the run no longer than `max_length` cells (a diagonal step counts
+/// sqrt(2)): the gaps of a fringe between known cells, or of a wall seen in dashes. Cells that
+/// are neither end nor gap break a run; the raster's edge is no end.
+std::vector<std::uint8_t> bridge_gaps(const std::vector<std::uint8_t>& end, const std::vector<std::uint8_t>& gap,
+                                      int cols, int rows, double max_length);
 
 }  // namespace tsgraphs
