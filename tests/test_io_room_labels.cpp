@@ -97,7 +97,7 @@ TEST(RoomLabels, GreyImageIsTheIpaConventionAsItsEvaluationReadsIt) {
   paint(&img, 29, 39, 30, 40, {254, 254, 254}); // another lone pixel
   const RoomLabels l = room_labels(img);
   EXPECT_EQ(l.convention, RoomLabelConvention::kIpa);
-  EXPECT_STREQ(convention_name(l.convention), "IPA (white rooms, black door lines)");
+  EXPECT_STREQ(convention_name(l.convention), "IPA: white rooms, black door lines");
   ASSERT_EQ(l.count, 3);
   EXPECT_TRUE(l.colours.empty());
   EXPECT_EQ(l.small_left_out, 2u);  // the two specks

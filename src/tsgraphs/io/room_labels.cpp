@@ -88,7 +88,7 @@ void colour_rooms(const Image& image, RoomLabels* out) {
 }  // namespace
 
 const char* convention_name(RoomLabelConvention convention) {
-  return convention == RoomLabelConvention::kIpa ? "IPA (white rooms, black door lines)" : "one colour per room";
+  return convention == RoomLabelConvention::kIpa ? "IPA: white rooms, black door lines" : "one colour per room";
 }
 
 RoomLabels room_labels(const Image& image) {

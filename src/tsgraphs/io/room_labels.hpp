@@ -47,7 +47,7 @@ struct RoomLabels {
   int at(int col, int row) const { return room[static_cast<std::size_t>(row) * width + col]; }
 };
 
-/// "IPA (white rooms, black door lines)" or "one colour per room".
+/// "IPA: white rooms, black door lines" or "one colour per room".
 const char* convention_name(RoomLabelConvention convention);
 
 /// The rooms of a decoded label image (no size check).
