@@ -10,9 +10,9 @@
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
-#include "tsgraphs/io/image.hpp"
 #include "tsgraphs/io/occupancy_map.hpp"
 #include "tsgraphs/io/pcd.hpp"
+#include "tsgraphs/io/room_labels.hpp"
 #include "tsgraphs/scene/generator.hpp"
 #include "tsgraphs/scene/map_import.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
@@ -64,21 +64,27 @@ scene::MapRaster raster_of(const io::OccupancyMap& m) {
   return r;
 }
 
-/// The label image's grey values, row 0 at the bottom like the map's cells.
-std::vector<std::uint8_t> room_grey(const std::string& file, const io::OccupancyMap& map) {
-  const io::Image img = io::read_image(file);
-  if (img.width != map.width || img.height != map.height) {
-    throw input_error(file, 0, "room labels are " + std::to_string(img.width) + " x " + std::to_string(img.height) +
-                                   " pixels but the map " + map.meta.image + " is " + std::to_string(map.width) +
-                                   " x " + std::to_string(map.height));
+/// The one-line summary of an import (docs/import-map.md, the worked example).
+void print_summary(const ImportMapOptions& options, const io::OccupancyMap& map, const io::RoomLabels& labels,
+                   const scene::ImportedMap& imported, const std::string& pcd, double seconds) {
+  const scene::MapImportStats& st = imported.stats;
+  const scene::Scene& s = imported.scene;
+  std::string rooms;
+  if (!options.rooms.empty()) {
+    rooms = " (" + std::string(io::convention_name(labels.convention));
+    if (st.room_cells_left_out > 0) rooms += "; " + std::to_string(st.room_cells_left_out) + " labelled cells left out";
+    if (st.room_slits > 0) rooms += "; " + std::to_string(st.room_slits) + " hole(s) holding rooms opened";
+    rooms += ")";
   }
-  const std::vector<std::uint8_t> grey = io::luma(img);
-  std::vector<std::uint8_t> out(grey.size());
-  for (int j = 0; j < img.height; ++j) {
-    std::copy_n(grey.begin() + static_cast<long>(j) * img.width, img.width,
-                out.begin() + static_cast<long>(img.height - 1 - j) * img.width);
-  }
-  return out;
+  std::fprintf(stderr,
+               "import-map: %s: %d x %d cells at %.3f m; slab %zu vertices, %zu fringe cells, %zu void%s; %zu room%s%s; "
+               "walls: %zu occupied cells (%zu off the slab) and %zu cells of their gaps, %zu on the surface, "
+               "%zu voxels; path %.1f m a lap (%zu waypoints), clearance >= %.2f m; %.1f s; wrote %s%s%s\n",
+               options.map.c_str(), map.width, map.height, map.meta.resolution, st.slab_vertices, st.bridged_cells,
+               s.levels[0].voids.size(), s.levels[0].voids.size() == 1 ? "" : "s", s.rooms.size(),
+               s.rooms.size() == 1 ? "" : "s", rooms.c_str(), st.occupied_cells, st.occupied_off_slab,
+               st.wall_gap_cells, st.skin_cells, st.voxels, st.path_length, s.trajectory.waypoints.size(),
+               st.min_path_clearance, seconds, options.out.c_str(), pcd.empty() ? "" : " and ", pcd.c_str());
 }
 
 }  // namespace
@@ -103,8 +109,12 @@ void import_map(const ImportMapOptions& options) {
 
   const auto t0 = std::chrono::steady_clock::now();
   const io::OccupancyMap map = io::read_occupancy_map(options.map);
-  const std::vector<std::uint8_t> grey =
-      options.rooms.empty() ? std::vector<std::uint8_t>{} : room_grey(options.rooms, map);
+  io::RoomLabels labels;
+  if (!options.rooms.empty()) {
+    labels = io::read_room_labels(options.rooms, map);
+    for (const std::string& w : labels.warnings)
+      std::fprintf(stderr, "tsgraphs: warning: %s: %s\n", options.rooms.c_str(), w.c_str());
+  }
 
   const fs::path out(options.out);
   scene::MapImportConfig config;
@@ -117,7 +127,7 @@ void import_map(const ImportMapOptions& options) {
   config.mount_height = options.mount_height;
   scene::ImportedMap imported;
   try {
-    imported = scene::import_map(raster_of(map), grey, config);
+    imported = scene::import_map(raster_of(map), labels.room, labels.count, config);
   } catch (const InputError& e) {
     throw input_error(options.map, 0, e.what());
   }
@@ -128,10 +138,10 @@ void import_map(const ImportMapOptions& options) {
   std::ostringstream header;
   header << "Imported by `tsgraphs import-map` (docs/import-map.md) from " << fs::path(options.map).filename().string();
   if (!options.rooms.empty()) header << " with rooms from " << fs::path(options.rooms).filename().string();
+  if (!options.rooms.empty()) header << " (" << io::convention_name(labels.convention) << ")";
   header << ".";
   if (has_walls)
-    header << "\nWalls: " << config.voxel_file
-           << " (voxel centres, one column per occupied cell next to free or unknown space).";
+    header << "\nWalls: " << config.voxel_file << " (voxel centres, one column per wall cell next to the floor or unknown space).";
   const std::string yaml = scene::scene_yaml(imported.scene, header.str());
   const fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
   const fs::path pcd = out.parent_path() / config.voxel_file;  // beside the scene, named as the user named it
@@ -156,20 +166,7 @@ void import_map(const ImportMapOptions& options) {
     throw;
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!options.quiet) {
-    const scene::MapImportStats& st = imported.stats;
-    const scene::Scene& s = imported.scene;
-    std::fprintf(stderr,
-                 "import-map: %s: %d x %d cells at %.3f m; slab %zu vertices, %zu void%s, %zu room%s; "
-                 "%zu occupied cells, "
-                 "%zu on the surface, %zu voxels; path %.1f m a lap (%zu waypoints), clearance >= %.2f m; %.1f s; "
-                 "wrote %s%s%s\n",
-                 options.map.c_str(), map.width, map.height, map.meta.resolution, st.slab_vertices,
-                 s.levels[0].voids.size(), s.levels[0].voids.size() == 1 ? "" : "s", s.rooms.size(),
-                 s.rooms.size() == 1 ? "" : "s", st.occupied_cells, st.skin_cells, st.voxels, st.path_length,
-                 s.trajectory.waypoints.size(), st.min_path_clearance, seconds, options.out.c_str(),
-                 has_walls ? " and " : "", has_walls ? pcd.string().c_str() : "");
-  }
+  if (!options.quiet) print_summary(options, map, labels, imported, has_walls ? pcd.string() : "", seconds);
 }
 
 }  // namespace tsgraphs::app

@@ -12,6 +12,7 @@
 #include "test_support.hpp"
 #include "tsgraphs/io/image.hpp"
 #include "tsgraphs/io/pcd.hpp"
+#include "tsgraphs/io/room_labels.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
 
 namespace fs = std::filesystem;
@@ -121,6 +122,51 @@ TEST_F(ImportMapCli, BadOptions) {
   expect_refused(path("maps/floor.yaml"), "--clearance 3", {path("maps/floor.yaml"), "--clearance"});
 }
 
+TEST_F(ImportMapCli, LabelImageWithNoRoomWarns) {
+  io::Image blank = drawn_.labels;
+  std::fill(blank.samples.begin(), blank.samples.end(), test::kUnknownPx);
+  write_file("maps/blank_gt.png", io::encode_png(blank));
+  std::string err;
+  ASSERT_EQ(cli("-q import-map " + path("maps/floor.yaml") + " --out " + path("out/scene.yaml") + " --rooms " +
+                    path("maps/blank_gt.png"),
+                &err),
+            0)
+      << err;
+  EXPECT_NE(err.find("tsgraphs: warning: " + path("maps/blank_gt.png") + ": no room: every pixel is grey"),
+            std::string::npos)
+      << err;
+  EXPECT_TRUE(scene::load_scene(path("out/scene.yaml")).rooms.empty());
+}
+
+TEST_F(ImportMapCli, ColourLabelsAreReadAsOneColourPerRoom) {
+  // The drawn labels with each room a colour of its own (black elsewhere).
+  const io::RoomLabels ipa = io::room_labels(drawn_.labels);
+  io::Image colour;
+  colour.width = drawn_.labels.width;
+  colour.height = drawn_.labels.height;
+  colour.channels = 3;
+  colour.samples.assign(static_cast<std::size_t>(colour.width) * colour.height * 3, 0);
+  for (int y = 0; y < colour.height; ++y)
+    for (int x = 0; x < colour.width; ++x) {
+      const int k = ipa.at(x, colour.height - 1 - y);
+      if (k < 0) continue;
+      std::uint8_t* p = &colour.samples[(static_cast<std::size_t>(y) * colour.width + x) * 3];
+      p[0] = static_cast<std::uint8_t>(40 + 40 * k), p[1] = 200, p[2] = static_cast<std::uint8_t>(220 - 40 * k);
+    }
+  write_file("maps/floor_colours.png", io::encode_png(colour));
+  std::string err;
+  ASSERT_EQ(cli("import-map " + path("maps/floor.yaml") + " --out " + path("out/scene.yaml") + " --rooms " +
+                    path("maps/floor_colours.png"),
+                &err),
+            0)
+      << err;
+  EXPECT_NE(err.find("5 rooms (one colour per room)"), std::string::npos) << err;
+  const scene::Scene s = scene::load_scene(path("out/scene.yaml"));
+  ASSERT_EQ(s.rooms.size(), 5u);
+  EXPECT_NE(test::read_file(dir_ / "out" / "scene.yaml").find("with rooms from floor_colours.png (one colour per room)"),
+            std::string::npos);
+}
+
 TEST_F(ImportMapCli, MapWithoutWallsHasNoVoxelFile) {
   // A free rectangle in unknown space: floor and a path, no occupied cell, so no walls file.
   io::Image img = drawn_.map;
@@ -130,6 +176,8 @@ TEST_F(ImportMapCli, MapWithoutWallsHasNoVoxelFile) {
   write_file("maps/open.yaml", test::map_yaml("open.pgm"));
   std::string err;
   ASSERT_EQ(cli("-q import-map " + path("maps/open.yaml") + " --out " + path("out/open.yaml"), &err), 0) << err;
+  // Said even with -q: a scene without walls is rarely what the user wants.
+  EXPECT_EQ(err, "tsgraphs: warning: " + path("maps/open.yaml") + ": the map has no occupied cell: the scene has no wall\n");
   EXPECT_EQ(names_in(dir_ / "out"), (std::set<std::string>{"open.yaml"}));
   const scene::Scene s = scene::load_scene(path("out/open.yaml"));
   EXPECT_TRUE(s.warnings.empty());

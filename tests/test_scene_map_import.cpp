@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <array>
 #include <set>
 
 #include "map_test_support.hpp"
@@ -12,6 +13,7 @@
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/io/occupancy_map.hpp"
 #include "tsgraphs/io/pcd.hpp"
+#include "tsgraphs/io/room_labels.hpp"
 #include "tsgraphs/scene/map_import.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/scene/scene_writer.hpp"
@@ -24,6 +26,7 @@ using namespace tsgraphs;
 using namespace tsgraphs::scene;
 using test::DrawnMap;
 using test::kMapRes;
+using Cell2 = std::array<int, 2>;
 
 namespace {
 
@@ -70,14 +73,6 @@ MapRaster raster(const DrawnMap& d, const Vec2& origin, double yaw) {
   return r;
 }
 
-std::vector<std::uint8_t> grey_bottom_first(const io::Image& img) {
-  std::vector<std::uint8_t> out(img.samples.size());
-  for (int j = 0; j < img.height; ++j)
-    for (int i = 0; i < img.width; ++i)
-      out[static_cast<std::size_t>(img.height - 1 - j) * img.width + i] = img.at(i, j);
-  return out;
-}
-
 /// Exact distance from `p` (map frame) to the nearest cell that is not free (or the map's edge).
 double exact_clearance(const MapRaster& r, const Vec2& p, double search) {
   double best = search;
@@ -103,10 +98,10 @@ class MapImportTest : public test::TempDirTest {
     TempDirTest::SetUp();
     drawn_ = test::draw_test_building();
     map_ = raster(drawn_, origin_, 0.0);
-    grey_ = grey_bottom_first(drawn_.labels);
+    labels_ = io::room_labels(drawn_.labels);
     config_.name = "drawn";
     config_.voxel_file = "drawn_walls.pcd";
-    imported_ = import_map(map_, grey_, config_);
+    imported_ = import_map(map_, labels_.room, labels_.count, config_);
   }
 
   /// Writes the scene and its voxels as the command does and loads them back.
@@ -121,7 +116,7 @@ class MapImportTest : public test::TempDirTest {
   DrawnMap drawn_;
   Vec2 origin_{-2.0, -1.0};
   MapRaster map_;
-  std::vector<std::uint8_t> grey_;
+  io::RoomLabels labels_;
   MapImportConfig config_;
   ImportedMap imported_;
 };
@@ -277,7 +272,7 @@ TEST_F(MapImportTest, PathKeepsTheClearanceAndEntersEveryReachableRoom) {
     for (std::size_t i = 0; i < s.rooms.size(); ++i) entered[i] = entered[i] || contains(s.rooms[i].polygon, xy);
   }
   for (std::size_t i = 0; i < s.rooms.size(); ++i) EXPECT_EQ(entered[i], drawn_.rooms[i].reachable) << s.rooms[i].name;
-  ASSERT_EQ(imported_.warnings.size(), 1u);
+  ASSERT_EQ(imported_.warnings.size(), 1u) << imported_.warnings.back();
   EXPECT_NE(imported_.warnings[0].find("room 'room_5'"), std::string::npos) << imported_.warnings[0];
   EXPECT_NE(imported_.warnings[0].find("left out"), std::string::npos);
   EXPECT_GT(imported_.stats.path_length, 20.0);
@@ -304,7 +299,7 @@ TEST_F(MapImportTest, UnknownSpecklesInTheFreeSpaceDoNotWallRoomsOff) {
     }
   }
   ASSERT_GT(specks, 50);
-  const ImportedMap im = import_map(noisy, grey_, config_);
+  const ImportedMap im = import_map(noisy, labels_.room, labels_.count, config_);
   EXPECT_EQ(im.warnings.size(), imported_.warnings.size());
   EXPECT_EQ(im.scene.levels[0].voids.size(), imported_.scene.levels[0].voids.size());
   const Trajectory t(im.scene);
@@ -353,14 +348,14 @@ TEST_F(MapImportTest, WrittenSceneLoadsWithoutWarningsAndTheSimulatorSeesTheWall
 }
 
 TEST_F(MapImportTest, SameInputSameScene) {
-  const ImportedMap again = import_map(map_, grey_, config_);
+  const ImportedMap again = import_map(map_, labels_.room, labels_.count, config_);
   EXPECT_EQ(scene_yaml(again.scene), scene_yaml(imported_.scene));
   EXPECT_EQ(again.voxels, imported_.voxels);
 }
 
 TEST_F(MapImportTest, YawRotatesTheMapAboutItsOrigin) {
   const MapRaster turned = raster(drawn_, origin_, M_PI / 2);
-  const ImportedMap im = import_map(turned, grey_, config_);
+  const ImportedMap im = import_map(turned, labels_.room, labels_.count, config_);
   const Level& l = im.scene.levels[0];
   // Map x runs along world y, map y along world -x.
   for (const Vec2& p : l.slab) {
@@ -378,7 +373,7 @@ TEST_F(MapImportTest, YawRotatesTheMapAboutItsOrigin) {
 }
 
 TEST_F(MapImportTest, WithoutRoomsThePathCoversTheFreeSpace) {
-  const ImportedMap im = import_map(map_, {}, config_);
+  const ImportedMap im = import_map(map_, {}, 0, config_);
   EXPECT_TRUE(im.scene.rooms.empty());
   EXPECT_TRUE(im.warnings.empty());
   // 7 m tiles over a 12 x 8 m building: four stops, and the path reaches into every big room.
@@ -396,12 +391,190 @@ TEST_F(MapImportTest, WithoutRoomsThePathCoversTheFreeSpace) {
   EXPECT_TRUE(write_and_load(im).warnings.empty());
 }
 
+namespace {
+
+/// A laser map's room as map_server gives it: a 7.4 m x 5.4 m free room at 0.05 m, its 0.1 m
+/// walls parted from the free space by a fringe of unknown cells (1 cell on the left and bottom,
+/// 2 on the right and top, 4 at the top's right end), the bottom wall seen in dashes (2-cell
+/// gaps of unknown), unknown all round.
+struct FringedRoom {
+  MapRaster map;
+  std::size_t occupied = 0;
+  std::vector<Cell2> fringe;    ///< unknown cells between the walls and the free space
+  std::vector<Cell2> dash_gaps;  ///< unknown cells between the bottom wall's dashes
+};
+
+FringedRoom fringed_room() {
+  FringedRoom f;
+  MapRaster& m = f.map;
+  m.cols = 200;
+  m.rows = 160;
+  m.resolution = 0.05;
+  m.cells.assign(static_cast<std::size_t>(m.cols) * m.rows, MapCell::kUnknown);
+  const auto set = [&](int c, int r, MapCell v) { m.cells[static_cast<std::size_t>(r) * m.cols + c] = v; };
+  const int c0 = 20, c1 = 180, r0 = 20, r1 = 140;  // the walls' outer edges
+  const int left = 1, right = 2, bottom = 1, top = 2;
+  for (int r = r0; r < r1; ++r)
+    for (int c = c0; c < c1; ++c) {
+      const bool wall = c < c0 + 2 || c >= c1 - 2 || r < r0 + 2 || r >= r1 - 2;
+      const bool free = c >= c0 + 2 + left && c < c1 - 2 - right && r >= r0 + 2 + bottom && r < r1 - 2 - top;
+      if (wall) set(c, r, MapCell::kOccupied);
+      if (free) set(c, r, MapCell::kFree);
+    }
+  for (int c = c1 - 40; c < c1 - 4; ++c)  // a wider fringe under the top wall's right end
+    for (int r = r1 - 2 - 4; r < r1 - 2 - top; ++r) set(c, r, MapCell::kUnknown);
+  for (int c = c0 + 10; c < c1 - 10; c += 6)  // dashes: 2 of every 6 cells of the bottom wall unknown
+    for (int r = r0; r < r0 + 2; ++r)
+      for (int k = 0; k < 2; ++k) {
+        set(c + k, r, MapCell::kUnknown);
+        f.dash_gaps.push_back({c + k, r});
+      }
+  for (int r = 0; r < m.rows; ++r)
+    for (int c = 0; c < m.cols; ++c) {
+      const MapCell v = m.at(c, r);
+      f.occupied += v == MapCell::kOccupied;
+      const bool inside = c >= c0 + 2 && c < c1 - 2 && r >= r0 + 2 && r < r1 - 2;
+      if (inside && v == MapCell::kUnknown) f.fringe.push_back({c, r});
+    }
+  return f;
+}
+
+bool has_column(const std::vector<Eigen::Vector3f>& voxels, const Cell2& cell, double res) {
+  for (const Eigen::Vector3f& v : voxels)
+    if (static_cast<int>(std::floor(v.x() / res)) == cell[0] && static_cast<int>(std::floor(v.y() / res)) == cell[1])
+      return true;
+  return false;
+}
+
+}  // namespace
+
+// The bug this guards: with the slab only the known cells' largest region, a fringe of unknown
+// parts the walls from it and the scene has no wall at all.
+TEST_F(MapImportTest, FringedLaserMapImportsItsWallsAndTheSensorCannotSeeOut) {
+  const FringedRoom f = fringed_room();
+  ASSERT_GT(f.fringe.size(), 800u);
+  MapImportConfig config = config_;
+  const ImportedMap im = import_map(f.map, {}, 0, config);
+  EXPECT_EQ(im.stats.occupied_cells, f.occupied);
+  EXPECT_EQ(im.stats.occupied_off_slab, 0u);
+  // The dashes' gaps are wall (and the inner corners' diagonal cell of fringe).
+  EXPECT_GE(im.stats.wall_gap_cells, f.dash_gaps.size());
+  EXPECT_LE(im.stats.wall_gap_cells, f.dash_gaps.size() + 4 * 3);
+  EXPECT_TRUE(im.warnings.empty()) << im.warnings.front();
+  ASSERT_EQ(im.scene.voxel_maps.size(), 1u);
+  // Walls stand all round: each row has a column within the left and the right wall's band,
+  // each column within the bottom and the top wall's (dashes' gaps included); the fringe is floor.
+  const double res = f.map.resolution;
+  const auto column_in = [&](int c0, int c1, int r0, int r1) {
+    for (int r = r0; r < r1; ++r)
+      for (int c = c0; c < c1; ++c)
+        if (has_column(im.voxels, {c, r}, res)) return true;
+    return false;
+  };
+  for (int r = 20; r < 140; ++r) {
+    ASSERT_TRUE(column_in(20, 22, r, r + 1)) << r;
+    ASSERT_TRUE(column_in(178, 180, r, r + 1)) << r;
+  }
+  for (int c = 20; c < 180; ++c) {
+    ASSERT_TRUE(column_in(c, c + 1, 20, 22)) << c;
+    ASSERT_TRUE(column_in(c, c + 1, 138, 140)) << c;
+  }
+  for (const Cell2& g : f.dash_gaps) ASSERT_TRUE(has_column(im.voxels, g, res) || g[1] == 20) << g[0];
+  const Level& level = im.scene.levels[0];
+  EXPECT_TRUE(level.voids.empty());
+  for (const Cell2& cell : f.fringe) {
+    ASSERT_TRUE(contains(level.slab, f.map.to_world(res * Vec2(cell[0] + 0.5, cell[1] + 0.5))));
+    ASSERT_FALSE(has_column(im.voxels, cell, res) && cell[0] > 24 && cell[0] < 174) << cell[0] << " " << cell[1];
+  }
+  // Every fringe cell is bridged but two: where the top's 4-cell fringe meets the right wall's,
+  // every run across them is longer than 0.2 m. They are a small hole: floor as well.
+  EXPECT_EQ(im.stats.bridged_cells, f.fringe.size() + f.dash_gaps.size() - 2);
+  EXPECT_EQ(im.stats.small_holes, 1);
+  // A scan from the room's middle: every ray returns (from a wall, the floor or the ceiling): none
+  // leaves through the fringe or the dashes' gaps.
+  const Scene loaded = write_and_load(im);
+  const sim::Simulator simulator(loaded, 1);
+  Pose3 pose = Pose3::Identity();
+  pose.translation() = Eigen::Vector3d(f.map.origin.x() + 5.0, f.map.origin.y() + 4.0, loaded.sensor.mount_height);
+  const PointCloud scan = simulator.scan_at(pose, 0);
+  const double rays = static_cast<double>(loaded.sensor.channels) * loaded.sensor.columns;
+  EXPECT_GE(static_cast<double>(scan.size()), (1.0 - loaded.sensor.dropout) * rays - 3.0 * std::sqrt(rays));
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    const Vec2 m = f.map.to_map((pose * scan.points[i].cast<double>()).head<2>());
+    ASSERT_TRUE(m.x() > 0.95 && m.x() < 9.05 && m.y() > 0.95 && m.y() < 7.05) << m.transpose();
+  }
+  // Without the bridging (the old rule) the walls are lost, and the import says so.
+  config.fringe_width = 0.0;
+  const ImportedMap bare = import_map(f.map, {}, 0, config);
+  EXPECT_EQ(bare.stats.occupied_cells, 0u);
+  EXPECT_TRUE(bare.voxels.empty());
+  ASSERT_FALSE(bare.warnings.empty());
+  EXPECT_NE(bare.warnings[0].find("none of the map's " + std::to_string(f.occupied) + " occupied cells lies on the slab"),
+            std::string::npos)
+      << bare.warnings[0];
+}
+
+TEST_F(MapImportTest, AMapWithNoOccupiedCellWarnsThatItHasNoWall) {
+  MapRaster open = map_;
+  for (MapCell& c : open.cells)
+    if (c == MapCell::kOccupied) c = MapCell::kFree;
+  const ImportedMap im = import_map(open, {}, 0, config_);
+  EXPECT_TRUE(im.voxels.empty());
+  EXPECT_TRUE(im.scene.voxel_maps.empty());
+  ASSERT_FALSE(im.warnings.empty());
+  EXPECT_EQ(im.warnings[0], "the map has no occupied cell: the scene has no wall");
+}
+
+// Colour labels (one colour per room) of the drawn building, room_2 in two pieces parted by a
+// 0.3 m band of black, room_4 (the corridor) touching room_1 along its door.
+TEST_F(MapImportTest, ColourLabelsGiveOneRoomEachAndPiecesMakeOnePolygon) {
+  io::Image colour;
+  colour.width = drawn_.labels.width;
+  colour.height = drawn_.labels.height;
+  colour.channels = 3;
+  colour.samples.assign(static_cast<std::size_t>(colour.width) * colour.height * 3, 0);
+  const std::vector<std::array<std::uint8_t, 3>> palette = {
+      {230, 60, 60}, {60, 200, 60}, {60, 60, 230}, {220, 160, 40}, {160, 40, 200}};
+  for (int j = 0; j < colour.height; ++j) {
+    for (int i = 0; i < colour.width; ++i) {
+      const int k = labels_.at(i, colour.height - 1 - j);
+      const double x = (i + 0.5) * kMapRes, y = (colour.height - 1 - j + 0.5) * kMapRes;
+      const bool band = k == 1 && y > 5.8 && y < 6.1;  // parts room_2
+      const bool door = x > 2.5 && x < 3.5 && y > 3.0 && y < 3.1;  // room_1's door: the corridor's colour
+      const int room = door ? 3 : band ? -1 : k;
+      if (room < 0) continue;
+      for (int ch = 0; ch < 3; ++ch) colour.samples[(static_cast<std::size_t>(j) * colour.width + i) * 3 + ch] = palette[room][ch];
+    }
+  }
+  const io::RoomLabels labels = io::room_labels(colour);
+  ASSERT_EQ(labels.convention, io::RoomLabelConvention::kColour);
+  ASSERT_EQ(labels.count, 5);
+  const ImportedMap im = import_map(map_, labels.room, labels.count, config_);
+  const Scene& s = im.scene;
+  ASSERT_EQ(s.rooms.size(), 5u);
+  for (std::size_t i = 0; i < s.rooms.size(); ++i) {
+    EXPECT_EQ(s.rooms[i].name, drawn_.rooms[i].name);
+    EXPECT_FALSE(find_self_intersection(s.rooms[i].polygon)) << i;
+    // Each room's extent: the box's area within a cell along its outline.
+    const test::MapBox& b = drawn_.rooms[i].box;
+    EXPECT_NEAR(area(s.rooms[i].polygon), b.area(), 2.0 * (b.x1 - b.x0 + b.y1 - b.y0) * kMapRes) << i;
+    for (std::size_t j = i + 1; j < s.rooms.size(); ++j)
+      EXPECT_LT(intersection_area(s.rooms[i].polygon, s.rooms[j].polygon), 1e-9) << i << " " << j;
+  }
+  // room_2 is one polygon over both pieces and the band between them.
+  const test::MapBox& b2 = drawn_.rooms[1].box;
+  for (const double y : {4.0, 5.95, 8.0}) EXPECT_TRUE(contains(s.rooms[1].polygon, origin_ + Vec2(b2.cx(), y))) << y;
+  EXPECT_GT(im.stats.room_cells_left_out, 0u);  // the corridor's cells in room_1's door, given up
+  EXPECT_EQ(im.stats.room_slits, 0);
+  EXPECT_EQ(im.warnings.size(), 1u);  // the closet, as with the grey labels
+}
+
 TEST(MapImport, MapsWithNoKnownOrNoOpenCellAreInputErrors) {
   MapRaster r;
   r.cols = 20;
   r.rows = 10;
   r.cells.assign(200, MapCell::kUnknown);
-  EXPECT_NE(test::input_error_of([&] { import_map(r, {}, {}); }).find("no known cell"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { import_map(r, {}, 0, {}); }).find("no known cell"), std::string::npos);
   r.cells.assign(200, MapCell::kFree);  // 1 m x 0.5 m: nowhere 0.4 m from the edge
-  EXPECT_NE(test::input_error_of([&] { import_map(r, {}, {}); }).find("--clearance"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { import_map(r, {}, 0, {}); }).find("--clearance"), std::string::npos);
 }

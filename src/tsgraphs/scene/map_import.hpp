@@ -1,9 +1,10 @@
 #pragma once
 /// An occupancy map (free / occupied / unknown cells, as ROS map_server gives them) made a
-/// scene (docs/import-map.md): one level whose slab is the known area, unknown holes as voids,
-/// occupied cells as a voxel map of wall columns, ground-truth rooms from a label image in the
-/// IPA room-segmentation benchmark's convention, and a survey path. No file I/O: the caller
-/// reads the map and writes the scene and the voxel points.
+/// scene (docs/import-map.md): one level whose slab is the known area (a laser map's fringe of
+/// unknown at the walls bridged), unknown holes as voids, occupied cells as a voxel map of wall
+/// columns, ground-truth rooms from per-cell room labels (io/room_labels.hpp reads them from a
+/// label image), and a survey path. No file I/O: the caller reads the map and the labels and
+/// writes the scene and the voxel points.
 #include <Eigen/Core>
 #include <cstdint>
 #include <string>
@@ -40,6 +41,14 @@ struct MapImportConfig {
   double clearance = 0.35;               ///< m the survey path keeps from every occupied or unknown cell
   int laps = 2;                          ///< laps of the survey path
   double min_void_area = 1.0;  ///< m²: unknown holes in the known area larger than this are voids; smaller ones floor
+  /// m: gaps of unknown up to this wide between known cells are bridged (the slab spans them; between
+  /// occupied cells they are wall): the band of uncertain occupancy a laser map leaves at a wall's face
+  /// (range noise, beam width and pose error, a few centimetres each; 1-4 cells at 0.05 m).
+  double fringe_width = 0.2;
+  /// m: the diameter of the disc that closes each ground-truth room (scene/map_rooms.hpp): wider than
+  /// what hides floor from a 2-D laser inside a room (desks, cabinets, the wedges between a fan's rays
+  /// near its door), narrower than any room, so it never fills a space that could be a room of its own.
+  double room_closing = 1.0;
   double coverage_tile = 7.0;  ///< m: without rooms, one stop per tile of this size of the free space
   std::string sensor_preset = "os1-64";  ///< the scene format's default sensor
   double mount_height = 0.55;            ///< m: the sensor above the floor
@@ -49,33 +58,35 @@ struct MapImportConfig {
 
 /// What the import made, for the command's summary and the tests.
 struct MapImportStats {
-  std::size_t known_cells = 0;     ///< cells of the slab's component
+  std::size_t known_cells = 0;     ///< cells of the slab (known cells and the unknown gaps it bridges)
+  std::size_t bridged_cells = 0;   ///< unknown cells of the slab (gaps no wider than fringe_width)
   std::size_t occupied_cells = 0;  ///< occupied cells on the slab
-  std::size_t skin_cells = 0;      ///< those next to a free or unknown cell: the ones that get voxels
+  std::size_t occupied_off_slab = 0;  ///< occupied cells off it (specks beyond the fringe width): no walls
+  std::size_t wall_gap_cells = 0;  ///< unknown cells of the slab between occupied ones: wall too
+  std::size_t skin_cells = 0;      ///< wall cells next to a cell that is not wall: the ones that get voxels
   std::size_t voxels = 0;          ///< cubes written
   int small_holes = 0;             ///< unknown holes of at most min_void_area, left as floor
   std::size_t slab_vertices = 0;
   double path_length = 0.0;         ///< m, one lap
   double min_path_clearance = 0.0;  ///< m, along the driven path (all laps), to the nearest cell edge
+  std::size_t room_cells_left_out = 0;  ///< labelled cells outside their room's region (scene/map_rooms.hpp)
+  int room_slits = 0;                   ///< holes of rooms opened because they hold other rooms
 };
 
 struct ImportedMap {
   Scene scene;                          ///< voxel_maps[0].file is config.voxel_file
   std::vector<Eigen::Vector3f> voxels;  ///< voxel centres in the voxel map's frame (the map frame, z up from the floor)
-  std::vector<std::string> warnings;    ///< rooms left out of the tour, and why
+  std::vector<std::string> warnings;    ///< no wall; rooms left out of the tour, and why
   MapImportStats stats;
 };
 
-/// Room labels are white (grey above this, the IPA evaluation's cv::threshold at 250).
-constexpr int kRoomWhiteAbove = 250;
-/// White regions of this many cells or fewer are no rooms (the IPA evaluation's "mini rooms").
-constexpr std::size_t kRoomMaxSmallCells = 100;
-
-/// Builds the scene of `map`. `room_grey` (empty, or one grey value per cell, row 0 at the
-/// bottom like `map.cells`) gives the ground-truth rooms: 8-connected regions of white, each
-/// room's polygon the outline of its region without its holes. Throws an InputError when the
-/// map has no known cell or no free cell far enough from every obstacle to start a path, and
-/// std::invalid_argument on a raster whose size disagrees with its cells.
-ImportedMap import_map(const MapRaster& map, const std::vector<std::uint8_t>& room_grey, const MapImportConfig& config);
+/// Builds the scene of `map`. `room_of_cell` (empty, or one room index in [0, room_count) or -1
+/// per cell, row 0 at the bottom like `map.cells`: io::RoomLabels::room) gives the ground-truth
+/// rooms `room_1` ... `room_<room_count>`, each room's polygon the outline of its region
+/// (scene/map_rooms.hpp). Throws an InputError when the map has no known cell or no free cell far
+/// enough from every obstacle to start a path, and std::invalid_argument on a raster or labels
+/// whose size disagrees with its cells.
+ImportedMap import_map(const MapRaster& map, const std::vector<int>& room_of_cell, int room_count,
+                       const MapImportConfig& config);
 
 }  // namespace tsgraphs::scene
