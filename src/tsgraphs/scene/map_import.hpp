@@ -38,12 +38,13 @@ struct MapImportConfig {
   std::string name = "imported_map";     ///< the scene's name
   std::string voxel_file = "walls.pcd";  ///< the voxel map's file as the scene names it (relative to the scene)
   double ceiling = 2.6;                  ///< m: the level's ceiling and the walls' height
-  double clearance = 0.35;               ///< m the survey path keeps from every occupied or unknown cell
+  double clearance = 0.35;               ///< m the survey path keeps from every wall and unmapped cell
   int laps = 2;                          ///< laps of the survey path
   double min_void_area = 1.0;  ///< m²: unknown holes in the known area larger than this are voids; smaller ones floor
-  /// m: gaps of unknown up to this wide between known cells are bridged (the slab spans them; between
-  /// occupied cells they are wall): the band of uncertain occupancy a laser map leaves at a wall's face
-  /// (range noise, beam width and pose error, a few centimetres each; 1-4 cells at 0.05 m).
+  /// m: runs of unknown up to this long between known cells next to a wall are bridged (the slab
+  /// spans them; between occupied cells they are wall): the band of uncertain occupancy a laser map
+  /// leaves at a wall's face (range noise, beam width and pose error, a few centimetres each; 1-4
+  /// cells at 0.05 m).
   double fringe_width = 0.2;
   /// m: the diameter of the disc that closes each ground-truth room (scene/map_rooms.hpp): wider than
   /// what hides floor from a 2-D laser inside a room (desks, cabinets, the wedges between a fan's rays
@@ -59,10 +60,10 @@ struct MapImportConfig {
 /// What the import made, for the command's summary and the tests.
 struct MapImportStats {
   std::size_t known_cells = 0;     ///< cells of the slab (known cells and the unknown gaps it bridges)
-  std::size_t bridged_cells = 0;   ///< unknown cells of the slab (gaps no wider than fringe_width)
+  std::size_t bridged_cells = 0;   ///< unknown cells of the slab: the fringe and the walls' gaps
   std::size_t occupied_cells = 0;  ///< occupied cells on the slab
-  std::size_t occupied_off_slab = 0;  ///< occupied cells off it (specks beyond the fringe width): no walls
-  std::size_t wall_gap_cells = 0;  ///< unknown cells of the slab between occupied ones: wall too
+  std::size_t occupied_off_slab = 0;  ///< occupied cells off it (beyond more than fringe_width of unknown): no walls
+  std::size_t wall_gap_cells = 0;  ///< unknown cells of the slab in the gaps between occupied ones: wall too
   std::size_t skin_cells = 0;      ///< wall cells next to a cell that is not wall: the ones that get voxels
   std::size_t voxels = 0;          ///< cubes written
   int small_holes = 0;             ///< unknown holes of at most min_void_area, left as floor
