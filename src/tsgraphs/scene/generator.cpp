@@ -273,6 +273,44 @@ Building multi_storey(double scale, bool realistic, Rng& rng) {
   return b;
 }
 
+/// Storey `level`'s doors, walls and furniture into `scene` (its level exists); for a
+/// realistic building its rooms reshaped first, then windows, door leaves and clutter.
+void build_storey(Storey* s, int level, const GeneratorConfig& config, Rng& rng, Scene* scene) {
+  const std::uint64_t i = static_cast<std::uint64_t>(level);
+  Rng doors = rng.fork(100 + i);
+  // Drawn only for a realistic building: without it the main stream is as it always was.
+  Rng real = config.realistic ? rng.fork(kRealisticSalt + i) : Rng(0);
+  if (config.realistic && s->plan.ground_truth) shape_rooms(&s->plan, real);
+  connect_spaces(&s->plan, doors);
+  // Some rooms get a second door into a neighbour room.
+  const std::size_t n = s->plan.spaces.size();
+  for (std::size_t a = 0; a < n; ++a) {
+    if (s->plan.spaces[a].kind != SpaceKind::kRoom || !doors.chance(kExtraDoorChance)) continue;
+    for (std::size_t c = 0; c < n; ++c) {
+      if (c == a || s->plan.spaces[c].kind != SpaceKind::kRoom) continue;
+      if (!shared_boundary(s->plan, static_cast<int>(a), static_cast<int>(c)).empty()) {
+        s->plan.doors.push_back(random_door(static_cast<int>(a), static_cast<int>(c), doors));
+        break;
+      }
+    }
+  }
+  if (config.realistic) draw_door_widths(&s->plan, real);
+  const PlanResult result = add_floor_plan(s->plan, level, scene);
+  const double passage = 2.0 * config.clearance + kPassageSlack;
+  std::vector<OrientedRect> leaves;
+  if (config.realistic) {
+    add_windows(s->plan, result, real, scene);
+    // Furniture keeps a passage round each leaf (on top of its own spacing).
+    for (OrientedRect r : hang_door_leaves(s->plan, result, level, passage, real, scene)) {
+      r.size += Vec2::Constant(2.0 * passage);
+      leaves.push_back(r);
+    }
+  }
+  Rng furniture = rng.fork(200 + i);
+  furnish(s->plan, result, level, furniture, scene, leaves);
+  if (config.realistic) add_clutter(s->plan, result, level, passage, real, scene);
+}
+
 /// The platform: sensor, drift and path speed.
 void draw_platform(Scene* scene, Rng& rng, const GeneratorConfig& config) {
   apply_preset(rng.pick(preset_names()), &scene->sensor);
@@ -385,41 +423,7 @@ GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed,
     scene.levels.push_back(l);
     elevation += s.ceiling + kSlabThickness;
   }
-  const double passage = 2.0 * config.clearance + kPassageSlack;
-  for (std::size_t i = 0; i < b.storeys.size(); ++i) {
-    Storey& s = b.storeys[i];
-    Rng doors = rng.fork(100 + i);
-    // Drawn only for a realistic building: without it the main stream is as it always was.
-    Rng real = config.realistic ? rng.fork(kRealisticSalt + i) : Rng(0);
-    if (config.realistic && s.plan.ground_truth) shape_rooms(&s.plan, real);
-    connect_spaces(&s.plan, doors);
-    // Some rooms get a second door into a neighbour room.
-    const std::size_t n = s.plan.spaces.size();
-    for (std::size_t a = 0; a < n; ++a) {
-      if (s.plan.spaces[a].kind != SpaceKind::kRoom || !doors.chance(kExtraDoorChance)) continue;
-      for (std::size_t c = 0; c < n; ++c) {
-        if (c == a || s.plan.spaces[c].kind != SpaceKind::kRoom) continue;
-        if (!shared_boundary(s.plan, static_cast<int>(a), static_cast<int>(c)).empty()) {
-          s.plan.doors.push_back(random_door(static_cast<int>(a), static_cast<int>(c), doors));
-          break;
-        }
-      }
-    }
-    if (config.realistic) draw_door_widths(&s.plan, real);
-    const PlanResult result = add_floor_plan(s.plan, static_cast<int>(i), &scene);
-    std::vector<OrientedRect> leaves;
-    if (config.realistic) {
-      add_windows(s.plan, result, real, &scene);
-      // Furniture keeps a passage round each leaf (on top of its own spacing).
-      for (OrientedRect r : hang_door_leaves(s.plan, result, static_cast<int>(i), passage, real, &scene)) {
-        r.size += Vec2::Constant(2.0 * passage);
-        leaves.push_back(r);
-      }
-    }
-    Rng furniture = rng.fork(200 + i);
-    furnish(s.plan, result, static_cast<int>(i), furniture, &scene, leaves);
-    if (config.realistic) add_clutter(s.plan, result, static_cast<int>(i), passage, real, &scene);
-  }
+  for (std::size_t i = 0; i < b.storeys.size(); ++i) build_storey(&b.storeys[i], static_cast<int>(i), config, rng, &scene);
   scene.ramps = b.ramps;
   join_wall_ends(&scene);
   // A first path so that the scene loads; the survey path replaces it.
