@@ -29,14 +29,15 @@ void generate(const GenerateOptions& options) {
   config.laps = options.laps;
   config.size = options.size;
   config.people = options.people;
+  config.realistic = options.realistic;
   if (options.seed < 0) throw input_error("--seed", 0, "must be >= 0");
   const scene::GeneratedBuilding b =
       scene::generate_building(options.style, static_cast<std::uint64_t>(options.seed), config);
   io::write_file_atomic(options.out, b.yaml);
   if (!options.quiet) {
     const scene::Scene& s = b.scene;
-    std::fprintf(stderr, "generate: %s, seed %llu: %zu level%s, %zu rooms, %zu walls, %zu boxes, %s at %.2f m; wrote %s\n",
-                 options.style.c_str(), static_cast<unsigned long long>(options.seed), s.levels.size(),
+    std::fprintf(stderr, "generate: %s%s, seed %llu: %zu level%s, %zu rooms, %zu walls, %zu boxes, %s at %.2f m; wrote %s\n",
+                 options.style.c_str(), options.realistic ? " (realistic)" : "", static_cast<unsigned long long>(options.seed), s.levels.size(),
                  s.levels.size() == 1 ? "" : "s", s.rooms.size(), s.walls.size(), s.boxes.size(),
                  s.sensor.preset.c_str(), s.sensor.mount_height, options.out.c_str());
   }

@@ -13,6 +13,7 @@ struct GenerateOptions {
   int laps = 2;        ///< laps of the survey path
   double size = 1.0;   ///< scales the building's extent, (0, 1]
   int people = 0;      ///< people walking through (scene people:)
+  bool realistic = false;  ///< clutter, open door leaves, windows, irregular rooms, small offices
   bool quiet = false;
 };
 

@@ -54,7 +54,11 @@ eval::SuiteIndex index_of(const Suite& suite) {
   index.name = suite.name;
   index.suite_file = suite.file;
   index.methods = suite_methods(suite);
-  for (const SuiteCase& c : suite.cases) index.case_ids.push_back(c.id);
+  for (const SuiteCase& c : suite.cases) {
+    index.case_ids.push_back(c.id);
+    if (index.groups.empty() || index.groups.back().name != c.group) index.groups.push_back({c.group, {}});
+    index.groups.back().case_ids.push_back(c.id);
+  }
   return index;
 }
 
@@ -92,6 +96,7 @@ eval::SuiteResults gather(const std::string& dir, const eval::SuiteIndex& index)
   eval::SuiteResults results;
   results.name = index.name;
   results.methods = index.methods;
+  results.groups = index.groups;
   for (const std::string& id : index.case_ids) {
     const std::string file = case_file(dir, id);
     if (!fs::is_regular_file(file)) {

@@ -172,7 +172,7 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
 
 void add_generate_cases(const YamlMap& entry, Suite* suite) {
   const YamlMap g = entry.map("generate");
-  g.check_keys({"styles", "seeds", "size", "people", "platforms"});
+  g.check_keys({"styles", "seeds", "size", "people", "realistic", "platforms"});
   if (!g.has("styles")) throw g.error_here("missing required key 'styles'");
   if (!g.has("seeds")) throw g.error_here("missing required key 'seeds'");
   const std::vector<std::string> styles = read_styles(g);
@@ -182,6 +182,7 @@ void add_generate_cases(const YamlMap& entry, Suite* suite) {
   const int people = g.get<int>("people", 0);
   if (people < 0 || people > scene::kMaxGeneratedPeople)
     throw g.error("people", "must lie in [0, " + std::to_string(scene::kMaxGeneratedPeople) + "]");
+  const bool realistic = g.get<bool>("realistic", false);
   const std::vector<SuitePlatform> platforms = read_platforms(g);
   for (const std::string& style : styles) {
     for (const std::uint64_t seed : seeds) {
@@ -193,8 +194,10 @@ void add_generate_cases(const YamlMap& entry, Suite* suite) {
         c.seed = seed;
         c.size = size;
         c.people = people;
+        c.realistic = realistic;
         c.platform = platform;
-        c.id = style + "-s" + std::to_string(seed) + (platform.name.empty() ? "" : "-" + platform.name);
+        c.id = style + "-s" + std::to_string(seed) + (platform.name.empty() ? "" : "-" + platform.name) +
+               (realistic ? "-realistic" : "");
         suite->cases.push_back(std::move(c));
       }
     }
@@ -312,6 +315,11 @@ Suite load_suite(const std::string& file) {
     if (entry.has("import")) add_import_case(entry, suite_dir, &suite);
     if (entry.has("scene")) add_scene_case(entry, suite_dir, &suite);
     if (entry.has("sequence")) add_sequence_case(entry, suite_dir, &suite);
+    // The entry's cases are one group of the tables (docs/suite.md, "The tables").
+    for (std::size_t i = first; i < suite.cases.size(); ++i) {
+      SuiteCase& c = suite.cases[i];
+      c.group = entry.path() + ": " + c.kind + (c.realistic ? ", realistic" : "");
+    }
     // Ids name folders: two cases of one id would share (and overwrite) one.
     for (std::size_t i = first; i < suite.cases.size(); ++i) {
       const SuiteCase& c = suite.cases[i];

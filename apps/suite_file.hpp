@@ -25,11 +25,13 @@ struct SuiteCase {
   std::string id;      ///< unique: office-s3, office-s3-handheld, import-<name>, scene-office, seq-<dir>
   std::string kind;    ///< generate, import, scene or sequence
   std::string where;   ///< "file:line" of the entry, for messages
+  std::string group;   ///< the entry of `cases:` it comes from: "cases[1]: generate, realistic"
   // generate
   std::string style;
   std::uint64_t seed = 1;
   double size = 1.0;
   int people = 0;  ///< generate --people
+  bool realistic = false;  ///< generate --realistic (the id ends in -realistic)
   SuitePlatform platform;
   // import: the map's YAML (absolute); scene: a scene file (absolute path) or a built-in
   // scene's name; sequence: the folder (absolute)

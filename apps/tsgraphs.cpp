@@ -105,6 +105,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   generate_cmd->add_option("--people", opt.generate.people, "people walking stretches of the survey path, there and back (0-50)")
       ->capture_default_str();
+  generate_cmd->add_flag("--realistic", opt.generate.realistic,
+                         "as real floors are: furniture and clutter against the walls, open door leaves, windows, "
+                         "irregular rooms, rows of small offices");
 
   auto* import_cmd = app.add_subcommand(
       "import-map", "a ROS map_server occupancy map (PGM or PNG and its YAML) as a scene file: walls, rooms, a survey path");

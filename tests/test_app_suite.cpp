@@ -24,6 +24,7 @@
 
 #include "map_test_support.hpp"
 #include "test_support.hpp"
+#include "tsgraphs/core/text_file.hpp"
 #include "tsgraphs/io/image.hpp"
 #include "tsgraphs/eval/suite_folder.hpp"
 #include "tsgraphs/eval/suite_table.hpp"
@@ -503,6 +504,35 @@ TEST_F(SuiteFileErrors, MissingSceneOrSequence) {
   const std::string q = error_of("name: bad\ncases:\n  - sequence: .\n");
   EXPECT_NE(q.find("bad.yaml:3: cases[0].sequence: "), std::string::npos) << q;
   EXPECT_NE(q.find("not a sequence folder"), std::string::npos) << q;
+}
+
+TEST_F(SuiteFileErrors, RealisticIsABoolean) {
+  const std::string e = error_of("name: bad\ncases:\n  - generate: {styles: [office], seeds: 1, realistic: maybe}\n");
+  EXPECT_NE(e.find("bad.yaml:3: cases[0].generate.realistic"), std::string::npos) << e;
+}
+
+// A second generate entry with realistic: true: its cases' ids end in -realistic, their spec
+// says so (a plain case's spec is as before), and suite.json names the two groups.
+class SuiteGroups : public test::TempDirTest {};
+TEST_F(SuiteGroups, RealisticCasesFormTheirOwnGroup) {
+  const std::string file = write_file("two.yaml",
+                                      "name: two\ncases:\n  - generate: {styles: [office, library], seeds: 1}\n"
+                                      "  - generate: {styles: [office], seeds: \"1-2\", realistic: true}\n");
+  const fs::path out = dir_ / "out";
+  std::string o, e;
+  ASSERT_EQ(cli("suite " + file + " --out " + out.string() + " --plan", &o, &e), 0) << e;
+  const std::string plan = read_text_file((out / "plan.txt").string());
+  for (const char* id : {"office-s1", "library-s1", "office-s1-realistic", "office-s2-realistic"})
+    EXPECT_NE(plan.find(std::string("--case ") + id + "\n"), std::string::npos) << id << "\n" << plan;
+  const eval::SuiteIndex index = eval::read_suite_index((out / "suite.json").string());
+  ASSERT_EQ(index.groups.size(), 2u);
+  EXPECT_EQ(index.groups[0].name, "cases[0]: generate");
+  EXPECT_EQ(index.groups[0].case_ids, (std::vector<std::string>{"office-s1", "library-s1"}));
+  EXPECT_EQ(index.groups[1].name, "cases[1]: generate, realistic");
+  EXPECT_EQ(index.groups[1].case_ids.size(), 2u);
+  // --collect tables each group alone.
+  ASSERT_EQ(cli("suite --collect " + out.string(), &o, &e), 0) << e;
+  EXPECT_NE(o.find("### cases[1]: generate, realistic"), std::string::npos) << o;
 }
 
 TEST_F(SuiteFileErrors, PeopleOutOfRange) {

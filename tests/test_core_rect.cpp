@@ -140,3 +140,23 @@ TEST(OrientedRectOverlap, EmptyRectsGiveZeroNotNaN) {
     }
   }
 }
+
+TEST(OrientedRect, Distances) {
+  OrientedRect a;
+  a.center = Vec2(0, 0);
+  a.size = Vec2(2, 1);
+  a.yaw = 0.0;
+  EXPECT_DOUBLE_EQ(distance(a, Vec2(0.5, 0.2)), 0.0);  // inside
+  EXPECT_DOUBLE_EQ(distance(a, Vec2(3, 0)), 2.0);
+  EXPECT_NEAR(distance(a, Vec2(4, 4.5)), 5.0, 1e-12);  // from the corner (1, 0.5)
+  EXPECT_NEAR(distance(a, Vec2(-3, 2), Vec2(3, 2)), 1.5, 1e-12);
+  EXPECT_DOUBLE_EQ(distance(a, Vec2(-3, 0), Vec2(3, 0.1)), 0.0);  // crosses it
+  OrientedRect b = a;
+  b.center = Vec2(4, 0);
+  b.yaw = M_PI / 4;  // a corner points at a: sqrt(1.25) from b's centre along -x
+  EXPECT_NEAR(distance(a, b), 3.0 - std::sqrt(1.25) * std::cos(M_PI / 4 - std::atan2(0.5, 1.0)), 1e-9);
+  b.center = Vec2(0.2, 0.1);  // inside a, crossing no side of it
+  b.size = Vec2(0.2, 0.2);
+  EXPECT_DOUBLE_EQ(distance(a, b), 0.0);
+  EXPECT_DOUBLE_EQ(distance(b, a), 0.0);
+}

@@ -256,6 +256,29 @@ TEST(SuiteTable, MarkdownHasEveryTable) {
   EXPECT_NE(md.find("- `e`"), std::string::npos);
 }
 
+// Two case groups (a suite file's two entries): each gets its own tables, over its cases alone.
+TEST(SuiteTable, EachCaseGroupHasItsOwnTables) {
+  SuiteResults r = three_cases();
+  r.groups = {{"cases[0]: generate", {"a", "b", "c"}}, {"cases[1]: generate, realistic", {"d", "e"}}};
+  const SuiteResults first = group_results(r, r.groups[0]);
+  ASSERT_EQ(first.cases.size(), 3u);
+  EXPECT_TRUE(first.pending.empty());
+  EXPECT_EQ(group_results(r, r.groups[1]).pending, std::vector<std::string>{"e"});
+  const std::string md = suite_markdown(r);
+  const std::size_t groups = md.find("## Case groups");
+  ASSERT_NE(groups, std::string::npos) << md;
+  const std::size_t g0 = md.find("### cases[0]: generate", groups), g1 = md.find("### cases[1]: generate, realistic", groups);
+  ASSERT_NE(g0, std::string::npos);
+  ASSERT_NE(g1, std::string::npos);
+  EXPECT_NE(md.find("3 cases: 3 with a record, 0 not run yet", g0), std::string::npos) << md;
+  // rooms F1 of TS-graphs over a and c alone (b failed): median 0.65, worst 0.40 in c; over d alone 0.90.
+  EXPECT_NE(md.find("| rooms F1 | higher (p10) | 0.65 | 0.45 | 0.40 | c | 2 |", g0), std::string::npos) << md;
+  EXPECT_NE(md.find("| rooms F1 | higher (p10) | 0.90 | 0.90 | 0.90 | d | 1 |", g1), std::string::npos) << md;
+  // One group: no group tables (they would repeat the suite's).
+  r.groups.resize(1);
+  EXPECT_EQ(suite_markdown(r).find("## Case groups"), std::string::npos);
+}
+
 TEST(SuiteFolder, CaseRecordReadsBackWhatWasWritten) {
   CaseRecord c = done_case("office-s3", 0.75, 0.5, 0.25);
   c.methods[0].figures["a_newer.figure"] = 3.0;
@@ -292,7 +315,12 @@ TEST(SuiteFolder, MalformedRecordsNameTheFileAndKey) {
 }
 
 TEST(SuiteFolder, IndexReadsBack) {
-  const SuiteIndex index{"smoke", "/x/smoke.yaml", {{"ts-graphs", "TS-graphs"}}, {"office-s1", "atrium-s1"}};
+  const SuiteIndex index{"smoke",
+                         "/x/smoke.yaml",
+                         {{"ts-graphs", "TS-graphs"}},
+                         {"office-s1", "atrium-s1", "office-s1-realistic"},
+                         {{"cases[0]: generate", {"office-s1", "atrium-s1"}},
+                          {"cases[1]: generate, realistic", {"office-s1-realistic"}}}};
   const std::filesystem::path dir = test::fresh_temp_dir();
   const std::string file = (dir / "suite.json").string();
   std::ofstream(file) << suite_index_json(index);
@@ -302,6 +330,12 @@ TEST(SuiteFolder, IndexReadsBack) {
   ASSERT_EQ(back.methods.size(), 1u);
   EXPECT_EQ(back.methods[0].name, "TS-graphs");
   EXPECT_EQ(back.case_ids, index.case_ids);
+  ASSERT_EQ(back.groups.size(), 2u);
+  EXPECT_EQ(back.groups[1].name, "cases[1]: generate, realistic");
+  EXPECT_EQ(back.groups[1].case_ids, std::vector<std::string>{"office-s1-realistic"});
+  // A folder written before groups existed reads with none.
+  std::ofstream(file) << R"({"name": "old", "methods": [], "cases": ["a"]})";
+  EXPECT_TRUE(read_suite_index(file).groups.empty());
   std::filesystem::remove_all(dir);
 }
 

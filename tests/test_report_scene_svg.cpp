@@ -417,3 +417,25 @@ trajectory: {waypoints: [[4,4],[5,4]]}
   // 21 cells of 0.1 m at 40 px per metre.
   EXPECT_NE(d.find("h84.00"), std::string::npos) << d;
 }
+
+// A door whose leaf the scene holds (a box labelled door at its jamb) is drawn as that leaf,
+// not as the usual swing; a door without one keeps its swing.
+TEST(SceneSvg, ADoorsOwnLeafReplacesItsSwing) {
+  Scene scene = parse_scene(R"(name: leaf
+levels: [{name: L0, slab: [[0,0],[10,0],[10,8],[0,8]]}]
+walls:
+  - {level: L0, from: [0, 4], to: [10, 4], thickness: 0.2, openings: [{at: 3, width: 0.9}, {at: 7, width: 0.9}]}
+boxes:
+  - {level: L0, min: [2.51, 4.14, 0], max: [2.55, 5.0, 2.08], label: door}
+trajectory: {waypoints: [[1, 2], [9, 2]]}
+)",
+                                  "leaf.yaml", ".");
+  const std::string svg = draw(scene);
+  scene.boxes.clear();
+  const std::string without = draw(scene);
+  EXPECT_EQ(count(svg, "class=\"door leaf\""), 1u);
+  EXPECT_EQ(count(without, "class=\"door leaf\""), 0u);
+  // One swing fewer (the legend draws one too); the leaf is no box (only the legend's swatch is).
+  EXPECT_EQ(count(svg, "<path class=\"door\"") + 1, count(without, "<path class=\"door\""));
+  EXPECT_EQ(count(svg, "class=\"box\""), count(without, "class=\"box\""));
+}

@@ -345,3 +345,20 @@ TEST(SceneLoader, GlassRailingsHaveATransmission) {
   const std::string solid = replace(kRoom, "trajectory:", replace(railing, "glass", "solid") + "trajectory:");
   EXPECT_THAT(error_of(solid), HasSubstr("only a glass railing lets rays through"));
 }
+
+TEST(SceneLoader, AnOpeningMayHoldAGlassPane) {
+  const std::string wall =  // a second wall in kRoom's list
+      "  - {level: L0, from: [0, 5], to: [10, 5], openings: [{at: 3, width: 1.5, height: 1.2, sill: 0.9, "
+      "transmission: 0.7}, {at: 7, width: 1.0}]}\n";
+  const Scene s = parse_scene(replace(kRoom, "trajectory:", wall + "trajectory:"), "test.yaml", ".");
+  ASSERT_EQ(s.walls.back().openings.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.walls.back().openings[0].transmission, 0.7);
+  EXPECT_DOUBLE_EQ(s.walls.back().openings[1].transmission, 1.0);  // no pane: an open door
+  const std::vector<GlassPane> panes = glass_panes(s.walls.back());
+  ASSERT_EQ(panes.size(), 1u);
+  EXPECT_DOUBLE_EQ(panes[0].s0, 2.25);
+  EXPECT_DOUBLE_EQ(panes[0].z0, 0.9);
+  EXPECT_DOUBLE_EQ(panes[0].z1, 2.1);
+  const std::string bad = replace(kRoom, "trajectory:", replace(wall, "0.7", "-0.1") + "trajectory:");
+  EXPECT_THAT(error_of(bad), HasSubstr("transmission: must lie in [0, 1]"));
+}

@@ -109,3 +109,18 @@ trajectory: {waypoints: [[2, 1], [28, 1, L1]]}
   EXPECT_LT(obstacle_distance(s, {24.0, 1.0}, 1.2, 0.5), 1.0);  // a low walker would meet it
   EXPECT_GE(obstacle_distance(s, {24.0, 1.0}, 2.85, 0.5), 0.5);
 }
+
+TEST(WalkableGrid, AGlazedDoorIsShutAnOpenOneIsNot) {
+  const auto grid_with = [](const std::string& pane) {
+    const Scene s = parse_scene(std::string(R"(name: glass door
+levels: [{name: L0, ceiling: 3.0, slab: [[0,0],[10,0],[10,6],[0,6]]}]
+walls: [{level: L0, from: [0, 4], to: [10, 4], thickness: 0.2, openings: [{at: 5.0, width: 1.0, height: 2.1)") +
+                                    pane + R"(}]}]
+trajectory: {waypoints: [[1, 2], [9, 2]]}
+)",
+                                "door.yaml", ".");
+    return rasterise_walkable(s, 0, GridFrame::around({0, 0}, {10, 6}, 0.05, 0.0));
+  };
+  EXPECT_TRUE(free_at(grid_with(""), {5.0, 4.0}));
+  EXPECT_FALSE(free_at(grid_with(", transmission: 0.8"), {5.0, 4.0}));
+}

@@ -92,3 +92,17 @@ trajectory: {waypoints: [[1, 3], [4, 3]]}
   EXPECT_EQ(b.railings[0].style, RailingStyle::kGlass);
   EXPECT_DOUBLE_EQ(b.railings[0].transmission, 0.35);
 }
+
+TEST(SceneWriter, AWindowsPaneIsWrittenAndAnOpenOpeningSaysNothingOfIt) {
+  const char* text = R"(name: windows
+levels: [{name: L0, slab: [[0,0],[10,0],[10,5],[0,5]]}]
+walls: [{level: L0, from: [0, 4], to: [10, 4], openings: [{at: 2, width: 1.2, height: 1.2, sill: 0.9, transmission: 0.65}, {at: 5, width: 1.0}]}]
+trajectory: {waypoints: [[1, 2], [9, 2]]}
+)";
+  const std::string yaml = scene_yaml(parse_scene(text, "w.yaml", "."));
+  EXPECT_NE(yaml.find("sill: 0.9, transmission: 0.65}"), std::string::npos) << yaml;
+  EXPECT_EQ(yaml.find("transmission: 1"), std::string::npos) << yaml;
+  const Scene b = parse_scene(yaml, "w.yaml", ".");
+  EXPECT_DOUBLE_EQ(b.walls[0].openings[0].transmission, 0.65);
+  EXPECT_DOUBLE_EQ(b.walls[0].openings[1].transmission, 1.0);
+}

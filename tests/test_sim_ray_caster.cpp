@@ -151,6 +151,42 @@ trajectory: {waypoints: [[2, 2], [8, 2]]}
   }
 }
 
+// A wall with a glazed window (0.9 to 2.1 m) and an open one: below the sills every ray
+// returns from the wall; through the pane the share that passes (to nothing behind it) is the
+// pane's transmission, the rest returns from the glass as wall; through the open window all pass.
+TEST(GlassWindow, LetsItsTransmissionThroughAboveTheSill) {
+  const Scene scene = parse_scene(R"(name: window
+levels: [{name: L0, ceiling: 3.0, slab: [[0,0],[10,0],[10,10],[0,10]]}]
+walls: [{level: L0, from: [0, 8], to: [10, 8], openings: [{at: 3, width: 2.0, height: 1.2, sill: 0.9, transmission: 0.6},
+                                                           {at: 7, width: 2.0, height: 1.2, sill: 0.9}]}]
+trajectory: {waypoints: [[2, 2], [8, 2]]}
+)",
+                                  "window.yaml", ".");
+  const RayCaster caster(build_scene_mesh(scene));
+  int glazed_passed = 0, open_passed = 0, sill_hit = 0;
+  const int n = 1000;
+  for (int i = 0; i < n; ++i) {
+    const float dx = -0.15f + 0.3f * i / (n - 1);  // a fan onto the middle of each window
+    glazed_passed += caster.cast({3.0f, 2.0f, 1.5f}, Eigen::Vector3f(dx, 1.0f, 0.0f), 60.0f).range < 0.0f;
+    open_passed += caster.cast({7.0f, 2.0f, 1.5f}, Eigen::Vector3f(dx, 1.0f, 0.0f), 60.0f).range < 0.0f;
+    const RayHit low = caster.cast({3.0f, 2.0f, 0.5f}, Eigen::Vector3f(dx, 1.0f, 0.0f), 60.0f);
+    sill_hit += low.label == kWall && low.range > 0.0f;
+  }
+  EXPECT_NEAR(static_cast<double>(glazed_passed) / n, 0.6, 0.05);
+  EXPECT_EQ(open_passed, n);
+  EXPECT_EQ(sill_hit, n);
+  // What the pane returns lies on the wall's centre line and is labelled wall.
+  int on_pane = 0;
+  for (int i = 0; i < n; ++i) {
+    const float dx = -0.15f + 0.3f * i / (n - 1);
+    const RayHit h = caster.cast({3.0f, 2.0f, 1.5f}, Eigen::Vector3f(dx, 1.0f, 0.0f), 60.0f);
+    if (h.range < 0.0f) continue;
+    EXPECT_EQ(h.label, kWall);
+    on_pane += std::abs(h.range * 1.0f / std::sqrt(dx * dx + 1.0f) - 6.0f) < 1e-3f;
+  }
+  EXPECT_EQ(on_pane, n - glazed_passed);
+}
+
 TEST(SimulatedScan, RangesToAWallMatchTruthWithinNoise) {
   // One horizontal beam ring in a 20 m wide hall: the wall face at x = 9.9 is 4.9 m ahead.
   const Scene scene = parse_scene(R"(

@@ -1,5 +1,6 @@
 #include "tsgraphs/core/rect.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -18,6 +19,36 @@ bool OrientedRect::contains(const Vec2& p) const {
   const double c = std::cos(yaw), s = std::sin(yaw);
   return std::abs(c * d.x() + s * d.y()) <= 0.5 * size.x() &&
          std::abs(-s * d.x() + c * d.y()) <= 0.5 * size.y();
+}
+
+double distance(const OrientedRect& r, const Vec2& p) {
+  const Vec2 d = p - r.center;
+  const double c = std::cos(r.yaw), s = std::sin(r.yaw);
+  const double a = std::max(std::abs(c * d.x() + s * d.y()) - 0.5 * r.size.x(), 0.0);
+  const double b = std::max(std::abs(-s * d.x() + c * d.y()) - 0.5 * r.size.y(), 0.0);
+  return std::hypot(a, b);
+}
+
+double distance(const OrientedRect& r, const Vec2& a, const Vec2& b) {
+  if (r.contains(a) || r.contains(b)) return 0.0;
+  const Polygon2 k = r.corners();
+  double d = std::numeric_limits<double>::infinity();
+  // Apart, the nearest points are an end of the segment and a side, or a corner and the segment.
+  for (std::size_t i = 0; i < k.size(); ++i) {
+    const Vec2& p = k[i];
+    const Vec2& q = k[(i + 1) % k.size()];
+    if (segments_intersect(a, b, p, q)) return 0.0;
+    d = std::min({d, distance_to_segment(p, a, b), distance_to_segment(a, p, q), distance_to_segment(b, p, q)});
+  }
+  return d;
+}
+
+double distance(const OrientedRect& a, const OrientedRect& b) {
+  const Polygon2 k = b.corners();
+  double d = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < k.size(); ++i) d = std::min(d, distance(a, k[i], k[(i + 1) % k.size()]));
+  // Apart or crossing, the sides tell; one wholly inside the other meets no side of it.
+  return a.contains(b.center) || b.contains(a.center) ? 0.0 : d;
 }
 
 double intersection_area(const OrientedRect& a, const OrientedRect& b) {

@@ -15,6 +15,13 @@ struct OrientedRect {
   bool contains(const Vec2& p) const;
 };
 
+/// Distance from a point to an oriented rectangle; 0 inside it.
+double distance(const OrientedRect& r, const Vec2& p);
+/// Distance from the segment [a, b] to an oriented rectangle; 0 when they meet.
+double distance(const OrientedRect& r, const Vec2& a, const Vec2& b);
+/// Distance between two oriented rectangles; 0 when they meet.
+double distance(const OrientedRect& a, const OrientedRect& b);
+
 /// Area of the intersection of two oriented rectangles.
 double intersection_area(const OrientedRect& a, const OrientedRect& b);
 /// Dice score 2|A n B| / (|A| + |B|); 0 when both are empty.

@@ -143,6 +143,8 @@ std::string suite_index_json(const SuiteIndex& index) {
   j["methods"] = ordered_json::array();
   for (const SuiteMethod& m : index.methods) j["methods"].push_back({{"slug", m.slug}, {"name", m.name}});
   j["cases"] = index.case_ids;
+  j["groups"] = ordered_json::array();
+  for (const CaseGroup& g : index.groups) j["groups"].push_back({{"name", g.name}, {"cases", g.case_ids}});
   return j.dump(1) + "\n";
 }
 
@@ -160,6 +162,20 @@ SuiteIndex read_suite_index(const std::string& file) {
   for (const auto& id : j["cases"]) {
     if (!id.is_string()) throw input_error(file, 0, "cases: expected a list of case ids");
     index.case_ids.push_back(id.get<std::string>());
+  }
+  if (j.contains("groups")) {  // absent in folders written before groups existed
+    if (!j["groups"].is_array()) throw input_error(file, 0, "groups: expected a list");
+    for (std::size_t i = 0; i < j["groups"].size(); ++i) {
+      const ordered_json& g = j["groups"][i];
+      const std::string where = "groups[" + std::to_string(i) + "]";
+      CaseGroup group{string_at(g, "name", file, where), {}};
+      if (!g.contains("cases") || !g["cases"].is_array()) throw input_error(file, 0, where + ".cases: expected a list");
+      for (const auto& id : g["cases"]) {
+        if (!id.is_string()) throw input_error(file, 0, where + ".cases: expected a list of case ids");
+        group.case_ids.push_back(id.get<std::string>());
+      }
+      index.groups.push_back(std::move(group));
+    }
   }
   return index;
 }

@@ -79,12 +79,19 @@ CaseRecord parse_case_record(const std::string& text, const std::string& file);
 /// A missing or malformed file is an InputError naming it.
 CaseRecord read_case_record(const std::string& file);
 
+/// The cases one entry of a suite file's `cases:` made (a generate entry: its styles x seeds).
+struct CaseGroup {
+  std::string name;                     ///< e.g. "cases[1]: generate, realistic"
+  std::vector<std::string> case_ids;    ///< in plan order
+};
+
 /// suite.json: what --collect needs to know of the suite without its file.
 struct SuiteIndex {
   std::string name;
   std::string suite_file;               ///< the suite file's absolute path
   std::vector<SuiteMethod> methods;     ///< in the suite's order
   std::vector<std::string> case_ids;    ///< in plan order
+  std::vector<CaseGroup> groups;        ///< the suite file's entries; empty in a folder older than groups
 };
 
 std::string suite_index_json(const SuiteIndex& index);

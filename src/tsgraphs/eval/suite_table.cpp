@@ -241,6 +241,42 @@ std::string suite_csv(const SuiteResults& results) {
   return out;
 }
 
+SuiteResults group_results(const SuiteResults& results, const CaseGroup& group) {
+  SuiteResults out;
+  out.name = results.name;
+  out.methods = results.methods;
+  for (const CaseRecord& c : results.cases) {
+    if (std::find(group.case_ids.begin(), group.case_ids.end(), c.id) != group.case_ids.end()) out.cases.push_back(c);
+  }
+  for (const std::string& id : results.pending) {
+    if (std::find(group.case_ids.begin(), group.case_ids.end(), id) != group.case_ids.end()) out.pending.push_back(id);
+  }
+  return out;
+}
+
+namespace {
+
+/// Per method, a table of every suite figure under a heading of level `heading` ("##").
+std::string figure_tables(const std::vector<MethodSummary>& summaries, const std::string& heading) {
+  std::string md;
+  for (const MethodSummary& s : summaries) {
+    md += "\n" + heading + " " + md_cell(s.method.name) + "\n\n" + cases_text(s.counted) + " counted, " +
+          std::to_string(s.failed) + " failed.\n\n";
+    md += "| figure | better (worst decile) | median | worst decile | worst | worst case | cases |\n";
+    md += "|---|---|---|---|---|---|---|\n";
+    for (std::size_t k = 0; k < suite_figures().size(); ++k) {
+      const SuiteFigure& f = suite_figures()[k];
+      const FigureStats& st = s.stats[k];
+      md += "| " + f.header + " | " + better_text(f.better) + " | " + figure_text(st.median, f.decimals) + " | " +
+            figure_text(st.worst_decile, f.decimals) + " | " + figure_text(st.worst, f.decimals) + " | " +
+            (st.worst_case.empty() ? "-" : md_cell(st.worst_case)) + " | " + std::to_string(st.n) + " |\n";
+    }
+  }
+  return md;
+}
+
+}  // namespace
+
 std::string suite_markdown(const SuiteResults& results) {
   const std::vector<MethodSummary> summaries = summarise(results);
   int done = 0, failed = 0;
@@ -260,17 +296,15 @@ std::string suite_markdown(const SuiteResults& results) {
         "decile (the 10th percentile where higher is better, the 90th where lower is better; linear between "
         "ranks), the worst value and the first case with it. DCS, d_center and mean IoU exist only where "
         "rooms were paired or matched; rooms F1 is 0 where a run has no final room.\n";
-  for (const MethodSummary& s : summaries) {
-    md += "\n## " + md_cell(s.method.name) + "\n\n" + cases_text(s.counted) + " counted, " +
-          std::to_string(s.failed) + " failed.\n\n";
-    md += "| figure | better (worst decile) | median | worst decile | worst | worst case | cases |\n";
-    md += "|---|---|---|---|---|---|---|\n";
-    for (std::size_t k = 0; k < suite_figures().size(); ++k) {
-      const SuiteFigure& f = suite_figures()[k];
-      const FigureStats& st = s.stats[k];
-      md += "| " + f.header + " | " + better_text(f.better) + " | " + figure_text(st.median, f.decimals) + " | " +
-            figure_text(st.worst_decile, f.decimals) + " | " + figure_text(st.worst, f.decimals) + " | " +
-            (st.worst_case.empty() ? "-" : md_cell(st.worst_case)) + " | " + std::to_string(st.n) + " |\n";
+  md += figure_tables(summaries, "##");
+  if (results.groups.size() > 1) {
+    md += "\n## Case groups\n\nThe same tables over the cases of each entry of the suite file's `cases:` alone.\n";
+    for (const CaseGroup& g : results.groups) {
+      const SuiteResults sub = group_results(results, g);
+      md += "\n### " + md_cell(g.name) + "\n\n" + cases_text(g.case_ids.size()) + ": " +
+            std::to_string(sub.cases.size()) + " with a record, " + std::to_string(sub.pending.size()) +
+            " not run yet.\n";
+      md += figure_tables(summarise(sub), "####");
     }
   }
 

@@ -59,7 +59,12 @@ struct SuiteResults {
   std::vector<SuiteMethod> methods;  ///< in the suite's order
   std::vector<CaseRecord> cases;     ///< done and failed, in plan order
   std::vector<std::string> pending;  ///< cases without a case.json yet
+  std::vector<CaseGroup> groups;     ///< the suite file's entries (suite.json); empty for an older folder
 };
+
+/// The results of one group's cases alone (its own figures: e.g. a suite's original cases
+/// without a group added later).
+SuiteResults group_results(const SuiteResults& results, const CaseGroup& group);
 
 /// One method over the suite.
 struct MethodSummary {
@@ -114,7 +119,8 @@ std::string case_line(const CaseRecord& c, const SuiteResults& results);
 std::string suite_csv(const SuiteResults& results);
 
 /// suite.md: counts, per method a table of every suite figure (direction, median, worst
-/// decile, worst, worst case, cases with it), the cases worst first, the failed cases.
+/// decile, worst, worst case, cases with it), the same tables per case group when the suite
+/// has more than one, the cases worst first, the failed cases.
 std::string suite_markdown(const SuiteResults& results);
 
 }  // namespace tsgraphs::eval

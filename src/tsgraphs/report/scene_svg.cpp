@@ -3,7 +3,8 @@
 // boxes, walls with their openings, railings, the first lap of the path, and the labels.
 //
 // Every element a reader (or a test) may want to count carries a class: "wall full",
-// "wall header" (the wall above an opening), "wall sill" (below a window), "door", "window",
+// "wall header" (the wall above an opening), "wall sill" (below a window), "door", "door leaf"
+// (a leaf the scene has, a box labelled door), "window",
 // "railing solid", "railing bars", "railing glass", "box", "void", "room", "ramp", "voxels", "path",
 // "arrow", "start", "end", "panel", "panel-title". Numbers are printed with two decimals
 // whatever the locale, so the same scene always gives the same bytes.
@@ -22,6 +23,7 @@
 
 #include "tsgraphs/io/pcd.hpp"
 #include "tsgraphs/report/svg_writer.hpp"
+#include "tsgraphs/scene/door_leaves.hpp"
 #include "tsgraphs/scene/scene_geometry.hpp"
 
 namespace tsgraphs::report {
@@ -451,6 +453,7 @@ class SceneDrawer {
     out_ += std::string(".wall.sill { fill: ") + kWindowSillFill + "; stroke: " + kWindowColour +
             "; stroke-width: 0.8; }\n";
     out_ += std::string(".door { fill: none; stroke: ") + kDoorColour + "; stroke-width: 1.2; }\n";
+    out_ += std::string(".door.leaf { fill: ") + kDoorColour + "; }\n";
     out_ += std::string(".window { stroke: ") + kWindowColour + "; stroke-width: 2; }\n";
     out_ += std::string(".railing.solid { stroke: ") + kRailingColour + "; stroke-linecap: butt; }\n";
     out_ += std::string(".railing.bars line { stroke: ") + kRailingColour + "; }\n";
@@ -608,6 +611,10 @@ class SceneDrawer {
     out_ += "<g class=\"layer-boxes\">\n";
     for (const scene::Box& b : scene_.boxes) {
       if (b.level != level) continue;
+      if (b.label == scene::kDoorLeafLabel) {  // a door's own leaf, drawn as the door symbol is
+        out_ += "<polygon class=\"door leaf\" points=\"" + points_attr(f, box_corners(b)) + "\"/>\n";
+        continue;
+      }
       out_ += "<polygon class=\"box\" points=\"" + points_attr(f, box_corners(b)) + "\"/>\n";
       if (!b.label.empty()) labels_.push_back({0.5 * (b.min.head<2>() + b.max.head<2>()), b.label, "box-name"});
     }
@@ -644,9 +651,24 @@ class SceneDrawer {
     }
     for (const scene::Wall& w : scene_.walls) {
       if (w.level != level) continue;
-      for (const scene::Opening& o : w.openings) out_ += o.sill > 0.0 ? window(f, w, o) : door(f, w, o);
+      for (const scene::Opening& o : w.openings) {
+        if (o.sill > 0.0) out_ += window(f, w, o);
+        else if (!has_leaf(w, o)) out_ += door(f, w, o);  // a door whose leaf is in the scene shows that
+      }
     }
     out_ += "</g>\n";
+  }
+
+  /// True when a door leaf (a box labelled as one) stands at the door's opening.
+  bool has_leaf(const scene::Wall& w, const scene::Opening& o) const {
+    const Vec2 c = w.from + o.at * (w.to - w.from).normalized();
+    for (const scene::Box& b : scene_.boxes) {
+      if (b.level != w.level || b.label != scene::kDoorLeafLabel) continue;
+      for (const Vec2& p : box_corners(b)) {
+        if ((p - c).norm() <= 0.5 * o.width + w.thickness) return true;  // its hinge is at a jamb
+      }
+    }
+    return false;
   }
 
   static std::string piece_kind(const scene::Wall& w, const scene::WallPiece& p) {

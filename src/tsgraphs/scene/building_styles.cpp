@@ -13,6 +13,21 @@ constexpr double kRoomMax = 12.0;          // m: the widest and deepest room
 constexpr double kTwoRowsAbove = 7.0;      // m: a block this deep may hold two rows of rooms
 constexpr double kTwoRowChance = 0.35;     // of such a block
 constexpr double kSplitJitter = 0.35;      // relative spread of the pieces of a split length
+// generate --realistic: a block's front row as small offices.
+constexpr double kSmallOfficeChance = 0.5;     // of a block's front row being small offices
+constexpr double kSmallOfficeAreaMin = 6.0;    // m^2 of floor (the ground truth's, inside the walls)
+constexpr double kSmallOfficeAreaMax = 12.0;
+constexpr double kSmallOfficeDepthMax = 4.0;   // m: deeper, a room is no small office
+constexpr double kWallsMax = 0.25;             // m two half walls take from a room's side at most (facade + interior)...
+constexpr double kWallsMin = 0.1;              // ...and at least
+
+/// The depth of a block's front row of small offices, or 0 when the block holds none.
+double small_office_depth(double depth, Rng& rng) {
+  if (depth < kRoomMin) return 0.0;
+  if (depth <= kSmallOfficeDepthMax) return depth;
+  if (depth < 2.0 * kRoomMin) return 0.0;  // the back row would be too shallow
+  return rng.uniform(kRoomMin, std::min(kSmallOfficeDepthMax, depth - kRoomMin));
+}
 
 }  // namespace
 
@@ -64,7 +79,11 @@ std::vector<int> fill_block(FloorPlan* plan, const Region& block, Side side, int
     return Region{{block.hi.x() - v1, block.lo.y() + u0}, {block.hi.x() - v0, block.lo.y() + u1}};
   };
   std::vector<double> rows = {depth};
-  if (depth > kRoomMax || (depth > kTwoRowsAbove && rng.chance(kTwoRowChance))) {
+  const double small = plan->realistic && rng.chance(kSmallOfficeChance) ? small_office_depth(depth, rng) : 0.0;
+  if (small > 0.0) {
+    rows = {small};
+    if (depth - small > 1e-9) rows.push_back(depth - small);
+  } else if (depth > kRoomMax || (depth > kTwoRowsAbove && rng.chance(kTwoRowChance))) {
     const double front = std::clamp(rng.uniform(kRoomMin, depth - kRoomMin), kRoomMin, kRoomMax);
     rows = {front, depth - front};
   }
@@ -74,7 +93,11 @@ std::vector<int> fill_block(FloorPlan* plan, const Region& block, Side side, int
   double v = 0.0;
   for (std::size_t row = 0; row < rows.size(); ++row) {
     // Each row draws its own range within [2.5, 12] m, so blocks of small and of large rooms both occur.
-    const double lo = rng.uniform(kRoomMin, 4.5), hi = std::min(kRoomMax, rng.uniform(lo + 2.5, kRoomMax));
+    double lo = rng.uniform(kRoomMin, 4.5), hi = std::min(kRoomMax, rng.uniform(lo + 2.5, kRoomMax));
+    if (row == 0 && small > 0.0) {  // widths that give 6-12 m^2 inside the walls
+      lo = std::max(kRoomMin, kSmallOfficeAreaMin / (rows[0] - kWallsMax) + kWallsMax);
+      hi = std::max(lo, kSmallOfficeAreaMax / (rows[0] - kWallsMin) + kWallsMin);
+    }
     double u = 0.0;
     for (double w : split_length(length, lo, hi, rng)) {
       const Region r = rect(u, u + w, v, v + rows[row]);

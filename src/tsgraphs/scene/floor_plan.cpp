@@ -207,7 +207,7 @@ bool is_ground_truth(SpaceKind kind) {
   return kind == SpaceKind::kRoom || kind == SpaceKind::kCorridor || kind == SpaceKind::kHall;
 }
 
-bool is_walkable(SpaceKind kind) { return kind != SpaceKind::kVoid; }
+bool is_walkable(SpaceKind kind) { return kind != SpaceKind::kVoid && kind != SpaceKind::kShaft; }
 
 std::vector<SharedStretch> shared_boundary(const FloorPlan& plan, int a, int b) {
   return Subdivision(plan).stretches(a, b);
@@ -344,7 +344,11 @@ PlanResult add_floor_plan(const FloorPlan& plan, int level, Scene* scene) {
     std::sort(w.openings.begin(), w.openings.end(), [](const Opening& x, const Opening& y) { return x.at < y.at; });
     ++result.doors_made;
   }
-  for (PendingWall& pw : walls) scene->walls.push_back(pw.wall);
+  for (PendingWall& pw : walls) {
+    const int index = static_cast<int>(scene->walls.size());
+    result.walls.push_back(pw.a < 0 ? PlanWall{index, pw.b, -1} : PlanWall{index, pw.a, pw.b});
+    scene->walls.push_back(pw.wall);
+  }
 
   // Voids, and the ground truth measured to the faces of what bounds each space.
   std::vector<std::vector<double>> offsets(plan.spaces.size());

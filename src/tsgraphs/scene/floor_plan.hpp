@@ -20,6 +20,7 @@ enum class SpaceKind {
   kHall,      ///< a large room (open plan, library hall): ground truth
   kVoid,      ///< a hole in the slab (an atrium's void, a ramp's well seen from above): railings round it
   kRamp,      ///< a ramp's footprint on its lower level: walkable, no ground truth
+  kShaft,     ///< a closed shaft or casing (walls all round, no door): not walkable, no ground truth
 };
 
 /// What furniture a space gets once its walls and doors are known (furnishing.hpp).
@@ -64,6 +65,7 @@ struct FloorPlan {
   std::vector<std::pair<int, int>> no_railing;   ///< a void's edge walked over (a ramp's top edge)
   FloorPlanRules rules;
   bool ground_truth = true;  ///< false for a storey the path does not walk (an atrium's lower storey)
+  bool realistic = false;    ///< generate --realistic: the styles add rows of small offices (building_styles.hpp)
 
   int add(const std::string& name, SpaceKind kind, const Polygon2& outline, Furnishing f = Furnishing::kNone);
   int add_rect(const std::string& name, SpaceKind kind, const Vec2& lo, const Vec2& hi, Furnishing f = Furnishing::kNone);
@@ -71,7 +73,7 @@ struct FloorPlan {
 
 /// True for spaces that are ground truth (rooms, corridor segments, halls).
 bool is_ground_truth(SpaceKind kind);
-/// True for spaces one can walk in.
+/// True for spaces one can walk in (not voids, not shafts).
 bool is_walkable(SpaceKind kind);
 
 /// The common boundary of two spaces: straight stretches, each with its ends.
@@ -85,8 +87,16 @@ std::vector<SharedStretch> shared_boundary(const FloorPlan& plan, int a, int b);
 /// preferring corridor to corridor, then corridor to room, then room to room.
 void connect_spaces(FloorPlan* plan, Rng& rng);
 
+/// A wall add_floor_plan made: its index in Scene::walls and the spaces on its two sides
+/// (b = -1: the outside, a facade).
+struct PlanWall {
+  int wall = 0;
+  int a = -1, b = -1;
+};
+
 /// What add_floor_plan made, for the generator's checks and the furniture.
 struct PlanResult {
+  std::vector<PlanWall> walls;     ///< every wall made, in Scene::walls order
   std::vector<int> room_of_space;  ///< index into scene.rooms, -1 for voids, ramps and unwalked storeys
   std::vector<Polygon2> faces;     ///< each space's outline measured to the faces of what bounds it
   int doors_made = 0;

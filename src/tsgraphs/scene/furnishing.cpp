@@ -30,15 +30,8 @@ constexpr Item kOfficeItems[] = {
 
 class Placer {
  public:
-  Placer(const Scene& scene, int level, const Polygon2& face) : face_(face) {
-    for (const Wall& w : scene.walls) {
-      if (w.level != level) continue;
-      const Vec2 dir = (w.to - w.from).normalized();
-      for (const Opening& o : w.openings) {
-        if (o.sill <= 0.0) doors_.push_back({w.from + o.at * dir, std::max(kDoorKeepOut, 0.5 * o.width + 0.8)});
-      }
-    }
-  }
+  Placer(const Scene& scene, int level, const Polygon2& face, const std::vector<OrientedRect>& keep_clear)
+      : face_(face), doors_(door_approaches(scene, level)), placed_(keep_clear) {}
 
   /// True (and the footprint kept) when `r` lies inside the face, clear of the doors'
   /// approaches and of every piece placed before (by `gap`).
@@ -48,8 +41,8 @@ class Placer {
       if (!contains(face_, p)) return false;
     }
     if (!contains(face_, r.center)) return false;
-    for (const auto& [c, radius] : doors_) {
-      if (distance_to_rect(c, r) < radius) return false;
+    for (const DoorApproach& d : doors_) {
+      if (distance(r, d.center) < d.radius) return false;
     }
     OrientedRect grown = r;
     grown.size += Vec2::Constant(2 * gap);
@@ -69,16 +62,8 @@ class Placer {
   }
 
  private:
-  static double distance_to_rect(const Vec2& p, const OrientedRect& r) {
-    const Vec2 u(std::cos(r.yaw), std::sin(r.yaw));
-    const Vec2 d = p - r.center;
-    const double a = std::max(std::abs(d.dot(u)) - 0.5 * r.size.x(), 0.0);
-    const double b = std::max(std::abs(-d.x() * u.y() + d.y() * u.x()) - 0.5 * r.size.y(), 0.0);
-    return std::hypot(a, b);
-  }
-
   Polygon2 face_;
-  std::vector<std::pair<Vec2, double>> doors_;
+  std::vector<DoorApproach> doors_;
   std::vector<OrientedRect> placed_;
 };
 
@@ -92,8 +77,9 @@ Box box_of(const OrientedRect& r, double z0, double z1, int level, const char* l
   return b;
 }
 
-void furnish_office(const Polygon2& face, int level, Rng& rng, Scene* scene) {
-  Placer placer(*scene, level, face);
+void furnish_office(const Polygon2& face, int level, Rng& rng, Scene* scene,
+                    const std::vector<OrientedRect>& keep_clear) {
+  Placer placer(*scene, level, face, keep_clear);
   const int max_items = area(face) < kSmallRoomArea ? 1 : kOfficeItemsMax;
   int placed = 0;
   const double orient = signed_area(face) >= 0 ? 1.0 : -1.0;
@@ -124,8 +110,9 @@ void bounds(const Polygon2& face, Vec2* lo, Vec2* hi) {
   }
 }
 
-void furnish_shelves(const Polygon2& face, int level, Rng& rng, Scene* scene) {
-  Placer placer(*scene, level, face);
+void furnish_shelves(const Polygon2& face, int level, Rng& rng, Scene* scene,
+                     const std::vector<OrientedRect>& keep_clear) {
+  Placer placer(*scene, level, face, keep_clear);
   Vec2 lo, hi;
   bounds(face, &lo, &hi);
   const bool rows_along_x = rng.chance(0.5);
@@ -151,8 +138,9 @@ void furnish_shelves(const Polygon2& face, int level, Rng& rng, Scene* scene) {
   }
 }
 
-void furnish_open_plan(const Polygon2& face, int level, double ceiling, Rng& rng, Scene* scene) {
-  Placer placer(*scene, level, face);
+void furnish_open_plan(const Polygon2& face, int level, double ceiling, Rng& rng, Scene* scene,
+                       const std::vector<OrientedRect>& keep_clear) {
+  Placer placer(*scene, level, face, keep_clear);
   Vec2 lo, hi;
   bounds(face, &lo, &hi);
   // Pillars on a grid, floor to ceiling.
@@ -195,8 +183,9 @@ void furnish_open_plan(const Polygon2& face, int level, double ceiling, Rng& rng
   }
 }
 
-void furnish_lobby(const Polygon2& face, int level, double ceiling, Rng& rng, Scene* scene) {
-  Placer placer(*scene, level, face);
+void furnish_lobby(const Polygon2& face, int level, double ceiling, Rng& rng, Scene* scene,
+                   const std::vector<OrientedRect>& keep_clear) {
+  Placer placer(*scene, level, face, keep_clear);
   Vec2 lo, hi;
   bounds(face, &lo, &hi);
   const double spacing = rng.uniform(7.0, 10.0);
@@ -222,16 +211,29 @@ void furnish_lobby(const Polygon2& face, int level, double ceiling, Rng& rng, Sc
 
 }  // namespace
 
-void furnish(const FloorPlan& plan, const PlanResult& result, int level, Rng& rng, Scene* scene) {
+std::vector<DoorApproach> door_approaches(const Scene& scene, int level) {
+  std::vector<DoorApproach> out;
+  for (const Wall& w : scene.walls) {
+    if (w.level != level) continue;
+    const Vec2 dir = (w.to - w.from).normalized();
+    for (const Opening& o : w.openings) {
+      if (o.sill <= 0.0) out.push_back({w.from + o.at * dir, std::max(kDoorKeepOut, 0.5 * o.width + 0.8)});
+    }
+  }
+  return out;
+}
+
+void furnish(const FloorPlan& plan, const PlanResult& result, int level, Rng& rng, Scene* scene,
+             const std::vector<OrientedRect>& keep_clear) {
   const double ceiling = scene->levels.at(level).ceiling;
   for (std::size_t s = 0; s < plan.spaces.size(); ++s) {
     const Polygon2& face = result.faces[s];
     switch (plan.spaces[s].furnishing) {
       case Furnishing::kNone: break;
-      case Furnishing::kOffice: furnish_office(face, level, rng, scene); break;
-      case Furnishing::kShelves: furnish_shelves(face, level, rng, scene); break;
-      case Furnishing::kOpenPlan: furnish_open_plan(face, level, ceiling, rng, scene); break;
-      case Furnishing::kLobby: furnish_lobby(face, level, ceiling, rng, scene); break;
+      case Furnishing::kOffice: furnish_office(face, level, rng, scene, keep_clear); break;
+      case Furnishing::kShelves: furnish_shelves(face, level, rng, scene, keep_clear); break;
+      case Furnishing::kOpenPlan: furnish_open_plan(face, level, ceiling, rng, scene, keep_clear); break;
+      case Furnishing::kLobby: furnish_lobby(face, level, ceiling, rng, scene, keep_clear); break;
     }
   }
 }

@@ -9,9 +9,12 @@
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/scene/building_styles.hpp"
+#include "tsgraphs/scene/clutter.hpp"
+#include "tsgraphs/scene/door_leaves.hpp"
 #include "tsgraphs/scene/floor_plan.hpp"
 #include "tsgraphs/scene/furnishing.hpp"
 #include "tsgraphs/scene/random.hpp"
+#include "tsgraphs/scene/room_shapes.hpp"
 #include "tsgraphs/scene/scene_geometry.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/scene/scene_writer.hpp"
@@ -19,6 +22,7 @@
 #include "tsgraphs/scene/survey_path.hpp"
 #include "tsgraphs/scene/trajectory.hpp"
 #include "tsgraphs/scene/walkable_grid.hpp"
+#include "tsgraphs/scene/windows.hpp"
 
 namespace tsgraphs::scene {
 namespace {
@@ -53,6 +57,11 @@ constexpr double kYawRateMin = 60.0;         // deg/s at corners
 constexpr double kYawRateMax = 120.0;
 constexpr double kDriftMin = 0.002;          // odometry drift per metre (and per radian) travelled
 constexpr double kDriftMax = 0.03;
+
+// Realistic buildings.
+constexpr double kPassageSlack = 0.3;        // m a passage left by clutter or a door leaf has beyond the path's
+                                             // two clearances: the planner's raster margin and room to turn
+constexpr std::uint64_t kRealisticSalt = 400;  // the realistic draws' own stream per storey (after 100 + i, 200 + i)
 
 // Checks.
 constexpr double kRoomOverlapArea = 1e-4;    // m^2 two ground-truth rooms may share (rounding)
@@ -141,7 +150,7 @@ Storey lobby_below(const Region& r, const FloorPlanRules& rules, double ceiling)
   return s;
 }
 
-Building single_wing(const std::string& style, double scale, Rng& rng) {
+Building single_wing(const std::string& style, double scale, bool realistic, Rng& rng) {
   const StyleSize z = size_of(style, scale);
   const Region r{{0, 0}, {rng.uniform(z.w_lo, z.w_hi), rng.uniform(z.h_lo, z.h_hi)}};
   const FloorPlanRules rules = draw_rules(rng);
@@ -151,6 +160,7 @@ Building single_wing(const std::string& style, double scale, Rng& rng) {
   Storey s;
   s.name = "L" + std::to_string(b.storeys.size());
   s.plan.rules = rules;
+  s.plan.realistic = realistic;
   s.slab = rect_polygon(r.lo, r.hi);
   s.ceiling = ceiling;
   if (style == "irregular") {
@@ -167,7 +177,7 @@ Building single_wing(const std::string& style, double scale, Rng& rng) {
   return b;
 }
 
-Building mixed(double scale, Rng& rng) {
+Building mixed(double scale, bool realistic, Rng& rng) {
   static const std::vector<std::string> kWingStyles = {"office", "atrium", "library", "open_plan", "irregular"};
   const int n = rng.chance(0.7) ? 2 : 3;
   std::vector<std::string> styles;
@@ -191,6 +201,7 @@ Building mixed(double scale, Rng& rng) {
   Storey s;
   s.name = "L" + std::to_string(b.storeys.size());
   s.plan.rules = rules;
+  s.plan.realistic = realistic;
   s.ceiling = rng.uniform(kCeilingMin, kCeilingMax);
   for (std::size_t i = 0; i < wings.size(); ++i) fill(styles[i], &s.plan, wings[i], rng, "wing" + std::to_string(i + 1) + "_");
   s.slab = staircase(wings);
@@ -198,7 +209,7 @@ Building mixed(double scale, Rng& rng) {
   return b;
 }
 
-Building multi_storey(double scale, Rng& rng) {
+Building multi_storey(double scale, bool realistic, Rng& rng) {
   static const std::vector<std::string> kGround = {"office", "library", "open_plan", "irregular"};
   static const std::vector<std::string> kUpper = {"office", "library", "open_plan", "irregular", "atrium"};
   const int n = rng.chance(0.8) ? 2 : 3;
@@ -222,6 +233,7 @@ Building multi_storey(double scale, Rng& rng) {
     Storey s;
     s.name = "L" + std::to_string(j);
     s.plan.rules = rules;
+    s.plan.realistic = realistic;
     s.ceiling = ceiling;
     s.slab = rect_polygon({0, 0}, {W, H});
     double y_lo = 0.0, y_hi = H;
@@ -259,6 +271,44 @@ Building multi_storey(double scale, Rng& rng) {
     b.storeys.push_back(std::move(s));
   }
   return b;
+}
+
+/// Storey `level`'s doors, walls and furniture into `scene` (its level exists); for a
+/// realistic building its rooms reshaped first, then windows, door leaves and clutter.
+void build_storey(Storey* s, int level, const GeneratorConfig& config, Rng& rng, Scene* scene) {
+  const std::uint64_t i = static_cast<std::uint64_t>(level);
+  Rng doors = rng.fork(100 + i);
+  // Drawn only for a realistic building: without it the main stream is as it always was.
+  Rng real = config.realistic ? rng.fork(kRealisticSalt + i) : Rng(0);
+  if (config.realistic && s->plan.ground_truth) shape_rooms(&s->plan, real);
+  connect_spaces(&s->plan, doors);
+  // Some rooms get a second door into a neighbour room.
+  const std::size_t n = s->plan.spaces.size();
+  for (std::size_t a = 0; a < n; ++a) {
+    if (s->plan.spaces[a].kind != SpaceKind::kRoom || !doors.chance(kExtraDoorChance)) continue;
+    for (std::size_t c = 0; c < n; ++c) {
+      if (c == a || s->plan.spaces[c].kind != SpaceKind::kRoom) continue;
+      if (!shared_boundary(s->plan, static_cast<int>(a), static_cast<int>(c)).empty()) {
+        s->plan.doors.push_back(random_door(static_cast<int>(a), static_cast<int>(c), doors));
+        break;
+      }
+    }
+  }
+  if (config.realistic) draw_door_widths(&s->plan, real);
+  const PlanResult result = add_floor_plan(s->plan, level, scene);
+  const double passage = 2.0 * config.clearance + kPassageSlack;
+  std::vector<OrientedRect> leaves;
+  if (config.realistic) {
+    add_windows(s->plan, result, real, scene);
+    // Furniture keeps a passage round each leaf (on top of its own spacing).
+    for (OrientedRect r : hang_door_leaves(s->plan, result, level, passage, real, scene)) {
+      r.size += Vec2::Constant(2.0 * passage);
+      leaves.push_back(r);
+    }
+  }
+  Rng furniture = rng.fork(200 + i);
+  furnish(s->plan, result, level, furniture, scene, leaves);
+  if (config.realistic) add_clutter(s->plan, result, level, passage, real, scene);
 }
 
 /// The platform: sensor, drift and path speed.
@@ -360,9 +410,9 @@ GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed,
   scene.name = style + "_" + std::to_string(seed);
   scene.seed = seed;
   draw_platform(&scene, rng, config);
-  Building b = style == "mixed"          ? mixed(config.size, rng)
-               : style == "multi_storey" ? multi_storey(config.size, rng)
-                                         : single_wing(style, config.size, rng);
+  Building b = style == "mixed"          ? mixed(config.size, config.realistic, rng)
+               : style == "multi_storey" ? multi_storey(config.size, config.realistic, rng)
+                                         : single_wing(style, config.size, config.realistic, rng);
   double elevation = 0.0;
   for (const Storey& s : b.storeys) {
     Level l;
@@ -373,26 +423,7 @@ GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed,
     scene.levels.push_back(l);
     elevation += s.ceiling + kSlabThickness;
   }
-  for (std::size_t i = 0; i < b.storeys.size(); ++i) {
-    Storey& s = b.storeys[i];
-    Rng doors = rng.fork(100 + i);
-    connect_spaces(&s.plan, doors);
-    // Some rooms get a second door into a neighbour room.
-    const std::size_t n = s.plan.spaces.size();
-    for (std::size_t a = 0; a < n; ++a) {
-      if (s.plan.spaces[a].kind != SpaceKind::kRoom || !doors.chance(kExtraDoorChance)) continue;
-      for (std::size_t c = 0; c < n; ++c) {
-        if (c == a || s.plan.spaces[c].kind != SpaceKind::kRoom) continue;
-        if (!shared_boundary(s.plan, static_cast<int>(a), static_cast<int>(c)).empty()) {
-          s.plan.doors.push_back(random_door(static_cast<int>(a), static_cast<int>(c), doors));
-          break;
-        }
-      }
-    }
-    const PlanResult result = add_floor_plan(s.plan, static_cast<int>(i), &scene);
-    Rng furniture = rng.fork(200 + i);
-    furnish(s.plan, result, static_cast<int>(i), furniture, &scene);
-  }
+  for (std::size_t i = 0; i < b.storeys.size(); ++i) build_storey(&b.storeys[i], static_cast<int>(i), config, rng, &scene);
   scene.ramps = b.ramps;
   join_wall_ends(&scene);
   // A first path so that the scene loads; the survey path replaces it.
@@ -435,7 +466,8 @@ GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed,
 
   GeneratedBuilding out;
   std::ostringstream header;
-  header << "Generated by `tsgraphs generate --style " << style << " --seed " << seed << "` (docs/generator.md).\n"
+  header << "Generated by `tsgraphs generate --style " << style << " --seed " << seed
+         << (config.realistic ? " --realistic" : "") << "` (docs/generator.md).\n"
          << "Ground truth: every room, hall and corridor segment bounded by walls, doors and railings.";
   out.yaml = scene_yaml(scene, header.str());
   out.scene = parse_scene(out.yaml, scene.name + ".yaml", ".");

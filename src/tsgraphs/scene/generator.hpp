@@ -28,6 +28,10 @@ struct GeneratorConfig {
   double coverage_spacing = 8.0;   ///< m: a hall gets a stop in every tile of this size
   double coverage_area = 60.0;     ///< m^2: rooms larger than this get coverage stops too
   int people = 0;                  ///< people walking stretches of the survey path (scene people:), at most kMaxGeneratedPeople
+  /// generate --realistic: clutter and furniture against the walls, open door leaves, windows,
+  /// rooms that are not rectangles and rows of small offices (docs/generator.md, "Realistic
+  /// buildings"). Without it a building is what it always was, byte for byte.
+  bool realistic = false;
 };
 
 /// More people than this in one generated building is a typo.

@@ -65,6 +65,9 @@ struct Opening {
   double width = 0.9;
   double height = 2.1;
   double sill = 0.0;                  ///< 0 for a door
+  /// A glass pane filling the opening: the probability that a ray passes it (a return behind
+  /// it), as a glass railing's; 1 (the default): no pane, an open door or window.
+  double transmission = 1.0;
 };
 
 struct Wall {

@@ -23,6 +23,15 @@ std::vector<WallPiece> wall_pieces(const Wall& wall) {
   return pieces;
 }
 
+std::vector<GlassPane> glass_panes(const Wall& wall) {
+  std::vector<GlassPane> panes;
+  for (const Opening& o : wall.openings) {
+    if (o.transmission < 1.0)
+      panes.push_back({o.at - 0.5 * o.width, o.at + 0.5 * o.width, o.sill, o.sill + o.height, o.transmission});
+  }
+  return panes;
+}
+
 std::vector<Polygon2> ceiling_holes(const Scene& scene, int level) {
   std::vector<Polygon2> holes = scene.levels[level].voids;
   // The next level up by elevation: its floor and this ceiling are one slab.

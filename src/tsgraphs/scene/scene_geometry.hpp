@@ -14,6 +14,15 @@ struct WallPiece {
 };
 std::vector<WallPiece> wall_pieces(const Wall& wall);
 
+/// The glass panes of a wall's glazed openings (Opening::transmission < 1): each fills its
+/// opening, [s0, s1] along the centre line and [z0, z1] above the level, and lets rays pass
+/// with that probability. Solid pieces (wall_pieces) and panes together close the wall.
+struct GlassPane {
+  double s0, s1, z0, z1;
+  double transmission;
+};
+std::vector<GlassPane> glass_panes(const Wall& wall);
+
 /// Region of the ceiling of `level`: its slab minus its voids and the next level up's voids.
 std::vector<Polygon2> ceiling_holes(const Scene& scene, int level);
 

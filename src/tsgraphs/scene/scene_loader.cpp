@@ -310,12 +310,14 @@ class SceneParser {
     require_positive(m, "height", w.height);
     std::vector<std::pair<double, double>> spans;
     for (const YamlMap& om : m.maps("openings")) {
-      om.check_keys({"at", "width", "height", "sill"});
+      om.check_keys({"at", "width", "height", "sill", "transmission"});
       Opening o;
       o.at = om.require<double>("at");
       o.width = om.require<double>("width");
       o.height = om.get<double>("height", 2.1);
       o.sill = om.get<double>("sill", 0.0);
+      o.transmission = om.get<double>("transmission", 1.0);
+      if (!(o.transmission >= 0.0 && o.transmission <= 1.0)) throw om.error("transmission", "must lie in [0, 1]");
       require_positive(om, "width", o.width);
       require_positive(om, "height", o.height);
       require_non_negative(om, "sill", o.sill);
@@ -527,12 +529,12 @@ class SceneParser {
       const Wall& wall = scene_.walls[i];
       if (wall.level != w.level) continue;
       if (distance_to_segment(w.xy, wall.from, wall.to) >= 0.5 * wall.thickness) continue;
-      // Inside the wall's footprint: allowed only in a door (an opening from the floor).
+      // Inside the wall's footprint: allowed only in a door (an opening from the floor, no pane).
       const Vec2 dir = (wall.to - wall.from).normalized();
       const double s = (w.xy - wall.from).dot(dir);
       bool in_door = false;
       for (const Opening& o : wall.openings) {
-        in_door = in_door || (o.sill <= 0.0 && std::abs(s - o.at) < 0.5 * o.width);
+        in_door = in_door || (o.sill <= 0.0 && o.transmission >= 1.0 && std::abs(s - o.at) < 0.5 * o.width);
       }
       if (!in_door) {
         throw input_error(root_.file(), w.line,
@@ -564,7 +566,9 @@ class SceneParser {
         const Wall& w = scene_.walls[k];
         if (w.level != a.level) continue;
         const Vec2 dir = (w.to - w.from).normalized();
-        for (const WallPiece& p : wall_pieces(w)) {
+        std::vector<WallPiece> pieces = wall_pieces(w);
+        for (const GlassPane& g : glass_panes(w)) pieces.push_back({g.s0, g.s1, g.z0, g.z1});  // a glazed door is shut
+        for (const WallPiece& p : pieces) {
           if (p.z0 > 0.0) continue;  // above a door: walked under
           OrientedRect r;
           r.center = w.from + 0.5 * (p.s0 + p.s1) * dir;

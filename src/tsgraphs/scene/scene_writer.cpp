@@ -137,7 +137,9 @@ std::string scene_yaml(const Scene& scene, const std::string& header) {
         for (std::size_t i = 0; i < w.openings.size(); ++i) {
           const Opening& o = w.openings[i];
           out << (i ? ", " : "") << "{at: " << num(o.at) << ", width: " << num(o.width) << ", height: " << num(o.height)
-              << ", sill: " << num(o.sill) << "}";
+              << ", sill: " << num(o.sill);
+          if (o.transmission < 1.0) out << ", transmission: " << num(o.transmission);
+          out << "}";
         }
         out << "]";
       }

@@ -38,6 +38,10 @@ std::vector<Slab2> blocking_shapes(const Scene& scene, int level, const Walkable
       if (p.z0 >= rules.headroom) continue;  // a lintel: walked under
       shapes.push_back({w.from + 0.5 * (p.s0 + p.s1) * dir, dir, 0.5 * (p.s1 - p.s0), 0.5 * w.thickness, p.z0, p.z1});
     }
+    for (const GlassPane& g : glass_panes(w)) {  // glass stops a walker as the wall does
+      if (g.z0 >= rules.headroom) continue;
+      shapes.push_back({w.from + 0.5 * (g.s0 + g.s1) * dir, dir, 0.5 * (g.s1 - g.s0), 0.5 * w.thickness, g.z0, g.z1});
+    }
   }
   for (const Railing& r : scene.railings) {
     if (r.level != level) continue;

@@ -32,6 +32,15 @@ void add_wall(LabelledMesh* mesh, const scene::Wall& wall, double elevation) {
     mesh->add_box(c, {0.5 * (p.s1 - p.s0), 0.5 * wall.thickness}, yaw, elevation + p.z0, elevation + p.z1,
                   PointLabel::kWall);
   }
+  // A window's glass: one pane on the centre line, as a glass railing's (a ray meets it once).
+  for (const scene::GlassPane& g : scene::glass_panes(wall)) {
+    const Vec2 a2 = wall.from + g.s0 * dir, b2 = wall.from + g.s1 * dir;
+    const Eigen::Vector3d a(a2.x(), a2.y(), elevation + g.z0), b(b2.x(), b2.y(), elevation + g.z0);
+    const Eigen::Vector3d up(0.0, 0.0, g.z1 - g.z0);
+    const float t = static_cast<float>(g.transmission);
+    mesh->add_triangle(a, b, b + up, PointLabel::kWall, t);
+    mesh->add_triangle(a, b + up, a + up, PointLabel::kWall, t);
+  }
 }
 
 void add_railing(LabelledMesh* mesh, const scene::Railing& r, double elevation) {
