@@ -788,5 +788,29 @@ TEST(RoomSegmentation, ConfigOutOfRangeIsRefused) {
   EXPECT_THROW(freespace::SightMap(0.0, freespace::SightMapConfig{0.1, 0.2, 0.1, 12.0}), std::invalid_argument);
 }
 
+/// A 24 x 2.5 m corridor above a 24 x 6 m hall, the wall between them in two pieces along one
+/// line with an opening of `opening` m in the middle.
+SegmentationInput corridor_over_hall(double opening) {
+  SegmentationInput in = level();
+  add_area(box(0, -6, 24, 2.5), &in);
+  const double a = 12.0 - 0.5 * opening, b = 12.0 + 0.5 * opening;
+  in.walls = {wall(0, {0, -6}, {24, -6}, {12, -3}),  wall(1, {24, -6}, {24, 2.5}, {12, -3}),
+              wall(2, {24, 2.5}, {0, 2.5}, {12, -3}), wall(3, {0, 2.5}, {0, -6}, {12, -3}),
+              wall(4, {0, 0}, {a, 0}, {6, 1}),        wall(5, {b, 0}, {24, 0}, {18, 1})};
+  return in;
+}
+
+TEST(RoomSegmentation, AWideOpeningInALongWallIsClosedAlongIt) {
+  // 4 m open in a wall of 20 m on one line (a corridor's side past a bay): closed, the corridor
+  // and the hall are two spaces; 12 m open in 12 m of wall: no wall there, one space.
+  const RoomSegmentation closed = segment_rooms(corridor_over_hall(4.0));
+  ASSERT_GE(closed.space_at({12, 1.2}), 0);
+  EXPECT_NE(closed.space_at({12, 1.2}), closed.space_at({12, -3}));
+  const RoomSegmentation open = segment_rooms(corridor_over_hall(12.0));
+  ASSERT_GE(open.space_at({12, 1.2}), 0);
+  EXPECT_EQ(open.space_at({12, 1.2}), open.space_at({12, -3}));
+}
+
+
 }  // namespace
 }  // namespace tsgraphs::rooms

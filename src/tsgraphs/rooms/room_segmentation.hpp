@@ -52,6 +52,11 @@ struct RoomSegmentationConfig {
   double min_door_post = 0.8;           ///< ...when it is at least this long, and so is the wall it meets across (m): a
                                         ///< pillar's face is no wall to close a gap to; a wall in line with it (a pier between
                                         ///< two doors) is a door post whatever its length
+  double opening_share = 0.3;           ///< walls on one line (within line_tolerance) also close the openings between them
+                                        ///< narrower than this share of the length they cover: a wide opening in a long wall
+                                        ///< (a corridor's side past a bay, a row of cabinets along one)
+  double line_tolerance = 0.15;         ///< m: walls whose ends lie this close to one line are on it (one wall seen in pieces,
+                                        ///< a row of rooms)
   double min_region_area = 2.0;         ///< m^2: a smaller region (a doorway's strip between a wall's two faces, a corner
                                         ///< square cut off) is no space of its own: it joins the one it opens to
   double rect_fill = 0.85;              ///< a region filling this share of its smallest enclosing rectangle has it as footprint
@@ -84,6 +89,8 @@ struct RoomSegmentationConfig {
     v("wall_joint_gap", wall_joint_gap, between(0.0, 100.0));
     v("max_door_width", max_door_width, between(0.0, 100.0));
     v("min_door_post", min_door_post, between(0.0, 100.0));
+    v("opening_share", opening_share, between(0.0, 1.0));
+    v("line_tolerance", line_tolerance, between(0.0, 10.0));
     v("min_region_area", min_region_area, between(0.0, 1e6));
     v("rect_fill", rect_fill, above(0.0, 1.0));
     v("wall_snap", wall_snap, between(0.0, 100.0));
