@@ -14,6 +14,7 @@
 #include "commands.hpp"
 #include "demo.hpp"
 #include "scene_commands.hpp"
+#include "segment_map.hpp"
 #include "suite.hpp"
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
@@ -50,6 +51,7 @@ struct Options {
   DemoOptions demo;
   GenerateOptions generate;
   ImportMapOptions import_map;
+  SegmentMapOptions segment_map;
   SuiteOptions suite;
 };
 
@@ -124,6 +126,18 @@ int main(int argc, char** argv) {
   import_cmd->add_option("--sensor", opt.import_map.sensor, "sensor preset: os1-64, os0-128, vlp-16 or hesai-xt32")
       ->capture_default_str();
   import_cmd->add_option("--mount-height", opt.import_map.mount_height, "sensor above the floor, m")->capture_default_str();
+
+  auto* segment_cmd = app.add_subcommand(
+      "segment-map", "the room segmentation of a 2-D occupancy map: one colour per room out, scored against true rooms");
+  segment_cmd->add_option("MAP", opt.segment_map.map, "the map's YAML file (map_server format)")->required();
+  segment_cmd->add_option("--out", opt.segment_map.out, "label image to write (PNG: one colour per room, black none)")
+      ->required();
+  segment_cmd->add_option("--rooms", opt.segment_map.rooms,
+                          "true rooms: a label image of the map's size (one colour per room, or IPA: white rooms, black door "
+                          "lines): prints the IPA figures and room F1");
+  segment_cmd->add_option("--config", opt.segment_map.config,
+                          "parameter file (room_segmentation, map_walls and free_space.lambda_th apply)");
+  segment_cmd->add_option("--metrics", opt.segment_map.metrics, "JSON file to write the figures to");
 
   auto* draw_cmd = app.add_subcommand("draw-scene", "bird's-eye SVG of a scene and its path");
   draw_cmd->add_option("SCENE", opt.scene, "scene YAML file or built-in scene name")->required();
@@ -241,6 +255,9 @@ int main(int argc, char** argv) {
     } else if (*import_cmd) {
       opt.import_map.quiet = opt.quiet;
       import_map(opt.import_map);
+    } else if (*segment_cmd) {
+      opt.segment_map.quiet = opt.quiet;
+      segment_map(opt.segment_map);
     } else if (*bag_info_cmd) {
       print_bag_info(opt.bag.bag);
     } else if (*export_cmd) {

@@ -17,6 +17,7 @@
 #include "tsgraphs/pipeline/platform.hpp"
 #include "tsgraphs/pipeline/prefilter.hpp"
 #include "tsgraphs/pipeline/room_layer.hpp"
+#include "tsgraphs/rooms/map_walls.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
 #include "tsgraphs/walls/plane_mapper.hpp"
 #include "tsgraphs/core/config_range.hpp"
@@ -93,6 +94,7 @@ struct PipelineConfig {
   ScheduleConfig schedule;
   RoomLayerSettings rooms;  ///< free space, triggers, extraction and association (room_layer.hpp)
   DiagnosticsConfig diagnostics;
+  rooms::MapWallsConfig map_walls;  ///< segment-map only: the walls of a 2-D occupancy map (map_walls.hpp)
   /// The ground keys a parameter file set ("num_min_pts", ...): the platform's preset does not
   /// replace them. Filled by load_pipeline_config; not a key itself.
   std::set<std::string> ground_keys_given;
@@ -125,6 +127,7 @@ struct PipelineConfig {
     v.section("sgraphs_room_extraction", rooms.sgraphs_extraction);
     v.section("room_association", rooms.association);
     v.section("diagnostics", diagnostics);
+    v.section("map_walls", map_walls);
   }
 };
 

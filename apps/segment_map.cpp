@@ -1,0 +1,155 @@
+#include "segment_map.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <algorithm>
+#include <array>
+
+#include "tsgraphs/core/error.hpp"
+#include "tsgraphs/eval/label_metrics.hpp"
+#include "tsgraphs/io/atomic_write.hpp"
+#include "tsgraphs/io/image.hpp"
+#include "tsgraphs/io/occupancy_map.hpp"
+#include "tsgraphs/io/room_labels.hpp"
+#include "tsgraphs/pipeline/pipeline_config.hpp"
+#include "tsgraphs/rooms/map_segmentation.hpp"
+
+namespace tsgraphs::app {
+namespace {
+
+/// A colour per room, far from black and from each other's neighbours in index: hues a golden
+/// angle apart, two lightness levels.
+std::array<std::uint8_t, 3> room_colour(int k) {
+  const double hue = std::fmod(k * 0.6180339887498949, 1.0) * 6.0;
+  const double value = k % 2 == 0 ? 0.95 : 0.7, saturation = 0.75;
+  const int sector = static_cast<int>(hue) % 6;
+  const double f = hue - std::floor(hue);
+  const double p = value * (1.0 - saturation), q = value * (1.0 - saturation * f), t = value * (1.0 - saturation * (1.0 - f));
+  double r = value, g = t, b = p;
+  switch (sector) {
+    case 1: r = q; g = value; b = p; break;
+    case 2: r = p; g = value; b = t; break;
+    case 3: r = p; g = q; b = value; break;
+    case 4: r = t; g = p; b = value; break;
+    case 5: r = value; g = p; b = q; break;
+    default: break;
+  }
+  const auto byte = [](double x) { return static_cast<std::uint8_t>(std::lround(std::clamp(x, 0.0, 1.0) * 255.0)); };
+  return {byte(r), byte(g), byte(b)};
+}
+
+/// The labels (row 0 at the bottom) as an RGB image (row 0 at the top).
+io::Image label_image(const std::vector<int>& labels, int width, int height) {
+  io::Image img;
+  img.width = width;
+  img.height = height;
+  img.channels = 3;
+  img.samples.assign(static_cast<std::size_t>(width) * height * 3, 0);
+  for (int row = 0; row < height; ++row) {
+    for (int col = 0; col < width; ++col) {
+      const int l = labels[static_cast<std::size_t>(row) * width + col];
+      if (l < 0) continue;
+      const auto c = room_colour(l);
+      const std::size_t at = (static_cast<std::size_t>(height - 1 - row) * width + col) * 3;
+      std::copy(c.begin(), c.end(), img.samples.begin() + static_cast<long>(at));
+    }
+  }
+  return img;
+}
+
+nlohmann::json figure(const std::optional<double>& x) { return x ? nlohmann::json(*x) : nlohmann::json(nullptr); }
+
+std::string percent(const std::optional<double>& x) {
+  if (!x) return "-";
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%.1f", 100.0 * *x);
+  return buf;
+}
+
+}  // namespace
+
+void segment_map(const SegmentMapOptions& options) {
+  if (options.map.empty()) throw input_error("segment-map", 0, "give the map's YAML file");
+  if (options.out.empty()) throw input_error("segment-map", 0, "give --out LABELS.png");
+  for (const std::string* input : {&options.map, &options.rooms, &options.config})
+    if (!input->empty() && (*input == options.out || (!options.metrics.empty() && *input == options.metrics)))
+      throw input_error(options.out, 0, "is one of the command's inputs: give another output file");
+  const auto t0 = std::chrono::steady_clock::now();
+  const pipeline::PipelineConfig params =
+      options.config.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(options.config);
+  const io::OccupancyMap map = io::read_occupancy_map(options.map);
+  std::optional<io::RoomLabels> truth;
+  if (!options.rooms.empty()) {
+    truth = io::read_room_labels(options.rooms, map);
+    for (const std::string& w : truth->warnings) std::fprintf(stderr, "tsgraphs: warning: %s: %s\n", options.rooms.c_str(), w.c_str());
+  }
+
+  GridFrame frame;
+  frame.resolution = map.meta.resolution;
+  frame.cols = map.width;
+  frame.rows = map.height;
+  std::vector<std::uint8_t> free(frame.size()), occupied(frame.size());
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    free[i] = map.cells[i] == io::CellState::kFree ? 1 : 0;
+    occupied[i] = map.cells[i] == io::CellState::kOccupied ? 1 : 0;
+  }
+  rooms::MapSegmentationConfig config;
+  config.walls = params.map_walls;
+  config.segmentation = params.rooms.segmentation;
+  config.robot_radius = params.rooms.free_space.lambda_th;
+  const rooms::MapSegmentation seg = rooms::segment_map(frame, free, occupied, config);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  nlohmann::json out = {{"map", options.map},
+                        {"resolution", map.meta.resolution},
+                        {"rooms", seg.rooms.spaces.size()},
+                        {"seconds", seconds}};
+  nlohmann::json walls = nlohmann::json::array();
+  for (const rooms::WallCandidate& w : seg.walls) walls.push_back({w.end_a.x(), w.end_a.y(), w.end_b.x(), w.end_b.y()});
+  out["walls"] = walls;  // [x0, y0, x1, y1] in the map frame (m from its lower-left corner)
+  std::optional<eval::LabelFigures> figures;
+  if (truth) {
+    figures = eval::compare_labels(seg.rooms.label, truth->room, map.width);
+    out["truth"] = {{"file", options.rooms}, {"rooms", truth->count}, {"convention", io::convention_name(truth->convention)}};
+    out["ipa"] = {{"precision_micro", figure(figures->ipa.precision_micro)},
+                  {"recall_micro", figure(figures->ipa.recall_micro)},
+                  {"precision_macro", figure(figures->ipa.precision_macro)},
+                  {"recall_macro", figure(figures->ipa.recall_macro)}};
+    out["room_match"] = {{"precision", figure(figures->rooms.precision)},
+                         {"recall", figure(figures->rooms.recall)},
+                         {"f1", figure(figures->rooms.f1)},
+                         {"mean_iou", figure(figures->rooms.mean_iou)},
+                         {"matched", figures->rooms.n_matched},
+                         {"segments", figures->rooms.n_segments},
+                         {"truth_rooms", figures->rooms.n_truth}};
+  }
+  io::write_file_atomic(options.out, io::encode_png(label_image(seg.rooms.label, map.width, map.height)));
+  if (!options.metrics.empty()) {
+    try {
+      io::write_file_atomic(options.metrics, out.dump(2) + "\n");
+    } catch (...) {
+      std::remove(options.out.c_str());  // both outputs or neither
+      throw;
+    }
+  }
+
+  if (!options.quiet)
+    std::printf("segment-map: %s: %d x %d cells at %.3f m; %zu walls, %zu rooms; %.1f s; wrote %s\n", options.map.c_str(),
+                map.width, map.height, map.meta.resolution, seg.walls.size(), seg.rooms.spaces.size(), seconds,
+                options.out.c_str());
+  if (figures) {
+    std::printf("against %s (%d rooms): IPA precision / recall micro %s / %s %%, macro %s / %s %%; rooms at IoU 0.5: "
+                "precision %s, recall %s, F1 %s %% (%d of %d segments, %d true rooms)\n",
+                options.rooms.c_str(), truth->count, percent(figures->ipa.precision_micro).c_str(),
+                percent(figures->ipa.recall_micro).c_str(), percent(figures->ipa.precision_macro).c_str(),
+                percent(figures->ipa.recall_macro).c_str(), percent(figures->rooms.precision).c_str(),
+                percent(figures->rooms.recall).c_str(), percent(figures->rooms.f1).c_str(), figures->rooms.n_matched,
+                figures->rooms.n_segments, figures->rooms.n_truth);
+  }
+}
+
+}  // namespace tsgraphs::app
