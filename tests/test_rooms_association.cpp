@@ -145,22 +145,6 @@ TEST(RoomAssociation, AMappedRoomTheSegmentationNoLongerCarriesFollowsTheSpaceIt
   EXPECT_EQ(map.rooms().at(2).rect.center, Vec2(40, 0));
 }
 
-TEST(RoomAssociation, ARoomBeyondTheWallsReachIsNotJudgedByTheSegmentation) {
-  RoomMap map;
-  // Two rooms side by side, 26-34 m from the robot; the wall between them was not drawn this
-  // time (beyond the walls' reach), so the segmentation sees one space over 0.8 of both.
-  map.add_extraction(room({28, 0}, {4, 4}), 0);  // id 0
-  map.add_extraction(room({32, 0}, {4, 4}), 0);  // id 1
-  const std::vector<ExtractedRoom> joined = {room({30, 0.4}, {8, 3.2})};
-  EXPECT_TRUE(map.follow_segmentation(joined, 0, 0.85, Vec2(0, 0), 20.0).empty());
-  // A room partly beyond reach is left as it is too: its far walls were not drawn.
-  EXPECT_EQ(map.follow_segmentation(joined, 0, 0.85, Vec2(12, 0), 20.0), std::vector<int>{0});
-  EXPECT_EQ(map.rooms().at(0).rect.size, Vec2(8, 3.2));
-  EXPECT_EQ(map.rooms().at(1).rect.size, Vec2(4, 4));
-  // Within reach the view is judged: room 1 is no longer carried either and follows it.
-  EXPECT_EQ(map.follow_segmentation(joined, 0, 0.85, Vec2(20, 0), 20.0), std::vector<int>{1});
-}
-
 TEST(RoomAssociation, DuplicatesMergeIntoTheMostExtracted) {
   RoomMap map;
   map.add_extraction(room({0, 0}, {5, 4}, {0, 1}), 0);    // id 0

@@ -419,14 +419,11 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
     in.keyframe_poses.reserve(graph_.keyframes().size());
     for (const auto& k : graph_.keyframes()) in.keyframe_poses.push_back(k.pose);
   }
-  // Walls: the mapped vertical planes with their extents, as far as a space the robot is in
-  // may reach (the room segmentation closes the doors of all of them).
-  const double wall_radius = std::max(radius, config_.rooms.layer.context_radius);
-  in.walls_reach = wall_radius;
+  // Walls: every mapped vertical plane with its extent. The segmentation covers the whole level,
+  // so it draws every wall: without the far ones, the spaces there join rooms that are apart.
   for (const auto& [id, lm] : mapper_.landmarks()) {
     if (!lm.vertical || lm.points.empty()) continue;
     const PlaneExtent e = plane_extent(graph_.planes().at(id).plane, lm.points);
-    if ((e.centroid.head<2>() - kf.pose.translation().head<2>()).norm() > wall_radius + (e.b - e.a).norm()) continue;
     in.walls.push_back({id, graph_.planes().at(id).plane, e.a, e.b, e.z1 - e.z0, e.z0, e.z1});
   }
   // The keyframe's plane edges were appended with it, after every older keyframe's: read them

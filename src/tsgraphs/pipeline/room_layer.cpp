@@ -461,13 +461,10 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
   // beside a gallery) follows it, so that its parts are extracted as rooms of their own; one it
   // no longer carries (a first view over what later rays showed to be a void) follows the space
   // it is a view of. Carried: as much of it on spaces as a segmented footprint is on its region.
-  // Only rooms within the walls' reach are judged: farther, the walls that part them were not
-  // drawn and the spaces there join them.
   {
     std::vector<rooms::ExtractedRoom> spaces;
     for (const rooms::SegmentedSpace& s : seg.spaces) spaces.push_back(s.room);
-    map_.follow_segmentation(spaces, level, settings_.segmentation.rect_fill, input.pose.translation().head<2>(),
-                             input.walls_reach);
+    map_.follow_segmentation(spaces, level, settings_.segmentation.rect_fill);
   }
   // The path's length in each space, each step between floor points cut into pieces of a
   // raster cell (a keyframe's step is as long as a short visit: a step into a store and back

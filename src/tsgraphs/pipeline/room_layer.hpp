@@ -47,8 +47,6 @@ struct RoomLayerConfig {
   double obstacle_voxel = 0.2;     ///< obstacle candidate points are thinned to this (m)
   double segment_radius = 2.5;     ///< flush: only the cluster's vertices this near the robot along the free space join the segment (m):
                                    ///< the aisle it walks, not everything in view
-  double context_radius = 20.0;    ///< walls within this of the robot (plus their length) bound the spaces segmented;
-                                   ///< only rooms within it follow a re-segmentation (m)
   double min_segment_length = 2.0; ///< flush: a segment walked less than this (a corner, a doorway passed
                                    ///< through) is not extracted but carried into the next one (m)
   double min_visit_length = 1.0;   ///< flush: a space the segment's path runs this far in is extracted (m); a step
@@ -71,7 +69,6 @@ struct RoomLayerConfig {
     v("level_tolerance", level_tolerance, above(0.0, 100.0));
     v("obstacle_voxel", obstacle_voxel, between(0.01, 10.0));
     v("segment_radius", segment_radius, between(0.0, 1000.0));
-    v("context_radius", context_radius, between(0.0, 1000.0));
     v("min_segment_length", min_segment_length, between(0.0, 1000.0));
     v("min_visit_length", min_visit_length, between(0.0, 1000.0));
     v("max_frontier", max_frontier, between(0.0, 1.0));
@@ -121,8 +118,7 @@ struct RoomLayerInput {
   std::vector<Eigen::Vector3d> obstacle_candidates;  ///< map-frame points of the latest keyframes
   std::vector<Eigen::Vector3d> scan_points;          ///< this keyframe's points, map frame, thinned (the sight map's rays)
   std::vector<Pose3> keyframe_poses;                 ///< TS-graphs: every keyframe's current estimate by index, so that earlier rays follow their keyframes (empty: they stay where traced)
-  std::vector<rooms::WallCandidate> walls;           ///< mapped vertical planes with their extents
-  double walls_reach = std::numeric_limits<double>::infinity();  ///< walls holds every one within this of the pose (m)
+  std::vector<rooms::WallCandidate> walls;           ///< every mapped vertical plane with its extent
   std::vector<int> keyframe_planes;                  ///< ids of the planes this keyframe observes
 };
 

@@ -90,8 +90,7 @@ RoomAssociation RoomMap::add_extraction(const ExtractedRoom& room, int level) {
   return {mapped.id, true};
 }
 
-std::vector<int> RoomMap::follow_segmentation(const std::vector<ExtractedRoom>& spaces, int level, double min_support,
-                                              const Vec2& from, double reach) {
+std::vector<int> RoomMap::follow_segmentation(const std::vector<ExtractedRoom>& spaces, int level, double min_support) {
   std::vector<Polygon2> footprints;
   std::vector<double> areas;
   for (const ExtractedRoom& s : spaces) {
@@ -102,7 +101,6 @@ std::vector<int> RoomMap::follow_segmentation(const std::vector<ExtractedRoom>& 
   for (auto& [id, room] : rooms_) {
     if (room.level != level) continue;
     const Polygon2 mine = room.footprint();
-    if (std::any_of(mine.begin(), mine.end(), [&](const Vec2& p) { return (p - from).norm() > reach; })) continue;
     int held = 0, held_best = -1, best = -1;
     double held_most = 0.0, most = 0.0, supported = 0.0;
     for (std::size_t i = 0; i < spaces.size(); ++i) {

@@ -71,12 +71,8 @@ class RoomMap {
   /// shares the most area with, so that the others are rooms of their own when they are
   /// extracted; one that the spaces cover less than `min_support` of (a stale view over a void or
   /// across a wall) takes the footprint of the space it shares the most with, and is merged as a
-  /// duplicate if another room holds that space. The segmentation drew the walls within `reach`
-  /// of `from` only: a room not wholly within it is left as it is (without its walls the spaces
-  /// there join rooms that are apart). Returns the ids it changed.
-  std::vector<int> follow_segmentation(const std::vector<ExtractedRoom>& spaces, int level, double min_support = 0.0,
-                                       const Vec2& from = Vec2::Zero(),
-                                       double reach = std::numeric_limits<double>::infinity());
+  /// duplicate if another room holds that space. Returns the ids it changed.
+  std::vector<int> follow_segmentation(const std::vector<ExtractedRoom>& spaces, int level, double min_support = 0.0);
   /// Pairs (keep, drop) of mapped rooms of one level that match each other; keep is the one with
   /// more extractions (the lower id on a tie). Rooms linked by a chain of matches form one group
   /// with one keep, so every pair can be merged in turn; sorted by (keep, drop).
