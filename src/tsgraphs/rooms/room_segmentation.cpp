@@ -112,73 +112,49 @@ std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, doubl
   return out;
 }
 
-/// Walls of the level on one straight line (parallel within parallel_tolerance_deg, both ends of
-/// each within line_tolerance of the first one's line): a wall seen in pieces (furniture in front
-/// of it, doors in it), or the walls of a row of rooms. A run is a stretch of it whose walls'
-/// openings are closed: the walls, each where it was mapped, in order along the line, and the
-/// segments joining each to the next.
-struct LineRuns {
-  Vec2 along = Vec2::UnitX();  ///< the line's direction
-  double support = 0.0;        ///< length the walls themselves cover (m)
-  struct Run {
-    std::vector<std::pair<Vec2, Vec2>> segments;  ///< walls and the closed openings between them
-    Vec2 last = Vec2::Zero();                     ///< its far end along the line
-  };
-  std::vector<Run> runs;
-};
-
-/// The walls grouped into lines, in the order of their first wall; on each line the openings
-/// between the walls no wider than a door or than `opening_share` of the line's support closed
-/// (an opening in a long wall; a wide gap between the walls of two far rooms on one line stays
-/// open).
-std::vector<LineRuns> wall_lines(const std::vector<WallLine>& walls, const RoomSegmentationConfig& cfg) {
+/// The openings closed between the level's walls that lie on one straight line (parallel
+/// within parallel_tolerance_deg, both ends within line_tolerance of the line's first wall): a
+/// wall seen in pieces (furniture in front of it, doors in it), or the walls of a row of rooms.
+/// Along each line, a gap between consecutive walls is closed when it is no wider than a door or
+/// than `opening_share` of the length the line's walls cover (an opening in a long wall); a wide
+/// gap between the walls of two far rooms on one line stays open.
+std::vector<std::pair<Vec2, Vec2>> line_openings(const std::vector<WallLine>& walls, const RoomSegmentationConfig& cfg) {
   const double cos_parallel = std::cos(cfg.parallel_tolerance_deg * kDegToRad);
-  std::vector<LineRuns> lines;
-  std::vector<Vec2> origins;
-  std::vector<std::vector<std::pair<Vec2, Vec2>>> members;  // each wall ordered along its line
+  struct Line {
+    Vec2 origin, along;
+    std::vector<std::pair<Vec2, Vec2>> walls;  // each ordered along the line
+  };
+  std::vector<Line> lines;
   for (const WallLine& w : walls) {
     if ((w.b - w.a).norm() <= 0.0) continue;
     std::size_t k = 0;
     for (; k < lines.size(); ++k) {
       const Vec2 normal(-lines[k].along.y(), lines[k].along.x());
       if (std::abs(normal.dot(w.n)) < cos_parallel) continue;
-      const auto off = [&](const Vec2& p) { return std::abs(normal.dot(p - origins[k])); };
+      const auto off = [&](const Vec2& p) { return std::abs(normal.dot(p - lines[k].origin)); };
       if (off(w.a) <= cfg.line_tolerance && off(w.b) <= cfg.line_tolerance) break;
     }
-    if (k == lines.size()) {
-      LineRuns l;
-      l.along = (w.b - w.a).normalized();
-      lines.push_back(l);
-      origins.push_back(w.a);
-      members.emplace_back();
-    }
+    if (k == lines.size()) lines.push_back({w.a, (w.b - w.a).normalized(), {}});
     const bool forward = lines[k].along.dot(w.b - w.a) >= 0.0;
-    members[k].emplace_back(forward ? w.a : w.b, forward ? w.b : w.a);
+    lines[k].walls.emplace_back(forward ? w.a : w.b, forward ? w.b : w.a);
   }
-  for (std::size_t k = 0; k < lines.size(); ++k) {
-    LineRuns& l = lines[k];
-    const auto t = [&](const Vec2& p) { return l.along.dot(p - origins[k]); };
-    std::vector<std::pair<Vec2, Vec2>>& m = members[k];
-    std::stable_sort(m.begin(), m.end(), [&](const auto& x, const auto& y) { return t(x.first) < t(y.first); });
-    // The walls' cover along the line, for its support; then the runs.
-    double reach = -std::numeric_limits<double>::infinity();
-    for (const auto& [a, b] : m) {
-      l.support += std::max(0.0, t(b) - std::max(t(a), reach));
+  std::vector<std::pair<Vec2, Vec2>> out;
+  for (Line& l : lines) {
+    const auto t = [&](const Vec2& p) { return l.along.dot(p - l.origin); };
+    std::stable_sort(l.walls.begin(), l.walls.end(), [&](const auto& x, const auto& y) { return t(x.first) < t(y.first); });
+    double support = 0.0, reach = -std::numeric_limits<double>::infinity();
+    for (const auto& [a, b] : l.walls) {
+      support += std::max(0.0, t(b) - std::max(t(a), reach));
       reach = std::max(reach, t(b));
     }
-    const double closed = std::max(cfg.max_door_width, cfg.opening_share * l.support);
-    for (const auto& [a, b] : m) {
-      if (!l.runs.empty() && t(a) - t(l.runs.back().last) <= closed) {
-        LineRuns::Run& r = l.runs.back();
-        if (t(a) > t(r.last)) r.segments.emplace_back(r.last, a);  // the opening, closed
-        r.segments.emplace_back(a, b);
-        if (t(b) > t(r.last)) r.last = b;
-      } else {
-        l.runs.push_back({{{a, b}}, b});
-      }
+    const double closed = std::max(cfg.max_door_width, cfg.opening_share * support);
+    const Vec2* last = nullptr;  // the far end of the walls so far
+    for (const auto& [a, b] : l.walls) {
+      if (last != nullptr && t(a) > t(*last) && t(a) - t(*last) <= closed) out.emplace_back(*last, a);
+      if (last == nullptr || t(b) > t(*last)) last = &b;
     }
   }
-  return lines;
+  return out;
 }
 
 /// The segments that close the doors: from each end of a wall at least min_door_post long, on
@@ -755,9 +731,7 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   for (const WallLine& w : walls) draw_line(f, w.a, w.b, &wall);
   for (const auto& [a, b] : door_closures(walls, cfg)) draw_line(f, a, b, &wall);
   // Openings in a long wall line (a corridor's side past a bay): the gaps between its walls.
-  for (const LineRuns& l : wall_lines(walls, cfg))
-    for (const LineRuns::Run& r : l.runs)
-      for (const auto& [a, b] : r.segments) draw_line(f, a, b, &wall);
+  for (const auto& [a, b] : line_openings(walls, cfg)) draw_line(f, a, b, &wall);
   for (std::size_t i = 0; i < f.size(); ++i) {
     if (!wall[i]) continue;
     free[i] = 0;
