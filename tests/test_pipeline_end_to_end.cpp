@@ -114,21 +114,8 @@ Outcome run_scene(const scene::Scene& scene, std::uint64_t seed) {
   // Rooms: the two-lap consistency of the extraction events and the final rooms vs the truth.
   std::vector<double> lap_starts = sim.trajectory().lap_starts();
   for (double& t : lap_starts) t /= sim.time_scale();
-  std::vector<double> stamps;
-  slam.scan_log().for_each([&](const pipeline::ScanRecord& s) { stamps.push_back(s.stamp); });
-  const std::vector<int> laps = pipeline::laps_of(stamps, est, lap_starts);
-  std::vector<io::RoomEvent> events;
-  for (const pipeline::RoomEventRecord& e : slam.room_events()) {
-    io::RoomEvent ev;
-    ev.t = e.stamp;
-    ev.lap = laps[kfs[e.keyframe].scan_index];
-    ev.room_id = e.room_id;
-    ev.is_new = e.is_new;
-    ev.level = e.level;
-    ev.rect = e.rect;
-    ev.center = e.rect.center;
-    events.push_back(ev);
-  }
+  // The events as the run folder writes them (a footprint's centre is its outline's centroid).
+  const std::vector<io::RoomEvent> events = pipeline::room_events_of(slam, lap_starts, Eigen::Vector3d::Zero());
   o.rooms_consistency = eval::consistency(events);
   std::vector<io::RoomTruth> truth;
   for (const scene::Room& r : scene.rooms) truth.push_back({r.name, scene.levels[r.level].name, r.polygon, scene.levels[r.level].elevation});

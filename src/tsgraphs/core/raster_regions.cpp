@@ -203,6 +203,24 @@ std::vector<int> label_regions(const std::vector<std::uint8_t>& in, int cols, in
   return label;
 }
 
+std::vector<std::uint8_t> enclosed_regions(const std::vector<std::uint8_t>& in, int cols, int rows, double max_cells) {
+  std::vector<std::size_t> sizes;
+  const std::vector<int> parts = label_regions(in, cols, rows, true, &sizes);
+  std::vector<std::uint8_t> enclosed(sizes.size(), 1);
+  for (std::size_t k = 0; k < sizes.size(); ++k)
+    if (static_cast<double>(sizes[k]) > max_cells) enclosed[k] = 0;
+  const auto at = [&](int c, int r) { return parts[static_cast<std::size_t>(r) * cols + c]; };
+  for (int c = 0; c < cols; ++c)
+    for (int r : {0, rows - 1})
+      if (at(c, r) >= 0) enclosed[static_cast<std::size_t>(at(c, r))] = 0;
+  for (int r = 0; r < rows; ++r)
+    for (int c : {0, cols - 1})
+      if (at(c, r) >= 0) enclosed[static_cast<std::size_t>(at(c, r))] = 0;
+  std::vector<std::uint8_t> out(in.size(), 0);
+  for (std::size_t i = 0; i < in.size(); ++i) out[i] = parts[i] >= 0 && enclosed[static_cast<std::size_t>(parts[i])] ? 1 : 0;
+  return out;
+}
+
 std::vector<Polygon2> trace_outlines(const std::vector<int>& labels, int cols, int rows, int n_regions,
                                      bool eight_connected) {
   std::vector<std::size_t> first(n_regions, std::numeric_limits<std::size_t>::max());

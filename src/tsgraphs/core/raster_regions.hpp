@@ -14,6 +14,12 @@ namespace tsgraphs {
 std::vector<int> label_regions(const std::vector<std::uint8_t>& in, int cols, int rows, bool eight,
                                std::vector<std::size_t>* sizes);
 
+/// The cells of the 8-connected regions of `in` that touch no border of the raster and have at
+/// most `max_cells` cells: what the rest surrounds. Of the blocked cells of a map, what stands
+/// free inside the building (furniture, a pillar) rather than its structure, which is joined to
+/// what lies round it.
+std::vector<std::uint8_t> enclosed_regions(const std::vector<std::uint8_t>& in, int cols, int rows, double max_cells);
+
 /// The outer outlines of the 4-connected (eight_connected false) or 8-connected regions of
 /// `mask` (cols x rows, row 0 at the bottom), traced along cell edges, counter-clockwise, in
 /// cell units: the regions' ids are `labels` (one per cell, -1 outside every region), region k

@@ -12,9 +12,8 @@ MapSegmentation segment_map(const GridFrame& frame, const std::vector<std::uint8
   out.walls = map_walls(frame, free, config.walls);
   SegmentationInput in;
   in.frame = frame;
-  // Where the robot fits is segmented (the free space walked, for a run); the rest of the free
-  // cells (laser fans, the strips along walls) is ground the spaces grow over.
-  in.seen = open_free_space(frame, free, config.walls.robot_radius);
+  // The map's free cells are what the rays saw; each is a ground cell of its own.
+  in.seen = free;
   for (std::size_t i = 0; i < free.size(); ++i)
     if (free[i]) in.ground.push_back(frame.center(i));
   in.known.resize(free.size());

@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -36,16 +37,10 @@ struct Piece {
 std::vector<std::uint8_t> structure(const GridFrame& f, const std::vector<std::uint8_t>& free) {
   std::vector<std::uint8_t> blocked(free.size());
   for (std::size_t i = 0; i < free.size(); ++i) blocked[i] = free[i] ? 0 : 1;
-  std::vector<std::size_t> sizes;
-  const std::vector<int> parts = label_regions(blocked, f.cols, f.rows, true, &sizes);
-  std::vector<std::uint8_t> on_border(sizes.size(), 0);
-  for (int r = 0; r < f.rows; ++r)
-    for (int c = 0; c < f.cols; ++c)
-      if ((r == 0 || c == 0 || r == f.rows - 1 || c == f.cols - 1) && parts[f.index(c, r)] >= 0)
-        on_border[static_cast<std::size_t>(parts[f.index(c, r)])] = 1;
-  std::vector<std::uint8_t> out(free.size(), 0);
-  for (std::size_t i = 0; i < free.size(); ++i) out[i] = parts[i] >= 0 && on_border[static_cast<std::size_t>(parts[i])] ? 1 : 0;
-  return out;
+  const std::vector<std::uint8_t> inside =
+      enclosed_regions(blocked, f.cols, f.rows, std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < free.size(); ++i) blocked[i] = blocked[i] && !inside[i];
+  return blocked;
 }
 
 /// The structure's cells with a free cell among their 8 neighbours: the edge in every direction.

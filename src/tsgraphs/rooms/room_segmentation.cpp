@@ -11,6 +11,7 @@
 #include <string>
 
 #include "tsgraphs/core/raster_regions.hpp"
+#include "tsgraphs/rooms/narrowings.hpp"
 
 namespace tsgraphs::rooms {
 namespace {
@@ -230,35 +231,6 @@ void draw_line(const GridFrame& f, const Vec2& a, const Vec2& b, std::vector<std
   }
 }
 
-/// Grows the labelled cells over `ground` by breadth-first search, at most `reach` cells
-/// (4-connected steps); the first label to arrive takes a cell.
-void grow(const GridFrame& f, const std::vector<std::uint8_t>& ground, int reach, std::vector<int>* label) {
-  std::vector<int> depth(f.size(), -1);
-  std::deque<std::size_t> queue;
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    if ((*label)[i] < 0) continue;
-    depth[i] = 0;
-    queue.push_back(i);
-  }
-  static const int kDc[4] = {1, -1, 0, 0};
-  static const int kDr[4] = {0, 0, 1, -1};
-  while (!queue.empty()) {
-    const std::size_t i = queue.front();
-    queue.pop_front();
-    if (depth[i] >= reach) continue;
-    const int c = static_cast<int>(i % f.cols), r = static_cast<int>(i / f.cols);
-    for (int k = 0; k < 4; ++k) {
-      const int cc = c + kDc[k], rr = r + kDr[k];
-      if (!f.inside(cc, rr)) continue;
-      const std::size_t j = f.index(cc, rr);
-      if (!ground[j] || (*label)[j] >= 0) continue;
-      (*label)[j] = (*label)[i];
-      depth[j] = depth[i] + 1;
-      queue.push_back(j);
-    }
-  }
-}
-
 /// Regions of fewer than `min_cells` cells join the neighbour they share the most cell edges
 /// with (smallest first; ties: the lower label), or are dropped without one; the rest are
 /// renumbered from 0 in the order of their first cell. Returns their number.
@@ -403,6 +375,63 @@ int split_regions(const GridFrame& f, std::vector<int>* label) {
   return n;
 }
 
+/// Region k of `lab` in its bounding box, one cell of margin round it (cell units), with what
+/// is not the region: the outside (`outside`) and its holes (`parts`, `sizes`). A hole smaller
+/// than a region (a pillar, a wall drawn round one) is something one walks round inside the
+/// space, not what the space runs round: it neither narrows the width nor has corners.
+struct RegionInBox {
+  GridFrame box;
+  int c0 = 0, r0 = 0;
+  std::size_t cells = 0;
+  std::vector<std::uint8_t> in;
+  std::vector<int> parts;
+  std::vector<std::size_t> sizes;
+  int outside = -1;
+  double width = 0.0;  ///< twice the largest clearance, holes smaller than a region filled (cells)
+};
+
+RegionInBox region_in_box(const GridFrame& f, const std::vector<int>& lab, int k, double min_cells) {
+  RegionInBox out;
+  int c0 = f.cols, r0 = f.rows, c1 = -1, r1 = -1;
+  for (int r = 0; r < f.rows; ++r) {
+    for (int c = 0; c < f.cols; ++c) {
+      if (lab[f.index(c, r)] != k) continue;
+      ++out.cells;
+      c0 = std::min(c0, c);
+      c1 = std::max(c1, c);
+      r0 = std::min(r0, r);
+      r1 = std::max(r1, r);
+    }
+  }
+  if (c1 < 0) return out;
+  out.c0 = c0;
+  out.r0 = r0;
+  out.box.resolution = 1.0;
+  out.box.cols = c1 - c0 + 3;
+  out.box.rows = r1 - r0 + 3;
+  out.in.assign(out.box.size(), 0);
+  for (int r = r0; r <= r1; ++r)
+    for (int c = c0; c <= c1; ++c)
+      if (lab[f.index(c, r)] == k) out.in[out.box.index(c - c0 + 1, r - r0 + 1)] = 1;
+  std::vector<std::uint8_t> other(out.box.size(), 0);
+  for (std::size_t i = 0; i < out.in.size(); ++i) other[i] = out.in[i] ? 0 : 1;
+  out.parts = label_regions(other, out.box.cols, out.box.rows, false, &out.sizes);
+  out.outside = out.parts[0];  // the margin's corner is outside the region
+  std::vector<std::uint8_t> filled = out.in;
+  for (std::size_t i = 0; i < out.parts.size(); ++i) {
+    const int p = out.parts[i];
+    if (p >= 0 && p != out.outside && static_cast<double>(out.sizes[static_cast<std::size_t>(p)]) < min_cells) filled[i] = 1;
+  }
+  const std::vector<float> clearance = distance_transform(out.box, filled);
+  out.width = 2.0 * *std::max_element(clearance.begin(), clearance.end());
+  return out;
+}
+
+/// Long for its width: its area at least `corridor_aspect` times the square of its width.
+bool corridor_like(const RegionInBox& region, double corridor_aspect) {
+  return static_cast<double>(region.cells) >= corridor_aspect * region.width * region.width;
+}
+
 /// Cuts each corridor-like region (its area at least `corridor_aspect` times the square of its
 /// widest width, twice its largest clearance, holes of fewer than `min_cells` not counted: a
 /// pillar stands inside a space) into its straight legs: at every corner where its
@@ -422,43 +451,15 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
   std::vector<int>& lab = *label;
   bool cut = false;
   for (int k = 0; k < n; ++k) {
-    int c0 = f.cols, r0 = f.rows, c1 = -1, r1 = -1;
-    std::size_t cells = 0;
-    for (int r = 0; r < f.rows; ++r) {
-      for (int c = 0; c < f.cols; ++c) {
-        if (lab[f.index(c, r)] != k) continue;
-        ++cells;
-        c0 = std::min(c0, c);
-        c1 = std::max(c1, c);
-        r0 = std::min(r0, r);
-        r1 = std::max(r1, r);
-      }
-    }
-    if (c1 < 0) continue;
-    // The region in its box, one cell of margin round it.
-    GridFrame box;
-    box.resolution = 1.0;
-    box.cols = c1 - c0 + 3;
-    box.rows = r1 - r0 + 3;
-    std::vector<std::uint8_t> in(box.size(), 0);
-    for (int r = r0; r <= r1; ++r)
-      for (int c = c0; c <= c1; ++c)
-        if (lab[f.index(c, r)] == k) in[box.index(c - c0 + 1, r - r0 + 1)] = 1;
-    // What is not the region: the outside and its holes. A hole smaller than a region (a
-    // pillar, a wall drawn round one) is something one walks round inside the space, not what
-    // the space runs round: it neither narrows the width nor has corners.
-    std::vector<std::uint8_t> other(box.size(), 0);
-    for (std::size_t i = 0; i < in.size(); ++i) other[i] = in[i] ? 0 : 1;
-    std::vector<std::size_t> sizes;
-    const std::vector<int> parts = label_regions(other, box.cols, box.rows, false, &sizes);
-    const int outside = parts[0];  // the margin's corner is outside the region
+    const RegionInBox region = region_in_box(f, lab, k, min_cells);
+    if (region.cells == 0 || !corridor_like(region, corridor_aspect)) continue;
+    const GridFrame& box = region.box;
+    const std::vector<std::uint8_t>& in = region.in;
+    const std::vector<int>& parts = region.parts;
+    const std::vector<std::size_t>& sizes = region.sizes;
+    const int outside = region.outside, c0 = region.c0, r0 = region.r0;
+    const double width = region.width;
     const auto counted = [&](int p) { return p == outside || static_cast<double>(sizes[static_cast<std::size_t>(p)]) >= min_cells; };
-    std::vector<std::uint8_t> filled = in;
-    for (std::size_t i = 0; i < parts.size(); ++i)
-      if (parts[i] >= 0 && !counted(parts[i])) filled[i] = 1;
-    const std::vector<float> clearance = distance_transform(box, filled);
-    const double width = 2.0 * *std::max_element(clearance.begin(), clearance.end());
-    if (static_cast<double>(cells) < corridor_aspect * width * width) continue;
     // Its outline, counter-clockwise, and its holes' outlines, each clockwise round the hole:
     // the region lies left of every edge, and an inner corner is a right turn.
     std::vector<Polygon2> loops;
@@ -738,13 +739,13 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
     ground[i] = 0;
   }
 
-  // 3. The free space's regions, grown back over the ground the opening took off; small ones
-  // join the neighbour they share the most cell edges with (never across a wall: wall cells
-  // carry no label), or go.
+  // 3. The parts of the walkable cells that only narrowings join (wall cells carry no label);
+  // small ones join the neighbour they share the most cell edges with, or go.
   std::vector<std::size_t> sizes;
-  std::vector<int> label = label_regions(free, f.cols, f.rows, false, &sizes);
-  const int reach = static_cast<int>(std::ceil((in.free_radius + in.ground_radius) / cfg.cell));
-  grow(f, ground, reach, &label);
+  std::vector<int> label;
+  const int n_spaces =
+      split_at_narrowings(f, ground, 0.5 * cfg.max_door_width, cfg.door_narrowing, cfg.min_region_area, &label);
+  sizes.assign(static_cast<std::size_t>(n_spaces), 0);
   // A region the robot does not fit in (a strip of cells just past a wall's line, between a
   // wall's two faces) is no space.
   {

@@ -10,12 +10,12 @@
 ///    where it ends within a door's width of one, so a door (an opening in a wall, or between
 ///    a wall's end and the wall it meets) is closed and a wall the free space does not cross
 ///    bounds it;
-/// 3. the 4-connected regions of what is left, with what the sensor's rays crossed at walking
-///    height over a floor (freespace/sight_map.hpp: a high mount sees little floor), are the
-///    spaces; each grows back over the traversable ground the opening took off (up to lambda
-///    plus a node's reach), never across a wall, so that it reaches the walls; a region too
-///    small to be a room joins the one it opens to; a corridor (long for its width) is cut into
-///    its straight legs at its inner corners;
+/// 3. the spaces are the parts of what is left (with what the sensor's rays crossed at walking
+///    height over a floor, freespace/sight_map.hpp, and the traversable ground) that only
+///    narrowings join (rooms/narrowings.hpp: a watershed of the clearance, so a door is found
+///    whether or not its posts were mapped); a space the robot does not fit in goes, one too
+///    small to be a room joins the one it opens to; a corridor (long for its width) is cut
+///    into its straight legs at its inner corners;
 /// 4. a region's footprint is its outer outline, or its smallest enclosing rectangle where it
 ///    fills that rectangle (sides on the walls beside them: the room-planes factor's planes).
 /// Only what the free space carries becomes a footprint: a void, the slab's outside or the
@@ -49,6 +49,8 @@ struct RoomSegmentationConfig {
                                         ///< both their ends meet at a corner (both mapped short of it: it is closed)
   double max_door_width = 2.0;          ///< a wall that ends this close to another wall has a door (or an opening) between
                                         ///< them: it is drawn on to it (m)
+  double door_narrowing = 0.7;          ///< spaces meeting where the clearance is at most this share of the smaller one's
+                                        ///< widest clearance (and at most max_door_width / 2) meet at a door (rooms/narrowings)
   double min_door_post = 0.8;           ///< ...when it is at least this long, and so is the wall it meets across (m): a
                                         ///< pillar's face is no wall to close a gap to; a wall in line with it (a pier between
                                         ///< two doors) is a door post whatever its length
@@ -88,6 +90,7 @@ struct RoomSegmentationConfig {
     v("wall_top_share", wall_top_share, above(0.0, 1.0));
     v("wall_joint_gap", wall_joint_gap, between(0.0, 100.0));
     v("max_door_width", max_door_width, between(0.0, 100.0));
+    v("door_narrowing", door_narrowing, between(0.0, 1.0));
     v("min_door_post", min_door_post, between(0.0, 100.0));
     v("opening_share", opening_share, between(0.0, 1.0));
     v("line_tolerance", line_tolerance, between(0.0, 10.0));
