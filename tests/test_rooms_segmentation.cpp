@@ -814,3 +814,29 @@ TEST(RoomSegmentation, AWideOpeningInALongWallIsClosedAlongIt) {
 
 }  // namespace
 }  // namespace tsgraphs::rooms
+
+namespace tsgraphs::rooms {
+namespace {
+
+TEST(RoomSegmentation, AThinSpaceWithAShelfAlongItsMiddleKeepsAPositiveRectangle) {
+  // A 6 x 1.1 m space (no wall along it) and a shelf's side along its middle (its top seen, so
+  // it bounds nothing), with a snap distance wider than half the space: both long sides find
+  // the shelf; snapping both would leave a rectangle of no width (or a negative one), which no
+  // run folder may hold.
+  SegmentationInput in = level();
+  add_area(box(0, 0, 6, 1.1), &in);
+  WallCandidate shelf = wall(0, Vec2(0, 0.55), Vec2(6, 0.55), Vec2(3, 0.0), 1.5);
+  shelf.top_seen = true;
+  in.walls.push_back(shelf);
+  RoomSegmentationConfig cfg;
+  cfg.wall_snap = 1.0;
+  const RoomSegmentation seg = segment_rooms(in, cfg);
+  ASSERT_FALSE(seg.spaces.empty());
+  for (const SegmentedSpace& s : seg.spaces) {
+    EXPECT_GT(s.room.rect.size.x(), 0.0);
+    EXPECT_GT(s.room.rect.size.y(), 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace tsgraphs::rooms

@@ -624,6 +624,14 @@ std::array<int, 4> snap_to_walls(OrientedRect* rect, const std::vector<WallLine>
       moved[side] = pos;
     }
   }
+  // A rectangle thinner than the snap distance may find a wall beyond its other side: no wall
+  // is then a side of it on that axis (its sides would cross).
+  for (int axis = 0; axis < 2; ++axis) {
+    const double new_lo = ids[2 * axis] >= 0 ? moved[2 * axis] : lo[axis];
+    const double new_hi = ids[2 * axis + 1] >= 0 ? moved[2 * axis + 1] : hi[axis];
+    if (new_hi > new_lo) continue;
+    ids[2 * axis] = ids[2 * axis + 1] = -1;
+  }
   for (int side = 0; side < 4; ++side) {
     if (ids[side] < 0) continue;
     (side % 2 == 0 ? lo : hi)[side / 2] = moved[side];
