@@ -15,7 +15,8 @@ std::vector<std::uint8_t> raster(const std::vector<std::string>& rows) {
   const int h = static_cast<int>(rows.size()), w = static_cast<int>(rows[0].size());
   std::vector<std::uint8_t> out(static_cast<std::size_t>(w * h), 0);
   for (int r = 0; r < h; ++r)
-    for (int c = 0; c < w; ++c) out[static_cast<std::size_t>(r * w + c)] = rows[static_cast<std::size_t>(h - 1 - r)][c] == '#';
+    for (int c = 0; c < w; ++c)
+      out[static_cast<std::size_t>(r * w + c)] = rows[static_cast<std::size_t>(h - 1 - r)][c] == '#';
   return out;
 }
 
@@ -41,7 +42,9 @@ TEST(RasterRegions, EnclosedRegionsAreTheSmallOnesTouchingNoBorder) {
       "##########"};
   const std::vector<std::uint8_t> in = raster(rows);
   const int w = 10, h = 8;
-  const auto at = [&](const std::vector<std::uint8_t>& m, int c, int top_row) { return m[static_cast<std::size_t>((h - 1 - top_row) * w + c)]; };
+  const auto at = [&](const std::vector<std::uint8_t>& m, int c, int top_row) {
+    return m[static_cast<std::size_t>((h - 1 - top_row) * w + c)];
+  };
   const std::vector<std::uint8_t> all = enclosed_regions(in, w, h, std::numeric_limits<double>::infinity());
   EXPECT_EQ(at(all, 2, 2), 1);  // the 2 x 2 block
   EXPECT_EQ(at(all, 6, 4), 1);  // the bar of 3
