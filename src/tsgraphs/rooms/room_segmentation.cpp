@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <deque>
 #include <limits>
 #include <map>
 #include <optional>
@@ -724,7 +723,8 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   }
   out.frame = f;
 
-  // 1-2. The opened free space with what the rays saw, and the ground, all cut by the walls.
+  // 1-2. The walkable cells: the opened free space, what the rays saw and the ground, all cut
+  // by the walls.
   std::vector<std::uint8_t> free = discs(f, in.free_space, in.free_radius);
   {
     // Rays pass at walking height over a ramp's first metres too: where the ground is known to
@@ -741,33 +741,28 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   for (const auto& [a, b] : door_closures(walls, cfg)) draw_line(f, a, b, &wall);
   // Openings in a long wall line (a corridor's side past a bay): the gaps between its walls.
   for (const auto& [a, b] : line_openings(walls, cfg)) draw_line(f, a, b, &wall);
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    if (!wall[i]) continue;
-    free[i] = 0;
-    ground[i] = 0;
-  }
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (wall[i]) ground[i] = 0;
 
   // 3. The parts of the walkable cells that only narrowings join (wall cells carry no label);
   // small ones join the neighbour they share the most cell edges with, or go.
-  std::vector<std::size_t> sizes;
   std::vector<int> label;
   const int n_spaces =
       split_at_narrowings(f, ground, 0.5 * cfg.max_door_width, cfg.door_narrowing, cfg.min_region_area, &label);
-  sizes.assign(static_cast<std::size_t>(n_spaces), 0);
   // A region the robot does not fit in (a strip of cells just past a wall's line, between a
   // wall's two faces) is no space.
   {
     std::vector<std::uint8_t> mask(f.size(), 0);
     for (std::size_t i = 0; i < f.size(); ++i) mask[i] = label[i] >= 0 ? 1 : 0;
     const std::vector<float> clearance = distance_transform(f, mask);
-    std::vector<float> widest(sizes.size(), 0.0f);
+    std::vector<float> widest(static_cast<std::size_t>(n_spaces), 0.0f);
     for (std::size_t i = 0; i < f.size(); ++i)
       if (label[i] >= 0) widest[static_cast<std::size_t>(label[i])] = std::max(widest[static_cast<std::size_t>(label[i])], clearance[i]);
     for (int& l : label)
       if (l >= 0 && widest[static_cast<std::size_t>(l)] < cfg.min_fit_share * in.free_radius) l = -1;
   }
   const double cell_area = cfg.cell * cfg.cell;
-  int n = merge_small_regions(f, cfg.min_region_area / cell_area, static_cast<int>(sizes.size()), &label);
+  int n = merge_small_regions(f, cfg.min_region_area / cell_area, n_spaces, &label);
   std::vector<int> before_cut = label;
   const int n_before_cut = n;
   std::vector<Vec2> wall_directions;
@@ -777,8 +772,7 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
                 cfg.min_bend_deg * kDegToRad, wall_directions, &label)) {
     // The legs are regions of their own.
     const int pieces = split_regions(f, &label);
-    sizes.assign(static_cast<std::size_t>(pieces), 0);
-    n = merge_small_regions(f, cfg.min_region_area / cell_area, static_cast<int>(sizes.size()), &label);
+    n = merge_small_regions(f, cfg.min_region_area / cell_area, pieces, &label);
   } else {
     before_cut.clear();
   }
