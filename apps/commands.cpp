@@ -11,6 +11,7 @@
 #include <vector>
 #include <unistd.h>
 
+#include "output_checks.hpp"
 #include "progress.hpp"
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/eval/run_evaluation.hpp"
@@ -53,15 +54,13 @@ scene::Scene load_and_warn(const std::string& arg) {
 }
 
 void simulate(const scene::Scene& scene_in, const std::string& out, std::uint64_t seed, int laps, bool quiet) {
+  check_output_apart("--out", out, scene_inputs(scene_in));
   scene::Scene scene = scene_in;
   if (laps > 0) {
-    if (laps > scene::kMaxLaps) throw input_error("--laps", 0, "must be in [1, 10000]");
     scene.trajectory.laps = laps;
     // The scene's own laps passed this check when it was loaded; these must too.
-    const double scans = scene::sequence_scans(scene);
-    if (scans > scene::kMaxSequenceScans)
-      throw input_error("--laps", 0, std::to_string(laps) + " laps make " + std::to_string(std::llround(scans)) +
-                                         " scans, more than 1000000");
+    const std::string over = scene::recording_over_limits(scene);
+    if (!over.empty()) throw input_error("--laps", 0, over);
   }
   sim::Simulator simulator(scene, seed);
   print_warnings(scene.file + ": trajectory: ", simulator.trajectory().warnings());
@@ -79,6 +78,7 @@ void simulate(const scene::Scene& scene_in, const std::string& out, std::uint64_
 
 void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
                   int laps, const std::string& format_option, const std::string& compression, bool quiet) {
+  check_output_apart("--bag", bag, scene_inputs(scene));
   std::string format = format_option;
   const std::string ext = fs::path(bag).extension().string();
   if (format == "auto") {
@@ -151,6 +151,7 @@ void convert(const io::ScanSequence& sequence, const std::string& out, const pip
 }
 
 void export_mcap(const std::string& run_dir, const std::string& out, bool quiet) {
+  check_output_apart("--mcap", out, {run_dir});
   report::export_foxglove_mcap(run_dir, out);
   if (!quiet) std::fprintf(stderr, "export: wrote %s\n", out.c_str());
 }
@@ -160,6 +161,7 @@ void print_bag_info(const std::string& bag) {
 }
 
 void draw_scene(const scene::Scene& scene, const std::string& out, bool quiet) {
+  check_output_apart("--out", out, scene_inputs(scene));
   const scene::Trajectory trajectory(scene);
   print_warnings(scene.file + ": trajectory: ", trajectory.warnings());
   io::write_file_atomic(out, report::scene_svg(scene, trajectory));
@@ -246,7 +248,10 @@ pipeline::OdometryOptions choose_odometry(const io::ScanSequence& sequence, cons
 }
 
 void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config, bool quiet) {
-  run(io::SequenceReader(seq_dir), out, config, quiet);
+  io::ScanFolderOptions folder;
+  folder.folder = seq_dir;
+  const std::unique_ptr<io::ScanSequence> sequence = open_sequence(folder);
+  run(*sequence, out, config, quiet, choose_odometry(*sequence, "auto", std::nullopt, config.floor_levelling, quiet));
 }
 
 void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config, bool quiet,
@@ -265,6 +270,10 @@ void run(const io::ScanSequence& sequence, const std::string& out, const pipelin
   if (!quiet) callbacks.note = [](const std::string& n) { std::fprintf(stderr, "run: platform: %s\n", n.c_str()); };
   pipeline::RunInfo info = pipeline::run_sequence(sequence, slam, callbacks, odometry);
   info.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (slam.graph().keyframes().empty())
+    throw input_error(seq_dir, 0, sequence.size() == 0 ? "holds no scan; nothing written"
+                                                       : "no scan could be used: all " + std::to_string(sequence.size()) +
+                                                             " were skipped (the warnings above say why); nothing written");
   try {
     pipeline::write_run_outputs(slam, info, dir.path());
     // Ground truth for the report comes with a sequence folder only.

@@ -69,7 +69,8 @@ pipeline::OdometryOptions choose_odometry(const io::ScanSequence& sequence, cons
 /// `run`: a sequence through the pipeline into a run folder, written whole or not at all.
 void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config, bool quiet,
          const pipeline::OdometryOptions& odometry = {});
-/// `run` on a sequence folder, with its own odometry.
+/// `run SEQ_DIR --out OUT` (the suite's and the demo's runs): the folder opened, checked and its
+/// odometry chosen as the command does.
 void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config, bool quiet);
 /// `eval`: metrics.json in the run folder (and the table on stdout when `print`).
 eval::Metrics evaluate(const std::string& run_dir, const std::string& seq_dir, bool quiet, bool print = true);

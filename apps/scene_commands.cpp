@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "output_checks.hpp"
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/io/occupancy_map.hpp"
@@ -108,6 +109,14 @@ void import_map(const ImportMapOptions& options) {
   if (!(options.mount_height > 0.0 && options.mount_height < options.ceiling))
     throw input_error("--mount-height", 0, "must lie between 0 and the ceiling");
 
+  const fs::path out(options.out);
+  const std::string voxel_file = out.stem().string() + "_walls.pcd";  // beside the scene
+  const std::string walls_pcd = (out.parent_path() / voxel_file).string();
+  std::vector<std::string> inputs = map_inputs(options.map);
+  inputs.push_back(options.rooms);
+  check_output_apart("--out", options.out, inputs);
+  check_output_apart("--out", walls_pcd, inputs);
+
   const auto t0 = std::chrono::steady_clock::now();
   const io::OccupancyMap map = io::read_occupancy_map(options.map);
   io::RoomLabels labels;
@@ -117,10 +126,9 @@ void import_map(const ImportMapOptions& options) {
       std::fprintf(stderr, "tsgraphs: warning: %s: %s\n", options.rooms.c_str(), w.c_str());
   }
 
-  const fs::path out(options.out);
   scene::MapImportConfig config;
   config.name = fs::path(options.map).stem().string();
-  config.voxel_file = out.stem().string() + "_walls.pcd";
+  config.voxel_file = voxel_file;
   config.ceiling = options.ceiling;
   config.clearance = options.clearance;
   config.laps = options.laps;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 
+#include "output_checks.hpp"
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/eval/label_metrics.hpp"
 #include "tsgraphs/io/atomic_write.hpp"
@@ -75,9 +76,10 @@ std::string percent(const std::optional<double>& x) {
 void segment_map(const SegmentMapOptions& options) {
   if (options.map.empty()) throw input_error("segment-map", 0, "give the map's YAML file");
   if (options.out.empty()) throw input_error("segment-map", 0, "give --out LABELS.png");
-  for (const std::string* input : {&options.map, &options.rooms, &options.config})
-    if (!input->empty() && (*input == options.out || (!options.metrics.empty() && *input == options.metrics)))
-      throw input_error(options.out, 0, "is one of the command's inputs: give another output file");
+  std::vector<std::string> inputs = map_inputs(options.map);
+  inputs.insert(inputs.end(), {options.rooms, options.config});
+  check_output_apart("--out", options.out, inputs);
+  check_output_apart("--metrics", options.metrics, inputs);
   const auto t0 = std::chrono::steady_clock::now();
   const pipeline::PipelineConfig params =
       options.config.empty() ? pipeline::PipelineConfig{} : pipeline::load_pipeline_config(options.config);

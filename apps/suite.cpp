@@ -63,13 +63,19 @@ eval::SuiteIndex index_of(const Suite& suite) {
 }
 
 /// The suite folder may be new, empty, or an earlier output of a suite (suite.json).
-void check_out_folder(const std::string& out) {
+void check_out_folder(const Suite& suite, const std::string& out) {
   if (out.empty()) throw InputError("suite: give --out DIR");
   if (!fs::exists(out)) return;
   if (!fs::is_directory(out)) throw InputError(out + ": exists and is not a folder");
   if (!fs::is_empty(out) && !fs::exists(fs::path(out) / files::kIndex))
     throw InputError(out + ": folder exists and holds no earlier suite (no " + std::string(files::kIndex) +
                      "); refusing to write into it");
+  // A resumed suite writes into its cases' folders: a file in the way is said before any case runs.
+  for (const SuiteCase& c : suite.cases) {
+    const fs::path dir = case_dir(out, c.id);
+    for (const fs::path& p : {dir.parent_path(), dir})
+      if (fs::exists(p) && !fs::is_directory(p)) throw InputError(p.string() + ": exists and is not a folder");
+  }
 }
 
 void write_index(const Suite& suite, const std::string& out) {
@@ -147,7 +153,7 @@ int collect(const std::string& dir, bool quiet) {
 }
 
 int plan(const Suite& suite, const SuiteOptions& options, const std::string& out) {
-  check_out_folder(out);
+  check_out_folder(suite, out);
   write_index(suite, out);
   const std::string exe = shell_word(self_exe());
   std::string text;
@@ -195,7 +201,7 @@ class RedirectOutput {
 
 int run_one_case(const Suite& suite, const SuiteOptions& options, const std::string& out) {
   const SuiteCase& c = find_case(suite, options.case_id);
-  check_out_folder(out);
+  check_out_folder(suite, out);
   eval::SuiteResults names;  // what case_line needs to know of the suite
   names.methods = suite_methods(suite);
   if (case_done(suite, c, out)) {
@@ -219,7 +225,7 @@ int run_one_case(const Suite& suite, const SuiteOptions& options, const std::str
 }
 
 int run_all(const Suite& suite, const SuiteOptions& options, const std::string& out) {
-  check_out_folder(out);
+  check_out_folder(suite, out);
   write_index(suite, out);
   std::vector<const SuiteCase*> pending;
   for (const SuiteCase& c : suite.cases)
@@ -323,7 +329,7 @@ int suite(const SuiteOptions& options) {
   const std::string out = fs::absolute(options.out).lexically_normal().string();
   const std::string folder = out.size() > 1 && out.back() == '/' ? out.substr(0, out.size() - 1) : out;
   if (options.collect_flag) {
-    check_out_folder(folder);
+    check_out_folder(suite, folder);
     if (!fs::exists(folder)) throw InputError(folder + ": no such suite folder");
     write_index(suite, folder);
     return collect(folder, options.quiet);

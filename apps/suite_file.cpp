@@ -9,6 +9,7 @@
 #include <regex>
 
 #include "methods.hpp"
+#include "tsgraphs/core/limits.hpp"
 #include "tsgraphs/core/yaml_map.hpp"
 #include "tsgraphs/io/scan_folder.hpp"
 #include "tsgraphs/scene/builtin_scenes.hpp"
@@ -27,9 +28,7 @@ namespace {
 const std::vector<std::string> kDefaultMethods = {"ts-graphs", "s-graphs-plus"};
 /// A seed range longer than this is a typo ("1-10000000"), not a suite.
 constexpr std::uint64_t kMaxSeedsPerRange = 10000;
-/// Highest sensor a platform may set (m): a person holds it no higher, and the lowest
-/// generated ceiling (2.6 m) must stay above it.
-constexpr double kMaxMountHeight = 2.5;
+using limits::kMaxPlatformHeight;
 /// Scan rates a platform may set (Hz): the slowest real sensors turn once a second, the
 /// fastest 40 times (and a sweep shorter than 25 ms sees almost no motion).
 constexpr double kMinRateHz = 1.0;
@@ -138,8 +137,8 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
       throw p.error("name", "'" + platform.name + "': expected letters, digits, '-', '_' or '.', not default");
     if (p.has("mount_height")) {
       platform.mount_height = p.require<double>("mount_height");
-      if (!(*platform.mount_height > 0.0 && *platform.mount_height <= kMaxMountHeight))
-        throw p.error("mount_height", "must lie in (0, " + std::to_string(kMaxMountHeight).substr(0, 3) + "] m");
+      if (!(*platform.mount_height > 0.0 && *platform.mount_height <= kMaxPlatformHeight))
+        throw p.error("mount_height", "must lie in (0, " + std::to_string(kMaxPlatformHeight).substr(0, 3) + "] m");
     }
     if (p.has("preset")) {
       platform.preset = p.require<std::string>("preset");
@@ -299,7 +298,8 @@ Suite load_suite(const std::string& file) {
     suite.methods = kDefaultMethods;
   }
   suite.laps = root.get<int>("laps", 0);
-  if (root.has("laps") && suite.laps < 1) throw root.error("laps", "must be >= 1");
+  if (root.has("laps") && (suite.laps < 1 || suite.laps > limits::kMaxLaps))
+    throw root.error("laps", "must be in [1, " + std::to_string(limits::kMaxLaps) + "]");
 
   if (!root.has("cases")) throw root.error_here("missing required key 'cases'");
   const std::vector<YamlMap> entries = root.maps("cases");

@@ -11,12 +11,15 @@
 #include <cstdio>
 #include <thread>
 
+#include "cli_checks.hpp"
 #include "commands.hpp"
 #include "demo.hpp"
+#include "output_checks.hpp"
 #include "scene_commands.hpp"
 #include "segment_map.hpp"
 #include "suite.hpp"
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/limits.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
 
 using namespace tsgraphs;
@@ -27,6 +30,10 @@ namespace {
 // Bounds of --sensor-to-base: a mount this far from the base, or a quaternion this short, is a typo.
 constexpr double kMaxMountOffset = 100.0;  // m
 constexpr double kMinQuaternionNorm = 1e-3;
+// More worker threads than any machine has cores is a typo.
+constexpr long long kMaxThreads = 1024;
+// Seeds of the demo: one seed is about four minutes on 2 cores.
+constexpr long long kMaxDemoSeeds = 100;
 
 struct Options {
   bool quiet = false;
@@ -77,7 +84,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "tsgraphs " TSGRAPHS_VERSION);
   Options opt;
   app.add_flag("-q,--quiet", opt.quiet, "no progress output");
-  app.add_option("--threads", opt.threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  app.add_option("--threads", opt.threads, "worker threads (default: all cores)")->check(whole_number_in(0, kMaxThreads));
 
   auto* simulate_cmd = app.add_subcommand("simulate", "turn a scene into a LiDAR sequence folder");
   simulate_cmd->add_option("SCENE", opt.scene, "scene YAML file or built-in scene name")->required();
@@ -92,17 +99,17 @@ int main(int argc, char** argv) {
                            "bag compression: ros1 none, bz2 or lz4 (default lz4); ros2-mcap chunks none, lz4 or zstd (default zstd); "
                            "ros2 folders also zstd-file or zstd-message, rosbag2's own (default none for ros2-sqlite)")
       ->check(CLI::IsMember({"none", "bz2", "lz4", "zstd", "zstd-file", "zstd-message"}));
-  simulate_cmd->add_option("--seed", opt.seed, "random seed (default: the scene's)")->check(CLI::NonNegativeNumber);
-  simulate_cmd->add_option("--laps", opt.laps, "laps of the path (default: the scene's)")->check(CLI::PositiveNumber);
+  simulate_cmd->add_option("--seed", opt.seed, "random seed (default: the scene's)")->check(seed_check());
+  simulate_cmd->add_option("--laps", opt.laps, "laps of the path (default: the scene's)")->check(laps_check());
 
   auto* generate_cmd = app.add_subcommand("generate", "a procedural building with ground-truth rooms and a survey path, as a scene file");
   generate_cmd->add_option("--style", opt.generate.style, "office, atrium, library, open_plan, irregular, multi_storey or mixed")
       ->required();
   generate_cmd->add_option("--seed", opt.generate.seed, "the building's seed (the same seed, the same building)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(seed_check())
       ->capture_default_str();
   generate_cmd->add_option("--out", opt.generate.out, "scene file to write")->required();
-  generate_cmd->add_option("--laps", opt.generate.laps, "laps of the survey path")->check(CLI::PositiveNumber)->capture_default_str();
+  generate_cmd->add_option("--laps", opt.generate.laps, "laps of the survey path")->check(laps_check())->capture_default_str();
   generate_cmd->add_option("--size", opt.generate.size, "scales the building's extent, (0, 1] (small buildings for quick tests)")
       ->capture_default_str();
   generate_cmd->add_option("--people", opt.generate.people, "people walking stretches of the survey path, there and back (0-50)")
@@ -122,7 +129,7 @@ int main(int argc, char** argv) {
   import_cmd->add_option("--ceiling", opt.import_map.ceiling, "ceiling and wall height, m")->capture_default_str();
   import_cmd->add_option("--clearance", opt.import_map.clearance, "m the survey path keeps from occupied and unknown cells")
       ->capture_default_str();
-  import_cmd->add_option("--laps", opt.import_map.laps, "laps of the survey path")->check(CLI::PositiveNumber)->capture_default_str();
+  import_cmd->add_option("--laps", opt.import_map.laps, "laps of the survey path")->check(laps_check())->capture_default_str();
   import_cmd->add_option("--sensor", opt.import_map.sensor, "sensor preset: os1-64, os0-128, vlp-16 or hesai-xt32")
       ->capture_default_str();
   import_cmd->add_option("--mount-height", opt.import_map.mount_height, "sensor above the floor, m")->capture_default_str();
@@ -155,7 +162,7 @@ int main(int argc, char** argv) {
     cmd->add_option("--times", opt.folder.times, "times of the scans, one a line (default: times.txt beside them, or the TUM stamps)");
     // An hour between scans is no sweep rate: a typo (1e308 overflowed the scan stamps).
     cmd->add_option("--scan-period", opt.folder.scan_period, "s between scans when nothing gives their times")
-        ->check(CLI::Range(1e-6, 3600.0).description("in [1e-6, 3600] s"))
+        ->check(number_in(1e-6, 3600.0))
         ->capture_default_str();
     cmd->add_option("--bag", opt.bag.bag,
                     "a ROS1 bag or a rosbag2 recording (folder, .db3 or .mcap) instead of SEQ_DIR (see bag-info for its topics)");
@@ -205,11 +212,11 @@ int main(int argc, char** argv) {
   auto* demo_cmd = app.add_subcommand(
       "demo", "TS-graphs, S-Graphs+ and the ablations on simulated atrium and office: Table 1 and a report");
   demo_cmd->add_option("--out", opt.demo.out, "output folder")->capture_default_str();
-  demo_cmd->add_option("--seeds", opt.demo.seeds, "seeds 1..N per scene")->check(CLI::PositiveNumber)->capture_default_str();
+  demo_cmd->add_option("--seeds", opt.demo.seeds, "seeds 1..N per scene")->check(whole_number_in(1, kMaxDemoSeeds))->capture_default_str();
   demo_cmd->add_option("--scenes", opt.demo.scenes, "built-in scene names or scene files")->capture_default_str();
   demo_cmd->add_option("--platform-height", opt.demo.platform_height,
                        "sensor height of the second platform compared on the first scene (m; 0: no comparison)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(number_in(0.0, limits::kMaxPlatformHeight))
       ->capture_default_str();
 
   auto* suite_cmd = app.add_subcommand(
@@ -217,7 +224,7 @@ int main(int argc, char** argv) {
   suite_cmd->add_option("SUITE", opt.suite.suite, "suite file (docs/suite.md)");
   suite_cmd->add_option("--out", opt.suite.out, "suite folder (resumed when it holds an earlier run)");
   suite_cmd->add_option("--jobs", opt.suite.jobs, "cases at once, each a child process with cores / N threads")
-      ->check(CLI::Range(1, kMaxSuiteJobs))
+      ->check(whole_number_in(1, kMaxSuiteJobs))
       ->capture_default_str();
   suite_cmd->add_flag("--keep-sequences", opt.suite.keep_sequences, "keep each case's simulated sequence (2-9 GB)");
   suite_cmd->add_option("--methods", opt.suite.methods,
@@ -232,8 +239,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::fprintf(stderr, "tsgraphs: error: %s\n", e.what());
+    return 2;
   }
   spdlog::set_level(opt.quiet ? spdlog::level::warn : spdlog::level::info);
   const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -267,6 +275,8 @@ int main(int argc, char** argv) {
     } else if (*run_cmd || *convert_cmd) {
       const int sources = int(!opt.seq.empty()) + int(!opt.folder.scans.empty()) + int(!opt.bag.bag.empty());
       if (sources != 1) throw input_error(*run_cmd ? "run" : "convert", 0, "give one of SEQ_DIR, --scans GLOB or --bag FILE");
+      check_output_apart("--out", opt.out,
+                         {opt.seq, opt.folder.scans, opt.folder.poses, opt.folder.times, opt.bag.bag, opt.bag.odom_tum, opt.config});
       std::optional<Pose3> mount;
       if (!opt.sensor_to_base.empty()) {
         const auto& v = opt.sensor_to_base;

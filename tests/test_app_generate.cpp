@@ -31,6 +31,32 @@ TEST_F(GenerateCli, WritesASceneThatDrawsAndSimulates) {
   EXPECT_TRUE(fs::exists(dir_ / "seq" / "rooms_gt.json"));
 }
 
+TEST_F(GenerateCli, BoundsAreCheckedBeforeAnyWorkInOneLine) {
+  const fs::path out = dir_ / "x.yaml";
+  std::string err;
+  // CLI11's own checks printed DBL_MAX in 309 digits on two lines.
+  EXPECT_EQ(test::cli("generate --style office --laps 0 --out " + out.string(), &err), 2);
+  EXPECT_EQ(err, "tsgraphs: error: --laps: must be a whole number in [1, 10000], not '0'\n");
+  EXPECT_EQ(test::cli("generate --style office --laps 1e9 --out " + out.string(), &err), 2);
+  EXPECT_EQ(err, "tsgraphs: error: --laps: must be a whole number in [1, 10000], not '1e9'\n");
+  // 10,000 laps are within the bound of laps but not of scans: refused before the path is built
+  // (it ran for minutes).
+  EXPECT_EQ(test::cli("generate --style office --laps 10000 --out " + out.string(), &err), 2);
+  EXPECT_NE(err.find("tsgraphs: error: --laps: the path makes"), std::string::npos) << err;
+  EXPECT_NE(err.find("more than 1000000"), std::string::npos) << err;
+  // A seed beyond 2^63-1 was clamped to it: every such seed gave the same building.
+  EXPECT_EQ(test::cli("generate --style office --seed 9223372036854775808 --out " + out.string(), &err), 2);
+  EXPECT_EQ(err, "tsgraphs: error: --seed: must be a whole number in [0, 9223372036854775807], not "
+                 "'9223372036854775808'\n");
+  EXPECT_EQ(test::cli("generate --style office --out " + out.string() + " --no-such-option", &err), 2);
+  EXPECT_EQ(err.rfind("tsgraphs: error: ", 0), 0u) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_EQ(test::cli("--threads 100000 generate --style office --out " + out.string(), &err), 2);
+  EXPECT_NE(err.find("--threads: must be a whole number in [0, 1024]"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(test::cli("--help", &err), 0);
+}
+
 TEST_F(GenerateCli, BadOptionsAreRefusedAndNothingIsWritten) {
   const fs::path out = dir_ / "x.yaml";
   std::string err;

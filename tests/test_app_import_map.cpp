@@ -122,6 +122,30 @@ TEST_F(ImportMapCli, BadOptions) {
   expect_refused(path("maps/floor.yaml"), "--clearance 3", {path("maps/floor.yaml"), "--clearance"});
 }
 
+TEST_F(ImportMapCli, BoundsAreCheckedBeforeAnyWork) {
+  // 10,001 laps, or 10,000 of a path too long for them: refused at once (10,000 laps ran for
+  // minutes and wrote a scene that did not load).
+  expect_refused(path("maps/floor.yaml"), "--laps 10001", {"--laps: must be a whole number in [1, 10000], not '10001'"});
+  expect_refused(path("maps/floor.yaml"), "--laps 10000", {path("maps/floor.yaml"), "--laps: the path makes"});
+  // A map placed 1e9 m away: its scene would not load (it was an internal error).
+  write_file("maps/far.yaml", test::map_yaml("floor.pgm", "[1.0e9, 0.0, 0.0]"));
+  expect_refused(path("maps/far.yaml"), "", {path("maps/far.yaml"), "origin: the map reaches [1e+09"});
+}
+
+TEST_F(ImportMapCli, OutputsNeverOverwriteTheInputs) {
+  // Each of these overwrote the map it read, exit 0.
+  for (const std::string out : {"maps/floor.yaml", "maps/floor.pgm", "maps/floor_gt.png"}) {
+    std::string err;
+    const std::string before = test::read_file(dir_ / out);
+    EXPECT_EQ(cli("import-map " + path("maps/floor.yaml") + " --rooms " + path("maps/floor_gt.png") + " --out " + path(out),
+                  &err),
+              2)
+        << out;
+    EXPECT_NE(err.find("tsgraphs: error: --out: " + path(out) + " is the command's input"), std::string::npos) << err;
+    EXPECT_EQ(test::read_file(dir_ / out), before) << out;
+  }
+}
+
 TEST_F(ImportMapCli, LabelImageWithNoRoomWarns) {
   io::Image blank = drawn_.labels;
   std::fill(blank.samples.begin(), blank.samples.end(), test::kUnknownPx);

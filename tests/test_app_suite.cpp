@@ -456,6 +456,59 @@ TEST(SuiteCli, FailedCasesAreRecordedAndTheSuiteGoesOn) {
   fs::remove_all(base);
 }
 
+// Issue 52: a sequence case goes through `run`'s checks: a pose 1,000 m from the one before it,
+// 0.1 s earlier, was scored (ATE 690 m) where `run` refuses it.
+TEST(SuiteCli, ASequenceCaseIsCheckedAsRunChecksIt) {
+  const fs::path base = test::fresh_temp_dir("suite_jump");
+  std::ofstream(base / "room.yaml") << kRoom;
+  std::string err;
+  ASSERT_EQ(cli("-q simulate " + (base / "room.yaml").string() + " --out " + (base / "seq").string(), nullptr, &err), 0)
+      << err;
+  std::vector<std::string> odom = split(read_file(base / "seq" / "odom.txt"), '\n');
+  ASSERT_GT(odom.size(), 3u);
+  std::istringstream row(odom[2]);
+  std::string t, x, rest;
+  row >> t >> x;
+  std::getline(row, rest);
+  odom[2] = t + " " + std::to_string(std::stod(x) + 1000.0) + rest;
+  std::ofstream out_odom(base / "seq" / "odom.txt");
+  for (const std::string& line : odom) out_odom << line << "\n";
+  out_odom.close();
+  std::string refused;
+  EXPECT_EQ(cli("-q run " + (base / "seq").string() + " --out " + (base / "run").string(), nullptr, &refused), 2);
+  std::ofstream(base / "jump.yaml") << "name: jump\ncases:\n  - sequence: seq\n";
+  const fs::path out = base / "out";
+  std::string o, e;
+  EXPECT_EQ(cli("suite " + (base / "jump.yaml").string() + " --out " + out.string() + " --jobs 1", &o, &e), 1) << e;
+  const eval::CaseRecord r = eval::read_case_record((out / "cases" / "seq-seq" / "case.json").string());
+  EXPECT_FALSE(r.done());
+  EXPECT_NE(r.message.find("odometry of scan 2"), std::string::npos) << r.message;
+  EXPECT_NE(refused.find(r.message), std::string::npos) << refused << " / " << r.message;
+  fs::remove_all(base);
+}
+
+// Issue 52: a resumed suite whose case folder is a file failed with std::filesystem's
+// exception (exit 1); it is said before any case runs.
+TEST(SuiteCli, AFileWhereACaseFolderGoesIsRefusedBeforeAnyCase) {
+  const fs::path base = test::fresh_temp_dir("suite_case_file");
+  fs::create_directories(base / "broken_a" / "scans");
+  std::ofstream(base / "broken_a" / "times.txt") << "0.0\n";
+  std::ofstream(base / "broken_a" / "odom.txt") << "0.0 0 0 0 0 0 0 1\n";
+  std::ofstream(base / "s.yaml") << "name: s\ncases:\n  - sequence: broken_a\n";
+  const fs::path out = base / "out";
+  std::string o, e;
+  ASSERT_EQ(cli("suite " + (base / "s.yaml").string() + " --out " + out.string() + " --plan", &o, &e), 0) << e;
+  std::ofstream(out / "cases") << "not a folder";
+  EXPECT_EQ(cli("suite " + (base / "s.yaml").string() + " --out " + out.string(), &o, &e), 2) << e;
+  EXPECT_NE(e.find("tsgraphs: error: " + (out / "cases").string() + ": exists and is not a folder"), std::string::npos) << e;
+  fs::remove(out / "cases");
+  fs::create_directories(out / "cases");
+  std::ofstream(out / "cases" / "seq-broken_a") << "not a folder";
+  EXPECT_EQ(cli("suite " + (base / "s.yaml").string() + " --out " + out.string(), &o, &e), 2) << e;
+  EXPECT_NE(e.find((out / "cases" / "seq-broken_a").string() + ": exists and is not a folder"), std::string::npos) << e;
+  fs::remove_all(base);
+}
+
 // Bad suite files: exit 2, one line naming file:line, nothing written.
 class SuiteFileErrors : public test::TempDirTest {
  protected:
@@ -533,6 +586,12 @@ TEST_F(SuiteGroups, RealisticCasesFormTheirOwnGroup) {
   // --collect tables each group alone.
   ASSERT_EQ(cli("suite --collect " + out.string(), &o, &e), 0) << e;
   EXPECT_NE(o.find("### cases[1]: generate, realistic"), std::string::npos) << o;
+}
+
+TEST_F(SuiteFileErrors, LapsBeyondTheBound) {
+  // 10,001 laps passed the scene's own bound of 10,000 and wrote gigabytes.
+  const std::string e = error_of("name: bad\nlaps: 10001\ncases:\n  - scene: office\n");
+  EXPECT_NE(e.find("bad.yaml:2: laps: must be in [1, 10000]"), std::string::npos) << e;
 }
 
 TEST_F(SuiteFileErrors, PeopleOutOfRange) {

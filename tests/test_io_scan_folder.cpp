@@ -209,6 +209,9 @@ TEST(Kitti, PoseRowsThatAreNoRotationAreRefusedNamingTheLine) {
             std::string::npos);
   EXPECT_NE(error_of_row("1 0 0 1 0 1 0 2 0 0 -1 3").find("poses.txt:2: the 3x3 part is a reflection"),
             std::string::npos);
+  // Issue 52: a position had no bound (convert wrote z = 1e300 to odom.txt); TUM's is 1e8 m.
+  EXPECT_NE(error_of_row("1 0 0 1 0 1 0 2 0 0 1 1e300").find("poses.txt:2: the position [1, 2, 1e+300] is not within 1e8 m"),
+            std::string::npos);
   fs::remove_all(dir);
 }
 

@@ -208,7 +208,15 @@ TEST(PipelineConfig, ValuesThatWouldHangOrCrashARunAreRefused) {
            {"room_segmentation.cell", "1e-9"},
            {"plane_extraction.max_planes", "0"},
            {"plane_extraction.max_range", "-1"},
-           {"ground.resolution", "0"}}) {
+           {"ground.resolution", "0"},
+           // Issue 52: each of these emptied a layer at 0.
+           {"ground.seed_height_tolerance", "0"},
+           {"ground.seed_max_slope", "0"},
+           {"ground.bgk_max_height_gap", "0"},
+           {"esdf_free_space.slice_height", "0"},
+           {"esdf_free_space.robot_radius", "0"},
+           {"esdf_free_space.robot_height_tolerance", "0"},
+           {"sgraphs_room_extraction.max_normal_z", "0"}}) {
     const std::string text = file_setting(path, value);  // (clang: a lambda captures no structured binding)
     EXPECT_NE(test::input_error_of([&] { parse_pipeline_config(text, "p.yaml"); }).find(path + ": must be"),
               std::string::npos)

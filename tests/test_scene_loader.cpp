@@ -2,7 +2,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "tsgraphs/core/error.hpp"
@@ -238,6 +242,46 @@ TEST(SceneLoader, ASceneBeyondTheBoundsOfABuildingIsRefused) {
   EXPECT_THAT(error_of(far), HasSubstr("is not a coordinate within 1e7 m"));
   EXPECT_THAT(error_of(replace(kRoom, "[10,0],[10,8]", "[20000,0],[20000,8]")), HasSubstr("more than 10 km"));
   EXPECT_THAT(error_of(replace(kRoom, "to: [10, 0]", "to: [50000, 0]")), HasSubstr("walls[0].to: the scene spans"));
+}
+
+TEST(SceneLoader, ValuesThatEmptyEveryScanOrWreckTheOdometryAreRefused) {
+  // Each of these loaded and simulated: scans of 0 points, or an odometry of 1e300 m.
+  const std::string high = replace(kRoom, "name: L0", "name: L0\n    elevation: 1e9");
+  EXPECT_THAT(error_of(high), HasSubstr(at_line(high, "elevation:") + " levels[0].elevation: must lie in [-10000, 10000]"));
+  EXPECT_THAT(error_of(replace(kRoom, "levels:", "sensor: {range_noise_std: 1e300}\nlevels:")),
+              HasSubstr("sensor.range_noise_std: must lie in [0, 1]"));
+  EXPECT_THAT(error_of(replace(kRoom, "levels:", "odometry: {trans_noise_per_m: 1e300}\nlevels:")),
+              HasSubstr("odometry.trans_noise_per_m: must lie in [0, 1]"));
+  const std::string mount = replace(kRoom, "levels:", "sensor: {mount_height: 10}\nlevels:");
+  EXPECT_THAT(error_of(mount), HasSubstr(at_line(mount, "mount_height") +
+                                         " sensor.mount_height: 10 m is not below the ceiling of level 'L0' (3 m)"));
+  // A box or a railing 2,000 km long (a bars railing reached 16.7 GB in 90 s).
+  const std::string railing =
+      replace(kRoom, "trajectory:", "railings:\n  - {level: L0, from: [1, 1], to: [2e6, 1], style: bars}\ntrajectory:");
+  EXPECT_THAT(error_of(railing), HasSubstr("railings[0].to: the scene spans"));
+  const std::string box = replace(kRoom, "trajectory:", "boxes:\n  - {level: L0, min: [1, 1, 0], max: [1e300, 2, 1]}\ntrajectory:");
+  EXPECT_THAT(error_of(box), HasSubstr("boxes[0].max:"));
+  EXPECT_THAT(error_of(box), HasSubstr("is not a coordinate within 1e7 m"));
+  // A voxel map moved 1e300 m.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("tsgraphs_scene_offsets_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream pcd(dir / "w.pcd");
+    pcd << "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\n"
+           "POINTS 1\nDATA ascii\n1 1 1\n";
+  }
+  for (const std::string offset : {"[1e300, 0, 0]", "[0, 0, 1e300]"}) {
+    const std::string voxels =
+        replace(kRoom, "trajectory:", "voxel_maps:\n  - {file: w.pcd, voxel_size: 0.1, level: L0, offset: " + offset +
+                                          "}\ntrajectory:");
+    try {
+      parse_scene(voxels, "test.yaml", dir.string());
+      ADD_FAILURE() << offset;
+    } catch (const InputError& e) {
+      EXPECT_THAT(std::string(e.what()), HasSubstr("voxel_maps[0].offset:")) << offset;
+    }
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(SceneLoader, MissingFileAndVoxelMapFile) {

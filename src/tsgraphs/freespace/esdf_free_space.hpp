@@ -25,9 +25,9 @@ struct EsdfFreeSpaceConfig {
     v("voxel_size", voxel_size, between(0.02, 10.0));
     v("max_distance", max_distance, above(0.0, 100.0));
     v("min_free_distance", min_free_distance, between(0.0, 100.0));
-    v("slice_height", slice_height, between(0.0, 100.0));
-    v("robot_radius", robot_radius, between(0.0, 1000.0));
-    v("robot_height_tolerance", robot_height_tolerance, between(0.0, 1000.0));
+    v("slice_height", slice_height, above(0.0, 100.0));
+    v("robot_radius", robot_radius, above(0.0, 1000.0));
+    v("robot_height_tolerance", robot_height_tolerance, above(0.0, 1000.0));
   }
 };
 

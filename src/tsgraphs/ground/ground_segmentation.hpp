@@ -76,13 +76,13 @@ struct GroundConfig {
     v("foot_radius", foot_radius, between(0.0, 10.0));
     v("foot_height", foot_height, between(0.0, 100.0));
     v("foot_rings", foot_rings, between(0.0, 1000.0));
-    v("seed_height_tolerance", seed_height_tolerance, between(0.0, 100.0));
-    v("seed_max_slope", seed_max_slope, between(0.0, 100.0));
+    v("seed_height_tolerance", seed_height_tolerance, above(0.0, 100.0));
+    v("seed_max_slope", seed_max_slope, above(0.0, 100.0));
     v("max_gap", max_gap, between(0.0, 100.0));
     v("bgk_length_scale", bgk_length_scale, above(0.0, 100.0));
     v("bgk_prior", bgk_prior, between(0.0, 1e6));
     v("th_traversable", th_traversable, between(0.0, 1.0));
-    v("bgk_max_height_gap", bgk_max_height_gap, between(0.0, 100.0));
+    v("bgk_max_height_gap", bgk_max_height_gap, above(0.0, 100.0));
   }
 };
 

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/io/coordinate_limit.hpp"
 
 namespace tsgraphs::io {
 
@@ -106,6 +108,13 @@ std::vector<Pose3> read_kitti_poses(const std::string& path) {
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 3; ++c) T.linear()(r, c) = v[4 * r + c];
       T.translation()(r) = v[4 * r + 3];
+    }
+    // A position is bounded as a TUM file's is (coordinate_limit.hpp).
+    if (!(T.translation().cwiseAbs().maxCoeff() <= kMaxCoordinate)) {
+      char what[120];
+      std::snprintf(what, sizeof what, "the position [%.6g, %.6g, %.6g] is not within 1e8 m", T.translation().x(),
+                    T.translation().y(), T.translation().z());
+      throw input_error(path, line, what);
     }
     // A zero, scaled or reflected matrix is no rotation; its nearest rotation would be a guess.
     const Eigen::Matrix3d R = T.linear();

@@ -250,20 +250,31 @@ void Pipeline::check_empty_layers(int keyframe, std::size_t ground_nodes, std::s
   const std::string span = " in " + std::to_string(n) + " keyframes in a row (to keyframe " + std::to_string(keyframe) + ")";
   if (no_ground_.in_row >= n && !no_ground_.warned) {
     no_ground_.warned = true;
-    // What the ground layer was told against what this keyframe shows.
-    const odometry::FloorLevel floor = odometry::level_from_floor(keyframe_clouds_.back(), config_.floor_levelling);
-    const std::string told = "platform.sensor_height is " + fixed(config_.ground.sensor_height, 2) + " m";
-    warnings_.push_back("no traversable ground" + span + ": " +
-                        (floor.found ? "the floor is " + fixed(floor.height, 2) + " m below the sensor there and " + told
-                                     : "no floor found below the sensor there; " + told));
+    warnings_.push_back("no traversable ground" + span + ": " + no_ground_cause());
   }
   if (no_walls_.in_row >= n && !no_walls_.warned) {
     no_walls_.warned = true;
-    warnings_.push_back("no wall" + span + ": no vertical plane of plane_extraction.min_inliers (" +
-                        std::to_string(config_.plane_extraction.min_inliers) + ") points within plane_extraction.max_range (" +
-                        fixed(config_.plane_extraction.max_range, 1) + " m); keyframe " + std::to_string(keyframe) +
-                        " holds " + std::to_string(keyframe_clouds_.back().size()) + " points after prefiltering");
+    warnings_.push_back("no wall" + span + ": " + no_walls_cause(keyframe));
   }
+}
+
+std::string Pipeline::no_ground_cause() const {
+  // What the ground layer was told against what the latest keyframe shows.
+  const odometry::FloorLevel floor = odometry::level_from_floor(keyframe_clouds_.back(), config_.floor_levelling);
+  const double told = config_.ground.sensor_height;
+  if (!floor.found) return "no floor found below the sensor there; platform.sensor_height is " + fixed(told, 2) + " m";
+  if (std::abs(floor.height - told) > config_.ground.seed_height_tolerance)
+    return "the floor is " + fixed(floor.height, 2) + " m below the sensor there and platform.sensor_height is " +
+           fixed(told, 2) + " m";
+  return "the floor is " + fixed(floor.height, 2) + " m below the sensor there, as platform.sensor_height (" +
+         fixed(told, 2) + " m) says: the ground layer's own settings (ground.*) keep every node out";
+}
+
+std::string Pipeline::no_walls_cause(int keyframe) const {
+  return "no vertical plane of plane_extraction.min_inliers (" + std::to_string(config_.plane_extraction.min_inliers) +
+         ") points within plane_extraction.max_range (" + fixed(config_.plane_extraction.max_range, 1) +
+         " m); keyframe " + std::to_string(keyframe) + " holds " + std::to_string(keyframe_clouds_.back().size()) +
+         " points after prefiltering";
 }
 
 void Pipeline::optimize(bool full, const std::string& reason) {
@@ -365,14 +376,24 @@ bool Pipeline::in_mapped_space(const Pose3& pose) const {
 }
 
 void Pipeline::finish() {
+  // A layer warned about once gets its count over the whole run; one empty in every keyframe of
+  // a run too short for the warning in a row is said here, with its cause (before the final
+  // solve, which may retire the latest keyframe's cloud).
+  const int keyframes = static_cast<int>(graph_.keyframes().size());
+  const std::string of = " of " + std::to_string(keyframes) + " keyframes in all";
+  const bool warn = config_.diagnostics.empty_layer_keyframes > 0 && keyframes > 0;
+  if (no_ground_.warned) warnings_.push_back("no traversable ground in " + std::to_string(no_ground_.total) + of);
+  else if (warn && no_ground_.total == keyframes)
+    warnings_.push_back("no traversable ground in any of the run's " + std::to_string(keyframes) + " keyframes: " +
+                        no_ground_cause());
+  if (no_walls_.warned) warnings_.push_back("no wall in " + std::to_string(no_walls_.total) + of);
+  else if (warn && no_walls_.total == keyframes)
+    warnings_.push_back("no wall in any of the run's " + std::to_string(keyframes) + " keyframes: " +
+                        no_walls_cause(keyframes - 1));
   if (graph_.keyframes().size() >= 2) optimize(true, "final");
   if (!graph_.keyframes().empty()) {
     add_room_events(rooms_.finish(room_input(static_cast<int>(graph_.keyframes().size()) - 1)));
   }
-  // A layer warned about once gets its count over the whole run.
-  const std::string of = " of " + std::to_string(graph_.keyframes().size()) + " keyframes in all";
-  if (no_ground_.warned) warnings_.push_back("no traversable ground in " + std::to_string(no_ground_.total) + of);
-  if (no_walls_.warned) warnings_.push_back("no wall in " + std::to_string(no_walls_.total) + of);
   // Rooms come when the robot leaves a space, which in a long hall may be late: said only of
   // a whole run without one.
   const int n = config_.diagnostics.empty_layer_keyframes;

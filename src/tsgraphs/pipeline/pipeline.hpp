@@ -131,6 +131,9 @@ class Pipeline {
   bool in_mapped_space(const Pose3& pose) const;
   /// Counts keyframes in which a layer stayed empty and warns once per layer.
   void check_empty_layers(int keyframe, std::size_t ground_nodes, std::size_t walls);
+  /// Why the ground or the wall layer is empty, from the latest keyframe (`keyframe`).
+  std::string no_ground_cause() const;
+  std::string no_walls_cause(int keyframe) const;
 
   PipelineConfig config_;
   std::optional<Platform> platform_;

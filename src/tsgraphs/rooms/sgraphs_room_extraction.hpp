@@ -39,7 +39,7 @@ struct SgraphsRoomExtractionConfig {
     v("min_width", min_width, between(0.0, 1000.0));
     v("min_cluster_extent", min_cluster_extent, between(0.0, 1000.0));
     v("max_center_offset", max_center_offset, above(0.0, 1000.0));
-    v("max_normal_z", max_normal_z, between(0.0, 0.99));
+    v("max_normal_z", max_normal_z, above(0.0, 0.99));
   }
 };
 

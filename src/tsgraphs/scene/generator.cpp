@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/limits.hpp"
 #include "tsgraphs/scene/building_styles.hpp"
 #include "tsgraphs/scene/clutter.hpp"
 #include "tsgraphs/scene/door_leaves.hpp"
@@ -321,7 +322,9 @@ void draw_platform(Scene* scene, Rng& rng, const GeneratorConfig& config) {
   scene->odometry.yaw_noise_per_m = 0.2 * drift;
   scene->trajectory.speed = rng.uniform(config.speed_min, config.speed_max);
   scene->trajectory.yaw_rate_deg = rng.uniform(kYawRateMin, kYawRateMax);
-  scene->trajectory.laps = config.laps;
+  // The path is planned over two laps (every corner a lap turns, the laps after repeat them);
+  // its laps are set once it is planned (attempt_building).
+  scene->trajectory.laps = std::min(config.laps, 2);
   scene->trajectory.closed = true;
 }
 
@@ -403,6 +406,11 @@ void add_people(int count, Rng& rng, Scene* scene) {
   }
 }
 
+/// The path passes a limit of core/limits.hpp with the laps asked for.
+struct RecordingOverLimits : InputError {
+  using InputError::InputError;
+};
+
 GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed, int attempt,
                                    const GeneratorConfig& config) {
   Rng rng(seed_of(style, seed, attempt));
@@ -458,6 +466,8 @@ GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed,
     return raster > near ? raster : obstacle_distance(scene, xy, floor_z, config.clearance + 0.05);
   };
   keep_clearance_on_turns(&scene, clearance_at, survey);
+  scene.trajectory.laps = config.laps;
+  if (const std::string over = recording_over_limits(scene); !over.empty()) throw RecordingOverLimits("--laps: " + over);
   // Last, from a draw of its own: a building with people is the same building without them.
   if (config.people > 0) {
     Rng walkers = rng.fork(300);
@@ -498,12 +508,16 @@ GeneratedBuilding generate_building(const std::string& style, std::uint64_t seed
   if (seed > static_cast<std::uint64_t>(std::numeric_limits<long long>::max()))
     throw InputError("--seed: " + std::to_string(seed) + " is more than " +
                      std::to_string(std::numeric_limits<long long>::max()));
+  if (config.laps < 1 || config.laps > limits::kMaxLaps)
+    throw InputError("--laps: must be in [1, " + std::to_string(limits::kMaxLaps) + "]");
   if (config.people < 0 || config.people > kMaxGeneratedPeople)
     throw InputError("--people: must lie in [0, " + std::to_string(kMaxGeneratedPeople) + "]");
   std::string last;
   for (int attempt = 0; attempt < config.max_attempts; ++attempt) {
     try {
       return attempt_building(style, seed, attempt, config);
+    } catch (const RecordingOverLimits&) {
+      throw;  // another draw of the building would not shorten it
     } catch (const InputError& e) {
       last = e.what();
     } catch (const std::exception& e) {  // a layout that does not hold: draw another

@@ -3,14 +3,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/limits.hpp"
 #include "tsgraphs/core/raster_morphology.hpp"
 #include "tsgraphs/scene/map_rooms.hpp"
+#include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/scene/sensor_presets.hpp"
 #include "tsgraphs/scene/survey_path.hpp"
 #include "tsgraphs/scene/trajectory.hpp"
@@ -361,7 +364,7 @@ void add_path(const MapRaster& map, const WalkableGrid& grid, const WalkableGrid
     t.waypoints.push_back(w);
   }
   t.closed = true;
-  t.laps = config.laps;
+  t.laps = std::min(config.laps, 2);  // planned on two laps (the laps after repeat them), the laps set last
   t.speed = config.speed;
   t.yaw_rate_deg = config.yaw_rate_deg;
   // The distance to the nearest blocked cell's edge, at most: the raster's centre-to-centre
@@ -378,7 +381,29 @@ void add_path(const MapRaster& map, const WalkableGrid& grid, const WalkableGrid
                             fmt(worst.where.x()) + ", " + fmt(worst.where.y()) + "], less than " +
                             fmt(config.clearance) + " m");
   }
-  out->stats.path_length = Trajectory(scene).length() / std::max(1, config.laps);
+  out->stats.path_length = Trajectory(scene).length() / t.laps;
+  t.laps = config.laps;
+  if (const std::string over = recording_over_limits(scene); !over.empty()) throw InputError("--laps: " + over);
+}
+
+/// Refuses a map whose corners lie beyond a scene's coordinates (core/limits.hpp): its scene
+/// would not load.
+void check_extent(const MapRaster& map) {
+  const auto g = [](double v) {  // a coordinate of any size, in a few digits
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", v);
+    return std::string(text);
+  };
+  const Vec2 size(map.cols * map.resolution, map.rows * map.resolution);
+  for (const Vec2& corner : {Vec2(0.0, 0.0), Vec2(size.x(), 0.0), Vec2(0.0, size.y()), size}) {
+    const Vec2 p = map.to_world(corner);
+    if (!(p.cwiseAbs().maxCoeff() <= limits::kMaxSceneCoordinate))
+      throw InputError("origin: the map reaches [" + g(p.x()) + ", " + g(p.y()) + "], beyond " +
+                       g(limits::kMaxSceneCoordinate) + " m of the scene's origin");
+  }
+  if (!(size.maxCoeff() <= limits::kMaxSceneExtent))
+    throw InputError("the map spans " + g(size.maxCoeff()) + " m, more than a scene's " + g(limits::kMaxSceneExtent) +
+                     " m");
 }
 
 /// Why the scene has no wall, when it has none.
@@ -409,6 +434,7 @@ ImportedMap import_map(const MapRaster& map, const std::vector<int>& room_of_cel
     throw std::invalid_argument("import_map: the raster's size disagrees with its cells");
   if (room_count < 0 || (room_count > 0 && room_of_cell.size() != n))
     throw std::invalid_argument("import_map: the room labels' size differs from the map's");
+  check_extent(map);
   ImportedMap out;
   const Floor floor = find_floor(map, config, &out.stats);
   const std::vector<std::uint8_t> wall = find_walls(map, floor, config, &out.stats);

@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "tsgraphs/core/limits.hpp"
 #include "tsgraphs/core/rect.hpp"
 #include "tsgraphs/core/text_file.hpp"
 #include "tsgraphs/core/yaml_map.hpp"
@@ -33,15 +34,19 @@ constexpr long long kMaxRaysPerScan = 1LL << 24;
 // bigger than a room is a typo.
 constexpr double kMaxPersonSpeed = 10.0;  // m/s
 constexpr double kMaxPersonSize = 5.0;    // m, height or radius
-// Bounds of the recording (and kMaxLaps, kMaxSequenceScans): LiDARs sweep at 5-20 Hz,
+// Bounds of the recording (and limits::kMaxLaps, kMaxSequenceScans): LiDARs sweep at 5-20 Hz,
 // platforms indoors walk or drive at a few m/s; beyond these a value is a typo.
 constexpr double kMaxRateHz = 1000.0;
-// Bounds of a building: no slab or wall reaches beyond kMaxSceneCoordinate (UTM northings
-// stay below 1e7 m), and together they span at most kMaxSceneExtent (no building is 10 km
-// across); drawings and rasters of the scene are sized by its extent.
-constexpr double kMaxSceneCoordinate = 1e7;
-constexpr double kMaxSceneExtent = 1e4;
+// Bounds of a building (core/limits.hpp): no slab or wall reaches beyond kMaxSceneCoordinate
+// (UTM northings stay below 1e7 m), and together they span at most kMaxSceneExtent (no building
+// is 10 km across); drawings and rasters of the scene are sized by its extent.
+using limits::kMaxSceneCoordinate;
+using limits::kMaxSceneExtent;
 constexpr double kMaxPlatformSpeed = 30.0;  // m/s, a car
+// A range noise beyond a metre or an odometry drifting more than its own motion (per metre or
+// radian) simulates no sensor: every scan would be noise, the odometry a random walk.
+constexpr double kMaxRangeNoise = 1.0;     // m
+constexpr double kMaxOdometryNoise = 1.0;  // per m or rad
 
 class SceneParser {
  public:
@@ -67,6 +72,7 @@ class SceneParser {
     for (const YamlMap& m : root_.maps("rooms")) parse_room(m);
     for (const YamlMap& m : root_.maps("people")) parse_person(m);
     parse_trajectory(root_.map("trajectory"));
+    check_mount_height();
     check_sequence_length();
     join_wall_ends(&scene_);
     warn_about_path();
@@ -75,19 +81,15 @@ class SceneParser {
   }
 
  private:
-  // The number of scans the path makes, against kMaxSequenceScans: a slow speed or many laps
-  // of a long path could otherwise fill the disk.
+  // The number of scans the path makes, against limits::kMaxSequenceScans: a slow speed or many
+  // laps of a long path could otherwise fill the disk.
   void check_sequence_length() const {
-    const double scans = sequence_scans(scene_);
-    if (scans > kMaxSequenceScans) {
-      char what[160];
-      std::snprintf(what, sizeof what, "the path makes %.3g scans, more than %.0f (speed, laps)", scans,
-                    kMaxSequenceScans);
-      const YamlMap m = root_.map("trajectory");
-      for (const char* key : {"laps", "speed"})
-        if (m.has(key)) throw m.error(key, what);
-      throw m.error_here(what);
-    }
+    const std::string what = recording_over_limits(scene_);
+    if (what.empty()) return;
+    const YamlMap m = root_.map("trajectory");
+    for (const char* key : {"laps", "speed"})
+      if (m.has(key)) throw m.error(key, what + " (speed, laps)");
+    throw m.error_here(what);
   }
 
   // Grows the scene's box by `points` (of `key` in `m`) and refuses a coordinate or a box
@@ -108,6 +110,13 @@ class SceneParser {
   }
   static void require_non_negative(const YamlMap& m, const std::string& key, double v) {
     if (v < 0.0) throw m.error(key, "must be >= 0");
+  }
+  static void require_within(const YamlMap& m, const std::string& key, double v, double lo, double hi) {
+    if (!(v >= lo && v <= hi)) {
+      char range[64];
+      std::snprintf(range, sizeof range, "must lie in [%g, %g]", lo, hi);
+      throw m.error(key, range);
+    }
   }
 
   int level_index(const YamlMap& m, const std::string& key) const {
@@ -211,7 +220,7 @@ class SceneParser {
     if (s.rate_hz > kMaxRateHz) throw m.error("rate_hz", "must be <= 1000 Hz");
     if (m.has("record_hz") && !(s.record_hz > 0.0 && s.record_hz <= s.rate_hz))
       throw m.error("record_hz", "must lie in (0, rate_hz]");
-    require_non_negative(m, "range_noise_std", s.range_noise_std);
+    require_within(m, "range_noise_std", s.range_noise_std, 0.0, kMaxRangeNoise);
     if (s.dropout < 0.0 || s.dropout >= 1.0) throw m.error("dropout", "must lie in [0, 1)");
     require_positive(m, "mount_height", s.mount_height);
     if (std::abs(s.tilt_deg) > 90.0) throw m.error("tilt_deg", "must lie in [-90, 90]");
@@ -236,13 +245,7 @@ class SceneParser {
     p.motion_distortion = m.get<bool>("motion_distortion", p.motion_distortion);
     // Bounds that keep a sensor a sensor: a bob beyond half a metre, a sway past 30 degrees or
     // a vibration beyond 100 Hz describe no platform that walks a building.
-    const auto within = [&m](const char* key, double v, double lo, double hi) {
-      if (!(v >= lo && v <= hi)) {
-        char range[64];
-        std::snprintf(range, sizeof range, "must lie in [%g, %g]", lo, hi);
-        throw m.error(key, range);
-      }
-    };
+    const auto within = [&m](const char* key, double v, double lo, double hi) { require_within(m, key, v, lo, hi); };
     within("bob", p.bob, 0.0, 0.5);
     within("step_hz", p.step_hz, 0.0, 10.0);
     within("sway_deg", p.sway_deg, 0.0, 30.0);
@@ -260,9 +263,9 @@ class SceneParser {
     o.trans_noise_per_m = m.get<double>("trans_noise_per_m", o.trans_noise_per_m);
     o.yaw_noise_per_rad = m.get<double>("yaw_noise_per_rad", o.yaw_noise_per_rad);
     o.yaw_noise_per_m = m.get<double>("yaw_noise_per_m", o.yaw_noise_per_m);
-    require_non_negative(m, "trans_noise_per_m", o.trans_noise_per_m);
-    require_non_negative(m, "yaw_noise_per_rad", o.yaw_noise_per_rad);
-    require_non_negative(m, "yaw_noise_per_m", o.yaw_noise_per_m);
+    require_within(m, "trans_noise_per_m", o.trans_noise_per_m, 0.0, kMaxOdometryNoise);
+    require_within(m, "yaw_noise_per_rad", o.yaw_noise_per_rad, 0.0, kMaxOdometryNoise);
+    require_within(m, "yaw_noise_per_m", o.yaw_noise_per_m, 0.0, kMaxOdometryNoise);
   }
 
   void parse_levels() {
@@ -277,6 +280,7 @@ class SceneParser {
         if (other.name == l.name) throw m.error("name", "level '" + l.name + "' is defined twice");
       }
       l.elevation = m.get<double>("elevation", 0.0);
+      require_within(m, "elevation", l.elevation, -kMaxSceneExtent, kMaxSceneExtent);
       l.ceiling = m.get<double>("ceiling", 3.0);
       require_positive(m, "ceiling", l.ceiling);
       if (!m.has("slab")) throw m.error_here("level '" + l.name + "' has no slab (the outline of its floor)");
@@ -354,6 +358,8 @@ class SceneParser {
     r.level = level_index(m, "level");
     r.from = m.vec2("from");
     r.to = m.vec2("to");
+    check_extent(m, "from", {r.from});
+    check_extent(m, "to", {r.to});
     if ((r.to - r.from).norm() < 1e-6) throw m.error("to", "zero-length railing");
     r.height = m.get<double>("height", 1.0);
     require_positive(m, "height", r.height);
@@ -376,6 +382,10 @@ class SceneParser {
     b.level = level_index(m, "level");
     b.min = vec3(m, "min");
     b.max = vec3(m, "max");
+    check_extent(m, "min", {b.min.head<2>()});
+    check_extent(m, "max", {b.max.head<2>()});
+    require_within(m, "min", b.min.z(), -kMaxSceneExtent, kMaxSceneExtent);
+    require_within(m, "max", b.max.z(), -kMaxSceneExtent, kMaxSceneExtent);
     if ((b.max - b.min).minCoeff() <= 0.0) throw m.error("max", "must exceed min on every axis");
     b.yaw_deg = m.get<double>("yaw_deg", 0.0);
     b.label = m.get<std::string>("label", "box");
@@ -408,6 +418,8 @@ class SceneParser {
     else if (label == "auto") v.label = VoxelLabel::kAuto;
     else throw m.error("label", "unknown voxel label '" + label + "' (wall, box, railing, auto)");
     v.offset = m.has("offset") ? vec3(m, "offset") : Eigen::Vector3d::Zero();
+    check_extent(m, "offset", {v.offset.head<2>()});
+    require_within(m, "offset", v.offset.z(), -kMaxSceneExtent, kMaxSceneExtent);
     v.yaw_deg = m.get<double>("yaw_deg", 0.0);
     scene_.voxel_maps.push_back(v);
   }
@@ -469,6 +481,20 @@ class SceneParser {
     scene_.people.push_back(std::move(p));
   }
 
+  // A sensor at or above the ceiling of a level the path walks sees nothing of that level.
+  void check_mount_height() const {
+    const double h = scene_.sensor.mount_height;
+    for (const Waypoint& w : scene_.trajectory.waypoints) {
+      const Level& l = scene_.levels[w.level];
+      if (h < l.ceiling) continue;
+      char what[200];
+      std::snprintf(what, sizeof what, "%g m is not below the ceiling of level '%s' (%g m), which the path walks", h,
+                    l.name.c_str(), l.ceiling);
+      const YamlMap m = root_.map("sensor");
+      throw m.has("mount_height") ? m.error("mount_height", what) : m.error_here(std::string("mount_height: ") + what);
+    }
+  }
+
   void parse_trajectory(const YamlMap& m) {
     if (!root_.has("trajectory")) throw root_.error_here("missing required key 'trajectory'");
     m.check_keys({"level", "waypoints", "closed", "laps", "speed", "yaw_rate_deg"});
@@ -476,7 +502,8 @@ class SceneParser {
     t.level = m.has("level") ? level_index(m, "level") : 0;
     t.closed = m.get<bool>("closed", true);
     t.laps = m.get<int>("laps", 2);
-    if (t.laps < 1 || t.laps > kMaxLaps) throw m.error("laps", "must be in [1, 10000]");
+    if (t.laps < 1 || t.laps > limits::kMaxLaps)
+      throw m.error("laps", "must be in [1, " + std::to_string(limits::kMaxLaps) + "]");
     t.speed = m.get<double>("speed", 1.0);
     require_positive(m, "speed", t.speed);
     if (t.speed > kMaxPlatformSpeed) throw m.error("speed", "must be <= 30 m/s");
@@ -653,7 +680,26 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::s
 
 double sequence_scans(const Scene& scene) {
   const double hz = scene.sensor.record_hz > 0.0 ? scene.sensor.record_hz : scene.sensor.rate_hz;
-  return Trajectory(scene).duration() * hz + 1.0;
+  // Laps after the first repeat the second's duration (an open path's odd laps walk it back), so
+  // one and two laps give every count.
+  Scene probe = scene;
+  probe.trajectory.laps = 1;
+  const double one = Trajectory(probe).duration();
+  if (scene.trajectory.laps <= 1) return one * hz + 1.0;
+  probe.trajectory.laps = 2;
+  const double two = Trajectory(probe).duration();
+  return (one + (two - one) * (scene.trajectory.laps - 1)) * hz + 1.0;
+}
+
+std::string recording_over_limits(const Scene& scene) {
+  const int laps = scene.trajectory.laps;
+  if (laps < 1 || laps > limits::kMaxLaps)
+    return std::to_string(laps) + " laps, more than " + std::to_string(limits::kMaxLaps);
+  const double scans = sequence_scans(scene);
+  if (scans <= limits::kMaxSequenceScans) return "";
+  char what[160];
+  std::snprintf(what, sizeof what, "the path makes %.3g scans, more than %.0f", scans, limits::kMaxSequenceScans);
+  return what;
 }
 
 Scene load_scene(const std::string& file) {

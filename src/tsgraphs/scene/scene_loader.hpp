@@ -16,12 +16,13 @@ Scene load_scene(const std::string& file);
 /// `base_dir`.
 Scene parse_scene(const std::string& text, const std::string& file, const std::string& base_dir);
 
-/// Bounds of a recording: laps of the path, and scans in all (28 hours at 10 Hz, terabytes of
-/// scans); a scene beyond them is refused before any scan is made.
-inline constexpr int kMaxLaps = 10000;
-inline constexpr double kMaxSequenceScans = 1e6;
-
-/// The scans the scene's path makes at its recording rate (sensor.record_hz, else rate_hz).
+/// The scans the scene's path makes at its recording rate (sensor.record_hz, else rate_hz),
+/// from two laps of the path whatever its laps (a path of 10,000 laps is not built to count them).
 double sequence_scans(const Scene& scene);
+
+/// Why the scene's recording passes the limits of core/limits.hpp (its laps, or the scans its
+/// path makes), as a phrase naming the figure and the limit; "" when it keeps within them. Every
+/// command that sets a scene's laps checks this before it builds the path.
+std::string recording_over_limits(const Scene& scene);
 
 }  // namespace tsgraphs::scene
