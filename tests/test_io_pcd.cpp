@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -13,6 +14,7 @@
 #include <string>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/printable.hpp"
 #include "tsgraphs/io/pcd.hpp"
 
 #include "test_support.hpp"
@@ -237,6 +239,47 @@ TEST_F(Pcd, ShortOrTruncatedFilesNameTheFile) {
   compressed += std::string("\x10\x00\x00\x00\xb0\x04\x00\x00" "abcd", 12);
   const std::string path = write_file("compressed.pcd", compressed);
   EXPECT_THAT(read_error(path), StartsWith(path + ":"));
+}
+
+// Issue 52: a binary body longer than POINTS was cut silently where its ASCII twin is refused.
+TEST_F(Pcd, BinaryBodyLongerThanPointsIsRefusedAsItsAsciiTwinIs) {
+  const std::string head = header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "binary");
+  const std::string two_points(2 * 12, '\0');
+  ASSERT_EQ(read_pcd(write_file("exact.pcd", head + two_points)).size(), 2u);
+  const std::string path = write_file("long.pcd", head + two_points + std::string(12, '\0'));
+  EXPECT_EQ(read_error(path), path + ": PCD body has more points than POINTS (2): 12 bytes after the last point, from byte " +
+                                  std::to_string(head.size() + two_points.size()));
+  const std::string one = write_file("one_byte.pcd", head + two_points + "\n");
+  EXPECT_THAT(read_error(one), HasSubstr(": 1 bytes after the last point, from byte "));
+}
+
+// Issue 52: a header line of binary bytes was quoted raw. Text from a file reaches a message
+// printable (other bytes as \xNN) and cut to 40 bytes.
+TEST_F(Pcd, MessagesQuoteNoRawBytes) {
+  const auto is_printable = [](const std::string& s) {
+    return std::all_of(s.begin(), s.end(), [](char c) { return c >= 0x20 && c <= 0x7e; });
+  };
+  std::string binary = "VERSION 0.7\n\x01\xff\x1b[2J";
+  binary += std::string(100, '\x80') + "\n";
+  std::string path = write_file("binary.pcd", binary);
+  std::string error = read_error(path);
+  std::string quoted = "\\x01\\xff\\x1b[2J";  // 6 bytes of the line, then as many 0x80 as the cap leaves
+  for (std::size_t i = 6; i < kMaxQuotedBytes; ++i) quoted += "\\x80";
+  EXPECT_EQ(error, path + ":2: not a PCD header line: '" + quoted + "...'");
+  EXPECT_TRUE(is_printable(error)) << error;
+  // A field name, a count and an ascii body's token, each quoted.
+  path = write_file("field.pcd", header("x y z\x07", "4 4 1", "F F F", "1 1 1", 1, 1, "ascii") + "1 2 3\n");
+  error = read_error(path);
+  EXPECT_THAT(error, HasSubstr("field z\\x07 of TYPE F"));
+  EXPECT_TRUE(is_printable(error)) << error;
+  path = write_file("count.pcd", header("x y z", "4 4 4", "F F F", "1 1 \x7f", 1, 1, "ascii") + "1 2 3\n");
+  error = read_error(path);
+  EXPECT_THAT(error, HasSubstr("COUNT '\\x7f' is not a whole number (field z)"));
+  EXPECT_TRUE(is_printable(error)) << error;
+  path = write_file("token.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 1, 1, "ascii") + "1 2 \x1b\x9b\n");
+  error = read_error(path);
+  EXPECT_THAT(error, HasSubstr("not a number: '\\x1b\\x9b'"));
+  EXPECT_TRUE(is_printable(error)) << error;
 }
 
 // "A missing or malformed file is an InputError", but PCL reads a word in an ASCII body as 0:

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/printable.hpp"
 #include "tsgraphs/core/text_file.hpp"
 #include "tsgraphs/io/point_time.hpp"
 
@@ -64,8 +65,8 @@ unsigned long long header_count(const std::string& path, int line_no, const std:
   const auto [ptr, ec] = std::from_chars(value.data(), end, v);
   if (value.empty() || ec != std::errc() || ptr != end) {
     throw input_error(path, line_no,
-                      "PCD header: " + key + " '" + value + "' is not a whole number" +
-                          (field.empty() ? "" : " (field " + field + ")"));
+                      "PCD header: " + key + " '" + printable(value) + "' is not a whole number" +
+                          (field.empty() ? "" : " (field " + printable(field) + ")"));
   }
   return v;
 }
@@ -94,7 +95,7 @@ PcdHeader parse_header(const std::string& path, const std::string& bytes) {
     static const char* const kKnown[] = {"VERSION", "FIELDS", "SIZE", "TYPE", "COUNT",
                                          "WIDTH", "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
     if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown)) {
-      throw input_error(path, line_no, "not a PCD header line: '" + line.substr(0, 40) + "'");
+      throw input_error(path, line_no, "not a PCD header line: '" + printable(line) + "'");
     }
     std::vector<std::string> values;
     for (std::string v; s >> v;) values.push_back(v);
@@ -153,18 +154,18 @@ PcdHeader parse_header(const std::string& path, const std::string& bytes) {
     f.count = keys.count("COUNT") ? header_count(path, key_line["COUNT"], "COUNT", keys["COUNT"][i], f.name) : 1;
     const std::string& type = keys["TYPE"][i];
     if (type != "F" && type != "I" && type != "U") {
-      throw input_error(path, key_line["TYPE"], "PCD header: TYPE '" + type + "' of field " + f.name + " is not F, I or U");
+      throw input_error(path, key_line["TYPE"], "PCD header: TYPE '" + printable(type) + "' of field " + printable(f.name) + " is not F, I or U");
     }
     // The specification's types: floats of 4 or 8 bytes, integers of 1, 2, 4 or 8 (a 2-byte
     // float has no C type; one was read as 4 bytes, past the last point: found by fuzzing).
     const bool known = type == "F" ? (size == 4 || size == 8) : (size == 1 || size == 2 || size == 4 || size == 8);
     if (!known) {
-      throw input_error(path, key_line["SIZE"], "PCD header: field " + f.name + " of TYPE " + type + " and SIZE " +
+      throw input_error(path, key_line["SIZE"], "PCD header: field " + printable(f.name) + " of TYPE " + type + " and SIZE " +
                                                     std::to_string(size) + ": not a PCD type (F 4 or 8, I and U 1, 2, 4 or 8)");
     }
     if (f.count < 1 || f.count > kMaxPcdFieldCount) {
       throw input_error(path, key_line.count("COUNT") ? key_line["COUNT"] : key_line["FIELDS"],
-                        "PCD header: COUNT of field " + f.name + " must be 1 to " + std::to_string(kMaxPcdFieldCount));
+                        "PCD header: COUNT of field " + printable(f.name) + " must be 1 to " + std::to_string(kMaxPcdFieldCount));
     }
     f.type = type[0];
     f.size = static_cast<unsigned>(size);
@@ -220,6 +221,11 @@ class PcdBody {
         throw input_error(path, 0, "PCD body after byte " + std::to_string(h.body) + " has " + std::to_string(available) +
                                        " bytes, POINTS x point size is " + std::to_string(needed) + " (truncated file?)");
       }
+      if (available > needed) {  // as an ascii body with rows after the last point
+        throw input_error(path, 0, "PCD body has more points than POINTS (" + std::to_string(h.points) + "): " +
+                                       std::to_string(available - needed) + " bytes after the last point, from byte " +
+                                       std::to_string(h.body + needed));
+      }
       binary_ = reinterpret_cast<const std::uint8_t*>(bytes.data()) + h.body;
     }
     if (h.data == "binary_compressed") read_compressed(path, bytes);
@@ -251,7 +257,7 @@ class PcdBody {
         t = end;
         char* stop = nullptr;
         const double v = std::strtod(token.c_str(), &stop);  // reads nan and inf, as PCD writers do
-        if (stop == token.c_str() || *stop != '\0') throw input_error(path, line_no, "not a number: '" + token.substr(0, 40) + "'");
+        if (stop == token.c_str() || *stop != '\0') throw input_error(path, line_no, "not a number: '" + printable(token) + "'");
         if (rows >= h_.points) throw input_error(path, line_no, "PCD body has more points than POINTS (" + std::to_string(h_.points) + ")");
         ascii_.push_back(v);
         ++k;
@@ -357,7 +363,7 @@ PointCloud read_pcd(const std::string& path) {
     if (ft) {
       const double t = body.value(*ft, i) * time_scale;
       if (!std::isfinite(t))
-        throw input_error(path, 0, "point " + std::to_string(i) + ": field '" + ft->name + "' is not a finite number");
+        throw input_error(path, 0, "point " + std::to_string(i) + ": field '" + printable(ft->name) + "' is not a finite number");
       seconds.push_back(t);
     }
   }
