@@ -458,6 +458,27 @@ TEST_F(RunCli, ExportWritesARunForFoxgloveWithEveryMessageOfItsSchema) {
   nlohmann::json bad = last["/tf"];
   bad["extra"] = 1;
   EXPECT_NE(schema_error(nlohmann::json::parse(report::foxglove_schema("foxglove.FrameTransform")), bad), "");
+  // Issue 52: a damaged map.ply is one error line naming it and the byte, and nothing is written:
+  // a header saying float over the body of doubles, and a NaN.
+  const std::string map = read_file(run / "map.ply");
+  const std::string double_property = "property double", end_header = "end_header\n";
+  std::string floats = map;
+  for (std::size_t at; (at = floats.find(double_property)) != std::string::npos;)
+    floats.replace(at, double_property.size(), "property float");
+  std::string nan = map;
+  const double not_a_number = std::nan("");
+  nan.replace(map.find(end_header) + end_header.size(), sizeof not_a_number, reinterpret_cast<const char*>(&not_a_number),
+              sizeof not_a_number);
+  for (const auto& [damaged, what] : {std::pair{floats, std::string(" bytes after the last of the header's ")},
+                                      std::pair{nan, std::string(": 'vertex[0].x' must be finite")}}) {
+    std::ofstream(run / "map.ply", std::ios::binary) << damaged;
+    EXPECT_EQ(cli("-q export " + run.string() + " --mcap " + (dir_ / "damaged.mcap").string(), &err), 2);
+    EXPECT_EQ(err.find("tsgraphs: error: " + (run / "map.ply").string() + ": "), 0u) << err;
+    EXPECT_NE(err.find(what), std::string::npos) << err;
+    EXPECT_NE(err.find("byte "), std::string::npos) << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_FALSE(fs::exists(dir_ / "damaged.mcap"));
+  }
   // A run folder without its files is one error line.
   fs::remove(run / "map.ply");
   EXPECT_EQ(cli("-q export " + run.string() + " --mcap " + (dir_ / "again.mcap").string(), &err), 2);

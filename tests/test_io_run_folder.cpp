@@ -17,6 +17,7 @@
 using namespace tsgraphs;
 using namespace tsgraphs::io;
 using tsgraphs::test::input_error_of;
+using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
@@ -546,6 +547,44 @@ TEST_F(SceneGraphFile, MapPlyOfDoublesOrFloats) {
   EXPECT_EQ(b[0].p, Eigen::Vector3d(1.5, -2.0, 0.25));
   EXPECT_EQ(b[0].r, 255);
   const std::string short_body = write_file("short.ply", ply("double", 2, doubles));
-  EXPECT_THROW(read_map_ply(short_body), InputError);
+  EXPECT_THAT(input_error_of([&] { read_map_ply(short_body); }),
+              AllOf(StartsWith(short_body + ": holds 1 vertices of 27 bytes from byte "), HasSubstr(", its header says 2")));
   EXPECT_THROW(read_map_ply(write_file("text.ply", "ply\nformat ascii 1.0\nend_header\n")), InputError);
+}
+
+// Issue 52: export copied a damaged map.ply through. A header saying float over a body of
+// doubles, bytes after the last vertex, a NaN or a coordinate beyond 1e8 m are refused, naming
+// the file and the byte (and the vertex).
+TEST_F(SceneGraphFile, MapPlyBodyOfAnotherSizeOrBadValuesIsRefusedNamingTheByte) {
+  const auto ply = [](const std::string& type, std::size_t count, const std::string& body) {
+    return "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(count) + "\nproperty " + type +
+           " x\nproperty " + type + " y\nproperty " + type + " z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n" + body;
+  };
+  const auto vertex = [](double x, double y, double z) {
+    const double d[3] = {x, y, z};
+    return std::string(reinterpret_cast<const char*>(d), sizeof d) + std::string("\x01\x02\x03", 3);
+  };
+  const std::string two = vertex(1.0, 2.0, 3.0) + vertex(4.0, 5.0, 6.0);
+  const std::size_t header = ply("double", 2, "").size(), float_header = ply("float", 2, "").size();
+  ASSERT_EQ(read_map_ply(write_file("good.ply", ply("double", 2, two))).size(), 2u);
+
+  // Doubles under a float header: 2 x 27 bytes where 2 x 15 are declared.
+  std::string path = write_file("float_header.ply", ply("float", 2, two));
+  EXPECT_EQ(input_error_of([&] { read_map_ply(path); }),
+            path + ": 24 bytes after the last of the header's 2 vertices of 15 bytes, from byte " + std::to_string(float_header + 30) +
+                " (are the properties' types the body's?)");
+  path = write_file("trailing.ply", ply("double", 2, two + "x"));
+  EXPECT_THAT(input_error_of([&] { read_map_ply(path); }),
+              StartsWith(path + ": 1 bytes after the last of the header's 2 vertices of 27 bytes, from byte " +
+                         std::to_string(header + 54)));
+
+  path = write_file("nan.ply", ply("double", 2, vertex(1.0, 2.0, 3.0) + vertex(4.0, std::nan(""), 6.0)));
+  EXPECT_EQ(input_error_of([&] { read_map_ply(path); }), path + ": byte " + std::to_string(header + 27) + ": 'vertex[1].y' must be finite");
+  path = write_file("far.ply", ply("double", 2, vertex(2e8, 2.0, 3.0) + vertex(4.0, 5.0, 6.0)));
+  EXPECT_EQ(input_error_of([&] { read_map_ply(path); }),
+            path + ": byte " + std::to_string(header) + ": 'vertex[0].x' is 2e+08: not a coordinate within 1e8 m");
+  // A float body whose bytes make a float beyond the bound (an old run's map.ply, damaged).
+  const float big[3] = {1.0f, 2.0f, 3e38f};
+  path = write_file("far_float.ply", ply("float", 1, std::string(reinterpret_cast<const char*>(big), sizeof big) + "abc"));
+  EXPECT_THAT(input_error_of([&] { read_map_ply(path); }), StartsWith(path + ": byte " + std::to_string(float_header) + ": 'vertex[0].z' is 3e+38"));
 }

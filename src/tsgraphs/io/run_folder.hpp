@@ -265,8 +265,9 @@ struct MapVertex {
   std::uint8_t r = 0, g = 0, b = 0;
 };
 /// map.ply's vertices: binary little-endian, x y z (double, or float as runs wrote before the
-/// map frame) then uchar red green blue. Anything else, or a body short of its vertex count, is
-/// an InputError naming the file.
+/// map frame) then uchar red green blue. Anything else, a body short of its vertex count or
+/// longer, or a coordinate not finite or beyond kMaxCoordinate is an InputError naming the file
+/// and the byte (and the vertex).
 std::vector<MapVertex> read_map_ply(const std::string& path);
 
 }  // namespace tsgraphs::io
