@@ -103,6 +103,32 @@ TEST(PointCloud2, LayoutsThatCannotBeReadAreErrorsNamingTheMessage) {
             std::string::npos);
 }
 
+// Issue 52: x a float64 at 0 with y at 4 decoded y from half of x, as garbage. Fields sharing
+// bytes are refused naming the message and both fields.
+TEST(PointCloud2, FieldsThatOverlapAreRefusedNamingTheField) {
+  const std::vector<std::uint8_t> data = padded_data();
+  PointCloud2Layout y_in_x = padded_layout();
+  y_in_x.fields[1].offset = 4;
+  EXPECT_EQ(test::input_error_of([&] { decode_point_cloud2(y_in_x, data.data(), data.size(), "a.bag: /points, message 3"); }),
+            "a.bag: /points, message 3: field 'y' (bytes 4 to 11) overlaps field 'x' (bytes 0 to 7)");
+  // Any field, wherever it is listed: ring (listed last) over the intensity's second byte.
+  PointCloud2Layout ring = padded_layout();
+  ring.fields[4].offset = 29;
+  EXPECT_EQ(test::input_error_of([&] { decode_point_cloud2(ring, data.data(), data.size(), "m"); }),
+            "m: field 'ring' (bytes 29 to 30) overlaps field 'intensity' (bytes 28 to 29)");
+  // A field's count is its extent: x of 2 values reaches over y.
+  PointCloud2Layout counted = padded_layout();
+  counted.fields[0].count = 2;
+  EXPECT_EQ(test::input_error_of([&] { decode_point_cloud2(counted, data.data(), data.size(), "m"); }),
+            "m: field 'y' (bytes 8 to 15) overlaps field 'x' (bytes 0 to 15)");
+  // The same field twice at one place is an overlap too; fields that only touch are not.
+  PointCloud2Layout twice = padded_layout();
+  twice.fields.push_back({"x", 0, kF64, 1});
+  EXPECT_NE(test::input_error_of([&] { decode_point_cloud2(twice, data.data(), data.size(), "m"); }).find("overlaps field 'x'"),
+            std::string::npos);
+  EXPECT_EQ(decode_point_cloud2(padded_layout(), data.data(), data.size(), "m").size(), 5u);
+}
+
 namespace {
 
 void append_word(std::vector<std::uint8_t>& out, std::uint32_t v) {

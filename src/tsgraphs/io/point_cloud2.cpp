@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/printable.hpp"
 #include "tsgraphs/io/point_time.hpp"
 
 namespace tsgraphs::io {
@@ -49,6 +50,28 @@ double value_of(const PointField2& f, const std::uint8_t* point) {
   return 0.0;
 }
 
+/// The bytes a field takes in a point: its values (a count of 0 read as 1, as everywhere here).
+std::size_t extent_of(const PointField2& f) { return size_of(f.datatype) * std::max<std::uint32_t>(f.count, 1); }
+
+/// Fields must not share bytes: x a float64 at 0 with y at 4 would decode y from half of x, as
+/// garbage and without a word. Checked once per message, on fields already known to fit.
+void check_fields_apart(const std::vector<PointField2>& fields, const std::string& where) {
+  std::vector<const PointField2*> by_offset;
+  for (const PointField2& f : fields) by_offset.push_back(&f);
+  std::stable_sort(by_offset.begin(), by_offset.end(), [](const PointField2* a, const PointField2* b) { return a->offset < b->offset; });
+  const PointField2* reaching = nullptr;  // of the fields so far, the one ending last
+  for (const PointField2* f : by_offset) {
+    if (reaching && f->offset < reaching->offset + extent_of(*reaching)) {
+      const auto bytes = [](const PointField2& g) {
+        return "bytes " + std::to_string(g.offset) + " to " + std::to_string(g.offset + extent_of(g) - 1);
+      };
+      throw input_error(where, 0, "field '" + printable(f->name) + "' (" + bytes(*f) + ") overlaps field '" +
+                                      printable(reaching->name) + "' (" + bytes(*reaching) + ")");
+    }
+    if (!reaching || f->offset + extent_of(*f) > reaching->offset + extent_of(*reaching)) reaching = f;
+  }
+}
+
 }  // namespace
 
 PointCloud decode_point_cloud2(const PointCloud2Layout& layout, const std::uint8_t* data, std::size_t size,
@@ -60,7 +83,7 @@ PointCloud decode_point_cloud2(const PointCloud2Layout& layout, const std::uint8
   for (const PointField2& f : layout.fields) {
     const std::size_t bytes = size_of(f.datatype);
     if (bytes == 0) throw input_error(where, 0, "field '" + f.name + "' has unknown datatype " + std::to_string(f.datatype));
-    if (f.offset + bytes * std::max<std::uint32_t>(f.count, 1) > layout.point_step)
+    if (f.offset + extent_of(f) > layout.point_step)
       throw input_error(where, 0, "field '" + f.name + "' ends past point_step " + std::to_string(layout.point_step));
     if (f.name == "x") x = f;
     if (f.name == "y") y = f;
@@ -76,6 +99,7 @@ PointCloud decode_point_cloud2(const PointCloud2Layout& layout, const std::uint8
       time_rank = rank;
     }
   }
+  check_fields_apart(layout.fields, where);
   if (!x || !y || !z) throw input_error(where, 0, "no x, y and z fields");
   for (const PointField2* f : {&*x, &*y, &*z}) {
     if (f->datatype != static_cast<std::uint8_t>(FieldType::float32) &&

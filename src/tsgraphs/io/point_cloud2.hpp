@@ -31,8 +31,9 @@ struct PointCloud2Layout {
 };
 
 /// The points of `data` (row_step x height bytes). A layout without x, y and z, with a
-/// coordinate that is not float32 or float64, a field past point_step, big-endian data or
-/// too little data is an InputError naming `where` (e.g. "run.bag: /points, message 12").
+/// coordinate that is not float32 or float64, a field past point_step, two fields sharing a
+/// byte, big-endian data or too little data is an InputError naming `where` (e.g. "run.bag:
+/// /points, message 12") and the field.
 PointCloud decode_point_cloud2(const PointCloud2Layout& layout, const std::uint8_t* data, std::size_t size,
                                const std::string& where);
 
