@@ -165,6 +165,15 @@ TEST_F(ScanFolder, BadFoldersAreRefusedNamingTheFile) {
   const std::string count = test::input_error_of([&] { ScanFolderReader r(o); });
   EXPECT_NE(count.find("poses.txt"), std::string::npos) << count;
   EXPECT_NE(count.find("1 poses for 2 scans"), std::string::npos) << count;
+  // Issue 52: the scan beyond the count is named.
+  EXPECT_NE(count.find(": the first scan without a pose is " + (dir_ / "000001.bin").string()), std::string::npos) << count;
+  write_file("poses.txt", kitti_row(pose_k(0)) + kitti_row(pose_k(1)));
+  write_file("times.txt", "0.0\n");
+  const std::string times = test::input_error_of([&] { ScanFolderReader r(o); });
+  EXPECT_EQ(times, (dir_ / "times.txt").string() + ": has 1 times for 2 scans: the first scan without a time is " +
+                       (dir_ / "000001.bin").string());
+  fs::remove(dir_ / "times.txt");
+  write_file("poses.txt", kitti_row(pose_k(0)));
 
   // A malformed KITTI line names its line; a field count of neither format is refused.
   write_file("poses.txt", kitti_row(pose_k(0)) + "1 2 3\n");

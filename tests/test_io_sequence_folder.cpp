@@ -411,6 +411,24 @@ TEST_F(SequenceFolder, ReaderRejectsAMissingScan) {
   EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }), HasSubstr("000002.bin"));
 }
 
+// Issue 52: a scan file beyond the count of times and poses was left out without a word. The
+// files agree in number: the first extra scan, in name order, is named.
+TEST_F(SequenceFolder, ReaderRejectsAScanBeyondTheTimesAndPoses) {
+  write_sequence(seq_);
+  fs::copy_file(seq_ / "scans/000000.bin", seq_ / "scans/000004.bin");
+  fs::copy_file(seq_ / "scans/000000.bin", seq_ / "scans/000003.bin");
+  EXPECT_EQ(input_error_of([&] { SequenceReader r(seq_.string()); }),
+            (seq_ / "scans/000003.bin").string() + ": a scan beyond the 3 of times.txt and odom.txt: a sequence folder's files agree in number");
+  // Another spelling of a listed scan's number is no listed scan; other files are not scans.
+  fs::remove(seq_ / "scans/000003.bin");
+  fs::remove(seq_ / "scans/000004.bin");
+  write_text(seq_ / "scans/notes.txt", "calibration done\n");
+  write_text(seq_ / "scans/000000.bin.orig", "");
+  EXPECT_EQ(SequenceReader(seq_.string()).size(), 3u);
+  fs::copy_file(seq_ / "scans/000001.bin", seq_ / "scans/0000001.bin");
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }), StartsWith((seq_ / "scans/0000001.bin").string() + ": a scan beyond"));
+}
+
 TEST_F(SequenceFolder, ReaderRejectsABinOfOddSize) {
   write_sequence(seq_);
   write_text(seq_ / "scans/000001.bin", std::string(17, '\0'));

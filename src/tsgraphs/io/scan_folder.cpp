@@ -109,6 +109,13 @@ void check_stamps_agree(const std::string& poses, const std::vector<double>& pos
   }
 }
 
+// For a count of poses or times short of the scans: the first scan file left without one, which
+// the count would silently drop were it read as far as it goes.
+std::string first_beyond(const std::vector<std::string>& files, std::size_t count, const char* what) {
+  if (count >= files.size()) return "";
+  return std::string(": the first scan without a ") + what + " is " + files[count];
+}
+
 }  // namespace
 
 ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
@@ -177,14 +184,15 @@ ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
   }
   if (!poses.empty() && info_.odometry.size() != n)
     throw input_error(poses, 0, "has " + std::to_string(info_.odometry.size()) + " poses for " + std::to_string(n) +
-                                    " scans (one pose per scan, in scan order)");
+                                    " scans (one pose per scan, in scan order)" + first_beyond(files_, info_.odometry.size(), "pose"));
 
   // The times.
   const std::string times = options.times.empty() ? find_beside(beside, {"times.txt"}) : options.times;
   if (!times.empty()) {
     info_.times = read_times(times);
     if (info_.times.size() != n)
-      throw input_error(times, 0, "has " + std::to_string(info_.times.size()) + " times for " + std::to_string(n) + " scans");
+      throw input_error(times, 0, "has " + std::to_string(info_.times.size()) + " times for " + std::to_string(n) + " scans" +
+                                      first_beyond(files_, info_.times.size(), "time"));
     if (!pose_stamps.empty()) check_stamps_agree(poses, pose_stamps, times, info_.times);
   } else if (!pose_stamps.empty()) {
     for (std::size_t i = 1; i < n; ++i)

@@ -1,5 +1,6 @@
 #include "tsgraphs/io/sequence_folder.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -54,6 +55,38 @@ std::string scan_stem(std::size_t index) {
   return buf;
 }
 
+namespace {
+
+constexpr const char* kScanExtension = ".bin";
+
+/// Whether `file` is the name of one of the `n` scans times.txt lists (scan_stem(i).bin, i < n).
+bool is_listed_scan(const fs::path& file, std::size_t n) {
+  const std::string stem = file.stem().string();
+  std::size_t index = 0;
+  const auto [end, ec] = std::from_chars(stem.data(), stem.data() + stem.size(), index);
+  return ec == std::errc() && end == stem.data() + stem.size() && index < n && scan_stem(index) == stem;
+}
+
+/// A sequence folder's files agree in number: a scan file beyond the `n` of times.txt and the
+/// poses would be left out of the run without a word. The first such file in name order is named.
+void check_no_scan_beyond(const fs::path& scans, std::size_t n) {
+  std::error_code ec;
+  fs::directory_iterator it(scans, ec);
+  if (ec) throw input_error(scans.string(), 0, "cannot list the folder: " + ec.message());
+  std::string first;
+  for (; it != fs::directory_iterator(); it.increment(ec)) {
+    const fs::path& p = it->path();
+    if (p.extension() == kScanExtension && !is_listed_scan(p.filename(), n) && (first.empty() || p.string() < first)) first = p.string();
+  }
+  if (ec) throw input_error(scans.string(), 0, "cannot list the folder: " + ec.message());
+  if (!first.empty()) {
+    throw input_error(first, 0, "a scan beyond the " + std::to_string(n) +
+                                    " of times.txt and odom.txt: a sequence folder's files agree in number");
+  }
+}
+
+}  // namespace
+
 struct SequenceWriter::Impl {
   explicit Impl(const std::string& dir) : folder(dir, "times.txt") {
     fs::create_directories(fs::path(folder.path()) / "scans");
@@ -74,7 +107,7 @@ void SequenceWriter::write_scan(std::size_t index, const PointCloud& cloud) {
     data[4 * i + 2] = cloud.points[i].z();
     data[4 * i + 3] = cloud.has_intensity() ? cloud.intensity[i] : 0.0f;
   }
-  write_binary(stem.string() + ".bin", data.data(), data.size() * sizeof(float));
+  write_binary(stem.string() + kScanExtension, data.data(), data.size() * sizeof(float));
   if (cloud.has_labels()) {
     write_binary(stem.string() + ".label", cloud.labels.data(), cloud.labels.size() * sizeof(std::uint32_t));
   }
@@ -140,9 +173,10 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
   if (fs::exists(d / "groundtruth.txt")) info_.groundtruth = poses_of(d / "groundtruth.txt");
   if (fs::exists(d / "laps.txt")) info_.lap_starts = read_times((d / "laps.txt").string());
   for (std::size_t i = 0; i < n; ++i) {
-    const fs::path bin = d / "scans" / (scan_stem(i) + ".bin");
+    const fs::path bin = d / "scans" / (scan_stem(i) + kScanExtension);
     if (!fs::exists(bin)) throw input_error(bin.string(), 0, "missing scan (times.txt lists " + std::to_string(n) + ")");
   }
+  check_no_scan_beyond(d / "scans", n);
   if (fs::exists(d / "rooms_gt.json")) {
     const std::string path = (d / "rooms_gt.json").string();
     if (fs::is_directory(path)) throw input_error(path, 0, "is a folder, not a file");
@@ -189,7 +223,7 @@ void check_label_count(const std::string& path, std::uintmax_t bytes, std::size_
 
 ScanPresence SequenceReader::presence(std::size_t index) const {
   const fs::path stem = fs::path(dir_) / "scans" / scan_stem(index);
-  const KittiBinPresence bin = probe_kitti_bin(stem.string() + ".bin");
+  const KittiBinPresence bin = probe_kitti_bin(stem.string() + kScanExtension);
   const std::string label_path = stem.string() + ".label";
   if (fs::exists(label_path)) {
     std::error_code error;
@@ -206,7 +240,7 @@ ScanPresence SequenceReader::presence(std::size_t index) const {
 
 PointCloud SequenceReader::scan(std::size_t index) const {
   const fs::path stem = fs::path(dir_) / "scans" / scan_stem(index);
-  PointCloud cloud = read_kitti_bin(stem.string() + ".bin");
+  PointCloud cloud = read_kitti_bin(stem.string() + kScanExtension);
   const std::size_t n = cloud.size();
   const std::string label_path = stem.string() + ".label";
   if (fs::exists(label_path)) {

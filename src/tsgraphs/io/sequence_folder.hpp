@@ -32,7 +32,8 @@ class SequenceWriter {
 /// Reads a sequence folder, checking that the files agree with each other.
 class SequenceReader : public ScanSequence {
  public:
-  /// Throws InputError naming the file and line for a missing or inconsistent folder.
+  /// Throws InputError naming the file and line for a missing or inconsistent folder: one
+  /// scan file, scans/NNNNNN.bin, for each line of times.txt and odom.txt, and no other.
   explicit SequenceReader(const std::string& dir);
   std::size_t size() const override { return info_.times.size(); }
   const SequenceInfo& info() const override { return info_; }
