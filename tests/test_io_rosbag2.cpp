@@ -161,6 +161,37 @@ TEST_F(Rosbag2, DamagedFilesAndIncompleteFoldersAreNamed) {
   EXPECT_THAT(error_of(options((dir_ / "bag").string())), StartsWith(metadata + ":"));
 }
 
+// Issue 52: a folder whose metadata.yaml listed its file twice was read twice (42 scans from
+// 21, time going back). A file listed again, under any spelling, is refused naming the line.
+TEST_F(Rosbag2, AFileListedTwiceInMetadataIsRefusedNamingTheRepeat) {
+  write("folder", io::Rosbag2Storage::sqlite);
+  const fs::path folder = dir_ / "folder";
+  const std::string metadata = (folder / "metadata.yaml").string();
+  const auto listing = [&](const std::string& files) {
+    std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths:\n" << files;
+    return error_of(options(folder.string()));
+  };
+  EXPECT_EQ(listing("    - folder_0.db3\n"), "");
+  EXPECT_EQ(io::read_rosbag2_metadata(folder.string()).files, std::vector<std::string>{(folder / "folder_0.db3").string()});
+  EXPECT_EQ(listing("    - folder_0.db3\n    - folder_0.db3\n"),
+            metadata + ":4: lists folder_0.db3 again (as folder_0.db3 on line 3): each file is read once");
+  EXPECT_EQ(listing("    - ./folder_0.db3\n    - folder_0.db3\n"),
+            metadata + ":4: lists folder_0.db3 again (as ./folder_0.db3 on line 3): each file is read once");
+  EXPECT_EQ(listing("    - folder_0.db3\n    - ../folder/./folder_0.db3\n"),
+            metadata + ":4: lists ../folder/./folder_0.db3 again (as folder_0.db3 on line 3): each file is read once");
+  fs::create_symlink("folder_0.db3", folder / "link.db3");
+  EXPECT_EQ(listing("    - link.db3\n    - folder_0.db3\n"),
+            metadata + ":4: lists folder_0.db3 again (as link.db3 on line 3): each file is read once");
+  // bag-info reads the same list.
+  EXPECT_EQ(test::input_error_of([&] { io::rosbag2_info(folder.string()); }),
+            metadata + ":4: lists folder_0.db3 again (as link.db3 on line 3): each file is read once");
+  // An entry that is no file name is named too, not an internal error; a name's bytes are quoted printable.
+  EXPECT_EQ(listing("    - {path: folder_0.db3}\n"), metadata + ":3: relative_file_paths: an entry that is not a file name");
+  EXPECT_EQ(listing("    - \"a\\x1b[2J.db3\"\n"), metadata + ":3: lists a\\x1b[2J.db3, which is not in the folder");
+  std::ofstream(metadata) << "rosbag2_bagfile_information: [1, 2]\n";
+  EXPECT_EQ(error_of(options(folder.string())), metadata + ": no rosbag2_bagfile_information.relative_file_paths");
+}
+
 // rosbag2's own compression (`ros2 bag record --compression-mode file|message`, zstd): each
 // storage file compressed whole, or each message's data. Both storages read back the same
 // scans and odometry as the uncompressed bag, and a file decompressed to read it is not left

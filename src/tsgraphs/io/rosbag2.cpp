@@ -17,6 +17,7 @@
 #include <tuple>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/printable.hpp"
 #include "tsgraphs/io/compression.hpp"
 #include "tsgraphs/io/point_cloud2.hpp"
 #include "tsgraphs/io/ros2_messages.hpp"
@@ -283,13 +284,67 @@ Rosbag2Compression compression_of(const YAML::Node& info, const std::string& met
   } else if (mode == "message") {
     out = Rosbag2Compression::message;
   } else {
-    throw input_error(metadata, mode_line, "compression_mode " + written + ": expected FILE, MESSAGE or none");
+    throw input_error(metadata, mode_line, "compression_mode " + printable(written) + ": expected FILE, MESSAGE or none");
   }
   if (const auto [format, line] = scalar("compression_format"); format != "zstd") {
-    throw input_error(metadata, line, "compression_format '" + format + "': only zstd, rosbag2's own compressor, is read");
+    throw input_error(metadata, line, "compression_format '" + printable(format) + "': only zstd, rosbag2's own compressor, is read");
   }
   return out;
 }
+
+/// metadata.yaml's rosbag2_bagfile_information, a map, or an InputError naming the file.
+YAML::Node bagfile_information(const std::string& metadata) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(metadata);
+  } catch (const YAML::Exception& e) {
+    throw input_error(metadata, e.mark.line + 1, std::string("not YAML: ") + e.msg);
+  }
+  const YAML::Node info = root.IsMap() ? root["rosbag2_bagfile_information"] : YAML::Node();
+  if (!info || !info.IsMap() || !info["relative_file_paths"] || !info["relative_file_paths"].IsSequence()) {
+    throw input_error(metadata, 0, "no rosbag2_bagfile_information.relative_file_paths");
+  }
+  return info;
+}
+
+/// The file `entry` of relative_file_paths names in `folder`: a file there, listed once. The same
+/// file under another spelling (./a.db3 and a.db3, a link to it) is a repeat too: read twice, its
+/// scans would come twice and time would go back. `listed` holds the files so far, by their
+/// canonical path, with the line that listed each.
+std::string listed_file(const YAML::Node& entry, const std::string& folder, const std::string& metadata,
+                        std::map<fs::path, std::pair<std::string, int>>& listed) {
+  const int line = entry.Mark().line + 1;
+  if (!entry.IsScalar()) throw input_error(metadata, line, "relative_file_paths: an entry that is not a file name");
+  const std::string name = entry.Scalar();
+  const std::string file = (fs::path(folder) / name).string();
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) throw input_error(metadata, line, "lists " + printable(name) + ", which is not in the folder");
+  const fs::path canonical = fs::canonical(file, ec);
+  if (ec) throw input_error(metadata, line, "lists " + printable(name) + ", which cannot be read: " + ec.message());
+  const auto [first, fresh] = listed.emplace(canonical, std::make_pair(name, line));
+  if (!fresh) {
+    throw input_error(metadata, line, "lists " + printable(name) + " again (as " + printable(first->second.first) + " on line " +
+                                          std::to_string(first->second.second) + "): each file is read once");
+  }
+  return file;
+}
+
+}  // namespace
+
+Rosbag2Metadata read_rosbag2_metadata(const std::string& folder) {
+  const std::string metadata = (fs::path(folder) / kMetadataFile).string();
+  std::error_code ec;
+  if (!fs::is_regular_file(metadata, ec)) throw input_error(folder, 0, "a folder without metadata.yaml: not a rosbag2 bag");
+  const YAML::Node info = bagfile_information(metadata);
+  Rosbag2Metadata out;
+  out.compression = compression_of(info, metadata);
+  std::map<fs::path, std::pair<std::string, int>> listed;
+  for (const YAML::Node& entry : info["relative_file_paths"]) out.files.push_back(listed_file(entry, folder, metadata, listed));
+  if (out.files.empty()) throw input_error(metadata, 0, "lists no files");
+  return out;
+}
+
+namespace {
 
 /// The storages of a recording: a folder's files in metadata.yaml's order, or the one file.
 std::vector<std::unique_ptr<Storage>> open_recording(const std::string& path) {
@@ -299,32 +354,16 @@ std::vector<std::unique_ptr<Storage>> open_recording(const std::string& path) {
     out.push_back(open_storage(path, path));
     return out;
   }
-  const std::string metadata = (fs::path(path) / kMetadataFile).string();
-  if (!fs::is_regular_file(metadata, ec)) throw input_error(path, 0, "a folder without metadata.yaml: not a rosbag2 bag");
-  YAML::Node info;
-  try {
-    info = YAML::LoadFile(metadata)["rosbag2_bagfile_information"];
-  } catch (const YAML::Exception& e) {
-    throw input_error(metadata, e.mark.line + 1, std::string("not YAML: ") + e.msg);
-  }
-  if (!info || !info["relative_file_paths"] || !info["relative_file_paths"].IsSequence()) {
-    throw input_error(metadata, 0, "no rosbag2_bagfile_information.relative_file_paths");
-  }
-  const Rosbag2Compression compression = compression_of(info, metadata);
-  for (const YAML::Node& f : info["relative_file_paths"]) {
-    const std::string file = (fs::path(path) / f.as<std::string>()).string();
-    if (!fs::is_regular_file(file, ec)) {
-      throw input_error(metadata, f.Mark().line + 1, "lists " + f.as<std::string>() + ", which is not in the folder");
-    }
-    if (compression == Rosbag2Compression::file) {
+  const Rosbag2Metadata metadata = read_rosbag2_metadata(path);
+  for (const std::string& file : metadata.files) {
+    if (metadata.compression == Rosbag2Compression::file) {
       out.push_back(open_compressed_storage(file));
-    } else if (compression == Rosbag2Compression::message) {
+    } else if (metadata.compression == Rosbag2Compression::message) {
       out.push_back(std::make_unique<ZstdMessages>(open_storage(file, file), file));
     } else {
       out.push_back(open_storage(file, file));
     }
   }
-  if (out.empty()) throw input_error(metadata, 0, "lists no files");
   return out;
 }
 

@@ -47,6 +47,20 @@ enum class Rosbag2Storage { sqlite, mcap };
 /// another matter, and the two can be combined.
 enum class Rosbag2Compression { none, file, message };
 
+/// What a bag folder's metadata.yaml says of the recording: its storage files, in order, and
+/// rosbag2's own compression of them.
+struct Rosbag2Metadata {
+  std::vector<std::string> files;  ///< paths of files in the folder, as listed
+  Rosbag2Compression compression = Rosbag2Compression::none;
+};
+
+/// Reads FOLDER/metadata.yaml (rosbag2_bagfile_information: relative_file_paths, and
+/// compression_mode and compression_format when given). An InputError naming it, with the line
+/// when there is one, for: not YAML; no list of files, or an empty one; an entry that is not a
+/// file name, or not a file in the folder; a file listed twice, under any spelling (./a.db3 and
+/// a.db3, a link to it); a compression other than rosbag2's zstd.
+Rosbag2Metadata read_rosbag2_metadata(const std::string& folder);
+
 /// Writes `sequence` as rosbag2 writes a recording: SQLite (rosbag2's Humble layout, the bag's
 /// metadata in its metadata table) or MCAP (profile ros2, cdr messages, ros2msg schemas, chunks
 /// compressed by `compression`, the bag's metadata in a "rosbag2" Metadata record), with the
