@@ -248,6 +248,12 @@ TEST(YamlMapErrors, SyntaxErrorInAString) {
   EXPECT_THAT(msg, HasSubstr("syntax"));
 }
 
+// Issue 52: yaml-cpp's message quotes the byte it stumbled on, raw; it reaches the user printable.
+TEST(YamlMapErrors, SyntaxErrorQuotesNoRawByte) {
+  EXPECT_EQ(input_error_of([] { YamlMap::load_string("a: 1\nb: \"\\\x01\"\n", "broken.yaml"); }),
+            "broken.yaml:2: YAML syntax error: unknown escape character: \\x01");
+}
+
 TEST(YamlMapErrors, OutOfRangeIntegers) {
   EXPECT_THAT(input_error_of([] { doc("a: 1\nx: -1\n").require<unsigned>("x"); }), StartsWith("test.yaml:2: "));
   EXPECT_THAT(input_error_of([] { doc("x: -1\n").require<std::size_t>("x"); }), StartsWith("test.yaml:1: "));

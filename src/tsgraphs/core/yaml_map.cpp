@@ -5,6 +5,8 @@
 #include <fstream>
 #include <map>
 
+#include "tsgraphs/core/printable.hpp"
+
 namespace tsgraphs {
 
 YamlMap::YamlMap(YAML::Node node, std::string file, std::string path)
@@ -22,7 +24,7 @@ YamlMap YamlMap::load_file(const std::string& file) {
   try {
     return YamlMap(YAML::Load(in), file, "");
   } catch (const YAML::ParserException& e) {
-    throw input_error(file, e.mark.line + 1, "YAML syntax error: " + e.msg);
+    throw input_error(file, e.mark.line + 1, "YAML syntax error: " + printable(e.msg, e.msg.size()));
   }
 }
 
@@ -30,7 +32,7 @@ YamlMap YamlMap::load_string(const std::string& text, const std::string& file) {
   try {
     return YamlMap(YAML::Load(text), file, "");
   } catch (const YAML::ParserException& e) {
-    throw input_error(file, e.mark.line + 1, "YAML syntax error: " + e.msg);
+    throw input_error(file, e.mark.line + 1, "YAML syntax error: " + printable(e.msg, e.msg.size()));
   }
 }
 

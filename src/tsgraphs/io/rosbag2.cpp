@@ -297,8 +297,8 @@ YAML::Node bagfile_information(const std::string& metadata) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(metadata);
-  } catch (const YAML::Exception& e) {
-    throw input_error(metadata, e.mark.line + 1, std::string("not YAML: ") + e.msg);
+  } catch (const YAML::Exception& e) {  // its message quotes the byte it stumbled on, raw
+    throw input_error(metadata, e.mark.line + 1, "not YAML: " + printable(e.msg, e.msg.size()));
   }
   const YAML::Node info = root.IsMap() ? root["rosbag2_bagfile_information"] : YAML::Node();
   if (!info || !info.IsMap() || !info["relative_file_paths"] || !info["relative_file_paths"].IsSequence()) {
