@@ -245,6 +245,29 @@ def ros2_message_seeds():
     put("ros2_messages", "point_cloud2.cdr", c.bytes())
 
 
+def rosbag2_metadata_seeds(tsgraphs, tmp):
+    """metadata.yaml as `simulate --bag FOLDER` writes it for a folder named bag (the fuzz target's
+    folder holds the files these list): SQLite, MCAP, each under rosbag2's own compression, and a
+    split of two files (as rosbag2 writes one, by hand); a file listed twice (under another spelling,
+    through a link) makes regression seeds."""
+    def metadata(name, bag_format, compression):
+        folder = os.path.join(tmp, name, "bag")
+        subprocess.run([tsgraphs, "simulate", os.path.join(HERE, "tiny.yaml"), "--bag", folder, "--bag-format", bag_format,
+                        "--compression", compression], check=True, capture_output=True)
+        with open(os.path.join(folder, "metadata.yaml")) as f:
+            return f.read()
+    sqlite = metadata("sqlite", "ros2-sqlite", "none")
+    put("rosbag2_metadata", "sqlite.yaml", sqlite)
+    put("rosbag2_metadata", "mcap.yaml", metadata("mcap", "ros2-mcap", "zstd"))
+    put("rosbag2_metadata", "sqlite_zstd_file.yaml", metadata("sqlite_file", "ros2-sqlite", "zstd-file"))
+    put("rosbag2_metadata", "mcap_zstd_message.yaml", metadata("mcap_message", "ros2-mcap", "zstd-message"))
+    listed = "relative_file_paths:\n    - bag_0.db3\n"
+    assert listed in sqlite, sqlite
+    put("rosbag2_metadata", "split.yaml", sqlite.replace(listed, listed + "    - bag_1.db3\n"))
+    put("rosbag2_metadata", "regression_listed_twice.yaml", sqlite.replace(listed, listed + "    - ./bag_0.db3\n"))
+    put("rosbag2_metadata", "regression_listed_through_a_link.yaml", sqlite.replace(listed, listed + "    - link_0.db3\n"))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -272,6 +295,7 @@ def main():
         point_cloud2_seeds()
         occupancy_map_seeds()
         run_folder_seeds(run)
+        rosbag2_metadata_seeds(tsgraphs, tmp)
         with open(os.path.join(run, "params.yaml")) as f:
             put("params", "run_params.yaml", f.read())
     shutil.copy(os.path.join(ROOT, "config", "params.yaml"), os.path.join(CORPUS, "params", "params.yaml"))
