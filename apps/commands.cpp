@@ -20,6 +20,7 @@
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
+#include "tsgraphs/pipeline/odometry_choice.hpp"
 #include "tsgraphs/pipeline/run_outputs.hpp"
 #include "tsgraphs/pipeline/sequence_runner.hpp"
 #include "tsgraphs/report/foxglove_export.hpp"
@@ -129,12 +130,12 @@ void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::
 }
 
 void convert(const io::ScanSequence& sequence, const std::string& out, const pipeline::OdometryOptions& odometry,
-             const odometry::LidarOdometryConfig& lidar, const odometry::SweepRegistrationConfig& sweep, bool quiet) {
+             const pipeline::PipelineConfig& config, bool quiet) {
   io::SequenceWriter writer(out);
   io::SequenceInfo info = sequence.info();
   std::optional<odometry::LidarOdometry> lidar_odometry;
   if (odometry.estimate) {
-    lidar_odometry.emplace(lidar, odometry.initial_pose, sweep);
+    lidar_odometry.emplace(pipeline::make_lidar_odometry(config, odometry.initial_pose));
     info.odometry.clear();
   }
   app::Progress progress("convert", quiet);
@@ -211,40 +212,12 @@ OpenedBag open_bag(const io::BagOptions& options, bool quiet) {
 pipeline::OdometryOptions choose_odometry(const io::ScanSequence& sequence, const std::string& mode,
                                           const std::optional<Pose3>& sensor_to_base,
                                           const odometry::FloorLevellingConfig& levelling, bool quiet) {
-  const std::vector<Pose3>& input = sequence.info().odometry;
-  pipeline::OdometryOptions options;
-  if (mode == "input") {
-    if (input.empty())
-      throw input_error(sequence.dir(), 0,
-                        "has no odometry: give poses (--poses, --odom-topic or --odom-tum), or --odometry lidar to "
-                        "estimate them from the scans");
-    return options;
-  }
-  if (mode != "lidar" && mode != "auto") throw input_error("--odometry", 0, "'" + mode + "': expected auto, input or lidar");
-  if (mode == "auto" && !input.empty()) return options;
-  options.estimate = true;
-  if (!input.empty()) {
-    options.initial_pose = input.front();
-  } else if (sensor_to_base) {
-    options.initial_pose = *sensor_to_base;
-  } else if (sequence.size() > 0) {
-    odometry::FloorLevel level;
-    try {
-      level = odometry::level_from_floor(sequence.scan(0), levelling);
-    } catch (const InputError&) {
-      // An unreadable first scan: run skips it with its own warning; no floor to level on.
-    }
-    if (level.found) {
-      options.initial_pose = level.sensor_pose;
-      if (!quiet)
-        std::fprintf(stderr, "odometry: the map is level with the floor under the first scan (sensor %.2f m above it, "
-                             "tilted %.1f deg)\n", level.height, level.tilt_deg);
-    } else {
-      print_warnings(sequence.dir() + ": ", {"no floor found under the first scan: the map frame is the first scan's "
-                                             "(give --sensor-to-base if the sensor is tilted)"});
-    }
-  }
-  return options;
+  const pipeline::OdometryChoice choice = pipeline::choose_odometry(sequence, mode, sensor_to_base, levelling);
+  if (choice.level && !quiet)
+    std::fprintf(stderr, "odometry: the map is level with the floor under the first scan (sensor %.2f m above it, "
+                         "tilted %.1f deg)\n", choice.level->height, choice.level->tilt_deg);
+  if (!choice.warning.empty()) print_warnings(sequence.dir() + ": ", {choice.warning});
+  return choice.options;
 }
 
 void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config, bool quiet) {

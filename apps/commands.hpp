@@ -38,7 +38,7 @@ void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::
 /// `odometry.estimate`, odom.txt is LiDAR odometry (`lidar`, its sweeps registered with `sweep`)
 /// from the scans, in the same pass.
 void convert(const io::ScanSequence& sequence, const std::string& out, const pipeline::OdometryOptions& odometry,
-             const odometry::LidarOdometryConfig& lidar, const odometry::SweepRegistrationConfig& sweep, bool quiet);
+             const pipeline::PipelineConfig& config, bool quiet);
 /// `bag-info`: the topics, types, counts and rates of a ROS 1 bag or a rosbag2 recording on stdout.
 void print_bag_info(const std::string& bag);
 /// `export --mcap`: the run folder as an MCAP file for Foxglove (report/foxglove_export.hpp).

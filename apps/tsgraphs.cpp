@@ -308,7 +308,7 @@ int main(int argc, char** argv) {
       const pipeline::OdometryOptions odometry =
           choose_odometry(*sequence, opt.odometry, mount, config.floor_levelling, opt.quiet);
       if (*convert_cmd) {
-        convert(*sequence, opt.out, odometry, config.lidar_odometry, config.deskew.registration, opt.quiet);
+        convert(*sequence, opt.out, odometry, config, opt.quiet);
       } else {
         if (!opt.free_space.empty()) config.rooms.layer.free_space_method = opt.free_space;
         if (!opt.room_trigger.empty()) config.rooms.layer.room_trigger = opt.room_trigger;

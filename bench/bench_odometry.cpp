@@ -8,7 +8,9 @@
 // --fine-threshold, --recovery-search: lidar_odometry.fine_threshold and recovery_search_m (0: off).
 // --tilt, --yaw-candidates, --sweep-motion, --turn-from-sweep: lidar_odometry.tilt_prediction,
 // yaw_search_candidates, sweep_motion, turn_from_sweep.
-// The odometry runs in the frame `run` gives it (level with the floor under the first scan).
+// The odometry is the one `run --odometry lidar` and `convert` estimate with, started where they
+// start it (pipeline/odometry_choice.hpp): its ATE is the run's `eval` odometry ATE_rmse.
+// --every N keeps the scans' stamps, as a sequence recorded at 10 / N Hz.
 // ATE: the RMS position error over every scan, the estimate anchored at the first ground-truth
 // pose (no further alignment: drift counts). Drift: the estimate is anchored at the first ground-truth pose; the position error is given
 // as a share of the path length travelled so far (at the end of lap 1, and its maximum over the
@@ -33,8 +35,9 @@
 #include "tsgraphs/eval/trajectory_metrics.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/subsampled_sequence.hpp"
-#include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/lidar_odometry_sequence.hpp"
+#include "tsgraphs/pipeline/odometry_choice.hpp"
+#include "tsgraphs/pipeline/pipeline_config.hpp"
 
 using namespace tsgraphs;
 
@@ -60,22 +63,25 @@ int main(int argc, char** argv) {
   int threads = 0;
   std::size_t every = 1;
   std::string out_tum;
-  odometry::LidarOdometryConfig config;
+  // The odometry `run` and `convert` estimate with (pipeline/odometry_choice.hpp), its fields
+  // changed by the options below.
+  pipeline::PipelineConfig config;
+  odometry::LidarOdometryConfig& lidar = config.lidar_odometry;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--threads") threads = std::atoi(argv[i + 1]);
-    else if (a == "--voxel-size") config.voxel_size = std::atof(argv[i + 1]);
-    else if (a == "--convergence") config.convergence_criterion = std::atof(argv[i + 1]);
-    else if (a == "--max-iterations") config.max_iterations = std::atoi(argv[i + 1]);
-    else if (a == "--point-to-point") config.point_to_plane = std::atoi(argv[i + 1]) == 0;
+    else if (a == "--voxel-size") lidar.voxel_size = std::atof(argv[i + 1]);
+    else if (a == "--convergence") lidar.convergence_criterion = std::atof(argv[i + 1]);
+    else if (a == "--max-iterations") lidar.max_iterations = std::atoi(argv[i + 1]);
+    else if (a == "--point-to-point") lidar.point_to_plane = std::atoi(argv[i + 1]) == 0;
     else if (a == "--out-tum") out_tum = argv[i + 1];
-    else if (a == "--yaw-search") config.yaw_search_deg = std::atof(argv[i + 1]);
-    else if (a == "--recovery-search") config.recovery_search_m = std::atof(argv[i + 1]);
-    else if (a == "--fine-threshold") config.fine_threshold = std::atof(argv[i + 1]);
-    else if (a == "--sweep-motion") config.sweep_motion = std::atoi(argv[i + 1]) != 0;
-    else if (a == "--yaw-candidates") config.yaw_search_candidates = std::atoi(argv[i + 1]);
-    else if (a == "--tilt") config.tilt_prediction = argv[i + 1];
-    else if (a == "--turn-from-sweep") config.turn_from_sweep = std::atoi(argv[i + 1]) != 0;
+    else if (a == "--yaw-search") lidar.yaw_search_deg = std::atof(argv[i + 1]);
+    else if (a == "--recovery-search") lidar.recovery_search_m = std::atof(argv[i + 1]);
+    else if (a == "--fine-threshold") lidar.fine_threshold = std::atof(argv[i + 1]);
+    else if (a == "--sweep-motion") lidar.sweep_motion = std::atoi(argv[i + 1]) != 0;
+    else if (a == "--yaw-candidates") lidar.yaw_search_candidates = std::atoi(argv[i + 1]);
+    else if (a == "--tilt") lidar.tilt_prediction = argv[i + 1];
+    else if (a == "--turn-from-sweep") lidar.turn_from_sweep = std::atoi(argv[i + 1]) != 0;
     else if (a == "--every") every = static_cast<std::size_t>(std::max(1, std::atoi(argv[i + 1])));
     else {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());
@@ -89,10 +95,10 @@ int main(int argc, char** argv) {
   const io::SubsampledSequence seq(full, every);
   const auto& info = seq.info();
   const bool has_truth = info.groundtruth.size() == seq.size();
-  const Pose3 anchor = has_truth ? info.groundtruth.front() : Pose3::Identity();
-  // The odometry runs in the frame `run` gives it: level with the floor under the first scan
-  // (its z is up for the yaw search and the prediction's tilt), then is anchored at the truth.
-  const odometry::FloorLevel level = odometry::level_from_floor(seq.scan(0));
+  // The odometry starts where `run --odometry lidar` starts it (the input's first pose, else level
+  // with the floor under the first scan) and is anchored at the truth as `eval` anchors it.
+  const pipeline::OdometryChoice choice = pipeline::choose_odometry(seq, "lidar", std::nullopt, config.floor_levelling);
+  odometry::LidarOdometry lidar_odometry = pipeline::make_lidar_odometry(config, choice.options.initial_pose);
 
   using Clock = std::chrono::steady_clock;
   std::vector<double> scan_ms;
@@ -101,15 +107,17 @@ int main(int argc, char** argv) {
   std::vector<std::size_t> lost;
   std::vector<double> overlaps;
   std::vector<Pose3> poses = odometry::estimate_odometry(
-      seq, config,
+      seq, lidar_odometry,
       [&](std::size_t, std::size_t) {
         const auto now = Clock::now();
         scan_ms.push_back(std::chrono::duration<double, std::milli>(now - last).count());
         last = now;
       },
-      level.sensor_pose, &lost, &overlaps);
-  const Pose3 to_anchor = anchor * level.sensor_pose.inverse();
-  for (Pose3& pose : poses) pose = to_anchor * pose;
+      &lost, &overlaps);
+  if (has_truth) {
+    const Pose3 to_anchor = info.groundtruth.front() * poses.front().inverse();
+    for (Pose3& pose : poses) pose = to_anchor * pose;
+  }
   const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
   const double span_s = info.times.back() - info.times.front();
 
@@ -142,13 +150,12 @@ int main(int argc, char** argv) {
   }
   if (!has_truth) return 0;
 
-  double path = 0.0, max_ratio = 0.0, max_ratio_at = 0.0, sum_sq = 0.0;
+  double path = 0.0, max_ratio = 0.0, max_ratio_at = 0.0;
   double lap1_ratio = -1.0, lap1_err = 0.0, lap1_path = 0.0;
   const double lap2_start = info.lap_starts.size() >= 2 ? info.lap_starts[1] : -1.0;
   for (std::size_t k = 0; k < poses.size(); ++k) {
     if (k > 0) path += (info.groundtruth[k].translation() - info.groundtruth[k - 1].translation()).norm();
     const double err = (poses[k].translation() - info.groundtruth[k].translation()).norm();
-    sum_sq += err * err;
     if (path >= kMinPathForRatio && err / path > max_ratio) {
       max_ratio = err / path;
       max_ratio_at = path;
@@ -163,8 +170,8 @@ int main(int argc, char** argv) {
   const double final_err = (poses.back().translation() - info.groundtruth.back().translation()).norm();
   const double final_yaw = std::abs(wrap_angle(yaw_of(poses.back()) - yaw_of(info.groundtruth.back()))) * kRadToDeg;
   std::printf("path length     %.1f m\n", path);
-  std::printf("ATE rmse        %.3f m (anchored at the first pose, no alignment)\n",
-              std::sqrt(sum_sq / static_cast<double>(poses.size())));
+  std::printf("ATE rmse        %.3f m (anchored at the first pose, no alignment: eval's odometry ATE_rmse)\n",
+              eval::ate_rmse(poses, info.groundtruth));
   if (lap1_ratio >= 0.0) {
     std::printf("end of lap 1    %.3f m over %.1f m = %.3f %%\n", lap1_err, lap1_path, 100.0 * lap1_ratio);
   }

@@ -13,6 +13,8 @@
 #include "tsgraphs/io/ros_bag.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
+#include "tsgraphs/odometry/lidar_odometry_sequence.hpp"
+#include "tsgraphs/pipeline/odometry_choice.hpp"
 
 namespace fs = std::filesystem;
 using namespace tsgraphs;
@@ -136,6 +138,28 @@ TEST_F(OdometryCli, LidarOdometryOnASequenceStartsAtItsFirstPoseAndIsDeterminist
   EXPECT_EQ(read_file(dir_ / "a" / "trajectory.txt"), read_file(dir_ / "b" / "trajectory.txt"));
   EXPECT_EQ(read_file(dir_ / "a" / "scene_graph.json"), read_file(dir_ / "b" / "scene_graph.json"));
   EXPECT_EQ(nlohmann::json::parse(read_file(dir_ / "a" / "run_info.json"))["odometry"], "lidar");
+}
+
+// Issue 52: the bench built its odometry with other settings than `run` and reported another
+// figure for the same scans; both now come from pipeline/odometry_choice.hpp.
+TEST_F(OdometryCli, TheLibrarysOdometryChoiceIsTheRunsOdometry) {
+  const io::SequenceReader seq((base_ / "seq").string());
+  const pipeline::PipelineConfig config;
+  const pipeline::OdometryChoice choice = pipeline::choose_odometry(seq, "lidar", std::nullopt, config.floor_levelling);
+  EXPECT_TRUE(choice.options.estimate);
+  EXPECT_TRUE(choice.options.initial_pose.isApprox(odometry_.front()));
+  odometry::LidarOdometry lidar = pipeline::make_lidar_odometry(config, choice.options.initial_pose);
+  const std::vector<Pose3> poses = odometry::estimate_odometry(seq, lidar);
+  std::string err;
+  ASSERT_EQ(cli("-q run " + (base_ / "seq").string() + " --odometry lidar --out " + (dir_ / "run").string(), &err), 0)
+      << err;
+  const auto run = poses_of(io::read_tum((dir_ / "run" / "odometry.txt").string()));
+  ASSERT_EQ(run.size(), poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    ASSERT_LT((run[i].translation() - poses[i].translation()).norm(), 1e-9) << "scan " << i;
+  EXPECT_EQ(eval::ate_rmse(run, truth_), eval::ate_rmse(poses, truth_));
+  // "input" without poses, and a mode that is none, are the command's errors.
+  EXPECT_THROW(pipeline::choose_odometry(seq, "wheels", std::nullopt, config.floor_levelling), InputError);
 }
 
 TEST_F(OdometryCli, BagWithoutAnOdometryTopicStartsAtTheSensorsMount) {

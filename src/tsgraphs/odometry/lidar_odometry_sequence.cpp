@@ -9,6 +9,12 @@ std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, const Lid
                                      const Pose3& initial_pose, std::vector<std::size_t>* lost,
                                      std::vector<double>* overlaps) {
   LidarOdometry odometry(config, initial_pose);
+  return estimate_odometry(sequence, odometry, progress, lost, overlaps);
+}
+
+std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, LidarOdometry& odometry,
+                                     const std::function<void(std::size_t, std::size_t)>& progress,
+                                     std::vector<std::size_t>* lost, std::vector<double>* overlaps) {
   const std::size_t n = sequence.size();
   std::vector<Pose3> poses;
   poses.reserve(n);

@@ -13,6 +13,7 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/odometry/deskew.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
+#include "tsgraphs/pipeline/odometry_choice.hpp"
 #include "tsgraphs/odometry/sweep_deskewer.hpp"
 
 namespace tsgraphs::pipeline {
@@ -103,7 +104,7 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
   tell_warnings();
   std::optional<odometry::LidarOdometry> lidar_odometry;
   if (odometry.estimate)
-    lidar_odometry.emplace(pipeline.config().lidar_odometry, in_map(odometry.initial_pose), pipeline.config().deskew.registration);
+    lidar_odometry.emplace(make_lidar_odometry(pipeline.config(), in_map(odometry.initial_pose)));
   // Reading and the keyframe steps (prefilter, ground, planes of keyframe candidates) run in
   // parallel on the next scans; the odometry and the pipeline take them in order, so the
   // result is the same as one scan at a time.
