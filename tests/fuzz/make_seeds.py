@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """Writes the fuzz targets' seed corpora (corpus/<target>/): small valid inputs of every format
 each reader takes, so the fuzzers start from files that get past the first checks.
-Usage: python3 tests/fuzz/make_seeds.py TSGRAPHS_BINARY  (from the repository's root)
+Usage: python3 tests/fuzz/make_seeds.py TSGRAPHS_BINARY [TARGET...]  (from the repository's root;
+TARGETs, among those STANDALONE lists, rewrite only their corpora)
 The bags and scans come from `tsgraphs simulate` on tiny.yaml (2 x 8 beams); the rest is
 written here from the formats' definitions (standard library only)."""
 import json
 import os
+import re
 import shutil
 import struct
 import subprocess
@@ -268,10 +270,93 @@ def rosbag2_metadata_seeds(tsgraphs, tmp):
     put("rosbag2_metadata", "regression_listed_through_a_link.yaml", sqlite.replace(listed, listed + "    - link_0.db3\n"))
 
 
+def suite_file_seeds():
+    """The shipped suites, their import cases naming the fuzz target's map and labels (each by a
+    name of its own, as ids must differ), and variants of every kind of case and key."""
+    suites = os.path.join(ROOT, "suites")
+    for name in sorted(os.listdir(suites)):
+        with open(os.path.join(suites, name)) as f:
+            text = f.read()
+        text = re.sub(r"\{map: [^,]*/([^/,]+)\.yaml, rooms: [^}]*\}", r"{map: map.yaml, rooms: rooms.png, name: \1}", text)
+        put("suite_file", name, text)
+    put("suite_file", "every_kind.yaml",
+        "name: every_kind\nmethods: [ts-graphs, s-graphs-plus, traversable-timer, esdf-flush]\nlaps: 3\ncases:\n"
+        "  - generate: {styles: office, seeds: 4, size: 0.5, people: 3, realistic: true}\n"
+        "  - generate:\n      styles: [atrium, multi_storey]\n      seeds: \"7-9\"\n      platforms:\n"
+        "        - default\n        - {name: low, mount_height: 0.3, preset: vlp-16}\n"
+        "        - {name: walk, type: handheld, rate_hz: 10, record_hz: 2}\n"
+        "  - import: {map: map.yaml, rooms: rooms.png, ceiling: 3.0, name: floor}\n"
+        "  - import: {map: map.yaml}\n"
+        "  - scene: office\n"
+        "  - scene: two_storeys\n"
+        "  - sequence: seq\n")
+    put("suite_file", "defaults.yaml", "name: defaults\ncases:\n  - generate: {styles: [library], seeds: [1, 2, 3]}\n")
+
+
+def pgm(rows):
+    return b"P5\n%d %d\n255\n" % (len(rows[0]), len(rows)) + b"".join(bytes(r) for r in rows)
+
+
+def drawn_map(width, height, resolution, boxes):
+    """A map_server image (row 0 at the top) of width x height m: unknown (205) but for `boxes`,
+    (x0, y0, x1, y1, value) in m from the lower-left corner, drawn in order."""
+    cols, rows = round(width / resolution), round(height / resolution)
+    image = [[205] * cols for _ in range(rows)]
+    for x0, y0, x1, y1, value in boxes:
+        for j in range(rows):
+            y = (rows - 1 - j + 0.5) * resolution
+            for i in range(cols):
+                if x0 <= (i + 0.5) * resolution <= x1 and y0 <= y <= y1:
+                    image[j][i] = value
+    return image
+
+
+def map_import_seeds():
+    """Small drawn maps as `import-map` reads them: the YAML, a line "...", the image. A room; two
+    rooms through a door, moved and turned; the import-map tests' building (tests/map_test_support.hpp)
+    at 0.1 m: a corridor, three rooms, a closet behind a narrow door, a void, a stray speck."""
+    free, wall = 254, 0
+    yaml = "image: map.pgm\nresolution: {res}\norigin: {origin}\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"
+    room = drawn_map(3.5, 2.5, 0.05, [(0.2, 0.2, 3.3, 2.3, wall), (0.3, 0.3, 3.2, 2.2, free)])
+    put("map_import", "room.map", (yaml.format(res=0.05, origin="[0.0, 0.0, 0.0]") + "...\n").encode() + pgm(room))
+    two = drawn_map(6.5, 3.5, 0.05, [(0.2, 0.2, 6.3, 3.3, wall), (0.3, 0.3, 6.2, 3.2, free), (3.2, 0.3, 3.3, 3.2, wall),
+                                     (3.2, 1.2, 3.3, 2.2, free)])
+    put("map_import", "two_rooms.map",
+        (yaml.format(res=0.05, origin="[-2.0, -1.0, 0.3]") + "mode: scale\n...\n").encode() + pgm(two))
+    building = [(1.0, 1.0, 13.0, 9.0, wall), (1.15, 1.15, 12.85, 8.85, free), (1.15, 3.0, 12.85, 3.1, wall),
+                (5.0, 3.1, 5.5, 8.85, wall), (9.0, 3.1, 9.1, 8.85, wall), (12.15, 1.15, 12.25, 3.0, wall)]
+    doors = [(2.5, 3.0, 3.5, 3.1), (6.5, 3.0, 7.5, 3.1), (10.0, 3.0, 11.0, 3.1), (12.15, 1.8, 12.25, 2.4)]
+    building += [d + (free,) for d in doors]
+    building += [(10.4, 5.4, 11.6, 6.6, 205), (2.0, 7.5, 2.5, 8.0, 205), (0.2, 0.2, 0.45, 0.45, free)]
+    put("map_import", "building.map",
+        (yaml.format(res=0.1, origin="[-2.0, -1.0, 0.0]") + "...\n").encode() + pgm(drawn_map(14.0, 10.0, 0.1, building)))
+    png_room = png(len(room[0]), len(room), [bytes(r) for r in room])
+    put("map_import", "room_png.map", (yaml.format(res=0.05, origin="[5.0, 5.0, -1.5]") + "...\n").encode() + png_room)
+
+
+def generate_seeds():
+    """The generator's options as fuzz_generate.cpp lays them out: style index, seed, size step,
+    laps, people, realistic; every style, at the target's largest size (0.3) and below."""
+    for style, name in enumerate(("office", "atrium", "library", "open_plan", "irregular", "multi_storey", "mixed")):
+        people, realistic = style % 3, style % 2
+        size_step = 255 if style % 2 == 0 else 127
+        put("generate", f"{name}.bin", struct.pack("<BQBibB", style, style + 1, size_step, 2, people, realistic))
+
+
+# Corpora written from this script alone: `make_seeds.py TSGRAPHS_BINARY suite_file map_import`
+# rewrites only those.
+STANDALONE = {"suite_file": suite_file_seeds, "map_import": map_import_seeds, "generate": generate_seeds}
+
+
 def main():
-    if len(sys.argv) != 2:
+    if len(sys.argv) < 2 or any(t not in STANDALONE for t in sys.argv[2:]):
         sys.exit(__doc__)
     tsgraphs = os.path.abspath(sys.argv[1])
+    if len(sys.argv) > 2:
+        for target in sys.argv[2:]:
+            shutil.rmtree(os.path.join(CORPUS, target), ignore_errors=True)
+            STANDALONE[target]()
+        return
     shutil.rmtree(CORPUS, ignore_errors=True)
     with tempfile.TemporaryDirectory() as tmp:
         tiny = os.path.join(HERE, "tiny.yaml")
@@ -296,6 +381,8 @@ def main():
         occupancy_map_seeds()
         run_folder_seeds(run)
         rosbag2_metadata_seeds(tsgraphs, tmp)
+        for write_seeds in STANDALONE.values():
+            write_seeds()
         with open(os.path.join(run, "params.yaml")) as f:
             put("params", "run_params.yaml", f.read())
     shutil.copy(os.path.join(ROOT, "config", "params.yaml"), os.path.join(CORPUS, "params", "params.yaml"))
