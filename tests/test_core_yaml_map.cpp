@@ -148,6 +148,17 @@ TEST(YamlMapErrors, UnknownKeyNamesTheKeyAndItsLine) {
       doc().check_keys({"name", "seed", "ratio", "enabled", "nothing", "sensor", "point", "poly", "walls"}));
 }
 
+// Issue 52 (found by the map_import fuzz target): an unknown or repeated key was quoted with
+// the file's raw bytes. Keys are quoted printable (other bytes as \xNN), as every text of a file.
+TEST(YamlMapErrors, KeysAreQuotedPrintable) {
+  const std::string unknown = input_error_of([] { doc("name: a\nre\xff\x1b[2Jsolution: 1\n").check_keys({"name"}); });
+  EXPECT_EQ(unknown, "test.yaml:2: unknown key 're\\xff\\x1b[2Jsolution' (known keys: name)");
+  const std::string nested = input_error_of([] { doc("sensor:\n  \"\\x07\": 1\n").map("sensor").check_keys({"range"}); });
+  EXPECT_EQ(nested, "test.yaml:2: unknown key 'sensor.\\x07' (known keys: range)");
+  const std::string twice = input_error_of([] { doc("\"a\\tb\": 1\n\"a\\tb\": 2\n").check_keys({"a\tb"}); });
+  EXPECT_EQ(twice, "test.yaml:2: duplicate key 'a\\x09b' (first at line 1)");
+}
+
 TEST(YamlMapErrors, TypeErrorsNameTheLine) {
   const std::string text = "a: 1\nb: abc\nc: maybe\nd: [1, 2]\ne: 2.5\n";
   const std::string number = input_error_of([&] { doc(text).require<double>("b"); });

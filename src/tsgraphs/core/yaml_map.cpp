@@ -119,8 +119,9 @@ void YamlMap::check_keys(const std::vector<std::string>& allowed) const {
   for (auto it = node_.begin(); it != node_.end(); ++it) {
     const std::string key = it->first.Scalar();
     const int line = it->first.Mark().line + 1;
+    // The key is the file's text, any bytes: quoted printable.
     if (const auto [first, fresh] = seen.emplace(key, line); !fresh) {
-      throw input_error(file_, line, "duplicate key '" + key_path(key) + "' (first at line " +
+      throw input_error(file_, line, "duplicate key '" + key_path(printable(key)) + "' (first at line " +
                                          std::to_string(first->second) + ")");
     }
     bool known = false;
@@ -129,7 +130,7 @@ void YamlMap::check_keys(const std::vector<std::string>& allowed) const {
       std::string list;
       for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
       throw input_error(file_, it->first.Mark().line + 1,
-                        "unknown key '" + key_path(key) + "' (known keys: " + list + ")");
+                        "unknown key '" + key_path(printable(key)) + "' (known keys: " + list + ")");
     }
   }
 }
