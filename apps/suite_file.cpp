@@ -10,6 +10,7 @@
 
 #include "methods.hpp"
 #include "tsgraphs/core/limits.hpp"
+#include "tsgraphs/core/printable.hpp"
 #include "tsgraphs/core/yaml_map.hpp"
 #include "tsgraphs/io/scan_folder.hpp"
 #include "tsgraphs/scene/builtin_scenes.hpp"
@@ -79,9 +80,9 @@ std::vector<std::uint64_t> read_seeds(const YamlMap& g) {
     const std::string text = node.Scalar();
     if (std::regex_match(text, match, range)) {
       const std::uint64_t a = std::stoull(match[1]), b = std::stoull(match[2]);
-      if (b < a) throw input_error(g.file(), line, what + ": '" + text + "': the range ends before it starts");
+      if (b < a) throw input_error(g.file(), line, what + ": '" + printable(text) + "': the range ends before it starts");
       if (b - a >= kMaxSeedsPerRange)
-        throw input_error(g.file(), line, what + ": '" + text + "': more than " + std::to_string(kMaxSeedsPerRange) +
+        throw input_error(g.file(), line, what + ": '" + printable(text) + "': more than " + std::to_string(kMaxSeedsPerRange) +
                                               " seeds");
       for (std::uint64_t s = a; s <= b; ++s) seeds.push_back(s);
     } else {
@@ -107,7 +108,7 @@ std::vector<std::string> read_styles(const YamlMap& g) {
   std::vector<std::string> out;
   for (const auto& [style, line] : styles) {
     if (std::find(known.begin(), known.end(), style) == known.end())
-      throw input_error(g.file(), line, what + ": unknown style '" + style + "' (styles: " + join(known) + ")");
+      throw input_error(g.file(), line, what + ": unknown style '" + printable(style) + "' (styles: " + join(known) + ")");
     out.push_back(style);
   }
   return out;
@@ -125,7 +126,7 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
     const YAML::Node n = node[i];
     if (n.IsScalar()) {
       if (n.Scalar() != "default")
-        throw input_error(g.file(), n.Mark().line + 1, item + ": '" + n.Scalar() + "': expected default or a mapping");
+        throw input_error(g.file(), n.Mark().line + 1, item + ": '" + printable(n.Scalar()) + "': expected default or a mapping");
       out.push_back(SuitePlatform{});
       continue;
     }
@@ -134,7 +135,7 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
     SuitePlatform platform;
     platform.name = p.require<std::string>("name");
     if (platform.name.empty() || platform.name == "default" || id_text(platform.name) != platform.name)
-      throw p.error("name", "'" + platform.name + "': expected letters, digits, '-', '_' or '.', not default");
+      throw p.error("name", "'" + printable(platform.name) + "': expected letters, digits, '-', '_' or '.', not default");
     if (p.has("mount_height")) {
       platform.mount_height = p.require<double>("mount_height");
       if (!(*platform.mount_height > 0.0 && *platform.mount_height <= kMaxPlatformHeight))
@@ -144,12 +145,12 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
       platform.preset = p.require<std::string>("preset");
       const std::vector<std::string>& presets = scene::preset_names();
       if (std::find(presets.begin(), presets.end(), platform.preset) == presets.end())
-        throw p.error("preset", "unknown preset '" + platform.preset + "' (presets: " + join(presets) + ")");
+        throw p.error("preset", "unknown preset '" + printable(platform.preset) + "' (presets: " + join(presets) + ")");
     }
     if (p.has("type")) {
       platform.type = p.require<std::string>("type");
       if (!scene::platform_type(platform.type))
-        throw p.error("type", "unknown platform type '" + platform.type + "' (" + join(scene::platform_names()) + ")");
+        throw p.error("type", "unknown platform type '" + printable(platform.type) + "' (" + join(scene::platform_names()) + ")");
     }
     if (p.has("rate_hz")) {
       platform.rate_hz = p.require<double>("rate_hz");
@@ -219,7 +220,7 @@ void add_scene_case(const YamlMap& entry, const fs::path& suite_dir, Suite* suit
     c.id = "scene-" + id_text(arg);
   } else {
     throw input_error(entry.file(), node.Mark().line + 1,
-                      what + ": '" + arg + "': no such scene file (built-in scenes: " +
+                      what + ": '" + printable(arg) + "': no such scene file (built-in scenes: " +
                           join(scene::builtin_scene_names()) + ")");
   }
   (void)scene_of(c);  // a scene file with an error is the suite's bad input
@@ -231,7 +232,7 @@ void add_import_case(const YamlMap& entry, const fs::path& suite_dir, Suite* sui
   m.check_keys({"map", "rooms", "ceiling", "name"});
   const auto existing_file = [&](const char* key) {
     const fs::path file = from_suite(suite_dir, m.require<std::string>(key));
-    if (!fs::is_regular_file(file)) throw m.error(key, "'" + file.string() + "': no such file");
+    if (!fs::is_regular_file(file)) throw m.error(key, "'" + printable(file.string(), kMaxQuotedPathBytes) + "': no such file");
     return file.string();
   };
   SuiteCase c;
@@ -243,7 +244,7 @@ void add_import_case(const YamlMap& entry, const fs::path& suite_dir, Suite* sui
   if (!(c.ceiling > 0.0)) throw m.error("ceiling", "must be > 0 m");
   const std::string name = m.get<std::string>("name", fs::path(c.source).stem().string());
   if (name.empty() || id_text(name) != name)
-    throw m.error("name", "'" + name + "': expected letters, digits, '-', '_' or '.'");
+    throw m.error("name", "'" + printable(name) + "': expected letters, digits, '-', '_' or '.'");
   c.id = "import-" + name;
   suite->cases.push_back(std::move(c));
 }
@@ -254,7 +255,7 @@ void add_sequence_case(const YamlMap& entry, const fs::path& suite_dir, Suite* s
   const fs::path dir = from_suite(suite_dir, scalar(entry, node, what));
   if (!io::is_sequence_folder(dir.string()))
     throw input_error(entry.file(), node.Mark().line + 1,
-                      what + ": '" + dir.string() + "': not a sequence folder (times.txt, odom.txt, scans/)");
+                      what + ": '" + printable(dir.string(), kMaxQuotedPathBytes) + "': not a sequence folder (times.txt, odom.txt, scans/)");
   SuiteCase c;
   c.kind = "sequence";
   c.where = where(entry, node);
@@ -271,8 +272,8 @@ std::vector<std::string> check_methods(const std::vector<std::string>& slugs, co
   if (slugs.empty()) throw InputError(where + ": no method (methods: " + method_slugs() + ")");
   std::vector<std::string> seen;
   for (const std::string& s : slugs) {
-    if (find_method(s) == nullptr) throw InputError(where + ": unknown method '" + s + "' (methods: " + method_slugs() + ")");
-    if (std::find(seen.begin(), seen.end(), s) != seen.end()) throw InputError(where + ": method '" + s + "' twice");
+    if (find_method(s) == nullptr) throw InputError(where + ": unknown method '" + printable(s) + "' (methods: " + method_slugs() + ")");
+    if (std::find(seen.begin(), seen.end(), s) != seen.end()) throw InputError(where + ": method '" + printable(s) + "' twice");
     seen.push_back(s);
   }
   return seen;

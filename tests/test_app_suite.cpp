@@ -541,6 +541,17 @@ TEST_F(SuiteFileErrors, UnknownStyleMethodOrPreset) {
   EXPECT_NE(p.find("bad.yaml:7: cases[0].generate.platforms[0].preset: unknown preset 'kinect'"), std::string::npos) << p;
 }
 
+// Issue 52 (found by the suite_file fuzz target): a style, a method or a key of the file was
+// quoted with its raw bytes. Quoted printable: other bytes as \xNN.
+TEST_F(SuiteFileErrors, MessagesQuoteTheFilePrintable) {
+  const std::string e = error_of("name: bad\ncases:\n  - generate: {styles: \"of\\x1bfice\", seeds: 1}\n");
+  EXPECT_NE(e.find("bad.yaml:3: cases[0].generate.styles: unknown style 'of\\x1bfice'"), std::string::npos) << e;
+  const std::string m = error_of("name: bad\nmethods: [\"ts\\x02graphs\"]\ncases:\n  - scene: office\n");
+  EXPECT_NE(m.find("bad.yaml:2: methods: unknown method 'ts\\x02graphs'"), std::string::npos) << m;
+  const std::string k = error_of("name: bad\n\"ca\\x07ses\": 1\ncases:\n  - scene: office\n");
+  EXPECT_NE(k.find("bad.yaml:2: unknown key 'ca\\x07ses'"), std::string::npos) << k;
+}
+
 TEST_F(SuiteFileErrors, DuplicateCase) {
   const std::string e = error_of(
       "name: bad\ncases:\n  - generate: {styles: [office], seeds: \"1-3\"}\n  - generate:\n      styles: [office]\n"

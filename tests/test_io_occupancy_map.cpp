@@ -77,6 +77,17 @@ TEST_F(OccupancyMapTest, BadYamlNamesFileLineAndKey) {
   fails("image: [a\n", "map.yaml:");
 }
 
+// Issue 52: negate's and mode's values and the image's name were quoted raw. Quoted printable.
+TEST_F(OccupancyMapTest, MessagesQuoteTheFilePrintable) {
+  const std::string base = "image: a.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n";
+  const auto error_of = [&](const std::string& text) { return input_error_of([&] { parse_map_yaml(text, "map.yaml", "."); }); };
+  EXPECT_EQ(error_of(base + "negate: \"\\x01\\x02\"\n"), "map.yaml:4: negate: expected 0 or 1 (got '\\x01\\x02')");
+  EXPECT_EQ(error_of(base + "mode: \"tri\\x1bnary\"\n"), "map.yaml:4: mode: unknown mode 'tri\\x1bnary' (trinary, scale, raw)");
+  const std::string yaml = write_file("map.yaml", "image: \"m\\x07.pgm\"\nresolution: 0.05\norigin: [0, 0, 0]\n");
+  EXPECT_EQ(input_error_of([&] { read_occupancy_map(yaml); }),
+            yaml + ":1: image: no such image file: " + (dir_ / "m\\x07.pgm").string());
+}
+
 TEST_F(OccupancyMapTest, TrinaryThresholdsAsMapServer) {
   MapMetadata meta;  // occupied above 0.65, free below 0.196 of p = (255 - v) / 255
   // 205 gives p = 0.19608 (unknown: what map_saver writes for unknown); 206 gives 0.1922 (free);

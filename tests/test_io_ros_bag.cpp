@@ -181,6 +181,18 @@ TEST_F(RosBag, ChunkHeaderLengthNear2To32NamesTheByte) {
   EXPECT_THAT(read_all(path), StartsWith(path + ": byte " + std::to_string(chunk.pos) + ": "));
 }
 
+// Issue 52: a chunk's compression name was quoted raw. Quoted printable (other bytes as \xNN).
+TEST_F(RosBag, ChunkCompressionNameIsQuotedPrintable) {
+  std::string bytes = bag_bytes(BagCompression::none);
+  const Record chunk = first_chunk(bytes);
+  const std::size_t at = bytes.find("compression=none", chunk.pos);
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at + std::string("compression=").size(), 4, "\x01\xffne");
+  const std::string path = write_file("compression.bag", bytes);
+  EXPECT_EQ(input_error_of([&] { bag_info(path); }),
+            path + ": byte " + std::to_string(chunk.pos) + ": chunk compression '\\x01\\xffne' is none of none, bz2, lz4");
+}
+
 // Issue 18: rosbag's own log lines (console_bridge) were printed before ours. An index entry
 // whose time is 0 makes rosbag log an error and skip that message: the line now reaches the
 // user as the sequence's warning (printed by the front end), and nothing else is on stderr.

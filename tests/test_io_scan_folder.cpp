@@ -224,6 +224,15 @@ TEST(Kitti, PoseRowsThatAreNoRotationAreRefusedNamingTheLine) {
   fs::remove_all(dir);
 }
 
+// Issue 52: a word that is no number was quoted raw. Quoted printable (other bytes as \xNN).
+TEST(Kitti, AWordThatIsNoNumberIsQuotedPrintable) {
+  const fs::path dir = test::fresh_temp_dir("kitti_printable");
+  const fs::path p = dir / "poses.txt";
+  std::ofstream(p) << "1 0 0 1 0 1 0 2 0 0 \x07\xfe 3\n";
+  EXPECT_EQ(test::input_error_of([&] { read_kitti_poses(p.string()); }), p.string() + ":1: '\\x07\\xfe' is not a number");
+  fs::remove_all(dir);
+}
+
 // Issue 18: a scan that is a symlink loop (ln -s a b; ln -s b a) ended in "internal error"
 // (std::filesystem's exception): it is an InputError naming it, in a folder or through --scans.
 TEST_F(ScanFolder, SymlinkLoopScanIsAnInputErrorNamingIt) {

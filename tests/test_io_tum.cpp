@@ -186,6 +186,17 @@ TEST_F(Tum, ExtraFieldsAreRejected) {
   EXPECT_THAT(error_reading("1 0 0 0 0 0 0 1 garbage\n"), StartsWith(bad_path() + ":1: "));
 }
 
+// Issue 52: a word of the file was quoted raw and whole. Quoted printable: other bytes as \xNN,
+// at most 40 bytes.
+TEST_F(Tum, MessagesQuoteTheFilePrintable) {
+  EXPECT_EQ(error_reading("1 0 0 \x1b[2J 0 0 0 1\n"),
+            bad_path() + ":1: expected 8 numbers: t x y z qx qy qz qw, z is '\\x1b[2J'");
+  EXPECT_EQ(error_reading("1 0 0 0 0 0 0 1 \xff\x01\n"),
+            bad_path() + ":1: expected 8 numbers: t x y z qx qy qz qw, found more: '\\xff\\x01'");
+  EXPECT_EQ(error_reading("1 0 0 0 0 0 0 1 " + std::string(100, 'x') + "\n"),
+            bad_path() + ":1: expected 8 numbers: t x y z qx qy qz qw, found more: '" + std::string(40, 'x') + "...'");
+}
+
 TEST_F(Tum, MissingFileNamesTheFile) {
   const std::string path = (dir_ / "nope.txt").string();
   try {

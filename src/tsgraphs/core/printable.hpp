@@ -10,6 +10,8 @@ namespace tsgraphs {
 
 /// Bytes of a file's text a message quotes at most; longer text is cut, and "..." says so.
 inline constexpr std::size_t kMaxQuotedBytes = 40;
+/// A path a message quotes is cut only beyond this (Linux's PATH_MAX): a longer one names no file.
+inline constexpr std::size_t kMaxQuotedPathBytes = 4096;
 
 /// `text` as a message may quote it: printable ASCII as it is, every other byte (control
 /// characters, tabs, line breaks, bytes above 0x7e) as \xNN, and a backslash as \\, so that two

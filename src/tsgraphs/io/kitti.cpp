@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/printable.hpp"
 #include "tsgraphs/io/coordinate_limit.hpp"
 
 namespace tsgraphs::io {
@@ -98,7 +99,7 @@ std::vector<Pose3> read_kitti_poses(const std::string& path) {
       if (count == kPoseFields) throw input_error(path, line, "more than 12 numbers (KITTI poses: a 3x4 matrix a line)");
       char* end = nullptr;
       v[count] = std::strtod(f.c_str(), &end);
-      if (end == f.c_str() || *end != '\0') throw input_error(path, line, "'" + f + "' is not a number");
+      if (end == f.c_str() || *end != '\0') throw input_error(path, line, "'" + printable(f) + "' is not a number");
       if (!std::isfinite(v[count])) throw input_error(path, line, "non-finite value");
       ++count;
     }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/printable.hpp"
 #include "tsgraphs/core/text_file.hpp"
 #include "tsgraphs/core/yaml_map.hpp"
 
@@ -21,7 +22,7 @@ bool parse_negate(const YamlMap& m) {
   // map_server writes 0 / 1; YAML's true / false are read too.
   if (v == "0" || v == "false" || v == "False" || v == "FALSE") return false;
   if (v == "1" || v == "true" || v == "True" || v == "TRUE") return true;
-  throw m.error("negate", "expected 0 or 1 (got '" + v + "')");
+  throw m.error("negate", "expected 0 or 1 (got '" + printable(v) + "')");
 }
 
 double threshold(const YamlMap& m, const std::string& key, double fallback) {
@@ -59,7 +60,7 @@ MapMetadata parse_map_yaml(const std::string& text, const std::string& file, con
   if (mode == "trinary") meta.mode = MapMode::kTrinary;
   else if (mode == "scale") meta.mode = MapMode::kScale;
   else if (mode == "raw") meta.mode = MapMode::kRaw;
-  else throw m.error("mode", "unknown mode '" + mode + "' (trinary, scale, raw)");
+  else throw m.error("mode", "unknown mode '" + printable(mode) + "' (trinary, scale, raw)");
   return meta;
 }
 
@@ -121,7 +122,7 @@ OccupancyMap read_occupancy_map(const std::string& yaml_file) {
   if (!std::filesystem::is_regular_file(meta.image, ec)) {
     // Name the YAML's line too: the image key is what points nowhere.
     const YamlMap m = YamlMap::load_file(yaml_file);
-    throw m.error("image", "no such image file: " + meta.image);
+    throw m.error("image", "no such image file: " + printable(meta.image, kMaxQuotedPathBytes));
   }
   return classify(read_image(meta.image), meta);
 }

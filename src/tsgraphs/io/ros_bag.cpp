@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "tsgraphs/core/error.hpp"
+#include "tsgraphs/core/printable.hpp"
 #include "tsgraphs/io/recorded_sequence.hpp"
 #include "tsgraphs/io/point_cloud2.hpp"
 #include "tsgraphs/io/tum.hpp"
@@ -157,7 +158,7 @@ class BagChecker {
           Chunk c;
           const std::string compression = text(r, "compression");
           if (compression != "none" && compression != "bz2" && compression != "lz4")
-            fail(r.pos, "chunk compression '" + compression + "' is none of none, bz2, lz4");
+            fail(r.pos, "chunk compression '" + printable(compression) + "' is none of none, bz2, lz4");
           c.size = number(r, "size", 4);
           if (c.size > kMaxChunkBytes)
             fail(r.pos, "chunk size " + std::to_string(c.size) + " is over the " + std::to_string(kMaxChunkBytes) + " bytes any chunk has");
