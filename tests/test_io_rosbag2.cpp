@@ -26,12 +26,12 @@ using ::testing::StartsWith;
 
 namespace {
 
-/// Five scans of a few points, 0.1 s apart, the sensor moving along x.
+/// Five scans of a few points, 0.1 s apart from `start` (s), the sensor moving along x.
 class FiveScans : public io::ScanSequence {
  public:
-  FiveScans() {
+  explicit FiveScans(double start = 100.0) {
     for (int i = 0; i < 5; ++i) {
-      info_.times.push_back(100.0 + 0.1 * i);
+      info_.times.push_back(start + 0.1 * i);
       Pose3 p = Pose3::Identity();
       p.translation() = Eigen::Vector3d(0.2 * i, 0, 1);
       info_.odometry.push_back(p);
@@ -57,9 +57,9 @@ class FiveScans : public io::ScanSequence {
 class Rosbag2 : public test::TempDirTest {
  protected:
   std::string write(const std::string& name, io::Rosbag2Storage storage,
-                    io::Rosbag2Compression compression = io::Rosbag2Compression::none) const {
+                    io::Rosbag2Compression compression = io::Rosbag2Compression::none, double start = 100.0) const {
     const std::string path = (dir_ / name).string();
-    io::write_rosbag2(FiveScans(), path, storage, io::mcap::Compression::zstd, Pose3::Identity(), compression);
+    io::write_rosbag2(FiveScans(start), path, storage, io::mcap::Compression::zstd, Pose3::Identity(), compression);
     return path;
   }
   static io::BagOptions options(const std::string& bag, const std::string& odom = "/odom") {
@@ -190,6 +190,48 @@ TEST_F(Rosbag2, AFileListedTwiceInMetadataIsRefusedNamingTheRepeat) {
   EXPECT_EQ(listing("    - \"a\\x1b[2J.db3\"\n"), metadata + ":3: lists a\\x1b[2J.db3, which is not in the folder");
   std::ofstream(metadata) << "rosbag2_bagfile_information: [1, 2]\n";
   EXPECT_EQ(error_of(options(folder.string())), metadata + ": no rosbag2_bagfile_information.relative_file_paths");
+}
+
+// Issue 52: a split whose second file was a byte copy of the first (another name, the same
+// messages) was read twice, time going back. A file whose first message comes before the last
+// of the file before it is refused naming both: by metadata.yaml's `files` times before any file
+// is opened, else by the files' own times as they are opened. A split in time order reads whole.
+TEST_F(Rosbag2, ASplitFileStartingBeforeTheLastOfThePreviousIsRefused) {
+  for (const auto storage : {io::Rosbag2Storage::sqlite, io::Rosbag2Storage::mcap}) {
+    const std::string ext = storage == io::Rosbag2Storage::sqlite ? ".db3" : ".mcap";
+    SCOPED_TRACE(ext);
+    const fs::path split = dir_ / ("split" + ext);
+    fs::create_directories(split);
+    fs::copy_file(fs::path(write("first" + ext + "_bag", storage)) / ("first" + ext + "_bag_0" + ext), split / ("split_0" + ext));
+    const std::string later = write("later" + ext + "_bag", storage, io::Rosbag2Compression::none, 101.0);
+    fs::copy_file(fs::path(later) / ("later" + ext + "_bag_0" + ext), split / ("split_1" + ext));
+    const std::string metadata = (split / "metadata.yaml").string();
+    std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [split_0" << ext << ", split_1" << ext << "]\n";
+    EXPECT_EQ(io::Rosbag2Sequence(options(split.string())).size(), 10u);
+
+    fs::copy_file(split / ("split_0" + ext), split / ("split_1" + ext), fs::copy_options::overwrite_existing);
+    const std::string repeated = metadata + ": split_1" + ext + ": its first message (t 100.000000000 s) is before the last of split_0" +
+                                 ext + " (t 100.400000000 s): a file repeated?";
+    EXPECT_EQ(error_of(options(split.string())), repeated);
+    EXPECT_EQ(test::input_error_of([&] { io::rosbag2_info(split.string()); }), repeated);
+  }
+  // metadata.yaml's times (rosbag2 >= Humble): refused at the later file's entry, unopened.
+  const fs::path split = dir_ / "split.db3";
+  std::ofstream(split / "split_1.db3") << "not opened";
+  const auto file_entry = [](const std::string& name, const std::string& start) {
+    return "    - path: " + name + "\n      starting_time:\n        nanoseconds_since_epoch: " + start +
+           "\n      duration:\n        nanoseconds: 400000000\n      message_count: 11\n";
+  };
+  const std::string metadata = (split / "metadata.yaml").string();
+  std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [split_0.db3, split_1.db3]\n  files:\n"
+                          << file_entry("split_0.db3", "100000000000") << file_entry("split_1.db3", "100000000000");
+  EXPECT_EQ(test::input_error_of([&] { io::read_rosbag2_metadata(split.string()); }),
+            metadata + ":10: split_1.db3: its first message (t 100.000000000 s) is before the last of split_0.db3 "
+                       "(t 100.400000000 s): a file repeated?");
+  // Times that follow pass the metadata, and the file is read (here: not a bag).
+  std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [split_0.db3, split_1.db3]\n  files:\n"
+                          << file_entry("split_0.db3", "100000000000") << file_entry("split_1.db3", "100400000000");
+  EXPECT_EQ(error_of(options(split.string())), (split / "split_1.db3").string() + ": neither an SQLite (.db3) nor an MCAP file");
 }
 
 // rosbag2's own compression (`ros2 bag record --compression-mode file|message`, zstd): each

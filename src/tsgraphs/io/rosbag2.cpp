@@ -11,7 +11,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
+#include <optional>
 #include <mutex>
 #include <set>
 #include <tuple>
@@ -43,6 +45,11 @@ struct Topic {
   std::uint64_t count = 0;
 };
 
+/// The receive times of a file's first and last messages (ns).
+struct TimeSpan {
+  std::uint64_t first = 0, last = 0;
+};
+
 /// A message's place: its file, and its row (SQLite) or record (MCAP) there.
 struct Located {
   std::size_t file = 0;
@@ -58,6 +65,8 @@ class Storage {
   /// The messages of `topic`, by receive time.
   virtual std::vector<Located> messages(const std::string& topic, std::size_t file) const = 0;
   virtual std::string read(const Located& m) const = 0;
+  /// When its first and last messages were received; none for a file without one.
+  virtual std::optional<TimeSpan> time_span() const = 0;
   virtual std::vector<std::string> warnings() const { return {}; }
 };
 
@@ -139,6 +148,15 @@ class SqliteStorage : public Storage {
     return data;
   }
 
+  std::optional<TimeSpan> time_span() const override {
+    std::optional<TimeSpan> span;  // rosbag2's timestamp index makes this two lookups
+    query("SELECT MIN(timestamp), MAX(timestamp) FROM messages", {}, [&](sqlite3_stmt* s) {
+      if (sqlite3_column_type(s, 0) == SQLITE_NULL) return;
+      span = TimeSpan{static_cast<std::uint64_t>(sqlite3_column_int64(s, 0)), static_cast<std::uint64_t>(sqlite3_column_int64(s, 1))};
+    });
+    return span;
+  }
+
  private:
   static std::string text(sqlite3_stmt* s, int column) {
     const auto* t = reinterpret_cast<const char*>(sqlite3_column_text(s, column));
@@ -215,6 +233,13 @@ class McapStorage : public Storage {
     return out;
   }
   std::string read(const Located& m) const override { return reader_.read(m.ref).data; }
+  std::optional<TimeSpan> time_span() const override {
+    std::optional<TimeSpan> span;  // the message list is in memory once the file is open
+    for (const mcap::MessageRef& m : reader_.messages()) {
+      span = span ? TimeSpan{std::min(span->first, m.log_time), std::max(span->last, m.log_time)} : TimeSpan{m.log_time, m.log_time};
+    }
+    return span;
+  }
   std::vector<std::string> warnings() const override { return reader_.warnings(); }
 
  private:
@@ -234,6 +259,7 @@ class ZstdMessages : public Storage {
     return decompress_zstd(packed.data(), packed.size(), kMaxMessageBytes, path_,
                            "the message received at " + std::to_string(m.time) + " ns");
   }
+  std::optional<TimeSpan> time_span() const override { return inner_->time_span(); }
   std::vector<std::string> warnings() const override { return inner_->warnings(); }
 
  private:
@@ -329,6 +355,58 @@ std::string listed_file(const YAML::Node& entry, const std::string& folder, cons
   return file;
 }
 
+/// A time in ns as seconds to the nanosecond, for messages.
+std::string seconds(std::uint64_t ns) {
+  constexpr std::uint64_t kNsPerSecond = 1000000000;
+  char text[48];
+  std::snprintf(text, sizeof text, "%llu.%09llu s", static_cast<unsigned long long>(ns / kNsPerSecond),
+                static_cast<unsigned long long>(ns % kNsPerSecond));
+  return text;
+}
+
+/// rosbag2 starts a split's next file once the last is full, so each file's messages follow the
+/// previous file's. One that starts before the last message of the file before it is a file
+/// listed again under another name (a copy): its messages would be read twice, time going back.
+/// Equal times pass: two topics' messages of one instant may fall either side of a split.
+void check_follows(const std::string& metadata, int line, const std::string& file, const TimeSpan& span,
+                   const std::string& previous_file, const TimeSpan& previous) {
+  if (span.first >= previous.last) return;
+  throw input_error(metadata, line, printable(file) + ": its first message (t " + seconds(span.first) + ") is before the last of " +
+                                        printable(previous_file) + " (t " + seconds(previous.last) + "): a file repeated?");
+}
+
+/// The span metadata.yaml's `files` section gives a file (rosbag2 from Humble on writes each
+/// file's path, starting_time and duration there), by the name it lists, with the entry's line.
+/// An entry without readable times gives none: that file is checked once it is read.
+std::map<std::string, std::pair<TimeSpan, int>> listed_spans(const YAML::Node& info) {
+  std::map<std::string, std::pair<TimeSpan, int>> out;
+  const YAML::Node files = info["files"];
+  if (!files || !files.IsSequence()) return out;
+  for (const YAML::Node& f : files) {
+    try {
+      const std::string path = f["path"].as<std::string>();
+      const auto start = f["starting_time"]["nanoseconds_since_epoch"].as<std::uint64_t>();
+      const auto duration = f["duration"]["nanoseconds"].as<std::uint64_t>();
+      if (duration > std::numeric_limits<std::uint64_t>::max() - start) continue;  // no time of a message
+      out.emplace(path, std::make_pair(TimeSpan{start, start + duration}, f.Mark().line + 1));
+    } catch (const YAML::Exception&) {
+      continue;  // not a file's times as rosbag2 writes them: read the file instead
+    }
+  }
+  return out;
+}
+
+/// Split files in time order, as far as metadata.yaml gives their times: a repeat is refused
+/// before any file is opened (a FILE-compressed one decompressed).
+void check_listed_order(const YAML::Node& info, const Rosbag2Metadata& listed, const std::string& metadata) {
+  const std::map<std::string, std::pair<TimeSpan, int>> spans = listed_spans(info);
+  for (std::size_t i = 1; i < listed.names.size(); ++i) {
+    const auto previous = spans.find(listed.names[i - 1]), span = spans.find(listed.names[i]);
+    if (previous == spans.end() || span == spans.end()) continue;
+    check_follows(metadata, span->second.second, listed.names[i], span->second.first, listed.names[i - 1], previous->second.first);
+  }
+}
+
 }  // namespace
 
 Rosbag2Metadata read_rosbag2_metadata(const std::string& folder) {
@@ -339,8 +417,12 @@ Rosbag2Metadata read_rosbag2_metadata(const std::string& folder) {
   Rosbag2Metadata out;
   out.compression = compression_of(info, metadata);
   std::map<fs::path, std::pair<std::string, int>> listed;
-  for (const YAML::Node& entry : info["relative_file_paths"]) out.files.push_back(listed_file(entry, folder, metadata, listed));
+  for (const YAML::Node& entry : info["relative_file_paths"]) {
+    out.files.push_back(listed_file(entry, folder, metadata, listed));
+    out.names.push_back(entry.Scalar());
+  }
   if (out.files.empty()) throw input_error(metadata, 0, "lists no files");
+  check_listed_order(info, out, metadata);
   return out;
 }
 
@@ -355,7 +437,10 @@ std::vector<std::unique_ptr<Storage>> open_recording(const std::string& path) {
     return out;
   }
   const Rosbag2Metadata metadata = read_rosbag2_metadata(path);
-  for (const std::string& file : metadata.files) {
+  std::optional<TimeSpan> previous;  // the last file's with a message
+  std::string previous_name;
+  for (std::size_t i = 0; i < metadata.files.size(); ++i) {
+    const std::string& file = metadata.files[i];
     if (metadata.compression == Rosbag2Compression::file) {
       out.push_back(open_compressed_storage(file));
     } else if (metadata.compression == Rosbag2Compression::message) {
@@ -363,6 +448,12 @@ std::vector<std::unique_ptr<Storage>> open_recording(const std::string& path) {
     } else {
       out.push_back(open_storage(file, file));
     }
+    // The files' own times: metadata.yaml may give none, or not the file's.
+    const std::optional<TimeSpan> span = out.back()->time_span();
+    if (!span) continue;
+    if (previous) check_follows((fs::path(path) / kMetadataFile).string(), 0, metadata.names[i], *span, previous_name, *previous);
+    previous = span;
+    previous_name = metadata.names[i];
   }
   return out;
 }

@@ -51,6 +51,7 @@ enum class Rosbag2Compression { none, file, message };
 /// rosbag2's own compression of them.
 struct Rosbag2Metadata {
   std::vector<std::string> files;  ///< paths of files in the folder, as listed
+  std::vector<std::string> names;  ///< the same as metadata.yaml spells them (for messages)
   Rosbag2Compression compression = Rosbag2Compression::none;
 };
 
@@ -58,7 +59,9 @@ struct Rosbag2Metadata {
 /// compression_mode and compression_format when given). An InputError naming it, with the line
 /// when there is one, for: not YAML; no list of files, or an empty one; an entry that is not a
 /// file name, or not a file in the folder; a file listed twice, under any spelling (./a.db3 and
-/// a.db3, a link to it); a compression other than rosbag2's zstd.
+/// a.db3, a link to it); a compression other than rosbag2's zstd; a file whose first message
+/// comes before the last of the file listed before it, by the times of the `files` section
+/// (rosbag2 >= Humble; a bag folder's reader checks the files' own times as it opens them).
 Rosbag2Metadata read_rosbag2_metadata(const std::string& folder);
 
 /// Writes `sequence` as rosbag2 writes a recording: SQLite (rosbag2's Humble layout, the bag's
