@@ -268,6 +268,16 @@ def rosbag2_metadata_seeds(tsgraphs, tmp):
     put("rosbag2_metadata", "split.yaml", sqlite.replace(listed, listed + "    - bag_1.db3\n"))
     put("rosbag2_metadata", "regression_listed_twice.yaml", sqlite.replace(listed, listed + "    - ./bag_0.db3\n"))
     put("rosbag2_metadata", "regression_listed_through_a_link.yaml", sqlite.replace(listed, listed + "    - link_0.db3\n"))
+    # A split with each file's times (rosbag2 >= Humble): the second file after the first, or
+    # starting with it (a copy of it, as a regression seed).
+    first = re.search(r"  files:\n    - path: bag_0.db3\n.*?nanoseconds: (\d+)\n      message_count: \d+\n", sqlite, re.S)
+    assert first, sqlite
+    def split_with(start):
+        second = "    - path: bag_1.db3\n" + first.group(0).split("- path: bag_0.db3\n", 1)[1].replace(
+            "nanoseconds_since_epoch: 0", f"nanoseconds_since_epoch: {start}")
+        return sqlite.replace(listed, listed + "    - bag_1.db3\n").replace(first.group(0), first.group(0) + second)
+    put("rosbag2_metadata", "split_with_times.yaml", split_with(int(first.group(1))))
+    put("rosbag2_metadata", "regression_split_file_repeated.yaml", split_with(0))
 
 
 def suite_file_seeds():
