@@ -357,6 +357,10 @@ TEST_F(Pcd, CompressedBlockSizesThatDisagreeWithTheFileAreInputErrors) {
   EXPECT_THAT(read_error(empty), HasSubstr("compressed size 0"));
   const std::string no_words = write_file("no_words.pcd", head + "abc");
   EXPECT_THAT(read_error(no_words), AllOf(StartsWith(no_words + ": "), HasSubstr("size words")));
+  // Issue 52: bytes after the block were ignored (a binary body's are refused).
+  const std::string trailing = write_file("trailing.pcd", head + compressed_body(25, 24, two_points_lzf()) + "xyz");
+  EXPECT_EQ(read_error(trailing), trailing + ": binary_compressed block at byte " + std::to_string(head.size()) +
+                                      ": 3 bytes after the compressed block, from byte " + std::to_string(head.size() + 8 + 25));
 }
 
 // Issue 18: "SIZE four" was skipped as "stoll: scan skipped", without the file's name.

@@ -185,6 +185,12 @@ TEST_F(Rosbag2, AFileListedTwiceInMetadataIsRefusedNamingTheRepeat) {
   // bag-info reads the same list.
   EXPECT_EQ(test::input_error_of([&] { io::rosbag2_info(folder.string()); }),
             metadata + ":4: lists folder_0.db3 again (as link.db3 on line 3): each file is read once");
+  // A name outside the bag folder (absolute, or climbing out of it) would read a file elsewhere.
+  const std::string absolute = listing("    - " + (folder / "folder_0.db3").string() + "\n");
+  EXPECT_EQ(absolute.rfind(metadata + ":3: lists /", 0), 0u) << absolute;
+  EXPECT_NE(absolute.find(", an absolute path: files are named from the bag folder"), std::string::npos) << absolute;
+  fs::copy_file(folder / "folder_0.db3", dir_ / "outside.db3");
+  EXPECT_EQ(listing("    - ../outside.db3\n"), metadata + ":3: lists ../outside.db3, which is not inside the bag folder");
   // An entry that is no file name is named too, not an internal error; a name's bytes are quoted printable.
   EXPECT_EQ(listing("    - {path: folder_0.db3}\n"), metadata + ":3: relative_file_paths: an entry that is not a file name");
   EXPECT_EQ(listing("    - \"a\\x1b[2J.db3\"\n"), metadata + ":3: lists a\\x1b[2J.db3, which is not in the folder");

@@ -291,6 +291,12 @@ class PcdBody {
       throw input_error(path, 0, what + "compressed size " + std::to_string(compressed) + " runs past the end of the file (" +
                                      std::to_string(available - kCompressedSizeWords) + " bytes follow)");
     }
+    // As a binary body longer than POINTS: bytes past the block are no part of the cloud.
+    if (compressed < available - kCompressedSizeWords) {
+      const unsigned long long end = h_.body + kCompressedSizeWords + compressed;
+      throw input_error(path, 0, what + std::to_string(bytes.size() - end) + " bytes after the compressed block, from byte " +
+                                     std::to_string(end));
+    }
     if (expected == 0) return;
     if (compressed == 0) throw input_error(path, 0, what + "compressed size 0 for a non-empty cloud");
     if (uncompressed > compressed * kLzfMaxExpansion) {

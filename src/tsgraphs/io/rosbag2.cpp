@@ -342,6 +342,14 @@ std::string listed_file(const YAML::Node& entry, const std::string& folder, cons
   const int line = entry.Mark().line + 1;
   if (!entry.IsScalar()) throw input_error(metadata, line, "relative_file_paths: an entry that is not a file name");
   const std::string name = entry.Scalar();
+  // rosbag2 names files relative to the bag folder; an absolute name or one climbing out of it
+  // would read a file elsewhere.
+  const fs::path home = fs::absolute(folder).lexically_normal();
+  const fs::path relative = (home / name).lexically_normal().lexically_relative(home);
+  if (fs::path(name).is_absolute())
+    throw input_error(metadata, line, "lists " + printable(name) + ", an absolute path: files are named from the bag folder");
+  if (relative.empty() || *relative.begin() == "..")
+    throw input_error(metadata, line, "lists " + printable(name) + ", which is not inside the bag folder");
   const std::string file = (fs::path(folder) / name).string();
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) throw input_error(metadata, line, "lists " + printable(name) + ", which is not in the folder");
