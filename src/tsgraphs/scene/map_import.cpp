@@ -377,9 +377,10 @@ void add_path(const MapRaster& map, const WalkableGrid& grid, const WalkableGrid
   const PathClearance worst = path_clearance(scene, clearance_at);
   out->stats.min_path_clearance = worst.min_clearance;
   if (worst.min_clearance < config.clearance) {
-    out->warnings.push_back("the survey path comes " + fmt(worst.min_clearance) + " m from a wall or unmapped cell at [" +
+    // Millimetres: at centimetres a path 0.349 m from a wall read "0.35 m, less than 0.35 m".
+    out->warnings.push_back("the survey path comes " + fmt(worst.min_clearance, 3) + " m from a wall or unmapped cell at [" +
                             fmt(worst.where.x()) + ", " + fmt(worst.where.y()) + "], less than " +
-                            fmt(config.clearance) + " m");
+                            fmt(config.clearance, 3) + " m");
   }
   out->stats.path_length = Trajectory(scene).length() / t.laps;
   t.laps = config.laps;
