@@ -1,5 +1,6 @@
 // `tsgraphs demo` end to end on a small two-room scene with one seed (the built-in scenes take
 // minutes: their figures are in docs/benchmarks.md), and `tsgraphs eval --against`.
+// ctest: slow (seconds a test: simulated runs or generated buildings)
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>

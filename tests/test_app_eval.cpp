@@ -1,6 +1,7 @@
 // `tsgraphs eval` on a damaged run folder or sequence: one line naming the file and the place,
 // exit status 2, no crash, and the run folder left as it was (no metrics.json appears, an
 // earlier one stays).
+// ctest: slow (seconds a test: simulated runs or generated buildings)
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -1,6 +1,7 @@
 // `tsgraphs run` and `convert` on scans that come without poses: LiDAR odometry from the scans
 // (a folder of KITTI scans, a bag with no odometry topic, or `--odometry lidar`), against the
 // simulator's ground truth; and the errors of the odometry options.
+// ctest: slow (seconds a test: simulated runs or generated buildings)
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,5 +1,6 @@
 // `tsgraphs run` and `tsgraphs eval` as a user calls them: the outputs, and bad input
 // (a missing odometry line, a truncated scan, NaN points, an empty scan, a bad parameter file).
+// ctest: slow (seconds a test: simulated runs or generated buildings)
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>

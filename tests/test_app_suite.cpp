@@ -2,6 +2,7 @@
 // platform of the suite's own, and an existing sequence folder; TS-graphs and S-Graphs+) run
 // once with --jobs 2 for the whole file, then its tables, report, resumption, --plan,
 // --collect, interruption and bad suite files.
+// ctest: slow (seconds a test: simulated runs or generated buildings)
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>

@@ -1,6 +1,7 @@
 // LidarOdometry on simulated sequences: a small two-room floor scanned by a VLP-16 along a
 // closed path (wheeled, and carried by hand at 2 Hz with swept scans), written as a sequence
 // folder and read back; the drift against groundtruth.txt.
+// ctest: slow (seconds a test: simulated runs or generated buildings)
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,6 +1,7 @@
 // The SLAM spine end to end on simulated scenes with drifting odometry, driven scan by scan
 // from the simulator (no files): trajectory, loop closures and wall planes against ground truth,
 // with and without people walking through.
+// ctest: slow (seconds a test: simulated runs or generated buildings)
 #include <gtest/gtest.h>
 
 #include <limits>

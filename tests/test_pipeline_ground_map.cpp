@@ -1,5 +1,6 @@
 // The global traversable node map as the pipeline builds it: revisits fuse (10 laps keep the
 // node count of 2 laps), and the nodes cover the floor that was walked.
+// ctest: slow (seconds a test: simulated runs or generated buildings)
 #include <gtest/gtest.h>
 
 #include "tsgraphs/pipeline/pipeline.hpp"

@@ -3,6 +3,7 @@
 // segment-map on that building's 2-D map. The building is the drawn floor of
 // the segment-map tests, made a scene by import_map (its occupied cells
 // standing as wall columns), simulated and run scan by scan.
+// ctest: slow (seconds a test: simulated runs or generated buildings)
 #include <gtest/gtest.h>
 
 #include <cstdio>

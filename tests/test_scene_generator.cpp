@@ -1,6 +1,7 @@
 // Generated buildings: deterministic per seed, and over 200 seeds every one loads without a
 // warning, its path keeps its clearance and enters every ground-truth room, and its rooms
 // neither overlap nor leave the walkable slab.
+// ctest: slow (seconds a test: simulated runs or generated buildings)
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

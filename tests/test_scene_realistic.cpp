@@ -2,6 +2,7 @@
 // leaves hinged at their jambs, windows in the facades, rooms that are not rectangles and
 // rows of small offices; the same seed gives the same file; and without the option every
 // building is byte for byte what it was before the option existed.
+// ctest: slow (seconds a test: simulated runs or generated buildings)
 #include <gtest/gtest.h>
 
 #include <cmath>
