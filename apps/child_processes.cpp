@@ -86,7 +86,8 @@ pid_t ChildProcesses::start(const std::vector<std::string>& argv, const std::str
   int free_slot = -1;
   for (int i = 0; i < kMaxChildren && free_slot < 0; ++i)
     if (g_children[i].load() == 0) free_slot = i;
-  if (free_slot < 0) throw std::runtime_error("more than " + std::to_string(kMaxChildren) + " child processes");
+  if (free_slot < 0)
+    throw std::runtime_error("more than " + std::to_string(kMaxChildren) + " child processes");
   const pid_t parent = ::getpid();
 
   const BlockSignals block;

@@ -36,7 +36,8 @@ namespace fs = std::filesystem;
 
 scene::Scene resolve_scene(const std::string& arg) {
   if (!fs::exists(arg)) {
-    if (const auto text = scene::builtin_scene_text(arg)) return scene::parse_scene(*text, "builtin:" + arg, ".");
+    if (const auto text = scene::builtin_scene_text(arg))
+      return scene::parse_scene(*text, "builtin:" + arg, ".");
     std::string names;
     for (const std::string& n : scene::builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
     throw input_error(arg, 0, "no such scene file (built-in scenes: " + names + ")");
@@ -45,7 +46,8 @@ scene::Scene resolve_scene(const std::string& arg) {
 }
 
 void print_warnings(const std::string& where, const std::vector<std::string>& warnings) {
-  for (const std::string& w : warnings) std::fprintf(stderr, "tsgraphs: warning: %s%s\n", where.c_str(), w.c_str());
+  for (const std::string& w : warnings)
+    std::fprintf(stderr, "tsgraphs: warning: %s%s\n", where.c_str(), w.c_str());
 }
 
 scene::Scene load_and_warn(const std::string& arg) {
@@ -54,7 +56,8 @@ scene::Scene load_and_warn(const std::string& arg) {
   return scene;
 }
 
-void simulate(const scene::Scene& scene_in, const std::string& out, std::uint64_t seed, int laps, bool quiet) {
+void simulate(const scene::Scene& scene_in, const std::string& out, std::uint64_t seed, int laps,
+              bool quiet) {
   check_output_apart("--out", out, scene_inputs(scene_in));
   scene::Scene scene = scene_in;
   if (laps > 0) {
@@ -66,27 +69,31 @@ void simulate(const scene::Scene& scene_in, const std::string& out, std::uint64_
   sim::Simulator simulator(scene, seed);
   print_warnings(scene.file + ": trajectory: ", simulator.trajectory().warnings());
   if (!quiet) {
-    std::fprintf(stderr, "simulate: %s, %s %dx%d, %zu scans over %.1f m (%d lap%s), %zu triangles, seed %llu\n",
-                 scene.name.c_str(), scene.sensor.preset.empty() ? "custom sensor" : scene.sensor.preset.c_str(),
-                 scene.sensor.channels, scene.sensor.columns, simulator.num_scans(), simulator.trajectory().length(),
-                 scene.trajectory.laps, scene.trajectory.laps == 1 ? "" : "s", simulator.num_triangles(),
-                 static_cast<unsigned long long>(seed));
+    std::fprintf(
+        stderr, "simulate: %s, %s %dx%d, %zu scans over %.1f m (%d lap%s), %zu triangles, seed %llu\n",
+        scene.name.c_str(), scene.sensor.preset.empty() ? "custom sensor" : scene.sensor.preset.c_str(),
+        scene.sensor.channels, scene.sensor.columns, simulator.num_scans(), simulator.trajectory().length(),
+        scene.trajectory.laps, scene.trajectory.laps == 1 ? "" : "s", simulator.num_triangles(),
+        static_cast<unsigned long long>(seed));
   }
   app::Progress progress("simulate", quiet);
-  sim::write_sequence(simulator, out, [&](std::size_t done, std::size_t total) { progress.update(done, total); });
+  sim::write_sequence(simulator, out,
+                      [&](std::size_t done, std::size_t total) { progress.update(done, total); });
   if (!quiet) std::fprintf(stderr, "simulate: wrote %s\n", out.c_str());
 }
 
-void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
-                  int laps, const std::string& format_option, const std::string& compression, bool quiet) {
+void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::string& seq_dir,
+                  std::uint64_t seed, int laps, const std::string& format_option,
+                  const std::string& compression, bool quiet) {
   check_output_apart("--bag", bag, scene_inputs(scene));
   std::string format = format_option;
   const std::string ext = fs::path(bag).extension().string();
   if (format == "auto") {
     format = ext == ".mcap" ? "ros2-mcap" : ext == ".db3" ? "ros2-sqlite" : ext == ".bag" ? "ros1" : "";
     if (format.empty())
-      throw input_error(bag, 0, "give the bag a .bag, .mcap or .db3 name, or --bag-format (ros2 formats write a bag "
-                                "folder under another name)");
+      throw input_error(bag, 0,
+                        "give the bag a .bag, .mcap or .db3 name, or --bag-format (ros2 formats write a bag "
+                        "folder under another name)");
   }
   // zstd-file and zstd-message: rosbag2's own compression (a bag folder only), MCAP chunks then uncompressed.
   const std::map<std::string, std::vector<std::string>> kCompressions = {
@@ -101,8 +108,11 @@ void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::
     throw input_error("--compression", 0, c + " is not a " + format + " compression (" + list + ")");
   }
   if ((c == "zstd-file" || c == "zstd-message") && (ext == ".db3" || ext == ".mcap")) {
-    throw input_error(bag, 0, "--compression " + c + " is rosbag2's own, for a bag folder (its metadata.yaml records it): give "
-                              "a name without " + ext);
+    throw input_error(bag, 0,
+                      "--compression " + c +
+                          " is rosbag2's own, for a bag folder (its metadata.yaml records it): give "
+                          "a name without " +
+                          ext);
   }
   // The LiDAR 0.3 m above and 0.1 m ahead of base_link, so that /tf_static is not the identity.
   const Pose3 sensor_to_base = make_pose(Eigen::Vector3d(0.1, 0.0, 0.3), 0.0);
@@ -111,11 +121,17 @@ void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::
   try {
     const io::SequenceReader sequence(folder);
     if (format == "ros1") {
-      io::write_bag(sequence, bag, c == "bz2" ? io::BagCompression::bz2 : c == "lz4" ? io::BagCompression::lz4 : io::BagCompression::none,
+      io::write_bag(sequence, bag,
+                    c == "bz2"   ? io::BagCompression::bz2
+                    : c == "lz4" ? io::BagCompression::lz4
+                                 : io::BagCompression::none,
                     sensor_to_base);
     } else {
-      io::write_rosbag2(sequence, bag, format == "ros2-mcap" ? io::Rosbag2Storage::mcap : io::Rosbag2Storage::sqlite,
-                        c == "zstd" ? io::mcap::Compression::zstd : c == "lz4" ? io::mcap::Compression::lz4 : io::mcap::Compression::none,
+      io::write_rosbag2(sequence, bag,
+                        format == "ros2-mcap" ? io::Rosbag2Storage::mcap : io::Rosbag2Storage::sqlite,
+                        c == "zstd"  ? io::mcap::Compression::zstd
+                        : c == "lz4" ? io::mcap::Compression::lz4
+                                     : io::mcap::Compression::none,
                         sensor_to_base,
                         c == "zstd-file"      ? io::Rosbag2Compression::file
                         : c == "zstd-message" ? io::Rosbag2Compression::message
@@ -129,8 +145,8 @@ void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::
   if (!quiet) std::fprintf(stderr, "simulate: wrote %s\n", bag.c_str());
 }
 
-void convert(const io::ScanSequence& sequence, const std::string& out, const pipeline::OdometryOptions& odometry,
-             const pipeline::PipelineConfig& config, bool quiet) {
+void convert(const io::ScanSequence& sequence, const std::string& out,
+             const pipeline::OdometryOptions& odometry, const pipeline::PipelineConfig& config, bool quiet) {
   io::SequenceWriter writer(out);
   io::SequenceInfo info = sequence.info();
   std::optional<odometry::LidarOdometry> lidar_odometry;
@@ -172,8 +188,9 @@ void draw_scene(const scene::Scene& scene, const std::string& out, bool quiet) {
 std::unique_ptr<io::ScanSequence> open_sequence(const io::ScanFolderOptions& options) {
   if (options.scans.empty() && io::is_sequence_folder(options.folder)) {
     if (!options.poses.empty() || !options.times.empty() || options.pose_format != "auto")
-      throw input_error(options.folder, 0, "a sequence folder has its own poses and times: --poses, --times and "
-                                           "--pose-format are for folders of scans");
+      throw input_error(options.folder, 0,
+                        "a sequence folder has its own poses and times: --poses, --times and "
+                        "--pose-format are for folders of scans");
     auto sequence = std::make_unique<io::SequenceReader>(options.folder);
     io::check_odometry_motion(sequence->info(), sequence->dir());
     return sequence;
@@ -212,23 +229,28 @@ OpenedBag open_bag(const io::BagOptions& options, bool quiet) {
 pipeline::OdometryOptions choose_odometry(const io::ScanSequence& sequence, const std::string& mode,
                                           const std::optional<Pose3>& sensor_to_base,
                                           const odometry::FloorLevellingConfig& levelling, bool quiet) {
-  const pipeline::OdometryChoice choice = pipeline::choose_odometry(sequence, mode, sensor_to_base, levelling);
+  const pipeline::OdometryChoice choice =
+      pipeline::choose_odometry(sequence, mode, sensor_to_base, levelling);
   if (choice.level && !quiet)
-    std::fprintf(stderr, "odometry: the map is level with the floor under the first scan (sensor %.2f m above it, "
-                         "tilted %.1f deg)\n", choice.level->height, choice.level->tilt_deg);
+    std::fprintf(stderr,
+                 "odometry: the map is level with the floor under the first scan (sensor %.2f m above it, "
+                 "tilted %.1f deg)\n",
+                 choice.level->height, choice.level->tilt_deg);
   if (!choice.warning.empty()) print_warnings(sequence.dir() + ": ", {choice.warning});
   return choice.options;
 }
 
-void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config, bool quiet) {
+void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config,
+         bool quiet) {
   io::ScanFolderOptions folder;
   folder.folder = seq_dir;
   const std::unique_ptr<io::ScanSequence> sequence = open_sequence(folder);
-  run(*sequence, out, config, quiet, choose_odometry(*sequence, "auto", std::nullopt, config.floor_levelling, quiet));
+  run(*sequence, out, config, quiet,
+      choose_odometry(*sequence, "auto", std::nullopt, config.floor_levelling, quiet));
 }
 
-void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config, bool quiet,
-         const pipeline::OdometryOptions& odometry) {
+void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config,
+         bool quiet, const pipeline::OdometryOptions& odometry) {
   const auto start = std::chrono::steady_clock::now();
   const std::string& seq_dir = sequence.dir();
   io::AtomicDirectory dir(out, pipeline::run_files::kSceneGraph);
@@ -239,14 +261,19 @@ void run(const io::ScanSequence& sequence, const std::string& out, const pipelin
   app::Progress progress("run", quiet);
   pipeline::RunCallbacks callbacks;
   callbacks.progress = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
-  callbacks.warning = [](const std::string& w) { std::fprintf(stderr, "tsgraphs: warning: %s\n", w.c_str()); };
-  if (!quiet) callbacks.note = [](const std::string& n) { std::fprintf(stderr, "run: platform: %s\n", n.c_str()); };
+  callbacks.warning = [](const std::string& w) {
+    std::fprintf(stderr, "tsgraphs: warning: %s\n", w.c_str());
+  };
+  if (!quiet)
+    callbacks.note = [](const std::string& n) { std::fprintf(stderr, "run: platform: %s\n", n.c_str()); };
   pipeline::RunInfo info = pipeline::run_sequence(sequence, slam, callbacks, odometry);
   info.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (slam.graph().keyframes().empty())
-    throw input_error(seq_dir, 0, sequence.size() == 0 ? "holds no scan; nothing written"
-                                                       : "no scan could be used: all " + std::to_string(sequence.size()) +
-                                                             " were skipped (the warnings above say why); nothing written");
+    throw input_error(seq_dir, 0,
+                      sequence.size() == 0
+                          ? "holds no scan; nothing written"
+                          : "no scan could be used: all " + std::to_string(sequence.size()) +
+                                " were skipped (the warnings above say why); nothing written");
   try {
     pipeline::write_run_outputs(slam, info, dir.path());
     // Ground truth for the report comes with a sequence folder only.
@@ -257,10 +284,12 @@ void run(const io::ScanSequence& sequence, const std::string& out, const pipelin
   }
   dir.commit();
   if (!quiet) {
-    std::fprintf(stderr, "run: %zu keyframes, %zu planes, %zu loop closures, %zu optimisations; %.1f s (%.1fx real time)\n",
-                 slam.graph().keyframes().size(), slam.graph().planes().size(), slam.graph().loop_edges().size(),
-                 slam.optimizations().size(), info.wall_time_s,
-                 info.wall_time_s > 0 ? info.sequence_duration_s / info.wall_time_s : 0.0);
+    std::fprintf(
+        stderr,
+        "run: %zu keyframes, %zu planes, %zu loop closures, %zu optimisations; %.1f s (%.1fx real time)\n",
+        slam.graph().keyframes().size(), slam.graph().planes().size(), slam.graph().loop_edges().size(),
+        slam.optimizations().size(), info.wall_time_s,
+        info.wall_time_s > 0 ? info.sequence_duration_s / info.wall_time_s : 0.0);
     std::fprintf(stderr, "run: wrote %s\n", out.c_str());
   }
 }
@@ -272,8 +301,8 @@ eval::Metrics evaluate(const std::string& run_dir, const std::string& seq_dir, b
   const eval::Metrics metrics = eval::evaluate_run(options);
   const std::string metrics_text = eval::metrics_json(metrics);
   // The report gets the metrics table (and the ground truth when the sequence is given).
-  const report::RunReportFiles report =
-      report::run_report_files(run_dir, seq_dir, fs::weakly_canonical(run_dir).filename().string(), metrics_text);
+  const report::RunReportFiles report = report::run_report_files(
+      run_dir, seq_dir, fs::weakly_canonical(run_dir).filename().string(), metrics_text);
   // Everything is made before anything is written, and metrics.json is written last: a failed
   // eval leaves the run folder as it was, an earlier metrics.json and report included.
   const fs::path dir(run_dir);
@@ -287,7 +316,8 @@ eval::Metrics evaluate(const std::string& run_dir, const std::string& seq_dir, b
   io::write_file_atomic(html.string(), report.report_html);
   io::write_file_atomic(metrics_file.string(), metrics_text);
   if (print) std::printf("%s", eval::metrics_table(metrics).c_str());
-  if (!quiet) std::fprintf(stderr, "eval: wrote %s\n", (fs::path(run_dir) / pipeline::run_files::kMetrics).c_str());
+  if (!quiet)
+    std::fprintf(stderr, "eval: wrote %s\n", (fs::path(run_dir) / pipeline::run_files::kMetrics).c_str());
   return metrics;
 }
 
@@ -302,8 +332,9 @@ eval::Consistency compare(const std::string& run_a, const std::string& run_b, bo
     return std::string(text);
   };
   if (print)
-    std::printf("rooms of %s against %s: %d / %d rooms, %d paired, f_re %.2f, DCS %s, d_center %s m\n", run_a.c_str(),
-                run_b.c_str(), c.N1st, c.N2nd, c.N_re, c.f_re, figure(c.dcs).c_str(), figure(c.d_center).c_str());
+    std::printf("rooms of %s against %s: %d / %d rooms, %d paired, f_re %.2f, DCS %s, d_center %s m\n",
+                run_a.c_str(), run_b.c_str(), c.N1st, c.N2nd, c.N_re, c.f_re, figure(c.dcs).c_str(),
+                figure(c.d_center).c_str());
   if (!quiet) std::fprintf(stderr, "eval: wrote %s\n", out.c_str());
   return c;
 }

@@ -31,14 +31,15 @@ void simulate(const scene::Scene& scene, const std::string& out, std::uint64_t s
 /// ros2-sqlite (io::write_rosbag2), or auto (by the file's extension: .bag, .mcap, .db3).
 /// `compression`: "" for the format's default (ros1 lz4, ros2-mcap zstd, ros2-sqlite none),
 /// else none, bz2 or lz4 for ros1, none, lz4 or zstd for ros2-mcap, none for ros2-sqlite.
-void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::string& seq_dir, std::uint64_t seed,
-                  int laps, const std::string& format, const std::string& compression, bool quiet);
+void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::string& seq_dir,
+                  std::uint64_t seed, int laps, const std::string& format, const std::string& compression,
+                  bool quiet);
 /// `convert`: `sequence` (a folder of scans, a bag) written as a sequence folder at `out`:
 /// scans/NNNNNN.bin, times.txt, odom.txt (and groundtruth.txt when it has ground truth). With
 /// `odometry.estimate`, odom.txt is LiDAR odometry (`lidar`, its sweeps registered with `sweep`)
 /// from the scans, in the same pass.
-void convert(const io::ScanSequence& sequence, const std::string& out, const pipeline::OdometryOptions& odometry,
-             const pipeline::PipelineConfig& config, bool quiet);
+void convert(const io::ScanSequence& sequence, const std::string& out,
+             const pipeline::OdometryOptions& odometry, const pipeline::PipelineConfig& config, bool quiet);
 /// `bag-info`: the topics, types, counts and rates of a ROS 1 bag or a rosbag2 recording on stdout.
 void print_bag_info(const std::string& bag);
 /// `export --mcap`: the run folder as an MCAP file for Foxglove (report/foxglove_export.hpp).
@@ -67,11 +68,12 @@ pipeline::OdometryOptions choose_odometry(const io::ScanSequence& sequence, cons
                                           const std::optional<Pose3>& sensor_to_base,
                                           const odometry::FloorLevellingConfig& levelling, bool quiet);
 /// `run`: a sequence through the pipeline into a run folder, written whole or not at all.
-void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config, bool quiet,
-         const pipeline::OdometryOptions& odometry = {});
+void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config,
+         bool quiet, const pipeline::OdometryOptions& odometry = {});
 /// `run SEQ_DIR --out OUT` (the suite's and the demo's runs): the folder opened, checked and its
 /// odometry chosen as the command does.
-void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config, bool quiet);
+void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config,
+         bool quiet);
 /// `eval`: metrics.json in the run folder (and the table on stdout when `print`).
 eval::Metrics evaluate(const std::string& run_dir, const std::string& seq_dir, bool quiet, bool print = true);
 /// `eval --against`: comparison.json in `run_a` (and the figures on stdout when `print`).

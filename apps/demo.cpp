@@ -26,7 +26,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 /// "2026-11-22 08:10 UTC".
 std::string utc_now() {
@@ -43,12 +45,12 @@ std::string machine() {
   std::string model;
   std::ifstream cpuinfo("/proc/cpuinfo");
   for (std::string line; model.empty() && std::getline(cpuinfo, line);) {
-    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) model = line.substr(line.find(':') + 2);
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
+      model = line.substr(line.find(':') + 2);
   }
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   return std::to_string(cores) + (cores == 1 ? " core" : " cores") + (model.empty() ? "" : ", " + model);
 }
-
 
 std::string figure(const std::optional<double>& v) { return v ? eval::fixed_text(*v, 2) : "-"; }
 
@@ -103,13 +105,16 @@ void demo(const DemoOptions& options) {
     run(seq, high_run, config, true);
     const eval::Metrics high = evaluate(high_run, seq, true, false);
     const eval::Consistency c = compare(low_run, high_run, true, false);
-    platforms = "Platforms (" + scene.name + ", seed 1, TS-graphs): the sensor at " +
-                eval::fixed_text(scene.sensor.mount_height, 2) + " m against " + eval::fixed_text(options.platform_height, 2) +
-                " m: " + std::to_string(c.N1st) + " / " + std::to_string(c.N2nd) + " rooms, " +
-                std::to_string(c.N_re) + " paired, f_re " + eval::fixed_text(c.f_re, 2) + ", DCS " + figure(c.dcs) +
-                ", d_center " + figure(c.d_center) + " m; at " + eval::fixed_text(options.platform_height, 2) +
-                " m: rooms F1 " + figure(high.rooms_gt.f1) + ", ATE_rmse " +
-                (high.trajectory.ate_rmse ? eval::fixed_text(*high.trajectory.ate_rmse, 3) : std::string("-")) + " m.\n";
+    platforms =
+        "Platforms (" + scene.name + ", seed 1, TS-graphs): the sensor at " +
+        eval::fixed_text(scene.sensor.mount_height, 2) + " m against " +
+        eval::fixed_text(options.platform_height, 2) + " m: " + std::to_string(c.N1st) + " / " +
+        std::to_string(c.N2nd) + " rooms, " + std::to_string(c.N_re) + " paired, f_re " +
+        eval::fixed_text(c.f_re, 2) + ", DCS " + figure(c.dcs) + ", d_center " + figure(c.d_center) +
+        " m; at " + eval::fixed_text(options.platform_height, 2) + " m: rooms F1 " +
+        figure(high.rooms_gt.f1) + ", ATE_rmse " +
+        (high.trajectory.ate_rmse ? eval::fixed_text(*high.trajectory.ate_rmse, 3) : std::string("-")) +
+        " m.\n";
   }
 
   const double elapsed = seconds_since(start);
@@ -142,18 +147,21 @@ void demo(const DemoOptions& options) {
     }
     sections.push_back(std::move(section));
   }
-  const std::string intro = "<p>" + report::html_escape("Measured " + utc_now() + " on " + machine() + "; " + seeds_text +
-                                              (options.seeds > 1 ? " (mean ± standard deviation)" : "") +
-                                              "; the demo took " + eval::fixed_text(elapsed, 0) + " s.") +
-                            "</p>\n" + (platforms.empty() ? "" : "<p>" + report::html_escape(platforms) + "</p>\n");
-  const std::string tables = "<h2>Table 1</h2>\n<p>The paper's layout; ATE is ATE_loop, the distance between the "
-                             "first and last pose.</p>\n" +
-                             report::method_table_html(results, eval::table1_columns()) +
-                             "<h2>Against the simulator's ground truth, and speed</h2>\n" +
-                             report::method_table_html(results, eval::truth_columns());
+  const std::string intro =
+      "<p>" +
+      report::html_escape("Measured " + utc_now() + " on " + machine() + "; " + seeds_text +
+                          (options.seeds > 1 ? " (mean ± standard deviation)" : "") + "; the demo took " +
+                          eval::fixed_text(elapsed, 0) + " s.") +
+      "</p>\n" + (platforms.empty() ? "" : "<p>" + report::html_escape(platforms) + "</p>\n");
+  const std::string tables =
+      "<h2>Table 1</h2>\n<p>The paper's layout; ATE is ATE_loop, the distance between the "
+      "first and last pose.</p>\n" +
+      report::method_table_html(results, eval::table1_columns()) +
+      "<h2>Against the simulator's ground truth, and speed</h2>\n" +
+      report::method_table_html(results, eval::truth_columns());
   io::write_file_atomic((out / "report.html").string(),
-                        report::demo_report_html("tsgraphs demo: TS-graphs, S-Graphs+ and the ablations", intro,
-                                                 tables, sections));
+                        report::demo_report_html("tsgraphs demo: TS-graphs, S-Graphs+ and the ablations",
+                                                 intro, tables, sections));
   std::printf("%s", md.c_str());
   step("wrote " + (out / "table.md").string() + ", table.csv, report.html");
 }

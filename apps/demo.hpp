@@ -9,8 +9,8 @@
 namespace tsgraphs::app {
 
 struct DemoOptions {
-  std::string out = "tsgraphs-demo";                    ///< output folder
-  int seeds = 1;                                        ///< seeds 1..N per scene (one run each ~20 s on 2 cores)
+  std::string out = "tsgraphs-demo";  ///< output folder
+  int seeds = 1;                      ///< seeds 1..N per scene (one run each ~20 s on 2 cores)
   std::vector<std::string> scenes = {"atrium", "office"};  ///< built-in names or scene files
   double platform_height = 1.7;  ///< the second platform's sensor height for the comparison (m); 0: none
   bool quiet = false;

@@ -29,7 +29,8 @@ bool within(const fs::path& inner, const fs::path& outer) {
 
 }  // namespace
 
-void check_output_apart(const std::string& option, const std::string& output, const std::vector<std::string>& inputs) {
+void check_output_apart(const std::string& option, const std::string& output,
+                        const std::vector<std::string>& inputs) {
   if (output.empty()) return;
   const fs::path out = resolved(output);
   for (const std::string& input : inputs) {

@@ -11,7 +11,8 @@ namespace tsgraphs::app {
 /// one of `inputs`, lies inside one (an input folder) or holds one (an output folder that would
 /// replace its own input). Paths are compared resolved (symbolic links, `..`); empty names are
 /// skipped.
-void check_output_apart(const std::string& option, const std::string& output, const std::vector<std::string>& inputs);
+void check_output_apart(const std::string& option, const std::string& output,
+                        const std::vector<std::string>& inputs);
 
 /// The files a scene reads: the scene file (none for a built-in scene) and its voxel maps.
 std::vector<std::string> scene_inputs(const scene::Scene& scene);

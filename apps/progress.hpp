@@ -21,9 +21,9 @@ class Progress {
     if (tty_) {
       constexpr int kWidth = 30;
       const int filled = kWidth * static_cast<int>(done) / static_cast<int>(total);
-      std::fprintf(stderr, "\r%s [%s%s] %3d%% %zu/%zu  %.0f/s  ETA %.0fs ", what_.c_str(), std::string(filled, '#').c_str(),
-                   std::string(kWidth - filled, ' ').c_str(), percent, done, total, rate,
-                   rate > 0.0 ? (total - done) / rate : 0.0);
+      std::fprintf(stderr, "\r%s [%s%s] %3d%% %zu/%zu  %.0f/s  ETA %.0fs ", what_.c_str(),
+                   std::string(filled, '#').c_str(), std::string(kWidth - filled, ' ').c_str(), percent, done,
+                   total, rate, rate > 0.0 ? (total - done) / rate : 0.0);
       if (done == total) std::fprintf(stderr, "\n");
     } else if (percent / 10 != last_decile_ || done == total) {
       last_decile_ = percent / 10;

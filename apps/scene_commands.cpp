@@ -37,10 +37,13 @@ void generate(const GenerateOptions& options) {
   io::write_file_atomic(options.out, b.yaml);
   if (!options.quiet) {
     const scene::Scene& s = b.scene;
-    std::fprintf(stderr, "generate: %s%s, seed %llu: %zu level%s, %zu rooms, %zu walls, %zu boxes, %s at %.2f m; wrote %s\n",
-                 options.style.c_str(), options.realistic ? " (realistic)" : "", static_cast<unsigned long long>(options.seed), s.levels.size(),
-                 s.levels.size() == 1 ? "" : "s", s.rooms.size(), s.walls.size(), s.boxes.size(),
-                 s.sensor.preset.c_str(), s.sensor.mount_height, options.out.c_str());
+    std::fprintf(
+        stderr,
+        "generate: %s%s, seed %llu: %zu level%s, %zu rooms, %zu walls, %zu boxes, %s at %.2f m; wrote %s\n",
+        options.style.c_str(), options.realistic ? " (realistic)" : "",
+        static_cast<unsigned long long>(options.seed), s.levels.size(), s.levels.size() == 1 ? "" : "s",
+        s.rooms.size(), s.walls.size(), s.boxes.size(), s.sensor.preset.c_str(), s.sensor.mount_height,
+        options.out.c_str());
   }
 }
 
@@ -74,19 +77,22 @@ void print_summary(const ImportMapOptions& options, const io::OccupancyMap& map,
   std::string rooms;
   if (!options.rooms.empty()) {
     rooms = " (" + std::string(io::convention_name(labels.convention));
-    if (st.room_cells_left_out > 0) rooms += "; " + std::to_string(st.room_cells_left_out) + " labelled cells left out";
+    if (st.room_cells_left_out > 0)
+      rooms += "; " + std::to_string(st.room_cells_left_out) + " labelled cells left out";
     if (st.room_slits > 0) rooms += "; " + std::to_string(st.room_slits) + " hole(s) holding rooms opened";
     rooms += ")";
   }
-  std::fprintf(stderr,
-               "import-map: %s: %d x %d cells at %.3f m; slab %zu vertices, %zu fringe cells, %zu void%s; %zu room%s%s; "
-               "walls: %zu occupied cells (%zu off the slab) and %zu cells of their gaps, %zu on the surface, "
-               "%zu voxels; path %.1f m a lap (%zu waypoints), clearance >= %.2f m; %.1f s; wrote %s%s%s\n",
-               options.map.c_str(), map.width, map.height, map.meta.resolution, st.slab_vertices, st.bridged_cells,
-               s.levels[0].voids.size(), s.levels[0].voids.size() == 1 ? "" : "s", s.rooms.size(),
-               s.rooms.size() == 1 ? "" : "s", rooms.c_str(), st.occupied_cells, st.occupied_off_slab,
-               st.wall_gap_cells, st.skin_cells, st.voxels, st.path_length, s.trajectory.waypoints.size(),
-               st.min_path_clearance, seconds, options.out.c_str(), pcd.empty() ? "" : " and ", pcd.c_str());
+  std::fprintf(
+      stderr,
+      "import-map: %s: %d x %d cells at %.3f m; slab %zu vertices, %zu fringe cells, %zu void%s; %zu "
+      "room%s%s; "
+      "walls: %zu occupied cells (%zu off the slab) and %zu cells of their gaps, %zu on the surface, "
+      "%zu voxels; path %.1f m a lap (%zu waypoints), clearance >= %.2f m; %.1f s; wrote %s%s%s\n",
+      options.map.c_str(), map.width, map.height, map.meta.resolution, st.slab_vertices, st.bridged_cells,
+      s.levels[0].voids.size(), s.levels[0].voids.size() == 1 ? "" : "s", s.rooms.size(),
+      s.rooms.size() == 1 ? "" : "s", rooms.c_str(), st.occupied_cells, st.occupied_off_slab,
+      st.wall_gap_cells, st.skin_cells, st.voxels, st.path_length, s.trajectory.waypoints.size(),
+      st.min_path_clearance, seconds, options.out.c_str(), pcd.empty() ? "" : " and ", pcd.c_str());
 }
 
 }  // namespace
@@ -145,12 +151,14 @@ void import_map(const ImportMapOptions& options) {
 
   const bool has_walls = !imported.scene.voxel_maps.empty();  // a map without an occupied cell has none
   std::ostringstream header;
-  header << "Imported by `tsgraphs import-map` (docs/import-map.md) from " << fs::path(options.map).filename().string();
+  header << "Imported by `tsgraphs import-map` (docs/import-map.md) from "
+         << fs::path(options.map).filename().string();
   if (!options.rooms.empty()) header << " with rooms from " << fs::path(options.rooms).filename().string();
   if (!options.rooms.empty()) header << " (" << io::convention_name(labels.convention) << ")";
   header << ".";
   if (has_walls)
-    header << "\nWalls: " << config.voxel_file << " (voxel centres, one column per wall cell next to the floor or unknown space).";
+    header << "\nWalls: " << config.voxel_file
+           << " (voxel centres, one column per wall cell next to the floor or unknown space).";
   const std::string yaml = scene::scene_yaml(imported.scene, header.str());
   const fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
   const fs::path pcd = out.parent_path() / config.voxel_file;  // beside the scene, named as the user named it
@@ -165,7 +173,8 @@ void import_map(const ImportMapOptions& options) {
     try {
       check = scene::parse_scene(yaml, options.out, dir.string());
     } catch (const InputError& e) {
-      throw std::runtime_error(std::string("the imported scene does not read back: ") + e.what());  // a bug here
+      throw std::runtime_error(std::string("the imported scene does not read back: ") +
+                               e.what());  // a bug here
     }
     for (const std::string& w : check.warnings) std::fprintf(stderr, "tsgraphs: warning: %s\n", w.c_str());
     io::write_file_atomic(options.out, yaml);

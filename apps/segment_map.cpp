@@ -29,17 +29,41 @@ std::array<std::uint8_t, 3> room_colour(int k) {
   const double value = k % 2 == 0 ? 0.95 : 0.7, saturation = 0.75;
   const int sector = static_cast<int>(hue) % 6;
   const double f = hue - std::floor(hue);
-  const double p = value * (1.0 - saturation), q = value * (1.0 - saturation * f), t = value * (1.0 - saturation * (1.0 - f));
+  const double p = value * (1.0 - saturation), q = value * (1.0 - saturation * f),
+               t = value * (1.0 - saturation * (1.0 - f));
   double r = value, g = t, b = p;
   switch (sector) {
-    case 1: r = q; g = value; b = p; break;
-    case 2: r = p; g = value; b = t; break;
-    case 3: r = p; g = q; b = value; break;
-    case 4: r = t; g = p; b = value; break;
-    case 5: r = value; g = p; b = q; break;
-    default: break;
+    case 1:
+      r = q;
+      g = value;
+      b = p;
+      break;
+    case 2:
+      r = p;
+      g = value;
+      b = t;
+      break;
+    case 3:
+      r = p;
+      g = q;
+      b = value;
+      break;
+    case 4:
+      r = t;
+      g = p;
+      b = value;
+      break;
+    case 5:
+      r = value;
+      g = p;
+      b = q;
+      break;
+    default:
+      break;
   }
-  const auto byte = [](double x) { return static_cast<std::uint8_t>(std::lround(std::clamp(x, 0.0, 1.0) * 255.0)); };
+  const auto byte = [](double x) {
+    return static_cast<std::uint8_t>(std::lround(std::clamp(x, 0.0, 1.0) * 255.0));
+  };
   return {byte(r), byte(g), byte(b)};
 }
 
@@ -62,7 +86,9 @@ io::Image label_image(const std::vector<int>& labels, int width, int height) {
   return img;
 }
 
-nlohmann::json figure(const std::optional<double>& x) { return x ? nlohmann::json(*x) : nlohmann::json(nullptr); }
+nlohmann::json figure(const std::optional<double>& x) {
+  return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
+}
 
 std::string percent(const std::optional<double>& x) {
   if (!x) return "-";
@@ -87,7 +113,8 @@ void segment_map(const SegmentMapOptions& options) {
   std::optional<io::RoomLabels> truth;
   if (!options.rooms.empty()) {
     truth = io::read_room_labels(options.rooms, map);
-    for (const std::string& w : truth->warnings) std::fprintf(stderr, "tsgraphs: warning: %s: %s\n", options.rooms.c_str(), w.c_str());
+    for (const std::string& w : truth->warnings)
+      std::fprintf(stderr, "tsgraphs: warning: %s: %s\n", options.rooms.c_str(), w.c_str());
   }
 
   GridFrame frame;
@@ -111,12 +138,15 @@ void segment_map(const SegmentMapOptions& options) {
                         {"rooms", seg.rooms.spaces.size()},
                         {"seconds", seconds}};
   nlohmann::json walls = nlohmann::json::array();
-  for (const rooms::WallCandidate& w : seg.walls) walls.push_back({w.end_a.x(), w.end_a.y(), w.end_b.x(), w.end_b.y()});
+  for (const rooms::WallCandidate& w : seg.walls)
+    walls.push_back({w.end_a.x(), w.end_a.y(), w.end_b.x(), w.end_b.y()});
   out["walls"] = walls;  // [x0, y0, x1, y1] in the map frame (m from its lower-left corner)
   std::optional<eval::LabelFigures> figures;
   if (truth) {
     figures = eval::compare_labels(seg.rooms.label, truth->room, map.width);
-    out["truth"] = {{"file", options.rooms}, {"rooms", truth->count}, {"convention", io::convention_name(truth->convention)}};
+    out["truth"] = {{"file", options.rooms},
+                    {"rooms", truth->count},
+                    {"convention", io::convention_name(truth->convention)}};
     out["ipa"] = {{"precision_micro", figure(figures->ipa.precision_micro)},
                   {"recall_micro", figure(figures->ipa.recall_micro)},
                   {"precision_macro", figure(figures->ipa.precision_macro)},
@@ -140,17 +170,18 @@ void segment_map(const SegmentMapOptions& options) {
   }
 
   if (!options.quiet)
-    std::printf("segment-map: %s: %d x %d cells at %.3f m; %zu walls, %zu rooms; %.1f s; wrote %s\n", options.map.c_str(),
-                map.width, map.height, map.meta.resolution, seg.walls.size(), seg.rooms.spaces.size(), seconds,
-                options.out.c_str());
+    std::printf("segment-map: %s: %d x %d cells at %.3f m; %zu walls, %zu rooms; %.1f s; wrote %s\n",
+                options.map.c_str(), map.width, map.height, map.meta.resolution, seg.walls.size(),
+                seg.rooms.spaces.size(), seconds, options.out.c_str());
   if (figures) {
-    std::printf("against %s (%d rooms): IPA precision / recall micro %s / %s %%, macro %s / %s %%; rooms at IoU 0.5: "
-                "precision %s, recall %s, F1 %s %% (%d of %d segments, %d true rooms)\n",
-                options.rooms.c_str(), truth->count, percent(figures->ipa.precision_micro).c_str(),
-                percent(figures->ipa.recall_micro).c_str(), percent(figures->ipa.precision_macro).c_str(),
-                percent(figures->ipa.recall_macro).c_str(), percent(figures->rooms.precision).c_str(),
-                percent(figures->rooms.recall).c_str(), percent(figures->rooms.f1).c_str(), figures->rooms.n_matched,
-                figures->rooms.n_segments, figures->rooms.n_truth);
+    std::printf(
+        "against %s (%d rooms): IPA precision / recall micro %s / %s %%, macro %s / %s %%; rooms at IoU 0.5: "
+        "precision %s, recall %s, F1 %s %% (%d of %d segments, %d true rooms)\n",
+        options.rooms.c_str(), truth->count, percent(figures->ipa.precision_micro).c_str(),
+        percent(figures->ipa.recall_micro).c_str(), percent(figures->ipa.precision_macro).c_str(),
+        percent(figures->ipa.recall_macro).c_str(), percent(figures->rooms.precision).c_str(),
+        percent(figures->rooms.recall).c_str(), percent(figures->rooms.f1).c_str(), figures->rooms.n_matched,
+        figures->rooms.n_segments, figures->rooms.n_truth);
   }
 }
 

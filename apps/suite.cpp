@@ -25,7 +25,8 @@ namespace tsgraphs::app {
 
 namespace fs = std::filesystem;
 
-static_assert(kMaxSuiteJobs == ChildProcesses::kMaxChildren, "--jobs may not start more children than the table holds");
+static_assert(kMaxSuiteJobs == ChildProcesses::kMaxChildren,
+              "--jobs may not start more children than the table holds");
 
 namespace {
 
@@ -74,7 +75,8 @@ void check_out_folder(const Suite& suite, const std::string& out) {
   for (const SuiteCase& c : suite.cases) {
     const fs::path dir = case_dir(out, c.id);
     for (const fs::path& p : {dir.parent_path(), dir})
-      if (fs::exists(p) && !fs::is_directory(p)) throw InputError(p.string() + ": exists and is not a folder");
+      if (fs::exists(p) && !fs::is_directory(p))
+        throw InputError(p.string() + ": exists and is not a folder");
   }
 }
 
@@ -159,14 +161,15 @@ int plan(const Suite& suite, const SuiteOptions& options, const std::string& out
   std::string text;
   for (const SuiteCase& c : suite.cases) {
     text += exe;
-    for (const std::string& a : case_args(suite, options, out, c.id, options.threads, false)) text += " " + shell_word(a);
+    for (const std::string& a : case_args(suite, options, out, c.id, options.threads, false))
+      text += " " + shell_word(a);
     text += "\n";
   }
   const std::string file = (fs::path(out) / files::kPlan).string();
   io::write_file_atomic(file, text);
   if (!options.quiet)
-    std::fprintf(stderr, "suite: wrote %s: %s, one command a line (docs/suite.md: parallel, Slurm)\n", file.c_str(),
-                 eval::cases_text(suite.cases.size()).c_str());
+    std::fprintf(stderr, "suite: wrote %s: %s, one command a line (docs/suite.md: parallel, Slurm)\n",
+                 file.c_str(), eval::cases_text(suite.cases.size()).c_str());
   return 0;
 }
 
@@ -230,17 +233,20 @@ int run_all(const Suite& suite, const SuiteOptions& options, const std::string& 
   std::vector<const SuiteCase*> pending;
   for (const SuiteCase& c : suite.cases)
     if (!case_done(suite, c, out)) pending.push_back(&c);
-  const int cores = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(std::max<std::size_t>(1, pending.size()))));
+  const int cores = options.threads > 0 ? options.threads
+                                        : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int jobs =
+      std::max(1, std::min<int>(options.jobs, static_cast<int>(std::max<std::size_t>(1, pending.size()))));
   const int threads = std::max(1, cores / jobs);
   const bool quiet = options.quiet;
   const bool tty = ::isatty(STDERR_FILENO) != 0;
   if (!quiet) {
-    std::fprintf(stderr, "suite: %s: %s, %zu done earlier, %zu to run, %d at a time (%d thread%s each); logs "
-                         "in %s/%s/ID/%s\n",
-                 suite.name.c_str(), eval::cases_text(suite.cases.size()).c_str(), suite.cases.size() - pending.size(),
-                 pending.size(), jobs,
-                 threads, threads == 1 ? "" : "s", out.c_str(), files::kCases, files::kLog);
+    std::fprintf(stderr,
+                 "suite: %s: %s, %zu done earlier, %zu to run, %d at a time (%d thread%s each); logs "
+                 "in %s/%s/ID/%s\n",
+                 suite.name.c_str(), eval::cases_text(suite.cases.size()).c_str(),
+                 suite.cases.size() - pending.size(), pending.size(), jobs, threads, threads == 1 ? "" : "s",
+                 out.c_str(), files::kCases, files::kLog);
   }
   eval::SuiteResults names;
   names.methods = suite_methods(suite);
@@ -251,7 +257,8 @@ int run_all(const Suite& suite, const SuiteOptions& options, const std::string& 
   std::size_t next = 0, finished = 0;
   if (tty && !pending.empty()) progress.update(0, pending.size());  // the bar from the start
   while (true) {
-    while (ChildProcesses::signal_received() == 0 && static_cast<int>(running.size()) < jobs && next < pending.size()) {
+    while (ChildProcesses::signal_received() == 0 && static_cast<int>(running.size()) < jobs &&
+           next < pending.size()) {
       const SuiteCase& c = *pending[next++];
       const fs::path dir = case_dir(out, c.id);
       fs::create_directories(dir);
@@ -286,13 +293,15 @@ int run_all(const Suite& suite, const SuiteOptions& options, const std::string& 
       record.kind = c.kind;
       record.spec = case_spec(suite, c);
       record.status = eval::kCaseFailed;
-      record.message = "the case's process ended with " + describe_wait_status(exit->status) + " and no record";
+      record.message =
+          "the case's process ended with " + describe_wait_status(exit->status) + " and no record";
       io::write_file_atomic(file, eval::case_record_json(record));
     }
     ++finished;
     if (quiet) continue;
-    const std::string line = "suite: [" + std::to_string(finished) + "/" + std::to_string(pending.size()) + "] " +
-                             eval::case_line(record, names) + (record.done() ? "" : " (log: " + log + ")");
+    const std::string line = "suite: [" + std::to_string(finished) + "/" + std::to_string(pending.size()) +
+                             "] " + eval::case_line(record, names) +
+                             (record.done() ? "" : " (log: " + log + ")");
     if (tty) {
       std::fprintf(stderr, "\r\033[K%s\n", line.c_str());
       progress.update(finished, pending.size());
@@ -301,7 +310,8 @@ int run_all(const Suite& suite, const SuiteOptions& options, const std::string& 
     }
   }
   if (const int sig = ChildProcesses::signal_received(); sig != 0) {
-    std::fprintf(stderr, "\nsuite: interrupted: %zu of %zu cases finished; run the same command again to go on\n",
+    std::fprintf(stderr,
+                 "\nsuite: interrupted: %zu of %zu cases finished; run the same command again to go on\n",
                  finished, pending.size());
     return 128 + sig;
   }

@@ -80,16 +80,20 @@ std::vector<std::uint64_t> read_seeds(const YamlMap& g) {
     const std::string text = node.Scalar();
     if (std::regex_match(text, match, range)) {
       const std::uint64_t a = std::stoull(match[1]), b = std::stoull(match[2]);
-      if (b < a) throw input_error(g.file(), line, what + ": '" + printable(text) + "': the range ends before it starts");
+      if (b < a)
+        throw input_error(g.file(), line,
+                          what + ": '" + printable(text) + "': the range ends before it starts");
       if (b - a >= kMaxSeedsPerRange)
-        throw input_error(g.file(), line, what + ": '" + printable(text) + "': more than " + std::to_string(kMaxSeedsPerRange) +
-                                              " seeds");
+        throw input_error(
+            g.file(), line,
+            what + ": '" + printable(text) + "': more than " + std::to_string(kMaxSeedsPerRange) + " seeds");
       for (std::uint64_t s = a; s <= b; ++s) seeds.push_back(s);
     } else {
       seeds.push_back(g.as<std::uint64_t>(node, what));
     }
   }
-  if (seeds.empty()) throw input_error(g.file(), line, what + ": expected a list of seeds or a range \"1-6\"");
+  if (seeds.empty())
+    throw input_error(g.file(), line, what + ": expected a list of seeds or a range \"1-6\"");
   return seeds;
 }
 
@@ -108,7 +112,8 @@ std::vector<std::string> read_styles(const YamlMap& g) {
   std::vector<std::string> out;
   for (const auto& [style, line] : styles) {
     if (std::find(known.begin(), known.end(), style) == known.end())
-      throw input_error(g.file(), line, what + ": unknown style '" + printable(style) + "' (styles: " + join(known) + ")");
+      throw input_error(g.file(), line,
+                        what + ": unknown style '" + printable(style) + "' (styles: " + join(known) + ")");
     out.push_back(style);
   }
   return out;
@@ -119,14 +124,18 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
   const std::string what = g.key_path("platforms");
   const YAML::Node node = g.raw("platforms");
   if (!node.IsSequence() || node.size() == 0)
-    throw input_error(g.file(), node.Mark().line + 1, what + ": expected a list of platforms (default, or {name, mount_height, preset, type, rate_hz, record_hz})");
+    throw input_error(g.file(), node.Mark().line + 1,
+                      what +
+                          ": expected a list of platforms (default, or {name, mount_height, preset, type, "
+                          "rate_hz, record_hz})");
   std::vector<SuitePlatform> out;
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string item = what + "[" + std::to_string(i) + "]";
     const YAML::Node n = node[i];
     if (n.IsScalar()) {
       if (n.Scalar() != "default")
-        throw input_error(g.file(), n.Mark().line + 1, item + ": '" + printable(n.Scalar()) + "': expected default or a mapping");
+        throw input_error(g.file(), n.Mark().line + 1,
+                          item + ": '" + printable(n.Scalar()) + "': expected default or a mapping");
       out.push_back(SuitePlatform{});
       continue;
     }
@@ -135,22 +144,26 @@ std::vector<SuitePlatform> read_platforms(const YamlMap& g) {
     SuitePlatform platform;
     platform.name = p.require<std::string>("name");
     if (platform.name.empty() || platform.name == "default" || id_text(platform.name) != platform.name)
-      throw p.error("name", "'" + printable(platform.name) + "': expected letters, digits, '-', '_' or '.', not default");
+      throw p.error("name", "'" + printable(platform.name) +
+                                "': expected letters, digits, '-', '_' or '.', not default");
     if (p.has("mount_height")) {
       platform.mount_height = p.require<double>("mount_height");
       if (!(*platform.mount_height > 0.0 && *platform.mount_height <= kMaxPlatformHeight))
-        throw p.error("mount_height", "must lie in (0, " + std::to_string(kMaxPlatformHeight).substr(0, 3) + "] m");
+        throw p.error("mount_height",
+                      "must lie in (0, " + std::to_string(kMaxPlatformHeight).substr(0, 3) + "] m");
     }
     if (p.has("preset")) {
       platform.preset = p.require<std::string>("preset");
       const std::vector<std::string>& presets = scene::preset_names();
       if (std::find(presets.begin(), presets.end(), platform.preset) == presets.end())
-        throw p.error("preset", "unknown preset '" + printable(platform.preset) + "' (presets: " + join(presets) + ")");
+        throw p.error("preset",
+                      "unknown preset '" + printable(platform.preset) + "' (presets: " + join(presets) + ")");
     }
     if (p.has("type")) {
       platform.type = p.require<std::string>("type");
       if (!scene::platform_type(platform.type))
-        throw p.error("type", "unknown platform type '" + printable(platform.type) + "' (" + join(scene::platform_names()) + ")");
+        throw p.error("type", "unknown platform type '" + printable(platform.type) + "' (" +
+                                  join(scene::platform_names()) + ")");
     }
     if (p.has("rate_hz")) {
       platform.rate_hz = p.require<double>("rate_hz");
@@ -232,7 +245,8 @@ void add_import_case(const YamlMap& entry, const fs::path& suite_dir, Suite* sui
   m.check_keys({"map", "rooms", "ceiling", "name"});
   const auto existing_file = [&](const char* key) {
     const fs::path file = from_suite(suite_dir, m.require<std::string>(key));
-    if (!fs::is_regular_file(file)) throw m.error(key, "'" + printable(file.string(), kMaxQuotedPathBytes) + "': no such file");
+    if (!fs::is_regular_file(file))
+      throw m.error(key, "'" + printable(file.string(), kMaxQuotedPathBytes) + "': no such file");
     return file.string();
   };
   SuiteCase c;
@@ -255,7 +269,8 @@ void add_sequence_case(const YamlMap& entry, const fs::path& suite_dir, Suite* s
   const fs::path dir = from_suite(suite_dir, scalar(entry, node, what));
   if (!io::is_sequence_folder(dir.string()))
     throw input_error(entry.file(), node.Mark().line + 1,
-                      what + ": '" + printable(dir.string(), kMaxQuotedPathBytes) + "': not a sequence folder (times.txt, odom.txt, scans/)");
+                      what + ": '" + printable(dir.string(), kMaxQuotedPathBytes) +
+                          "': not a sequence folder (times.txt, odom.txt, scans/)");
   SuiteCase c;
   c.kind = "sequence";
   c.where = where(entry, node);
@@ -272,8 +287,10 @@ std::vector<std::string> check_methods(const std::vector<std::string>& slugs, co
   if (slugs.empty()) throw InputError(where + ": no method (methods: " + method_slugs() + ")");
   std::vector<std::string> seen;
   for (const std::string& s : slugs) {
-    if (find_method(s) == nullptr) throw InputError(where + ": unknown method '" + printable(s) + "' (methods: " + method_slugs() + ")");
-    if (std::find(seen.begin(), seen.end(), s) != seen.end()) throw InputError(where + ": method '" + printable(s) + "' twice");
+    if (find_method(s) == nullptr)
+      throw InputError(where + ": unknown method '" + printable(s) + "' (methods: " + method_slugs() + ")");
+    if (std::find(seen.begin(), seen.end(), s) != seen.end())
+      throw InputError(where + ": method '" + printable(s) + "' twice");
     seen.push_back(s);
   }
   return seen;
@@ -308,8 +325,8 @@ Suite load_suite(const std::string& file) {
   std::map<std::string, std::string> first_of;  // case id -> where it comes from
   for (const YamlMap& entry : entries) {
     entry.check_keys({"generate", "import", "scene", "sequence"});
-    const int kinds =
-        int(entry.has("generate")) + int(entry.has("import")) + int(entry.has("scene")) + int(entry.has("sequence"));
+    const int kinds = int(entry.has("generate")) + int(entry.has("import")) + int(entry.has("scene")) +
+                      int(entry.has("sequence"));
     if (kinds != 1) throw entry.error_here("give one of generate, import, scene or sequence");
     const std::size_t first = suite.cases.size();
     if (entry.has("generate")) add_generate_cases(entry, &suite);
@@ -325,7 +342,8 @@ Suite load_suite(const std::string& file) {
     for (std::size_t i = first; i < suite.cases.size(); ++i) {
       const SuiteCase& c = suite.cases[i];
       if (const auto [it, fresh] = first_of.emplace(c.id, c.where); !fresh)
-        throw InputError(c.where + ": " + entry.path() + ": case '" + c.id + "' again (first from " + it->second + ")");
+        throw InputError(c.where + ": " + entry.path() + ": case '" + c.id + "' again (first from " +
+                         it->second + ")");
     }
   }
   return suite;

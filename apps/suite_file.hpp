@@ -13,24 +13,24 @@ namespace tsgraphs::app {
 
 /// How a generated building's platform differs from the generator's own random draw.
 struct SuitePlatform {
-  std::string name;                   ///< "" for the generator's draw ("default")
-  std::optional<double> mount_height; ///< m: the sensor above the floor
-  std::string preset;                 ///< a sensor preset ("" keeps the drawn one)
-  std::string type;                   ///< what carries the sensor: wheeled, handheld, legged ("" keeps the drawn one)
-  std::optional<double> rate_hz;      ///< sweeps per second (none keeps the preset's)
-  std::optional<double> record_hz;    ///< scans kept per second (none: every sweep)
+  std::string name;                    ///< "" for the generator's draw ("default")
+  std::optional<double> mount_height;  ///< m: the sensor above the floor
+  std::string preset;                  ///< a sensor preset ("" keeps the drawn one)
+  std::string type;  ///< what carries the sensor: wheeled, handheld, legged ("" keeps the drawn one)
+  std::optional<double> rate_hz;    ///< sweeps per second (none keeps the preset's)
+  std::optional<double> record_hz;  ///< scans kept per second (none: every sweep)
 };
 
 struct SuiteCase {
-  std::string id;      ///< unique: office-s3, office-s3-handheld, import-<name>, scene-office, seq-<dir>
-  std::string kind;    ///< generate, import, scene or sequence
-  std::string where;   ///< "file:line" of the entry, for messages
-  std::string group;   ///< the entry of `cases:` it comes from: "cases[1]: generate, realistic"
+  std::string id;     ///< unique: office-s3, office-s3-handheld, import-<name>, scene-office, seq-<dir>
+  std::string kind;   ///< generate, import, scene or sequence
+  std::string where;  ///< "file:line" of the entry, for messages
+  std::string group;  ///< the entry of `cases:` it comes from: "cases[1]: generate, realistic"
   // generate
   std::string style;
   std::uint64_t seed = 1;
   double size = 1.0;
-  int people = 0;  ///< generate --people
+  int people = 0;          ///< generate --people
   bool realistic = false;  ///< generate --realistic (the id ends in -realistic)
   SuitePlatform platform;
   // import: the map's YAML (absolute); scene: a scene file (absolute path) or a built-in
@@ -42,11 +42,11 @@ struct SuiteCase {
 };
 
 struct Suite {
-  std::string file;                  ///< the suite file, absolute
+  std::string file;  ///< the suite file, absolute
   std::string name;
   std::vector<std::string> methods;  ///< method slugs (methods.hpp), in order
-  int laps = 0;                      ///< laps of every path but a sequence's; 0: 2 (generate, import), the scene's own
-  std::vector<SuiteCase> cases;      ///< in plan order
+  int laps = 0;  ///< laps of every path but a sequence's; 0: 2 (generate, import), the scene's own
+  std::vector<SuiteCase> cases;  ///< in plan order
 };
 
 /// Reads and checks a suite file: unknown keys, styles, presets, methods, missing scene files

@@ -40,11 +40,16 @@ int main(int argc, char** argv) {
   std::string from, to;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--points-topic" && i + 1 < argc) options.points_topic = argv[++i];
-    else if (a == "--odom-topic" && i + 1 < argc) options.odom_topic = argv[++i];
-    else if (a == "--from" && i + 1 < argc) from = argv[++i];
-    else if (a == "--to" && i + 1 < argc) to = argv[++i];
-    else bags.push_back(a);
+    if (a == "--points-topic" && i + 1 < argc)
+      options.points_topic = argv[++i];
+    else if (a == "--odom-topic" && i + 1 < argc)
+      options.odom_topic = argv[++i];
+    else if (a == "--from" && i + 1 < argc)
+      from = argv[++i];
+    else if (a == "--to" && i + 1 < argc)
+      to = argv[++i];
+    else
+      bags.push_back(a);
   }
   if (!from.empty()) {
     std::filesystem::create_directories(to);
@@ -54,10 +59,12 @@ int main(int argc, char** argv) {
       bags.push_back(to + "/" + name);
       return !std::filesystem::exists(bags.back());
     };
-    for (const auto& [name, c] : {std::pair{"ros1_none.bag", io::BagCompression::none}, std::pair{"ros1_lz4.bag", io::BagCompression::lz4},
+    for (const auto& [name, c] : {std::pair{"ros1_none.bag", io::BagCompression::none},
+                                  std::pair{"ros1_lz4.bag", io::BagCompression::lz4},
                                   std::pair{"ros1_bz2.bag", io::BagCompression::bz2}})
       if (out(name)) io::write_bag(seq, bags.back(), c, mount);
-    if (out("ros2_sqlite.db3")) io::write_rosbag2(seq, bags.back(), io::Rosbag2Storage::sqlite, io::mcap::Compression::none, mount);
+    if (out("ros2_sqlite.db3"))
+      io::write_rosbag2(seq, bags.back(), io::Rosbag2Storage::sqlite, io::mcap::Compression::none, mount);
     for (const auto& [name, c] : {std::pair{"ros2_mcap_none.mcap", io::mcap::Compression::none},
                                   std::pair{"ros2_mcap_lz4.mcap", io::mcap::Compression::lz4},
                                   std::pair{"ros2_mcap_zstd.mcap", io::mcap::Compression::zstd}})
@@ -69,16 +76,19 @@ int main(int argc, char** argv) {
     try {
       const auto t0 = std::chrono::steady_clock::now();
       std::unique_ptr<io::ScanSequence> seq;
-      if (io::is_rosbag2(bag)) seq = std::make_unique<io::Rosbag2Sequence>(options);
-      else seq = std::make_unique<io::BagSequence>(options);
+      if (io::is_rosbag2(bag))
+        seq = std::make_unique<io::Rosbag2Sequence>(options);
+      else
+        seq = std::make_unique<io::BagSequence>(options);
       const auto t1 = std::chrono::steady_clock::now();
       std::size_t points = 0;
       for (std::size_t i = 0; i < seq->size(); ++i) points += seq->scan(i).size();
       const auto t2 = std::chrono::steady_clock::now();
-      const double open = std::chrono::duration<double>(t1 - t0).count(), read = std::chrono::duration<double>(t2 - t1).count();
+      const double open = std::chrono::duration<double>(t1 - t0).count(),
+                   read = std::chrono::duration<double>(t2 - t1).count();
       const double mb = static_cast<double>(size_of(bag)) / 1e6;
-      std::printf("%-28s %9.1f %8.2f %8.2f %8.0f %9.0f\n", std::filesystem::path(bag).filename().c_str(), mb, open, read,
-                  mb / (open + read), static_cast<double>(seq->size()) / (open + read));
+      std::printf("%-28s %9.1f %8.2f %8.2f %8.0f %9.0f\n", std::filesystem::path(bag).filename().c_str(), mb,
+                  open, read, mb / (open + read), static_cast<double>(seq->size()) / (open + read));
       if (points == 0) std::fprintf(stderr, "%s: no points read\n", bag.c_str());
     } catch (const InputError& e) {
       std::fprintf(stderr, "%s\n", e.what());

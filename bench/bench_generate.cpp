@@ -33,9 +33,15 @@ void BM_Generate(benchmark::State& state, const std::string& style) {
 BENCHMARK_CAPTURE(BM_Generate, office, std::string("office"))->Unit(benchmark::kMillisecond)->Iterations(4);
 BENCHMARK_CAPTURE(BM_Generate, atrium, std::string("atrium"))->Unit(benchmark::kMillisecond)->Iterations(4);
 BENCHMARK_CAPTURE(BM_Generate, library, std::string("library"))->Unit(benchmark::kMillisecond)->Iterations(4);
-BENCHMARK_CAPTURE(BM_Generate, open_plan, std::string("open_plan"))->Unit(benchmark::kMillisecond)->Iterations(4);
-BENCHMARK_CAPTURE(BM_Generate, irregular, std::string("irregular"))->Unit(benchmark::kMillisecond)->Iterations(4);
-BENCHMARK_CAPTURE(BM_Generate, multi_storey, std::string("multi_storey"))->Unit(benchmark::kMillisecond)->Iterations(4);
+BENCHMARK_CAPTURE(BM_Generate, open_plan, std::string("open_plan"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(4);
+BENCHMARK_CAPTURE(BM_Generate, irregular, std::string("irregular"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(4);
+BENCHMARK_CAPTURE(BM_Generate, multi_storey, std::string("multi_storey"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(4);
 BENCHMARK_CAPTURE(BM_Generate, mixed, std::string("mixed"))->Unit(benchmark::kMillisecond)->Iterations(4);
 
 BENCHMARK_MAIN();

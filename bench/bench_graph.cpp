@@ -77,16 +77,14 @@ SituationalGraph make_graph() {
     if (k > 0) g.add_odometry_edge({k - 1, k, odom[k - 1].inverse() * odom[k]});
     if (k >= int(kLap) && k % kLoopEvery == 0) {
       const int old = k - int(kLap);
-      g.add_loop_edge(
-          {old, k,
-           perturbed(truth[old].inverse() * truth[k], kMeasSigmaTrans, kMeasSigmaDeg * kDeg, rng),
-           0.01});
+      g.add_loop_edge({old, k,
+                       perturbed(truth[old].inverse() * truth[k], kMeasSigmaTrans, kMeasSigmaDeg * kDeg, rng),
+                       0.01});
     }
     const int segment = int(std::fmod(k, kLap) / kSegment);
     for (int side : {-1, 1}) {
       // Side walls in the keyframe's frame (heading along the corridor), normals towards it.
-      Plane measured =
-          Plane::from_point_normal({0.0, side * kHalfWidth, 0.0}, {0.0, -double(side), 0.0});
+      Plane measured = Plane::from_point_normal({0.0, side * kHalfWidth, 0.0}, {0.0, -double(side), 0.0});
       measured.n = Eigen::AngleAxisd(angle(rng), Eigen::Vector3d::UnitZ()) * measured.n;
       measured.d += dist(rng);
       auto [it, inserted] = plane_of.try_emplace({segment, side}, -1);

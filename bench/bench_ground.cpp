@@ -35,7 +35,7 @@ struct Scan {
   Eigen::Matrix3d R_map_sensor;
 };
 
-constexpr double kOtherStorey = 1.0;               // m below the robot's floor: not its ground
+constexpr double kOtherStorey = 1.0;                 // m below the robot's floor: not its ground
 constexpr double kBands[] = {0.5, 6.0, 12.0, 15.0};  // m, range bands of the recall
 
 // Scans of a built-in scene seen by `preset` at `height` (0: the scene's mount height).
@@ -44,7 +44,8 @@ const std::vector<Scan>& scans(const std::string& scene_name, const std::string&
   const std::string key = scene_name + "/" + preset + "/" + std::to_string(height);
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
-  scene::Scene scene = scene::parse_scene(*scene::builtin_scene_text(scene_name), "builtin:" + scene_name, ".");
+  scene::Scene scene =
+      scene::parse_scene(*scene::builtin_scene_text(scene_name), "builtin:" + scene_name, ".");
   scene::SensorSpec sensor;
   scene::apply_preset(preset, &sensor);
   sensor.preset = preset;
@@ -59,8 +60,8 @@ const std::vector<Scan>& scans(const std::string& scene_name, const std::string&
   return cache.emplace(key, std::move(out)).first->second;
 }
 
-void BM_SegmentGround(benchmark::State& state, const std::string& scene, const std::string& preset, double height,
-                      double seed_radius) {
+void BM_SegmentGround(benchmark::State& state, const std::string& scene, const std::string& preset,
+                      double height, double seed_radius) {
   const std::vector<Scan>& input = scans(scene, preset, height);
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
   ground::GroundConfig config = ground::per_sensor_preset(preset);
@@ -76,7 +77,8 @@ void BM_SegmentGround(benchmark::State& state, const std::string& scene, const s
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     benchmark::DoNotOptimize(result.labels.data());
     points += input[k].cloud.size();
-    ground_points += static_cast<std::size_t>(std::count(result.labels.begin(), result.labels.end(), ground::GroundLabel::kGround));
+    ground_points += static_cast<std::size_t>(
+        std::count(result.labels.begin(), result.labels.end(), ground::GroundLabel::kGround));
     const PointCloud& cloud = input[k].cloud;
     const Eigen::Vector3d up = result.R_level_sensor.transpose().col(2);
     for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -105,18 +107,23 @@ void BM_SegmentGround(benchmark::State& state, const std::string& scene, const s
   // A band without floor (a VLP-16 at 0.55 m has no ring between 9.7 and 21 m) has no recall: NaN.
   const char* names[] = {"0.5-6", "6-12", "12-15"};
   for (int b = 0; b < 3; ++b) {
-    state.counters[std::string("R_") + names[b]] = tp[b] + fn[b] > 0.0 ? tp[b] / (tp[b] + fn[b]) : std::nan("");
+    state.counters[std::string("R_") + names[b]] =
+        tp[b] + fn[b] > 0.0 ? tp[b] / (tp[b] + fn[b]) : std::nan("");
     state.counters[std::string("floor_") + names[b]] = (tp[b] + fn[b]) / n;
   }
 }
 BENCHMARK_CAPTURE(BM_SegmentGround, atrium_os1_64, std::string("atrium"), std::string("os1-64"), 0.0, 0.0)
-    ->Unit(benchmark::kMillisecond)->MinTime(2.0);
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
 // Carried at 1.5 m: the first floor ring 3.6 m out, the seed radius by the platform's rule
 // (pipeline/platform.hpp: 3.6 + 1.5 m).
-BENCHMARK_CAPTURE(BM_SegmentGround, atrium_os1_64_h150, std::string("atrium"), std::string("os1-64"), 1.5, 5.12)
-    ->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_SegmentGround, atrium_os1_64_h150, std::string("atrium"), std::string("os1-64"), 1.5,
+                  5.12)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_SegmentGround, office_vlp_16, std::string("office"), std::string("vlp-16"), 0.0, 0.0)
-    ->Unit(benchmark::kMillisecond)->MinTime(2.0);
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0);
 
 }  // namespace
 

@@ -17,12 +17,12 @@ using namespace tsgraphs::ground;
 
 namespace {
 
-constexpr int kColumns = 20, kRows = 15;          // keyframe grid: 300 keyframes
-constexpr double kKeyframeStep = 3.0;             // between keyframes (m)
-constexpr double kHalf = 4.4, kSpacing = 0.2;     // each keyframe sees a 45 x 45 lattice: 2025 nodes
-constexpr double kSensorHeight = 0.55;            // above the floor (m)
+constexpr int kColumns = 20, kRows = 15;              // keyframe grid: 300 keyframes
+constexpr double kKeyframeStep = 3.0;                 // between keyframes (m)
+constexpr double kHalf = 4.4, kSpacing = 0.2;         // each keyframe sees a 45 x 45 lattice: 2025 nodes
+constexpr double kSensorHeight = 0.55;                // above the floor (m)
 constexpr double kYawPerMetre = 10.0 * M_PI / 180.0;  // perturbed update: yaw correction per metre of shift
-constexpr double kQueryRadius = 3.0;              // nodes_near radius, the free-space graph's scale (m)
+constexpr double kQueryRadius = 3.0;                  // nodes_near radius, the free-space graph's scale (m)
 constexpr unsigned kSeed = 1;
 
 struct Keyframe {
@@ -56,7 +56,8 @@ const std::vector<Keyframe>& keyframes() {
     std::vector<Keyframe> out;
     for (int r = 0; r < kRows; ++r) {
       for (int c = 0; c < kColumns; ++c) {
-        const Pose3 pose = make_pose(Eigen::Vector3d(c * kKeyframeStep, r * kKeyframeStep, kSensorHeight), yaw(rng));
+        const Pose3 pose =
+            make_pose(Eigen::Vector3d(c * kKeyframeStep, r * kKeyframeStep, kSensorHeight), yaw(rng));
         out.push_back({pose, observe(pose)});
       }
     }

@@ -12,10 +12,10 @@
 // start it (pipeline/odometry_choice.hpp): its ATE is the run's `eval` odometry ATE_rmse.
 // --every N keeps the scans' stamps, as a sequence recorded at 10 / N Hz.
 // ATE: the RMS position error over every scan, the estimate anchored at the first ground-truth
-// pose (no further alignment: drift counts). Drift: the estimate is anchored at the first ground-truth pose; the position error is given
-// as a share of the path length travelled so far (at the end of lap 1, and its maximum over the
-// run once the path is at least kMinPathForRatio long, so the first metres do not divide by ~0).
-// Segment drift: the KITTI benchmark's relative translation error (eval::segment_drift) over
+// pose (no further alignment: drift counts). Drift: the estimate is anchored at the first ground-truth pose;
+// the position error is given as a share of the path length travelled so far (at the end of lap 1, and its
+// maximum over the run once the path is at least kMinPathForRatio long, so the first metres do not divide by
+// ~0). Segment drift: the KITTI benchmark's relative translation error (eval::segment_drift) over
 // kSegmentLengths.
 // Step error: each scan's motion from the one before against the truth's (RPE over one scan).
 // Speed: wall time of the whole run (reading included) against the scans' time span.
@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
                  "usage: %s SEQ_DIR [--threads N] [--voxel-size M] [--convergence X] [--max-iterations N] "
-                 "[--point-to-point 1] [--out-tum FILE] [--every N] [--yaw-search DEG] [--fine-threshold M] [--recovery-search M]\n",
+                 "[--point-to-point 1] [--out-tum FILE] [--every N] [--yaw-search DEG] [--fine-threshold M] "
+                 "[--recovery-search M]\n",
                  argv[0]);
     return 2;
   }
@@ -69,27 +70,42 @@ int main(int argc, char** argv) {
   odometry::LidarOdometryConfig& lidar = config.lidar_odometry;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--threads") threads = std::atoi(argv[i + 1]);
-    else if (a == "--voxel-size") lidar.voxel_size = std::atof(argv[i + 1]);
-    else if (a == "--convergence") lidar.convergence_criterion = std::atof(argv[i + 1]);
-    else if (a == "--max-iterations") lidar.max_iterations = std::atoi(argv[i + 1]);
-    else if (a == "--point-to-point") lidar.point_to_plane = std::atoi(argv[i + 1]) == 0;
-    else if (a == "--out-tum") out_tum = argv[i + 1];
-    else if (a == "--yaw-search") lidar.yaw_search_deg = std::atof(argv[i + 1]);
-    else if (a == "--recovery-search") lidar.recovery_search_m = std::atof(argv[i + 1]);
-    else if (a == "--fine-threshold") lidar.fine_threshold = std::atof(argv[i + 1]);
-    else if (a == "--sweep-motion") lidar.sweep_motion = std::atoi(argv[i + 1]) != 0;
-    else if (a == "--yaw-candidates") lidar.yaw_search_candidates = std::atoi(argv[i + 1]);
-    else if (a == "--tilt") lidar.tilt_prediction = argv[i + 1];
-    else if (a == "--turn-from-sweep") lidar.turn_from_sweep = std::atoi(argv[i + 1]) != 0;
-    else if (a == "--every") every = static_cast<std::size_t>(std::max(1, std::atoi(argv[i + 1])));
+    if (a == "--threads")
+      threads = std::atoi(argv[i + 1]);
+    else if (a == "--voxel-size")
+      lidar.voxel_size = std::atof(argv[i + 1]);
+    else if (a == "--convergence")
+      lidar.convergence_criterion = std::atof(argv[i + 1]);
+    else if (a == "--max-iterations")
+      lidar.max_iterations = std::atoi(argv[i + 1]);
+    else if (a == "--point-to-point")
+      lidar.point_to_plane = std::atoi(argv[i + 1]) == 0;
+    else if (a == "--out-tum")
+      out_tum = argv[i + 1];
+    else if (a == "--yaw-search")
+      lidar.yaw_search_deg = std::atof(argv[i + 1]);
+    else if (a == "--recovery-search")
+      lidar.recovery_search_m = std::atof(argv[i + 1]);
+    else if (a == "--fine-threshold")
+      lidar.fine_threshold = std::atof(argv[i + 1]);
+    else if (a == "--sweep-motion")
+      lidar.sweep_motion = std::atoi(argv[i + 1]) != 0;
+    else if (a == "--yaw-candidates")
+      lidar.yaw_search_candidates = std::atoi(argv[i + 1]);
+    else if (a == "--tilt")
+      lidar.tilt_prediction = argv[i + 1];
+    else if (a == "--turn-from-sweep")
+      lidar.turn_from_sweep = std::atoi(argv[i + 1]) != 0;
+    else if (a == "--every")
+      every = static_cast<std::size_t>(std::max(1, std::atoi(argv[i + 1])));
     else {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());
       return 2;
     }
   }
   std::unique_ptr<tbb::global_control> limit;
-  if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+  if (threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
 
   const io::SequenceReader full(dir);
   const io::SubsampledSequence seq(full, every);
@@ -97,7 +113,8 @@ int main(int argc, char** argv) {
   const bool has_truth = info.groundtruth.size() == seq.size();
   // The odometry starts where `run --odometry lidar` starts it (the input's first pose, else level
   // with the floor under the first scan) and is anchored at the truth as `eval` anchors it.
-  const pipeline::OdometryChoice choice = pipeline::choose_odometry(seq, "lidar", std::nullopt, config.floor_levelling);
+  const pipeline::OdometryChoice choice =
+      pipeline::choose_odometry(seq, "lidar", std::nullopt, config.floor_levelling);
   odometry::LidarOdometry lidar_odometry = pipeline::make_lidar_odometry(config, choice.options.initial_pose);
 
   using Clock = std::chrono::steady_clock;
@@ -134,9 +151,11 @@ int main(int argc, char** argv) {
   std::printf("wall time       %.2f s  (%.1f ms/scan mean, %.1f p95)\n", wall_s, mean_ms, p95_ms);
   std::printf("odometry RTF    %.1f\n", span_s / wall_s);
   std::sort(overlaps.begin(), overlaps.end());
-  const auto pct = [&overlaps](double q) { return overlaps[static_cast<std::size_t>(q * static_cast<double>(overlaps.size() - 1))]; };
-  std::printf("lost scans      %zu (voxel overlap min %.2f, p1 %.2f, median %.2f)\n", lost.size(), overlaps.front(),
-              pct(0.01), pct(0.5));
+  const auto pct = [&overlaps](double q) {
+    return overlaps[static_cast<std::size_t>(q * static_cast<double>(overlaps.size() - 1))];
+  };
+  std::printf("lost scans      %zu (voxel overlap min %.2f, p1 %.2f, median %.2f)\n", lost.size(),
+              overlaps.front(), pct(0.01), pct(0.5));
 
   if (!out_tum.empty()) {
     std::ofstream out(out_tum);
@@ -144,8 +163,8 @@ int main(int argc, char** argv) {
     for (std::size_t k = 0; k < poses.size(); ++k) {
       const Eigen::Quaterniond q(poses[k].linear());
       const Eigen::Vector3d t = poses[k].translation();
-      out << info.times[k] << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' ' << q.y() << ' '
-          << q.z() << ' ' << q.w() << '\n';
+      out << info.times[k] << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' ' << q.y()
+          << ' ' << q.z() << ' ' << q.w() << '\n';
     }
   }
   if (!has_truth) return 0;
@@ -168,7 +187,8 @@ int main(int argc, char** argv) {
     }
   }
   const double final_err = (poses.back().translation() - info.groundtruth.back().translation()).norm();
-  const double final_yaw = std::abs(wrap_angle(yaw_of(poses.back()) - yaw_of(info.groundtruth.back()))) * kRadToDeg;
+  const double final_yaw =
+      std::abs(wrap_angle(yaw_of(poses.back()) - yaw_of(info.groundtruth.back()))) * kRadToDeg;
   std::printf("path length     %.1f m\n", path);
   std::printf("ATE rmse        %.3f m (anchored at the first pose, no alignment: eval's odometry ATE_rmse)\n",
               eval::ate_rmse(poses, info.groundtruth));
@@ -178,8 +198,10 @@ int main(int argc, char** argv) {
   std::printf("max drift       %.3f %% (at %.1f m; ratios from %.0f m on)\n", 100.0 * max_ratio, max_ratio_at,
               kMinPathForRatio);
   const double seg = eval::segment_drift(poses, info.groundtruth, kSegmentLengths);
-  std::printf("segment drift   %.3f %% (KITTI-style: mean over segments of 10, 20, 50, 100, 200 m)\n", 100.0 * seg);
-  std::printf("final error     %.3f m = %.3f %%, yaw %.3f deg\n", final_err, 100.0 * final_err / path, final_yaw);
+  std::printf("segment drift   %.3f %% (KITTI-style: mean over segments of 10, 20, 50, 100, 200 m)\n",
+              100.0 * seg);
+  std::printf("final error     %.3f m = %.3f %%, yaw %.3f deg\n", final_err, 100.0 * final_err / path,
+              final_yaw);
   // Step error (RPE over one scan): each scan's motion from the one before against the truth's.
   // Unlike ATE it does not hang on the first failure of a walk, so it compares odometries
   // step by step.
@@ -195,19 +217,22 @@ int main(int argc, char** argv) {
       std::sort(v.begin(), v.end());
       return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
     };
-    const auto over = std::count_if(step_deg.begin(), step_deg.end(), [](double d) { return d > kFailedStepDeg; });
+    const auto over =
+        std::count_if(step_deg.begin(), step_deg.end(), [](double d) { return d > kFailedStepDeg; });
     // The path walked before the heading first went wrong by kWrongTurnDeg: after a wrong turn
     // the map holds a turned copy of the building, and every later figure depends on how it failed.
     double before_failure = 0.0;
     for (std::size_t k = 1; k < poses.size(); ++k) {
-      if (std::abs(wrap_angle(yaw_of(poses[k]) - yaw_of(info.groundtruth[k]))) * kRadToDeg > kWrongTurnDeg) break;
+      if (std::abs(wrap_angle(yaw_of(poses[k]) - yaw_of(info.groundtruth[k]))) * kRadToDeg > kWrongTurnDeg)
+        break;
       before_failure += (info.groundtruth[k].translation() - info.groundtruth[k - 1].translation()).norm();
     }
-    std::printf("step error      %.3f / %.3f deg, %.3f / %.3f m (median / p95); %zu of %zu steps over %.0f deg\n",
-                quantile(step_deg, 0.5), quantile(step_deg, 0.95), quantile(step_m, 0.5), quantile(step_m, 0.95),
-                static_cast<std::size_t>(over), step_deg.size(), kFailedStepDeg);
-    std::printf("first wrong turn %.1f m of %.1f m (the path before the heading is %.0f deg off)\n", before_failure,
-                path, kWrongTurnDeg);
+    std::printf(
+        "step error      %.3f / %.3f deg, %.3f / %.3f m (median / p95); %zu of %zu steps over %.0f deg\n",
+        quantile(step_deg, 0.5), quantile(step_deg, 0.95), quantile(step_m, 0.5), quantile(step_m, 0.95),
+        static_cast<std::size_t>(over), step_deg.size(), kFailedStepDeg);
+    std::printf("first wrong turn %.1f m of %.1f m (the path before the heading is %.0f deg off)\n",
+                before_failure, path, kWrongTurnDeg);
   }
   return 0;
 }

@@ -37,7 +37,8 @@ std::string scan_file(const std::string& encoding) {
     std::ostringstream body;
     body.precision(9);
     for (std::size_t i = 0; i < n; ++i) {
-      body << cloud.points[i].x() << ' ' << cloud.points[i].y() << ' ' << cloud.points[i].z() << ' ' << cloud.intensity[i] << '\n';
+      body << cloud.points[i].x() << ' ' << cloud.points[i].y() << ' ' << cloud.points[i].z() << ' '
+           << cloud.intensity[i] << '\n';
     }
     text = header(n, "ascii") + body.str();
   }
@@ -48,11 +49,14 @@ std::string scan_file(const std::string& encoding) {
       for (int f = 0; f < 4; ++f) std::memcpy(soa.data() + (f * n + i) * 4, &v[f], 4);
     }
     std::string lzf(soa.size() + soa.size() / 16 + 64, '\0');
-    const unsigned compressed = lzf_compress(soa.data(), static_cast<unsigned>(soa.size()), lzf.data(), static_cast<unsigned>(lzf.size()));
+    const unsigned compressed = lzf_compress(soa.data(), static_cast<unsigned>(soa.size()), lzf.data(),
+                                             static_cast<unsigned>(lzf.size()));
     const unsigned words[2] = {compressed, static_cast<unsigned>(soa.size())};
-    text = header(n, "binary_compressed") + std::string(reinterpret_cast<const char*>(words), 8) + lzf.substr(0, compressed);
+    text = header(n, "binary_compressed") + std::string(reinterpret_cast<const char*>(words), 8) +
+           lzf.substr(0, compressed);
   }
-  const std::string path = (std::filesystem::temp_directory_path() / ("tsgraphs_bench_" + encoding + ".pcd")).string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("tsgraphs_bench_" + encoding + ".pcd")).string();
   std::ofstream(path, std::ios::binary) << text;
   return path;
 }
@@ -75,5 +79,6 @@ void BM_ReadPcd(benchmark::State& state, const std::string& encoding) {
 
 BENCHMARK_CAPTURE(BM_ReadPcd, ascii, std::string("ascii"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ReadPcd, binary, std::string("binary"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_ReadPcd, binary_compressed, std::string("binary_compressed"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ReadPcd, binary_compressed, std::string("binary_compressed"))
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

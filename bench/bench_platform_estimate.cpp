@@ -42,12 +42,13 @@ int main(int argc, char** argv) {
         scans.push_back(sim.scan(k));
         ups.push_back(sim.odometry_poses()[k].linear().transpose() * Eigen::Vector3d::UnitZ());
       }
-      const odometry::PlatformEstimate e = odometry::estimate_platform(scans, defaults.floor_levelling, measure, ups);
+      const odometry::PlatformEstimate e =
+          odometry::estimate_platform(scans, defaults.floor_levelling, measure, ups);
       const double mount = scene.sensor.mount_height;
       const double err = e.height_found ? e.height - mount : NAN;
       worst = std::max(worst, e.height_found ? std::abs(err) : INFINITY);
-      std::printf("| %s | %.2f | %.3f | %+.3f | %zu of %zu |\n", argv[a], mount, e.height, err, e.floors_found,
-                  e.scans_measured);
+      std::printf("| %s | %.2f | %.3f | %+.3f | %zu of %zu |\n", argv[a], mount, e.height, err,
+                  e.floors_found, e.scans_measured);
     } catch (const std::exception& ex) {
       std::fprintf(stderr, "%s: %s\n", argv[a], ex.what());
       return 2;

@@ -40,7 +40,8 @@ void BM_SimulateScan(benchmark::State& state) {
     benchmark::DoNotOptimize(cloud.points.data());
     k = (k + 7) % sim.num_scans();
   }
-  state.counters["scans/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["scans/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["points/scan"] = static_cast<double>(points) / state.iterations();
 }
 BENCHMARK(BM_SimulateScan)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -59,7 +60,8 @@ void BM_SimulateScanAndWrite(benchmark::State& state) {
       k = (k + 7) % sim.num_scans();
     }
   }
-  state.counters["scans/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["scans/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SimulateScanAndWrite)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 

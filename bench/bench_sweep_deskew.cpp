@@ -29,22 +29,22 @@ using namespace tsgraphs;
 
 namespace {
 
-constexpr double kReferenceVoxel = 0.5;    // m; voxels of the instant scans' map, planes fitted in each
+constexpr double kReferenceVoxel = 0.5;  // m; voxels of the instant scans' map, planes fitted in each
 constexpr std::size_t kReferencePoints = 40;
-constexpr int kReferenceScans = 5;         // instant scans spread over the sweep's duration
-constexpr double kCap = 0.2;               // m; a point farther from the reference counts as this (a surface
-                                           // the instant scans missed)
+constexpr int kReferenceScans = 5;  // instant scans spread over the sweep's duration
+constexpr double kCap = 0.2;        // m; a point farther from the reference counts as this (a surface
+                                    // the instant scans missed)
 
 struct Errors {
-  double distance = 0.0;                   // summed over points
+  double distance = 0.0;  // summed over points
   std::size_t points = 0;
-  std::vector<double> sweep_mean;          // per sweep
-  double sq_tilt = 0.0, sq_turn = 0.0;     // (deg/s)^2, summed over sweeps
-  double sq_velocity = 0.0;                // (m/s)^2, summed over sweeps
+  std::vector<double> sweep_mean;       // per sweep
+  double sq_tilt = 0.0, sq_turn = 0.0;  // (deg/s)^2, summed over sweeps
+  double sq_velocity = 0.0;             // (m/s)^2, summed over sweeps
   std::size_t sweeps = 0;
 
-  void add_rates(const Eigen::Vector3d& found_deg, const Eigen::Vector3d& truth_deg, const Eigen::Vector3d& found_v,
-                 const Eigen::Vector3d& truth_v) {
+  void add_rates(const Eigen::Vector3d& found_deg, const Eigen::Vector3d& truth_deg,
+                 const Eigen::Vector3d& found_v, const Eigen::Vector3d& truth_v) {
     const Eigen::Vector3d d = found_deg - truth_deg;
     sq_tilt += d.head<2>().squaredNorm();
     sq_turn += d.z() * d.z();
@@ -71,7 +71,8 @@ void score(const PointCloud& scan, const Pose3& pose, const odometry::VoxelHashM
     const odometry::Neighbour nb = reference.nearest(x);
     double d = kCap;
     if (nb.found)
-      d = std::min(kCap, nb.surface == odometry::Surface::planar ? std::abs(nb.normal.dot(x - nb.point)) : nb.distance);
+      d = std::min(kCap, nb.surface == odometry::Surface::planar ? std::abs(nb.normal.dot(x - nb.point))
+                                                                 : nb.distance);
     sum += d;
     ++n;
   }
@@ -100,7 +101,9 @@ int main(int argc, char** argv) {
   }
   const odometry::LidarOdometryConfig& range = defaults.lidar_odometry;
   const char* names[5] = {"none", "poses", "registration", "(taken at an instant)", "(true constant rates)"};
-  std::printf("| scene | sweeps | de-skew | points' mean distance (m) | worst decile sweep (m) | tilt rate err (deg/s) | turn rate err (deg/s) | velocity err (m/s) |\n");
+  std::printf(
+      "| scene | sweeps | de-skew | points' mean distance (m) | worst decile sweep (m) | tilt rate err "
+      "(deg/s) | turn rate err (deg/s) | velocity err (m/s) |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
   for (int a = first; a < argc; ++a) {
     try {
@@ -137,7 +140,8 @@ int main(int argc, char** argv) {
         const Eigen::Vector3d velocity = during.translation() / sweep, zero = Eigen::Vector3d::Zero();
         errors[0].add_rates(zero, truth, zero, velocity);
         errors[1].add_rates(rates_deg(between, interval), truth, between.translation() / interval, velocity);
-        errors[2].add_rates(deskewer.last().turn_rate * 180.0 / M_PI, truth, deskewer.last().velocity, velocity);
+        errors[2].add_rates(deskewer.last().turn_rate * 180.0 / M_PI, truth, deskewer.last().velocity,
+                            velocity);
         errors[3].add_rates(truth, truth, velocity, velocity);
         errors[4].add_rates(truth, truth, velocity, velocity);
       }
@@ -146,8 +150,8 @@ int main(int argc, char** argv) {
         const double n = static_cast<double>(std::max<std::size_t>(1, e.sweeps));
         std::printf("| %s | %zu | %s | %.4f | %.4f | %.1f | %.1f | %.3f |\n", argv[a], e.sweeps, names[m],
                     e.distance / static_cast<double>(std::max<std::size_t>(1, e.points)),
-                    e.sweep_mean.empty() ? NAN : eval::percentile(e.sweep_mean, 90.0), std::sqrt(e.sq_tilt / n), std::sqrt(e.sq_turn / n),
-                    std::sqrt(e.sq_velocity / n));
+                    e.sweep_mean.empty() ? NAN : eval::percentile(e.sweep_mean, 90.0),
+                    std::sqrt(e.sq_tilt / n), std::sqrt(e.sq_turn / n), std::sqrt(e.sq_velocity / n));
       }
       std::fflush(stdout);
     } catch (const std::exception& ex) {

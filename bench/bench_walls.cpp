@@ -21,8 +21,8 @@ using namespace tsgraphs;
 
 namespace {
 
-constexpr double kVoxel = 0.1;          // the pipeline's default prefilter voxel (m)
-constexpr std::size_t kNumScans = 24;   // keyframes per scene, spread over the whole path
+constexpr double kVoxel = 0.1;         // the pipeline's default prefilter voxel (m)
+constexpr std::size_t kNumScans = 24;  // keyframes per scene, spread over the whole path
 
 // The pipeline's own prefilter (NaN drop, range crop, one centroid per voxel).
 PointCloud voxel_filter(const PointCloud& in, double voxel) {
@@ -60,7 +60,8 @@ void BM_ExtractPlanes(benchmark::State& state, const std::string& scene) {
   const walls::PlaneExtractionConfig config;
   std::size_t k = 0, points = 0, planes = 0;
   for (auto _ : state) {
-    const std::vector<walls::PlaneObservation> obs = walls::extract_planes(kfs[k].cloud, kfs[k].R_map_keyframe, config);
+    const std::vector<walls::PlaneObservation> obs =
+        walls::extract_planes(kfs[k].cloud, kfs[k].R_map_keyframe, config);
     points += kfs[k].cloud.size();
     planes += obs.size();
     benchmark::DoNotOptimize(obs.data());

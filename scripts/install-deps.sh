@@ -27,6 +27,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev   # tests
   libbenchmark-dev     # benchmarks
   chromium             # headless, to check that the HTML reports render (tests)
+  clang-format python3 # the code's layout and its functions' length (tests: format_check, long_functions)
 )
 if [ "${1:-}" = "--sanitize" ]; then
   PACKAGES+=(clang libclang-rt-dev)   # ASan, UBSan and libFuzzer builds

@@ -11,11 +11,14 @@ using tsgraphs::PointCloud;
 
 // Points on the axis-aligned rectangle [lo, hi] (one of its extents zero: the plane) every `step`.
 inline void add_patch(PointCloud* cloud, const Eigen::Vector3f& lo, const Eigen::Vector3f& hi, float step) {
-  const auto count = [&](int axis) { return std::max(1, static_cast<int>(std::lround((hi[axis] - lo[axis]) / step)) + 1); };
+  const auto count = [&](int axis) {
+    return std::max(1, static_cast<int>(std::lround((hi[axis] - lo[axis]) / step)) + 1);
+  };
   for (int i = 0; i < count(0); ++i)
     for (int j = 0; j < count(1); ++j)
       for (int k = 0; k < count(2); ++k)
-        cloud->points.emplace_back(lo.x() + step * static_cast<float>(i), lo.y() + step * static_cast<float>(j),
+        cloud->points.emplace_back(lo.x() + step * static_cast<float>(i),
+                                   lo.y() + step * static_cast<float>(j),
                                    lo.z() + step * static_cast<float>(k));
 }
 

@@ -42,7 +42,8 @@ inline DrawnFloor draw_floor() {
     for (int r = 0; r < d.frame.rows; ++r)
       for (int c = 0; c < d.frame.cols; ++c) {
         const Vec2 p = d.frame.center(c, r);
-        if (p.x() >= b.x0 && p.x() <= b.x1 && p.y() >= b.y0 && p.y() <= b.y1) d.cells[d.frame.index(c, r)] = v;
+        if (p.x() >= b.x0 && p.x() <= b.x1 && p.y() >= b.y0 && p.y() <= b.y1)
+          d.cells[d.frame.index(c, r)] = v;
       }
   };
   fill({1.0, 1.0, 16.0, 10.0}, FloorCell::kOccupied);  // the outer wall, 0.15 m
@@ -52,14 +53,14 @@ inline DrawnFloor draw_floor() {
   fill({9.0, 2.8, 9.15, 9.85}, FloorCell::kOccupied);    // middle | east
   fill({12.0, 6.0, 15.85, 6.15}, FloorCell::kOccupied);  // the office's south wall
   fill({12.0, 6.0, 12.15, 9.85}, FloorCell::kOccupied);  // its west wall
-  for (const FloorBox& door : {FloorBox{2.6, 2.65, 3.4, 2.8}, FloorBox{6.6, 2.65, 7.4, 2.8}, FloorBox{10.6, 2.65, 11.4, 2.8},
-                               FloorBox{12.0, 7.6, 12.15, 8.4}})
+  for (const FloorBox& door : {FloorBox{2.6, 2.65, 3.4, 2.8}, FloorBox{6.6, 2.65, 7.4, 2.8},
+                               FloorBox{10.6, 2.65, 11.4, 2.8}, FloorBox{12.0, 7.6, 12.15, 8.4}})
     fill(door, FloorCell::kFree);
-  fill({2.0, 5.5, 3.2, 6.1}, FloorCell::kUnknown);       // a table (unseen under it)
+  fill({2.0, 5.5, 3.2, 6.1}, FloorCell::kUnknown);  // a table (unseen under it)
   fill({2.0, 5.45, 3.2, 5.5}, FloorCell::kOccupied);
-  fill({5.15, 7.0, 5.75, 9.0}, FloorCell::kOccupied);    // a cabinet against the middle room's wall
-  for (const Vec2& leg : {Vec2(1.8, 5.2), Vec2(3.5, 5.3), Vec2(1.9, 6.5), Vec2(3.4, 6.4), Vec2(7.2, 5.0), Vec2(10.5, 4.0),
-                          Vec2(13.0, 8.0)})
+  fill({5.15, 7.0, 5.75, 9.0}, FloorCell::kOccupied);  // a cabinet against the middle room's wall
+  for (const Vec2& leg : {Vec2(1.8, 5.2), Vec2(3.5, 5.3), Vec2(1.9, 6.5), Vec2(3.4, 6.4), Vec2(7.2, 5.0),
+                          Vec2(10.5, 4.0), Vec2(13.0, 8.0)})
     fill({leg.x() - 0.03, leg.y() - 0.03, leg.x() + 0.03, leg.y() + 0.03}, FloorCell::kOccupied);
   d.names = {"corridor", "west", "middle", "east", "office"};
   const std::vector<std::vector<FloorBox>> rooms = {{{1.15, 1.15, 15.85, 2.65}},
@@ -73,7 +74,8 @@ inline DrawnFloor draw_floor() {
         const std::size_t i = d.frame.index(c, r);
         const Vec2 p = d.frame.center(c, r);
         for (const FloorBox& b : rooms[k])
-          if (d.cells[i] == FloorCell::kFree && p.x() >= b.x0 && p.x() <= b.x1 && p.y() >= b.y0 && p.y() <= b.y1)
+          if (d.cells[i] == FloorCell::kFree && p.x() >= b.x0 && p.x() <= b.x1 && p.y() >= b.y0 &&
+              p.y() <= b.y1)
             d.truth[i] = static_cast<int>(k);
       }
   return d;

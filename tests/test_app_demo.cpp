@@ -23,7 +23,9 @@ namespace {
 using tsgraphs::test::read_file;
 
 /// Runs the tsgraphs binary; stdout and stderr into `out` and `err`; returns the exit status.
-int cli(const std::string& args, std::string* out, std::string* err) { return tsgraphs::test::run_tsgraphs(args, out, err); }
+int cli(const std::string& args, std::string* out, std::string* err) {
+  return tsgraphs::test::run_tsgraphs(args, out, err);
+}
 
 std::vector<std::string> split(const std::string& text, char sep) {
   std::vector<std::string> out;
@@ -44,7 +46,8 @@ void check_table(const fs::path& demo) {
   if (lines.back().empty()) lines.pop_back();
   ASSERT_EQ(lines.size(), 5u) << csv;  // the header and four methods
   const std::vector<std::string> header = split(lines[0], ',');
-  constexpr std::size_t kColumns = 3 + 2 * (8 + 9);  // scene, method, seeds; mean and sd of Table 1 and the rest
+  constexpr std::size_t kColumns =
+      3 + 2 * (8 + 9);  // scene, method, seeds; mean and sd of Table 1 and the rest
   ASSERT_EQ(header.size(), kColumns);
   for (std::size_t row = 1; row < lines.size(); ++row) {
     const std::vector<std::string> cells = split(lines[row], ',');
@@ -81,7 +84,8 @@ void check_table(const fs::path& demo) {
 void check_files(const fs::path& demo, const std::string& printed) {
   const std::string md = read_file(demo / "table.md");
   EXPECT_EQ(printed, md);  // the demo prints what it writes
-  for (const char* method : {"| TS-graphs |", "| S-Graphs+ |", "| ablation: traversable + timer |", "| ablation: esdf + flush |"}) {
+  for (const char* method : {"| TS-graphs |", "| S-Graphs+ |", "| ablation: traversable + timer |",
+                             "| ablation: esdf + flush |"}) {
     std::size_t count = 0;
     for (std::size_t at = md.find(method); at != std::string::npos; at = md.find(method, at + 1)) ++count;
     EXPECT_EQ(count, 2u) << method << " in both tables";
@@ -101,13 +105,16 @@ void check_files(const fs::path& demo, const std::string& printed) {
        at = page.find("<table class=\"metrics\">", at + 1))
     ++tables;
   EXPECT_EQ(tables, 2u);
-  for (const char* name : {"TS-graphs", "S-Graphs+", "ablation: traversable + timer", "ablation: esdf + flush"})
+  for (const char* name :
+       {"TS-graphs", "S-Graphs+", "ablation: traversable + timer", "ablation: esdf + flush"})
     EXPECT_NE(page.find("<figcaption>" + std::string(name)), std::string::npos) << name;
   // Every run has its own report and bird's-eye.
   EXPECT_TRUE(fs::exists(demo / "two_rooms_seed1_ts-graphs" / "report.html"));
-  EXPECT_NE(read_file(demo / "two_rooms_seed1_ts-graphs" / "birdseye.svg").find("class=\"room\""), std::string::npos);
+  EXPECT_NE(read_file(demo / "two_rooms_seed1_ts-graphs" / "birdseye.svg").find("class=\"room\""),
+            std::string::npos);
 
-  const auto comparison = nlohmann::json::parse(read_file(demo / "two_rooms_seed1_ts-graphs" / "comparison.json"));
+  const auto comparison =
+      nlohmann::json::parse(read_file(demo / "two_rooms_seed1_ts-graphs" / "comparison.json"));
   EXPECT_EQ(comparison["N_a"], 3);
   EXPECT_GE(comparison["N_re"].get<int>(), 2);  // the same rooms from a sensor 0.45 m higher
   EXPECT_GE(comparison["dcs"].get<double>(), 0.9);
@@ -139,7 +146,8 @@ TEST(DemoCli, OneSeedOnASmallSceneEndToEnd) {
   const fs::path dir = tsgraphs::test::fresh_temp_dir("demo");
   const std::string scene = std::string(TSGRAPHS_TEST_DATA_DIR) + "/scenes/two_rooms.yaml";
   std::string out, err;
-  ASSERT_EQ(cli("-q demo --out " + (dir / "demo").string() + " --seeds 1 --scenes " + scene + " --platform-height 1.0",
+  ASSERT_EQ(cli("-q demo --out " + (dir / "demo").string() + " --seeds 1 --scenes " + scene +
+                    " --platform-height 1.0",
                 &out, &err),
             0)
       << err;

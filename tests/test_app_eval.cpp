@@ -20,7 +20,6 @@ namespace {
 using test::cli;
 using test::read_file;
 
-
 class EvalCli : public test::TempDirTest {
  protected:
   // One sequence and one run of it, shared; each test damages its own copies.
@@ -28,7 +27,8 @@ class EvalCli : public test::TempDirTest {
     base_ = test::fresh_temp_dir("eval_cli_base");
     std::string err;
     ASSERT_TRUE(test::simulate_small_room(base_, &err)) << err;
-    ASSERT_EQ(cli("-q run " + (base_ / "seq").string() + " --out " + (base_ / "run").string(), &err), 0) << err;
+    ASSERT_EQ(cli("-q run " + (base_ / "seq").string() + " --out " + (base_ / "run").string(), &err), 0)
+        << err;
   }
   static void TearDownTestSuite() { fs::remove_all(base_); }
 
@@ -69,7 +69,8 @@ class EvalCli : public test::TempDirTest {
   void expect_refused(const std::vector<std::string>& says) const {
     std::string err;
     EXPECT_EQ(cli("-q eval " + run_.string() + " --seq " + seq_.string(), &err), 2) << err;
-    for (const std::string& s : says) EXPECT_NE(err.find(s), std::string::npos) << "wanted: " << s << "\ngot: " << err;
+    for (const std::string& s : says)
+      EXPECT_NE(err.find(s), std::string::npos) << "wanted: " << s << "\ngot: " << err;
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
     EXPECT_EQ(err.find("internal error"), std::string::npos) << err;
     EXPECT_FALSE(fs::exists(run_ / "metrics.json"));
@@ -95,7 +96,8 @@ TEST_F(EvalCli, ACoordinateNoBuildingHasIsNamedWithItsPath) {
     std::string at, value, says;
   };
   const std::vector<Case> cases = {
-      {"/rooms/0/rect/center/0", "1e308", "'rooms[0].rect.center[0]' is 1e+308: not a coordinate within 1e8 m"},
+      {"/rooms/0/rect/center/0", "1e308",
+       "'rooms[0].rect.center[0]' is 1e+308: not a coordinate within 1e8 m"},
       {"/planes/0/segment/0/0", "1e308", "'planes[0].segment[0][0]' is 1e+308"},
       {"/traversable_nodes/0/position/0", "-1e308", "'traversable_nodes[0].position[0]' is -1e+308"},
       {"/keyframes/2/pose/t/1", "1e12", "'keyframes[2].pose.t[1]' is 1e+12"},
@@ -112,7 +114,8 @@ TEST_F(EvalCli, ACoordinateNoBuildingHasIsNamedWithItsPath) {
 TEST_F(EvalCli, APositionNoPlaceHasInATrajectoryIsNamedWithItsLine) {
   set_tum_x(run_ / "trajectory.txt", 3, "1e308");
   expect_refused({(run_ / "trajectory.txt").string() + ":3: x is 1e308: not a coordinate within 1e8 m"});
-  fs::copy_file(base_ / "run" / "trajectory.txt", run_ / "trajectory.txt", fs::copy_options::overwrite_existing);
+  fs::copy_file(base_ / "run" / "trajectory.txt", run_ / "trajectory.txt",
+                fs::copy_options::overwrite_existing);
   set_tum_x(seq_ / "groundtruth.txt", 4, "-1e308");
   expect_refused({(seq_ / "groundtruth.txt").string() + ":4: x is -1e308"});
 }
@@ -122,16 +125,19 @@ TEST_F(EvalCli, APositionNoPlaceHasInATrajectoryIsNamedWithItsLine) {
 TEST_F(EvalCli, ANumberBeyondADoubleIsNamedWithItsLine) {
   set_in_scene_graph("/levels/0", "1e400");
   const std::string doc = read_file(run_ / "scene_graph.json");
-  const int line = 1 + static_cast<int>(std::count(doc.begin(), doc.begin() + static_cast<long>(doc.find("1e400")), '\n'));
+  const int line =
+      1 + static_cast<int>(std::count(doc.begin(), doc.begin() + static_cast<long>(doc.find("1e400")), '\n'));
   expect_refused({(run_ / "scene_graph.json").string() + ":" + std::to_string(line) +
                   ": number out of the range of a double: '1e400'"});
-  fs::copy_file(base_ / "run" / "scene_graph.json", run_ / "scene_graph.json", fs::copy_options::overwrite_existing);
+  fs::copy_file(base_ / "run" / "scene_graph.json", run_ / "scene_graph.json",
+                fs::copy_options::overwrite_existing);
 
   std::string info = read_file(run_ / "run_info.json");
   info.replace(info.find("\"rtf\": ") + 7, 1, "1e400,\"was\": ");
   std::ofstream(run_ / "run_info.json") << info;
   expect_refused({(run_ / "run_info.json").string() + ":", "number out of the range of a double: '1e400'"});
-  fs::copy_file(base_ / "run" / "run_info.json", run_ / "run_info.json", fs::copy_options::overwrite_existing);
+  fs::copy_file(base_ / "run" / "run_info.json", run_ / "run_info.json",
+                fs::copy_options::overwrite_existing);
 
   set_tum_x(seq_ / "groundtruth.txt", 2, "1e400");
   expect_refused({(seq_ / "groundtruth.txt").string() + ":2: x is 1e400: out of the range of a double"});
@@ -139,9 +145,9 @@ TEST_F(EvalCli, ANumberBeyondADoubleIsNamedWithItsLine) {
 
 // A folder where a file should be was read as an empty file ("0 poses") or as a missing one.
 TEST_F(EvalCli, AFileThatIsAFolderIsNamed) {
-  for (const fs::path& file : {run_ / "scene_graph.json", run_ / "trajectory.txt", run_ / "odometry.txt",
-                               run_ / "rooms_events.jsonl", seq_ / "groundtruth.txt", seq_ / "times.txt",
-                               seq_ / "laps.txt"}) {
+  for (const fs::path& file :
+       {run_ / "scene_graph.json", run_ / "trajectory.txt", run_ / "odometry.txt",
+        run_ / "rooms_events.jsonl", seq_ / "groundtruth.txt", seq_ / "times.txt", seq_ / "laps.txt"}) {
     SCOPED_TRACE(file.string());
     const fs::path saved = dir_ / "saved";
     fs::rename(file, saved);
@@ -158,7 +164,8 @@ TEST_F(EvalCli, AFileThatIsAFolderIsNamed) {
 TEST_F(EvalCli, ATrueRoomNoBuildingHasIsNamed) {
   std::ofstream(seq_ / "rooms_gt.json")
       << R"([{"name": "hall", "level": "L0", "elevation": 0, "polygon": [[0, 0], [1e308, 0], [6, 5]]}])";
-  expect_refused({(seq_ / "rooms_gt.json").string() + ": room 0 (hall): polygon vertex 1 is not a coordinate within 1e8 m"});
+  expect_refused({(seq_ / "rooms_gt.json").string() +
+                  ": room 0 (hall): polygon vertex 1 is not a coordinate within 1e8 m"});
 }
 
 // metrics.json is written last, after the report: a report that cannot be written left a new
@@ -183,7 +190,8 @@ TEST_F(EvalCli, AFailedEvalKeepsTheEarlierMetricsAndReport) {
   EXPECT_EQ(read_file(run_ / "metrics.json"), metrics);
   EXPECT_EQ(read_file(run_ / "report.html"), html);
   EXPECT_EQ(read_file(run_ / "birdseye.svg"), birdseye);
-  fs::copy_file(base_ / "run" / "scene_graph.json", run_ / "scene_graph.json", fs::copy_options::overwrite_existing);
+  fs::copy_file(base_ / "run" / "scene_graph.json", run_ / "scene_graph.json",
+                fs::copy_options::overwrite_existing);
 
   // Failing after the figures are made (the report cannot be written): the earlier file stays.
   std::ofstream(run_ / "metrics.json") << "{\"written\": \"earlier\"}\n";

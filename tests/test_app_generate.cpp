@@ -19,12 +19,18 @@ class GenerateCli : public test::TempDirTest {};
 TEST_F(GenerateCli, WritesASceneThatDrawsAndSimulates) {
   const fs::path scene = dir_ / "office.yaml", again = dir_ / "again.yaml";
   std::string err;
-  ASSERT_EQ(test::cli("generate --style office --seed 4 --size 0.3 --laps 1 --out " + scene.string(), &err), 0) << err;
+  ASSERT_EQ(test::cli("generate --style office --seed 4 --size 0.3 --laps 1 --out " + scene.string(), &err),
+            0)
+      << err;
   EXPECT_THAT(err, HasSubstr("generate: office, seed 4"));
-  ASSERT_EQ(test::cli("-q generate --style office --seed 4 --size 0.3 --laps 1 --out " + again.string(), &err), 0) << err;
+  ASSERT_EQ(
+      test::cli("-q generate --style office --seed 4 --size 0.3 --laps 1 --out " + again.string(), &err), 0)
+      << err;
   EXPECT_EQ(test::read_file(scene), test::read_file(again));
   EXPECT_TRUE(scene::load_scene(scene.string()).warnings.empty());
-  ASSERT_EQ(test::cli("-q draw-scene " + scene.string() + " --out " + (dir_ / "office.svg").string(), &err), 0) << err;
+  ASSERT_EQ(test::cli("-q draw-scene " + scene.string() + " --out " + (dir_ / "office.svg").string(), &err),
+            0)
+      << err;
   EXPECT_TRUE(err.empty()) << err;  // no warning about the path or the scene
   ASSERT_EQ(test::cli("-q simulate " + scene.string() + " --out " + (dir_ / "seq").string(), &err), 0) << err;
   EXPECT_TRUE(err.empty()) << err;
@@ -46,8 +52,9 @@ TEST_F(GenerateCli, BoundsAreCheckedBeforeAnyWorkInOneLine) {
   EXPECT_NE(err.find("more than 1000000"), std::string::npos) << err;
   // A seed beyond 2^63-1 was clamped to it: every such seed gave the same building.
   EXPECT_EQ(test::cli("generate --style office --seed 9223372036854775808 --out " + out.string(), &err), 2);
-  EXPECT_EQ(err, "tsgraphs: error: --seed: must be a whole number in [0, 9223372036854775807], not "
-                 "'9223372036854775808'\n");
+  EXPECT_EQ(err,
+            "tsgraphs: error: --seed: must be a whole number in [0, 9223372036854775807], not "
+            "'9223372036854775808'\n");
   EXPECT_EQ(test::cli("generate --style office --out " + out.string() + " --no-such-option", &err), 2);
   EXPECT_EQ(err.rfind("tsgraphs: error: ", 0), 0u) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
@@ -66,7 +73,9 @@ TEST_F(GenerateCli, BadOptionsAreRefusedAndNothingIsWritten) {
   EXPECT_EQ(test::cli("generate --style office --seed 1 --size 0 --out " + out.string(), &err), 2);
   EXPECT_THAT(err, HasSubstr("--size"));
   EXPECT_EQ(test::cli("generate --style office --seed -3 --out " + out.string(), &err), 2);
-  EXPECT_EQ(test::cli("generate --style office --seed 1 --out " + (dir_ / "no" / "such" / "x.yaml").string(), &err), 2);
+  EXPECT_EQ(
+      test::cli("generate --style office --seed 1 --out " + (dir_ / "no" / "such" / "x.yaml").string(), &err),
+      2);
   EXPECT_FALSE(fs::exists(out));
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 0);
 }

@@ -43,12 +43,14 @@ class ImportMapCli : public test::TempDirTest {
 
   /// Runs import-map with `args` after the map; expects exit 2, a one-line error holding every
   /// one of `expected`, and an empty output folder.
-  void expect_refused(const std::string& yaml, const std::string& args, const std::vector<std::string>& expected) {
+  void expect_refused(const std::string& yaml, const std::string& args,
+                      const std::vector<std::string>& expected) {
     std::string err;
     EXPECT_EQ(cli("import-map " + yaml + " --out " + path("out/scene.yaml") + " " + args, &err), 2) << err;
     ASSERT_FALSE(err.empty());
     EXPECT_EQ(err.find('\n'), err.size() - 1) << err;
-    for (const std::string& e : expected) EXPECT_NE(err.find(e), std::string::npos) << "'" << e << "' in " << err;
+    for (const std::string& e : expected)
+      EXPECT_NE(err.find(e), std::string::npos) << "'" << e << "' in " << err;
     EXPECT_TRUE(names_in(dir_ / "out").empty()) << *names_in(dir_ / "out").begin();
   }
 
@@ -84,12 +86,13 @@ TEST_F(ImportMapCli, WritesASceneThatLoadsAndDrawsWithoutWarnings) {
   EXPECT_EQ(err.find("warning"), std::string::npos) << err;
   // The same input gives the same files.
   fs::create_directories(dir_ / "again");
-  ASSERT_EQ(cli("-q import-map " + path("maps/floor.yaml") + " --out " + path("again/scene.yaml") + " --rooms " +
-                    path("maps/floor_gt.png") + " --laps 1",
+  ASSERT_EQ(cli("-q import-map " + path("maps/floor.yaml") + " --out " + path("again/scene.yaml") +
+                    " --rooms " + path("maps/floor_gt.png") + " --laps 1",
                 &err),
             0);
   EXPECT_EQ(test::read_file(dir_ / "again" / "scene.yaml"), yaml);
-  EXPECT_EQ(test::read_file(dir_ / "again" / "scene_walls.pcd"), test::read_file(dir_ / "out" / "scene_walls.pcd"));
+  EXPECT_EQ(test::read_file(dir_ / "again" / "scene_walls.pcd"),
+            test::read_file(dir_ / "out" / "scene_walls.pcd"));
 }
 
 TEST_F(ImportMapCli, BrokenPgmHeader) {
@@ -99,7 +102,8 @@ TEST_F(ImportMapCli, BrokenPgmHeader) {
 
 TEST_F(ImportMapCli, YamlNamingAMissingImage) {
   write_file("maps/lost.yaml", test::map_yaml("nowhere.pgm"));
-  expect_refused(path("maps/lost.yaml"), "", {path("maps/lost.yaml") + ":1: image: no such image file", "nowhere.pgm"});
+  expect_refused(path("maps/lost.yaml"), "",
+                 {path("maps/lost.yaml") + ":1: image: no such image file", "nowhere.pgm"});
 }
 
 TEST_F(ImportMapCli, LabelsOfAnotherSize) {
@@ -125,8 +129,10 @@ TEST_F(ImportMapCli, BadOptions) {
 TEST_F(ImportMapCli, BoundsAreCheckedBeforeAnyWork) {
   // 10,001 laps, or 10,000 of a path too long for them: refused at once (10,000 laps ran for
   // minutes and wrote a scene that did not load).
-  expect_refused(path("maps/floor.yaml"), "--laps 10001", {"--laps: must be a whole number in [1, 10000], not '10001'"});
-  expect_refused(path("maps/floor.yaml"), "--laps 10000", {path("maps/floor.yaml"), "--laps: the path makes"});
+  expect_refused(path("maps/floor.yaml"), "--laps 10001",
+                 {"--laps: must be a whole number in [1, 10000], not '10001'"});
+  expect_refused(path("maps/floor.yaml"), "--laps 10000",
+                 {path("maps/floor.yaml"), "--laps: the path makes"});
   // A map placed 1e9 m away: its scene would not load (it was an internal error).
   write_file("maps/far.yaml", test::map_yaml("floor.pgm", "[1.0e9, 0.0, 0.0]"));
   expect_refused(path("maps/far.yaml"), "", {path("maps/far.yaml"), "origin: the map reaches [1e+09"});
@@ -137,11 +143,13 @@ TEST_F(ImportMapCli, OutputsNeverOverwriteTheInputs) {
   for (const std::string out : {"maps/floor.yaml", "maps/floor.pgm", "maps/floor_gt.png"}) {
     std::string err;
     const std::string before = test::read_file(dir_ / out);
-    EXPECT_EQ(cli("import-map " + path("maps/floor.yaml") + " --rooms " + path("maps/floor_gt.png") + " --out " + path(out),
+    EXPECT_EQ(cli("import-map " + path("maps/floor.yaml") + " --rooms " + path("maps/floor_gt.png") +
+                      " --out " + path(out),
                   &err),
               2)
         << out;
-    EXPECT_NE(err.find("tsgraphs: error: --out: " + path(out) + " is the command's input"), std::string::npos) << err;
+    EXPECT_NE(err.find("tsgraphs: error: --out: " + path(out) + " is the command's input"), std::string::npos)
+        << err;
     EXPECT_EQ(test::read_file(dir_ / out), before) << out;
   }
 }
@@ -151,8 +159,8 @@ TEST_F(ImportMapCli, LabelImageWithNoRoomWarns) {
   std::fill(blank.samples.begin(), blank.samples.end(), test::kUnknownPx);
   write_file("maps/blank_gt.png", io::encode_png(blank));
   std::string err;
-  ASSERT_EQ(cli("-q import-map " + path("maps/floor.yaml") + " --out " + path("out/scene.yaml") + " --rooms " +
-                    path("maps/blank_gt.png"),
+  ASSERT_EQ(cli("-q import-map " + path("maps/floor.yaml") + " --out " + path("out/scene.yaml") +
+                    " --rooms " + path("maps/blank_gt.png"),
                 &err),
             0)
       << err;
@@ -175,7 +183,8 @@ TEST_F(ImportMapCli, ColourLabelsAreReadAsOneColourPerRoom) {
       const int k = ipa.at(x, colour.height - 1 - y);
       if (k < 0) continue;
       std::uint8_t* p = &colour.samples[(static_cast<std::size_t>(y) * colour.width + x) * 3];
-      p[0] = static_cast<std::uint8_t>(40 + 40 * k), p[1] = 200, p[2] = static_cast<std::uint8_t>(220 - 40 * k);
+      p[0] = static_cast<std::uint8_t>(40 + 40 * k), p[1] = 200,
+      p[2] = static_cast<std::uint8_t>(220 - 40 * k);
     }
   write_file("maps/floor_colours.png", io::encode_png(colour));
   std::string err;
@@ -187,7 +196,8 @@ TEST_F(ImportMapCli, ColourLabelsAreReadAsOneColourPerRoom) {
   EXPECT_NE(err.find("5 rooms (one colour per room)"), std::string::npos) << err;
   const scene::Scene s = scene::load_scene(path("out/scene.yaml"));
   ASSERT_EQ(s.rooms.size(), 5u);
-  EXPECT_NE(test::read_file(dir_ / "out" / "scene.yaml").find("with rooms from floor_colours.png (one colour per room)"),
+  EXPECT_NE(test::read_file(dir_ / "out" / "scene.yaml")
+                .find("with rooms from floor_colours.png (one colour per room)"),
             std::string::npos);
 }
 
@@ -199,9 +209,11 @@ TEST_F(ImportMapCli, MapWithoutWallsHasNoVoxelFile) {
   write_file("maps/open.pgm", io::encode_pgm(img));
   write_file("maps/open.yaml", test::map_yaml("open.pgm"));
   std::string err;
-  ASSERT_EQ(cli("-q import-map " + path("maps/open.yaml") + " --out " + path("out/open.yaml"), &err), 0) << err;
+  ASSERT_EQ(cli("-q import-map " + path("maps/open.yaml") + " --out " + path("out/open.yaml"), &err), 0)
+      << err;
   // Said even with -q: a scene without walls is rarely what the user wants.
-  EXPECT_EQ(err, "tsgraphs: warning: " + path("maps/open.yaml") + ": the map has no occupied cell: the scene has no wall\n");
+  EXPECT_EQ(err, "tsgraphs: warning: " + path("maps/open.yaml") +
+                     ": the map has no occupied cell: the scene has no wall\n");
   EXPECT_EQ(names_in(dir_ / "out"), (std::set<std::string>{"open.yaml"}));
   const scene::Scene s = scene::load_scene(path("out/open.yaml"));
   EXPECT_TRUE(s.warnings.empty());

@@ -62,7 +62,8 @@ class OdometryCli : public test::TempDirTest {
     base_ = test::fresh_temp_dir("odometry_cli_base");
     std::ofstream(base_ / "rooms.yaml") << kScene;
     std::string err;
-    ASSERT_EQ(cli("-q simulate " + (base_ / "rooms.yaml").string() + " --out " + (base_ / "seq").string(), &err), 0)
+    ASSERT_EQ(
+        cli("-q simulate " + (base_ / "rooms.yaml").string() + " --out " + (base_ / "seq").string(), &err), 0)
         << err;
     const io::SequenceReader reader((base_ / "seq").string());
     fs::create_directories(base_ / "kitti" / "velodyne");
@@ -116,7 +117,8 @@ TEST_F(OdometryCli, FolderWithoutPosesRunsOnLidarOdometryAndBeatsTheDriftingOdom
   EXPECT_NEAR(m["trajectory"]["odom_ate_rmse"].get<double>(), lidar_ate, 1e-3);
 
   // The same walls as the run on the input's odometry.
-  ASSERT_EQ(cli("-q run " + (base_ / "seq").string() + " --out " + (dir_ / "input").string(), &err), 0) << err;
+  ASSERT_EQ(cli("-q run " + (base_ / "seq").string() + " --out " + (dir_ / "input").string(), &err), 0)
+      << err;
   const auto mine = nlohmann::json::parse(read_file(out / "scene_graph.json"));
   const auto theirs = nlohmann::json::parse(read_file(dir_ / "input" / "scene_graph.json"));
   EXPECT_EQ(mine["planes"].size(), theirs["planes"].size());
@@ -126,9 +128,11 @@ TEST_F(OdometryCli, FolderWithoutPosesRunsOnLidarOdometryAndBeatsTheDriftingOdom
 TEST_F(OdometryCli, LidarOdometryOnASequenceStartsAtItsFirstPoseAndIsDeterministic) {
   const fs::path seq = base_ / "seq";
   std::string err;
-  ASSERT_EQ(cli("-q --threads 2 run " + seq.string() + " --odometry lidar --out " + (dir_ / "a").string(), &err), 0)
+  ASSERT_EQ(
+      cli("-q --threads 2 run " + seq.string() + " --odometry lidar --out " + (dir_ / "a").string(), &err), 0)
       << err;
-  ASSERT_EQ(cli("-q --threads 1 run " + seq.string() + " --odometry lidar --out " + (dir_ / "b").string(), &err), 0)
+  ASSERT_EQ(
+      cli("-q --threads 1 run " + seq.string() + " --odometry lidar --out " + (dir_ / "b").string(), &err), 0)
       << err;
   const auto odometry = poses_of(io::read_tum((dir_ / "a" / "odometry.txt").string()));
   ASSERT_EQ(odometry.size(), odometry_.size());
@@ -146,13 +150,16 @@ TEST_F(OdometryCli, LidarOdometryOnASequenceStartsAtItsFirstPoseAndIsDeterminist
 TEST_F(OdometryCli, TheLibrarysOdometryChoiceIsTheRunsOdometry) {
   const io::SequenceReader seq((base_ / "seq").string());
   const pipeline::PipelineConfig config;
-  const pipeline::OdometryChoice choice = pipeline::choose_odometry(seq, "lidar", std::nullopt, config.floor_levelling);
+  const pipeline::OdometryChoice choice =
+      pipeline::choose_odometry(seq, "lidar", std::nullopt, config.floor_levelling);
   EXPECT_TRUE(choice.options.estimate);
   EXPECT_TRUE(choice.options.initial_pose.isApprox(odometry_.front()));
   odometry::LidarOdometry lidar = pipeline::make_lidar_odometry(config, choice.options.initial_pose);
   const std::vector<Pose3> poses = odometry::estimate_odometry(seq, lidar);
   std::string err;
-  ASSERT_EQ(cli("-q run " + (base_ / "seq").string() + " --odometry lidar --out " + (dir_ / "run").string(), &err), 0)
+  ASSERT_EQ(
+      cli("-q run " + (base_ / "seq").string() + " --odometry lidar --out " + (dir_ / "run").string(), &err),
+      0)
       << err;
   const auto run = poses_of(io::read_tum((dir_ / "run" / "odometry.txt").string()));
   ASSERT_EQ(run.size(), poses.size());
@@ -167,9 +174,11 @@ TEST_F(OdometryCli, BagWithoutAnOdometryTopicStartsAtTheSensorsMount) {
   // The sensor 0.3 m above and 0.1 m ahead of base_link (/tf_static); no --odom-topic.
   const Pose3 sensor_to_base = make_pose(Eigen::Vector3d(0.1, 0.0, 0.3), 0.0);
   const fs::path bag = dir_ / "scans.bag", out = dir_ / "run";
-  io::write_bag(io::SequenceReader((base_ / "seq").string()), bag.string(), io::BagCompression::lz4, sensor_to_base);
+  io::write_bag(io::SequenceReader((base_ / "seq").string()), bag.string(), io::BagCompression::lz4,
+                sensor_to_base);
   std::string err;
-  ASSERT_EQ(cli("-q run --bag " + bag.string() + " --points-topic /points --out " + out.string(), &err), 0) << err;
+  ASSERT_EQ(cli("-q run --bag " + bag.string() + " --points-topic /points --out " + out.string(), &err), 0)
+      << err;
   const auto odometry = poses_of(io::read_tum((out / "odometry.txt").string()));
   ASSERT_EQ(odometry.size(), truth_.size());
   EXPECT_TRUE(odometry.front().isApprox(sensor_to_base, 1e-9));  // the base at the origin
@@ -195,7 +204,8 @@ TEST_F(OdometryCli, ConvertWritesLidarOdometryThatRunsAsTheFolderDid) {
   const auto b = poses_of(io::read_tum((dir_ / "b" / "trajectory.txt").string()));
   ASSERT_EQ(a.size(), b.size());
   double worst = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, (a[i].translation() - b[i].translation()).norm());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    worst = std::max(worst, (a[i].translation() - b[i].translation()).norm());
   EXPECT_LT(worst, 1e-4);
   EXPECT_EQ(nlohmann::json::parse(read_file(dir_ / "a" / "run_info.json"))["odometry"], "input");
 }
@@ -206,7 +216,8 @@ TEST_F(OdometryCli, OdometryOptionsThatCannotBeMetAreOneLineErrorsAndNoOutput) {
   EXPECT_EQ(cli("-q run " + kitti.string() + " --odometry input --out " + out.string(), &err), 2);
   EXPECT_NE(err.find("has no odometry"), std::string::npos) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
-  EXPECT_EQ(cli("-q run " + seq.string() + " --sensor-to-base 0 0 0.5 0 0 0 1 --out " + out.string(), &err), 2);
+  EXPECT_EQ(cli("-q run " + seq.string() + " --sensor-to-base 0 0 0.5 0 0 0 1 --out " + out.string(), &err),
+            2);
   EXPECT_NE(err.find("--sensor-to-base is for bags and for scans without poses"), std::string::npos) << err;
   EXPECT_EQ(cli("-q run " + kitti.string() + " --odometry gps --out " + out.string(), &err), 2);
   const std::string params = write_file("p.yaml", "lidar_odometry:\n  voxel_size: 0.25\n  max_range: -3.0\n");
@@ -235,15 +246,18 @@ TEST_F(OdometryCli, TiltedSensorWithoutPosesIsLevelledOnTheFloor) {
 
   const auto odometry = poses_of(io::read_tum((out / "odometry.txt").string()));
   const io::SequenceReader reader(seq.string());
-  const Eigen::Vector3d up_in_sensor = reader.info().groundtruth.front().linear().transpose() * Eigen::Vector3d::UnitZ();
-  EXPECT_GT((odometry.front().linear() * up_in_sensor).z(), std::cos(0.5 * M_PI / 180.0));  // level within 0.5 deg
+  const Eigen::Vector3d up_in_sensor =
+      reader.info().groundtruth.front().linear().transpose() * Eigen::Vector3d::UnitZ();
+  EXPECT_GT((odometry.front().linear() * up_in_sensor).z(),
+            std::cos(0.5 * M_PI / 180.0));  // level within 0.5 deg
   EXPECT_LT(eval::ate_rmse(odometry, reader.info().groundtruth), 0.05);
   const auto graph = nlohmann::json::parse(read_file(out / "scene_graph.json"));
   ASSERT_GE(graph["traversable_nodes"].size(), 50u);
   // Nine nodes in ten within 0.06 m of z = 0 (a few at the walls' feet lie higher, as they do
   // with the true poses); unlevelled, the nodes 5 m away would be 1 m off.
   std::vector<double> heights;
-  for (const auto& n : graph["traversable_nodes"]) heights.push_back(std::abs(n["position"][2].get<double>()));
+  for (const auto& n : graph["traversable_nodes"])
+    heights.push_back(std::abs(n["position"][2].get<double>()));
   std::sort(heights.begin(), heights.end());
   EXPECT_LT(heights[heights.size() * 9 / 10], 0.06);
   const auto walls = std::count_if(graph["planes"].begin(), graph["planes"].end(),
@@ -256,13 +270,15 @@ TEST_F(OdometryCli, HandHeldSweptScansAtTwoHertzWithoutPosesOrConfigGiveRooms) {
   // sweeps distorted by the motion), recorded at 2 Hz, as scans without poses and no
   // parameter file: the run measures the platform, de-skews, follows the turns and finds rooms.
   std::string scene = kScene;
-  scene.replace(scene.find("sensor: {preset: vlp-16, mount_height: 0.55}"),
-                std::strlen("sensor: {preset: vlp-16, mount_height: 0.55}"),
-                "sensor: {preset: os1-64, columns: 512, mount_height: 1.5, record_hz: 2}\nplatform: {type: handheld}");
+  scene.replace(
+      scene.find("sensor: {preset: vlp-16, mount_height: 0.55}"),
+      std::strlen("sensor: {preset: vlp-16, mount_height: 0.55}"),
+      "sensor: {preset: os1-64, columns: 512, mount_height: 1.5, record_hz: 2}\nplatform: {type: handheld}");
   std::ofstream(dir_ / "handheld.yaml") << scene;
   const fs::path seq = dir_ / "seq", out = dir_ / "run";
   std::string err;
-  ASSERT_EQ(cli("-q simulate " + (dir_ / "handheld.yaml").string() + " --out " + seq.string(), &err), 0) << err;
+  ASSERT_EQ(cli("-q simulate " + (dir_ / "handheld.yaml").string() + " --out " + seq.string(), &err), 0)
+      << err;
   ASSERT_EQ(cli("-q run " + seq.string() + " --odometry lidar --out " + out.string(), &err), 0) << err;
   const auto info = nlohmann::json::parse(read_file(out / "run_info.json"));
   EXPECT_EQ(info["odometry"], "lidar");
@@ -274,5 +290,7 @@ TEST_F(OdometryCli, HandHeldSweptScansAtTwoHertzWithoutPosesOrConfigGiveRooms) {
   EXPECT_TRUE(info["warnings"].empty()) << info["warnings"].dump();
   const io::SequenceReader reader(seq.string());
   // Within 1 % of the 27 m path.
-  EXPECT_LT(eval::ate_rmse(poses_of(io::read_tum((out / "odometry.txt").string())), reader.info().groundtruth), 0.27);
+  EXPECT_LT(
+      eval::ate_rmse(poses_of(io::read_tum((out / "odometry.txt").string())), reader.info().groundtruth),
+      0.27);
 }

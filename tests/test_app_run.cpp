@@ -37,7 +37,6 @@ namespace {
 using test::cli;
 using test::read_file;
 
-
 class RunCli : public test::TempDirTest {
  protected:
   // One simulated sequence shared by the tests of this file (copied where a test damages it).
@@ -61,7 +60,8 @@ using PlyVertex = io::MapVertex;
 
 // map.ply's vertices, written as doubles (UTM coordinates to the millimetre).
 std::vector<PlyVertex> read_map_ply(const fs::path& file) {
-  EXPECT_NE(read_file(file).find("property double x\nproperty double y\nproperty double z\n"), std::string::npos);
+  EXPECT_NE(read_file(file).find("property double x\nproperty double y\nproperty double z\n"),
+            std::string::npos);
   return io::read_map_ply(file.string());
 }
 
@@ -71,8 +71,8 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
   const fs::path seq = base_ / "seq", out = dir_ / "run";
   std::string err;
   ASSERT_EQ(cli("-q run " + seq.string() + " --out " + out.string(), &err), 0) << err;
-  for (const char* f : {"trajectory.txt", "scene_graph.json", "map.ply", "timings.csv", "params.yaml", "run_info.json",
-                        "report.html", "birdseye.svg"})
+  for (const char* f : {"trajectory.txt", "scene_graph.json", "map.ply", "timings.csv", "params.yaml",
+                        "run_info.json", "report.html", "birdseye.svg"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   const auto traj = io::read_tum((out / "trajectory.txt").string());
   const auto gt = io::read_tum((seq / "groundtruth.txt").string());
@@ -86,9 +86,12 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
   ASSERT_GE(graph["room_nodes"].size(), 1u);
   EXPECT_EQ(graph["floors"].size(), 1u);
   const auto& graph_edges = graph["edges"];
-  EXPECT_TRUE(std::any_of(graph_edges.begin(), graph_edges.end(), [](const auto& e) { return e["type"] == "room_planes"; }));
-  EXPECT_TRUE(std::any_of(graph_edges.begin(), graph_edges.end(), [](const auto& e) { return e["type"] == "floor_room"; }));
-  EXPECT_TRUE(std::any_of(graph["rooms"].begin(), graph["rooms"].end(), [](const auto& r) { return r["node"].is_number(); }));
+  EXPECT_TRUE(std::any_of(graph_edges.begin(), graph_edges.end(),
+                          [](const auto& e) { return e["type"] == "room_planes"; }));
+  EXPECT_TRUE(std::any_of(graph_edges.begin(), graph_edges.end(),
+                          [](const auto& e) { return e["type"] == "floor_room"; }));
+  EXPECT_TRUE(std::any_of(graph["rooms"].begin(), graph["rooms"].end(),
+                          [](const auto& r) { return r["node"].is_number(); }));
   // Each room carries the free space it was extracted from, near its footprint.
   for (const auto& r : graph["rooms"]) {
     ASSERT_GE(r["free_space"].size(), 10u) << r.dump();
@@ -132,8 +135,10 @@ TEST_F(RunCli, WritesEveryOutputAndEvalFillsTheTrajectoryFigures) {
 TEST_F(RunCli, BaselineModeExtractsOnTheTimerAndIsRecordedInParams) {
   const fs::path seq = base_ / "seq", out = dir_ / "run";
   std::string err;
-  ASSERT_EQ(cli("-q run " + seq.string() + " --out " + out.string() + " --free-space esdf --room-trigger timer", &err),
-            0)
+  ASSERT_EQ(
+      cli("-q run " + seq.string() + " --out " + out.string() + " --free-space esdf --room-trigger timer",
+          &err),
+      0)
       << err;
   const std::string params = read_file(out / "params.yaml");
   EXPECT_NE(params.find("free_space_method: esdf"), std::string::npos);
@@ -144,7 +149,8 @@ TEST_F(RunCli, BaselineModeExtractsOnTheTimerAndIsRecordedInParams) {
   for (std::size_t i = 1; i < events.size(); ++i)
     EXPECT_GT(std::floor(events[i].t + 1e-9), std::floor(events[i - 1].t + 1e-9));
   for (const auto& e : events) EXPECT_NEAR(std::remainder(e.rect.yaw, M_PI / 2), 0.0, 1e-9);  // map axes only
-  EXPECT_EQ(cli("-q run " + seq.string() + " --out " + (dir_ / "bad").string() + " --free-space voxblox", &err), 2);
+  EXPECT_EQ(
+      cli("-q run " + seq.string() + " --out " + (dir_ / "bad").string() + " --free-space voxblox", &err), 2);
   EXPECT_FALSE(fs::exists(dir_ / "bad"));
 }
 
@@ -176,11 +182,12 @@ TEST_F(RunCli, KittiFolderOfTheSameScansGivesTheSameTrajectory) {
   poses.precision(17);
   times.precision(17);
   for (std::size_t i = 0; i < reader.size(); ++i) {
-    fs::copy_file(seq / "scans" / (io::scan_stem(i) + ".bin"), kitti / "velodyne" / (io::scan_stem(i) + ".bin"));
+    fs::copy_file(seq / "scans" / (io::scan_stem(i) + ".bin"),
+                  kitti / "velodyne" / (io::scan_stem(i) + ".bin"));
     const Pose3& T = reader.info().odometry[i];
     for (int r = 0; r < 3; ++r)
-      poses << T.linear()(r, 0) << " " << T.linear()(r, 1) << " " << T.linear()(r, 2) << " " << T.translation()(r)
-            << (r < 2 ? " " : "\n");
+      poses << T.linear()(r, 0) << " " << T.linear()(r, 1) << " " << T.linear()(r, 2) << " "
+            << T.translation()(r) << (r < 2 ? " " : "\n");
     times << reader.info().times[i] << "\n";
   }
   poses.close();
@@ -219,13 +226,15 @@ TEST_F(RunCli, BagOfTheSequenceInEachCompressionGivesTheSameRun) {
   // The sensor 0.3 m above and 0.1 m ahead of the base: /odom is the base, /tf_static the offset.
   const Pose3 sensor_to_base = make_pose(Eigen::Vector3d(0.1, 0.0, 0.3), 0.2);
   const io::SequenceReader reader(seq.string());
-  for (const auto& [name, compression] : {std::pair{"none", io::BagCompression::none},
-                                          std::pair{"bz2", io::BagCompression::bz2},
-                                          std::pair{"lz4", io::BagCompression::lz4}}) {
+  for (const auto& [name, compression] :
+       {std::pair{"none", io::BagCompression::none}, std::pair{"bz2", io::BagCompression::bz2},
+        std::pair{"lz4", io::BagCompression::lz4}}) {
     SCOPED_TRACE(name);
     const fs::path bag = dir_ / (std::string(name) + ".bag"), out = dir_ / (std::string("bag_") + name);
     io::write_bag(reader, bag.string(), compression, sensor_to_base);
-    ASSERT_EQ(cli("-q run --bag " + bag.string() + " --points-topic /points --odom-topic /odom --out " + out.string(), &err),
+    ASSERT_EQ(cli("-q run --bag " + bag.string() + " --points-topic /points --odom-topic /odom --out " +
+                      out.string(),
+                  &err),
               0)
         << err;
     const auto from_bag = io::read_tum((out / "trajectory.txt").string());
@@ -250,12 +259,14 @@ TEST_F(RunCli, BagOfTheSequenceInEachCompressionGivesTheSameRun) {
   EXPECT_NE(out.find("geometry_msgs/PoseStamped"), std::string::npos) << out;
 
   // convert: the bag back to a sequence folder, which runs as the original did.
-  ASSERT_EQ(cli("-q convert --bag " + (dir_ / "lz4.bag").string() + " --points-topic /points --odom-topic /odom --out " +
-                    (dir_ / "converted").string(),
+  ASSERT_EQ(cli("-q convert --bag " + (dir_ / "lz4.bag").string() +
+                    " --points-topic /points --odom-topic /odom --out " + (dir_ / "converted").string(),
                 &err),
             0)
       << err;
-  ASSERT_EQ(cli("-q run " + (dir_ / "converted").string() + " --out " + (dir_ / "converted_run").string(), &err), 0) << err;
+  ASSERT_EQ(
+      cli("-q run " + (dir_ / "converted").string() + " --out " + (dir_ / "converted_run").string(), &err), 0)
+      << err;
   const auto converted = io::read_tum((dir_ / "converted_run" / "trajectory.txt").string());
   ASSERT_EQ(converted.size(), folder.size());
   EXPECT_LT((converted.back().pose.translation() - folder.back().pose.translation()).norm(), 1e-6);
@@ -268,28 +279,40 @@ TEST_F(RunCli, BagOfTheSequenceInEachCompressionGivesTheSameRun) {
       << err;
   ASSERT_EQ(test::run_tsgraphs("bag-info " + (dir_ / "sim.bag").string(), &out, &err), 0) << err;
   EXPECT_NE(out.find(std::to_string(reader.size()) + " msgs"), std::string::npos) << out;
-  for (const auto& e : fs::directory_iterator(dir_)) EXPECT_EQ(e.path().string().find("sequence-tmp"), std::string::npos);
+  for (const auto& e : fs::directory_iterator(dir_))
+    EXPECT_EQ(e.path().string().find("sequence-tmp"), std::string::npos);
 
   // PoseStamped odometry (the ground truth) and an explicit --sensor-to-base work too.
-  ASSERT_EQ(cli("-q run --bag " + (dir_ / "lz4.bag").string() +
-                    " --points-topic /points --odom-topic /groundtruth --sensor-to-base 0 0 0 0 0 0 1 --out " +
-                    (dir_ / "gt").string(),
-                &err),
-            0)
+  ASSERT_EQ(
+      cli("-q run --bag " + (dir_ / "lz4.bag").string() +
+              " --points-topic /points --odom-topic /groundtruth --sensor-to-base 0 0 0 0 0 0 1 --out " +
+              (dir_ / "gt").string(),
+          &err),
+      0)
       << err;
   const auto gt = io::read_tum((dir_ / "gt" / "trajectory.txt").string());
-  EXPECT_NEAR((gt.back().pose.translation() - reader.info().groundtruth.back().translation()).norm(), 0.0, 0.05);
+  EXPECT_NEAR((gt.back().pose.translation() - reader.info().groundtruth.back().translation()).norm(), 0.0,
+              0.05);
 
   // A missing topic, a topic of another type, a truncated bag: one error line, exit 2, no run folder.
   const std::string bag = (dir_ / "none.bag").string();
-  EXPECT_EQ(cli("-q run --bag " + bag + " --points-topic /velodyne_points --odom-topic /odom --out " + (dir_ / "x").string(), &err), 2);
-  EXPECT_NE(err.find("no topic /velodyne_points (topics: /groundtruth, /odom, /points, /tf_static)"), std::string::npos) << err;
-  EXPECT_EQ(cli("-q run --bag " + bag + " --points-topic /odom --odom-topic /odom --out " + (dir_ / "x").string(), &err), 2);
-  EXPECT_NE(err.find("/odom is nav_msgs/Odometry, expected sensor_msgs/PointCloud2"), std::string::npos) << err;
+  EXPECT_EQ(cli("-q run --bag " + bag + " --points-topic /velodyne_points --odom-topic /odom --out " +
+                    (dir_ / "x").string(),
+                &err),
+            2);
+  EXPECT_NE(err.find("no topic /velodyne_points (topics: /groundtruth, /odom, /points, /tf_static)"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(
+      cli("-q run --bag " + bag + " --points-topic /odom --odom-topic /odom --out " + (dir_ / "x").string(),
+          &err),
+      2);
+  EXPECT_NE(err.find("/odom is nav_msgs/Odometry, expected sensor_msgs/PointCloud2"), std::string::npos)
+      << err;
   const std::string bytes = read_file(bag);
   std::ofstream(dir_ / "cut.bag", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
-  EXPECT_EQ(cli("-q run --bag " + (dir_ / "cut.bag").string() + " --points-topic /points --odom-topic /odom --out " +
-                    (dir_ / "x").string(),
+  EXPECT_EQ(cli("-q run --bag " + (dir_ / "cut.bag").string() +
+                    " --points-topic /points --odom-topic /odom --out " + (dir_ / "x").string(),
                 &err),
             2);
   EXPECT_NE(err.find("cut.bag"), std::string::npos) << err;
@@ -306,17 +329,22 @@ TEST_F(RunCli, Ros2BagsInEveryStorageRunAsTheRos1Bag) {
   std::string err;
   const auto run_bag = [&](const fs::path& bag, const std::string& name) {
     const fs::path out = dir_ / ("run_" + name);
-    EXPECT_EQ(cli("-q run --bag " + bag.string() + " --points-topic /points --odom-topic /odom --out " + out.string(), &err), 0)
+    EXPECT_EQ(cli("-q run --bag " + bag.string() + " --points-topic /points --odom-topic /odom --out " +
+                      out.string(),
+                  &err),
+              0)
         << name << ": " << err;
     return out;
   };
   io::write_bag(reader, (dir_ / "ros1.bag").string(), io::BagCompression::lz4, sensor_to_base);
   const fs::path ros1 = run_bag(dir_ / "ros1.bag", "ros1");
   std::vector<std::pair<std::string, fs::path>> bags;
-  io::write_rosbag2(reader, (dir_ / "ros2.db3").string(), io::Rosbag2Storage::sqlite, io::mcap::Compression::none, sensor_to_base);
+  io::write_rosbag2(reader, (dir_ / "ros2.db3").string(), io::Rosbag2Storage::sqlite,
+                    io::mcap::Compression::none, sensor_to_base);
   bags.emplace_back("sqlite", dir_ / "ros2.db3");
-  for (const auto& [name, c] : {std::pair{"none", io::mcap::Compression::none}, std::pair{"lz4", io::mcap::Compression::lz4},
-                                std::pair{"zstd", io::mcap::Compression::zstd}}) {
+  for (const auto& [name, c] :
+       {std::pair{"none", io::mcap::Compression::none}, std::pair{"lz4", io::mcap::Compression::lz4},
+        std::pair{"zstd", io::mcap::Compression::zstd}}) {
     const fs::path bag = dir_ / (std::string("ros2_") + name + ".mcap");
     io::write_rosbag2(reader, bag.string(), io::Rosbag2Storage::mcap, c, sensor_to_base);
     bags.emplace_back(std::string("mcap_") + name, bag);
@@ -329,59 +357,74 @@ TEST_F(RunCli, Ros2BagsInEveryStorageRunAsTheRos1Bag) {
          "    - folder_bag_0.mcap\n  compression_format: \"\"\n  compression_mode: \"\"\n";
   bags.emplace_back("folder", dir_ / "folder_bag");
   // And as rosbag2 writes one: metadata.yaml and NAME_0.db3.
-  io::write_rosbag2(reader, (dir_ / "written_bag").string(), io::Rosbag2Storage::sqlite, io::mcap::Compression::none,
-                    sensor_to_base);
+  io::write_rosbag2(reader, (dir_ / "written_bag").string(), io::Rosbag2Storage::sqlite,
+                    io::mcap::Compression::none, sensor_to_base);
   ASSERT_TRUE(fs::exists(dir_ / "written_bag" / "written_bag_0.db3"));
   bags.emplace_back("written_folder", dir_ / "written_bag");
   // Under rosbag2's own compression: the SQLite file compressed whole, MCAP messages one by one.
-  io::write_rosbag2(reader, (dir_ / "file_bag").string(), io::Rosbag2Storage::sqlite, io::mcap::Compression::none,
-                    sensor_to_base, io::Rosbag2Compression::file);
+  io::write_rosbag2(reader, (dir_ / "file_bag").string(), io::Rosbag2Storage::sqlite,
+                    io::mcap::Compression::none, sensor_to_base, io::Rosbag2Compression::file);
   bags.emplace_back("zstd_file_folder", dir_ / "file_bag");
-  io::write_rosbag2(reader, (dir_ / "message_bag").string(), io::Rosbag2Storage::mcap, io::mcap::Compression::none,
-                    sensor_to_base, io::Rosbag2Compression::message);
+  io::write_rosbag2(reader, (dir_ / "message_bag").string(), io::Rosbag2Storage::mcap,
+                    io::mcap::Compression::none, sensor_to_base, io::Rosbag2Compression::message);
   bags.emplace_back("zstd_message_folder", dir_ / "message_bag");
   for (const auto& [name, bag] : bags) {
     SCOPED_TRACE(name);
     const fs::path out = run_bag(bag, name);
-    for (const char* f : {"trajectory.txt", "scene_graph.json", "rooms_events.jsonl"}) EXPECT_EQ(read_file(out / f), read_file(ros1 / f)) << f;
+    for (const char* f : {"trajectory.txt", "scene_graph.json", "rooms_events.jsonl"})
+      EXPECT_EQ(read_file(out / f), read_file(ros1 / f)) << f;
   }
   std::string out;
   ASSERT_EQ(test::run_tsgraphs("bag-info " + (dir_ / "ros2.db3").string(), &out, &err), 0) << err;
   EXPECT_NE(out.find("sensor_msgs/msg/PointCloud2"), std::string::npos) << out;
   EXPECT_NE(out.find(std::to_string(reader.size()) + " msgs"), std::string::npos) << out;
   // simulate --bag by extension, and a compression the format has not.
-  ASSERT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --bag " + (dir_ / "sim.mcap").string(), &err), 0) << err;
+  ASSERT_EQ(
+      cli("-q simulate " + (base_ / "room.yaml").string() + " --bag " + (dir_ / "sim.mcap").string(), &err),
+      0)
+      << err;
   ASSERT_EQ(test::run_tsgraphs("bag-info " + (dir_ / "sim.mcap").string(), &out, &err), 0) << err;
   EXPECT_NE(out.find("nav_msgs/msg/Odometry"), std::string::npos) << out;
-  EXPECT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --bag " + (dir_ / "sim.db3").string() + " --compression zstd", &err), 2);
-  EXPECT_NE(err.find("--compression: zstd is not a ros2-sqlite compression (none, zstd-file, zstd-message)"), std::string::npos)
+  EXPECT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --bag " + (dir_ / "sim.db3").string() +
+                    " --compression zstd",
+                &err),
+            2);
+  EXPECT_NE(err.find("--compression: zstd is not a ros2-sqlite compression (none, zstd-file, zstd-message)"),
+            std::string::npos)
       << err;
   EXPECT_FALSE(fs::exists(dir_ / "sim.db3"));
   EXPECT_EQ(cli("-q simulate " + (base_ / "room.yaml").string() + " --bag " + (dir_ / "sim.db3").string() +
                     " --compression zstd-message",
                 &err),
             2);
-  EXPECT_NE(err.find("sim.db3: --compression zstd-message is rosbag2's own, for a bag folder"), std::string::npos) << err;
+  EXPECT_NE(err.find("sim.db3: --compression zstd-message is rosbag2's own, for a bag folder"),
+            std::string::npos)
+      << err;
   EXPECT_FALSE(fs::exists(dir_ / "sim.db3"));
   // A damaged MCAP (cut in its data section) and a missing topic: one line naming the file, exit 2, no run.
   const std::string bytes = read_file(dir_ / "ros2_zstd.mcap");
   std::ofstream(dir_ / "cut.mcap", std::ios::binary) << bytes.substr(0, bytes.size() / 3);
-  EXPECT_EQ(cli("-q run --bag " + (dir_ / "cut.mcap").string() + " --points-topic /points --odom-topic /odom --out " +
-                    (dir_ / "run_cut").string(),
+  EXPECT_EQ(cli("-q run --bag " + (dir_ / "cut.mcap").string() +
+                    " --points-topic /points --odom-topic /odom --out " + (dir_ / "run_cut").string(),
                 &err),
             2);
   EXPECT_EQ(err.rfind("tsgraphs: error: " + (dir_ / "cut.mcap").string() + ": ", 0), 0u) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   EXPECT_FALSE(fs::exists(dir_ / "run_cut"));
-  EXPECT_EQ(cli("-q run --bag " + (dir_ / "ros2.db3").string() + " --points-topic /scan --out " + (dir_ / "run_topic").string(), &err), 2);
-  EXPECT_NE(err.find("no topic /scan (topics: /groundtruth, /odom, /points, /tf_static)"), std::string::npos) << err;
+  EXPECT_EQ(cli("-q run --bag " + (dir_ / "ros2.db3").string() + " --points-topic /scan --out " +
+                    (dir_ / "run_topic").string(),
+                &err),
+            2);
+  EXPECT_NE(err.find("no topic /scan (topics: /groundtruth, /odom, /points, /tf_static)"), std::string::npos)
+      << err;
 }
 
 namespace {
 
 // What `value` breaks of JSON Schema `schema` ("" when nothing): type, properties, required,
 // additionalProperties false, items, minimum, maximum, maxItems: what the export's schemas use.
-std::string schema_error(const nlohmann::json& schema, const nlohmann::json& value, const std::string& at = "$") {
+std::string schema_error(const nlohmann::json& schema, const nlohmann::json& value,
+                         const std::string& at = "$") {
   if (schema.contains("type")) {
     const std::string t = schema["type"];
     const bool ok = t == "object"    ? value.is_object()
@@ -393,9 +436,12 @@ std::string schema_error(const nlohmann::json& schema, const nlohmann::json& val
                                      : false;
     if (!ok) return at + ": not " + t;
   }
-  if (schema.contains("minimum") && value.get<double>() < schema["minimum"].get<double>()) return at + ": below minimum";
-  if (schema.contains("maximum") && value.get<double>() > schema["maximum"].get<double>()) return at + ": above maximum";
-  if (schema.contains("maxItems") && value.size() > schema["maxItems"].get<std::size_t>()) return at + ": too many items";
+  if (schema.contains("minimum") && value.get<double>() < schema["minimum"].get<double>())
+    return at + ": below minimum";
+  if (schema.contains("maximum") && value.get<double>() > schema["maximum"].get<double>())
+    return at + ": above maximum";
+  if (schema.contains("maxItems") && value.size() > schema["maxItems"].get<std::size_t>())
+    return at + ": too many items";
   if (value.is_object()) {
     for (const auto& r : schema.value("required", nlohmann::json::array()))
       if (!value.contains(r.get<std::string>())) return at + ": no " + r.get<std::string>();
@@ -409,7 +455,9 @@ std::string schema_error(const nlohmann::json& schema, const nlohmann::json& val
   }
   if (value.is_array() && schema.contains("items")) {
     for (std::size_t i = 0; i < value.size(); ++i)
-      if (std::string e = schema_error(schema["items"], value[i], at + "[" + std::to_string(i) + "]"); !e.empty()) return e;
+      if (std::string e = schema_error(schema["items"], value[i], at + "[" + std::to_string(i) + "]");
+          !e.empty())
+        return e;
   }
   return "";
 }
@@ -435,8 +483,9 @@ TEST_F(RunCli, ExportWritesARunForFoxgloveWithEveryMessageOfItsSchema) {
     const auto message = nlohmann::json::parse(m.data);
     EXPECT_EQ(schema_error(nlohmann::json::parse(s.data), message), "") << c.topic;
     EXPECT_EQ(s.name, c.topic == "/tf" ? "foxglove.FrameTransform"
-                      : c.topic == "/map" || c.topic == "/traversable_nodes" || c.topic == "/free_space" ? "foxglove.PointCloud"
-                                                                                                          : "foxglove.SceneUpdate");
+                      : c.topic == "/map" || c.topic == "/traversable_nodes" || c.topic == "/free_space"
+                          ? "foxglove.PointCloud"
+                          : "foxglove.SceneUpdate");
     ++count[c.topic];
     last[c.topic] = message;
   });
@@ -449,7 +498,8 @@ TEST_F(RunCli, ExportWritesARunForFoxgloveWithEveryMessageOfItsSchema) {
   EXPECT_EQ(count["/map"], 1u);
   EXPECT_EQ(count["/scene"], 1u);
   // The node cloud holds every node, 12 bytes each (base64: 4 characters per 3 bytes).
-  EXPECT_EQ(last["/traversable_nodes"]["data"].get<std::string>().size(), (12 * graph.traversable_nodes.size() + 2) / 3 * 4);
+  EXPECT_EQ(last["/traversable_nodes"]["data"].get<std::string>().size(),
+            (12 * graph.traversable_nodes.size() + 2) / 3 * 4);
   std::size_t free_points = 0;
   for (const auto& r : graph.rooms) free_points += r.free_space.size();
   ASSERT_GT(free_points, 0u);
@@ -468,10 +518,11 @@ TEST_F(RunCli, ExportWritesARunForFoxgloveWithEveryMessageOfItsSchema) {
     floats.replace(at, double_property.size(), "property float");
   std::string nan = map;
   const double not_a_number = std::nan("");
-  nan.replace(map.find(end_header) + end_header.size(), sizeof not_a_number, reinterpret_cast<const char*>(&not_a_number),
-              sizeof not_a_number);
-  for (const auto& [damaged, what] : {std::pair{floats, std::string(" bytes after the last of the header's ")},
-                                      std::pair{nan, std::string(": 'vertex[0].x' must be finite")}}) {
+  nan.replace(map.find(end_header) + end_header.size(), sizeof not_a_number,
+              reinterpret_cast<const char*>(&not_a_number), sizeof not_a_number);
+  for (const auto& [damaged, what] :
+       {std::pair{floats, std::string(" bytes after the last of the header's ")},
+        std::pair{nan, std::string(": 'vertex[0].x' must be finite")}}) {
     std::ofstream(run / "map.ply", std::ios::binary) << damaged;
     EXPECT_EQ(cli("-q export " + run.string() + " --mcap " + (dir_ / "damaged.mcap").string(), &err), 2);
     EXPECT_EQ(err.find("tsgraphs: error: " + (run / "map.ply").string() + ": "), 0u) << err;
@@ -496,8 +547,10 @@ TEST_F(RunCli, OutputsNeverOverwriteTheCommandsInputs) {
     EXPECT_NE(err.find(what), std::string::npos) << args << ": " << err;
     EXPECT_EQ(err.find("tsgraphs: error: "), err.rfind("tsgraphs: error: ")) << err;  // one error line
   };
-  refused("convert " + seq.string() + " --out " + seq.string(), "--out: " + seq.string() + " is the command's input");
-  refused("convert " + seq.string() + " --out " + (seq / "again").string(), "lies inside the command's input");
+  refused("convert " + seq.string() + " --out " + seq.string(),
+          "--out: " + seq.string() + " is the command's input");
+  refused("convert " + seq.string() + " --out " + (seq / "again").string(),
+          "lies inside the command's input");
   refused("run " + seq.string() + " --out " + (seq / "run").string(), "lies inside the command's input");
   refused("run " + seq.string() + " --out " + dir_.string(), "holds the command's input");
   EXPECT_TRUE(fs::exists(seq / "scene.yaml"));
@@ -510,7 +563,8 @@ TEST_F(RunCli, OutputsNeverOverwriteTheCommandsInputs) {
   const fs::path run = dir_ / "run";
   ASSERT_EQ(cli("-q run " + seq.string() + " --out " + run.string(), &err), 0) << err;
   const std::string graph = read_file(run / "scene_graph.json");
-  refused("export " + run.string() + " --mcap " + (run / "scene_graph.json").string(), "lies inside the command's input");
+  refused("export " + run.string() + " --mcap " + (run / "scene_graph.json").string(),
+          "lies inside the command's input");
   EXPECT_EQ(read_file(run / "scene_graph.json"), graph);
 }
 
@@ -520,7 +574,8 @@ TEST_F(RunCli, ARunWhoseEveryScanIsSkippedIsRefusedWithNothingWritten) {
   for (const auto& e : fs::directory_iterator(seq / "scans")) std::ofstream(e.path(), std::ios::trunc);
   std::string err;
   EXPECT_EQ(cli("-q run " + seq.string() + " --out " + (dir_ / "run").string(), &err), 2);
-  EXPECT_NE(err.find("tsgraphs: error: " + seq.string() + ": no scan could be used: all "), std::string::npos) << err;
+  EXPECT_NE(err.find("tsgraphs: error: " + seq.string() + ": no scan could be used: all "), std::string::npos)
+      << err;
   EXPECT_FALSE(fs::exists(dir_ / "run"));
 }
 
@@ -535,7 +590,9 @@ TEST_F(RunCli, ALayerEmptyInEveryKeyframeOfAShortRunIsSaid) {
             0)
       << err;
   EXPECT_NE(err.find("tsgraphs: warning: no wall in any of the run's "), std::string::npos) << err;
-  EXPECT_NE(err.find("no vertical plane of plane_extraction.min_inliers (10000000) points"), std::string::npos) << err;
+  EXPECT_NE(err.find("no vertical plane of plane_extraction.min_inliers (10000000) points"),
+            std::string::npos)
+      << err;
 }
 
 TEST_F(RunCli, MissingOdometryLineIsAnErrorNamingTheFileAndNoOutput) {
@@ -557,7 +614,9 @@ TEST_F(RunCli, OdometryJumpNoPlatformMakesIsRefusedBeforeTheRun) {
   std::ostringstream odom;
   int n = 0;
   for (std::string line; std::getline(lines, line); ++n) {
-    if (n == 2) line.replace(line.find(' '), line.find(' ', line.find(' ') + 1) - line.find(' '), " 5e7");  // x of scan 2
+    if (n == 2)
+      line.replace(line.find(' '), line.find(' ', line.find(' ') + 1) - line.find(' '),
+                   " 5e7");  // x of scan 2
     odom << line << "\n";
   }
   std::ofstream(seq / "odom.txt") << odom.str();
@@ -585,8 +644,8 @@ TEST_F(RunCli, ASequenceAtUtmCoordinatesRunsAsNearTheOrigin) {
       double t, x, y, z, qx, qy, qz, qw;
       EXPECT_TRUE(v >> t >> x >> y >> z >> qx >> qy >> qz >> qw) << line;
       char text[400];
-      std::snprintf(text, sizeof text, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", t, x + by.x(), y + by.y(),
-                    z + by.z(), qx, qy, qz, qw);
+      std::snprintf(text, sizeof text, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", t, x + by.x(),
+                    y + by.y(), z + by.z(), qx, qy, qz, qw);
       odom << text;
     }
     std::ofstream(seq / "odom.txt") << odom.str();
@@ -596,9 +655,11 @@ TEST_F(RunCli, ASequenceAtUtmCoordinatesRunsAsNearTheOrigin) {
   std::string err;
   const fs::path here = dir_ / "run_near", far = dir_ / "run_far";
   ASSERT_EQ(cli("-q run " + shifted("near", near).string() + " --out " + here.string(), &err), 0) << err;
-  ASSERT_EQ(cli("-q run " + shifted("far", near + kilometres).string() + " --out " + far.string(), &err), 0) << err;
+  ASSERT_EQ(cli("-q run " + shifted("far", near + kilometres).string() + " --out " + far.string(), &err), 0)
+      << err;
 
-  const auto a = io::read_tum((here / "trajectory.txt").string()), b = io::read_tum((far / "trajectory.txt").string());
+  const auto a = io::read_tum((here / "trajectory.txt").string()),
+             b = io::read_tum((far / "trajectory.txt").string());
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     ASSERT_LT((b[i].pose.translation() - kilometres - a[i].pose.translation()).norm(), 1e-6) << "scan " << i;
@@ -624,7 +685,8 @@ TEST_F(RunCli, ASequenceAtUtmCoordinatesRunsAsNearTheOrigin) {
   ASSERT_EQ(ga.rooms.size(), gb.rooms.size());
   ASSERT_GE(ga.rooms.size(), 1u);
   for (std::size_t i = 0; i < ga.rooms.size(); ++i) {
-    EXPECT_LT((gb.rooms[i].rect.center - kilometres.head<2>() - ga.rooms[i].rect.center).norm(), 1e-6) << "room " << i;
+    EXPECT_LT((gb.rooms[i].rect.center - kilometres.head<2>() - ga.rooms[i].rect.center).norm(), 1e-6)
+        << "room " << i;
   }
   ASSERT_EQ(ga.traversable_nodes.size(), gb.traversable_nodes.size());
   EXPECT_EQ(ga.levels, gb.levels);
@@ -660,7 +722,10 @@ TEST_F(RunCli, TruncatedNaNAndEmptyScansAreSkippedWithWarningsAndNoNaNPose) {
 TEST_F(RunCli, BadParameterFileAndUnrelatedOutputFolderAreRefused) {
   std::string err;
   const std::string params = write_file("p.yaml", "keyframes:\n  delta_trans: 1.0\n  delta_trns: 2.0\n");
-  EXPECT_EQ(cli("-q run " + (base_ / "seq").string() + " --out " + (dir_ / "run").string() + " --config " + params, &err), 2);
+  EXPECT_EQ(
+      cli("-q run " + (base_ / "seq").string() + " --out " + (dir_ / "run").string() + " --config " + params,
+          &err),
+      2);
   EXPECT_NE(err.find("p.yaml:3: unknown key 'keyframes.delta_trns'"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir_ / "run"));
 
@@ -679,11 +744,17 @@ TEST_F(RunCli, ArgumentsOutOfRangeAreRefusedBeforeAnyWork) {
   const std::string seq = (base_ / "seq").string();
   EXPECT_EQ(cli("-q run " + seq + " --out /", &err), 2);
   EXPECT_NE(err.find("--out: / holds the command's input"), std::string::npos) << err;
-  EXPECT_EQ(cli("-q run " + seq + " --out " + (dir_ / "run").string() + " --sensor-to-base nan 0 0 0 0 0 1", &err), 2);
+  EXPECT_EQ(
+      cli("-q run " + seq + " --out " + (dir_ / "run").string() + " --sensor-to-base nan 0 0 0 0 0 1", &err),
+      2);
   EXPECT_NE(err.find("--sensor-to-base: x y z must be finite"), std::string::npos) << err;
-  EXPECT_EQ(cli("-q run " + seq + " --out " + (dir_ / "run").string() + " --sensor-to-base 0 0 0 0 0 0 0", &err), 2);
+  EXPECT_EQ(
+      cli("-q run " + seq + " --out " + (dir_ / "run").string() + " --sensor-to-base 0 0 0 0 0 0 0", &err),
+      2);
   EXPECT_NE(err.find("must be a rotation"), std::string::npos) << err;
-  EXPECT_EQ(cli("-q run --scans '" + seq + "/scans/*.bin' --out " + (dir_ / "run").string() + " --scan-period 1e308", &err),
+  EXPECT_EQ(cli("-q run --scans '" + seq + "/scans/*.bin' --out " + (dir_ / "run").string() +
+                    " --scan-period 1e308",
+                &err),
             2);
   EXPECT_NE(err.find("--scan-period"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir_ / "run"));
@@ -707,15 +778,19 @@ TEST_F(RunCli, ASequenceCarriesItsSceneVoxelMapsAndRunsAfterItMoves) {
   for (int i = 0; i <= 20; ++i) {
     for (int k = 0; k < 20; ++k, ++n) points << 3.0 + 0.1 * i << " 3.0 " << 0.05 + 0.1 * k << "\n";
   }
-  pcd << "WIDTH " << n << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << n << "\nDATA ascii\n" << points.str();
+  pcd << "WIDTH " << n << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << n << "\nDATA ascii\n"
+      << points.str();
   std::ofstream(dir_ / "maps" / "wall.pcd") << pcd.str();
   std::string scene = test::kSmallRoomScene;
-  scene.replace(scene.find("trajectory:"), 11,
-                "voxel_maps:\n  - {file: ../maps/wall.pcd, voxel_size: 0.1, level: L0, label: wall}\ntrajectory:");
+  scene.replace(
+      scene.find("trajectory:"), 11,
+      "voxel_maps:\n  - {file: ../maps/wall.pcd, voxel_size: 0.1, level: L0, label: wall}\ntrajectory:");
   std::ofstream(dir_ / "scenes" / "room.yaml") << scene;
   const fs::path seq = dir_ / "seq", moved = dir_ / "elsewhere" / "seq";
   std::string err;
-  ASSERT_EQ(cli("-q simulate " + (dir_ / "scenes" / "room.yaml").string() + " --laps 1 --out " + seq.string(), &err), 0)
+  ASSERT_EQ(cli("-q simulate " + (dir_ / "scenes" / "room.yaml").string() + " --laps 1 --out " + seq.string(),
+                &err),
+            0)
       << err;
   EXPECT_TRUE(fs::exists(seq / "voxel_maps" / "0_wall.pcd"));
   ASSERT_EQ(cli("-q run " + seq.string() + " --out " + (dir_ / "run1").string(), &err), 0) << err;
@@ -726,8 +801,10 @@ TEST_F(RunCli, ASequenceCarriesItsSceneVoxelMapsAndRunsAfterItMoves) {
   ASSERT_EQ(cli("-q run " + moved.string() + " --out " + (dir_ / "run2").string(), &err), 0) << err;
   ASSERT_EQ(cli("-q eval " + (dir_ / "run2").string() + " --seq " + moved.string(), &err), 0) << err;
   // The copy of the scene still has the wall the map adds: simulating it again gives the same scans.
-  ASSERT_EQ(cli("-q simulate " + (moved / "scene.yaml").string() + " --laps 1 --out " + (dir_ / "again").string(), &err),
-            0)
+  ASSERT_EQ(
+      cli("-q simulate " + (moved / "scene.yaml").string() + " --laps 1 --out " + (dir_ / "again").string(),
+          &err),
+      0)
       << err;
   EXPECT_EQ(read_file(moved / "scans" / "000010.bin"), read_file(dir_ / "again" / "scans" / "000010.bin"));
 }

@@ -29,7 +29,9 @@ io::Image map_image(const test::DrawnFloor& d) {
     for (int c = 0; c < d.frame.cols; ++c) {
       const test::FloorCell v = d.cells[d.frame.index(c, r)];
       img.samples[static_cast<std::size_t>(d.frame.rows - 1 - r) * d.frame.cols + c] =
-          v == test::FloorCell::kFree ? 254 : v == test::FloorCell::kOccupied ? 0 : 205;
+          v == test::FloorCell::kFree       ? 254
+          : v == test::FloorCell::kOccupied ? 0
+                                            : 205;
     }
   return img;
 }
@@ -70,8 +72,8 @@ class SegmentMapCli : public test::TempDirTest {
 
 TEST_F(SegmentMapCli, LabelsTheRoomsAndScoresThemAgainstTheTruth) {
   std::string out, err;
-  ASSERT_EQ(test::run_tsgraphs("segment-map " + path("floor.yaml") + " --out " + path("rooms.png") + " --rooms " +
-                                   path("truth.png") + " --metrics " + path("figures.json"),
+  ASSERT_EQ(test::run_tsgraphs("segment-map " + path("floor.yaml") + " --out " + path("rooms.png") +
+                                   " --rooms " + path("truth.png") + " --metrics " + path("figures.json"),
                                &out, &err),
             0)
       << err;
@@ -97,12 +99,18 @@ TEST_F(SegmentMapCli, BadInputWritesNothing) {
   small.samples.resize(static_cast<std::size_t>(small.width) * small.height * 3);
   write_file("small.png", io::encode_png(small));
   std::string err;
-  EXPECT_EQ(cli("segment-map " + path("floor.yaml") + " --out " + path("rooms.png") + " --rooms " + path("small.png"), &err), 2);
+  EXPECT_EQ(cli("segment-map " + path("floor.yaml") + " --out " + path("rooms.png") + " --rooms " +
+                    path("small.png"),
+                &err),
+            2);
   EXPECT_NE(err.find("small.png"), std::string::npos) << err;
   EXPECT_EQ(err.find('\n'), err.size() - 1) << err;
   EXPECT_FALSE(fs::exists(path("rooms.png")));
   // An output that is an input.
-  EXPECT_EQ(cli("segment-map " + path("floor.yaml") + " --out " + path("truth.png") + " --rooms " + path("truth.png"), &err), 2);
+  EXPECT_EQ(cli("segment-map " + path("floor.yaml") + " --out " + path("truth.png") + " --rooms " +
+                    path("truth.png"),
+                &err),
+            2);
   EXPECT_NE(err.find("truth.png"), std::string::npos) << err;
   // A map that does not exist.
   EXPECT_EQ(cli("segment-map " + path("none.yaml") + " --out " + path("rooms.png"), &err), 2);

@@ -38,7 +38,9 @@ namespace {
 
 using test::read_file;
 
-int cli(const std::string& args, std::string* out, std::string* err) { return test::run_tsgraphs(args, out, err); }
+int cli(const std::string& args, std::string* out, std::string* err) {
+  return test::run_tsgraphs(args, out, err);
+}
 
 // A small room walked once: a few hundred VLP-16 scans, the sequence case (docs/suite.md).
 const char* kRoom = R"(
@@ -136,8 +138,8 @@ void check_csv(const SuiteRun& run) {
     EXPECT_EQ(cells[column["status"]], "done");
     ++rows[cells[column["case"]] + " / " + cells[column["method"]]];
     // Every run has ground truth: these figures exist in every row.
-    for (const char* key : {"trajectory.ate_rmse", "rooms_gt.recall", "rooms_gt.ipa_recall_micro", "consistency.f_re",
-                            "pgo.t_pgo_s", "speed.rtf", "rooms_gt.unsupported", "wall_s"})
+    for (const char* key : {"trajectory.ate_rmse", "rooms_gt.recall", "rooms_gt.ipa_recall_micro",
+                            "consistency.f_re", "pgo.t_pgo_s", "speed.rtf", "rooms_gt.unsupported", "wall_s"})
       EXPECT_FALSE(cells[column[key]].empty()) << lines[r] << ": " << key;
   }
   for (const std::string& id : kIds)
@@ -164,7 +166,8 @@ void check_markdown(const SuiteRun& run) {
   }
   for (const std::string& id : kIds) EXPECT_NE(md.find("| " + id + " | done |"), std::string::npos) << id;
   // One line per finished case on stderr (not a terminal: plain lines), with its figures.
-  for (const std::string& id : kIds) EXPECT_NE(run.err_text.find("] " + id + ": TS-graphs F1 "), std::string::npos) << run.err_text;
+  for (const std::string& id : kIds)
+    EXPECT_NE(run.err_text.find("] " + id + ": TS-graphs F1 "), std::string::npos) << run.err_text;
   EXPECT_NE(run.err_text.find("[3/3]"), std::string::npos) << run.err_text;
 }
 
@@ -186,17 +189,20 @@ void check_case_folders(const SuiteRun& run) {
     const io::RunPlatform platform = platform_of(gen / slug);
     EXPECT_EQ(platform.sensor_height_source, "measured") << slug;
     EXPECT_NEAR(platform.sensor_height, 1.2, 0.05) << slug;
-    EXPECT_NEAR(platform.seed_radius, expected_seed_radius(record.info_value("preset"), platform.sensor_height), 0.1)
+    EXPECT_NEAR(platform.seed_radius,
+                expected_seed_radius(record.info_value("preset"), platform.sensor_height), 0.1)
         << slug;
   }
   const std::string params = read_file(gen / "ts-graphs" / "params.yaml");
   EXPECT_NE(params.find("free_space_method: traversable"), std::string::npos);
-  EXPECT_NE(read_file(gen / "s-graphs-plus" / "params.yaml").find("free_space_method: esdf"), std::string::npos);
+  EXPECT_NE(read_file(gen / "s-graphs-plus" / "params.yaml").find("free_space_method: esdf"),
+            std::string::npos);
   // The imported map: its scene and walls in the case folder, import-map's platform.
   const fs::path imported = run.out() / "cases" / "import-floor";
   EXPECT_TRUE(fs::exists(imported / "scene_walls.pcd"));
   EXPECT_FALSE(fs::exists(imported / "sequence"));
-  EXPECT_EQ(eval::read_case_record((imported / "case.json").string()).info_value("rooms"), "5");  // its five labelled rooms
+  EXPECT_EQ(eval::read_case_record((imported / "case.json").string()).info_value("rooms"),
+            "5");  // its five labelled rooms
   // The sequence case's platform, measured: a VLP-16 at 0.55 m, whose ring spacing picks
   // config/sensors/vlp-16.yaml's ground section.
   const fs::path seq_run = run.out() / "cases" / "seq-room_seq" / "ts-graphs";
@@ -214,12 +220,14 @@ void check_report(const SuiteRun& run) {
   const std::string html = read_file(page);
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_EQ(count(html, "<script"), 0u);
-  EXPECT_EQ(count(html, "http://") + count(html, "https://"), count(html, "xmlns=\"http://www.w3.org/2000/svg\""));
+  EXPECT_EQ(count(html, "http://") + count(html, "https://"),
+            count(html, "xmlns=\"http://www.w3.org/2000/svg\""));
   EXPECT_EQ(count(html, "<table class=\"suite\">"), kMethodNames.size());
   EXPECT_EQ(count(html, "class=\"tsg-birdseye\""), kIds.size() * kSlugs.size());
   for (const std::string& id : kIds)
     for (const std::string& m : kMethodNames)
-      EXPECT_NE(html.find("<figcaption>" + id + ", " + m + ": rooms F1 "), std::string::npos) << id << " " << m;
+      EXPECT_NE(html.find("<figcaption>" + id + ", " + m + ": rooms F1 "), std::string::npos)
+          << id << " " << m;
 
   constexpr const char* kChromium = "/usr/bin/chromium";
   if (!fs::exists(kChromium)) {
@@ -227,9 +235,10 @@ void check_report(const SuiteRun& run) {
     return;
   }
   const fs::path err = run.base / "chromium.err";
-  const std::string cmd = std::string("timeout 60 ") + kChromium +
-                          " --headless --no-sandbox --disable-gpu --enable-logging=stderr --v=0 --dump-dom 'file://" +
-                          page.string() + "' 2>'" + err.string() + "'";
+  const std::string cmd =
+      std::string("timeout 60 ") + kChromium +
+      " --headless --no-sandbox --disable-gpu --enable-logging=stderr --v=0 --dump-dom 'file://" +
+      page.string() + "' 2>'" + err.string() + "'";
   FILE* pipe = popen(cmd.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
   std::string dom;
@@ -254,7 +263,9 @@ void check_resumed(const SuiteRun& run) {
   EXPECT_EQ(fs::last_write_time(run.out() / "cases" / kIds[0] / "ts-graphs" / "metrics.json"), metrics_time);
   EXPECT_EQ(o, read_file(run.out() / "suite.md"));
   // One case by its id, as the plan runs it: done already.
-  ASSERT_EQ(cli("suite " + run.suite_file() + " --out " + run.out().string() + " --case " + kIds[1], &o, &e), 0) << e;
+  ASSERT_EQ(cli("suite " + run.suite_file() + " --out " + run.out().string() + " --case " + kIds[1], &o, &e),
+            0)
+      << e;
   EXPECT_NE(e.find(kIds[1] + ": done earlier"), std::string::npos) << e;
   // An unknown case id is bad input.
   EXPECT_EQ(cli("suite " + run.suite_file() + " --out " + run.out().string() + " --case nope", &o, &e), 2);
@@ -269,7 +280,8 @@ void check_plan(const SuiteRun& run) {
   ASSERT_EQ(lines.size(), kIds.size());
   for (std::size_t i = 0; i < lines.size(); ++i) {
     EXPECT_EQ(lines[i].rfind("/", 0), 0u) << "an absolute program path: " << lines[i];
-    EXPECT_NE(lines[i].find(" suite " + run.suite_file() + " --out " + dir.string() + " --case " + kIds[i]), std::string::npos)
+    EXPECT_NE(lines[i].find(" suite " + run.suite_file() + " --out " + dir.string() + " --case " + kIds[i]),
+              std::string::npos)
         << lines[i];
   }
   EXPECT_TRUE(fs::exists(dir / "suite.json"));
@@ -290,7 +302,8 @@ void check_collect(const SuiteRun& run) {
   EXPECT_EQ(o, md);
   EXPECT_EQ(e, "");
   fs::remove(run.out() / "suite.md");
-  ASSERT_EQ(cli("-q suite " + run.suite_file() + " --out " + run.out().string() + " --collect", &o, &e), 0) << e;
+  ASSERT_EQ(cli("-q suite " + run.suite_file() + " --out " + run.out().string() + " --collect", &o, &e), 0)
+      << e;
   EXPECT_EQ(read_file(run.out() / "suite.md"), md);
   EXPECT_EQ(cli("suite --collect " + run.base.string(), &o, &e), 2);
   EXPECT_NE(e.find("not a suite folder"), std::string::npos) << e;
@@ -312,21 +325,23 @@ TEST(SuiteCli, TinySuiteEndToEnd) {
   std::ofstream(run.base / "maps" / "floor_gt.png", std::ios::binary) << io::encode_png(drawn.labels);
   std::ofstream(run.base / "maps" / "floor.yaml") << test::map_yaml("floor.pgm");
   std::string err;
-  ASSERT_EQ(cli("-q simulate " + (run.base / "room.yaml").string() + " --out " + (run.base / "room_seq").string(),
-                nullptr, &err),
-            0)
+  ASSERT_EQ(
+      cli("-q simulate " + (run.base / "room.yaml").string() + " --out " + (run.base / "room_seq").string(),
+          nullptr, &err),
+      0)
       << err;
-  ASSERT_EQ(cli("suite " + run.suite_file() + " --out " + run.out().string() + " --jobs 2", &run.out_text, &run.err_text),
+  ASSERT_EQ(cli("suite " + run.suite_file() + " --out " + run.out().string() + " --jobs 2", &run.out_text,
+                &run.err_text),
             0)
       << run.err_text;
-  for (const auto& [what, check] : std::vector<std::pair<const char*, void (*)(const SuiteRun&)>>{
-           {"suite.csv", check_csv},
-           {"suite.md", check_markdown},
-           {"case folders", check_case_folders},
-           {"report.html", check_report},
-           {"resumed", check_resumed},
-           {"--plan", check_plan},
-           {"--collect", check_collect}}) {
+  for (const auto& [what, check] :
+       std::vector<std::pair<const char*, void (*)(const SuiteRun&)>>{{"suite.csv", check_csv},
+                                                                      {"suite.md", check_markdown},
+                                                                      {"case folders", check_case_folders},
+                                                                      {"report.html", check_report},
+                                                                      {"resumed", check_resumed},
+                                                                      {"--plan", check_plan},
+                                                                      {"--collect", check_collect}}) {
     SCOPED_TRACE(what);
     check(run);
   }
@@ -338,8 +353,9 @@ TEST(SuiteCli, TinySuiteEndToEnd) {
 TEST(SuiteCli, ShippedSmokeSuiteRunsAndItsTablesAreComplete) {
   const fs::path base = test::fresh_temp_dir("smoke"), out = base / "out";
   std::string md, err;
-  ASSERT_EQ(cli("suite " + std::string(TSGRAPHS_SOURCE_DIR) + "/suites/smoke.yaml --out " + out.string() + " --jobs 2", &md,
-                &err),
+  ASSERT_EQ(cli("suite " + std::string(TSGRAPHS_SOURCE_DIR) + "/suites/smoke.yaml --out " + out.string() +
+                    " --jobs 2",
+                &md, &err),
             0)
       << err;
   const std::vector<std::string> ids = {"office-s1", "atrium-s1", "library-s1"};
@@ -350,15 +366,15 @@ TEST(SuiteCli, ShippedSmokeSuiteRunsAndItsTablesAreComplete) {
   const std::vector<std::string> lines = split(read_file(out / "suite.csv"), '\n');
   ASSERT_EQ(lines.size(), 1 + ids.size() * kSlugs.size());
   const std::size_t columns = split(lines[0], ',').size();
-  for (const std::string& key : eval::metrics_keys())
-    EXPECT_NE(lines[0].find(key), std::string::npos) << key;
+  for (const std::string& key : eval::metrics_keys()) EXPECT_NE(lines[0].find(key), std::string::npos) << key;
   for (std::size_t r = 1; r < lines.size(); ++r) EXPECT_EQ(split(lines[r], ',').size(), columns) << lines[r];
   EXPECT_NE(md.find("3 cases: 3 counted, 0 failed, 0 not run yet"), std::string::npos) << md;
   for (const std::string& m : kMethodNames) {
     const std::size_t at = md.find("## " + m + "\n");
     ASSERT_NE(at, std::string::npos) << m;
     for (const eval::SuiteFigure& f : eval::suite_figures())
-      EXPECT_NE(md.find("\n| " + f.header + " | " + eval::better_text(f.better) + " | ", at), std::string::npos)
+      EXPECT_NE(md.find("\n| " + f.header + " | " + eval::better_text(f.better) + " | ", at),
+                std::string::npos)
           << m << ": " << f.header;
   }
   EXPECT_TRUE(fs::exists(out / "report.html"));
@@ -390,7 +406,8 @@ TEST(SuiteCli, ShippedSmokeSuiteRunsAndItsTablesAreComplete) {
 TEST(SuiteCli, InterruptStopsTheCasesAndLeavesNoProcess) {
   SuiteRun run;
   run.base = test::fresh_temp_dir("suite_interrupted");
-  std::ofstream(run.base / "tiny.yaml") << "name: interrupted\ncases:\n  - generate: {styles: [office, open_plan], seeds: [2], size: 0.3}\n";
+  std::ofstream(run.base / "tiny.yaml")
+      << "name: interrupted\ncases:\n  - generate: {styles: [office, open_plan], seeds: [2], size: 0.3}\n";
   const fs::path dir = run.base / "interrupted";
   const std::string log = (run.base / "interrupted.err").string();
   const pid_t pid = ::fork();
@@ -400,8 +417,8 @@ TEST(SuiteCli, InterruptStopsTheCasesAndLeavesNoProcess) {
     ::dup2(fd, STDOUT_FILENO);
     ::dup2(fd, STDERR_FILENO);
     const std::string out = dir.string(), suite = run.suite_file();
-    ::execl(TSGRAPHS_BINARY, TSGRAPHS_BINARY, "-q", "suite", suite.c_str(), "--out", out.c_str(), "--jobs", "2",
-            static_cast<char*>(nullptr));
+    ::execl(TSGRAPHS_BINARY, TSGRAPHS_BINARY, "-q", "suite", suite.c_str(), "--out", out.c_str(), "--jobs",
+            "2", static_cast<char*>(nullptr));
     ::_exit(127);
   }
   // Both cases are running by now; SIGINT to the suite alone (not its process group, as a
@@ -420,7 +437,8 @@ TEST(SuiteCli, InterruptStopsTheCasesAndLeavesNoProcess) {
   EXPECT_EQ(left, 0) << "processes of the interrupted suite still running";
   for (const char* id : {"office-s2", "open_plan-s2"}) {
     EXPECT_TRUE(fs::exists(dir / "cases" / id / "log.txt")) << id << ": started";
-    EXPECT_FALSE(fs::exists(dir / "cases" / id / "case.json")) << id << ": an interrupted case is not recorded";
+    EXPECT_FALSE(fs::exists(dir / "cases" / id / "case.json"))
+        << id << ": an interrupted case is not recorded";
   }
   EXPECT_FALSE(fs::exists(dir / "suite.md")) << "an interrupted suite writes no tables";
   fs::remove_all(run.base);
@@ -437,14 +455,18 @@ TEST(SuiteCli, FailedCasesAreRecordedAndTheSuiteGoesOn) {
     std::ofstream(base / name / "times.txt") << "0.0\n0.1\n";
     std::ofstream(base / name / "odom.txt") << "0.0 0 0 0 0 0 0 1\n";
   }
-  std::ofstream(base / "failing.yaml") << "name: failing\ncases:\n  - sequence: broken_a\n  - sequence: broken_b\n";
+  std::ofstream(base / "failing.yaml")
+      << "name: failing\ncases:\n  - sequence: broken_a\n  - sequence: broken_b\n";
   const fs::path out = base / "out";
   std::string o, e;
-  EXPECT_EQ(cli("suite " + (base / "failing.yaml").string() + " --out " + out.string() + " --jobs 1", &o, &e), 1) << e;
+  EXPECT_EQ(cli("suite " + (base / "failing.yaml").string() + " --out " + out.string() + " --jobs 1", &o, &e),
+            1)
+      << e;
   for (const char* id : {"seq-broken_a", "seq-broken_b"}) {
     const eval::CaseRecord r = eval::read_case_record((out / "cases" / id / "case.json").string());
     EXPECT_FALSE(r.done()) << id;
-    EXPECT_NE(r.message.find("odom.txt: has 1 poses but times.txt has 2 scans"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("odom.txt: has 1 poses but times.txt has 2 scans"), std::string::npos)
+        << r.message;
     EXPECT_NE(e.find(std::string("] ") + id + ": failed: "), std::string::npos) << e;
     EXPECT_NE(o.find(std::string("- `") + id + "`: "), std::string::npos) << o;
   }
@@ -452,7 +474,8 @@ TEST(SuiteCli, FailedCasesAreRecordedAndTheSuiteGoesOn) {
   // One row per method for each, status failed, message quoted as needed.
   const std::vector<std::string> lines = split(read_file(out / "suite.csv"), '\n');
   ASSERT_EQ(lines.size(), 1u + 2 * 2);
-  for (std::size_t i = 1; i < lines.size(); ++i) EXPECT_NE(lines[i].find(",failed,"), std::string::npos) << lines[i];
+  for (std::size_t i = 1; i < lines.size(); ++i)
+    EXPECT_NE(lines[i].find(",failed,"), std::string::npos) << lines[i];
   EXPECT_TRUE(fs::exists(base / "broken_a" / "times.txt")) << "a sequence case's folder is left alone";
   fs::remove_all(base);
 }
@@ -463,7 +486,9 @@ TEST(SuiteCli, ASequenceCaseIsCheckedAsRunChecksIt) {
   const fs::path base = test::fresh_temp_dir("suite_jump");
   std::ofstream(base / "room.yaml") << kRoom;
   std::string err;
-  ASSERT_EQ(cli("-q simulate " + (base / "room.yaml").string() + " --out " + (base / "seq").string(), nullptr, &err), 0)
+  ASSERT_EQ(cli("-q simulate " + (base / "room.yaml").string() + " --out " + (base / "seq").string(), nullptr,
+                &err),
+            0)
       << err;
   std::vector<std::string> odom = split(read_file(base / "seq" / "odom.txt"), '\n');
   ASSERT_GT(odom.size(), 3u);
@@ -476,11 +501,13 @@ TEST(SuiteCli, ASequenceCaseIsCheckedAsRunChecksIt) {
   for (const std::string& line : odom) out_odom << line << "\n";
   out_odom.close();
   std::string refused;
-  EXPECT_EQ(cli("-q run " + (base / "seq").string() + " --out " + (base / "run").string(), nullptr, &refused), 2);
+  EXPECT_EQ(cli("-q run " + (base / "seq").string() + " --out " + (base / "run").string(), nullptr, &refused),
+            2);
   std::ofstream(base / "jump.yaml") << "name: jump\ncases:\n  - sequence: seq\n";
   const fs::path out = base / "out";
   std::string o, e;
-  EXPECT_EQ(cli("suite " + (base / "jump.yaml").string() + " --out " + out.string() + " --jobs 1", &o, &e), 1) << e;
+  EXPECT_EQ(cli("suite " + (base / "jump.yaml").string() + " --out " + out.string() + " --jobs 1", &o, &e), 1)
+      << e;
   const eval::CaseRecord r = eval::read_case_record((out / "cases" / "seq-seq" / "case.json").string());
   EXPECT_FALSE(r.done());
   EXPECT_NE(r.message.find("odometry of scan 2"), std::string::npos) << r.message;
@@ -498,15 +525,20 @@ TEST(SuiteCli, AFileWhereACaseFolderGoesIsRefusedBeforeAnyCase) {
   std::ofstream(base / "s.yaml") << "name: s\ncases:\n  - sequence: broken_a\n";
   const fs::path out = base / "out";
   std::string o, e;
-  ASSERT_EQ(cli("suite " + (base / "s.yaml").string() + " --out " + out.string() + " --plan", &o, &e), 0) << e;
+  ASSERT_EQ(cli("suite " + (base / "s.yaml").string() + " --out " + out.string() + " --plan", &o, &e), 0)
+      << e;
   std::ofstream(out / "cases") << "not a folder";
   EXPECT_EQ(cli("suite " + (base / "s.yaml").string() + " --out " + out.string(), &o, &e), 2) << e;
-  EXPECT_NE(e.find("tsgraphs: error: " + (out / "cases").string() + ": exists and is not a folder"), std::string::npos) << e;
+  EXPECT_NE(e.find("tsgraphs: error: " + (out / "cases").string() + ": exists and is not a folder"),
+            std::string::npos)
+      << e;
   fs::remove(out / "cases");
   fs::create_directories(out / "cases");
   std::ofstream(out / "cases" / "seq-broken_a") << "not a folder";
   EXPECT_EQ(cli("suite " + (base / "s.yaml").string() + " --out " + out.string(), &o, &e), 2) << e;
-  EXPECT_NE(e.find((out / "cases" / "seq-broken_a").string() + ": exists and is not a folder"), std::string::npos) << e;
+  EXPECT_NE(e.find((out / "cases" / "seq-broken_a").string() + ": exists and is not a folder"),
+            std::string::npos)
+      << e;
   fs::remove_all(base);
 }
 
@@ -525,28 +557,33 @@ class SuiteFileErrors : public test::TempDirTest {
 };
 
 TEST_F(SuiteFileErrors, UnknownKey) {
-  const std::string e = error_of("name: bad\ncases:\n  - generate: {styles: [office], seeds: 1, colour: red}\n");
+  const std::string e =
+      error_of("name: bad\ncases:\n  - generate: {styles: [office], seeds: 1, colour: red}\n");
   EXPECT_NE(e.find("bad.yaml:3: unknown key 'cases[0].generate.colour'"), std::string::npos) << e;
   const std::string top = error_of("name: bad\njobs: 2\ncases:\n  - scene: office\n");
   EXPECT_NE(top.find("bad.yaml:2: unknown key 'jobs'"), std::string::npos) << top;
 }
 
 TEST_F(SuiteFileErrors, UnknownStyleMethodOrPreset) {
-  const std::string e = error_of("name: bad\ncases:\n  - generate:\n      styles: [office, castle]\n      seeds: \"1-3\"\n");
+  const std::string e =
+      error_of("name: bad\ncases:\n  - generate:\n      styles: [office, castle]\n      seeds: \"1-3\"\n");
   EXPECT_NE(e.find("bad.yaml:4: cases[0].generate.styles: unknown style 'castle'"), std::string::npos) << e;
   const std::string m = error_of("name: bad\nmethods: [ts-graphs, gnn]\ncases:\n  - scene: office\n");
   EXPECT_NE(m.find("bad.yaml:2: methods: unknown method 'gnn'"), std::string::npos) << m;
   const std::string p = error_of(
       "name: bad\ncases:\n  - generate:\n      styles: office\n      seeds: 1\n      platforms:\n"
       "        - {name: hh, preset: kinect}\n");
-  EXPECT_NE(p.find("bad.yaml:7: cases[0].generate.platforms[0].preset: unknown preset 'kinect'"), std::string::npos) << p;
+  EXPECT_NE(p.find("bad.yaml:7: cases[0].generate.platforms[0].preset: unknown preset 'kinect'"),
+            std::string::npos)
+      << p;
 }
 
 // Issue 52 (found by the suite_file fuzz target): a style, a method or a key of the file was
 // quoted with its raw bytes. Quoted printable: other bytes as \xNN.
 TEST_F(SuiteFileErrors, MessagesQuoteTheFilePrintable) {
   const std::string e = error_of("name: bad\ncases:\n  - generate: {styles: \"of\\x1bfice\", seeds: 1}\n");
-  EXPECT_NE(e.find("bad.yaml:3: cases[0].generate.styles: unknown style 'of\\x1bfice'"), std::string::npos) << e;
+  EXPECT_NE(e.find("bad.yaml:3: cases[0].generate.styles: unknown style 'of\\x1bfice'"), std::string::npos)
+      << e;
   const std::string m = error_of("name: bad\nmethods: [\"ts\\x02graphs\"]\ncases:\n  - scene: office\n");
   EXPECT_NE(m.find("bad.yaml:2: methods: unknown method 'ts\\x02graphs'"), std::string::npos) << m;
   const std::string k = error_of("name: bad\n\"ca\\x07ses\": 1\ncases:\n  - scene: office\n");
@@ -555,7 +592,8 @@ TEST_F(SuiteFileErrors, MessagesQuoteTheFilePrintable) {
 
 TEST_F(SuiteFileErrors, DuplicateCase) {
   const std::string e = error_of(
-      "name: bad\ncases:\n  - generate: {styles: [office], seeds: \"1-3\"}\n  - generate:\n      styles: [office]\n"
+      "name: bad\ncases:\n  - generate: {styles: [office], seeds: \"1-3\"}\n  - generate:\n      styles: "
+      "[office]\n"
       "      seeds: [3]\n");
   EXPECT_NE(e.find("bad.yaml:5: cases[1]: case 'office-s3' again (first from "), std::string::npos) << e;
 }
@@ -572,7 +610,8 @@ TEST_F(SuiteFileErrors, MissingSceneOrSequence) {
 }
 
 TEST_F(SuiteFileErrors, RealisticIsABoolean) {
-  const std::string e = error_of("name: bad\ncases:\n  - generate: {styles: [office], seeds: 1, realistic: maybe}\n");
+  const std::string e =
+      error_of("name: bad\ncases:\n  - generate: {styles: [office], seeds: 1, realistic: maybe}\n");
   EXPECT_NE(e.find("bad.yaml:3: cases[0].generate.realistic"), std::string::npos) << e;
 }
 
@@ -580,9 +619,10 @@ TEST_F(SuiteFileErrors, RealisticIsABoolean) {
 // says so (a plain case's spec is as before), and suite.json names the two groups.
 class SuiteGroups : public test::TempDirTest {};
 TEST_F(SuiteGroups, RealisticCasesFormTheirOwnGroup) {
-  const std::string file = write_file("two.yaml",
-                                      "name: two\ncases:\n  - generate: {styles: [office, library], seeds: 1}\n"
-                                      "  - generate: {styles: [office], seeds: \"1-2\", realistic: true}\n");
+  const std::string file =
+      write_file("two.yaml",
+                 "name: two\ncases:\n  - generate: {styles: [office, library], seeds: 1}\n"
+                 "  - generate: {styles: [office], seeds: \"1-2\", realistic: true}\n");
   const fs::path out = dir_ / "out";
   std::string o, e;
   ASSERT_EQ(cli("suite " + file + " --out " + out.string() + " --plan", &o, &e), 0) << e;
@@ -607,7 +647,8 @@ TEST_F(SuiteFileErrors, LapsBeyondTheBound) {
 }
 
 TEST_F(SuiteFileErrors, PeopleOutOfRange) {
-  const std::string e = error_of("name: bad\ncases:\n  - generate: {styles: [office], seeds: 1, people: 51}\n");
+  const std::string e =
+      error_of("name: bad\ncases:\n  - generate: {styles: [office], seeds: 1, people: 51}\n");
   EXPECT_NE(e.find("bad.yaml:3: cases[0].generate.people: must lie in [0, 50]"), std::string::npos) << e;
 }
 

@@ -19,7 +19,8 @@ TEST(Plane, SignedDistanceAndTransform) {
   // distance.
   const Pose3 T_AB = make_pose({1, 2, 0}, M_PI / 2);
   const Plane q = p.transformed(T_AB);
-  for (const Eigen::Vector3d& x : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(5, -3, 1), Eigen::Vector3d(4, 9, -2)}) {
+  for (const Eigen::Vector3d& x :
+       {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(5, -3, 1), Eigen::Vector3d(4, 9, -2)}) {
     EXPECT_NEAR(q.signed_distance(T_AB * x), p.signed_distance(x), 1e-12);
   }
 }

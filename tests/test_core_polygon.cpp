@@ -55,8 +55,9 @@ void check_triangulation(const std::vector<Polygon2>& include, const std::vector
   ASSERT_FALSE(tris.empty());
   EXPECT_NEAR(total_area(tris), expected_area, 1e-9);
   for (const Triangle2& t : tris) {
-    EXPECT_GT(triangle_signed_area(t), 0.0) << "clockwise or degenerate triangle (" << t[0].transpose() << "), ("
-                                            << t[1].transpose() << "), (" << t[2].transpose() << ")";
+    EXPECT_GT(triangle_signed_area(t), 0.0)
+        << "clockwise or degenerate triangle (" << t[0].transpose() << "), (" << t[1].transpose() << "), ("
+        << t[2].transpose() << ")";
   }
 
   Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
@@ -89,7 +90,8 @@ void check_triangulation(const std::vector<Polygon2>& include, const std::vector
     if (near_edge) continue;
     int hits = 0;
     for (const Triangle2& t : tris) {
-      if (cross2(t[1] - t[0], p - t[0]) > 0 && cross2(t[2] - t[1], p - t[1]) > 0 && cross2(t[0] - t[2], p - t[2]) > 0) {
+      if (cross2(t[1] - t[0], p - t[0]) > 0 && cross2(t[2] - t[1], p - t[1]) > 0 &&
+          cross2(t[0] - t[2], p - t[2]) > 0) {
         ++hits;
       }
     }
@@ -143,8 +145,8 @@ TEST(PolygonContains, InsideAndOutsideASquare) {
 TEST(PolygonContains, ConcaveLShape) {
   const Polygon2 l = l_shape();
   EXPECT_TRUE(contains(l, Vec2(0.5, 0.5)));
-  EXPECT_TRUE(contains(l, Vec2(1.5, 0.5)));  // bottom arm
-  EXPECT_TRUE(contains(l, Vec2(0.5, 1.5)));  // left arm
+  EXPECT_TRUE(contains(l, Vec2(1.5, 0.5)));   // bottom arm
+  EXPECT_TRUE(contains(l, Vec2(0.5, 1.5)));   // left arm
   EXPECT_FALSE(contains(l, Vec2(1.5, 1.5)));  // the notch
   EXPECT_FALSE(contains(l, Vec2(1.01, 1.01)));
   EXPECT_FALSE(contains(l, Vec2(2.5, 0.5)));
@@ -157,11 +159,11 @@ TEST(PolygonContains, EmptyPolygonContainsNothing) { EXPECT_FALSE(contains({}, V
 
 TEST(PolygonSegments, DistanceToSegment) {
   const Vec2 a(-1, 0), b(1, 0);
-  EXPECT_DOUBLE_EQ(distance_to_segment(Vec2(0, 1), a, b), 1.0);       // above the middle
-  EXPECT_DOUBLE_EQ(distance_to_segment(Vec2(0.3, -2), a, b), 2.0);    // below, projects inside
-  EXPECT_DOUBLE_EQ(distance_to_segment(Vec2(4, 4), a, b), 5.0);       // beyond b: distance to b (3-4-5)
-  EXPECT_DOUBLE_EQ(distance_to_segment(Vec2(-4, -4), a, b), 5.0);     // beyond a
-  EXPECT_DOUBLE_EQ(distance_to_segment(Vec2(0.5, 0), a, b), 0.0);     // on the segment
+  EXPECT_DOUBLE_EQ(distance_to_segment(Vec2(0, 1), a, b), 1.0);     // above the middle
+  EXPECT_DOUBLE_EQ(distance_to_segment(Vec2(0.3, -2), a, b), 2.0);  // below, projects inside
+  EXPECT_DOUBLE_EQ(distance_to_segment(Vec2(4, 4), a, b), 5.0);     // beyond b: distance to b (3-4-5)
+  EXPECT_DOUBLE_EQ(distance_to_segment(Vec2(-4, -4), a, b), 5.0);   // beyond a
+  EXPECT_DOUBLE_EQ(distance_to_segment(Vec2(0.5, 0), a, b), 0.0);   // on the segment
   EXPECT_DOUBLE_EQ(distance_to_segment(Vec2(4, 5), Vec2(1, 1), Vec2(1, 1)), 5.0);  // degenerate segment
   // Diagonal segment: distance from the origin to the line x + y = 2 is sqrt(2).
   EXPECT_NEAR(distance_to_segment(Vec2(0, 0), Vec2(2, 0), Vec2(0, 2)), std::sqrt(2.0), 1e-12);
@@ -243,7 +245,8 @@ TEST(PolygonSimplicity, SimplePolygonsHaveNoSelfIntersection) {
   EXPECT_FALSE(find_self_intersection(l_shape()).has_value());
   EXPECT_FALSE(find_self_intersection({Vec2(0, 0), Vec2(4, 0), Vec2(0, 3)}).has_value());
   // Collinear consecutive vertices are fine (a straight angle, not a fold).
-  EXPECT_FALSE(find_self_intersection({Vec2(0, 0), Vec2(1, 0), Vec2(2, 0), Vec2(2, 2), Vec2(0, 2)}).has_value());
+  EXPECT_FALSE(
+      find_self_intersection({Vec2(0, 0), Vec2(1, 0), Vec2(2, 0), Vec2(2, 2), Vec2(0, 2)}).has_value());
 }
 
 TEST(PolygonSimplicity, BowTieIsFound) {
@@ -272,7 +275,8 @@ TEST(PolygonSimplicity, SpikeFoldingBackIsFound) {
   // A square with a spike going up from (4,0) to (4,4) and back down to (4,2).
   EXPECT_TRUE(find_self_intersection({Vec2(0, 0), Vec2(4, 0), Vec2(4, 4), Vec2(4, 2)}).has_value());
   // A spike through the closing edge: (0,4) up to (0,6), back down to (0,0).
-  EXPECT_TRUE(find_self_intersection({Vec2(0, 0), Vec2(4, 0), Vec2(4, 4), Vec2(0, 4), Vec2(0, 6)}).has_value());
+  EXPECT_TRUE(
+      find_self_intersection({Vec2(0, 0), Vec2(4, 0), Vec2(4, 4), Vec2(0, 4), Vec2(0, 6)}).has_value());
   // Degenerate triangles: only adjacent edges, which fold back on each other.
   const auto fold_mid = find_self_intersection({Vec2(0, 0), Vec2(2, 0), Vec2(1, 0)});
   ASSERT_TRUE(fold_mid.has_value());
@@ -343,12 +347,14 @@ TEST(PolygonTriangulate, SquareWithASquareHole) {
 }
 
 TEST(PolygonTriangulate, HoleTouchingTheBorder) {
-  check_triangulation({box(0, 0, 4, 4)}, {box(0, 1, 2, 3)}, 16.0 - 4.0);   // shares the left edge
-  check_triangulation({box(0, 0, 4, 4)}, {box(1, 0, 3, 4)}, 16.0 - 8.0);   // cuts the square in two
-  check_triangulation({box(0, 0, 4, 4)}, {box(2, 2, 4, 4)}, 16.0 - 4.0);   // a corner
+  check_triangulation({box(0, 0, 4, 4)}, {box(0, 1, 2, 3)}, 16.0 - 4.0);  // shares the left edge
+  check_triangulation({box(0, 0, 4, 4)}, {box(1, 0, 3, 4)}, 16.0 - 8.0);  // cuts the square in two
+  check_triangulation({box(0, 0, 4, 4)}, {box(2, 2, 4, 4)}, 16.0 - 4.0);  // a corner
 }
 
-TEST(PolygonTriangulate, HolePartlyOutside) { check_triangulation({box(0, 0, 4, 4)}, {box(3, 1, 5, 2)}, 15.0); }
+TEST(PolygonTriangulate, HolePartlyOutside) {
+  check_triangulation({box(0, 0, 4, 4)}, {box(3, 1, 5, 2)}, 15.0);
+}
 
 TEST(PolygonTriangulate, TwoOverlappingHoles) {
   // Holes of 4 each overlapping in a unit square: their union is 7.

@@ -14,8 +14,8 @@ namespace {
 
 /// Two masks from rows of text (the operations do not care which row is the top): 'E' an end
 /// cell, '.' a gap cell, anything else neither.
-void masks(const std::vector<std::string>& text, std::vector<std::uint8_t>* end, std::vector<std::uint8_t>* gap,
-           int* cols, int* rows) {
+void masks(const std::vector<std::string>& text, std::vector<std::uint8_t>* end,
+           std::vector<std::uint8_t>* gap, int* cols, int* rows) {
   *rows = static_cast<int>(text.size());
   *cols = static_cast<int>(text.front().size());
   end->clear();
@@ -27,10 +27,13 @@ void masks(const std::vector<std::string>& text, std::vector<std::uint8_t>* end,
     }
 }
 
-std::size_t count(const std::vector<std::uint8_t>& m) { return std::accumulate(m.begin(), m.end(), std::size_t{0}); }
+std::size_t count(const std::vector<std::uint8_t>& m) {
+  return std::accumulate(m.begin(), m.end(), std::size_t{0});
+}
 
 /// The bridged cells as text: 'x' bridged, the rest as given.
-std::vector<std::string> show(const std::vector<std::string>& text, const std::vector<std::uint8_t>& bridged) {
+std::vector<std::string> show(const std::vector<std::string>& text,
+                              const std::vector<std::uint8_t>& bridged) {
   std::vector<std::string> out = text;
   const int cols = static_cast<int>(text.front().size());
   for (std::size_t i = 0; i < bridged.size(); ++i)

@@ -31,15 +31,8 @@ TEST(RasterRegions, LabelsFourAndEightConnectedRegions) {
 }
 
 TEST(RasterRegions, EnclosedRegionsAreTheSmallOnesTouchingNoBorder) {
-  const std::vector<std::string> rows = {
-      "##########",
-      "#........#",
-      "#.##.....#",
-      "#.##..#..#",
-      "#.....#..#",
-      "#.....#..#",
-      "#........#",
-      "##########"};
+  const std::vector<std::string> rows = {"##########", "#........#", "#.##.....#", "#.##..#..#",
+                                         "#.....#..#", "#.....#..#", "#........#", "##########"};
   const std::vector<std::uint8_t> in = raster(rows);
   const int w = 10, h = 8;
   const auto at = [&](const std::vector<std::uint8_t>& m, int c, int top_row) {

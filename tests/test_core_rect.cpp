@@ -70,9 +70,9 @@ TEST(OrientedRect, Contains) {
   EXPECT_FALSE(r.contains(Vec2(1, 0.9)));
 
   const OrientedRect rot = rect(0, 0, 4, 2, M_PI / 2);
-  EXPECT_TRUE(rot.contains(Vec2(0, 1.9)));    // along its long axis (map y)
+  EXPECT_TRUE(rot.contains(Vec2(0, 1.9)));  // along its long axis (map y)
   EXPECT_TRUE(rot.contains(Vec2(0.9, -1.9)));
-  EXPECT_FALSE(rot.contains(Vec2(1.9, 0)));   // outside its short axis (map x)
+  EXPECT_FALSE(rot.contains(Vec2(1.9, 0)));  // outside its short axis (map x)
   EXPECT_FALSE(rot.contains(Vec2(0, 2.1)));
 
   const OrientedRect diag = rect(0, 0, 2, 2, M_PI / 4);  // a diamond with corners at distance sqrt 2

@@ -11,10 +11,10 @@
 #include "test_support.hpp"
 
 using namespace tsgraphs;
-using tsgraphs::test::input_error_of;
-using tsgraphs::test::TempDirTest;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
+using tsgraphs::test::input_error_of;
+using tsgraphs::test::TempDirTest;
 
 namespace {
 
@@ -133,7 +133,8 @@ TEST(YamlMapErrors, RequireOfAMissingKeyNamesFileLineAndKey) {
 
 TEST(YamlMapErrors, UnknownKeyNamesTheKeyAndItsLine) {
   const std::string root = input_error_of([] {
-    doc().check_keys({"name", "seed", "ratio", "enabled", "nothing", "sensor", "point", "poly", "walls_typo"});
+    doc().check_keys(
+        {"name", "seed", "ratio", "enabled", "nothing", "sensor", "point", "poly", "walls_typo"});
   });
   EXPECT_THAT(root, StartsWith("test.yaml:12: "));
   EXPECT_THAT(root, HasSubstr("'walls'"));
@@ -151,9 +152,11 @@ TEST(YamlMapErrors, UnknownKeyNamesTheKeyAndItsLine) {
 // Issue 52 (found by the map_import fuzz target): an unknown or repeated key was quoted with
 // the file's raw bytes. Keys are quoted printable (other bytes as \xNN), as every text of a file.
 TEST(YamlMapErrors, KeysAreQuotedPrintable) {
-  const std::string unknown = input_error_of([] { doc("name: a\nre\xff\x1b[2Jsolution: 1\n").check_keys({"name"}); });
+  const std::string unknown =
+      input_error_of([] { doc("name: a\nre\xff\x1b[2Jsolution: 1\n").check_keys({"name"}); });
   EXPECT_EQ(unknown, "test.yaml:2: unknown key 're\\xff\\x1b[2Jsolution' (known keys: name)");
-  const std::string nested = input_error_of([] { doc("sensor:\n  \"\\x07\": 1\n").map("sensor").check_keys({"range"}); });
+  const std::string nested =
+      input_error_of([] { doc("sensor:\n  \"\\x07\": 1\n").map("sensor").check_keys({"range"}); });
   EXPECT_EQ(nested, "test.yaml:2: unknown key 'sensor.\\x07' (known keys: range)");
   const std::string twice = input_error_of([] { doc("\"a\\tb\": 1\n\"a\\tb\": 2\n").check_keys({"a\tb"}); });
   EXPECT_EQ(twice, "test.yaml:2: duplicate key 'a\\x09b' (first at line 1)");
@@ -179,7 +182,8 @@ TEST(YamlMapErrors, TypeErrorsNameTheLine) {
   EXPECT_THAT(fraction, StartsWith("test.yaml:5: "));
   EXPECT_THAT(fraction, HasSubstr("an integer"));
 
-  const std::string nested = input_error_of([] { doc("s:\n  x: 1\n  y: one\n").map("s").require<double>("y"); });
+  const std::string nested =
+      input_error_of([] { doc("s:\n  x: 1\n  y: one\n").map("s").require<double>("y"); });
   EXPECT_THAT(nested, StartsWith("test.yaml:3: "));
   EXPECT_THAT(nested, HasSubstr("s.y"));
 }
@@ -254,7 +258,8 @@ TEST(YamlMapErrors, CustomErrors) {
 }
 
 TEST(YamlMapErrors, SyntaxErrorInAString) {
-  const std::string msg = input_error_of([] { YamlMap::load_string("a: 1\nb: 2\nc: d: e\n", "broken.yaml"); });
+  const std::string msg =
+      input_error_of([] { YamlMap::load_string("a: 1\nb: 2\nc: d: e\n", "broken.yaml"); });
   EXPECT_THAT(msg, StartsWith("broken.yaml:3: "));
   EXPECT_THAT(msg, HasSubstr("syntax"));
 }
@@ -266,7 +271,8 @@ TEST(YamlMapErrors, SyntaxErrorQuotesNoRawByte) {
 }
 
 TEST(YamlMapErrors, OutOfRangeIntegers) {
-  EXPECT_THAT(input_error_of([] { doc("a: 1\nx: -1\n").require<unsigned>("x"); }), StartsWith("test.yaml:2: "));
+  EXPECT_THAT(input_error_of([] { doc("a: 1\nx: -1\n").require<unsigned>("x"); }),
+              StartsWith("test.yaml:2: "));
   EXPECT_THAT(input_error_of([] { doc("x: -1\n").require<std::size_t>("x"); }), StartsWith("test.yaml:1: "));
   EXPECT_THAT(input_error_of([] { doc("x: 99999999999\n").require<int>("x"); }), StartsWith("test.yaml:1: "));
 }

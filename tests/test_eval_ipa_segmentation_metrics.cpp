@@ -32,7 +32,8 @@ TEST(IpaSegmentationMetrics, TwoRoomsThreeSegmentsByHand) {
   //   S2: 400 cells, 200 in A and 200 in B;
   //   S3 = [2.5,3.5] x [0,1]: 400 cells, clipped to the free space (A u B u C): the 200 in B.
   const std::vector<LevelFootprint> segments = {footprint(box(0, 0, 1.6, 1)), footprint(box(1.5, 0, 2.5, 1)),
-                                                footprint(box(2.5, 0, 3.5, 1)), footprint(box(0.2, 0.2, 0.6, 0.6))};
+                                                footprint(box(2.5, 0, 3.5, 1)),
+                                                footprint(box(0.2, 0.2, 0.6, 0.6))};
   const std::vector<CellRegion> seg = segments_of(segments, rooms);
   ASSERT_EQ(seg.size(), 4u);
   EXPECT_EQ(seg[0].cells.size(), 536u);

@@ -93,7 +93,8 @@ TEST(WallMetrics, ErrorsOfMappedPlanesAndDuplicates) {
   // Wall points seen on face 0 (y = 0.1) from a sensor at (2, 2, 0.5).
   PointCloud scan;
   for (int i = 0; i < 200; ++i) {
-    scan.points.emplace_back(0.5f + 0.01f * i, 0.1f - 2.0f, 0.5f);  // sensor frame = world shifted by (2, 2, 0)
+    scan.points.emplace_back(0.5f + 0.01f * i, 0.1f - 2.0f,
+                             0.5f);  // sensor frame = world shifted by (2, 2, 0)
     scan.labels.push_back(static_cast<std::uint32_t>(PointLabel::kWall));
   }
   const Pose3 sensor = make_pose({2, 2, 0}, 0.0);
@@ -143,11 +144,13 @@ TEST(Metrics, JsonHasEveryKeyAndNullsForMissingFigures) {
     EXPECT_TRUE(j["consistency"].contains(key) && j["consistency"][key].is_null()) << key;
   EXPECT_DOUBLE_EQ(j["trajectory"]["ate_loop"].get<double>(), 0.05);
   EXPECT_TRUE(j["trajectory"]["ate_rmse"].is_null());
-  for (const char* key : {"t_pgo_s", "n_optimisations", "n_variables", "n_factors"}) EXPECT_TRUE(j["pgo"].contains(key));
-  for (const char* key : {"precision", "recall", "f1", "mean_iou", "under_segmented", "over_segmented", "n_rooms_final",
-                          "unsupported", "unsupported_fraction_max", "ipa_precision_micro", "ipa_recall_micro",
-                          "ipa_precision_macro", "ipa_recall_macro"})
+  for (const char* key : {"t_pgo_s", "n_optimisations", "n_variables", "n_factors"})
+    EXPECT_TRUE(j["pgo"].contains(key));
+  for (const char* key : {"precision", "recall", "f1", "mean_iou", "under_segmented", "over_segmented",
+                          "n_rooms_final", "unsupported", "unsupported_fraction_max", "ipa_precision_micro",
+                          "ipa_recall_micro", "ipa_precision_macro", "ipa_recall_macro"})
     EXPECT_TRUE(j["rooms_gt"].contains(key) && j["rooms_gt"][key].is_null()) << key;
   for (const char* key : {"mean_dist_err", "mean_angle_err_deg"}) EXPECT_TRUE(j["walls"].contains(key));
-  for (const char* key : {"rtf", "frontend_ms_mean", "frontend_ms_p95", "peak_rss_mb"}) EXPECT_TRUE(j["speed"].contains(key));
+  for (const char* key : {"rtf", "frontend_ms_mean", "frontend_ms_p95", "peak_rss_mb"})
+    EXPECT_TRUE(j["speed"].contains(key));
 }

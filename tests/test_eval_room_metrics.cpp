@@ -19,7 +19,9 @@ OrientedRect box(double x0, double y0, double x1, double y1) {
   return r;
 }
 
-Polygon2 box_polygon(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+Polygon2 box_polygon(double x0, double y0, double x1, double y1) {
+  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+}
 
 io::RoomEvent event(int lap, int level, const OrientedRect& rect, bool is_new = true) {
   io::RoomEvent e;
@@ -52,9 +54,8 @@ TEST(RoomConsistency, CountsPairsOfLapOneAndLapTwoRooms) {
   const OrientedRect A = box(0, 0, 4, 4), B = box(8, 0, 12, 4), C = box(12, 0, 16, 4);
   const OrientedRect A2 = box(0.4, 0.3, 4.4, 4.3), E = box(8, 0, 15, 4);
   const std::vector<io::RoomEvent> events = {
-      event(1, 0, A), event(1, 0, B), event(1, 0, C),
-      event(2, 0, A2, false), event(2, 0, E, false), event(2, 1, C),
-      event(3, 0, C, false),
+      event(1, 0, A),        event(1, 0, B), event(1, 0, C),        event(2, 0, A2, false),
+      event(2, 0, E, false), event(2, 1, C), event(3, 0, C, false),
   };
   // E's Dice is 2*16/(16+28) with B and 2*12/(16+28) with C: both >= 0.5, it pairs with B only.
   ASSERT_GE(dice(C, E), kPairMinDice);

@@ -43,14 +43,14 @@ Polygon2 box(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1
 TEST(RoomSupport, ScenesVoidsSlabsWallsDoorsAndRamps) {
   const scene::Scene scene = scene::parse_scene(kScene, "support.yaml", ".");
   const std::vector<LevelFootprint> rooms = {
-      {box(1, 1, 5, 9), "L0"},         // good: on the slab, clear of the wall
-      {box(12, 3, 16, 5), "L0"},       // over the void: x 14..16 of 12..16 is void (the ramp starts at 16)
-      {box(18, 0.5, 22, 1.5), "L0"},   // off the slab: x 20..22 of 18..22
-      {box(5, 1, 7.5, 3), "L0"},       // across the wall: its footprint [5.5, 6.5] is 1.0 of 2.5 m
-      {box(5, 7, 7.5, 8), "L0"},       // through the door: no floor-standing piece there
-      {box(16, 3, 18, 7), "L0"},       // on the ramp, inside the void: walkable
-      {box(16, 3, 18, 7), "L1"},       // the same footprint from the upper level: the ramp joins it too
-      {box(1, 1, 5, 9), "attic"},      // a level the scene does not have
+      {box(1, 1, 5, 9), "L0"},        // good: on the slab, clear of the wall
+      {box(12, 3, 16, 5), "L0"},      // over the void: x 14..16 of 12..16 is void (the ramp starts at 16)
+      {box(18, 0.5, 22, 1.5), "L0"},  // off the slab: x 20..22 of 18..22
+      {box(5, 1, 7.5, 3), "L0"},      // across the wall: its footprint [5.5, 6.5] is 1.0 of 2.5 m
+      {box(5, 7, 7.5, 8), "L0"},      // through the door: no floor-standing piece there
+      {box(16, 3, 18, 7), "L0"},      // on the ramp, inside the void: walkable
+      {box(16, 3, 18, 7), "L1"},      // the same footprint from the upper level: the ramp joins it too
+      {box(1, 1, 5, 9), "attic"},     // a level the scene does not have
   };
   const std::vector<double> shares = unwalkable_shares(rooms, scene);
   ASSERT_EQ(shares.size(), rooms.size());
@@ -85,11 +85,11 @@ TEST(RoomSupport, WithoutASceneTheTrueRoomsAreTheWalkableSpace) {
                                             {"east", "L0", box(6.5, 0, 14, 10), 0.0},
                                             {"upper", "L1", box(18, 0, 30, 10), 1.5}};
   const std::vector<LevelFootprint> rooms = {
-      {box(1, 1, 5, 9), "L0"},        // inside west
-      {box(5, 1, 7.5, 3), "L0"},      // across the wall: 1.0 m of 2.5 m between the rooms
-      {box(12, 3, 16, 5), "L0"},      // half past east's edge (the void)
-      {box(20, 1, 22, 3), "L0"},      // L1's room, but this footprint is on L0
-      {box(20, 1, 22, 3), "L1"},      // inside upper
+      {box(1, 1, 5, 9), "L0"},    // inside west
+      {box(5, 1, 7.5, 3), "L0"},  // across the wall: 1.0 m of 2.5 m between the rooms
+      {box(12, 3, 16, 5), "L0"},  // half past east's edge (the void)
+      {box(20, 1, 22, 3), "L0"},  // L1's room, but this footprint is on L0
+      {box(20, 1, 22, 3), "L1"},  // inside upper
   };
   const std::vector<double> shares = unwalkable_shares(rooms, truth);
   EXPECT_EQ(shares[0], 0.0);

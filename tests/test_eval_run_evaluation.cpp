@@ -91,7 +91,8 @@ class EvalRun : public test::TempDirTest {
       io::SceneGraph::Room room;
       room.id = static_cast<int>(i);
       room.rect = world_rooms[i];
-      room.rect.center = (T_map_world_ * Eigen::Vector3d(room.rect.center.x(), room.rect.center.y(), 0)).head<2>();
+      room.rect.center =
+          (T_map_world_ * Eigen::Vector3d(room.rect.center.x(), room.rect.center.y(), 0)).head<2>();
       room.rect.yaw += M_PI / 2;
       graph.rooms.push_back(room);
     }

@@ -50,8 +50,11 @@ CaseRecord done_case(const std::string& id, double ts_f1, double ts_f_re, double
   c.wall_s = 42.0;
   c.info = {{"style", "office"}, {"seed", "1"}};
   c.methods.push_back(run("ts-graphs", "TS-graphs",
-                          {{"rooms_gt.f1", ts_f1}, {"rooms_gt.recall", 1.0}, {"consistency.f_re", ts_f_re},
-                           {"consistency.dcs", 0.9}, {"consistency.d_center", 0.2}}));
+                          {{"rooms_gt.f1", ts_f1},
+                           {"rooms_gt.recall", 1.0},
+                           {"consistency.f_re", ts_f_re},
+                           {"consistency.dcs", 0.9},
+                           {"consistency.d_center", 0.2}}));
   c.methods.push_back(run("s-graphs-plus", "S-Graphs+", {{"rooms_gt.f1", sg_f1}, {"rooms_gt.recall", 1.0}}));
   return c;
 }
@@ -113,9 +116,10 @@ TEST(SuiteTable, WorstDecileIsTheBadTail) {
 }
 
 TEST(SuiteTable, FiguresHaveTheirDirections) {
-  for (const char* key : {"consistency.f_re", "consistency.dcs", "rooms_gt.precision", "rooms_gt.recall", "rooms_gt.f1",
-                          "rooms_gt.mean_iou", "rooms_gt.ipa_precision_micro", "rooms_gt.ipa_recall_micro",
-                          "rooms_gt.ipa_precision_macro", "rooms_gt.ipa_recall_macro", "speed.rtf"})
+  for (const char* key :
+       {"consistency.f_re", "consistency.dcs", "rooms_gt.precision", "rooms_gt.recall", "rooms_gt.f1",
+        "rooms_gt.mean_iou", "rooms_gt.ipa_precision_micro", "rooms_gt.ipa_recall_micro",
+        "rooms_gt.ipa_precision_macro", "rooms_gt.ipa_recall_macro", "speed.rtf"})
     EXPECT_EQ(figure(key).better, Better::kHigher) << key;
   for (const char* key : {"consistency.d_center", "rooms_gt.under_segmented", "rooms_gt.over_segmented",
                           "rooms_gt.unsupported", "trajectory.ate_rmse", "pgo.t_pgo_s"})
@@ -188,7 +192,8 @@ TEST(SuiteTable, WorstFirstPutsFailuresThenLowF1ThenLowFre) {
 
 TEST(SuiteTable, CaseLineHasTheKeyFigures) {
   const SuiteResults r = three_cases();
-  EXPECT_EQ(case_line(r.cases[0], r), "a: TS-graphs F1 0.90, f_re 1.00, DCS 0.90, d_center 0.20 m; S-Graphs+ F1 0.50; 42 s");
+  EXPECT_EQ(case_line(r.cases[0], r),
+            "a: TS-graphs F1 0.90, f_re 1.00, DCS 0.90, d_center 0.20 m; S-Graphs+ F1 0.50; 42 s");
   EXPECT_EQ(case_line(r.cases[1], r), "b: failed: x.yaml:3: walls[0]: bad, \"quoted\"");
 }
 
@@ -221,8 +226,10 @@ TEST(SuiteTable, TpgoRatiosAndLoopTotalsPerMethod) {
   EXPECT_EQ(ratios[0].first, "a");
   EXPECT_DOUBLE_EQ(ratios[0].second, 0.2);
   EXPECT_DOUBLE_EQ(ratios[1].second, 0.6);
-  r.cases[0].methods[0].figures.insert({{"loops.n_loops", 5.0}, {"loops.n_loops_correct", 4.0},
-                                        {"loops.n_loops_room", 2.0}, {"loops.n_loops_room_correct", 2.0}});
+  r.cases[0].methods[0].figures.insert({{"loops.n_loops", 5.0},
+                                        {"loops.n_loops_correct", 4.0},
+                                        {"loops.n_loops_room", 2.0},
+                                        {"loops.n_loops_room_correct", 2.0}});
   r.cases[2].methods[0].figures.insert({{"loops.n_loops", 3.0}, {"loops.n_loops_correct", 3.0}});
   const LoopTotals t = loop_totals(r, "ts-graphs");
   EXPECT_EQ(t.cases, 2);
@@ -267,7 +274,8 @@ TEST(SuiteTable, EachCaseGroupHasItsOwnTables) {
   const std::string md = suite_markdown(r);
   const std::size_t groups = md.find("## Case groups");
   ASSERT_NE(groups, std::string::npos) << md;
-  const std::size_t g0 = md.find("### cases[0]: generate", groups), g1 = md.find("### cases[1]: generate, realistic", groups);
+  const std::size_t g0 = md.find("### cases[0]: generate", groups),
+                    g1 = md.find("### cases[1]: generate, realistic", groups);
   ASSERT_NE(g0, std::string::npos);
   ASSERT_NE(g1, std::string::npos);
   EXPECT_NE(md.find("3 cases: 3 with a record, 0 not run yet", g0), std::string::npos) << md;
@@ -302,9 +310,11 @@ TEST(SuiteFolder, CaseRecordReadsBackWhatWasWritten) {
 }
 
 TEST(SuiteFolder, MalformedRecordsNameTheFileAndKey) {
-  EXPECT_NE(test::input_error_of([] { parse_case_record("{", "c/case.json"); }).find("c/case.json"), std::string::npos);
-  EXPECT_NE(test::input_error_of([] { parse_case_record(R"({"id": "a", "kind": "scene"})", "c/case.json"); })
-                .find("c/case.json: status"),
+  EXPECT_NE(test::input_error_of([] { parse_case_record("{", "c/case.json"); }).find("c/case.json"),
+            std::string::npos);
+  EXPECT_NE(test::input_error_of([] {
+              parse_case_record(R"({"id": "a", "kind": "scene"})", "c/case.json");
+            }).find("c/case.json: status"),
             std::string::npos);
   EXPECT_NE(test::input_error_of([] {
               parse_case_record(R"({"id": "a", "kind": "scene", "status": "half"})", "c/case.json");
@@ -349,7 +359,9 @@ TEST(SuiteFolder, MetricsFlattenToGroupDotKey) {
   EXPECT_DOUBLE_EQ(*f.at("consistency.f_re"), 1.0);
   EXPECT_FALSE(f.at("consistency.dcs"));
   EXPECT_EQ(metrics_keys().front(), "consistency.N1st");
-  EXPECT_NE(std::find(metrics_keys().begin(), metrics_keys().end(), "rooms_gt.ipa_recall_macro"), metrics_keys().end());
-  EXPECT_NE(test::input_error_of([] { flatten_metrics_json("[1, 2", "r/metrics.json"); }).find("r/metrics.json"),
-            std::string::npos);
+  EXPECT_NE(std::find(metrics_keys().begin(), metrics_keys().end(), "rooms_gt.ipa_recall_macro"),
+            metrics_keys().end());
+  EXPECT_NE(
+      test::input_error_of([] { flatten_metrics_json("[1, 2", "r/metrics.json"); }).find("r/metrics.json"),
+      std::string::npos);
 }

@@ -24,11 +24,13 @@ using Points = std::vector<Eigen::Vector3d>;
 
 namespace {
 
-constexpr double kVoxel = 0.2;         // EsdfFreeSpaceConfig's default voxel size (m)
-constexpr double kSensorHeight = 0.55; // robot position above the floor (m)
+constexpr double kVoxel = 0.2;          // EsdfFreeSpaceConfig's default voxel size (m)
+constexpr double kSensorHeight = 0.55;  // robot position above the floor (m)
 
 /// Centre of voxel (i, j, k).
-Eigen::Vector3d voxel_centre(int i, int j, int k) { return Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5) * kVoxel; }
+Eigen::Vector3d voxel_centre(int i, int j, int k) {
+  return Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5) * kVoxel;
+}
 
 /// Occupied points at the centres of the voxels i in [i0, i1], j in [j0, j1], k in [0, 14]
 /// (floor to 3 m).
@@ -63,11 +65,11 @@ TEST(FreespaceEsdf, DistanceIsVoxelDistanceToTheNearestWallCapped) {
     return s.distance[static_cast<std::size_t>(cell)];
   };
   EXPECT_DOUBLE_EQ(at(0, 50), 0.0);
-  EXPECT_NEAR(at(1, 50), 0.2, 1e-12);    // next to the wall: one voxel
-  EXPECT_NEAR(at(3, 50), 0.6, 1e-12);    // three voxels
-  EXPECT_NEAR(at(57, 50), 0.6, 1e-12);   // three from the other wall
+  EXPECT_NEAR(at(1, 50), 0.2, 1e-12);   // next to the wall: one voxel
+  EXPECT_NEAR(at(3, 50), 0.6, 1e-12);   // three voxels
+  EXPECT_NEAR(at(57, 50), 0.6, 1e-12);  // three from the other wall
   EXPECT_NEAR(at(24, 50), 4.8, 1e-12);
-  EXPECT_DOUBLE_EQ(at(30, 50), 5.0);     // 6 m from both: capped at max_distance
+  EXPECT_DOUBLE_EQ(at(30, 50), 5.0);  // 6 m from both: capped at max_distance
   // The free band: distance > 0.8 m, columns 5 .. 55, every row: one cluster.
   ASSERT_EQ(e.free_space.clusters.size(), 1u);
   EXPECT_EQ(e.free_space.clusters[0].points.size(), 51u * 100u);
@@ -84,11 +86,12 @@ TEST(FreespaceEsdf, DistanceIsExactEuclideanIn3D) {
   const auto at = [&](int i, int j) {
     return s.distance[static_cast<std::size_t>(s.cell_at(voxel_centre(i, j, layer)))];
   };
-  EXPECT_NEAR(at(0, 0), 2 * kVoxel, 1e-12);                    // straight below it
+  EXPECT_NEAR(at(0, 0), 2 * kVoxel, 1e-12);                            // straight below it
   EXPECT_NEAR(at(3, 4), std::sqrt(9.0 + 16.0 + 4.0) * kVoxel, 1e-12);  // not a city-block or chamfer distance
-  EXPECT_NEAR(at(10, 7), 3 * kVoxel, 1e-12);                   // nearer the other one
+  EXPECT_NEAR(at(10, 7), 3 * kVoxel, 1e-12);                           // nearer the other one
   // Occupied voxels more than max_distance from the slice do not count (nor widen the slice).
-  const Points far_above = {voxel_centre(-20, -20, layer + 30), voxel_centre(5, 0, layer), voxel_centre(0, 5, layer)};
+  const Points far_above = {voxel_centre(-20, -20, layer + 30), voxel_centre(5, 0, layer),
+                            voxel_centre(0, 5, layer)};
   const EsdfSlice f = esdf_free_space(far_above, 0.0, Eigen::Vector3d::Zero()).slice;
   EXPECT_EQ(f.width, 6);
   EXPECT_EQ(f.height, 6);
@@ -122,7 +125,8 @@ TEST(FreespaceEsdf, WallAcrossTheCorridorSplitsIt) {
   add_block(pts, 25, 25, 1, 19);  // a closed wall across at column 25
   const EsdfFreeSpace e = esdf_free_space(pts, 0.0, {8.0, 2.0, kSensorHeight});
   ASSERT_EQ(e.free_space.clusters.size(), 2u);
-  EXPECT_EQ(e.free_space.robot_cluster, 1);  // the cluster at larger x: its first cell comes later in row order
+  EXPECT_EQ(e.free_space.robot_cluster,
+            1);  // the cluster at larger x: its first cell comes later in row order
   for (const auto& p : e.free_space.robot()->points) EXPECT_GT(p.x(), 25 * kVoxel);
   // No occupied voxel near the slice: nothing.
   const EsdfFreeSpace none = esdf_free_space({{0.0, 0.0, 20.0}}, 0.0, Eigen::Vector3d::Zero());
@@ -193,12 +197,16 @@ TEST(FreespaceEsdf, OfficeRoomFromSimulatedScans) {
   const Eigen::Vector3d robot = sim.true_poses()[last].translation();
   const auto start = std::chrono::steady_clock::now();
   const EsdfFreeSpace e = esdf_free_space(pts, robot.z() - scene.sensor.mount_height, robot);
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   ASSERT_NE(e.free_space.robot(), nullptr);
-  const auto in_room_d = [](const Eigen::Vector3d& p) { return p.x() > 0.1 && p.x() < 10.9 && p.y() > 7.3 && p.y() < 12.9; };
+  const auto in_room_d = [](const Eigen::Vector3d& p) {
+    return p.x() > 0.1 && p.x() < 10.9 && p.y() > 7.3 && p.y() < 12.9;
+  };
   const auto& cluster = e.free_space.robot()->points;
   const auto inside = static_cast<std::size_t>(std::count_if(cluster.begin(), cluster.end(), in_room_d));
-  std::printf("office ESDF: %zu points, slice %d x %d, %zu clusters, robot's %zu cells, %zu in room_d, %.1f ms\n",
-              pts.size(), e.slice.width, e.slice.height, e.free_space.clusters.size(), cluster.size(), inside, ms);
+  std::printf(
+      "office ESDF: %zu points, slice %d x %d, %zu clusters, robot's %zu cells, %zu in room_d, %.1f ms\n",
+      pts.size(), e.slice.width, e.slice.height, e.free_space.clusters.size(), cluster.size(), inside, ms);
   EXPECT_EQ(inside, cluster.size());
 }

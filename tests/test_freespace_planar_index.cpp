@@ -14,11 +14,13 @@
 namespace tsgraphs::freespace {
 namespace {
 
-std::vector<int> brute_force(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& p, double radius) {
+std::vector<int> brute_force(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& p,
+                             double radius) {
   std::vector<int> out;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const double dx = p.x() - points[i].x(), dy = p.y() - points[i].y();
-    if (points[i].head<2>().allFinite() && dx * dx + dy * dy < radius * radius) out.push_back(static_cast<int>(i));
+    if (points[i].head<2>().allFinite() && dx * dx + dy * dy < radius * radius)
+      out.push_back(static_cast<int>(i));
   }
   return out;
 }
@@ -41,7 +43,7 @@ TEST(PlanarIndex, FindsWhatASearchOverEveryPointFinds) {
   for (const double radius : {0.1, 0.5, 0.75, 1.3, 3.0}) {
     for (int q = 0; q < 200; ++q) {
       const double py = 1.2 * xy(rng), px = 1.2 * xy(rng);  // the last argument first, as gcc drew them
-      const Eigen::Vector3d p(px, py, 0.0);                  // some outside the points' box
+      const Eigen::Vector3d p(px, py, 0.0);                 // some outside the points' box
       index.within(p, radius, found);
       EXPECT_EQ(found, brute_force(points, p, radius)) << "radius " << radius << " at " << p.transpose();
       total += found.size();
@@ -70,7 +72,8 @@ TEST(PlanarIndex, PointsSpreadFarStillAnswerRightly) {
   }
   const PlanarIndex index(points, 0.5);
   std::vector<int> found;
-  for (const Eigen::Vector3d& p : {Eigen::Vector3d(2.0, 0.0, 0.0), Eigen::Vector3d(1e6 + 2.5, 1e6 + 0.1, 0.0)}) {
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(2.0, 0.0, 0.0), Eigen::Vector3d(1e6 + 2.5, 1e6 + 0.1, 0.0)}) {
     index.within(p, 0.5, found);
     EXPECT_EQ(found, brute_force(points, p, 0.5));
     EXPECT_FALSE(found.empty());

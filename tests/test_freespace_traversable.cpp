@@ -35,8 +35,10 @@ constexpr double kSensorHeight = 0.55;  // robot position above the floor (m)
 
 /// Nodes on a kSpacing lattice over [x0, x1] x [y0, y1] (multiples of kSpacing) at height z.
 void add_nodes(Points& nodes, double x0, double x1, double y0, double y1, double z) {
-  const int i0 = static_cast<int>(std::lround(x0 / kSpacing)), i1 = static_cast<int>(std::lround(x1 / kSpacing));
-  const int j0 = static_cast<int>(std::lround(y0 / kSpacing)), j1 = static_cast<int>(std::lround(y1 / kSpacing));
+  const int i0 = static_cast<int>(std::lround(x0 / kSpacing)),
+            i1 = static_cast<int>(std::lround(x1 / kSpacing));
+  const int j0 = static_cast<int>(std::lround(y0 / kSpacing)),
+            j1 = static_cast<int>(std::lround(y1 / kSpacing));
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) nodes.emplace_back(i * kSpacing, j * kSpacing, z);
 }
@@ -101,8 +103,10 @@ TEST(FreespaceTraversable, DoorwayCutsWhenLambdaExceedsHalfTheDoorWidth) {
     int room = -1;
     for (int c = 0; c < 2; ++c) {
       const auto& pts = fs.clusters[static_cast<std::size_t>(c)].points;
-      const bool all_room = std::all_of(pts.begin(), pts.end(), [](const Eigen::Vector3d& p) { return p.y() > 0.0; });
-      const bool all_corridor = std::all_of(pts.begin(), pts.end(), [](const Eigen::Vector3d& p) { return p.y() < 0.0; });
+      const bool all_room =
+          std::all_of(pts.begin(), pts.end(), [](const Eigen::Vector3d& p) { return p.y() > 0.0; });
+      const bool all_corridor =
+          std::all_of(pts.begin(), pts.end(), [](const Eigen::Vector3d& p) { return p.y() < 0.0; });
       EXPECT_TRUE(all_room || all_corridor) << "a cluster crosses the doorway at lambda_th " << lambda;
       if (all_room) room = c;
       // Every kept vertex is at least lambda_th from every obstacle point.
@@ -117,7 +121,8 @@ TEST(FreespaceTraversable, DoorwayCutsWhenLambdaExceedsHalfTheDoorWidth) {
     ASSERT_EQ(fs.clusters.size(), 1u) << "lambda_th " << lambda;
     EXPECT_EQ(fs.robot_cluster, 0);
     const auto& pts = fs.clusters[0].points;
-    EXPECT_TRUE(std::any_of(pts.begin(), pts.end(), [](const Eigen::Vector3d& p) { return p.head<2>().norm() < 1e-9; }));
+    EXPECT_TRUE(std::any_of(pts.begin(), pts.end(),
+                            [](const Eigen::Vector3d& p) { return p.head<2>().norm() < 1e-9; }));
   }
 }
 
@@ -135,14 +140,16 @@ TEST(FreespaceTraversable, PathDistanceGoesRoundTheWallThroughTheDoor) {
       if ((s.nodes[i].head<2>() - Eigen::Vector2d(x, y)).norm() < 1e-9) return i;
     return s.nodes.size();
   };
-  const std::size_t at_robot = index_of(2.5, -1.5), behind_wall = index_of(2.5, 1.0), along = index_of(0.0, -1.5);
+  const std::size_t at_robot = index_of(2.5, -1.5), behind_wall = index_of(2.5, 1.0),
+                    along = index_of(0.0, -1.5);
   ASSERT_LT(behind_wall, s.nodes.size());
   EXPECT_NEAR(fs.robot_path_distance[at_robot], 0.0, 1e-9);
   EXPECT_NEAR(fs.robot_path_distance[along], 2.5, 1e-6);  // straight along the corridor
   // Via the doorway's centre (0, 0): at least |robot - door| + |door - vertex|.
   const double detour = Eigen::Vector2d(2.5, 1.5).norm() + Eigen::Vector2d(2.5, 1.0).norm();
   EXPECT_GE(fs.robot_path_distance[behind_wall], detour - 1e-6);
-  EXPECT_LE(fs.robot_path_distance[behind_wall], 1.15 * detour);  // 8-neighbour lattice steps: a little longer
+  EXPECT_LE(fs.robot_path_distance[behind_wall],
+            1.15 * detour);  // 8-neighbour lattice steps: a little longer
   // A removed vertex (next to the wall) is not reached.
   EXPECT_TRUE(std::isinf(fs.robot_path_distance[index_of(2.5, -0.25)]));
 }
@@ -150,7 +157,8 @@ TEST(FreespaceTraversable, PathDistanceGoesRoundTheWallThroughTheDoor) {
 TEST(FreespaceTraversable, RobotClusterIsTheOneUnderTheRobot) {
   const DoorwayScene s = doorway_scene(1.0);
   const TraversableFreeSpaceConfig config = with_lambda(0.6);
-  const FreeSpace in_corridor = traversable_free_space(s.nodes, s.obstacles, {2.1, -1.4, kSensorHeight}, config);
+  const FreeSpace in_corridor =
+      traversable_free_space(s.nodes, s.obstacles, {2.1, -1.4, kSensorHeight}, config);
   ASSERT_NE(in_corridor.robot(), nullptr);
   for (const auto& p : in_corridor.robot()->points) EXPECT_LT(p.y(), 0.0);
   // The robot's vertex is the kept node nearest to it.
@@ -158,8 +166,11 @@ TEST(FreespaceTraversable, RobotClusterIsTheOneUnderTheRobot) {
   EXPECT_NEAR(v.x(), 2.0, 1e-9);
   EXPECT_NEAR(v.y(), -1.5, 1e-9);
   // Far from every node (beyond robot_radius), or on another storey: no robot cluster.
-  EXPECT_EQ(traversable_free_space(s.nodes, s.obstacles, {20.0, 0.0, kSensorHeight}, config).robot_cluster, -1);
-  EXPECT_EQ(traversable_free_space(s.nodes, s.obstacles, {0.0, 2.0, 3.0 + kSensorHeight}, config).robot_cluster, -1);
+  EXPECT_EQ(traversable_free_space(s.nodes, s.obstacles, {20.0, 0.0, kSensorHeight}, config).robot_cluster,
+            -1);
+  EXPECT_EQ(
+      traversable_free_space(s.nodes, s.obstacles, {0.0, 2.0, 3.0 + kSensorHeight}, config).robot_cluster,
+      -1);
 }
 
 TEST(FreespaceTraversable, RailingBoundsTheWalkwayWithoutSplittingIt) {
@@ -271,7 +282,8 @@ TEST(FreespaceTraversable, ObstacleSelectionAgreesWithASearchOverEveryNode) {
   const GroundHeight every_node = [&](const Eigen::Vector3d& p) -> std::optional<double> {
     std::optional<double> ground;
     for (const Eigen::Vector3d& n : nodes)
-      if ((n - p).head<2>().norm() < config.ground_search_radius && n.z() <= p.z() && (!ground || n.z() > *ground))
+      if ((n - p).head<2>().norm() < config.ground_search_radius && n.z() <= p.z() &&
+          (!ground || n.z() > *ground))
         ground = n.z();
     return ground;
   };
@@ -288,7 +300,8 @@ TEST(FreespaceTraversable, DeterministicAndValidated) {
   EXPECT_EQ(a.cluster_of, b.cluster_of);
   EXPECT_EQ(a.robot_vertex, b.robot_vertex);
   ASSERT_EQ(a.clusters.size(), b.clusters.size());
-  for (std::size_t c = 0; c < a.clusters.size(); ++c) EXPECT_EQ(a.clusters[c].vertices, b.clusters[c].vertices);
+  for (std::size_t c = 0; c < a.clusters.size(); ++c)
+    EXPECT_EQ(a.clusters[c].vertices, b.clusters[c].vertices);
   // Obstacles in another order: the same free space.
   Points reversed(s.obstacles.rbegin(), s.obstacles.rend());
   EXPECT_EQ(traversable_free_space(s.nodes, reversed, robot, with_lambda(0.6)).cluster_of, a.cluster_of);
@@ -297,7 +310,6 @@ TEST(FreespaceTraversable, DeterministicAndValidated) {
   bad.edge_length = 0.0;
   EXPECT_THROW(traversable_free_space(s.nodes, s.obstacles, robot, bad), std::invalid_argument);
 }
-
 
 TEST(FreespaceTraversable, OfficeRoomFromSimulatedGroundNodes) {
   // The office scene: traversable nodes of every 10th scan of the first 200 fused into the
@@ -319,7 +331,8 @@ TEST(FreespaceTraversable, OfficeRoomFromSimulatedGroundNodes) {
     std::vector<ground::NodeObservation> observations;
     for (const ground::GroundNode& n : g.nodes)
       if (n.traversable)
-        observations.push_back({R_sensor_level * n.centre.cast<double>(), R_sensor_level * n.normal.cast<double>(),
+        observations.push_back({R_sensor_level * n.centre.cast<double>(),
+                                R_sensor_level * n.normal.cast<double>(),
                                 static_cast<double>(n.probability)});
     map.fuse(static_cast<int>(k), T, observations);
     scan_points.clear();
@@ -332,7 +345,9 @@ TEST(FreespaceTraversable, OfficeRoomFromSimulatedGroundNodes) {
   Points nodes;
   for (const ground::GlobalNode* n : map.nodes_near(floor_under_robot, kRadius)) nodes.push_back(n->position);
   const Points obstacles = select_obstacles(scan_points, nodes);
-  const auto in_room_d = [](const Eigen::Vector3d& p) { return p.x() > 0.1 && p.x() < 10.9 && p.y() > 7.3 && p.y() < 12.9; };
+  const auto in_room_d = [](const Eigen::Vector3d& p) {
+    return p.x() > 0.1 && p.x() < 10.9 && p.y() > 7.3 && p.y() < 12.9;
+  };
   ASSERT_TRUE(in_room_d(robot));
   const auto room_nodes = static_cast<std::size_t>(std::count_if(nodes.begin(), nodes.end(), in_room_d));
 
@@ -340,13 +355,17 @@ TEST(FreespaceTraversable, OfficeRoomFromSimulatedGroundNodes) {
   ASSERT_NE(open.robot(), nullptr);
   const auto start = std::chrono::steady_clock::now();
   const FreeSpace fs = traversable_free_space(nodes, obstacles, robot);
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   ASSERT_NE(fs.robot(), nullptr);
-  const auto inside = static_cast<std::size_t>(std::count_if(fs.robot()->points.begin(), fs.robot()->points.end(), in_room_d));
-  std::printf("office: %zu nodes within %.0f m, %zu in room_d; %zu obstacle points of %zu; without obstacles the robot's "
-              "cluster holds %zu; with them %zu, %zu of them in room_d (%.1f ms)\n",
-              nodes.size(), kRadius, room_nodes, obstacles.size(), scan_points.size(), open.robot()->points.size(),
-              fs.robot()->points.size(), inside, ms);
+  const auto inside = static_cast<std::size_t>(
+      std::count_if(fs.robot()->points.begin(), fs.robot()->points.end(), in_room_d));
+  std::printf(
+      "office: %zu nodes within %.0f m, %zu in room_d; %zu obstacle points of %zu; without obstacles the "
+      "robot's "
+      "cluster holds %zu; with them %zu, %zu of them in room_d (%.1f ms)\n",
+      nodes.size(), kRadius, room_nodes, obstacles.size(), scan_points.size(), open.robot()->points.size(),
+      fs.robot()->points.size(), inside, ms);
   // Measured: 1846 nodes, 1726 in the open cluster; 654 in the room, all in room_d (812 nodes).
   // The nodes outside the open cluster are far floor rings seen through doors, stripes metres
   // apart that one visit does not join up.

@@ -34,12 +34,15 @@ SituationalGraph line(int n) {
     node.accum_distance = k;
     g.add_keyframe(node);
     if (k > 0) g.add_odometry_edge({k - 1, k, make_pose({1, 0, 0}, 0.0)});
-    g.add_plane_edge({k, plane, Plane::from_point_normal({0, 2, 0}, {0, -1, 0}).transformed(node.pose.inverse()), 50});
+    g.add_plane_edge(
+        {k, plane, Plane::from_point_normal({0, 2, 0}, {0, -1, 0}).transformed(node.pose.inverse()), 50});
   }
   return g;
 }
 
-bool near(const Pose3& a, const Pose3& b, double tol = 1e-9) { return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff() < tol; }
+bool near(const Pose3& a, const Pose3& b, double tol = 1e-9) {
+  return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff() < tol;
+}
 
 // Replays `source` keyframe by keyframe as the pipeline does: a local solve every 5 keyframes
 // (window 10), then, with `retire`, the window's redundant keyframes retired; a full solve at
@@ -62,7 +65,8 @@ SituationalGraph replay(const SituationalGraph& source, bool retire) {
     for (const PlaneEdge& e : source.plane_edges()) {
       if (e.keyframe != k) continue;
       if (!plane_id.count(e.plane))
-        plane_id[e.plane] = g.add_plane(e.measurement.transformed(node.pose), source.planes().at(e.plane).vertical);
+        plane_id[e.plane] =
+            g.add_plane(e.measurement.transformed(node.pose), source.planes().at(e.plane).vertical);
       g.add_plane_edge({k, plane_id.at(e.plane), e.measurement, e.num_inliers});
     }
     if (k % 5 != 4) continue;
@@ -92,7 +96,8 @@ TEST(KeyframeRetirement, FoldsTheOdometryAndDropsThePlaneEdges) {
   EXPECT_EQ(joined.to, 3);
   EXPECT_EQ(joined.folded, 1);
   EXPECT_TRUE(near(joined.measurement, make_pose({2, 0, 0}, 0.0)));
-  // Variances add; the first step's rotation noise, levered by the second step's metre, adds to the translation's.
+  // Variances add; the first step's rotation noise, levered by the second step's metre, adds to the
+  // translation's.
   const double lever = 0.5 * M_PI / 180.0 * 1.0;
   EXPECT_NEAR(joined.sigmas.trans, std::sqrt(2 * 0.05 * 0.05 + lever * lever), 1e-12);
   EXPECT_NEAR(joined.sigmas.rot_deg, std::sqrt(2.0) * 0.5, 1e-12);
@@ -122,7 +127,8 @@ TEST(KeyframeRetirement, LoopEdgesMoveToTheSuccessorAndOnlyTheMostCertainFoldedO
   g.add_loop_edge({1, 3, make_pose({2, 0.2, 0}, 0.0), 0.01});
   g.retire_keyframe(2, 0, kOdometry, kLoop);
   ASSERT_EQ(g.loop_edges().size(), 2u);
-  const auto moved = std::find_if(g.loop_edges().begin(), g.loop_edges().end(), [](const BetweenEdge& e) { return e.folded > 0; });
+  const auto moved = std::find_if(g.loop_edges().begin(), g.loop_edges().end(),
+                                  [](const BetweenEdge& e) { return e.folded > 0; });
   ASSERT_NE(moved, g.loop_edges().end());
   EXPECT_EQ(moved->from, 0);
   EXPECT_EQ(moved->to, 3);
@@ -178,7 +184,9 @@ TEST(KeyframeRetirement, OnTheSecondLapEveryKeyframeIsRedundantButOnesThatSeeANe
   EXPECT_EQ(redundant_keyframes(s.graph, all, anywhere, [](int) { return false; }).size(), r.size());
   // A wall only the second lap saw keeps the keyframe that saw it.
   const int new_wall = s.graph.add_plane(Plane::from_point_normal({5, 3, 0}, {0, -1, 0}), true);
-  s.graph.add_plane_edge({lap + 5, new_wall, s.graph.planes().at(new_wall).plane.transformed(s.graph.keyframes()[lap + 5].pose.inverse()), 50});
+  s.graph.add_plane_edge(
+      {lap + 5, new_wall,
+       s.graph.planes().at(new_wall).plane.transformed(s.graph.keyframes()[lap + 5].pose.inverse()), 50});
   r = redundant_keyframes(s.graph, all, config, everywhere);
   EXPECT_EQ(static_cast<int>(r.size()), n - 2 - lap);
   EXPECT_TRUE(std::none_of(r.begin(), r.end(), [&](const Retirement& x) { return x.keyframe == lap + 5; }));
@@ -203,18 +211,21 @@ TEST(KeyframeRetirement, OneCallDecidesInIdOrderAgainstWhatStays) {
   // A wall first seen on lap 2 at keyframe 15, seen again on lap 3 at keyframe 25.
   const Plane other = Plane::from_point_normal({5, -2, 0}, {0, 1, 0});
   const int seen_late = g.add_plane(other, true);
-  for (int k : {15, 25}) g.add_plane_edge({k, seen_late, other.transformed(g.keyframes()[k].pose.inverse()), 50});
+  for (int k : {15, 25})
+    g.add_plane_edge({k, seen_late, other.transformed(g.keyframes()[k].pose.inverse()), 50});
   std::vector<int> all;
   for (int k = 0; k < 30; ++k) all.push_back(k);
-  const std::vector<Retirement> r = redundant_keyframes(g, all, KeyframeRetirementConfig{}, [](int) { return true; });
+  const std::vector<Retirement> r =
+      redundant_keyframes(g, all, KeyframeRetirementConfig{}, [](int) { return true; });
   std::vector<bool> leaves(30, false);
   for (const Retirement& x : r) leaves[x.keyframe] = true;
   for (int k = 0; k < 10; ++k) EXPECT_FALSE(leaves[k]) << k;  // no earlier pass
-  EXPECT_FALSE(leaves[15]);                                  // saw a wall lap 1 did not
-  EXPECT_TRUE(leaves[25]);                                   // that wall is held by 15, which stays
-  EXPECT_FALSE(leaves[29]);                                  // the newest
+  EXPECT_FALSE(leaves[15]);                                   // saw a wall lap 1 did not
+  EXPECT_TRUE(leaves[25]);                                    // that wall is held by 15, which stays
+  EXPECT_FALSE(leaves[29]);                                   // the newest
   for (const Retirement& x : r) {
-    EXPECT_FALSE(leaves[x.anchor]) << "keyframe " << x.keyframe << " anchored on " << x.anchor << ", which leaves too";
+    EXPECT_FALSE(leaves[x.anchor]) << "keyframe " << x.keyframe << " anchored on " << x.anchor
+                                   << ", which leaves too";
     if (x.keyframe >= 20 && x.keyframe != 25) {
       EXPECT_EQ(x.anchor, x.keyframe - 20);
     }
@@ -245,8 +256,10 @@ TEST(KeyframeRetirement, TheEstimateMovesLittleAgainstKeepingEveryKeyframe) {
     max_kept_deg = std::max(max_kept_deg, Eigen::AngleAxisd(d.linear()).angle() / kDeg);
   }
   const double rmse_kept = position_rmse(kept, s.truth), rmse_retired = position_rmse(retired, s.truth);
-  std::printf("kept keyframes moved by at most %.4f m, %.3f deg; rmse against truth %.4f m (all kept) and %.4f m (retired)\n",
-              max_kept, max_kept_deg, rmse_kept, rmse_retired);
+  std::printf(
+      "kept keyframes moved by at most %.4f m, %.3f deg; rmse against truth %.4f m (all kept) and %.4f m "
+      "(retired)\n",
+      max_kept, max_kept_deg, rmse_kept, rmse_retired);
   EXPECT_LT(max_kept, 0.03);
   EXPECT_LT(max_kept_deg, 0.3);
   EXPECT_LT(rmse_retired, rmse_kept + 0.02);

@@ -44,7 +44,8 @@ PointCloud voxel_prefilter(const PointCloud& cloud, double voxel) {
 }
 
 const sim::Simulator& office() {
-  static const sim::Simulator sim(scene::parse_scene(*scene::builtin_scene_text("office"), "office.yaml", "."), 11);
+  static const sim::Simulator sim(
+      scene::parse_scene(*scene::builtin_scene_text("office"), "office.yaml", "."), 11);
   return sim;
 }
 
@@ -60,7 +61,8 @@ SituationalGraph office_keyframes() {
   double odom_travel = 0.0, true_since_last = 0.0;
   for (std::size_t i = 0; i < sim.num_scans(); ++i) {
     if (i > 0) {
-      odom_travel += (sim.odometry_poses()[i].translation() - sim.odometry_poses()[i - 1].translation()).norm();
+      odom_travel +=
+          (sim.odometry_poses()[i].translation() - sim.odometry_poses()[i - 1].translation()).norm();
       true_since_last += (sim.true_poses()[i].translation() - sim.true_poses()[i - 1].translation()).norm();
     }
     if (i > 0 && true_since_last < kKeyframeSpacing) continue;
@@ -133,10 +135,11 @@ TEST(GraphLoopClosure, OfficeSecondLapClosesALoopAtTheTrueRelativePose) {
   const Pose3 truth = sim.true_poses()[from.scan_index].inverse() * sim.true_poses()[to.scan_index];
   const PoseError measured = pose_error(loop->measurement, truth);
   const PoseError odometry = pose_error(from.pose.inverse() * to.pose, truth);
-  std::printf("loop %d -> %d (%.1f m apart, %.1f m travel): measured error %.4f m %.4f deg, odometry guess error "
-              "%.3f m %.3f deg, fitness %.4f, %zu clouds made\n",
-              loop->from, loop->to, truth.translation().norm(), to.accum_distance - from.accum_distance,
-              measured.trans, measured.rot_deg, odometry.trans, odometry.rot_deg, loop->fitness, clouds.size());
+  std::printf(
+      "loop %d -> %d (%.1f m apart, %.1f m travel): measured error %.4f m %.4f deg, odometry guess error "
+      "%.3f m %.3f deg, fitness %.4f, %zu clouds made\n",
+      loop->from, loop->to, truth.translation().norm(), to.accum_distance - from.accum_distance,
+      measured.trans, measured.rot_deg, odometry.trans, odometry.rot_deg, loop->fitness, clouds.size());
   EXPECT_LT(measured.trans, 0.05);
   EXPECT_LT(measured.rot_deg, 0.5);
   EXPECT_LE(loop->fitness, detector.config().max_fitness);

@@ -51,9 +51,8 @@ TEST(GraphOptimizer, FullSolveWithPlanesRecoversTheTrajectoryAndWalls) {
   std::printf(
       "odometry RMSE %.3f m -> %.4f m; planes %.2f deg / %.3f m -> %.3f deg / %.4f m; "
       "%d vars %d factors %d its %.1f ms\n",
-      rmse_odom, rmse, before.max_angle_deg, before.max_distance, after.max_angle_deg,
-      after.max_distance, stats.n_variables, stats.n_factors, stats.iterations,
-      stats.wall_time_s * 1e3);
+      rmse_odom, rmse, before.max_angle_deg, before.max_distance, after.max_angle_deg, after.max_distance,
+      stats.n_variables, stats.n_factors, stats.iterations, stats.wall_time_s * 1e3);
 
   EXPECT_LE(rmse, 0.25 * rmse_odom);
   EXPECT_LE(rmse, 0.05);
@@ -105,8 +104,8 @@ TEST(GraphOptimizer, WrongLoopIsDownWeightedByHuber) {
   const double robust = solve(true, huber);
   constexpr double kNoRobustKernel = 1e9;  // Huber delta no residual reaches: plain least squares
   const double plain = solve(true, kNoRobustKernel);
-  std::printf("RMSE without the wrong loop %.4f m; with it: Huber %.4f m, least squares %.4f m\n",
-              clean, robust, plain);
+  std::printf("RMSE without the wrong loop %.4f m; with it: Huber %.4f m, least squares %.4f m\n", clean,
+              robust, plain);
   EXPECT_LE(robust, 0.05);
   EXPECT_LT(robust - clean, 0.005);
   EXPECT_GT(plain, 3.0 * robust);  // the scenario is one where the kernel matters
@@ -137,11 +136,9 @@ TEST(GraphOptimizer, LocalSolveMovesOnlyTheWindow) {
   double worst = 0.0;
   for (int k = n - window; k < n; ++k) {
     EXPECT_FALSE(same_bits(s.graph.keyframes()[k].pose, before.keyframes()[k].pose)) << k;
-    worst = std::max(worst,
-                     (s.graph.keyframes()[k].pose.translation() - s.truth[k].translation()).norm());
+    worst = std::max(worst, (s.graph.keyframes()[k].pose.translation() - s.truth[k].translation()).norm());
   }
-  std::printf("window keyframes displaced %.2f m -> worst error %.4f m\n", kDisplacement.norm(),
-              worst);
+  std::printf("window keyframes displaced %.2f m -> worst error %.4f m\n", kDisplacement.norm(), worst);
   EXPECT_LT(worst, 0.05);
   for (const auto& [id, node] : s.graph.planes()) {
     if (seen.count(id)) continue;
@@ -164,8 +161,7 @@ SituationalGraph straight_corridor(int n) {
     if (k > 0) g.add_odometry_edge({k - 1, k, make_pose({1.0, 0.0, 0.0}, 0.0)});
     const int segment = int(std::floor(k / kSegment));
     for (int side : {-1, 1}) {
-      const Plane wall =
-          Plane::from_point_normal({0.0, side * kHalfWidth, 0.0}, {0.0, -double(side), 0.0});
+      const Plane wall = Plane::from_point_normal({0.0, side * kHalfWidth, 0.0}, {0.0, -double(side), 0.0});
       auto [it, inserted] = plane_of.try_emplace({segment, side}, -1);
       if (inserted) it->second = g.add_plane(wall, true);
       g.add_plane_edge({k, it->second, wall.transformed(node.pose.inverse()), 100});

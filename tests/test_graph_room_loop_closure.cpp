@@ -29,12 +29,12 @@ const Polygon2 kRoom{{0, 0}, {4, 0}, {4, 3}, {0, 3}};
 
 TEST(RoomLoopClosure, CandidatesAreTheEarlierPassesKeyframesInTheRoomNearestFirst) {
   const SituationalGraph g = graph_of({
-      {1, 1, 0.5, 0},     // 0: in the room, first pass
-      {3, 2, 0.5, 3},     // 1: in the room, first pass
-      {6, 1, 0.5, 6},     // 2: outside it
-      {2, 1, 3.5, 9},     // 3: in its footprint a storey up
-      {3.5, 2.5, 0.5, 12},// 4: in the room, but only 6 m of travel before the current one
-      {4.5, 2, 0.5, 18},  // 5: the current keyframe, at the door
+      {1, 1, 0.5, 0},       // 0: in the room, first pass
+      {3, 2, 0.5, 3},       // 1: in the room, first pass
+      {6, 1, 0.5, 6},       // 2: outside it
+      {2, 1, 3.5, 9},       // 3: in its footprint a storey up
+      {3.5, 2.5, 0.5, 12},  // 4: in the room, but only 6 m of travel before the current one
+      {4.5, 2, 0.5, 18},    // 5: the current keyframe, at the door
   });
   RoomLoopClosureConfig config;
   EXPECT_EQ(room_loop_candidates(g, 5, kRoom, 8.0, config), (std::vector<int>{1, 0}));

@@ -23,20 +23,20 @@ constexpr double kDeg = M_PI / 180.0;
 constexpr double kRoomLength = 6.0, kRoomWidth = 4.0;  // interior of each room (m)
 constexpr double kWallThickness = 0.2;                 // between neighbouring rooms (m)
 constexpr int kRooms = 3;
-constexpr double kStep = 0.5;          // m between keyframes
-constexpr double kFirstX = 1.0;        // the path runs along y = kRoomWidth / 2 from here
-constexpr int kStepsOut = 33;          // to x = 17.5, in the third room, then back
-constexpr double kWallMargin = 0.1;    // a keyframe this near a room's end wall sees no room
+constexpr double kStep = 0.5;        // m between keyframes
+constexpr double kFirstX = 1.0;      // the path runs along y = kRoomWidth / 2 from here
+constexpr int kStepsOut = 33;        // to x = 17.5, in the third room, then back
+constexpr double kWallMargin = 0.1;  // a keyframe this near a room's end wall sees no room
 constexpr double kOdomSigmaTrans = 0.01, kOdomSigmaYawDeg = 0.3;  // per step
 constexpr double kPlaneNoiseDeg = 0.2, kPlaneNoiseDist = 0.01;
 constexpr unsigned kSeed = 7;
 
 struct Building {
   std::vector<Pose3> truth;
-  std::vector<Eigen::Vector2d> room_min;             ///< interior corner of each room
-  std::vector<std::array<Plane, 4>> true_walls;      ///< left, right, bottom, top (into the room)
-  std::vector<std::array<int, 4>> wall_ids;          ///< their graph plane ids
-  std::vector<int> room_ids;                         ///< graph room id of each room
+  std::vector<Eigen::Vector2d> room_min;         ///< interior corner of each room
+  std::vector<std::array<Plane, 4>> true_walls;  ///< left, right, bottom, top (into the room)
+  std::vector<std::array<int, 4>> wall_ids;      ///< their graph plane ids
+  std::vector<int> room_ids;                     ///< graph room id of each room
   SituationalGraph graph;
 };
 
@@ -87,8 +87,7 @@ Building building(bool with_rooms, const Eigen::Vector2d& room_offset) {
                             vertical_plane(lo, {0, 1}), vertical_plane(hi, {0, -1})});
   }
   const double y = kRoomWidth / 2.0;
-  for (int k = 0; k <= kStepsOut; ++k)
-    b.truth.push_back(make_pose({kFirstX + kStep * k, y, 0}, 0.0));
+  for (int k = 0; k <= kStepsOut; ++k) b.truth.push_back(make_pose({kFirstX + kStep * k, y, 0}, 0.0));
   for (int k = 0; k <= kStepsOut; ++k)
     b.truth.push_back(make_pose({kFirstX + kStep * (kStepsOut - k), y, 0}, M_PI));
 
@@ -175,9 +174,7 @@ Corridor corridor(const Eigen::Vector2d& initial, const Eigen::Vector2d& cluster
     KeyframeNode node;
     node.pose = node.odom = make_pose({p.x(), p.y(), 0.0}, kCorridorYaw);
     c.graph.add_keyframe(node);
-    if (k > 0)
-      c.graph.add_odometry_edge(
-          {k - 1, k, c.graph.keyframes()[k - 1].pose.inverse() * node.pose});
+    if (k > 0) c.graph.add_odometry_edge({k - 1, k, c.graph.keyframes()[k - 1].pose.inverse() * node.pose});
     for (int w = 0; w < 2; ++w) {
       Plane measured = walls[w].transformed(node.pose.inverse());
       const double tz = angle(rng), ty = angle(rng), tx = angle(rng);  // the last first, as gcc drew them
@@ -213,18 +210,20 @@ TEST(GraphRooms, RoomOffByHalfAMetreConvergesToTheMidpointOfItsWalls) {
     worst_walls = std::max(worst_walls, (mid - true_center(b, r)).norm());
   }
   const double plane_change = max_plane_change(b.graph, plain.graph);
-  std::printf("rooms 0.50 m off -> %.2e m from their walls' midpoint, %.4f m from the truth "
-              "(the walls' midpoint: %.4f m); walls moved %.2e m by the room factors; %d vars "
-              "%d factors %d its\n",
-              worst_mid, worst_truth, worst_walls, plane_change, stats.n_variables,
-              stats.n_factors, stats.iterations);
+  std::printf(
+      "rooms 0.50 m off -> %.2e m from their walls' midpoint, %.4f m from the truth "
+      "(the walls' midpoint: %.4f m); walls moved %.2e m by the room factors; %d vars "
+      "%d factors %d its\n",
+      worst_mid, worst_truth, worst_walls, plane_change, stats.n_variables, stats.n_factors,
+      stats.iterations);
   EXPECT_LT(worst_mid, 1e-4);
-  EXPECT_LT(worst_truth, 0.06);  // as good as the walls: the drift across doorways stays
+  EXPECT_LT(worst_truth, 0.06);   // as good as the walls: the drift across doorways stays
   EXPECT_LT(plane_change, 1e-4);  // a consistent room does not bend its walls
   const int num_keyframes = int(b.graph.keyframes().size());
   EXPECT_EQ(stats.n_variables, num_keyframes - 1 + int(b.graph.planes().size()) + kRooms);
   EXPECT_EQ(stats.n_factors, int(b.graph.odometry_edges().size() + b.graph.loop_edges().size() +
-                                 b.graph.plane_edges().size()) + kRooms);
+                                 b.graph.plane_edges().size()) +
+                                 kRooms);
 }
 
 TEST(GraphRooms, RoomsMoveWithTheirWalls) {
@@ -262,9 +261,10 @@ TEST(GraphRooms, RoomsMoveWithTheirWalls) {
     worst_back = std::max(worst_back, (c1 - solved.rooms().at(b.room_ids[r]).center).norm());
     smallest_move = std::min(smallest_move, (c1 - c0).norm());
   }
-  std::printf("bent rooms moved at least %.3f m, %.2e m unlike their walls, and are %.2e m from "
-              "the solved map\n",
-              smallest_move, worst_follow, worst_back);
+  std::printf(
+      "bent rooms moved at least %.3f m, %.2e m unlike their walls, and are %.2e m from "
+      "the solved map\n",
+      smallest_move, worst_follow, worst_back);
   EXPECT_GT(smallest_move, 0.2);
   EXPECT_LT(worst_follow, 1e-4);
   EXPECT_LT(worst_back, 1e-3);
@@ -290,8 +290,8 @@ TEST(GraphRooms, LocalSolveFreesTheRoomsOfTheWindowsWalls) {
   // The window, the first room's walls, the first room and the floor.
   EXPECT_EQ(stats.n_variables, window + 4 + 1 + 1);
   for (int r = 1; r < kRooms; ++r)
-    EXPECT_TRUE(same_bits(b.graph.rooms().at(b.room_ids[r]).center,
-                          before.rooms().at(b.room_ids[r]).center)) << r;
+    EXPECT_TRUE(same_bits(b.graph.rooms().at(b.room_ids[r]).center, before.rooms().at(b.room_ids[r]).center))
+        << r;
   const Eigen::Vector2d c = b.graph.rooms().at(b.room_ids[0]).center;
   EXPECT_LT((c - wall_midpoint(b.graph, b.wall_ids[0])).norm(), 1e-4);
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
@@ -311,12 +311,12 @@ TEST(GraphRooms, CorridorConvergesToItsMidlineAtTheMeasuredPlaceAlongIt) {
   const Plane& a = c.graph.planes().at(c.walls[0]).plane;
   const Plane& bw = c.graph.planes().at(c.walls[1]).plane;
   const Eigen::Vector2d centre = c.graph.rooms().at(c.room).center;
-  const double to_midline =
-      0.5 * ((a.n.head<2>().dot(centre) + a.d) / a.n.head<2>().norm() -
-             (bw.n.head<2>().dot(centre) + bw.d) / bw.n.head<2>().norm());
-  std::printf("corridor started 0.50 m back and 0.60 m across: now %.4f m along, %.4f m across "
-              "from the truth, %.2e m off its walls' midline\n",
-              error.dot(c.along), error.dot(c.across), to_midline);
+  const double to_midline = 0.5 * ((a.n.head<2>().dot(centre) + a.d) / a.n.head<2>().norm() -
+                                   (bw.n.head<2>().dot(centre) + bw.d) / bw.n.head<2>().norm());
+  std::printf(
+      "corridor started 0.50 m back and 0.60 m across: now %.4f m along, %.4f m across "
+      "from the truth, %.2e m off its walls' midline\n",
+      error.dot(c.along), error.dot(c.across), to_midline);
   EXPECT_LT(std::abs(to_midline), 1e-4);
   EXPECT_LT(std::abs(error.dot(c.across)), 0.01);
   EXPECT_LT(std::abs(error.dot(c.along)), 0.01);  // the measured position along it
@@ -339,15 +339,17 @@ TEST(GraphRooms, FloorConvergesToTheMeanOfItsRoomsWithoutPullingThem) {
     room_change = std::max(room_change, (c - alone).norm());
   }
   const Eigen::Vector2d f = with_floor.graph.floors().at(floor).center;
-  std::printf("floor started %.2f m off: now %.2e m from its rooms' mean, %.4f m from the truth; "
-              "rooms moved %.2e m by it\n",
-              (Eigen::Vector2d(-3.0, 5.0) - true_mean).norm(), (f - mean).norm(),
-              (f - true_mean).norm(), room_change);
+  std::printf(
+      "floor started %.2f m off: now %.2e m from its rooms' mean, %.4f m from the truth; "
+      "rooms moved %.2e m by it\n",
+      (Eigen::Vector2d(-3.0, 5.0) - true_mean).norm(), (f - mean).norm(), (f - true_mean).norm(),
+      room_change);
   EXPECT_LT((f - mean).norm(), 1e-6);
   EXPECT_LT((f - true_mean).norm(), 0.03);
   EXPECT_LT(room_change, 1e-4);
-  EXPECT_EQ(stats.n_factors, int(with_floor.graph.odometry_edges().size() + 1 +
-                                 with_floor.graph.plane_edges().size()) + kRooms + 1);
+  EXPECT_EQ(
+      stats.n_factors,
+      int(with_floor.graph.odometry_edges().size() + 1 + with_floor.graph.plane_edges().size()) + kRooms + 1);
 }
 
 TEST(GraphRooms, WrongRoomAssociationIsDownWeightedByHuber) {
@@ -358,8 +360,7 @@ TEST(GraphRooms, WrongRoomAssociationIsDownWeightedByHuber) {
   const auto solve = [](bool wrong_edge, double huber_room) {
     Building b = building(true);
     const auto& w = b.wall_ids[1];
-    if (wrong_edge)
-      b.graph.add_room_edge({b.room_ids[0], RoomKind::room, {w[0], w[1], w[2], w[3]}, {}});
+    if (wrong_edge) b.graph.add_room_edge({b.room_ids[0], RoomKind::room, {w[0], w[1], w[2], w[3]}, {}});
     GraphOptimizerConfig config;
     config.huber_room = huber_room;
     GraphOptimizer(config).optimize(b.graph, true);
@@ -367,17 +368,18 @@ TEST(GraphRooms, WrongRoomAssociationIsDownWeightedByHuber) {
     e.room = (b.graph.rooms().at(b.room_ids[0]).center - true_center(b, 0)).norm();
     for (int r = 0; r < kRooms; ++r)
       for (int i = 0; i < 4; ++i)
-        e.walls = std::max(e.walls, std::abs(b.graph.planes().at(b.wall_ids[r][i]).plane.d -
-                                             b.true_walls[r][i].d));
+        e.walls =
+            std::max(e.walls, std::abs(b.graph.planes().at(b.wall_ids[r][i]).plane.d - b.true_walls[r][i].d));
     return e;
   };
   const double huber = GraphOptimizerConfig{}.huber_room;
   const Errors clean = solve(false, huber), robust = solve(true, huber);
   constexpr double kNoRobustKernel = 1e9;  // Huber delta no residual reaches: plain least squares
   const Errors plain = solve(true, kNoRobustKernel);
-  std::printf("first room / worst wall error: right association %.3f / %.4f m; wrong one with "
-              "Huber %.3f / %.4f m, least squares %.3f / %.4f m\n",
-              clean.room, clean.walls, robust.room, robust.walls, plain.room, plain.walls);
+  std::printf(
+      "first room / worst wall error: right association %.3f / %.4f m; wrong one with "
+      "Huber %.3f / %.4f m, least squares %.3f / %.4f m\n",
+      clean.room, clean.walls, robust.room, robust.walls, plain.room, plain.walls);
   const double room_sigma = GraphOptimizerConfig{}.room_sigma;
   EXPECT_LT(robust.room, clean.room + 2.0 * room_sigma);
   EXPECT_LT(robust.walls, clean.walls + room_sigma);
@@ -395,8 +397,7 @@ TEST(GraphRooms, MergedRoomKeepsBothEdgesAndConverges) {
   b.graph.merge_rooms(b.room_ids[2], dup);
   const OptimizationStats stats = GraphOptimizer().optimize(b.graph, true);
   EXPECT_EQ(b.graph.rooms().size(), std::size_t(kRooms));
-  EXPECT_EQ(stats.n_variables,
-            int(b.graph.keyframes().size()) - 1 + int(b.graph.planes().size()) + kRooms);
+  EXPECT_EQ(stats.n_variables, int(b.graph.keyframes().size()) - 1 + int(b.graph.planes().size()) + kRooms);
   EXPECT_LT((b.graph.rooms().at(b.room_ids[2]).center - wall_midpoint(b.graph, w)).norm(), 1e-4);
 }
 
@@ -411,10 +412,8 @@ TEST(GraphRooms, SameInputGivesBitIdenticalOutput) {
   Corridor ca = corridor({1.0, 2.0}, {10.0, 6.0}), cb = corridor({1.0, 2.0}, {10.0, 6.0});
   GraphOptimizer optimizer;
   for (bool full : {true, false}) {
-    EXPECT_EQ(optimizer.optimize(a.graph, full).final_cost,
-              optimizer.optimize(b.graph, full).final_cost);
-    EXPECT_EQ(optimizer.optimize(ca.graph, full).final_cost,
-              optimizer.optimize(cb.graph, full).final_cost);
+    EXPECT_EQ(optimizer.optimize(a.graph, full).final_cost, optimizer.optimize(b.graph, full).final_cost);
+    EXPECT_EQ(optimizer.optimize(ca.graph, full).final_cost, optimizer.optimize(cb.graph, full).final_cost);
   }
   for (const auto& [id, room] : a.graph.rooms())
     EXPECT_TRUE(same_bits(room.center, b.graph.rooms().at(id).center)) << id;

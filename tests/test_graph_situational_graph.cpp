@@ -163,8 +163,7 @@ TEST(SituationalGraph, RoomEdgesAreChecked) {
   SituationalGraph g = with_rooms();
   EXPECT_THROW(g.add_room_edge({7, RoomKind::room, {3, 0, 4, 5}, {}}), std::invalid_argument);
   EXPECT_THROW(g.add_room_edge({0, RoomKind::room, {3, 0}, {}}), std::invalid_argument);
-  EXPECT_THROW(g.add_room_edge({0, RoomKind::corridor, {3, 0, 4, 5}, {}}),
-               std::invalid_argument);
+  EXPECT_THROW(g.add_room_edge({0, RoomKind::corridor, {3, 0, 4, 5}, {}}), std::invalid_argument);
   EXPECT_THROW(g.add_room_edge({0, RoomKind::room, {3, 0, 4, 9}, {}}), std::invalid_argument);
   EXPECT_THROW(g.add_room_edge({0, RoomKind::room, {3, 0, 4, 3}, {}}), std::invalid_argument);
   EXPECT_THROW(g.add_floor_room_edge({3, 0}), std::invalid_argument);
@@ -183,7 +182,7 @@ TEST(SituationalGraph, MergeRoomsRepointsEdges) {
   EXPECT_EQ(g.rooms().size(), 1u);
   EXPECT_EQ(g.rooms().count(1), 0u);
   EXPECT_DOUBLE_EQ(g.rooms().at(0).center.x(), 3.0);  // the kept estimate is unchanged
-  ASSERT_EQ(g.room_edges().size(), 2u);                // both detections kept
+  ASSERT_EQ(g.room_edges().size(), 2u);               // both detections kept
   EXPECT_EQ(g.room_edges()[0].room, 0);
   EXPECT_EQ(g.room_edges()[1].room, 0);
   EXPECT_EQ(g.room_edges()[1].planes, (std::vector<int>{3, 1, 4, 5}));

@@ -79,7 +79,8 @@ TEST(BgkSmoothing, ASteepNodeAmongGroundIsNotRestored) {
   const double cx = grid.centroid(steep).x();
   // The node's points rise 0.5 m per m (27 degrees): a chair's legs, a mat, or a glass railing
   // at a void's edge, whose neighbours on the slab would vote it traversable.
-  const PointCloud cloud = make_floor(grid, steep, [&](double x, double) { return -kSensorHeight + 0.5 * (x - cx); });
+  const PointCloud cloud =
+      make_floor(grid, steep, [&](double x, double) { return -kSensorHeight + 0.5 * (x - cx); });
   const Smoothed s = run(build_tri_grid_field(cloud, Eigen::Matrix3d::Identity(), config), config);
   ASSERT_EQ(s.field.nodes[steep].state, NodeState::kModelled);
   EXPECT_FALSE(s.field.nodes[steep].ground_like);
@@ -120,10 +121,10 @@ TEST(BgkSmoothing, TheStoreyBelowSeenThroughAVoidIsNotRestored) {
   const PointCloud cloud = make_floor(grid, hole, [](double, double) { return -kSensorHeight - 4.0; });
   const Smoothed s = run(build_tri_grid_field(cloud, Eigen::Matrix3d::Identity(), config), config);
   ASSERT_EQ(s.field.nodes[hole].state, NodeState::kModelled);
-  EXPECT_TRUE(s.field.nodes[hole].ground_like);  // flat...
-  EXPECT_FALSE(s.reached[hole]);                 // ...not reached...
+  EXPECT_TRUE(s.field.nodes[hole].ground_like);                    // flat...
+  EXPECT_FALSE(s.reached[hole]);                                   // ...not reached...
   EXPECT_GE(s.smoothed[hole].probability, config.th_traversable);  // ...amid ground...
-  EXPECT_FALSE(s.traversable[hole]);             // ...but far below the smoothed surface
+  EXPECT_FALSE(s.traversable[hole]);                               // ...but far below the smoothed surface
 }
 
 TEST(BgkSmoothing, NodesCutOffFromTheRobotStayOff) {

@@ -56,8 +56,9 @@ std::vector<NodeObservation> observe(const Pose3& T_map_sensor, const Surface& s
 }
 
 /// The grid cells that the observations fall in, placed with pose T (as the map places them).
-std::set<std::pair<std::int64_t, std::int64_t>> cells_of(const Pose3& T, const std::vector<NodeObservation>& obs,
-                                                         std::set<std::pair<std::int64_t, std::int64_t>> cells = {}) {
+std::set<std::pair<std::int64_t, std::int64_t>> cells_of(
+    const Pose3& T, const std::vector<NodeObservation>& obs,
+    std::set<std::pair<std::int64_t, std::int64_t>> cells = {}) {
   for (const NodeObservation& o : obs) {
     const Eigen::Vector3d p = T * o.position;
     cells.emplace(static_cast<std::int64_t>(std::floor(p.x() / kCell)),
@@ -75,7 +76,8 @@ Pose3 standing_on(double x, double y, double ground_z, double yaw = 0.0) {
 // noise does not open a new row of cells along them.
 constexpr int kKeyframesPerLap = 20;
 constexpr double kPathLength = 10.0, kStart = 0.1, kHalf = 3.0;
-constexpr double kNoiseXY = 0.03, kNoiseZ = 0.01, kNoiseYaw = 0.3 * M_PI / 180.0;  // pose estimate noise (m, rad)
+constexpr double kNoiseXY = 0.03, kNoiseZ = 0.01,
+                 kNoiseYaw = 0.3 * M_PI / 180.0;  // pose estimate noise (m, rad)
 
 Pose3 lap_pose(int i, bool reverse) {
   const double x = kStart + kPathLength * (reverse ? kKeyframesPerLap - 1 - i : i) / (kKeyframesPerLap - 1);
@@ -128,7 +130,8 @@ TEST(GroundNodeMap, FloorAlongAPathHasOneNodePerCell) {
   }
   const double area = (kPathLength + 2.0 * kHalf) * (2.0 * kHalf);
   const double expected = area / (kCell * kCell);  // 1536 cells
-  EXPECT_EQ(map.size(), cells.size());  // one node per cell reached: 65 x 25 = 1625, the rim's cells are partial
+  EXPECT_EQ(map.size(),
+            cells.size());  // one node per cell reached: 65 x 25 = 1625, the rim's cells are partial
   EXPECT_NEAR(static_cast<double>(map.size()), expected, 0.1 * expected);
 
   int fused = 0;
@@ -205,7 +208,8 @@ TEST(GroundNodeMap, RampUnderALandingKeepsBothSurfaces) {
   int id = 0;
   for (double x : {0.53, 1.53, 2.53, 3.53, 4.53, 5.53}) {
     // On the ramp the sensor is pitched with it, so observations are not in a level frame.
-    const Pose3 on_ramp = make_pose(Eigen::Vector3d(x, 1.03, kSlope * x + kSensorHeight), 0.0, -std::atan(kSlope));
+    const Pose3 on_ramp =
+        make_pose(Eigen::Vector3d(x, 1.03, kSlope * x + kSensorHeight), 0.0, -std::atan(kSlope));
     const auto seen = observe(on_ramp, ramp, 1.5);
     ramp_cells = cells_of(on_ramp, seen, std::move(ramp_cells));
     map.fuse(id++, on_ramp, seen);
@@ -443,8 +447,9 @@ TEST(GroundNodeMap, NodesNearAreNearestFirstWithinRadiusAndLevel) {
   };
   // Four nodes at the same distance from (0.25, 0.25), fused out of position order, then a farther
   // one, one a storey up and one in a far cell.
-  map.fuse(0, I, {at(0.375, 0.375, 0.0), at(0.125, 0.375, 0.0), at(0.375, 0.125, 0.0), at(0.125, 0.125, 0.0),
-                  at(0.625, 0.125, 0.0), at(0.125, 0.125, 1.0), at(5.0, 5.0, 0.0)});
+  map.fuse(0, I,
+           {at(0.375, 0.375, 0.0), at(0.125, 0.375, 0.0), at(0.375, 0.125, 0.0), at(0.125, 0.125, 0.0),
+            at(0.625, 0.125, 0.0), at(0.125, 0.125, 1.0), at(5.0, 5.0, 0.0)});
   ASSERT_EQ(map.size(), 7u);
   auto ids = [](const std::vector<const GlobalNode*>& v) {
     std::vector<int> out;

@@ -32,10 +32,12 @@ using ground::GroundScan;
 
 namespace {
 
-constexpr std::size_t kScanStep = 25;       // every 25th scan of the 2-lap path
-constexpr double kEvalRange = 15.0;         // points within this (horizontal) range are scored (m)
-constexpr double kOtherStorey = 1.0;        // a floor more than this below or above the sensor's is another storey's (m)
-constexpr double kVoidEdgeNoise = 0.05;     // range noise carries floor points at the void's edge a few cm over it (m)
+constexpr std::size_t kScanStep = 25;  // every 25th scan of the 2-lap path
+constexpr double kEvalRange = 15.0;    // points within this (horizontal) range are scored (m)
+constexpr double kOtherStorey =
+    1.0;  // a floor more than this below or above the sensor's is another storey's (m)
+constexpr double kVoidEdgeNoise =
+    0.05;  // range noise carries floor points at the void's edge a few cm over it (m)
 constexpr double kMinPrecision = 0.97;
 constexpr double kMinRecall = 0.95;
 constexpr std::uint32_t kFloor = static_cast<std::uint32_t>(PointLabel::kFloor);
@@ -56,7 +58,7 @@ int level_index(const scene::Scene& scene, const std::string& name) {
 // A segmented scan with what is needed to score it in the world.
 struct Segmented {
   PointCloud cloud;
-  Pose3 pose;          // world <- sensor
+  Pose3 pose;  // world <- sensor
   GroundScan result;
   double floor_z = 0;  // world height of the floor under the sensor
 
@@ -82,8 +84,12 @@ std::vector<Segmented> segment_path(const sim::Simulator& sim, const GroundConfi
 
 struct Score {
   std::size_t true_positive = 0, false_positive = 0, false_negative = 0;
-  double precision() const { return static_cast<double>(true_positive) / std::max<std::size_t>(1, true_positive + false_positive); }
-  double recall() const { return static_cast<double>(true_positive) / std::max<std::size_t>(1, true_positive + false_negative); }
+  double precision() const {
+    return static_cast<double>(true_positive) / std::max<std::size_t>(1, true_positive + false_positive);
+  }
+  double recall() const {
+    return static_cast<double>(true_positive) / std::max<std::size_t>(1, true_positive + false_negative);
+  }
 };
 
 // Ground truth: floor and ramp points of the sensor's own storey, within kEvalRange.
@@ -161,8 +167,9 @@ TEST(AtriumGround, VoidAndStoreyBelowAreNeverGround) {
       if ((s.pose * s.cloud.points[i].cast<double>()).z() < s.floor_z - kOtherStorey) ++below;
     }
   }
-  std::printf("atrium: %zu scans, %zu traversable nodes, %zu in the void, %zu ground points on the storey below\n",
-              scans, traversable, nodes_in_void, below);
+  std::printf(
+      "atrium: %zu scans, %zu traversable nodes, %zu in the void, %zu ground points on the storey below\n",
+      scans, traversable, nodes_in_void, below);
   EXPECT_GT(traversable, scans * 100);
   EXPECT_EQ(nodes_in_void, 0u);
   EXPECT_EQ(below, 0u);
@@ -182,11 +189,13 @@ TEST(AtriumGround, BenchTopIsNotGround) {
   const double top = base + bench->max.z();
   constexpr double kMargin = 0.05;  // around the bench's box (m)
   auto on_bench = [&](const Eigen::Vector3d& w, double z_lo, double z_hi) {
-    return w.x() >= bench->min.x() - kMargin && w.x() <= bench->max.x() + kMargin && w.y() >= bench->min.y() - kMargin &&
-           w.y() <= bench->max.y() + kMargin && w.z() >= z_lo && w.z() <= z_hi;
+    return w.x() >= bench->min.x() - kMargin && w.x() <= bench->max.x() + kMargin &&
+           w.y() >= bench->min.y() - kMargin && w.y() <= bench->max.y() + kMargin && w.z() >= z_lo &&
+           w.z() <= z_hi;
   };
   const GroundConfig config = ground::per_sensor_preset(scene.sensor.preset);
-  const std::vector<Eigen::Vector2d> stands = {{11.0, 12.0}, {14.0, 10.6}, {17.0, 12.0}, {14.0, 13.4}, {12.0, 10.5}};
+  const std::vector<Eigen::Vector2d> stands = {
+      {11.0, 12.0}, {14.0, 10.6}, {17.0, 12.0}, {14.0, 13.4}, {12.0, 10.5}};
   std::size_t bench_points = 0, bench_ground = 0, bench_nodes = 0, floor_ground = 0;
   for (std::size_t k = 0; k < stands.size(); ++k) {
     const Pose3 pose = make_pose({stands[k].x(), stands[k].y(), base + scene.sensor.mount_height}, 0.7 * k);
@@ -207,8 +216,9 @@ TEST(AtriumGround, BenchTopIsNotGround) {
       if (on_bench(w, top - 0.2, top + 0.2)) ++bench_nodes;
     }
   }
-  std::printf("bench: %zu points on it, %zu of them ground; %zu traversable nodes on top; %zu floor points ground\n",
-              bench_points, bench_ground, bench_nodes, floor_ground);
+  std::printf(
+      "bench: %zu points on it, %zu of them ground; %zu traversable nodes on top; %zu floor points ground\n",
+      bench_points, bench_ground, bench_nodes, floor_ground);
   EXPECT_GT(bench_points, 1000u);
   EXPECT_GT(floor_ground, 10000u);
   EXPECT_EQ(bench_ground, 0u);
@@ -289,11 +299,12 @@ TEST(WallFoot, AFarWallsFootIsAnObstacleThoughTheNextRingIsAboveFootHeight) {
 TEST(RealGround, Hdl32ScansGiveOneRegionOnItsLocalPlane) {
   constexpr double kSensorHeight = 1.7;   // m, from the data (see above)
   constexpr double kMaxAbovePlane = 0.3;  // m
-  constexpr double kLocalCell = 1.0;      // local planes: ground points of the 3 x 3 cells of this size around
-  constexpr std::size_t kMinGroundPoints = 10000;  // of about 14,000 returns within 0.3 m of the walkway's best-fit plane inside 15 m
+  constexpr double kLocalCell = 1.0;  // local planes: ground points of the 3 x 3 cells of this size around
+  constexpr std::size_t kMinGroundPoints =
+      10000;  // of about 14,000 returns within 0.3 m of the walkway's best-fit plane inside 15 m
   GroundConfig config = ground::per_sensor_preset("");
   config.sensor_height = kSensorHeight;
-  config.seed_radius = 5.0;               // the lowest beam (-30.7 degrees) meets the ground 2.9 m away
+  config.seed_radius = 5.0;  // the lowest beam (-30.7 degrees) meets the ground 2.9 m away
   for (const char* name : {"251370668.pcd", "251371071.pcd"}) {
     const PointCloud cloud = io::read_pcd(std::string(TSGRAPHS_TEST_DATA_DIR) + "/hdl32_pair/" + name);
     const GroundScan result = ground::segment_ground(cloud, Eigen::Matrix3d::Identity(), config);
@@ -324,7 +335,8 @@ TEST(RealGround, Hdl32ScansGiveOneRegionOnItsLocalPlane) {
     std::map<std::pair<int, int>, std::vector<Eigen::Vector3d>> cells;
     std::size_t ground_points = 0;
     auto cell_of = [&](const Eigen::Vector3f& p) {
-      return std::make_pair(static_cast<int>(std::floor(p.x() / kLocalCell)), static_cast<int>(std::floor(p.y() / kLocalCell)));
+      return std::make_pair(static_cast<int>(std::floor(p.x() / kLocalCell)),
+                            static_cast<int>(std::floor(p.y() / kLocalCell)));
     };
     for (std::size_t i = 0; i < cloud.size(); ++i) {
       if (result.labels[i] != GroundLabel::kGround) continue;
@@ -348,10 +360,13 @@ TEST(RealGround, Hdl32ScansGiveOneRegionOnItsLocalPlane) {
         }
       }
       const Eigen::Vector3d abc = A.ldlt().solve(b);
-      for (const Eigen::Vector3d& q : pts) worst = std::max(worst, q.z() - (abc.x() * q.x() + abc.y() * q.y() + abc.z()));
+      for (const Eigen::Vector3d& q : pts)
+        worst = std::max(worst, q.z() - (abc.x() * q.x() + abc.y() * q.y() + abc.z()));
     }
-    std::printf("%s: %zu points, %zu ground, %zu traversable nodes in %d region(s), highest ground point %.3f m above its local plane\n",
-                name, cloud.size(), ground_points, nodes.size(), components, worst);
+    std::printf(
+        "%s: %zu points, %zu ground, %zu traversable nodes in %d region(s), highest ground point %.3f m "
+        "above its local plane\n",
+        name, cloud.size(), ground_points, nodes.size(), components, worst);
     EXPECT_GT(ground_points, kMinGroundPoints);
     EXPECT_EQ(components, 1);
     EXPECT_LE(worst, kMaxAbovePlane);

@@ -15,10 +15,10 @@ using namespace tsgraphs::ground;
 
 namespace {
 
-constexpr double kCell = 0.25;          // the node map's default cell: one node per cell
-constexpr double kRadius = 1.0;         // half the room layer's default floor_window
-constexpr double kMaxFloorSlope = 0.05; // the room layer's default: 1:20, where a walk becomes a ramp
-constexpr double kRampSlope = 0.16;     // 9 degrees, the generator's gentlest ramp
+constexpr double kCell = 0.25;           // the node map's default cell: one node per cell
+constexpr double kRadius = 1.0;          // half the room layer's default floor_window
+constexpr double kMaxFloorSlope = 0.05;  // the room layer's default: 1:20, where a walk becomes a ramp
+constexpr double kRampSlope = 0.16;      // 9 degrees, the generator's gentlest ramp
 
 /// The unit normal of a surface rising `gx` per metre along x and `gy` along y.
 Eigen::Vector3d normal_of(double gx, double gy) { return Eigen::Vector3d(-gx, -gy, 1.0).normalized(); }
@@ -70,7 +70,8 @@ TEST(GroundSlope, AFloorWhoseNormalsAllTiltOneWayIsLevel) {
 TEST(GroundSlope, AStepIsNoRamp) {
   // Level on either side of a 0.2 m step (within the room layer's level_band).
   Nodes nodes;
-  for_cells(0.0, 6.0, 0.0, 4.0, [&](double x, double y) { nodes.add(x, y, x < 3.0 ? 0.0 : 0.2, normal_of(0.0, 0.0)); });
+  for_cells(0.0, 6.0, 0.0, 4.0,
+            [&](double x, double y) { nodes.add(x, y, x < 3.0 ? 0.0 : 0.2, normal_of(0.0, 0.0)); });
   for (double s : ground_slopes(nodes.positions, nodes.normals, kCell, kRadius)) EXPECT_LE(s, kMaxFloorSlope);
 }
 

@@ -20,8 +20,8 @@ namespace {
 
 constexpr double kSensorHeight = 0.55;  // the robot's floor is at z = -0.55 (m)
 constexpr double kSpacing = 0.04;       // of the constructed points (m)
-constexpr double kBlind = 1.3;          // no points nearer than this (as with a real sensor's lowest beam) (m)
-constexpr double kHalfSide = 6.0;       // the constructed ground covers [-6, 6] x [-6, 6] (m)
+constexpr double kBlind = 1.3;     // no points nearer than this (as with a real sensor's lowest beam) (m)
+constexpr double kHalfSide = 6.0;  // the constructed ground covers [-6, 6] x [-6, 6] (m)
 constexpr double kDeg = M_PI / 180.0;
 
 // Points on the surface z = height(x, y) over the square, where height returns a number (NaN: no surface).
@@ -66,9 +66,10 @@ TEST(LocalConvexity, CoplanarNodesPassAStepOrAKinkFails) {
   const Eigen::Vector3f up = Eigen::Vector3f::UnitZ();
   const TriGridNode a = plane_node({0.0f, 0.0f, -0.55f}, up);
   EXPECT_TRUE(locally_convex(a, plane_node({0.17f, 0.0f, -0.55f}, up), config));
-  EXPECT_TRUE(locally_convex(a, plane_node({0.17f, 0.0f, -0.545f}, up), config));   // noise
-  EXPECT_FALSE(locally_convex(a, plane_node({0.17f, 0.0f, -0.10f}, up), config));   // 0.45 m step
-  EXPECT_FALSE(locally_convex(a, plane_node({0.17f, 0.0f, -0.55f}, {std::sin(30 * kDeg), 0.0f, std::cos(30 * kDeg)}), config));
+  EXPECT_TRUE(locally_convex(a, plane_node({0.17f, 0.0f, -0.545f}, up), config));  // noise
+  EXPECT_FALSE(locally_convex(a, plane_node({0.17f, 0.0f, -0.10f}, up), config));  // 0.45 m step
+  EXPECT_FALSE(locally_convex(
+      a, plane_node({0.17f, 0.0f, -0.55f}, {std::sin(30 * kDeg), 0.0f, std::cos(30 * kDeg)}), config));
   // A long link (across empty nodes) may bend more, but not climb more than th_dist.
   EXPECT_TRUE(locally_convex(a, plane_node({1.5f, 0.0f, -0.52f}, up), config));
   EXPECT_FALSE(locally_convex(a, plane_node({1.5f, 0.0f, -0.40f}, up), config));
@@ -157,7 +158,8 @@ TEST(TraversableSearch, ASevenDegreeRampIsReached) {
   const GroundConfig config;
   constexpr double kFoot = 1.5;  // the ramp rises along x from here
   const double slope = std::tan(7.0 * kDeg);
-  const PointCloud cloud = make_ground([&](double x, double) { return -kSensorHeight + std::max(0.0, x - kFoot) * slope; });
+  const PointCloud cloud =
+      make_ground([&](double x, double) { return -kSensorHeight + std::max(0.0, x - kFoot) * slope; });
   const Searched s = search(cloud, config);
   int ramp_nodes = 0, ramp_reached = 0;
   for (std::size_t n = 0; n < s.field.nodes.size(); ++n) {
@@ -240,7 +242,8 @@ TEST(LinkGap, SpansTheGapToTheNextFloorRingWhereLongerThanMaxGap) {
   GroundConfig config;  // os1-64 at 0.55 m
   EXPECT_DOUBLE_EQ(link_gap(3.0, config), config.max_gap);
   // At 10 m the next ring out (a beam 0.71 deg flatter) meets the floor 12.9 m out.
-  const double next = kSensorHeight / std::tan(std::atan2(kSensorHeight, 10.0) - config.ring_spacing_deg * kDeg);
+  const double next =
+      kSensorHeight / std::tan(std::atan2(kSensorHeight, 10.0) - config.ring_spacing_deg * kDeg);
   EXPECT_NEAR(next, 12.9, 0.1);
   EXPECT_DOUBLE_EQ(link_gap(10.0, config), next - 10.0 + config.resolution);
   // At 13 m the next ring is beyond max_range: nothing farther to link to.

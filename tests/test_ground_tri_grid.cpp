@@ -49,8 +49,8 @@ TEST(TriGrid, EveryCentroidFallsInItsOwnNode) {
 
 TEST(TriGrid, AdjacencyIsSymmetricAndJoinsNeighbouringTriangles) {
   const TriGrid grid(0.5, 3.0);
-  const double side_to_side = 0.5 / 3.0;                 // centroids across a cell side
-  const double same_cell = 0.5 / 3.0 * std::sqrt(2.0);   // centroids across a diagonal
+  const double side_to_side = 0.5 / 3.0;                // centroids across a cell side
+  const double same_cell = 0.5 / 3.0 * std::sqrt(2.0);  // centroids across a diagonal
   std::array<int, 3> adj{}, back{};
   for (int n = 0; n < grid.num_nodes(); ++n) {
     const int count = grid.adjacent(n, &adj);
@@ -58,7 +58,8 @@ TEST(TriGrid, AdjacencyIsSymmetricAndJoinsNeighbouringTriangles) {
     for (int k = 0; k < count; ++k) {
       const int m = adj[k];
       const double d = (grid.centroid(m) - grid.centroid(n)).norm();
-      EXPECT_TRUE(std::abs(d - side_to_side) < 1e-9 || std::abs(d - same_cell) < 1e-9) << n << " " << m << " " << d;
+      EXPECT_TRUE(std::abs(d - side_to_side) < 1e-9 || std::abs(d - same_cell) < 1e-9)
+          << n << " " << m << " " << d;
       const int back_count = grid.adjacent(m, &back);
       EXPECT_NE(std::find(back.begin(), back.begin() + back_count, n), back.begin() + back_count);
     }
@@ -66,12 +67,15 @@ TEST(TriGrid, AdjacencyIsSymmetricAndJoinsNeighbouringTriangles) {
 }
 
 TEST(TriGrid, LevelRotationKeepsRollAndPitchAndDropsYaw) {
-  const Eigen::Matrix3d tilt = (Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX()) *
-                                Eigen::AngleAxisd(-0.05, Eigen::Vector3d::UnitY())).toRotationMatrix();
-  const Eigen::Matrix3d R_map_sensor = Eigen::AngleAxisd(2.0, Eigen::Vector3d::UnitZ()).toRotationMatrix() * tilt;
+  const Eigen::Matrix3d tilt =
+      (Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(-0.05, Eigen::Vector3d::UnitY()))
+          .toRotationMatrix();
+  const Eigen::Matrix3d R_map_sensor =
+      Eigen::AngleAxisd(2.0, Eigen::Vector3d::UnitZ()).toRotationMatrix() * tilt;
   const Eigen::Matrix3d R = level_rotation(R_map_sensor);
   // Gravity is the same in the level frame and the map frame...
-  EXPECT_LT(((R * R_map_sensor.transpose()) * Eigen::Vector3d::UnitZ() - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
+  EXPECT_LT(((R * R_map_sensor.transpose()) * Eigen::Vector3d::UnitZ() - Eigen::Vector3d::UnitZ()).norm(),
+            1e-12);
   // ...and the sensor's heading is the level frame's x.
   const Eigen::Vector3d heading = R.col(0);
   EXPECT_NEAR(std::atan2(heading.y(), heading.x()), 0.0, 1e-12);
@@ -91,14 +95,16 @@ TEST(TriGridField, FlatFloorNodesAreGroundLikeAtTheFloorHeight) {
     EXPECT_NEAR(node.centre.z(), -kSensorHeight, 1e-4);
     EXPECT_GT(node.normal.z(), 0.9999);
   }
-  EXPECT_GT(modelled, 16 * 16 * 4 - 40);  // every triangle of the 8 m x 8 m floor but the one under the sensor
+  EXPECT_GT(modelled,
+            16 * 16 * 4 - 40);  // every triangle of the 8 m x 8 m floor but the one under the sensor
 }
 
 TEST(TriGridField, PointsFarBelowTheLowestLevelDoNotMoveThePlane) {
   PointCloud cloud;
   add_floor(&cloud, 2.0, 2.5, 2.0, 2.5, -kSensorHeight);
   const Eigen::Vector3f centre(2.4f, 2.25f, 0.0f);  // in the cell's +x triangle
-  for (int k = 0; k < 3; ++k) cloud.points.emplace_back(centre.x() + 0.02f * k, centre.y(), -kSensorHeight - 1.0f);
+  for (int k = 0; k < 3; ++k)
+    cloud.points.emplace_back(centre.x() + 0.02f * k, centre.y(), -kSensorHeight - 1.0f);
   const GroundConfig config;
   const TriGridField field = build_tri_grid_field(cloud, Eigen::Matrix3d::Identity(), config);
   const TriGridNode& node = node_at(field, centre.x(), centre.y());
@@ -151,7 +157,8 @@ TEST(TriGridField, OneScanLineIsLevelGroundUnlessAFaceStandsOnIt) {
   // The same line at the foot of a face rising from it.
   PointCloud foot = ring;
   for (int k = 0; k < 12; ++k)
-    for (int h = 1; h <= 8; ++h) foot.points.emplace_back(10.27f + 0.018f * k, 5.25f, -kSensorHeight + 0.05f * h);
+    for (int h = 1; h <= 8; ++h)
+      foot.points.emplace_back(10.27f + 0.018f * k, 5.25f, -kSensorHeight + 0.05f * h);
   const TriGridField b = build_tri_grid_field(foot, Eigen::Matrix3d::Identity(), config);
   const TriGridNode& face = node_at(b, 10.35, 5.25);
   ASSERT_EQ(face.state, NodeState::kModelled);

@@ -16,8 +16,8 @@
 
 using namespace tsgraphs;
 using namespace tsgraphs::io;
-using tsgraphs::test::TempDirTest;
 using ::testing::HasSubstr;
+using tsgraphs::test::TempDirTest;
 
 namespace fs = std::filesystem;
 
@@ -134,7 +134,8 @@ TEST_F(AtomicDir, UncommittedIsRemoved) {
 TEST_F(AtomicDir, ErrorsNameTheFinalFolder) {
   const std::string out = (dir_ / "out").string();
   AtomicDirectory d(out, "done.txt");
-  const InputError e = d.named_as_final(InputError(d.path() + "/scene_graph.json: keyframes[3]: not finite (" + d.path() + ")"));
+  const InputError e = d.named_as_final(
+      InputError(d.path() + "/scene_graph.json: keyframes[3]: not finite (" + d.path() + ")"));
   EXPECT_EQ(std::string(e.what()), out + "/scene_graph.json: keyframes[3]: not finite (" + out + ")");
   EXPECT_EQ(std::string(d.named_as_final(InputError("other.txt:2: bad")).what()), "other.txt:2: bad");
 }

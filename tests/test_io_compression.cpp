@@ -24,7 +24,8 @@ namespace {
 /// 3 MB that compress well but not to nothing: more than zstd's and lz4's block sizes.
 std::string sample() {
   std::string s;
-  for (int i = 0; s.size() < 3'000'000; ++i) s += "scan " + std::to_string(i % 977) + " point " + std::to_string(i) + "\n";
+  for (int i = 0; s.size() < 3'000'000; ++i)
+    s += "scan " + std::to_string(i % 977) + " point " + std::to_string(i) + "\n";
   s.resize(3'000'000);
   return s;
 }
@@ -58,22 +59,32 @@ TEST_F(Compression, DataCutShortOrLargerThanAllowedIsNamed) {
   const std::string s = sample();
   const std::string z = io::compress_zstd(s, 1), l = io::compress_lz4(s);
   // A size word one byte short or long, data cut in half: the file and the place, with the size.
-  EXPECT_THAT(test::input_error_of([&] { io::decompress("zstd", z.data(), z.size(), s.size() - 1, "f.mcap", "Chunk record at byte 9"); }),
-              StartsWith("f.mcap: Chunk record at byte 9: zstd data does not decompress to its 2999999 bytes"));
-  EXPECT_THAT(test::input_error_of([&] { io::decompress("zstd", z.data(), z.size(), s.size() + 1, "f.mcap", "chunk"); }),
+  EXPECT_THAT(
+      test::input_error_of([&] {
+        io::decompress("zstd", z.data(), z.size(), s.size() - 1, "f.mcap", "Chunk record at byte 9");
+      }),
+      StartsWith("f.mcap: Chunk record at byte 9: zstd data does not decompress to its 2999999 bytes"));
+  EXPECT_THAT(test::input_error_of(
+                  [&] { io::decompress("zstd", z.data(), z.size(), s.size() + 1, "f.mcap", "chunk"); }),
               HasSubstr("does not decompress to its 3000001 bytes"));
-  EXPECT_THAT(test::input_error_of([&] { io::decompress("zstd", z.data(), z.size() / 2, s.size(), "f.mcap", "chunk"); }),
+  EXPECT_THAT(test::input_error_of(
+                  [&] { io::decompress("zstd", z.data(), z.size() / 2, s.size(), "f.mcap", "chunk"); }),
               HasSubstr("(the data ends inside a frame)"));
-  EXPECT_THAT(test::input_error_of([&] { io::decompress("lz4", l.data(), l.size() / 2, s.size(), "f.mcap", "chunk"); }),
+  EXPECT_THAT(test::input_error_of(
+                  [&] { io::decompress("lz4", l.data(), l.size() / 2, s.size(), "f.mcap", "chunk"); }),
               HasSubstr("(the data ends inside a frame)"));
-  EXPECT_THAT(test::input_error_of([&] { io::decompress("", s.data(), s.size(), s.size() + 1, "f.mcap", "chunk"); }),
-              HasSubstr("uncompressed records of 3000000 bytes, its size field says 3000001"));
-  EXPECT_THAT(test::input_error_of([&] { io::decompress("bz2", s.data(), s.size(), s.size(), "f.mcap", "chunk"); }),
-              HasSubstr("unknown compression 'bz2'"));
-  EXPECT_EQ(test::input_error_of([&] { io::decompress_zstd(z.data(), z.size(), 1000, "bag_0.db3", "the message"); }),
+  EXPECT_THAT(
+      test::input_error_of([&] { io::decompress("", s.data(), s.size(), s.size() + 1, "f.mcap", "chunk"); }),
+      HasSubstr("uncompressed records of 3000000 bytes, its size field says 3000001"));
+  EXPECT_THAT(
+      test::input_error_of([&] { io::decompress("bz2", s.data(), s.size(), s.size(), "f.mcap", "chunk"); }),
+      HasSubstr("unknown compression 'bz2'"));
+  EXPECT_EQ(test::input_error_of(
+                [&] { io::decompress_zstd(z.data(), z.size(), 1000, "bag_0.db3", "the message"); }),
             "bag_0.db3: the message: zstd data that does not decompress (more than 1000 bytes)");
-  EXPECT_THAT(test::input_error_of([&] { io::decompress_zstd(s.data(), 100, s.size(), "bag_0.db3", "the message"); }),
-              StartsWith("bag_0.db3: the message: zstd data that does not decompress ("));
+  EXPECT_THAT(
+      test::input_error_of([&] { io::decompress_zstd(s.data(), 100, s.size(), "bag_0.db3", "the message"); }),
+      StartsWith("bag_0.db3: the message: zstd data that does not decompress ("));
 }
 
 TEST_F(Compression, FilesRoundTripAndDamagedOnesAreNamed) {
@@ -94,8 +105,10 @@ TEST_F(Compression, FilesRoundTripAndDamagedOnesAreNamed) {
   EXPECT_THAT(test::input_error_of([&] { io::decompress_zstd_file(raw.string(), back.string()); }),
               StartsWith(raw.string() + ": zstd data that does not decompress near byte "));
   std::ofstream(dir_ / "empty.zstd");
-  EXPECT_EQ(test::input_error_of([&] { io::decompress_zstd_file((dir_ / "empty.zstd").string(), back.string()); }),
-            (dir_ / "empty.zstd").string() + ": an empty file, not zstd data");
-  EXPECT_EQ(test::input_error_of([&] { io::decompress_zstd_file((dir_ / "none.zstd").string(), back.string()); }),
-            (dir_ / "none.zstd").string() + ": cannot open file");
+  EXPECT_EQ(
+      test::input_error_of([&] { io::decompress_zstd_file((dir_ / "empty.zstd").string(), back.string()); }),
+      (dir_ / "empty.zstd").string() + ": an empty file, not zstd data");
+  EXPECT_EQ(
+      test::input_error_of([&] { io::decompress_zstd_file((dir_ / "none.zstd").string(), back.string()); }),
+      (dir_ / "none.zstd").string() + ": cannot open file");
 }

@@ -59,7 +59,8 @@ class ImageTest : public TempDirTest {};
 }  // namespace
 
 TEST_F(ImageTest, BinaryPgmRowsTopFirst) {
-  const std::string bytes = std::string("P5\n# made by hand\n3 2\n255\n") + std::string("\x00\x10\x20\x30\x40\xff", 6);
+  const std::string bytes =
+      std::string("P5\n# made by hand\n3 2\n255\n") + std::string("\x00\x10\x20\x30\x40\xff", 6);
   const Image img = read_image(write_file("m.pgm", bytes));
   EXPECT_EQ(img.width, 3);
   EXPECT_EQ(img.height, 2);
@@ -78,7 +79,8 @@ TEST_F(ImageTest, AsciiPgmWithCommentsAndOtherMaxvals) {
   EXPECT_EQ(img.at(0, 1), 119);  // 7 * 255 / 15, rounded
   EXPECT_EQ(img.at(1, 1), 136);
   // 16-bit binary: two bytes per sample, most significant first, scaled to 8 bits.
-  const Image wide = decode_image(std::string("P5 2 1 65535\n") + std::string("\xff\xff\x80\x00", 4), "w.pgm");
+  const Image wide =
+      decode_image(std::string("P5 2 1 65535\n") + std::string("\xff\xff\x80\x00", 4), "w.pgm");
   EXPECT_EQ(wide.at(0, 0), 255);
   EXPECT_EQ(wide.at(1, 0), 128);
 }
@@ -105,7 +107,8 @@ TEST_F(ImageTest, SixteenBitPalettedAndOneBitPngs) {
   EXPECT_EQ(wide.at(0, 0), 0xab);
   EXPECT_EQ(wide.at(1, 0), 0x01);
   // A palette becomes its colours.
-  const Image pal = decode_png(raw_png(2, 1, 8, PNG_COLOR_TYPE_PALETTE, {1, 0}, {{0, 0, 0}, {10, 20, 30}}), "p.png");
+  const Image pal =
+      decode_png(raw_png(2, 1, 8, PNG_COLOR_TYPE_PALETTE, {1, 0}, {{0, 0, 0}, {10, 20, 30}}), "p.png");
   EXPECT_EQ(pal.channels, 3);
   EXPECT_EQ(pal.at(0, 0, 0), 10);
   EXPECT_EQ(pal.at(0, 0, 2), 30);
@@ -161,5 +164,6 @@ TEST_F(ImageTest, MalformedFilesNameTheFileAndTheFault) {
   crc[30] = static_cast<char>(crc[30] ^ 0x55);  // inside IHDR: its CRC no longer matches
   fails("crc.png", crc, "bad PNG");
   const std::string missing = (dir_ / "missing.png").string();
-  EXPECT_NE(input_error_of([&] { read_image(missing); }).find(missing + ": no such image file"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { read_image(missing); }).find(missing + ": no such image file"),
+            std::string::npos);
 }

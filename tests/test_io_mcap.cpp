@@ -59,7 +59,9 @@ std::vector<Written> some_messages() {
   for (int i = 0; i < 300; ++i) {
     const std::uint16_t channel = i % 3 == 0 ? 2 : 1;
     const std::uint64_t t = 1000000000ull + static_cast<std::uint64_t>((i * 7919) % 250) * 1000;  // repeats
-    out.push_back({channel, t, std::string(static_cast<std::size_t>(17 + (i * 31) % 900), static_cast<char>('a' + i % 26))});
+    out.push_back(
+        {channel, t,
+         std::string(static_cast<std::size_t>(17 + (i * 31) % 900), static_cast<char>('a' + i % 26))});
   }
   return out;
 }
@@ -95,9 +97,13 @@ struct Layout {
   bool statistics = false, summary_offsets = false;
   std::string name() const {
     std::string n = "OneMessage";
-    for (const auto& [on, tag] : std::vector<std::pair<bool, const char*>>{
-             {chunked, "ch"}, {chunk_index, "chx"}, {message_index, "mx"}, {padded, "pad"}, {repeated, "rch-rsh"},
-             {statistics, "st"}, {summary_offsets, "sum"}})
+    for (const auto& [on, tag] : std::vector<std::pair<bool, const char*>>{{chunked, "ch"},
+                                                                           {chunk_index, "chx"},
+                                                                           {message_index, "mx"},
+                                                                           {padded, "pad"},
+                                                                           {repeated, "rch-rsh"},
+                                                                           {statistics, "st"},
+                                                                           {summary_offsets, "sum"}})
       if (on) n += std::string("-") + tag;
     return n;
   }
@@ -118,7 +124,8 @@ std::string one_message(const Layout& l) {
   u16(schema, 1), str(schema, "Example"), str(schema, "c"), str(schema, std::string("\x04\x05\x06", 3));
   str(meta, "foo"), str(meta, "bar");
   u16(channel, 1), u16(channel, 1), str(channel, "example"), str(channel, "a"), str(channel, meta);
-  u16(message, 1), u32(message, 10), u64(message, 2), u64(message, 1), message += std::string("\x01\x02\x03", 3);
+  u16(message, 1), u32(message, 10), u64(message, 2), u64(message, 1),
+      message += std::string("\x01\x02\x03", 3);
   // Message is not extended by padding (its data runs to the record's end).
   const std::string schema_r = rec(0x03, schema), channel_r = rec(0x04, channel);
   std::string message_r(1, '\x05');
@@ -147,7 +154,8 @@ std::string one_message(const Layout& l) {
       file += rec(0x07, mi);
     }
     std::string ci;
-    u64(ci, 2), u64(ci, 2), u64(ci, chunk_at), u64(ci, chunk_r.size()), str(ci, offsets), u64(ci, file.size() - index_at);
+    u64(ci, 2), u64(ci, 2), u64(ci, chunk_at), u64(ci, chunk_r.size()), str(ci, offsets),
+        u64(ci, file.size() - index_at);
     str(ci, ""), u64(ci, records.size()), u64(ci, records.size());
     chunk_index = rec(0x08, ci);
   } else {
@@ -170,7 +178,8 @@ std::string one_message(const Layout& l) {
   if (l.statistics) {
     std::string st, counts;
     u16(counts, 1), u64(counts, 1);
-    u64(st, 1), u16(st, 1), u32(st, 1), u32(st, 0), u32(st, 0), u32(st, l.chunked ? 1 : 0), u64(st, 2), u64(st, 2);
+    u64(st, 1), u16(st, 1), u32(st, 1), u32(st, 0), u32(st, 0), u32(st, l.chunked ? 1 : 0), u64(st, 2),
+        u64(st, 2);
     str(st, counts);
     group(0x0B, rec(0x0B, st));
   }
@@ -178,7 +187,8 @@ std::string one_message(const Layout& l) {
   const std::uint64_t offsets_start = file.size();
   if (l.summary_offsets && has_summary) file += offsets;
   std::string footer;
-  u64(footer, has_summary ? summary_start : 0), u64(footer, l.summary_offsets && has_summary ? offsets_start : 0), u32(footer, 0);
+  u64(footer, has_summary ? summary_start : 0),
+      u64(footer, l.summary_offsets && has_summary ? offsets_start : 0), u32(footer, 0);
   std::string footer_r(1, '\x02');
   u64(footer_r, footer.size());
   return file + footer_r + footer + kMagic;
@@ -188,7 +198,8 @@ std::string one_message(const Layout& l) {
 
 TEST_F(Mcap, EveryCompressionReadsBackWhatWasWritten) {
   const std::vector<Written> written = some_messages();
-  for (const mcap::Compression c : {mcap::Compression::none, mcap::Compression::lz4, mcap::Compression::zstd}) {
+  for (const mcap::Compression c :
+       {mcap::Compression::none, mcap::Compression::lz4, mcap::Compression::zstd}) {
     SCOPED_TRACE(mcap::compression_name(c));
     const std::string path = (dir_ / "out.mcap").string();
     {
@@ -214,7 +225,8 @@ TEST_F(Mcap, EveryCompressionReadsBackWhatWasWritten) {
     // By log time, and in the order written among equal times.
     std::vector<std::size_t> order(written.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return written[a].log_time < written[b].log_time; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return written[a].log_time < written[b].log_time; });
     std::size_t k = 0;
     r.read_each(r.messages(), [&](const mcap::MessageRef& ref, const mcap::Message& m) {
       const Written& w = written[order[k++]];
@@ -249,7 +261,8 @@ TEST_F(Mcap, ASummaryCutOffIsReadFromTheStart) {
     ASSERT_EQ(r.warnings().size(), 1u);
     EXPECT_THAT(r.warnings()[0], HasSubstr("does not end in an MCAP footer"));
     ASSERT_EQ(r.messages().size(), 50u);
-    for (std::size_t i = 0; i < 50; ++i) EXPECT_EQ(r.read(r.messages()[i]).data, whole.read(whole.messages()[i]).data);
+    for (std::size_t i = 0; i < 50; ++i)
+      EXPECT_EQ(r.read(r.messages()[i]).data, whole.read(whole.messages()[i]).data);
   }
 }
 
@@ -290,7 +303,8 @@ TEST_F(Mcap, AnIndexShortOfTheStatisticsCountIsNotUsed) {
   Layout l;
   l.chunked = l.chunk_index = l.message_index = l.repeated = l.statistics = true;
   std::string bytes = one_message(l);
-  const std::size_t stats = bytes.find(std::string("\x0b", 1) + std::string("\x38\x00\x00\x00\x00\x00\x00\x00", 8));
+  const std::size_t stats =
+      bytes.find(std::string("\x0b", 1) + std::string("\x38\x00\x00\x00\x00\x00\x00\x00", 8));
   ASSERT_NE(stats, std::string::npos);
   bytes[stats + 9] = '\x02';  // message_count 2
   const mcap::Reader r(write_bytes("short_index.mcap", bytes));
@@ -310,15 +324,19 @@ TEST_F(Mcap, DamagedFilesAreInputErrorsNamingTheFileAndTheRecord) {
   }
   const std::string good = read_bytes(path);
   ASSERT_EQ(error_of(path), "");
-  const auto damaged = [&](const std::string& name, std::string bytes) { return write_bytes(name, std::move(bytes)); };
+  const auto damaged = [&](const std::string& name, std::string bytes) {
+    return write_bytes(name, std::move(bytes));
+  };
   // Cut inside the data section.
   const std::string cut = damaged("cut.mcap", good.substr(0, good.size() / 2));
-  EXPECT_THAT(error_of(cut), AllOf(StartsWith(cut + ": "), HasSubstr("past the end of the file"), HasSubstr("cut short")));
+  EXPECT_THAT(error_of(cut),
+              AllOf(StartsWith(cut + ": "), HasSubstr("past the end of the file"), HasSubstr("cut short")));
   // A byte of a chunk's records changed: its CRC (read through the index, and by a scan).
   std::string flipped = good;
   flipped[good.find(std::string(200, 'm')) + 10] = 'x';
   const std::string crc = damaged("crc.mcap", flipped);
-  EXPECT_THAT(error_of(crc), AllOf(StartsWith(crc + ": Chunk record at byte "), HasSubstr("do not match their CRC")));
+  EXPECT_THAT(error_of(crc),
+              AllOf(StartsWith(crc + ": Chunk record at byte "), HasSubstr("do not match their CRC")));
   const std::string crc_cut = damaged("crc_cut.mcap", flipped.substr(0, flipped.size() - 20));
   EXPECT_THAT(error_of(crc_cut), HasSubstr("do not match their CRC"));
   // The summary changed: its CRC.
@@ -344,7 +362,8 @@ TEST_F(Mcap, DamagedFilesAreInputErrorsNamingTheFileAndTheRecord) {
 // size before its data was found wanting (seconds, and a 10 s timeout under ASan). Output now
 // grows with what the data decompresses to.
 TEST_F(Mcap, AChunkClaimingMoreThanItsDataHoldsIsRefusedAsItDecompresses) {
-  for (const mcap::Compression c : {mcap::Compression::none, mcap::Compression::zstd, mcap::Compression::lz4}) {
+  for (const mcap::Compression c :
+       {mcap::Compression::none, mcap::Compression::zstd, mcap::Compression::lz4}) {
     SCOPED_TRACE(mcap::compression_name(c));
     const std::string path = (dir_ / "claim.mcap").string();
     {
@@ -359,7 +378,8 @@ TEST_F(Mcap, AChunkClaimingMoreThanItsDataHoldsIsRefusedAsItDecompresses) {
     const std::uint64_t claim = 512ull << 20;
     for (int i = 0; i < 8; ++i) bytes[chunk_at + 9 + 16 + i] = static_cast<char>(claim >> (8 * i));
     const std::string damaged = write_bytes("claim_damaged.mcap", bytes);
-    EXPECT_THAT(error_of(damaged), AllOf(StartsWith(damaged + ": Chunk record at byte 26: "), HasSubstr("536870912")));
+    EXPECT_THAT(error_of(damaged),
+                AllOf(StartsWith(damaged + ": Chunk record at byte 26: "), HasSubstr("536870912")));
   }
 }
 

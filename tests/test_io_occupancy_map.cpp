@@ -48,13 +48,15 @@ TEST_F(OccupancyMapTest, ReadsEveryKey) {
   EXPECT_DOUBLE_EQ(m.free_thresh, 0.2);
   EXPECT_EQ(m.mode, MapMode::kScale);
   // map_saver's defaults for what is left out; an absolute image path stays as it is.
-  const MapMetadata d = parse_map_yaml("image: /data/m.png\nresolution: 0.05\norigin: [0, 0, 0]\n", "m.yaml", ".");
+  const MapMetadata d =
+      parse_map_yaml("image: /data/m.png\nresolution: 0.05\norigin: [0, 0, 0]\n", "m.yaml", ".");
   EXPECT_EQ(d.image, "/data/m.png");
   EXPECT_FALSE(d.negate);
   EXPECT_DOUBLE_EQ(d.occupied_thresh, 0.65);
   EXPECT_DOUBLE_EQ(d.free_thresh, 0.196);
   EXPECT_EQ(d.mode, MapMode::kTrinary);
-  EXPECT_TRUE(parse_map_yaml("image: a.pgm\nresolution: 1\norigin: [0, 0, 0]\nnegate: true\n", "m.yaml", ".").negate);
+  EXPECT_TRUE(
+      parse_map_yaml("image: a.pgm\nresolution: 1\norigin: [0, 0, 0]\nnegate: true\n", "m.yaml", ".").negate);
 }
 
 TEST_F(OccupancyMapTest, BadYamlNamesFileLineAndKey) {
@@ -73,17 +75,23 @@ TEST_F(OccupancyMapTest, BadYamlNamesFileLineAndKey) {
   fails(base + "negate: 2\n", "map.yaml:4: negate: expected 0 or 1");
   fails(base + "mode: fancy\n", "map.yaml:4: mode: unknown mode 'fancy'");
   fails(base + "occupied_thresh: 1.5\n", "map.yaml:4: occupied_thresh: must lie in [0, 1]");
-  fails(base + "occupied_thresh: 0.1\nfree_thresh: 0.3\n", "map.yaml:5: free_thresh: must not exceed occupied_thresh");
+  fails(base + "occupied_thresh: 0.1\nfree_thresh: 0.3\n",
+        "map.yaml:5: free_thresh: must not exceed occupied_thresh");
   fails("image: [a\n", "map.yaml:");
 }
 
 // Issue 52: negate's and mode's values and the image's name were quoted raw. Quoted printable.
 TEST_F(OccupancyMapTest, MessagesQuoteTheFilePrintable) {
   const std::string base = "image: a.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n";
-  const auto error_of = [&](const std::string& text) { return input_error_of([&] { parse_map_yaml(text, "map.yaml", "."); }); };
-  EXPECT_EQ(error_of(base + "negate: \"\\x01\\x02\"\n"), "map.yaml:4: negate: expected 0 or 1 (got '\\x01\\x02')");
-  EXPECT_EQ(error_of(base + "mode: \"tri\\x1bnary\"\n"), "map.yaml:4: mode: unknown mode 'tri\\x1bnary' (trinary, scale, raw)");
-  const std::string yaml = write_file("map.yaml", "image: \"m\\x07.pgm\"\nresolution: 0.05\norigin: [0, 0, 0]\n");
+  const auto error_of = [&](const std::string& text) {
+    return input_error_of([&] { parse_map_yaml(text, "map.yaml", "."); });
+  };
+  EXPECT_EQ(error_of(base + "negate: \"\\x01\\x02\"\n"),
+            "map.yaml:4: negate: expected 0 or 1 (got '\\x01\\x02')");
+  EXPECT_EQ(error_of(base + "mode: \"tri\\x1bnary\"\n"),
+            "map.yaml:4: mode: unknown mode 'tri\\x1bnary' (trinary, scale, raw)");
+  const std::string yaml =
+      write_file("map.yaml", "image: \"m\\x07.pgm\"\nresolution: 0.05\norigin: [0, 0, 0]\n");
   EXPECT_EQ(input_error_of([&] { read_occupancy_map(yaml); }),
             yaml + ":1: image: no such image file: " + (dir_ / "m\\x07.pgm").string());
 }
@@ -126,7 +134,8 @@ TEST_F(OccupancyMapTest, ScaleAndRawModes) {
   meta.mode = MapMode::kScale;  // in-between values are partial occupancy: neither free nor a wall
   EXPECT_EQ(states(image(3, 1, 1, {0, 150, 254}), meta), (std::vector<CellState>{O, U, F}));
   meta.mode = MapMode::kRaw;  // the value is the occupancy in percent; 255 (ROS's -1) unknown
-  EXPECT_EQ(states(image(7, 1, 1, {0, 19, 20, 65, 66, 100, 255}), meta), (std::vector<CellState>{F, F, U, U, O, O, U}));
+  EXPECT_EQ(states(image(7, 1, 1, {0, 19, 20, 65, 66, 100, 255}), meta),
+            (std::vector<CellState>{F, F, U, U, O, O, U}));
   EXPECT_EQ(states(image(1, 1, 1, {101}), meta), (std::vector<CellState>{U}));
   meta.negate = true;  // 255 - v
   EXPECT_EQ(states(image(2, 1, 1, {255, 155}), meta), (std::vector<CellState>{F, O}));
@@ -136,13 +145,15 @@ TEST_F(OccupancyMapTest, ImagePathIsRelativeToTheYamlAndAMissingImageNamesTheKey
   std::filesystem::create_directories(dir_ / "site" / "maps");
   Image img = image(3, 2, 1, {0, 254, 205, 254, 254, 0});
   std::ofstream(dir_ / "site" / "maps" / "floor.pgm", std::ios::binary) << encode_pgm(img);
-  const std::string yaml = write_file("site/map.yaml", "resolution: 0.05\nimage: maps/floor.pgm\norigin: [1, 2, 0]\n");
+  const std::string yaml =
+      write_file("site/map.yaml", "resolution: 0.05\nimage: maps/floor.pgm\norigin: [1, 2, 0]\n");
   const OccupancyMap m = read_occupancy_map(yaml);
   EXPECT_EQ(m.width, 3);
   EXPECT_EQ(m.at(0, 1), O);
   EXPECT_EQ(m.at(2, 0), O);
   EXPECT_DOUBLE_EQ(m.meta.origin_y, 2.0);
-  const std::string bad = write_file("site/other.yaml", "resolution: 0.05\nimage: maps/none.pgm\norigin: [1, 2, 0]\n");
+  const std::string bad =
+      write_file("site/other.yaml", "resolution: 0.05\nimage: maps/none.pgm\norigin: [1, 2, 0]\n");
   const std::string msg = input_error_of([&] { read_occupancy_map(bad); });
   EXPECT_NE(msg.find(bad + ":2: image: no such image file"), std::string::npos) << msg;
   EXPECT_NE(input_error_of([&] { read_occupancy_map((dir_ / "nothing.yaml").string()); }).find("cannot open"),

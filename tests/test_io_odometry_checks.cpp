@@ -43,8 +43,9 @@ TEST(OdometryChecks, WalkingFarFromTheOriginAndNoOdometryPass) {
 TEST(OdometryChecks, AJumpNoPlatformMakesIsAnInputErrorNamingTheScan) {
   SequenceInfo info = walk(10);
   info.odometry[4].translation().x() += 50.0;  // 50 m in 0.1 s
-  EXPECT_EQ(error_of(info), "seq: odometry of scan 4 (t 0.4 s) is 50.1 m from the previous scan's, 0.1 s earlier: "
-                            "faster than any platform (100 m/s; corrupt pose?)");
+  EXPECT_EQ(error_of(info),
+            "seq: odometry of scan 4 (t 0.4 s) is 50.1 m from the previous scan's, 0.1 s earlier: "
+            "faster than any platform (100 m/s; corrupt pose?)");
   SequenceInfo slow = walk(10);
   slow.times[4] += 1.0;  // the same 50 m in 1.1 s: 45 m/s, a car park's car, allowed
   slow.odometry[4].translation().x() += 50.0;
@@ -59,5 +60,7 @@ TEST(OdometryChecks, ARunWiderThanAnyBuildingIsAnInputError) {
   SequenceInfo info = walk(3);
   info.times[2] = 1000.0;  // slow enough, but 20 km away
   info.odometry[2].translation().x() = 2.0e4;
-  EXPECT_THAT(error_of(info), StartsWith("seq: odometry of scan 2 (t 1000 s) is 20000 m from the first scan's: more than 10 km"));
+  EXPECT_THAT(
+      error_of(info),
+      StartsWith("seq: odometry of scan 2 (t 1000 s) is 20000 m from the first scan's: more than 10 km"));
 }

@@ -21,12 +21,12 @@
 
 using namespace tsgraphs;
 using namespace tsgraphs::io;
-using tsgraphs::test::input_error_of;
-using tsgraphs::test::read_file;
-using tsgraphs::test::TempDirTest;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
+using tsgraphs::test::input_error_of;
+using tsgraphs::test::read_file;
+using tsgraphs::test::TempDirTest;
 
 namespace {
 
@@ -46,9 +46,15 @@ std::vector<std::array<float, 4>> parse_binary_xyzi(const std::string& path) {
   std::size_t points = 0;
   bool data = false;
   while (std::getline(in, line)) {
-    if (line.rfind("FIELDS", 0) == 0) { EXPECT_EQ(line, "FIELDS x y z intensity"); }
-    if (line.rfind("SIZE", 0) == 0) { EXPECT_EQ(line, "SIZE 4 4 4 4"); }
-    if (line.rfind("TYPE", 0) == 0) { EXPECT_EQ(line, "TYPE F F F F"); }
+    if (line.rfind("FIELDS", 0) == 0) {
+      EXPECT_EQ(line, "FIELDS x y z intensity");
+    }
+    if (line.rfind("SIZE", 0) == 0) {
+      EXPECT_EQ(line, "SIZE 4 4 4 4");
+    }
+    if (line.rfind("TYPE", 0) == 0) {
+      EXPECT_EQ(line, "TYPE F F F F");
+    }
     if (line.rfind("POINTS", 0) == 0) points = std::stoul(line.substr(7));
     if (line.rfind("DATA", 0) == 0) {
       EXPECT_EQ(line, "DATA binary");
@@ -64,7 +70,8 @@ std::vector<std::array<float, 4>> parse_binary_xyzi(const std::string& path) {
 }
 
 std::string header(const std::string& fields, const std::string& size, const std::string& type,
-                   const std::string& count, unsigned long long width, unsigned long long height, const std::string& data) {
+                   const std::string& count, unsigned long long width, unsigned long long height,
+                   const std::string& data) {
   std::ostringstream s;
   s << "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS " << fields << "\nSIZE " << size
     << "\nTYPE " << type << "\nCOUNT " << count << "\nWIDTH " << width << "\nHEIGHT " << height
@@ -173,8 +180,8 @@ TEST_F(Pcd, OrganisedBinaryCloudWithNaNs) {
 }
 
 TEST_F(Pcd, XyzOnlyHasNoIntensity) {
-  const PointCloud cloud = read_pcd(
-      write_file("xyz.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "ascii") + "0.5 0.25 -8\n100 200 300\n"));
+  const PointCloud cloud = read_pcd(write_file(
+      "xyz.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "ascii") + "0.5 0.25 -8\n100 200 300\n"));
   ASSERT_EQ(cloud.size(), 2u);
   EXPECT_FALSE(cloud.has_intensity());
   EXPECT_EQ(cloud.points[0], Eigen::Vector3f(0.5f, 0.25f, -8.0f));
@@ -182,9 +189,10 @@ TEST_F(Pcd, XyzOnlyHasNoIntensity) {
 }
 
 TEST_F(Pcd, ExtraFieldsAreIgnored) {
-  const PointCloud cloud = read_pcd(write_file(
-      "rich.pcd", header("x y z intensity ring time", "4 4 4 4 2 4", "F F F F U F", "1 1 1 1 1 1", 2, 1, "ascii") +
-                      "1 2 3 40 7 0.01\n4 5 6 50 8 0.02\n"));
+  const PointCloud cloud =
+      read_pcd(write_file("rich.pcd", header("x y z intensity ring time", "4 4 4 4 2 4", "F F F F U F",
+                                             "1 1 1 1 1 1", 2, 1, "ascii") +
+                                          "1 2 3 40 7 0.01\n4 5 6 50 8 0.02\n"));
   ASSERT_EQ(cloud.size(), 2u);
   EXPECT_EQ(cloud.points[1], Eigen::Vector3f(4, 5, 6));
   ASSERT_TRUE(cloud.has_intensity());
@@ -209,8 +217,8 @@ TEST_F(Pcd, OnlySomeCoordinatesIsAnInputError) {
 // map exports; they must read as their values. pcl::fromPCLPointCloud2 matches fields by name
 // AND datatype, finds no float32 x y z and leaves every point at (0, 0, 0), silently.
 TEST_F(Pcd, DoublePrecisionCoordinates) {
-  const std::string path =
-      write_file("double.pcd", header("x y z", "8 8 8", "F F F", "1 1 1", 2, 1, "ascii") + "1.5 2.5 3.5\n-4 5 6\n");
+  const std::string path = write_file(
+      "double.pcd", header("x y z", "8 8 8", "F F F", "1 1 1", 2, 1, "ascii") + "1.5 2.5 3.5\n-4 5 6\n");
   const PointCloud cloud = read_pcd(path);
   ASSERT_EQ(cloud.size(), 2u);
   EXPECT_EQ(cloud.points[0], Eigen::Vector3f(1.5f, 2.5f, 3.5f));
@@ -220,9 +228,9 @@ TEST_F(Pcd, DoublePrecisionCoordinates) {
 // Integer intensities (TYPE U, as some drivers write them) must keep their values; for the
 // same reason as above they all read as 0.
 TEST_F(Pcd, IntegerIntensity) {
-  const std::string path =
-      write_file("uint_intensity.pcd",
-                 header("x y z intensity", "4 4 4 2", "F F F U", "1 1 1 1", 2, 1, "ascii") + "1 2 3 40\n4 5 6 300\n");
+  const std::string path = write_file(
+      "uint_intensity.pcd",
+      header("x y z intensity", "4 4 4 2", "F F F U", "1 1 1 1", 2, 1, "ascii") + "1 2 3 40\n4 5 6 300\n");
   const PointCloud cloud = read_pcd(path);
   ASSERT_EQ(cloud.size(), 2u);
   EXPECT_EQ(cloud.points[1], Eigen::Vector3f(4, 5, 6));
@@ -236,7 +244,10 @@ TEST_F(Pcd, ShortOrTruncatedFilesNameTheFile) {
       write_file("short.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 5, 1, "ascii") + "1 2 3\n4 5 6\n");
   EXPECT_THAT(read_error(ascii), StartsWith(ascii + ":"));
   std::string compressed = header("x y z", "4 4 4", "F F F", "1 1 1", 100, 1, "binary_compressed");
-  compressed += std::string("\x10\x00\x00\x00\xb0\x04\x00\x00" "abcd", 12);
+  compressed += std::string(
+      "\x10\x00\x00\x00\xb0\x04\x00\x00"
+      "abcd",
+      12);
   const std::string path = write_file("compressed.pcd", compressed);
   EXPECT_THAT(read_error(path), StartsWith(path + ":"));
 }
@@ -247,8 +258,9 @@ TEST_F(Pcd, BinaryBodyLongerThanPointsIsRefusedAsItsAsciiTwinIs) {
   const std::string two_points(2 * 12, '\0');
   ASSERT_EQ(read_pcd(write_file("exact.pcd", head + two_points)).size(), 2u);
   const std::string path = write_file("long.pcd", head + two_points + std::string(12, '\0'));
-  EXPECT_EQ(read_error(path), path + ": PCD body has more points than POINTS (2): 12 bytes after the last point, from byte " +
-                                  std::to_string(head.size() + two_points.size()));
+  EXPECT_EQ(read_error(path),
+            path + ": PCD body has more points than POINTS (2): 12 bytes after the last point, from byte " +
+                std::to_string(head.size() + two_points.size()));
   const std::string one = write_file("one_byte.pcd", head + two_points + "\n");
   EXPECT_THAT(read_error(one), HasSubstr(": 1 bytes after the last point, from byte "));
 }
@@ -276,7 +288,8 @@ TEST_F(Pcd, MessagesQuoteNoRawBytes) {
   error = read_error(path);
   EXPECT_THAT(error, HasSubstr("COUNT '\\x7f' is not a whole number (field z)"));
   EXPECT_TRUE(is_printable(error)) << error;
-  path = write_file("token.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 1, 1, "ascii") + "1 2 \x1b\x9b\n");
+  path =
+      write_file("token.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 1, 1, "ascii") + "1 2 \x1b\x9b\n");
   error = read_error(path);
   EXPECT_THAT(error, HasSubstr("not a number: '\\x1b\\x9b'"));
   EXPECT_TRUE(is_printable(error)) << error;
@@ -329,8 +342,9 @@ std::string two_points_lzf() {
 }  // namespace
 
 TEST_F(Pcd, CompressedBlockThatAgreesWithItsHeaderReads) {
-  const std::string path = write_file(
-      "good.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "binary_compressed") + compressed_body(25, 24, two_points_lzf()));
+  const std::string path =
+      write_file("good.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "binary_compressed") +
+                                 compressed_body(25, 24, two_points_lzf()));
   const PointCloud cloud = read_pcd(path);
   ASSERT_EQ(cloud.size(), 2u);
   EXPECT_EQ(cloud.points[0], Eigen::Vector3f(1, 2, 3));
@@ -340,8 +354,9 @@ TEST_F(Pcd, CompressedBlockThatAgreesWithItsHeaderReads) {
 // Issue 18: an uncompressed size word of 0 made PCL write the points into an empty buffer
 // (SIGSEGV in run, convert and simulate).
 TEST_F(Pcd, CompressedBlockWithUncompressedSizeZeroIsAnInputError) {
-  const std::string path = write_file(
-      "zero.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "binary_compressed") + compressed_body(25, 0, two_points_lzf()));
+  const std::string path =
+      write_file("zero.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 2, 1, "binary_compressed") +
+                                 compressed_body(25, 0, two_points_lzf()));
   const std::string message = read_error(path);
   EXPECT_THAT(message, StartsWith(path + ": "));
   EXPECT_THAT(message, HasSubstr("uncompressed size 0, expected 24 bytes for POINTS x SIZE"));
@@ -352,25 +367,32 @@ TEST_F(Pcd, CompressedBlockSizesThatDisagreeWithTheFileAreInputErrors) {
   const std::string larger = write_file("larger.pcd", head + compressed_body(25, 4096, two_points_lzf()));
   EXPECT_THAT(read_error(larger), HasSubstr("uncompressed size 4096, expected 24 bytes"));
   const std::string past = write_file("past.pcd", head + compressed_body(0xFFFFFFF0u, 24, two_points_lzf()));
-  EXPECT_THAT(read_error(past), AllOf(StartsWith(past + ": "), HasSubstr("compressed size 4294967280 runs past the end")));
+  EXPECT_THAT(read_error(past),
+              AllOf(StartsWith(past + ": "), HasSubstr("compressed size 4294967280 runs past the end")));
   const std::string empty = write_file("empty_block.pcd", head + compressed_body(0, 24, ""));
   EXPECT_THAT(read_error(empty), HasSubstr("compressed size 0"));
   const std::string no_words = write_file("no_words.pcd", head + "abc");
   EXPECT_THAT(read_error(no_words), AllOf(StartsWith(no_words + ": "), HasSubstr("size words")));
   // Issue 52: bytes after the block were ignored (a binary body's are refused).
-  const std::string trailing = write_file("trailing.pcd", head + compressed_body(25, 24, two_points_lzf()) + "xyz");
-  EXPECT_EQ(read_error(trailing), trailing + ": binary_compressed block at byte " + std::to_string(head.size()) +
-                                      ": 3 bytes after the compressed block, from byte " + std::to_string(head.size() + 8 + 25));
+  const std::string trailing =
+      write_file("trailing.pcd", head + compressed_body(25, 24, two_points_lzf()) + "xyz");
+  EXPECT_EQ(read_error(trailing),
+            trailing + ": binary_compressed block at byte " + std::to_string(head.size()) +
+                ": 3 bytes after the compressed block, from byte " + std::to_string(head.size() + 8 + 25));
 }
 
 // Issue 18: "SIZE four" was skipped as "stoll: scan skipped", without the file's name.
 TEST_F(Pcd, NonNumericSizeOrCountNamesTheFileLineAndField) {
   std::string text = header("x y z", "4 four 4", "F F F", "1 1 1", 1, 1, "ascii") + "1 2 3\n";
   const std::string size = write_file("size.pcd", text);
-  EXPECT_THAT(read_error(size), StartsWith(size + ":4: PCD header: SIZE 'four' is not a whole number (field y)"));
-  const std::string count = write_file("count.pcd", header("x y z", "4 4 4", "F F F", "1 -1 1", 1, 1, "ascii") + "1 2 3\n");
-  EXPECT_THAT(read_error(count), StartsWith(count + ":6: PCD header: COUNT '-1' is not a whole number (field y)"));
-  const std::string width = write_file("width.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 1, 1, "ascii") + "1 2 3\n");
+  EXPECT_THAT(read_error(size),
+              StartsWith(size + ":4: PCD header: SIZE 'four' is not a whole number (field y)"));
+  const std::string count =
+      write_file("count.pcd", header("x y z", "4 4 4", "F F F", "1 -1 1", 1, 1, "ascii") + "1 2 3\n");
+  EXPECT_THAT(read_error(count),
+              StartsWith(count + ":6: PCD header: COUNT '-1' is not a whole number (field y)"));
+  const std::string width =
+      write_file("width.pcd", header("x y z", "4 4 4", "F F F", "1 1 1", 1, 1, "ascii") + "1 2 3\n");
   std::string wide = read_file(width);
   wide.replace(wide.find("WIDTH 1"), 7, "WIDTH 99999999999999999999999");
   const std::string overflow = write_file("overflow.pcd", wide);
@@ -402,11 +424,16 @@ TEST_F(Pcd, MalformedFilesAreOneLineErrorsAndNothingElseIsPrinted) {
   const std::vector<Case> cases = {
       {"viewpoint.pcd", replaced("VIEWPOINT 0 0 0 1 0 0 0", "VIEWPOINT 0 0 0"),
        ":9: PCD header: VIEWPOINT needs 7 numbers (tx ty tz qw qx qy qz)"},
-      {"type_first.pcd", replaced("SIZE 4 4 4\nTYPE F F F", "TYPE F F F\nSIZE 4 4 4"), ":4: PCD header: TYPE comes before SIZE"},
-      {"count_first.pcd", replaced("FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1", "COUNT 1 1 1\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F"),
+      {"type_first.pcd", replaced("SIZE 4 4 4\nTYPE F F F", "TYPE F F F\nSIZE 4 4 4"),
+       ":4: PCD header: TYPE comes before SIZE"},
+      {"count_first.pcd",
+       replaced("FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1",
+                "COUNT 1 1 1\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F"),
        ":3: PCD header: COUNT comes before FIELDS"},
-      {"points.pcd", replaced("POINTS 2", "POINTS 3"), ":10: PCD header: POINTS 3 is not WIDTH * HEIGHT (2 x 1)"},
-      {"data.pcd", replaced("DATA ascii", "DATA text"), ":11: PCD header: DATA must be ascii, binary or binary_compressed"},
+      {"points.pcd", replaced("POINTS 2", "POINTS 3"),
+       ":10: PCD header: POINTS 3 is not WIDTH * HEIGHT (2 x 1)"},
+      {"data.pcd", replaced("DATA ascii", "DATA text"),
+       ":11: PCD header: DATA must be ascii, binary or binary_compressed"},
       {"no_data.pcd", good.substr(0, good.find("DATA")), ":10: PCD header has no DATA line"},
       {"few_rows.pcd", good + "1 2 3\n", ":12: PCD body has 1 points, POINTS says 2"},
       {"many_rows.pcd", good + "1 2 3\n4 5 6\n7 8 9\n", ":14: PCD body has more points than POINTS (2)"},
@@ -446,8 +473,10 @@ TEST_F(Pcd, BinaryBodiesAreReadAsBytesWhateverTheySpell) {
 // Found by fuzzing (issue 18): a 2-byte float field was read as 4 bytes, past the end of the
 // last point (heap-buffer-overflow under ASan). Types outside the specification are refused.
 TEST_F(Pcd, FieldTypesOutsideTheSpecificationAreRefusedAtTheSizeLine) {
-  for (const auto& [size, type] : std::vector<std::pair<std::string, std::string>>{{"4 4 2", "F F F"}, {"4 4 1", "F F F"}, {"4 4 3", "F F I"}}) {
-    const std::string path = write_file("types.pcd", header("x y z", size, type, "1 1 1", 1, 1, "binary") + std::string(16, '\0'));
+  for (const auto& [size, type] : std::vector<std::pair<std::string, std::string>>{
+           {"4 4 2", "F F F"}, {"4 4 1", "F F F"}, {"4 4 3", "F F I"}}) {
+    const std::string path =
+        write_file("types.pcd", header("x y z", size, type, "1 1 1", 1, 1, "binary") + std::string(16, '\0'));
     EXPECT_THAT(read_error(path), StartsWith(path + ":4: PCD header: field z of TYPE "));
   }
 }
@@ -470,19 +499,21 @@ TEST_F(Pcd, CompressedFieldsOfMixedSizesAndCounts) {
   std::string soa;
   const auto put = [&](auto v) { soa.append(reinterpret_cast<const char*>(&v), sizeof v); };
   put(std::uint16_t{40}), put(std::uint16_t{50}), put(std::uint16_t{60});  // intensity, 3 points
-  for (float v : {1.f, 4.f, 7.f}) put(v);                                    // x
-  for (int k = 0; k < 3 * 2; ++k) put(std::uint8_t(k));                      // pad, COUNT 2
-  for (float v : {2.f, 5.f, 8.f}) put(v);                                    // y
-  for (double v : {3.0, 6.0, 9.0}) put(v);                                   // z
-  std::string lzf;  // literal runs of at most 32 bytes
+  for (float v : {1.f, 4.f, 7.f}) put(v);                                  // x
+  for (int k = 0; k < 3 * 2; ++k) put(std::uint8_t(k));                    // pad, COUNT 2
+  for (float v : {2.f, 5.f, 8.f}) put(v);                                  // y
+  for (double v : {3.0, 6.0, 9.0}) put(v);                                 // z
+  std::string lzf;                                                         // literal runs of at most 32 bytes
   for (std::size_t at = 0; at < soa.size(); at += 32) {
     const std::size_t n = std::min<std::size_t>(32, soa.size() - at);
     lzf += static_cast<char>(n - 1);
     lzf += soa.substr(at, n);
   }
   const std::string path = write_file(
-      "mixed.pcd", header("intensity x pad y z", "2 4 1 4 8", "U F U F F", "1 1 2 1 1", 3, 1, "binary_compressed") +
-                       compressed_body(static_cast<std::uint32_t>(lzf.size()), static_cast<std::uint32_t>(soa.size()), lzf));
+      "mixed.pcd",
+      header("intensity x pad y z", "2 4 1 4 8", "U F U F F", "1 1 2 1 1", 3, 1, "binary_compressed") +
+          compressed_body(static_cast<std::uint32_t>(lzf.size()), static_cast<std::uint32_t>(soa.size()),
+                          lzf));
   const PointCloud cloud = read_pcd(path);
   ASSERT_EQ(cloud.size(), 3u);
   EXPECT_EQ(cloud.points[1], Eigen::Vector3f(4, 5, 6));
@@ -498,7 +529,8 @@ TEST_F(Pcd, PointsTimesPointSizeOverflowIsRefused) {
     fields += (i < 3 ? std::string(1, "xyz"[i]) : "f" + std::to_string(i)) + " ";
     sizes += "8 ", types += "F ", counts += "65536 ";
   }
-  const std::string path = write_file("overflow.pcd", header(fields, sizes, types, counts, 4294967295u, 1, "binary"));
+  const std::string path =
+      write_file("overflow.pcd", header(fields, sizes, types, counts, 4294967295u, 1, "binary"));
   EXPECT_EQ(read_error(path), path + ":10: PCD header: POINTS x point size overflows");
 }
 

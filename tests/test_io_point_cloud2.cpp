@@ -30,7 +30,11 @@ PointCloud2Layout padded_layout() {
   l.width = 3;
   l.point_step = 36;
   l.row_step = 120;
-  l.fields = {{"x", 0, kF64, 1}, {"y", 8, kF64, 1}, {"z", 16, kF64, 1}, {"intensity", 28, kU16, 1}, {"ring", 30, kU16, 1}};
+  l.fields = {{"x", 0, kF64, 1},
+              {"y", 8, kF64, 1},
+              {"z", 16, kF64, 1},
+              {"intensity", 28, kU16, 1},
+              {"ring", 30, kU16, 1}};
   return l;
 }
 
@@ -84,22 +88,31 @@ TEST(PointCloud2, LayoutsThatCannotBeReadAreErrorsNamingTheMessage) {
   const std::vector<std::uint8_t> data = padded_data();
   PointCloud2Layout no_z = padded_layout();
   no_z.fields.erase(no_z.fields.begin() + 2);
-  EXPECT_NE(test::input_error_of([&] { decode_point_cloud2(no_z, data.data(), data.size(), "a.bag: /points, scan 3"); })
-                .find("a.bag: /points, scan 3"),
+  EXPECT_NE(test::input_error_of([&] {
+              decode_point_cloud2(no_z, data.data(), data.size(), "a.bag: /points, scan 3");
+            }).find("a.bag: /points, scan 3"),
             std::string::npos);
   PointCloud2Layout int_x = padded_layout();
   int_x.fields[0].datatype = kI16;
-  EXPECT_NE(test::input_error_of([&] { decode_point_cloud2(int_x, data.data(), data.size(), "m"); }).find("neither float32"),
+  EXPECT_NE(test::input_error_of([&] {
+              decode_point_cloud2(int_x, data.data(), data.size(), "m");
+            }).find("neither float32"),
             std::string::npos);
-  EXPECT_NE(test::input_error_of([&] { decode_point_cloud2(padded_layout(), data.data(), 100, "m"); }).find("bytes"),
+  EXPECT_NE(test::input_error_of([&] {
+              decode_point_cloud2(padded_layout(), data.data(), 100, "m");
+            }).find("bytes"),
             std::string::npos);
   PointCloud2Layout past = padded_layout();
   past.fields[3].offset = 35;
-  EXPECT_NE(test::input_error_of([&] { decode_point_cloud2(past, data.data(), data.size(), "m"); }).find("past point_step"),
+  EXPECT_NE(test::input_error_of([&] {
+              decode_point_cloud2(past, data.data(), data.size(), "m");
+            }).find("past point_step"),
             std::string::npos);
   PointCloud2Layout big = padded_layout();
   big.is_bigendian = true;
-  EXPECT_NE(test::input_error_of([&] { decode_point_cloud2(big, data.data(), data.size(), "m"); }).find("big-endian"),
+  EXPECT_NE(test::input_error_of([&] {
+              decode_point_cloud2(big, data.data(), data.size(), "m");
+            }).find("big-endian"),
             std::string::npos);
 }
 
@@ -109,7 +122,8 @@ TEST(PointCloud2, FieldsThatOverlapAreRefusedNamingTheField) {
   const std::vector<std::uint8_t> data = padded_data();
   PointCloud2Layout y_in_x = padded_layout();
   y_in_x.fields[1].offset = 4;
-  EXPECT_EQ(test::input_error_of([&] { decode_point_cloud2(y_in_x, data.data(), data.size(), "a.bag: /points, message 3"); }),
+  EXPECT_EQ(test::input_error_of(
+                [&] { decode_point_cloud2(y_in_x, data.data(), data.size(), "a.bag: /points, message 3"); }),
             "a.bag: /points, message 3: field 'y' (bytes 4 to 11) overlaps field 'x' (bytes 0 to 7)");
   // Any field, wherever it is listed: ring (listed last) over the intensity's second byte.
   PointCloud2Layout ring = padded_layout();
@@ -124,7 +138,9 @@ TEST(PointCloud2, FieldsThatOverlapAreRefusedNamingTheField) {
   // The same field twice at one place is an overlap too; fields that only touch are not.
   PointCloud2Layout twice = padded_layout();
   twice.fields.push_back({"x", 0, kF64, 1});
-  EXPECT_NE(test::input_error_of([&] { decode_point_cloud2(twice, data.data(), data.size(), "m"); }).find("overlaps field 'x'"),
+  EXPECT_NE(test::input_error_of([&] {
+              decode_point_cloud2(twice, data.data(), data.size(), "m");
+            }).find("overlaps field 'x'"),
             std::string::npos);
   EXPECT_EQ(decode_point_cloud2(padded_layout(), data.data(), data.size(), "m").size(), 5u);
 }
@@ -144,13 +160,14 @@ void append_string(std::vector<std::uint8_t>& out, const std::string& s) {
 /// The padded cloud as a bag stores a sensor_msgs/PointCloud2 (ROS1 serialization), stamped
 /// 12.5 s in frame "lidar". `fields_at` and `data_at` receive where the field count and the
 /// data length words are.
-std::vector<std::uint8_t> serialized_message(std::size_t* fields_at = nullptr, std::size_t* data_at = nullptr) {
+std::vector<std::uint8_t> serialized_message(std::size_t* fields_at = nullptr,
+                                             std::size_t* data_at = nullptr) {
   const PointCloud2Layout l = padded_layout();
   const std::vector<std::uint8_t> data = padded_data();
   std::vector<std::uint8_t> out;
-  append_word(out, 7);            // header.seq
-  append_word(out, 12);           // header.stamp.sec
-  append_word(out, 500000000);    // header.stamp.nsec
+  append_word(out, 7);          // header.seq
+  append_word(out, 12);         // header.stamp.sec
+  append_word(out, 500000000);  // header.stamp.nsec
   append_string(out, "lidar");
   append_word(out, l.height);
   append_word(out, l.width);
@@ -172,7 +189,9 @@ std::vector<std::uint8_t> serialized_message(std::size_t* fields_at = nullptr, s
   return out;
 }
 
-void set_word(std::vector<std::uint8_t>& bytes, std::size_t at, std::uint32_t v) { std::memcpy(bytes.data() + at, &v, 4); }
+void set_word(std::vector<std::uint8_t>& bytes, std::size_t at, std::uint32_t v) {
+  std::memcpy(bytes.data() + at, &v, 4);
+}
 
 }  // namespace
 
@@ -200,16 +219,21 @@ TEST(PointCloud2Message, LengthsNear2To31AreInputErrorsNamingTheByte) {
   const std::vector<std::uint8_t> good = serialized_message(&fields_at, &data_at);
   std::vector<std::uint8_t> fields = good;
   set_word(fields, fields_at, 0x7FFFFFFFu);
-  EXPECT_EQ(test::input_error_of([&] { parse_point_cloud2_message(fields.data(), fields.size(), "a.bag: /points, scan 3"); }),
-            "a.bag: /points, scan 3: field count 2147483647 at byte " + std::to_string(fields_at) + " is more than the message's " +
-                std::to_string(good.size() - fields_at - 4) + " bytes can hold");
+  EXPECT_EQ(test::input_error_of(
+                [&] { parse_point_cloud2_message(fields.data(), fields.size(), "a.bag: /points, scan 3"); }),
+            "a.bag: /points, scan 3: field count 2147483647 at byte " + std::to_string(fields_at) +
+                " is more than the message's " + std::to_string(good.size() - fields_at - 4) +
+                " bytes can hold");
   std::vector<std::uint8_t> data = good;
   set_word(data, data_at, 0x7FFFFFF0u);
-  EXPECT_EQ(test::input_error_of([&] { parse_point_cloud2_message(data.data(), data.size(), "m"); }),
-            "m: data at byte " + std::to_string(data_at + 4) + " needs 2147483632 bytes, the message has 241 left");
+  EXPECT_EQ(
+      test::input_error_of([&] { parse_point_cloud2_message(data.data(), data.size(), "m"); }),
+      "m: data at byte " + std::to_string(data_at + 4) + " needs 2147483632 bytes, the message has 241 left");
   std::vector<std::uint8_t> name = good;
   set_word(name, fields_at + 4, 0xFFFFFFF0u);  // the first field's name length
-  EXPECT_NE(test::input_error_of([&] { parse_point_cloud2_message(name.data(), name.size(), "m"); }).find("field name"),
+  EXPECT_NE(test::input_error_of([&] {
+              parse_point_cloud2_message(name.data(), name.size(), "m");
+            }).find("field name"),
             std::string::npos);
 }
 
@@ -217,7 +241,8 @@ TEST(PointCloud2Message, EveryTruncationIsAnInputError) {
   const std::vector<std::uint8_t> good = serialized_message();
   for (std::size_t keep = 0; keep < good.size(); ++keep) {
     SCOPED_TRACE(keep);
-    EXPECT_NE(test::input_error_of([&] { parse_point_cloud2_message(good.data(), keep, "m"); }).find("m: "), std::string::npos);
+    EXPECT_NE(test::input_error_of([&] { parse_point_cloud2_message(good.data(), keep, "m"); }).find("m: "),
+              std::string::npos);
   }
 }
 
@@ -227,7 +252,9 @@ TEST(PointCloud2, HugeFieldCountOrEmptyRowsAreHandled) {
   const std::vector<std::uint8_t> data = padded_data();
   PointCloud2Layout counted = padded_layout();
   counted.fields[3].count = 0xFFFFFFFFu;
-  EXPECT_NE(test::input_error_of([&] { decode_point_cloud2(counted, data.data(), data.size(), "m"); }).find("past point_step"),
+  EXPECT_NE(test::input_error_of([&] {
+              decode_point_cloud2(counted, data.data(), data.size(), "m");
+            }).find("past point_step"),
             std::string::npos);
   PointCloud2Layout empty_rows = padded_layout();
   empty_rows.height = 0xFFFFFFFFu;

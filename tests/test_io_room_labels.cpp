@@ -35,7 +35,8 @@ void paint(Image* img, int x0, int y0, int x1, int y1, Rgb c) {
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x)
       for (int ch = 0; ch < img->channels; ++ch)
-        img->samples[(static_cast<std::size_t>(y) * img->width + x) * img->channels + ch] = c[std::min(ch, 2)];
+        img->samples[(static_cast<std::size_t>(y) * img->width + x) * img->channels + ch] =
+            c[std::min(ch, 2)];
 }
 
 Image grey_image(int w, int h, std::uint8_t v) {
@@ -55,11 +56,11 @@ int room_at_pixel(const RoomLabels& l, int x, int y) { return l.at(x, l.height -
 TEST(RoomLabels, ColourImageGivesOneRoomPerColourInAsManyPiecesAsItHas) {
   Image img = rgb_image(60, 40, {0, 0, 0});
   const Rgb red{200, 30, 30}, green{30, 200, 30}, blue{30, 30, 200}, speck{9, 9, 9};
-  paint(&img, 30, 2, 50, 12, green);   // first in reading order: its top row is the image's row 2
-  paint(&img, 5, 5, 25, 15, red);      // red, piece 1
-  paint(&img, 5, 25, 15, 35, red);     // red, piece 2, apart from piece 1
+  paint(&img, 30, 2, 50, 12, green);  // first in reading order: its top row is the image's row 2
+  paint(&img, 5, 5, 25, 15, red);     // red, piece 1
+  paint(&img, 5, 25, 15, 35, red);    // red, piece 2, apart from piece 1
   paint(&img, 20, 20, 55, 38, blue);
-  paint(&img, 0, 39, 50, 40, speck);   // a colour of 50 pixels: no room
+  paint(&img, 0, 39, 50, 40, speck);  // a colour of 50 pixels: no room
   const RoomLabels l = room_labels(img);
   EXPECT_EQ(l.convention, RoomLabelConvention::kColour);
   EXPECT_STREQ(convention_name(l.convention), "one colour per room");
@@ -72,7 +73,7 @@ TEST(RoomLabels, ColourImageGivesOneRoomPerColourInAsManyPiecesAsItHas) {
   EXPECT_EQ(room_at_pixel(l, 10, 10), 1);
   EXPECT_EQ(room_at_pixel(l, 10, 30), 1);  // the second piece is the same room
   EXPECT_EQ(room_at_pixel(l, 30, 30), 2);
-  EXPECT_EQ(room_at_pixel(l, 2, 2), -1);   // black
+  EXPECT_EQ(room_at_pixel(l, 2, 2), -1);    // black
   EXPECT_EQ(room_at_pixel(l, 10, 39), -1);  // the small colour
   EXPECT_EQ(l.at(10, 0), -1);               // the labels' row 0 is the image's bottom row
   // Alpha is dropped: the same image as RGBA with a transparent corner reads the same.
@@ -89,12 +90,12 @@ TEST(RoomLabels, ColourImageGivesOneRoomPerColourInAsManyPiecesAsItHas) {
 
 TEST(RoomLabels, GreyImageIsTheIpaConventionAsItsEvaluationReadsIt) {
   Image img = grey_image(60, 40, 0);
-  paint(&img, 2, 2, 28, 38, {255, 255, 255});   // a room...
-  paint(&img, 14, 2, 15, 38, {0, 0, 0});        // ...split by a door line into two
-  paint(&img, 32, 2, 58, 20, {251, 251, 251});  // white is above 250
-  paint(&img, 32, 22, 58, 38, {250, 250, 250}); // 250 is not white
-  paint(&img, 50, 30, 51, 31, {255, 255, 255}); // a one-pixel speck: too small
-  paint(&img, 29, 39, 30, 40, {254, 254, 254}); // another lone pixel
+  paint(&img, 2, 2, 28, 38, {255, 255, 255});    // a room...
+  paint(&img, 14, 2, 15, 38, {0, 0, 0});         // ...split by a door line into two
+  paint(&img, 32, 2, 58, 20, {251, 251, 251});   // white is above 250
+  paint(&img, 32, 22, 58, 38, {250, 250, 250});  // 250 is not white
+  paint(&img, 50, 30, 51, 31, {255, 255, 255});  // a one-pixel speck: too small
+  paint(&img, 29, 39, 30, 40, {254, 254, 254});  // another lone pixel
   const RoomLabels l = room_labels(img);
   EXPECT_EQ(l.convention, RoomLabelConvention::kIpa);
   EXPECT_STREQ(convention_name(l.convention), "IPA: white rooms, black door lines");
@@ -147,10 +148,12 @@ TEST_F(RoomLabelFile, IsReadAndMustHaveTheMapsSize) {
   EXPECT_EQ(l.width, 40);
   EXPECT_EQ(l.height, 30);
   map.height = 31;
-  const std::string err = test::input_error_of([&] { read_room_labels((dir_ / "labels.png").string(), map); });
-  for (const std::string& part : {std::string("labels.png"), std::string("40 x 30"), std::string("floor.pgm"),
-                                  std::string("40 x 31")})
+  const std::string err =
+      test::input_error_of([&] { read_room_labels((dir_ / "labels.png").string(), map); });
+  for (const std::string& part :
+       {std::string("labels.png"), std::string("40 x 30"), std::string("floor.pgm"), std::string("40 x 31")})
     EXPECT_NE(err.find(part), std::string::npos) << part << " in " << err;
-  EXPECT_NE(test::input_error_of([&] { read_room_labels((dir_ / "none.png").string(), map); }).find("none.png"),
-            std::string::npos);
+  EXPECT_NE(
+      test::input_error_of([&] { read_room_labels((dir_ / "none.png").string(), map); }).find("none.png"),
+      std::string::npos);
 }

@@ -24,7 +24,9 @@ namespace {
 
 Pose3 some_pose(double yaw, const Eigen::Vector3d& t) {
   Pose3 p = Pose3::Identity();
-  p.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX())).toRotationMatrix();
+  p.linear() =
+      (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
   p.translation() = t;
   return p;
 }
@@ -53,8 +55,8 @@ TEST(Ros2Messages, PointCloud2ReadsBackItsPoints) {
   EXPECT_EQ(m.layout.width, 50u);
   ASSERT_EQ(m.layout.fields.size(), 4u);
   EXPECT_EQ(m.layout.fields[3].name, "intensity");
-  const PointCloud back = io::decode_point_cloud2(m.layout, reinterpret_cast<const std::uint8_t*>(cdr.data()) + m.data_offset,
-                                                  m.data_size, "here");
+  const PointCloud back = io::decode_point_cloud2(
+      m.layout, reinterpret_cast<const std::uint8_t*>(cdr.data()) + m.data_offset, m.data_size, "here");
   ASSERT_EQ(back.size(), cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     EXPECT_EQ(back.points[i], cloud.points[i]);
@@ -124,9 +126,11 @@ TEST(Ros2Messages, MessagesCutShortOrClaimingTooMuchAreInputErrorsNamingTheMessa
   std::string many = points;
   const std::size_t fields_at = 4 + 4 + 4 + 4 + 6 + 2 + 4 + 4;  // stamp, frame "lidar" + pad, height, width
   for (int i = 0; i < 4; ++i) many[fields_at + i] = '\xff';
-  EXPECT_THAT(error_of([&] { ros2::parse_point_cloud2(many, "m"); }), HasSubstr("CDR sequence fields of 4294967295 elements"));
-  EXPECT_THAT(error_of([&] { ros2::parse_odometry(std::string("\x01\x00\x00\x00", 4) + odom.substr(4), "m"); }),
-              HasSubstr("not plain CDR"));
+  EXPECT_THAT(error_of([&] { ros2::parse_point_cloud2(many, "m"); }),
+              HasSubstr("CDR sequence fields of 4294967295 elements"));
+  EXPECT_THAT(
+      error_of([&] { ros2::parse_odometry(std::string("\x01\x00\x00\x00", 4) + odom.substr(4), "m"); }),
+      HasSubstr("not plain CDR"));
   // A zero quaternion is no orientation.
   const std::string zero = ros2::encode_pose_stamped({1.0, "map", "", Pose3::Identity()});
   std::string bad = zero;
@@ -146,10 +150,14 @@ TEST(Ros2Messages, DefinitionsAreCheckedFieldByField) {
   }
   // Comments, constants and package-relative types, as ROS's own files have them.
   const std::string written_by_hand =
-      "# A cloud\nuint8 INT8    = 1\nuint8 FLOAT32 = 7\nHeader header # the stamp\n\nuint32 height\nuint32 width\n"
-      "PointField[] fields\nbool    is_bigendian\nuint32  point_step\nuint32  row_step\nuint8[] data\nbool is_dense\n";
+      "# A cloud\nuint8 INT8    = 1\nuint8 FLOAT32 = 7\nHeader header # the stamp\n\nuint32 height\nuint32 "
+      "width\n"
+      "PointField[] fields\nbool    is_bigendian\nuint32  point_step\nuint32  row_step\nuint8[] data\nbool "
+      "is_dense\n";
   EXPECT_EQ(ros2::definition_mismatch(ros2::kPointCloud2, written_by_hand), "");
-  EXPECT_THAT(ros2::definition_mismatch(ros2::kOdometry, ros2::definition(ros2::kPoseStamped)),
-              HasSubstr("its definition declares (Header header, Pose pose), not the fields of nav_msgs/msg/Odometry"));
+  EXPECT_THAT(
+      ros2::definition_mismatch(ros2::kOdometry, ros2::definition(ros2::kPoseStamped)),
+      HasSubstr(
+          "its definition declares (Header header, Pose pose), not the fields of nav_msgs/msg/Odometry"));
   EXPECT_THROW(ros2::definition("std_msgs/msg/String"), std::invalid_argument);
 }

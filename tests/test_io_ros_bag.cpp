@@ -176,7 +176,8 @@ TEST_F(RosBag, ChunkHeaderLengthNear2To32NamesTheByte) {
   put_word(bytes, chunk.pos, 0xFFFFFFF0u);
   const std::string path = write_file("long_header.bag", bytes);
   EXPECT_EQ(input_error_of([&] { bag_info(path); }),
-            path + ": byte " + std::to_string(chunk.pos) + ": record header length 4294967280 runs past the end of the file (" +
+            path + ": byte " + std::to_string(chunk.pos) +
+                ": record header length 4294967280 runs past the end of the file (" +
                 std::to_string(bytes.size()) + " bytes)");
   EXPECT_THAT(read_all(path), StartsWith(path + ": byte " + std::to_string(chunk.pos) + ": "));
 }
@@ -190,7 +191,8 @@ TEST_F(RosBag, ChunkCompressionNameIsQuotedPrintable) {
   bytes.replace(at + std::string("compression=").size(), 4, "\x01\xffne");
   const std::string path = write_file("compression.bag", bytes);
   EXPECT_EQ(input_error_of([&] { bag_info(path); }),
-            path + ": byte " + std::to_string(chunk.pos) + ": chunk compression '\\x01\\xffne' is none of none, bz2, lz4");
+            path + ": byte " + std::to_string(chunk.pos) +
+                ": chunk compression '\\x01\\xffne' is none of none, bz2, lz4");
 }
 
 // Issue 18: rosbag's own log lines (console_bridge) were printed before ours. An index entry
@@ -261,20 +263,22 @@ TEST_F(RosBag, MessageLengthsPastTheirChunkNameTheByte) {
   put_word(long_header, m.pos, 0xFFFFFFF0u);
   const std::string a = write_file("message_header.bag", long_header);
   EXPECT_EQ(input_error_of([&] { bag_info(a); }),
-            a + ": byte " + std::to_string(m.pos) + ": record header length 4294967280 runs past the end of its chunk (byte " +
+            a + ": byte " + std::to_string(m.pos) +
+                ": record header length 4294967280 runs past the end of its chunk (byte " +
                 std::to_string(chunk_data + chunk.data_len) + ")");
   std::string long_data = bytes;
   put_word(long_data, m.pos + 4 + m.header_len, 0x7FFFFFF0u);
   const std::string b = write_file("message_data.bag", long_data);
   EXPECT_THAT(input_error_of([&] { bag_info(b); }),
-              StartsWith(b + ": byte " + std::to_string(m.pos) + ": message data record's data length 2147483632 runs past"));
+              StartsWith(b + ": byte " + std::to_string(m.pos) +
+                         ": message data record's data length 2147483632 runs past"));
 }
 
 TEST_F(RosBag, TruncatedBagsAreRefusedNamingTheFile) {
   for (const BagCompression c : {BagCompression::none, BagCompression::bz2}) {
     const std::string bytes = bag_bytes(c);
-    for (const std::size_t keep : {std::size_t{0}, std::size_t{5}, kMagicBytes, kMagicBytes + 3, bytes.size() / 2,
-                                   bytes.size() - 40, bytes.size() - 1}) {
+    for (const std::size_t keep : {std::size_t{0}, std::size_t{5}, kMagicBytes, kMagicBytes + 3,
+                                   bytes.size() / 2, bytes.size() - 40, bytes.size() - 1}) {
       SCOPED_TRACE("kept " + std::to_string(keep) + " of " + std::to_string(bytes.size()) + " bytes");
       const std::string path = write_file("truncated.bag", bytes.substr(0, keep));
       EXPECT_THAT(read_all(path), StartsWith(path + ": "));
@@ -313,13 +317,15 @@ TEST_F(RosBag, PointCloudLengthsNear2To31AreInputErrors) {
 TEST_F(RosBag, TransformCountBeyondItsMessageIsAnInputError) {
   const std::string bytes = bag_bytes(BagCompression::none);
   // The one transform: header (seq, stamp, "base_link"), then child "lidar"; its count before.
-  const std::string frames = std::string("\x09\x00\x00\x00", 4) + "base_link" + std::string("\x05\x00\x00\x00", 4) + "lidar";
+  const std::string frames =
+      std::string("\x09\x00\x00\x00", 4) + "base_link" + std::string("\x05\x00\x00\x00", 4) + "lidar";
   const std::size_t at = bytes.find(frames);
   ASSERT_NE(at, std::string::npos);
   std::string many = bytes;
   put_word(many, at - 16, 0xFFFFFFF7u);
   const std::string a = write_file("tf.bag", many);
-  EXPECT_THAT(read_all(a), AllOf(StartsWith(a + ": /tf_static, message 0: "), HasSubstr("claims 4294967287 transforms")));
+  EXPECT_THAT(read_all(a),
+              AllOf(StartsWith(a + ": /tf_static, message 0: "), HasSubstr("claims 4294967287 transforms")));
 }
 
 // The same through the command line: one line naming the bag and the byte, exit 2, and no
@@ -329,13 +335,19 @@ TEST_F(RosBag, CorruptBagIsExitTwoForEveryCommand) {
   const Record chunk = first_chunk(bytes);
   put_word(bytes, chunk.pos + 4, 0xFFFFFFF0u);  // the first field length of the chunk header
   const std::string bag = write_file("corrupt.bag", bytes);
-  const std::string expected = "tsgraphs: error: " + bag + ": byte " + std::to_string(chunk.pos + 4) + ": record header field length 4294967280";
+  const std::string expected = "tsgraphs: error: " + bag + ": byte " + std::to_string(chunk.pos + 4) +
+                               ": record header field length 4294967280";
   std::string err;
   EXPECT_EQ(cli("bag-info " + bag, &err), 2);
   EXPECT_THAT(err, StartsWith(expected));
-  EXPECT_EQ(cli("-q run --bag " + bag + " --points-topic /points --odom-topic /odom --out " + (dir_ / "run").string(), &err), 2);
+  EXPECT_EQ(cli("-q run --bag " + bag + " --points-topic /points --odom-topic /odom --out " +
+                    (dir_ / "run").string(),
+                &err),
+            2);
   EXPECT_THAT(err, StartsWith(expected));
-  EXPECT_EQ(cli("-q convert --bag " + bag + " --points-topic /points --odom-topic /odom --out " + (dir_ / "seq").string(), &err),
+  EXPECT_EQ(cli("-q convert --bag " + bag + " --points-topic /points --odom-topic /odom --out " +
+                    (dir_ / "seq").string(),
+                &err),
             2);
   EXPECT_THAT(err, StartsWith(expected));
   EXPECT_FALSE(fs::exists(dir_ / "run"));
@@ -346,7 +358,8 @@ TEST_F(RosBag, CorruptBagIsExitTwoForEveryCommand) {
 // made rosbag's assert abort (exit 134) instead of our exit 2.
 TEST_F(RosBag, LongHeaderUnderAMemoryCapIsExitTwo) {
 #if TSGRAPHS_TEST_ASAN
-  GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: no binary of it starts under ulimit -v";
+  GTEST_SKIP()
+      << "AddressSanitizer reserves terabytes of address space: no binary of it starts under ulimit -v";
 #endif
   constexpr int kMemoryCapKiB = 2000000;  // 2 GB of address space: far below the 4 GB the header claims
   std::string bytes = bag_bytes(BagCompression::none);
@@ -354,8 +367,8 @@ TEST_F(RosBag, LongHeaderUnderAMemoryCapIsExitTwo) {
   put_word(bytes, chunk.pos, 0xFFFFFFF0u);
   const std::string bag = write_file("long_header.bag", bytes);
   const std::string err = (dir_ / "err.txt").string();
-  const int status = std::system(("ulimit -v " + std::to_string(kMemoryCapKiB) + "; exec " TSGRAPHS_BINARY " bag-info " +
-                                  bag + " > /dev/null 2> " + err)
+  const int status = std::system(("ulimit -v " + std::to_string(kMemoryCapKiB) +
+                                  "; exec " TSGRAPHS_BINARY " bag-info " + bag + " > /dev/null 2> " + err)
                                      .c_str());
   ASSERT_TRUE(WIFEXITED(status)) << status;
   EXPECT_EQ(WEXITSTATUS(status), 2);

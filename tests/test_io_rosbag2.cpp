@@ -57,9 +57,11 @@ class FiveScans : public io::ScanSequence {
 class Rosbag2 : public test::TempDirTest {
  protected:
   std::string write(const std::string& name, io::Rosbag2Storage storage,
-                    io::Rosbag2Compression compression = io::Rosbag2Compression::none, double start = 100.0) const {
+                    io::Rosbag2Compression compression = io::Rosbag2Compression::none,
+                    double start = 100.0) const {
     const std::string path = (dir_ / name).string();
-    io::write_rosbag2(FiveScans(start), path, storage, io::mcap::Compression::zstd, Pose3::Identity(), compression);
+    io::write_rosbag2(FiveScans(start), path, storage, io::mcap::Compression::zstd, Pose3::Identity(),
+                      compression);
     return path;
   }
   static io::BagOptions options(const std::string& bag, const std::string& odom = "/odom") {
@@ -97,15 +99,19 @@ TEST_F(Rosbag2, BothStoragesReadBackTheSequence) {
       ASSERT_EQ(c.size(), 10u);
       EXPECT_EQ(c.points[3], five.scan(i).points[3]);
     }
-    EXPECT_THAT(io::rosbag2_info(path), HasSubstr("/points                  sensor_msgs/msg/PointCloud2             5 msgs     10.00 Hz"));
+    EXPECT_THAT(
+        io::rosbag2_info(path),
+        HasSubstr("/points                  sensor_msgs/msg/PointCloud2             5 msgs     10.00 Hz"));
   }
   // A bag folder: metadata.yaml (rosbag2's BagMetadata) naming its one file, with the counts.
   write("folder", io::Rosbag2Storage::mcap);
-  const YAML::Node meta = YAML::LoadFile((dir_ / "folder" / "metadata.yaml").string())["rosbag2_bagfile_information"];
+  const YAML::Node meta =
+      YAML::LoadFile((dir_ / "folder" / "metadata.yaml").string())["rosbag2_bagfile_information"];
   EXPECT_EQ(meta["storage_identifier"].as<std::string>(), "mcap");
   EXPECT_EQ(meta["relative_file_paths"][0].as<std::string>(), "folder_0.mcap");
   EXPECT_EQ(meta["message_count"].as<int>(), 5 + 5 + 1);
-  EXPECT_EQ(meta["topics_with_message_count"][0]["topic_metadata"]["type"].as<std::string>(), "sensor_msgs/msg/PointCloud2");
+  EXPECT_EQ(meta["topics_with_message_count"][0]["topic_metadata"]["type"].as<std::string>(),
+            "sensor_msgs/msg/PointCloud2");
   EXPECT_EQ(meta["duration"]["nanoseconds"].as<std::uint64_t>(), 400000000u);
   EXPECT_EQ(io::Rosbag2Sequence(options((dir_ / "folder").string())).size(), 5u);
   // A bag folder is not written over.
@@ -118,18 +124,25 @@ TEST_F(Rosbag2, BothStoragesReadBackTheSequence) {
 TEST_F(Rosbag2, TopicsMissingOrOfAnotherTypeOrDefinitionAreNamed) {
   const std::string path = write("five.mcap", io::Rosbag2Storage::mcap);
   EXPECT_EQ(error_of(options(path, "/nope")), path + ": no topic /nope (topics: /odom, /points, /tf_static)");
-  EXPECT_EQ(error_of(options(path, "/points")),
-            path + ": /points is sensor_msgs/msg/PointCloud2, expected nav_msgs/msg/Odometry or geometry_msgs/msg/PoseStamped");
+  EXPECT_EQ(error_of(options(path, "/points")), path +
+                                                    ": /points is sensor_msgs/msg/PointCloud2, expected "
+                                                    "nav_msgs/msg/Odometry or geometry_msgs/msg/PoseStamped");
   // A topic named PointCloud2 whose recorded definition is another message's.
   const std::string other = (dir_ / "other.mcap").string();
   {
     io::mcap::Writer w(other, {"ros2", "test", io::mcap::Compression::none, 1 << 20});
-    const auto schema = w.add_schema(io::ros2::kPointCloud2, "ros2msg", io::ros2::definition(io::ros2::kPoseStamped));
-    w.write(w.add_channel(schema, "/points", "cdr"), 1, 1, io::ros2::encode_pose_stamped({1.0, "map", "", Pose3::Identity()}));
+    const auto schema =
+        w.add_schema(io::ros2::kPointCloud2, "ros2msg", io::ros2::definition(io::ros2::kPoseStamped));
+    w.write(w.add_channel(schema, "/points", "cdr"), 1, 1,
+            io::ros2::encode_pose_stamped({1.0, "map", "", Pose3::Identity()}));
     w.finish();
   }
   io::BagOptions o = options(other, "");
-  EXPECT_THAT(error_of(o), AllOf(StartsWith(other + ": /points (sensor_msgs/msg/PointCloud2): its definition declares (Header header, Pose pose)")));
+  EXPECT_THAT(
+      error_of(o),
+      AllOf(StartsWith(
+          other +
+          ": /points (sensor_msgs/msg/PointCloud2): its definition declares (Header header, Pose pose)")));
 }
 
 TEST_F(Rosbag2, DamagedFilesAndIncompleteFoldersAreNamed) {
@@ -148,7 +161,8 @@ TEST_F(Rosbag2, DamagedFilesAndIncompleteFoldersAreNamed) {
   const std::string metadata = (dir_ / "bag" / "metadata.yaml").string();
   std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [bag_0.db3]\n";
   EXPECT_TRUE(io::is_rosbag2((dir_ / "bag").string()));
-  EXPECT_EQ(error_of(options((dir_ / "bag").string())), metadata + ":2: lists bag_0.db3, which is not in the folder");
+  EXPECT_EQ(error_of(options((dir_ / "bag").string())),
+            metadata + ":2: lists bag_0.db3, which is not in the folder");
   // rosbag2 compresses with zstd only; a mode it does not have is named with its line.
   std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [bag_0.db3]\n"
                              "  compression_format: lz4\n  compression_mode: FILE\n";
@@ -156,7 +170,8 @@ TEST_F(Rosbag2, DamagedFilesAndIncompleteFoldersAreNamed) {
             metadata + ":3: compression_format 'lz4': only zstd, rosbag2's own compressor, is read");
   std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [bag_0.db3]\n"
                              "  compression_format: zstd\n  compression_mode: CHUNK\n";
-  EXPECT_EQ(error_of(options((dir_ / "bag").string())), metadata + ":4: compression_mode CHUNK: expected FILE, MESSAGE or none");
+  EXPECT_EQ(error_of(options((dir_ / "bag").string())),
+            metadata + ":4: compression_mode CHUNK: expected FILE, MESSAGE or none");
   std::ofstream(metadata) << "rosbag2_bagfile_information: [\n";
   EXPECT_THAT(error_of(options((dir_ / "bag").string())), StartsWith(metadata + ":"));
 }
@@ -172,13 +187,16 @@ TEST_F(Rosbag2, AFileListedTwiceInMetadataIsRefusedNamingTheRepeat) {
     return error_of(options(folder.string()));
   };
   EXPECT_EQ(listing("    - folder_0.db3\n"), "");
-  EXPECT_EQ(io::read_rosbag2_metadata(folder.string()).files, std::vector<std::string>{(folder / "folder_0.db3").string()});
+  EXPECT_EQ(io::read_rosbag2_metadata(folder.string()).files,
+            std::vector<std::string>{(folder / "folder_0.db3").string()});
   EXPECT_EQ(listing("    - folder_0.db3\n    - folder_0.db3\n"),
             metadata + ":4: lists folder_0.db3 again (as folder_0.db3 on line 3): each file is read once");
   EXPECT_EQ(listing("    - ./folder_0.db3\n    - folder_0.db3\n"),
             metadata + ":4: lists folder_0.db3 again (as ./folder_0.db3 on line 3): each file is read once");
-  EXPECT_EQ(listing("    - folder_0.db3\n    - ../folder/./folder_0.db3\n"),
-            metadata + ":4: lists ../folder/./folder_0.db3 again (as folder_0.db3 on line 3): each file is read once");
+  EXPECT_EQ(
+      listing("    - folder_0.db3\n    - ../folder/./folder_0.db3\n"),
+      metadata +
+          ":4: lists ../folder/./folder_0.db3 again (as folder_0.db3 on line 3): each file is read once");
   fs::create_symlink("folder_0.db3", folder / "link.db3");
   EXPECT_EQ(listing("    - link.db3\n    - folder_0.db3\n"),
             metadata + ":4: lists folder_0.db3 again (as link.db3 on line 3): each file is read once");
@@ -188,14 +206,19 @@ TEST_F(Rosbag2, AFileListedTwiceInMetadataIsRefusedNamingTheRepeat) {
   // A name outside the bag folder (absolute, or climbing out of it) would read a file elsewhere.
   const std::string absolute = listing("    - " + (folder / "folder_0.db3").string() + "\n");
   EXPECT_EQ(absolute.rfind(metadata + ":3: lists /", 0), 0u) << absolute;
-  EXPECT_NE(absolute.find(", an absolute path: files are named from the bag folder"), std::string::npos) << absolute;
+  EXPECT_NE(absolute.find(", an absolute path: files are named from the bag folder"), std::string::npos)
+      << absolute;
   fs::copy_file(folder / "folder_0.db3", dir_ / "outside.db3");
-  EXPECT_EQ(listing("    - ../outside.db3\n"), metadata + ":3: lists ../outside.db3, which is not inside the bag folder");
+  EXPECT_EQ(listing("    - ../outside.db3\n"),
+            metadata + ":3: lists ../outside.db3, which is not inside the bag folder");
   // An entry that is no file name is named too, not an internal error; a name's bytes are quoted printable.
-  EXPECT_EQ(listing("    - {path: folder_0.db3}\n"), metadata + ":3: relative_file_paths: an entry that is not a file name");
-  EXPECT_EQ(listing("    - \"a\\x1b[2J.db3\"\n"), metadata + ":3: lists a\\x1b[2J.db3, which is not in the folder");
+  EXPECT_EQ(listing("    - {path: folder_0.db3}\n"),
+            metadata + ":3: relative_file_paths: an entry that is not a file name");
+  EXPECT_EQ(listing("    - \"a\\x1b[2J.db3\"\n"),
+            metadata + ":3: lists a\\x1b[2J.db3, which is not in the folder");
   std::ofstream(metadata) << "rosbag2_bagfile_information: [1, 2]\n";
-  EXPECT_EQ(error_of(options(folder.string())), metadata + ": no rosbag2_bagfile_information.relative_file_paths");
+  EXPECT_EQ(error_of(options(folder.string())),
+            metadata + ": no rosbag2_bagfile_information.relative_file_paths");
 }
 
 // Issue 52: a split whose second file was a byte copy of the first (another name, the same
@@ -208,15 +231,18 @@ TEST_F(Rosbag2, ASplitFileStartingBeforeTheLastOfThePreviousIsRefused) {
     SCOPED_TRACE(ext);
     const fs::path split = dir_ / ("split" + ext);
     fs::create_directories(split);
-    fs::copy_file(fs::path(write("first" + ext + "_bag", storage)) / ("first" + ext + "_bag_0" + ext), split / ("split_0" + ext));
+    fs::copy_file(fs::path(write("first" + ext + "_bag", storage)) / ("first" + ext + "_bag_0" + ext),
+                  split / ("split_0" + ext));
     const std::string later = write("later" + ext + "_bag", storage, io::Rosbag2Compression::none, 101.0);
     fs::copy_file(fs::path(later) / ("later" + ext + "_bag_0" + ext), split / ("split_1" + ext));
     const std::string metadata = (split / "metadata.yaml").string();
-    std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [split_0" << ext << ", split_1" << ext << "]\n";
+    std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [split_0" << ext
+                            << ", split_1" << ext << "]\n";
     EXPECT_EQ(io::Rosbag2Sequence(options(split.string())).size(), 10u);
 
     fs::copy_file(split / ("split_0" + ext), split / ("split_1" + ext), fs::copy_options::overwrite_existing);
-    const std::string repeated = metadata + ": split_1" + ext + ": its first message (t 100.000000000 s) is before the last of split_0" +
+    const std::string repeated = metadata + ": split_1" + ext +
+                                 ": its first message (t 100.000000000 s) is before the last of split_0" +
                                  ext + " (t 100.400000000 s): a file repeated?";
     EXPECT_EQ(error_of(options(split.string())), repeated);
     EXPECT_EQ(test::input_error_of([&] { io::rosbag2_info(split.string()); }), repeated);
@@ -229,15 +255,19 @@ TEST_F(Rosbag2, ASplitFileStartingBeforeTheLastOfThePreviousIsRefused) {
            "\n      duration:\n        nanoseconds: 400000000\n      message_count: 11\n";
   };
   const std::string metadata = (split / "metadata.yaml").string();
-  std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [split_0.db3, split_1.db3]\n  files:\n"
-                          << file_entry("split_0.db3", "100000000000") << file_entry("split_1.db3", "100000000000");
+  std::ofstream(metadata)
+      << "rosbag2_bagfile_information:\n  relative_file_paths: [split_0.db3, split_1.db3]\n  files:\n"
+      << file_entry("split_0.db3", "100000000000") << file_entry("split_1.db3", "100000000000");
   EXPECT_EQ(test::input_error_of([&] { io::read_rosbag2_metadata(split.string()); }),
-            metadata + ":10: split_1.db3: its first message (t 100.000000000 s) is before the last of split_0.db3 "
-                       "(t 100.400000000 s): a file repeated?");
+            metadata +
+                ":10: split_1.db3: its first message (t 100.000000000 s) is before the last of split_0.db3 "
+                "(t 100.400000000 s): a file repeated?");
   // Times that follow pass the metadata, and the file is read (here: not a bag).
-  std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [split_0.db3, split_1.db3]\n  files:\n"
-                          << file_entry("split_0.db3", "100000000000") << file_entry("split_1.db3", "100400000000");
-  EXPECT_EQ(error_of(options(split.string())), (split / "split_1.db3").string() + ": neither an SQLite (.db3) nor an MCAP file");
+  std::ofstream(metadata)
+      << "rosbag2_bagfile_information:\n  relative_file_paths: [split_0.db3, split_1.db3]\n  files:\n"
+      << file_entry("split_0.db3", "100000000000") << file_entry("split_1.db3", "100400000000");
+  EXPECT_EQ(error_of(options(split.string())),
+            (split / "split_1.db3").string() + ": neither an SQLite (.db3) nor an MCAP file");
 }
 
 // rosbag2's own compression (`ros2 bag record --compression-mode file|message`, zstd): each
@@ -255,16 +285,19 @@ TEST_F(Rosbag2, RosbagsOwnCompressionReadsBackTheSequence) {
     const std::string ext = storage == io::Rosbag2Storage::sqlite ? ".db3" : ".mcap";
     for (const auto mode : {io::Rosbag2Compression::file, io::Rosbag2Compression::message}) {
       const bool file_mode = mode == io::Rosbag2Compression::file;
-      const std::string name = std::string(file_mode ? "file" : "message") + (ext == ".db3" ? "_sqlite" : "_mcap");
+      const std::string name =
+          std::string(file_mode ? "file" : "message") + (ext == ".db3" ? "_sqlite" : "_mcap");
       SCOPED_TRACE(name);
       const std::string path = write(name, storage, mode);
-      const YAML::Node meta = YAML::LoadFile((fs::path(path) / "metadata.yaml").string())["rosbag2_bagfile_information"];
+      const YAML::Node meta =
+          YAML::LoadFile((fs::path(path) / "metadata.yaml").string())["rosbag2_bagfile_information"];
       EXPECT_EQ(meta["compression_format"].as<std::string>(), "zstd");
       EXPECT_EQ(meta["compression_mode"].as<std::string>(), file_mode ? "FILE" : "MESSAGE");
       const std::string listed = name + "_0" + ext + (file_mode ? ".zstd" : "");
       EXPECT_EQ(meta["relative_file_paths"][0].as<std::string>(), listed);
       EXPECT_TRUE(fs::is_regular_file(fs::path(path) / listed));
-      EXPECT_EQ(std::distance(fs::directory_iterator(path), fs::directory_iterator()), 2);  // and metadata.yaml
+      EXPECT_EQ(std::distance(fs::directory_iterator(path), fs::directory_iterator()),
+                2);  // and metadata.yaml
 
       const io::Rosbag2Sequence s(options(path));
       ASSERT_EQ(s.size(), 5u);
@@ -275,7 +308,8 @@ TEST_F(Rosbag2, RosbagsOwnCompressionReadsBackTheSequence) {
         ASSERT_EQ(got.size(), want.size());
         for (std::size_t k = 0; k < got.size(); ++k) EXPECT_EQ(got.points[k], want.points[k]);
       }
-      EXPECT_THAT(io::rosbag2_info(path), HasSubstr("/points                  sensor_msgs/msg/PointCloud2             5 msgs"));
+      EXPECT_THAT(io::rosbag2_info(path),
+                  HasSubstr("/points                  sensor_msgs/msg/PointCloud2             5 msgs"));
       EXPECT_TRUE(fs::is_empty(tmp)) << "a decompressed file was left in TMPDIR";
     }
   }
@@ -286,7 +320,8 @@ TEST_F(Rosbag2, RosbagsOwnCompressionReadsBackTheSequence) {
   // A compressed file cut short names the file; still nothing left in TMPDIR.
   const fs::path cut = dir_ / "file_sqlite" / "file_sqlite_0.db3.zstd";
   fs::resize_file(cut, fs::file_size(cut) / 2);
-  EXPECT_THAT(error_of(options((dir_ / "file_sqlite").string())), StartsWith(cut.string() + ": zstd data that "));
+  EXPECT_THAT(error_of(options((dir_ / "file_sqlite").string())),
+              StartsWith(cut.string() + ": zstd data that "));
   EXPECT_TRUE(fs::is_empty(tmp));
   if (old_tmpdir) {
     setenv("TMPDIR", kept_tmpdir.c_str(), 1);

@@ -16,10 +16,10 @@
 
 using namespace tsgraphs;
 using namespace tsgraphs::io;
-using tsgraphs::test::input_error_of;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
+using tsgraphs::test::input_error_of;
 
 namespace {
 
@@ -191,7 +191,8 @@ TEST_F(SceneGraphFile, MissingKeysAndWrongTypesAreNamed) {
       {"\"kind\": \"corridor\",\n   \"level\": 0", "\"kind\": \"hall\",\n   \"level\": 0",
        "'rooms[1].kind' must be \"room\" or \"corridor\""},
       {"\"scan_index\": 17", "\"scan_index\": -17", "'keyframes[1].scan_index' must not be negative"},
-      {"\"probability\": 0.875", "\"probability\": [0.875]", "'traversable_nodes[0].probability' must be a number"},
+      {"\"probability\": 0.875", "\"probability\": [0.875]",
+       "'traversable_nodes[0].probability' must be a number"},
       {"\"fitness\": 0.0123", "\"fitness\": null", "'edges[1].fitness' must be a number"},
       {"\"proposer\": \"room\"", "\"proposer\": 2", "'loop_closures[1].proposer' must be a string"},
       {"\"anchor\": 0", "\"anchor\": 0.5", "'keyframes[2].anchor'"},
@@ -247,7 +248,8 @@ TEST_F(SceneGraphFile, NumbersBeyondADoubleNameTheLine) {
             path + ":" + std::to_string(line) + ": number out of the range of a double: '1e400'");
   // A string holding digits is no number: the line is the number's.
   const std::string quoted = write_file("quoted.json", "{\"frame\": \"9e999\",\n \"keyframes\": [-2e400]}");
-  EXPECT_THAT(input_error_of([&] { read_scene_graph(quoted); }), StartsWith(quoted + ":2: number out of the range"));
+  EXPECT_THAT(input_error_of([&] { read_scene_graph(quoted); }),
+              StartsWith(quoted + ":2: number out of the range"));
 }
 
 // Each file of the run folder that is a folder says so (it was read as empty, or as a
@@ -289,9 +291,10 @@ TEST(RoomEvents, FormatsTheMetricsMdExampleAsRunWritesIt) {
   e.rect = rect(12.1, 3.4, 8.0, 2.6, 0.0);
   e.walls = {17, 18, 22};
   e.kind = "room";
-  EXPECT_EQ(format_room_event(e),
-            R"({"center":[12.1,3.4],"kind":"room","lap":1,"level":0,"new":true,)"
-            R"("rect":{"center":[12.1,3.4],"size":[8.0,2.6],"yaw":0.0},"room_id":5,"t":41.2,"walls":[17,18,22]})");
+  EXPECT_EQ(
+      format_room_event(e),
+      R"({"center":[12.1,3.4],"kind":"room","lap":1,"level":0,"new":true,)"
+      R"("rect":{"center":[12.1,3.4],"size":[8.0,2.6],"yaw":0.0},"room_id":5,"t":41.2,"walls":[17,18,22]})");
 }
 
 class RoomEventsFile : public test::TempDirTest {};
@@ -336,7 +339,8 @@ TEST_F(RoomEventsFile, MalformedLinesNameTheFileAndLine) {
   const std::vector<Case> cases = {
       {"{\"t\": 1.0, \"lap\": ", "malformed JSON"},
       {"[1, 2, 3]", "expected a JSON object"},
-      {R"({"t":1,"lap":1,"room_id":5,"new":true,"level":0,"center":[1,2],"walls":[],"kind":"room"})", "'rect'"},
+      {R"({"t":1,"lap":1,"room_id":5,"new":true,"level":0,"center":[1,2],"walls":[],"kind":"room"})",
+       "'rect'"},
       {R"({"t":1,"lap":1,"room_id":5,"new":true,"level":0,"center":[1,2],)"
        R"("rect":{"center":[1,2],"size":"big","yaw":0},"walls":[],"kind":"room"})",
        "'rect.size'"},
@@ -364,12 +368,14 @@ TEST_F(RoomEventsFile, MalformedLinesNameTheFileAndLine) {
     EXPECT_THAT(msg, HasSubstr(c.says));
   }
   // A coordinate beyond any building and a number beyond a double, on the third line.
-  const std::string huge = write_file(
-      "rooms_events.jsonl", good + "\n\n" + replaced(good, "\"center\":[2.0,2.0]", "\"center\":[2.0,1e308]") + "\n");
+  const std::string huge =
+      write_file("rooms_events.jsonl",
+                 good + "\n\n" + replaced(good, "\"center\":[2.0,2.0]", "\"center\":[2.0,1e308]") + "\n");
   EXPECT_THAT(input_error_of([&] { read_room_events(huge); }),
               StartsWith(huge + ":3: 'center[1]' is 1e+308: not a coordinate within 1e8 m"));
-  const std::string overflow = write_file(
-      "rooms_events.jsonl", good + "\n\n" + replaced(good, "\"center\":[2.0,2.0]", "\"center\":[2.0,1e400]") + "\n");
+  const std::string overflow =
+      write_file("rooms_events.jsonl",
+                 good + "\n\n" + replaced(good, "\"center\":[2.0,2.0]", "\"center\":[2.0,1e400]") + "\n");
   EXPECT_THAT(input_error_of([&] { read_room_events(overflow); }),
               StartsWith(overflow + ":3: number out of the range of a double"));
   const std::string missing = (dir_ / "none.jsonl").string();
@@ -377,7 +383,8 @@ TEST_F(RoomEventsFile, MalformedLinesNameTheFileAndLine) {
 }
 
 TEST_F(RoomEventsFile, IgnoresUnknownKeys) {
-  const std::string line = replaced(format_room_event(event(2, rect(1, 2, 3, 4, 0))), "{", R"({"score":0.9,)");
+  const std::string line =
+      replaced(format_room_event(event(2, rect(1, 2, 3, 4, 0))), "{", R"({"score":0.9,)");
   const std::vector<RoomEvent> back = read_room_events(write_file("rooms_events.jsonl", line + "\n"));
   ASSERT_EQ(back.size(), 1u);
   EXPECT_EQ(back[0].lap, 2);
@@ -460,7 +467,8 @@ TEST_F(TimingsFile, MalformedLinesNameTheLineAndColumn) {
       {",15.869,", ",15.8x9,", 2, "malformed frontend_ms in a scan row"},
       {",6534,", ",-6534,", 2, "malformed num_points in a scan row"},
       {",4547,5,740,", ",4547,5,,", 2, "malformed ground_fn in a scan row"},
-      {",4547,5,740,", ",9000000000000000000,5,740,", 2, "ground_tp in a scan row must be -1 (no labels) or a count"},
+      {",4547,5,740,", ",9000000000000000000,5,740,", 2,
+       "ground_tp in a scan row must be -1 (no labels) or a count"},
       {",4547,5,740,", ",4547,-5,740,", 2, "ground_fp in a scan row must be -1"},
       {",0.000453,1,", ",0.000453,2,", 4, "full must be 0 or 1"},
       {",19,58,3,loop", ",19,5.8,3,loop", 4, "malformed n_factors in an optimization row"},
@@ -521,7 +529,8 @@ TEST_F(RunSummaryFile, MissingKeysAndWrongTypesAreNamed) {
   EXPECT_THAT(input_error_of([&] { read_run_summary(path); }), HasSubstr("expected a JSON object"));
   path = write_file("run_info.json", replaced(good, "\"rtf\": 0.0", "\"rtf\": 1e400"));
   EXPECT_THAT(input_error_of([&] { read_run_summary(path); }), StartsWith(path + ":"));
-  EXPECT_THAT(input_error_of([&] { read_run_summary(path); }), HasSubstr(": number out of the range of a double: '1e400'"));
+  EXPECT_THAT(input_error_of([&] { read_run_summary(path); }),
+              HasSubstr(": number out of the range of a double: '1e400'"));
   // Extra keys: a newer writer's.
   path = write_file("run_info.json", replaced(good, "{", "{\"gpu\": \"none\", "));
   EXPECT_EQ(read_run_summary(path).num_scans, 0u);
@@ -530,8 +539,9 @@ TEST_F(RunSummaryFile, MissingKeysAndWrongTypesAreNamed) {
 // map.ply as run writes it now (double) and wrote it before the map frame (float).
 TEST_F(SceneGraphFile, MapPlyOfDoublesOrFloats) {
   const auto ply = [](const std::string& type, std::size_t count, const std::string& body) {
-    return "ply\nformat binary_little_endian 1.0\ncomment test\nelement vertex " + std::to_string(count) + "\nproperty " + type +
-           " x\nproperty " + type + " y\nproperty " + type + " z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n" + body;
+    return "ply\nformat binary_little_endian 1.0\ncomment test\nelement vertex " + std::to_string(count) +
+           "\nproperty " + type + " x\nproperty " + type + " y\nproperty " + type +
+           " z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n" + body;
   };
   std::string doubles, floats;
   const double d[3] = {512345.125, 4012345.25, 1.5};
@@ -548,7 +558,8 @@ TEST_F(SceneGraphFile, MapPlyOfDoublesOrFloats) {
   EXPECT_EQ(b[0].r, 255);
   const std::string short_body = write_file("short.ply", ply("double", 2, doubles));
   EXPECT_THAT(input_error_of([&] { read_map_ply(short_body); }),
-              AllOf(StartsWith(short_body + ": holds 1 vertices of 27 bytes from byte "), HasSubstr(", its header says 2")));
+              AllOf(StartsWith(short_body + ": holds 1 vertices of 27 bytes from byte "),
+                    HasSubstr(", its header says 2")));
   EXPECT_THROW(read_map_ply(write_file("text.ply", "ply\nformat ascii 1.0\nend_header\n")), InputError);
 }
 
@@ -557,8 +568,9 @@ TEST_F(SceneGraphFile, MapPlyOfDoublesOrFloats) {
 // the file and the byte (and the vertex).
 TEST_F(SceneGraphFile, MapPlyBodyOfAnotherSizeOrBadValuesIsRefusedNamingTheByte) {
   const auto ply = [](const std::string& type, std::size_t count, const std::string& body) {
-    return "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(count) + "\nproperty " + type +
-           " x\nproperty " + type + " y\nproperty " + type + " z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n" + body;
+    return "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(count) + "\nproperty " +
+           type + " x\nproperty " + type + " y\nproperty " + type +
+           " z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n" + body;
   };
   const auto vertex = [](double x, double y, double z) {
     const double d[3] = {x, y, z};
@@ -571,20 +583,25 @@ TEST_F(SceneGraphFile, MapPlyBodyOfAnotherSizeOrBadValuesIsRefusedNamingTheByte)
   // Doubles under a float header: 2 x 27 bytes where 2 x 15 are declared.
   std::string path = write_file("float_header.ply", ply("float", 2, two));
   EXPECT_EQ(input_error_of([&] { read_map_ply(path); }),
-            path + ": 24 bytes after the last of the header's 2 vertices of 15 bytes, from byte " + std::to_string(float_header + 30) +
-                " (are the properties' types the body's?)");
+            path + ": 24 bytes after the last of the header's 2 vertices of 15 bytes, from byte " +
+                std::to_string(float_header + 30) + " (are the properties' types the body's?)");
   path = write_file("trailing.ply", ply("double", 2, two + "x"));
-  EXPECT_THAT(input_error_of([&] { read_map_ply(path); }),
-              StartsWith(path + ": 1 bytes after the last of the header's 2 vertices of 27 bytes, from byte " +
-                         std::to_string(header + 54)));
+  EXPECT_THAT(
+      input_error_of([&] { read_map_ply(path); }),
+      StartsWith(path + ": 1 bytes after the last of the header's 2 vertices of 27 bytes, from byte " +
+                 std::to_string(header + 54)));
 
   path = write_file("nan.ply", ply("double", 2, vertex(1.0, 2.0, 3.0) + vertex(4.0, std::nan(""), 6.0)));
-  EXPECT_EQ(input_error_of([&] { read_map_ply(path); }), path + ": byte " + std::to_string(header + 27) + ": 'vertex[1].y' must be finite");
-  path = write_file("far.ply", ply("double", 2, vertex(2e8, 2.0, 3.0) + vertex(4.0, 5.0, 6.0)));
   EXPECT_EQ(input_error_of([&] { read_map_ply(path); }),
-            path + ": byte " + std::to_string(header) + ": 'vertex[0].x' is 2e+08: not a coordinate within 1e8 m");
+            path + ": byte " + std::to_string(header + 27) + ": 'vertex[1].y' must be finite");
+  path = write_file("far.ply", ply("double", 2, vertex(2e8, 2.0, 3.0) + vertex(4.0, 5.0, 6.0)));
+  EXPECT_EQ(
+      input_error_of([&] { read_map_ply(path); }),
+      path + ": byte " + std::to_string(header) + ": 'vertex[0].x' is 2e+08: not a coordinate within 1e8 m");
   // A float body whose bytes make a float beyond the bound (an old run's map.ply, damaged).
   const float big[3] = {1.0f, 2.0f, 3e38f};
-  path = write_file("far_float.ply", ply("float", 1, std::string(reinterpret_cast<const char*>(big), sizeof big) + "abc"));
-  EXPECT_THAT(input_error_of([&] { read_map_ply(path); }), StartsWith(path + ": byte " + std::to_string(float_header) + ": 'vertex[0].z' is 3e+38"));
+  path = write_file("far_float.ply",
+                    ply("float", 1, std::string(reinterpret_cast<const char*>(big), sizeof big) + "abc"));
+  EXPECT_THAT(input_error_of([&] { read_map_ply(path); }),
+              StartsWith(path + ": byte " + std::to_string(float_header) + ": 'vertex[0].z' is 3e+38"));
 }

@@ -23,14 +23,15 @@ namespace {
 void write_bin(const fs::path& p, int n) {
   std::vector<float> data;
   for (int i = 0; i < n; ++i) data.insert(data.end(), {float(i), float(-i), 0.5f, float(i) / 10.0f});
-  std::ofstream(p, std::ios::binary).write(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(float));
+  std::ofstream(p, std::ios::binary)
+      .write(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(float));
 }
 
 /// An ASCII PCD of `n` points with fields x y z intensity.
 void write_pcd(const fs::path& p, int n) {
   std::ofstream out(p);
-  out << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH " << n
-      << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << n << "\nDATA ascii\n";
+  out << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH "
+      << n << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << n << "\nDATA ascii\n";
   for (int i = 0; i < n; ++i) out << i << " " << -i << " 0.5 " << i / 10.0 << "\n";
 }
 
@@ -106,8 +107,8 @@ TEST_F(ScanFolder, TimesThatDisagreeWithThePoseStampsAreRefused) {
   for (int k = 0; k < 3; ++k) {
     write_pcd(dir_ / ("scan_" + std::to_string(k) + ".pcd"), 4);
     const Eigen::Quaterniond q(pose_k(k).linear());
-    tum += std::to_string(1000.0 + 0.1 * k) + " " + std::to_string(k) + " 0 0 " + std::to_string(q.x()) + " " +
-           std::to_string(q.y()) + " " + std::to_string(q.z()) + " " + std::to_string(q.w()) + "\n";
+    tum += std::to_string(1000.0 + 0.1 * k) + " " + std::to_string(k) + " 0 0 " + std::to_string(q.x()) +
+           " " + std::to_string(q.y()) + " " + std::to_string(q.z()) + " " + std::to_string(q.w()) + "\n";
   }
   write_file("trajectory.tum", tum);
   ScanFolderOptions o;
@@ -118,7 +119,8 @@ TEST_F(ScanFolder, TimesThatDisagreeWithThePoseStampsAreRefused) {
   EXPECT_EQ(ScanFolderReader(o).info().times, (std::vector<double>{0.0, 0.1, 0.2}));
   write_file("t.txt", "0.0\n0.1\n100.2\n");
   const std::string error = test::input_error_of([&] { ScanFolderReader r(o); });
-  EXPECT_NE(error.find("trajectory.tum: pose 3: stamp 1000.200000 is 100 s from the scan's time"), std::string::npos)
+  EXPECT_NE(error.find("trajectory.tum: pose 3: stamp 1000.200000 is 100 s from the scan's time"),
+            std::string::npos)
       << error;
 }
 
@@ -166,11 +168,14 @@ TEST_F(ScanFolder, BadFoldersAreRefusedNamingTheFile) {
   EXPECT_NE(count.find("poses.txt"), std::string::npos) << count;
   EXPECT_NE(count.find("1 poses for 2 scans"), std::string::npos) << count;
   // Issue 52: the scan beyond the count is named.
-  EXPECT_NE(count.find(": the first scan without a pose is " + (dir_ / "000001.bin").string()), std::string::npos) << count;
+  EXPECT_NE(count.find(": the first scan without a pose is " + (dir_ / "000001.bin").string()),
+            std::string::npos)
+      << count;
   write_file("poses.txt", kitti_row(pose_k(0)) + kitti_row(pose_k(1)));
   write_file("times.txt", "0.0\n");
   const std::string times = test::input_error_of([&] { ScanFolderReader r(o); });
-  EXPECT_EQ(times, (dir_ / "times.txt").string() + ": has 1 times for 2 scans: the first scan without a time is " +
+  EXPECT_EQ(times, (dir_ / "times.txt").string() +
+                       ": has 1 times for 2 scans: the first scan without a time is " +
                        (dir_ / "000001.bin").string());
   fs::remove(dir_ / "times.txt");
   write_file("poses.txt", kitti_row(pose_k(0)));
@@ -199,7 +204,8 @@ TEST(Kitti, PosesReadBackAndRotationsStayOrthonormal) {
   const std::vector<Pose3> poses = read_kitti_poses(p.string());
   ASSERT_EQ(poses.size(), 2u);
   EXPECT_TRUE(poses[0].isApprox(pose_k(3), 1e-5));
-  EXPECT_NEAR((poses[1].linear() * poses[1].linear().transpose() - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((poses[1].linear() * poses[1].linear().transpose() - Eigen::Matrix3d::Identity()).norm(), 0.0,
+              1e-12);
   EXPECT_EQ(fields_on_first_line(p.string()), 12);
   fs::remove_all(p.parent_path());
 }
@@ -219,7 +225,8 @@ TEST(Kitti, PoseRowsThatAreNoRotationAreRefusedNamingTheLine) {
   EXPECT_NE(error_of_row("1 0 0 1 0 1 0 2 0 0 -1 3").find("poses.txt:2: the 3x3 part is a reflection"),
             std::string::npos);
   // Issue 52: a position had no bound (convert wrote z = 1e300 to odom.txt); TUM's is 1e8 m.
-  EXPECT_NE(error_of_row("1 0 0 1 0 1 0 2 0 0 1 1e300").find("poses.txt:2: the position [1, 2, 1e+300] is not within 1e8 m"),
+  EXPECT_NE(error_of_row("1 0 0 1 0 1 0 2 0 0 1 1e300")
+                .find("poses.txt:2: the position [1, 2, 1e+300] is not within 1e8 m"),
             std::string::npos);
   fs::remove_all(dir);
 }
@@ -229,7 +236,8 @@ TEST(Kitti, AWordThatIsNoNumberIsQuotedPrintable) {
   const fs::path dir = test::fresh_temp_dir("kitti_printable");
   const fs::path p = dir / "poses.txt";
   std::ofstream(p) << "1 0 0 1 0 1 0 2 0 0 \x07\xfe 3\n";
-  EXPECT_EQ(test::input_error_of([&] { read_kitti_poses(p.string()); }), p.string() + ":1: '\\x07\\xfe' is not a number");
+  EXPECT_EQ(test::input_error_of([&] { read_kitti_poses(p.string()); }),
+            p.string() + ":1: '\\x07\\xfe' is not a number");
   fs::remove_all(dir);
 }
 

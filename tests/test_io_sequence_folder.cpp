@@ -21,10 +21,10 @@
 
 using namespace tsgraphs;
 using namespace tsgraphs::io;
-using tsgraphs::test::input_error_of;
-using tsgraphs::test::TempDirTest;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
+using tsgraphs::test::input_error_of;
+using tsgraphs::test::TempDirTest;
 
 namespace fs = std::filesystem;
 
@@ -79,7 +79,8 @@ class SequenceFolder : public TempDirTest {
   // Three scans: the first two with intensity and labels, the third with neither.
   void make_clouds() {
     std::mt19937 rng(99);
-    clouds_ = {random_cloud(rng, 50, true, true), random_cloud(rng, 7, true, true), random_cloud(rng, 20, false, false)};
+    clouds_ = {random_cloud(rng, 50, true, true), random_cloud(rng, 7, true, true),
+               random_cloud(rng, 20, false, false)};
     // Values that must survive bit for bit.
     clouds_[0].points[0] = Eigen::Vector3f(-0.0f, 1e-38f, 3.4e38f);
     clouds_[0].intensity[0] = 1.17549435e-38f / 4.0f;  // subnormal
@@ -164,7 +165,8 @@ TEST_F(SequenceFolder, RoundTrip) {
     ASSERT_EQ(got.intensity.size(), got.size());
     for (std::size_t i = 0; i < want.size(); ++i) {
       for (int k = 0; k < 3; ++k) {
-        ASSERT_EQ(bits(got.points[i][k]), bits(want.points[i][k])) << "scan " << s << " point " << i << " axis " << k;
+        ASSERT_EQ(bits(got.points[i][k]), bits(want.points[i][k]))
+            << "scan " << s << " point " << i << " axis " << k;
       }
       const float wi = want.has_intensity() ? want.intensity[i] : 0.0f;
       ASSERT_EQ(bits(got.intensity[i]), bits(wi)) << "scan " << s << " point " << i;
@@ -418,7 +420,8 @@ TEST_F(SequenceFolder, ReaderRejectsAScanBeyondTheTimesAndPoses) {
   fs::copy_file(seq_ / "scans/000000.bin", seq_ / "scans/000004.bin");
   fs::copy_file(seq_ / "scans/000000.bin", seq_ / "scans/000003.bin");
   EXPECT_EQ(input_error_of([&] { SequenceReader r(seq_.string()); }),
-            (seq_ / "scans/000003.bin").string() + ": a scan beyond the 3 of times.txt and odom.txt: a sequence folder's files agree in number");
+            (seq_ / "scans/000003.bin").string() +
+                ": a scan beyond the 3 of times.txt and odom.txt: a sequence folder's files agree in number");
   // Another spelling of a listed scan's number is no listed scan; other files are not scans.
   fs::remove(seq_ / "scans/000003.bin");
   fs::remove(seq_ / "scans/000004.bin");
@@ -426,7 +429,8 @@ TEST_F(SequenceFolder, ReaderRejectsAScanBeyondTheTimesAndPoses) {
   write_text(seq_ / "scans/000000.bin.orig", "");
   EXPECT_EQ(SequenceReader(seq_.string()).size(), 3u);
   fs::copy_file(seq_ / "scans/000001.bin", seq_ / "scans/0000001.bin");
-  EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }), StartsWith((seq_ / "scans/0000001.bin").string() + ": a scan beyond"));
+  EXPECT_THAT(input_error_of([&] { SequenceReader r(seq_.string()); }),
+              StartsWith((seq_ / "scans/0000001.bin").string() + ": a scan beyond"));
 }
 
 TEST_F(SequenceFolder, ReaderRejectsABinOfOddSize) {

@@ -15,10 +15,10 @@
 
 using namespace tsgraphs;
 using namespace tsgraphs::io;
-using tsgraphs::test::input_error_of;
-using tsgraphs::test::TempDirTest;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
+using tsgraphs::test::input_error_of;
+using tsgraphs::test::TempDirTest;
 
 namespace {
 
@@ -73,8 +73,9 @@ TEST_F(Tum, RoundTripOfRandomPoses) {
     // Rotations within a few 1e-9 (see RoundTripOfRotationsTo1e9 for the stricter bound).
     EXPECT_LT((back[i].pose.linear() - poses[i].pose.linear()).cwiseAbs().maxCoeff(), 1e-8) << i;
     // The rotation read back is a proper rotation.
-    EXPECT_NEAR((back[i].pose.linear() * back[i].pose.linear().transpose() - Eigen::Matrix3d::Identity()).norm(),
-                0.0, 1e-12);
+    EXPECT_NEAR(
+        (back[i].pose.linear() * back[i].pose.linear().transpose() - Eigen::Matrix3d::Identity()).norm(), 0.0,
+        1e-12);
     EXPECT_NEAR(back[i].pose.linear().determinant(), 1.0, 1e-12);
   }
 }
@@ -118,7 +119,8 @@ TEST_F(Tum, FieldOrderIsTxyzQxQyQzQw) {
 
 TEST_F(Tum, ReadsKnownValues) {
   // 90 deg about x, given with qw last.
-  const auto poses = read_tum(write_file("poses.txt", "5.25 -1 2.5 3 0.7071067811865476 0 0 0.7071067811865476\n"));
+  const auto poses =
+      read_tum(write_file("poses.txt", "5.25 -1 2.5 3 0.7071067811865476 0 0 0.7071067811865476\n"));
   ASSERT_EQ(poses.size(), 1u);
   EXPECT_DOUBLE_EQ(poses[0].t, 5.25);
   EXPECT_DOUBLE_EQ(poses[0].pose.translation().x(), -1.0);
@@ -194,7 +196,8 @@ TEST_F(Tum, MessagesQuoteTheFilePrintable) {
   EXPECT_EQ(error_reading("1 0 0 0 0 0 0 1 \xff\x01\n"),
             bad_path() + ":1: expected 8 numbers: t x y z qx qy qz qw, found more: '\\xff\\x01'");
   EXPECT_EQ(error_reading("1 0 0 0 0 0 0 1 " + std::string(100, 'x') + "\n"),
-            bad_path() + ":1: expected 8 numbers: t x y z qx qy qz qw, found more: '" + std::string(40, 'x') + "...'");
+            bad_path() + ":1: expected 8 numbers: t x y z qx qy qz qw, found more: '" + std::string(40, 'x') +
+                "...'");
 }
 
 TEST_F(Tum, MissingFileNamesTheFile) {
@@ -211,7 +214,8 @@ TEST_F(Tum, MissingFileNamesTheFile) {
 TEST_F(Tum, NumbersBeyondADoubleNameTheirField) {
   EXPECT_EQ(error_reading("1 0 0 0 0 0 0 1\n2 1e400 0 0 0 0 0 1\n"),
             bad_path() + ":2: x is 1e400: out of the range of a double");
-  EXPECT_EQ(error_reading("-1e999 0 0 0 0 0 0 1\n"), bad_path() + ":1: t is -1e999: out of the range of a double");
+  EXPECT_EQ(error_reading("-1e999 0 0 0 0 0 0 1\n"),
+            bad_path() + ":1: t is -1e999: out of the range of a double");
 }
 
 // Positions no place on Earth has (1e308 made eval divide by zero drawing the bird's-eye) are
@@ -219,9 +223,9 @@ TEST_F(Tum, NumbersBeyondADoubleNameTheirField) {
 TEST_F(Tum, PositionsBeyondAnyPlaceAreRefused) {
   EXPECT_EQ(error_reading("1 0 0 0 0 0 0 1\n2 0 1e308 0 0 0 0 1\n"),
             bad_path() + ":2: y is 1e308: not a coordinate within 1e8 m");
-  EXPECT_EQ(error_reading("1 0 0 -2e8 0 0 0 1\n"), bad_path() + ":1: z is -2e8: not a coordinate within 1e8 m");
-  const std::vector<StampedPose> utm =
-      read_tum(write_file("poses.txt", "1.7e9 4.5e5 5.8e6 +12.5 0 0 0 1\n"));
+  EXPECT_EQ(error_reading("1 0 0 -2e8 0 0 0 1\n"),
+            bad_path() + ":1: z is -2e8: not a coordinate within 1e8 m");
+  const std::vector<StampedPose> utm = read_tum(write_file("poses.txt", "1.7e9 4.5e5 5.8e6 +12.5 0 0 0 1\n"));
   ASSERT_EQ(utm.size(), 1u);
   EXPECT_EQ(utm[0].t, 1.7e9);
   EXPECT_EQ(utm[0].pose.translation(), Eigen::Vector3d(4.5e5, 5.8e6, 12.5));

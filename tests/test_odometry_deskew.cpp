@@ -43,7 +43,8 @@ double wall_rms(const PointCloud& scan, const Pose3& stamp_pose) {
   for (std::size_t i = 0; i < scan.size(); ++i) {
     if (scan.labels[i] != static_cast<std::uint32_t>(PointLabel::kWall)) continue;
     const Eigen::Vector3d p = stamp_pose * scan.points[i].cast<double>();
-    const double d = std::min({std::abs(p.x() - 0.1), std::abs(p.x() - 11.9), std::abs(p.y() - 0.1), std::abs(p.y() - 8.9)});
+    const double d = std::min(
+        {std::abs(p.x() - 0.1), std::abs(p.x() - 11.9), std::abs(p.y() - 0.1), std::abs(p.y() - 8.9)});
     sum += d * d;
     ++n;
   }
@@ -58,7 +59,8 @@ TEST(Deskew, RestoresStraightWallsFromASweepTakenWhileTurning) {
   std::size_t worst = 0;
   double most = 0.0;
   for (std::size_t k = 0; k + 1 < sim.num_scans(); ++k) {
-    const double turn = Eigen::AngleAxisd((sim.true_poses()[k].inverse() * sim.true_poses()[k + 1]).linear()).angle();
+    const double turn =
+        Eigen::AngleAxisd((sim.true_poses()[k].inverse() * sim.true_poses()[k + 1]).linear()).angle();
     if (turn > most) {
       most = turn;
       worst = k;
@@ -74,8 +76,8 @@ TEST(Deskew, RestoresStraightWallsFromASweepTakenWhileTurning) {
 
   const Pose3& stamp = sim.true_poses()[worst];
   const double before = wall_rms(swept, stamp);
-  const PointCloud straight =
-      odometry::deskew(swept, stamp.inverse() * sim.true_poses()[worst + 1], sim.times()[worst + 1] - sim.times()[worst]);
+  const PointCloud straight = odometry::deskew(swept, stamp.inverse() * sim.true_poses()[worst + 1],
+                                               sim.times()[worst + 1] - sim.times()[worst]);
   const double after = wall_rms(straight, stamp);
   EXPECT_GT(before, 0.1) << "turning by " << most * 180.0 / M_PI << " deg bends the walls";
   // What is left: the range noise (0.015 m) and the gait's change of pace within the sweep.

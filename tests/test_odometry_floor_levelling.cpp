@@ -58,7 +58,8 @@ TEST_F(FloorLevelling, RecoversTheTiltAndHeightOfTiltedSensors) {
   struct Case {
     double height, yaw, pitch, roll;
   };
-  for (const Case c : {Case{0.55, 0, 0, 0}, Case{0.55, 30, 10, 0}, Case{1.4, -70, -12, 8}, Case{1.7, 120, 5, -20}}) {
+  for (const Case c :
+       {Case{0.55, 0, 0, 0}, Case{0.55, 30, 10, 0}, Case{1.4, -70, -12, 8}, Case{1.7, 120, 5, -20}}) {
     SCOPED_TRACE("height " + std::to_string(c.height) + " pitch " + std::to_string(c.pitch) + " roll " +
                  std::to_string(c.roll));
     const Pose3 truth = tilted(c.height, c.yaw, c.pitch, c.roll);

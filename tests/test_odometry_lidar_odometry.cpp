@@ -25,7 +25,8 @@ constexpr double kSurfaceSpacing = 0.05;  // m between synthetic surface samples
 // Random samples of an axis-aligned box's faces, as dense as a grid of kSurfaceSpacing. Random,
 // not on a grid: a grid would line up with the voxel grids and make the motions too easy, or
 // too hard, for reasons no real scan shares.
-void add_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::mt19937* rng, std::vector<Eigen::Vector3d>* out) {
+void add_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::mt19937* rng,
+             std::vector<Eigen::Vector3d>* out) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int axis = 0; axis < 3; ++axis) {
     const int a = (axis + 1) % 3, b = (axis + 2) % 3;
@@ -84,7 +85,8 @@ std::vector<Pose3> run_synthetic(std::size_t n) {
   const auto world = synthetic_room();
   const auto truth = arc_poses(n);
   LidarOdometry odom;
-  for (std::size_t k = 0; k < n; ++k) odom.register_scan(scan_at(world, truth[k], static_cast<std::uint32_t>(k)));
+  for (std::size_t k = 0; k < n; ++k)
+    odom.register_scan(scan_at(world, truth[k], static_cast<std::uint32_t>(k)));
   return odom.poses();
 }
 
@@ -109,9 +111,12 @@ PointCloud corridor_scan(double x, std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   PointCloud cloud;
-  const auto add = [&](const Eigen::Vector3d& world) { cloud.points.push_back((world - Eigen::Vector3d(x, 0, 0)).cast<float>()); };
+  const auto add = [&](const Eigen::Vector3d& world) {
+    cloud.points.push_back((world - Eigen::Vector3d(x, 0, 0)).cast<float>());
+  };
   for (int i = 0; i < 20000; ++i) {  // the side walls
-    const double along = kBehind + unit(rng) * (kAhead - kBehind), z = kFloor + unit(rng) * (kCeiling - kFloor);
+    const double along = kBehind + unit(rng) * (kAhead - kBehind),
+                 z = kFloor + unit(rng) * (kCeiling - kFloor);
     add({along, i % 2 ? kHalfWidth : -kHalfWidth, z});
   }
   for (int i = 0; i < 3000; ++i) {  // the end walls
@@ -132,8 +137,10 @@ double corridor_error(bool point_to_plane, std::size_t scans) {
   LidarOdometryConfig config;
   config.point_to_plane = point_to_plane;
   LidarOdometry odom(config);
-  for (std::size_t k = 0; k < scans; ++k) odom.register_scan(corridor_scan(0.1 * static_cast<double>(k), 100 + k));
-  return (odom.poses().back().translation() - Eigen::Vector3d(0.1 * static_cast<double>(scans - 1), 0, 0)).norm();
+  for (std::size_t k = 0; k < scans; ++k)
+    odom.register_scan(corridor_scan(0.1 * static_cast<double>(k), 100 + k));
+  return (odom.poses().back().translation() - Eigen::Vector3d(0.1 * static_cast<double>(scans - 1), 0, 0))
+      .norm();
 }
 
 }  // namespace
@@ -148,7 +155,8 @@ TEST(LidarOdometry, FloorRingsThatMoveWithTheSensorDoNotHoldItBack) {
   constexpr std::size_t kScans = 20;
   const double plane = corridor_error(true, kScans);
   const double point = corridor_error(false, kScans);
-  std::printf("corridor, %zu scans 0.1 m apart: point-to-plane %.3f m, point-to-point %.3f m\n", kScans, plane, point);
+  std::printf("corridor, %zu scans 0.1 m apart: point-to-plane %.3f m, point-to-point %.3f m\n", kScans,
+              plane, point);
   EXPECT_LT(plane, 0.05);
   EXPECT_GT(point, 4.0 * plane);
 }
@@ -198,8 +206,10 @@ TEST(LidarOdometry, AWideThresholdsWrongPairsStopPullingOnceConverged) {
   // fine_threshold's kernel (0.17 m) leaves those pairs a weight of 6 % and the pose to the room.
   const Pose3 wide = error_with_a_new_object(0.0);
   const Pose3 fine = error_with_a_new_object(LidarOdometryConfig{}.fine_threshold);
-  std::printf("a partition 0.3 m from a wall: error %.4f m %.3f deg without the fine threshold, %.4f m %.3f deg with\n",
-              wide.translation().norm(), angle_deg(wide), fine.translation().norm(), angle_deg(fine));
+  std::printf(
+      "a partition 0.3 m from a wall: error %.4f m %.3f deg without the fine threshold, %.4f m %.3f deg "
+      "with\n",
+      wide.translation().norm(), angle_deg(wide), fine.translation().norm(), angle_deg(fine));
   EXPECT_GT(wide.translation().norm(), 0.02);
   EXPECT_LT(fine.translation().norm(), 0.005);
   EXPECT_LT(angle_deg(fine), 0.05);
@@ -217,7 +227,8 @@ TEST(LidarOdometry, SameInputSamePosesWhateverTheThreads) {
     two = run_synthetic(kScans);
   }
   ASSERT_EQ(one.size(), two.size());
-  for (std::size_t k = 0; k < one.size(); ++k) EXPECT_TRUE(one[k].matrix() == two[k].matrix()) << "scan " << k;
+  for (std::size_t k = 0; k < one.size(); ++k)
+    EXPECT_TRUE(one[k].matrix() == two[k].matrix()) << "scan " << k;
 }
 
 TEST(LidarOdometry, EmptyScanKeepsThePredictionAndTheMap) {
@@ -242,7 +253,8 @@ TEST(LidarOdometry, StartsAtTheFirstPoseItIsGiven) {
   const auto world = synthetic_room();
   const auto truth = arc_poses(6);
   LidarOdometry odom(LidarOdometryConfig{}, truth[0]);
-  for (std::size_t k = 0; k < truth.size(); ++k) odom.register_scan(scan_at(world, truth[k], static_cast<std::uint32_t>(k)));
+  for (std::size_t k = 0; k < truth.size(); ++k)
+    odom.register_scan(scan_at(world, truth[k], static_cast<std::uint32_t>(k)));
   EXPECT_TRUE(odom.poses().front().isApprox(truth[0], 1e-12));
   EXPECT_LT((odom.poses().back().translation() - truth.back().translation()).norm(), 0.02);
   EXPECT_LT(angle_deg(truth.back().inverse() * odom.poses().back()), 0.2);
@@ -380,7 +392,8 @@ TEST(LidarOdometry, RegistersTwoRealHdl32Scans) {
   EXPECT_LT(error.translation().norm(), 0.05) << pose.matrix();
   EXPECT_LT(angle_deg(error), 0.5) << pose.matrix();
   EXPECT_TRUE(odom.last_icp().converged);
-  std::printf("hdl32 pair: %.4f m, %.4f deg from relative.txt\n", error.translation().norm(), angle_deg(error));
+  std::printf("hdl32 pair: %.4f m, %.4f deg from relative.txt\n", error.translation().norm(),
+              angle_deg(error));
 }
 
 // A hand-held sensor at 2 Hz: standing still, then turning in place by 40 degrees between
@@ -392,13 +405,15 @@ TEST(LidarOdometry, RecoversLargeTurnsBetweenScansAfterAStandstill) {
   Pose3 T = make_pose(Eigen::Vector3d(-1.0, -0.5, 0.3), 0.2);
   for (int k = 0; k < 3; ++k) truth.push_back(T);
   for (int k = 0; k < 5; ++k) truth.push_back(T = T * make_pose(Eigen::Vector3d::Zero(), 40.0 / kRadToDeg));
-  for (int k = 0; k < 4; ++k) truth.push_back(T = T * make_pose(Eigen::Vector3d(0.6, 0.0, 0.0), -20.0 / kRadToDeg));
+  for (int k = 0; k < 4; ++k)
+    truth.push_back(T = T * make_pose(Eigen::Vector3d(0.6, 0.0, 0.0), -20.0 / kRadToDeg));
   const auto run = [&](double search_deg) {
     LidarOdometryConfig config;
     config.yaw_search_deg = search_deg;
     if (search_deg == 0.0) config.recovery_search_m = 0.0;  // no search of any kind
     LidarOdometry odom(config);
-    for (std::size_t k = 0; k < truth.size(); ++k) odom.register_scan(scan_at(world, truth[k], static_cast<std::uint32_t>(k)));
+    for (std::size_t k = 0; k < truth.size(); ++k)
+      odom.register_scan(scan_at(world, truth[k], static_cast<std::uint32_t>(k)));
     const Pose3 rel_est = odom.poses().front().inverse() * odom.poses().back();
     const Pose3 rel_true = truth.front().inverse() * truth.back();
     const Pose3 err = rel_true.inverse() * rel_est;
@@ -452,7 +467,8 @@ TEST(LidarOdometry, AScanThatMatchesNothingIsReportedLostAndKeptOutOfTheMap) {
   const std::vector<Eigen::Vector3d> world = synthetic_room();
   const std::vector<Pose3> truth = arc_poses(4);
   LidarOdometry odom;
-  for (std::size_t k = 0; k < 3; ++k) odom.register_scan(scan_at(world, truth[k], static_cast<std::uint32_t>(k)));
+  for (std::size_t k = 0; k < 3; ++k)
+    odom.register_scan(scan_at(world, truth[k], static_cast<std::uint32_t>(k)));
   EXPECT_TRUE(odom.lost_scans().empty());
   const std::size_t map_points = odom.local_map().num_points();
   // Another place altogether: a long hall the map has never seen.

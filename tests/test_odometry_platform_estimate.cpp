@@ -28,7 +28,8 @@ constexpr double kDegToRad = M_PI / 180.0;
 std::string room_scene(const std::string& preset) {
   return R"(name: platform_room
 seed: 3
-sensor: {preset: )" + preset + R"(, columns: 512}
+sensor: {preset: )" +
+         preset + R"(, columns: 512}
 levels:
   - {name: G, elevation: 0.0, ceiling: 2.8, slab: [[0,0],[12,0],[12,9],[0,9]]}
 walls:
@@ -57,7 +58,8 @@ Pose3 walking_pose(int k, double height, double bob, double sway_deg) {
   return T;
 }
 
-std::vector<PointCloud> walk(const sim::Simulator& sim, double height, double bob, double sway_deg, int n = 10) {
+std::vector<PointCloud> walk(const sim::Simulator& sim, double height, double bob, double sway_deg,
+                             int n = 10) {
   std::vector<PointCloud> scans;
   for (int k = 0; k < n; ++k) scans.push_back(sim.scan_at(walking_pose(k, height, bob, sway_deg), k));
   return scans;
@@ -71,7 +73,8 @@ TEST(PlatformEstimate, HeightWithinFiveCentimetresFromLeggedToHandHeld) {
     double height, bob, sway_deg;
   };
   // A legged robot trots (small bob), a wheeled one rolls level, a person's hand bobs and sways.
-  for (const Case c : {Case{0.3, 0.02, 2.0}, Case{0.55, 0.0, 0.0}, Case{1.2, 0.04, 5.0}, Case{1.8, 0.04, 5.0}}) {
+  for (const Case c :
+       {Case{0.3, 0.02, 2.0}, Case{0.55, 0.0, 0.0}, Case{1.2, 0.04, 5.0}, Case{1.8, 0.04, 5.0}}) {
     SCOPED_TRACE("height " + std::to_string(c.height));
     const odometry::PlatformEstimate e = estimate_platform(walk(sim, c.height, c.bob, c.sway_deg));
     EXPECT_EQ(e.scans_measured, 10u);
@@ -83,8 +86,10 @@ TEST(PlatformEstimate, HeightWithinFiveCentimetresFromLeggedToHandHeld) {
     // With the poses' gravity, as a run with poses measures it: the same within 2 cm.
     std::vector<Eigen::Vector3d> ups;
     for (int k = 0; k < 10; ++k)
-      ups.push_back(walking_pose(k, c.height, c.bob, c.sway_deg).linear().transpose() * Eigen::Vector3d::UnitZ());
-    const odometry::PlatformEstimate with_poses = estimate_platform(walk(sim, c.height, c.bob, c.sway_deg), {}, {}, ups);
+      ups.push_back(walking_pose(k, c.height, c.bob, c.sway_deg).linear().transpose() *
+                    Eigen::Vector3d::UnitZ());
+    const odometry::PlatformEstimate with_poses =
+        estimate_platform(walk(sim, c.height, c.bob, c.sway_deg), {}, {}, ups);
     ASSERT_TRUE(with_poses.height_found);
     EXPECT_NEAR(with_poses.height, c.height, 0.02);
     EXPECT_NEAR(with_poses.tilt_deg, e.tilt_deg, 1.0);
@@ -133,8 +138,10 @@ TEST(BeamLayout, SimulatedSensorsRingsAndTheirGroundPreset) {
     double lowest_deg, spacing_deg;
     const char* ground_preset;
   };
-  for (const Case c : {Case{"os1-64", 64, -22.5, 45.0 / 63.0, "os1-64"}, Case{"vlp-16", 16, -15.0, 2.0, "vlp-16"},
-                       Case{"hesai-xt32", 32, -16.0, 1.0, "hesai-xt32"}, Case{"os0-128", 128, -45.0, 90.0 / 127.0, "os1-64"}}) {
+  for (const Case c :
+       {Case{"os1-64", 64, -22.5, 45.0 / 63.0, "os1-64"}, Case{"vlp-16", 16, -15.0, 2.0, "vlp-16"},
+        Case{"hesai-xt32", 32, -16.0, 1.0, "hesai-xt32"},
+        Case{"os0-128", 128, -45.0, 90.0 / 127.0, "os1-64"}}) {
     SCOPED_TRACE(c.preset);
     const sim::Simulator sim(scene::parse_scene(room_scene(c.preset), "platform_room.yaml", "."), 1);
     // High enough that the os0-128's lowest beam (45 deg down) meets the floor beyond

@@ -101,7 +101,8 @@ TEST_F(OdometrySimulated, DriftIsBelowOnePercentOfThePath) {
   EXPECT_EQ(reported, seq.size());
 
   double path = 0.0;
-  for (std::size_t k = 1; k < truth.size(); ++k) path += (truth[k].translation() - truth[k - 1].translation()).norm();
+  for (std::size_t k = 1; k < truth.size(); ++k)
+    path += (truth[k].translation() - truth[k - 1].translation()).norm();
   ASSERT_GT(path, 15.0);
   const double end_error = (poses.back().translation() - truth.back().translation()).norm();
   const double yaw_error = std::abs(wrap_angle(yaw_of(poses.back()) - yaw_of(truth.back()))) * kRadToDeg;
@@ -109,7 +110,8 @@ TEST_F(OdometrySimulated, DriftIsBelowOnePercentOfThePath) {
   EXPECT_LE(yaw_error, kMaxYawErrorDeg);
   // And no scan on the way lost track.
   for (std::size_t k = 0; k < poses.size(); ++k) {
-    ASSERT_LE((poses[k].translation() - truth[k].translation()).norm(), 2.0 * kMaxDriftShare * path) << "scan " << k;
+    ASSERT_LE((poses[k].translation() - truth[k].translation()).norm(), 2.0 * kMaxDriftShare * path)
+        << "scan " << k;
   }
   RecordProperty("path_m", std::to_string(path));
   RecordProperty("end_error_m", std::to_string(end_error));
@@ -131,18 +133,22 @@ TEST_F(OdometrySimulated, ASweptHandHeldScanIsPlacedAtItsStamp) {
     const std::vector<Pose3> poses = odometry::estimate_odometry(seq, config, {}, truth.front());
     double worst_heading = 0.0, sum_sq = 0.0;
     for (std::size_t k = 0; k < poses.size(); ++k) {
-      worst_heading = std::max(worst_heading, std::abs(wrap_angle(yaw_of(poses[k]) - yaw_of(truth[k]))) * kRadToDeg);
+      worst_heading =
+          std::max(worst_heading, std::abs(wrap_angle(yaw_of(poses[k]) - yaw_of(truth[k]))) * kRadToDeg);
       sum_sq += (poses[k].translation() - truth[k].translation()).squaredNorm();
     }
     const std::vector<double> steps = step_rotation_errors(poses, truth);
-    return std::make_tuple(steps[steps.size() / 2], worst_heading, std::sqrt(sum_sq / static_cast<double>(poses.size())));
+    return std::make_tuple(steps[steps.size() / 2], worst_heading,
+                           std::sqrt(sum_sq / static_cast<double>(poses.size())));
   };
   // Registered with its motion, a sweep's pose is the stamp's; registered rigidly it is the
   // pose that fits the whole sweep, degrees away from the stamp's while the sensor turns.
   const auto [step, heading, ate] = run(true);
   const auto [step_rigid, heading_rigid, ate_rigid] = run(false);
-  std::printf("hand-held at 2 Hz: step rotation error median %.2f deg (rigid %.2f), worst heading %.1f deg "
-              "(%.1f), ATE %.3f m (%.3f)\n", step, step_rigid, heading, heading_rigid, ate, ate_rigid);
+  std::printf(
+      "hand-held at 2 Hz: step rotation error median %.2f deg (rigid %.2f), worst heading %.1f deg "
+      "(%.1f), ATE %.3f m (%.3f)\n",
+      step, step_rigid, heading, heading_rigid, ate, ate_rigid);
   EXPECT_LT(step, 1.2);
   EXPECT_GT(step_rigid, 1.5 * step);
   EXPECT_LT(heading, 5.0);  // no wrong turn taken
@@ -166,8 +172,10 @@ TEST_F(OdometrySimulated, GivenStampsASweepsVelocityStartsFromTheLastInterval) {
     for (std::size_t k = 0; k < 200; ++k) {
       const PointCloud scan = simulator.scan(k);
       const double t = simulator.times()[k];
-      if (stamps) odometry.register_scan(scan, t);
-      else odometry.register_scan(scan);
+      if (stamps)
+        odometry.register_scan(scan, t);
+      else
+        odometry.register_scan(scan);
       if (k < 3 || !odometry.last_sweep().registered) continue;
       const double sweep = *std::max_element(scan.times.begin(), scan.times.end());
       const Pose3 during = simulator.true_poses()[k].inverse() * simulator.sensor_pose_at(t + sweep);
@@ -178,8 +186,8 @@ TEST_F(OdometrySimulated, GivenStampsASweepsVelocityStartsFromTheLastInterval) {
     return std::sqrt(sum_sq / static_cast<double>(std::max<std::size_t>(n, 1)));
   };
   const double with_stamps = velocity_error(true), without = velocity_error(false);
-  std::printf("hand-held at 10 Hz: a sweep's velocity off by %.3f m/s with stamps, %.3f m/s without\n", with_stamps,
-              without);
+  std::printf("hand-held at 10 Hz: a sweep's velocity off by %.3f m/s with stamps, %.3f m/s without\n",
+              with_stamps, without);
   // Measured: 0.67 against 0.88 m/s. What is left is the sweep's own (the registration trades
   // the velocity for what its constant rates cannot follow; docs/benchmarks.md).
   EXPECT_LT(with_stamps, 0.9 * without);

@@ -49,7 +49,8 @@ double wall_rms(const PointCloud& scan, const Pose3& stamp_pose) {
     if (scan.labels[i] != static_cast<std::uint32_t>(PointLabel::kWall)) continue;
     const Eigen::Vector3d p = stamp_pose * scan.points[i].cast<double>();
     if (p.x() > 4.0 && p.x() < 7.0 && p.y() > 3.0 && p.y() < 6.0) continue;  // the pillar
-    const double d = std::min({std::abs(p.x() - 0.1), std::abs(p.x() - 11.9), std::abs(p.y() - 0.1), std::abs(p.y() - 8.9)});
+    const double d = std::min(
+        {std::abs(p.x() - 0.1), std::abs(p.x() - 11.9), std::abs(p.y() - 0.1), std::abs(p.y() - 8.9)});
     sum += d * d;
     ++n;
   }
@@ -71,7 +72,8 @@ TEST(SweepRegistration, FindsTheMotionInsideASweepFromAMapOfTheSweepsAround) {
   std::size_t k = 0;
   double most = 0.0;
   for (std::size_t j = 5; j + 5 < sim.num_scans(); ++j) {
-    const double turn = Eigen::AngleAxisd((sim.true_poses()[j].inverse() * sim.true_poses()[j + 1]).linear()).angle();
+    const double turn =
+        Eigen::AngleAxisd((sim.true_poses()[j].inverse() * sim.true_poses()[j + 1]).linear()).angle();
     if (turn > most) {
       most = turn;
       k = j;
@@ -93,7 +95,8 @@ TEST(SweepRegistration, FindsTheMotionInsideASweepFromAMapOfTheSweepsAround) {
   ASSERT_TRUE(deskewer.last().registered);
   const Eigen::Vector3d truth = rates_deg(stamp.inverse() * sim.true_poses()[k + 1], period);
   const Eigen::Vector3d found = deskewer.last().turn_rate * 180.0 / M_PI;
-  EXPECT_LT((found - truth).norm(), 8.0) << "found " << found.transpose() << " deg/s, true " << truth.transpose();
+  EXPECT_LT((found - truth).norm(), 8.0)
+      << "found " << found.transpose() << " deg/s, true " << truth.transpose();
   const Eigen::Vector3d true_velocity = (stamp.inverse() * sim.true_poses()[k + 1]).translation() / period;
   EXPECT_LT((deskewer.last().velocity - true_velocity).norm(), 0.5);  // 0.05 m over the sweep
   EXPECT_GT(wall_rms(swept, stamp), 0.1);
@@ -112,7 +115,8 @@ TEST(SweepRegistration, KeptEveryHalfSecondItTellsTheSweepsMotionBetterThanThePo
   // A 10 Hz hand-held sensor kept at 2 Hz: each sweep registered to the ones before, from the
   // motion between the kept poses (what the poses alone would de-skew with).
   odometry::SweepDeskewer deskewer(odometry::LidarOdometryConfig{}, {});
-  double sq_prior = 0.0, sq_found = 0.0, worst_prior = 0.0, worst_found = 0.0, sum_prior = 0.0, sum_found = 0.0;
+  double sq_prior = 0.0, sq_found = 0.0, worst_prior = 0.0, worst_found = 0.0, sum_prior = 0.0,
+         sum_found = 0.0;
   double sq_prior_velocity = 0.0, sq_found_velocity = 0.0;
   std::size_t n = 0;
   for (std::size_t k = 0; k + 5 < sim.num_scans(); k += 5) {
@@ -137,16 +141,21 @@ TEST(SweepRegistration, KeptEveryHalfSecondItTellsTheSweepsMotionBetterThanThePo
   }
   ASSERT_GT(n, 20u);
   const double rms_prior = std::sqrt(sq_prior / n), rms_found = std::sqrt(sq_found / n);
-  EXPECT_LT(rms_found, 0.7 * rms_prior) << "turn rate error, deg/s: poses " << rms_prior << ", registered " << rms_found;
+  EXPECT_LT(rms_found, 0.7 * rms_prior)
+      << "turn rate error, deg/s: poses " << rms_prior << ", registered " << rms_found;
   // The velocity is seen weakly within a sweep: the registration must not trade it for the
   // tilting it tells poorly (its prior held at 1 m/s: 0.53 m/s off here where the poses are
   // 0.28 m/s off; 0.6-1.6 m/s on generated buildings, docs/benchmarks.md).
-  const double rms_prior_velocity = std::sqrt(sq_prior_velocity / n), rms_found_velocity = std::sqrt(sq_found_velocity / n);
+  const double rms_prior_velocity = std::sqrt(sq_prior_velocity / n),
+               rms_found_velocity = std::sqrt(sq_found_velocity / n);
   EXPECT_LT(rms_found_velocity, 1.25 * rms_prior_velocity)
       << "velocity error, m/s: poses " << rms_prior_velocity << ", registered " << rms_found_velocity;
-  EXPECT_LT(worst_found, 0.8 * worst_prior) << "walls' rms, worst sweep: poses " << worst_prior << ", registered " << worst_found;
+  EXPECT_LT(worst_found, 0.8 * worst_prior)
+      << "walls' rms, worst sweep: poses " << worst_prior << ", registered " << worst_found;
   EXPECT_LT(sum_found, sum_prior) << "walls' rms, sum: poses " << sum_prior << ", registered " << sum_found;
-  std::printf("turn rate error %.1f -> %.1f deg/s; velocity error %.3f -> %.3f m/s; walls' rms worst %.3f -> %.3f m, mean %.4f -> %.4f m\n",
-              rms_prior, rms_found, rms_prior_velocity, rms_found_velocity, worst_prior, worst_found,
-              sum_prior / (n + 1), sum_found / (n + 1));
+  std::printf(
+      "turn rate error %.1f -> %.1f deg/s; velocity error %.3f -> %.3f m/s; walls' rms worst %.3f -> %.3f m, "
+      "mean %.4f -> %.4f m\n",
+      rms_prior, rms_found, rms_prior_velocity, rms_found_velocity, worst_prior, worst_found,
+      sum_prior / (n + 1), sum_found / (n + 1));
 }

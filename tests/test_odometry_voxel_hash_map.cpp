@@ -173,7 +173,8 @@ TEST(VoxelHashMap, ALineIsUnknownACornerIsScattered) {
 
   // Two faces meeting at a corner.
   VoxelHashMap corner(1.0, 20);
-  std::vector<Eigen::Vector3d> pts = sample(10, 4, [](double a, double b) { return Eigen::Vector3d(0.5, a, b); });
+  std::vector<Eigen::Vector3d> pts =
+      sample(10, 4, [](double a, double b) { return Eigen::Vector3d(0.5, a, b); });
   const auto other = sample(10, 5, [](double a, double b) { return Eigen::Vector3d(a, 0.5, b); });
   pts.insert(pts.end(), other.begin(), other.end());
   corner.add_points(pts);

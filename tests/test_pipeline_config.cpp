@@ -133,38 +133,51 @@ TEST(PipelineConfig, PartialFileKeepsDefaultsForTheRest) {
 
 TEST(PipelineConfig, ErrorsNameFileLineAndKey) {
   using test::input_error_of;
-  EXPECT_EQ(input_error_of([] { parse_pipeline_config("prefilter:\n  voxel: 0.2\n", "p.yaml"); }).substr(0, 30),
-            "p.yaml:2: unknown key 'prefilt");
-  EXPECT_NE(input_error_of([] { parse_pipeline_config("walls: {}\n", "p.yaml"); }).find("unknown key 'walls'"),
+  EXPECT_EQ(
+      input_error_of([] { parse_pipeline_config("prefilter:\n  voxel: 0.2\n", "p.yaml"); }).substr(0, 30),
+      "p.yaml:2: unknown key 'prefilt");
+  EXPECT_NE(
+      input_error_of([] { parse_pipeline_config("walls: {}\n", "p.yaml"); }).find("unknown key 'walls'"),
+      std::string::npos);
+  EXPECT_NE(input_error_of([] {
+              parse_pipeline_config("keyframes:\n  delta_trans: far\n", "p.yaml");
+            }).find("p.yaml:2: keyframes.delta_trans: expected a number"),
             std::string::npos);
-  EXPECT_NE(input_error_of([] { parse_pipeline_config("keyframes:\n  delta_trans: far\n", "p.yaml"); })
-                .find("p.yaml:2: keyframes.delta_trans: expected a number"),
+  EXPECT_NE(input_error_of([] {
+              parse_pipeline_config("keyframes:\n  delta_trans: -1\n", "p.yaml");
+            }).find("p.yaml:2"),
             std::string::npos);
-  EXPECT_NE(input_error_of([] { parse_pipeline_config("keyframes:\n  delta_trans: -1\n", "p.yaml"); })
-                .find("p.yaml:2"),
+  EXPECT_NE(input_error_of([] {
+              parse_pipeline_config("optimizer:\n  linear_solver: magic\n", "p.yaml");
+            }).find("unknown linear_solver 'magic'"),
             std::string::npos);
-  EXPECT_NE(input_error_of([] { parse_pipeline_config("optimizer:\n  linear_solver: magic\n", "p.yaml"); })
-                .find("unknown linear_solver 'magic'"),
+  EXPECT_NE(input_error_of([] {
+              parse_pipeline_config("loop_closure:\n  registration:\n    voxel_size: .nan\n", "p.yaml");
+            }).find("p.yaml:3"),
             std::string::npos);
-  EXPECT_NE(input_error_of([] { parse_pipeline_config("loop_closure:\n  registration:\n    voxel_size: .nan\n", "p.yaml"); })
-                .find("p.yaml:3"),
+  EXPECT_NE(input_error_of([] {
+              load_pipeline_config("/nonexistent/params.yaml");
+            }).find("/nonexistent/params.yaml"),
             std::string::npos);
-  EXPECT_NE(input_error_of([] { load_pipeline_config("/nonexistent/params.yaml"); }).find("/nonexistent/params.yaml"),
+  EXPECT_NE(input_error_of([] {
+              parse_pipeline_config("room_layer:\n  free_space_method: voxblox\n", "p.yaml");
+            }).find("p.yaml:2: room_layer.free_space_method: must be traversable or esdf, not 'voxblox'"),
             std::string::npos);
-  EXPECT_NE(input_error_of([] { parse_pipeline_config("room_layer:\n  free_space_method: voxblox\n", "p.yaml"); })
-                .find("p.yaml:2: room_layer.free_space_method: must be traversable or esdf, not 'voxblox'"),
+  EXPECT_NE(input_error_of([] {
+              parse_pipeline_config("room_layer:\n\n  room_trigger: often\n", "p.yaml");
+            }).find("p.yaml:3: room_layer.room_trigger"),
             std::string::npos);
-  EXPECT_NE(input_error_of([] { parse_pipeline_config("room_layer:\n\n  room_trigger: often\n", "p.yaml"); })
-                .find("p.yaml:3: room_layer.room_trigger"),
+  EXPECT_NE(input_error_of([] {
+              parse_pipeline_config("room_association:\n  footprint: big\n", "p.yaml");
+            }).find("p.yaml:2: room_association.footprint"),
             std::string::npos);
-  EXPECT_NE(input_error_of([] { parse_pipeline_config("room_association:\n  footprint: big\n", "p.yaml"); })
-                .find("p.yaml:2: room_association.footprint"),
+  EXPECT_NE(input_error_of([] {
+              parse_pipeline_config("room_association:\n  min_overlap: 1.5\n", "p.yaml");
+            }).find("p.yaml:2: room_association.min_overlap: must be > 0 and <= 1, not 1.5"),
             std::string::npos);
-  EXPECT_NE(input_error_of([] { parse_pipeline_config("room_association:\n  min_overlap: 1.5\n", "p.yaml"); })
-                .find("p.yaml:2: room_association.min_overlap: must be > 0 and <= 1, not 1.5"),
-            std::string::npos);
-  EXPECT_NE(input_error_of([] { parse_pipeline_config("room_segmentation:\n  wall_joint_gap: -1\n", "p.yaml"); })
-                .find("p.yaml:2: room_segmentation.wall_joint_gap"),
+  EXPECT_NE(input_error_of([] {
+              parse_pipeline_config("room_segmentation:\n  wall_joint_gap: -1\n", "p.yaml");
+            }).find("p.yaml:2: room_segmentation.wall_joint_gap"),
             std::string::npos);
 }
 
@@ -190,7 +203,8 @@ TEST(PipelineConfig, AValueOutsideItsLimitsIsAnErrorAtItsLine) {
       const std::string text = file_setting(n.path, n.integer ? number(std::round(bad)) : number(bad));
       const int line = static_cast<int>(std::count(n.path.begin(), n.path.end(), '.')) + 1;
       const std::string message = test::input_error_of([&] { parse_pipeline_config(text, "p.yaml"); });
-      EXPECT_NE(message.find("p.yaml:" + std::to_string(line) + ": " + n.path + ": must be"), std::string::npos)
+      EXPECT_NE(message.find("p.yaml:" + std::to_string(line) + ": " + n.path + ": must be"),
+                std::string::npos)
           << text << " -> " << message;
     }
   }
@@ -265,7 +279,8 @@ TEST(PipelineConfig, BaselineModeIsTwoKeys) {
 
 TEST(PipelineConfig, SensorFilesMatchTheGroundPresets) {
   for (const std::string preset : {"vlp-16", "hesai-xt32"}) {
-    const PipelineConfig c = load_pipeline_config(std::string(TSGRAPHS_SOURCE_DIR) + "/config/sensors/" + preset + ".yaml");
+    const PipelineConfig c =
+        load_pipeline_config(std::string(TSGRAPHS_SOURCE_DIR) + "/config/sensors/" + preset + ".yaml");
     PipelineConfig expected;
     expected.ground = ground::per_sensor_preset(preset);
     EXPECT_EQ(dump_pipeline_config(c), dump_pipeline_config(expected)) << preset;

@@ -51,13 +51,18 @@ name: corridor
 sensor: {preset: os1-64, mount_height: 0.55}
 odometry: {trans_noise_per_m: 0.01, yaw_noise_per_rad: 0.01, yaw_noise_per_m: 0.002}
 levels:
-  - {name: L0, elevation: 0.0, ceiling: 2.8, slab: [[0, 0], [)" + l + R"(, 0], [)" + l + R"(, 2.4], [0, 2.4]]}
+  - {name: L0, elevation: 0.0, ceiling: 2.8, slab: [[0, 0], [)" +
+                                l + R"(, 0], [)" + l + R"(, 2.4], [0, 2.4]]}
 walls:
-  - {level: L0, from: [-0.1, 0], to: [)" + wall_end + R"(, 0]}
-  - {level: L0, from: [-0.1, 2.4], to: [)" + wall_end + R"(, 2.4]}
+  - {level: L0, from: [-0.1, 0], to: [)" +
+                                wall_end + R"(, 0]}
+  - {level: L0, from: [-0.1, 2.4], to: [)" +
+                                wall_end + R"(, 2.4]}
   - {level: L0, from: [0, 0], to: [0, 2.4]}
-  - {level: L0, from: [)" + l + R"(, 0], to: [)" + l + R"(, 2.4]}
-trajectory: {level: L0, speed: 1.5, closed: false, laps: 1, waypoints: [[1, 1.2], [)" + std::to_string(length - 2.0) + R"(, 1.2]]}
+  - {level: L0, from: [)" + l + R"(, 0], to: [)" +
+                                l + R"(, 2.4]}
+trajectory: {level: L0, speed: 1.5, closed: false, laps: 1, waypoints: [[1, 1.2], [)" +
+                                std::to_string(length - 2.0) + R"(, 1.2]]}
 )",
                             "corridor.yaml", ".");
 }
@@ -68,7 +73,8 @@ constexpr double kVoidEdgeTolerance = 0.05;
 
 double distance_to_boundary(const Polygon2& poly, const Vec2& p) {
   double d = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < poly.size(); ++i) d = std::min(d, distance_to_segment(p, poly[i], poly[(i + 1) % poly.size()]));
+  for (std::size_t i = 0; i < poly.size(); ++i)
+    d = std::min(d, distance_to_segment(p, poly[i], poly[(i + 1) % poly.size()]));
   return d;
 }
 
@@ -97,9 +103,11 @@ Outcome run_scene(const scene::Scene& scene, std::uint64_t seed) {
   for (const pipeline::LoopClosureRecord& l : slam.loop_closures()) {  // as accepted, before any folding
     const graph::BetweenEdge& e = l.edge;
     ++o.n_loops;
-    const Pose3 truth = sim.true_poses()[kfs[e.from].scan_index].inverse() * sim.true_poses()[kfs[e.to].scan_index];
+    const Pose3 truth =
+        sim.true_poses()[kfs[e.from].scan_index].inverse() * sim.true_poses()[kfs[e.to].scan_index];
     const Pose3 err = truth.inverse() * e.measurement;
-    if (err.translation().norm() <= 0.10 && Eigen::AngleAxisd(err.linear()).angle() <= M_PI / 180.0) ++o.n_loops_correct;
+    if (err.translation().norm() <= 0.10 && Eigen::AngleAxisd(err.linear()).angle() <= M_PI / 180.0)
+      ++o.n_loops_correct;
   }
   std::vector<eval::MappedWall> mapped;
   for (const auto& [id, lm] : slam.plane_map().landmarks()) {
@@ -116,10 +124,12 @@ Outcome run_scene(const scene::Scene& scene, std::uint64_t seed) {
   std::vector<double> lap_starts = sim.trajectory().lap_starts();
   for (double& t : lap_starts) t /= sim.time_scale();
   // The events as the run folder writes them (a footprint's centre is its outline's centroid).
-  const std::vector<io::RoomEvent> events = pipeline::room_events_of(slam, lap_starts, Eigen::Vector3d::Zero());
+  const std::vector<io::RoomEvent> events =
+      pipeline::room_events_of(slam, lap_starts, Eigen::Vector3d::Zero());
   o.rooms_consistency = eval::consistency(events);
   std::vector<io::RoomTruth> truth;
-  for (const scene::Room& r : scene.rooms) truth.push_back({r.name, scene.levels[r.level].name, r.polygon, scene.levels[r.level].elevation});
+  for (const scene::Room& r : scene.rooms)
+    truth.push_back({r.name, scene.levels[r.level].name, r.polygon, scene.levels[r.level].elevation});
   std::vector<eval::DetectedRoom> detected;
   for (const auto& [id, r] : slam.room_map().rooms()) {
     const double floor_z = slam.room_layer().levels().at(r.level);
@@ -146,14 +156,16 @@ Outcome run_scene(const scene::Scene& scene, std::uint64_t seed) {
     for (const scene::Level& level : scene.levels) {
       if (std::abs(p.z() - level.elevation) > 0.5) continue;
       for (const Polygon2& v : level.voids)
-        if (contains(v, p.head<2>()) && distance_to_boundary(v, p.head<2>()) > kVoidEdgeTolerance) ++o.n_nodes_in_voids;
+        if (contains(v, p.head<2>()) && distance_to_boundary(v, p.head<2>()) > kVoidEdgeTolerance)
+          ++o.n_nodes_in_voids;
     }
   }
   return o;
 }
 
 void expect_must_show(const Outcome& o) {
-  EXPECT_LE(o.ate_rmse, 0.5 * o.odom_ate_rmse) << "ATE_rmse " << o.ate_rmse << " vs odometry " << o.odom_ate_rmse;
+  EXPECT_LE(o.ate_rmse, 0.5 * o.odom_ate_rmse)
+      << "ATE_rmse " << o.ate_rmse << " vs odometry " << o.odom_ate_rmse;
   EXPECT_LE(o.ate_loop, 0.10);
   EXPECT_GE(o.n_loops, 1u);
   EXPECT_EQ(o.n_loops_correct, o.n_loops);
@@ -166,26 +178,28 @@ void expect_must_show(const Outcome& o) {
   EXPECT_GE(o.ground_recall, 0.95);
   EXPECT_GT(o.n_ground_nodes, 100u);
   EXPECT_EQ(o.n_nodes_in_voids, 0u);
-  std::printf("rooms: N1st %d N2nd %d N_re %d f_re %.2f DCS %.2f d_center %.2f; vs truth P %.2f R %.2f F1 %.2f, "
-              "under %d over %d, %d final\n",
-              o.rooms_consistency.N1st, o.rooms_consistency.N2nd, o.rooms_consistency.N_re, o.rooms_consistency.f_re,
-              o.rooms_consistency.dcs.value_or(0), o.rooms_consistency.d_center.value_or(0),
-              o.rooms_truth.precision.value_or(0), o.rooms_truth.recall.value_or(0), o.rooms_truth.f1.value_or(0),
-              o.rooms_truth.under_segmented, o.rooms_truth.over_segmented, o.rooms_truth.n_rooms_final);
-  std::printf("ground precision %.4f recall %.4f, %zu global traversable nodes, %zu in voids\n", o.ground_precision,
-              o.ground_recall, o.n_ground_nodes, o.n_nodes_in_voids);
+  std::printf(
+      "rooms: N1st %d N2nd %d N_re %d f_re %.2f DCS %.2f d_center %.2f; vs truth P %.2f R %.2f F1 %.2f, "
+      "under %d over %d, %d final\n",
+      o.rooms_consistency.N1st, o.rooms_consistency.N2nd, o.rooms_consistency.N_re, o.rooms_consistency.f_re,
+      o.rooms_consistency.dcs.value_or(0), o.rooms_consistency.d_center.value_or(0),
+      o.rooms_truth.precision.value_or(0), o.rooms_truth.recall.value_or(0), o.rooms_truth.f1.value_or(0),
+      o.rooms_truth.under_segmented, o.rooms_truth.over_segmented, o.rooms_truth.n_rooms_final);
+  std::printf("ground precision %.4f recall %.4f, %zu global traversable nodes, %zu in voids\n",
+              o.ground_precision, o.ground_recall, o.n_ground_nodes, o.n_nodes_in_voids);
   // Keyframe retirement: the second lap's keyframes in mapped rooms left the graph. Loops whose
   // error the local window can take up were taken in by local solves (on the atrium, all of
   // them: the ring's loops come every few keyframes, so the drift each shows is the window's).
   EXPECT_LT(o.n_active_keyframes, o.n_keyframes);
   EXPECT_GE(o.n_loop_solves_local, 1u);
-  std::printf("%zu of %zu keyframes in the graph at the end; loop solves: %zu full, %zu local\n", o.n_active_keyframes,
-              o.n_keyframes, o.n_loop_solves_full, o.n_loop_solves_local);
-  std::printf("ATE_rmse %.3f (odometry %.3f), ATE_loop %.3f, %zu keyframes, loops %zu/%zu correct, "
-              "walls %d/%d mapped, dist err mean %.4f max %.4f, angle err mean %.3f max %.3f deg, %d duplicates\n",
-              o.ate_rmse, o.odom_ate_rmse, o.ate_loop, o.n_keyframes, o.n_loops_correct, o.n_loops,
-              o.walls.n_faces_mapped, o.walls.n_faces_seen, o.walls.mean_dist_err, o.walls.max_dist_err,
-              o.walls.mean_angle_err_deg, o.walls.max_angle_err_deg, o.walls.n_duplicates);
+  std::printf("%zu of %zu keyframes in the graph at the end; loop solves: %zu full, %zu local\n",
+              o.n_active_keyframes, o.n_keyframes, o.n_loop_solves_full, o.n_loop_solves_local);
+  std::printf(
+      "ATE_rmse %.3f (odometry %.3f), ATE_loop %.3f, %zu keyframes, loops %zu/%zu correct, "
+      "walls %d/%d mapped, dist err mean %.4f max %.4f, angle err mean %.3f max %.3f deg, %d duplicates\n",
+      o.ate_rmse, o.odom_ate_rmse, o.ate_loop, o.n_keyframes, o.n_loops_correct, o.n_loops,
+      o.walls.n_faces_mapped, o.walls.n_faces_seen, o.walls.mean_dist_err, o.walls.max_dist_err,
+      o.walls.mean_angle_err_deg, o.walls.max_angle_err_deg, o.walls.n_duplicates);
 }
 
 }  // namespace
@@ -221,7 +235,8 @@ TEST(EndToEnd, OfficeTwoLapsWithPeopleWalkingThrough) {
     return p;
   };
   office.people = {person({{1.0, 5.8}, {23.0, 5.8}}, 1.3, 0.0), person({{22.0, 6.4}, {2.0, 6.4}}, 1.1, 7.0),
-                   person({{9.5, 1.0}, {13.5, 4.0}}, 0.9, 0.0), person({{13.0, 8.5}, {22.0, 11.5}, {13.0, 11.5}}, 1.2, 3.0),
+                   person({{9.5, 1.0}, {13.5, 4.0}}, 0.9, 0.0),
+                   person({{13.0, 8.5}, {22.0, 11.5}, {13.0, 11.5}}, 1.2, 3.0),
                    person({{1.0, 1.0}, {7.0, 4.0}}, 1.0, 2.0)};
   const Outcome o = run_scene(office, 1);
   expect_must_show(o);
@@ -238,7 +253,8 @@ TEST(EndToEnd, StraightCorridorWithoutRevisitHasNoLoopClosure) {
   const scene::Scene scene = corridor_scene(40.0);
   sim::Simulator sim(scene, 3);
   pipeline::Pipeline slam;
-  for (std::size_t k = 0; k < sim.num_scans(); ++k) slam.process(k, sim.times()[k], sim.scan(k), sim.odometry_poses()[k]);
+  for (std::size_t k = 0; k < sim.num_scans(); ++k)
+    slam.process(k, sim.times()[k], sim.scan(k), sim.odometry_poses()[k]);
   slam.finish();
   EXPECT_GE(slam.graph().keyframes().size(), 30u);
   EXPECT_TRUE(slam.graph().loop_edges().empty());

@@ -30,7 +30,7 @@ trajectory:
   speed: 1.5
   waypoints: [[1.5, 1.5], [8.5, 1.5], [8.5, 4.5], [1.5, 4.5]]
 )",
-                                      "small_room.yaml", ".");
+                                          "small_room.yaml", ".");
   scene.trajectory.laps = laps;
   return scene;
 }
@@ -38,7 +38,8 @@ trajectory:
 std::size_t node_count_after(int laps) {
   sim::Simulator sim(room(laps), 7);
   pipeline::Pipeline slam;
-  for (std::size_t k = 0; k < sim.num_scans(); ++k) slam.process(k, sim.times()[k], sim.scan(k), sim.odometry_poses()[k]);
+  for (std::size_t k = 0; k < sim.num_scans(); ++k)
+    slam.process(k, sim.times()[k], sim.scan(k), sim.odometry_poses()[k]);
   slam.finish();
   return slam.node_map().size();
 }

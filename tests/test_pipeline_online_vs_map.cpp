@@ -32,17 +32,15 @@ scene::MapRaster raster_of(const DrawnFloor &d) {
   r.resolution = d.frame.resolution;
   r.cells.resize(d.cells.size());
   for (std::size_t i = 0; i < d.cells.size(); ++i)
-    r.cells[i] = d.cells[i] == FloorCell::kFree ? scene::MapCell::kFree
-                 : d.cells[i] == FloorCell::kOccupied
-                     ? scene::MapCell::kOccupied
-                     : scene::MapCell::kUnknown;
+    r.cells[i] = d.cells[i] == FloorCell::kFree       ? scene::MapCell::kFree
+                 : d.cells[i] == FloorCell::kOccupied ? scene::MapCell::kOccupied
+                                                      : scene::MapCell::kUnknown;
   return r;
 }
 
 /// The final rooms' footprints in the world frame (the scene's, which is the
 /// map's here).
-std::vector<Polygon2> online_rooms(const scene::Scene &scene,
-                                   std::uint64_t seed) {
+std::vector<Polygon2> online_rooms(const scene::Scene &scene, std::uint64_t seed) {
   sim::Simulator sim(scene, seed);
   pipeline::Pipeline slam;
   for (std::size_t k = 0; k < sim.num_scans(); ++k)
@@ -50,14 +48,12 @@ std::vector<Polygon2> online_rooms(const scene::Scene &scene,
   slam.finish();
   // The map frame is the odometry frame, which starts at the true first pose.
   const auto &kfs = slam.graph().keyframes();
-  const Pose3 T_world_map =
-      sim.true_poses()[kfs[0].scan_index] * kfs[0].pose.inverse();
+  const Pose3 T_world_map = sim.true_poses()[kfs[0].scan_index] * kfs[0].pose.inverse();
   std::vector<Polygon2> rooms;
   for (const auto &[id, r] : slam.room_map().rooms()) {
     Polygon2 world;
     for (const Vec2 &p : footprint_of(r.rect, r.outline))
-      world.push_back(
-          (T_world_map * Eigen::Vector3d(p.x(), p.y(), 0)).head<2>());
+      world.push_back((T_world_map * Eigen::Vector3d(p.x(), p.y(), 0)).head<2>());
     rooms.push_back(world);
   }
   return rooms;
@@ -65,13 +61,13 @@ std::vector<Polygon2> online_rooms(const scene::Scene &scene,
 
 TEST(OnlineVsMap, TheRoomLayerOnASurveyGivesSegmentMapsRooms) {
   const DrawnFloor d = test::draw_floor();
-  const rooms::MapSegmentation offline = rooms::segment_map(
-      d.frame, d.mask(FloorCell::kFree), d.mask(FloorCell::kOccupied));
+  const rooms::MapSegmentation offline =
+      rooms::segment_map(d.frame, d.mask(FloorCell::kFree), d.mask(FloorCell::kOccupied));
 
   scene::MapImportConfig config;
   config.laps = 1;
-  scene::ImportedMap imported = scene::import_map(
-      raster_of(d), d.truth, static_cast<int>(d.names.size()), config);
+  scene::ImportedMap imported =
+      scene::import_map(raster_of(d), d.truth, static_cast<int>(d.names.size()), config);
   ASSERT_EQ(imported.scene.voxel_maps.size(), 1u);
   const std::filesystem::path dir = test::fresh_temp_dir();
   const std::string pcd = (dir / "walls.pcd").string();
@@ -86,42 +82,36 @@ TEST(OnlineVsMap, TheRoomLayerOnASurveyGivesSegmentMapsRooms) {
   // counted on the map's free cells (where both segmentations can put a room).
   const int n_offline = static_cast<int>(offline.rooms.spaces.size());
   std::vector<std::size_t> size_off(n_offline, 0), size_on(online.size(), 0);
-  std::vector<std::vector<std::size_t>> shared(
-      n_offline, std::vector<std::size_t>(online.size(), 0));
+  std::vector<std::vector<std::size_t>> shared(n_offline, std::vector<std::size_t>(online.size(), 0));
   for (int r = 0; r < d.frame.rows; ++r)
     for (int c = 0; c < d.frame.cols; ++c) {
       const std::size_t i = d.frame.index(c, r);
-      if (d.cells[i] != FloorCell::kFree)
-        continue;
+      if (d.cells[i] != FloorCell::kFree) continue;
       const int s = offline.rooms.label[i];
-      if (s >= 0)
-        ++size_off[s];
+      if (s >= 0) ++size_off[s];
       for (std::size_t k = 0; k < online.size(); ++k) {
-        if (!contains(online[k], d.frame.center(c, r)))
-          continue;
+        if (!contains(online[k], d.frame.center(c, r))) continue;
         ++size_on[k];
-        if (s >= 0)
-          ++shared[s][k];
+        if (s >= 0) ++shared[s][k];
       }
     }
   int rooms_offline = 0;
   for (int s = 0; s < n_offline; ++s) {
-    if (size_off[s] == 0)
-      continue;
+    if (size_off[s] == 0) continue;
     ++rooms_offline;
     double best = 0.0;
     for (std::size_t k = 0; k < online.size(); ++k)
       best = std::max(best, static_cast<double>(shared[s][k]) /
-                                static_cast<double>(size_off[s] + size_on[k] -
-                                                    shared[s][k]));
-    std::printf("segment-map's room %d (%zu cells): IoU %.2f with the online "
-                "room that shares most of it\n",
-                s, size_off[s], best);
+                                static_cast<double>(size_off[s] + size_on[k] - shared[s][k]));
+    std::printf(
+        "segment-map's room %d (%zu cells): IoU %.2f with the online "
+        "room that shares most of it\n",
+        s, size_off[s], best);
     EXPECT_GE(best, 0.8) << "segment-map's room " << s;
   }
   EXPECT_EQ(rooms_offline, static_cast<int>(d.names.size()));
   EXPECT_EQ(online.size(), d.names.size());
 }
 
-} // namespace
-} // namespace tsgraphs
+}  // namespace
+}  // namespace tsgraphs

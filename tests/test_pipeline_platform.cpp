@@ -113,13 +113,15 @@ TEST_F(PlatformTest, NoFloorFallsBackAloud) {
   EXPECT_EQ(p.sensor_height_source, "fallback");
   EXPECT_DOUBLE_EQ(p.sensor_height, PlatformConfig{}.fallback_sensor_height);
   ASSERT_EQ(p.warnings.size(), 1u);
-  EXPECT_NE(p.warnings[0].find("no floor found under the 1 scans measured"), std::string::npos) << p.warnings[0];
+  EXPECT_NE(p.warnings[0].find("no floor found under the 1 scans measured"), std::string::npos)
+      << p.warnings[0];
   // Nothing at all: no beam layout either, and both are said.
   EXPECT_EQ(resolve_platform({}, {}, {}, {}).warnings.size(), 2u);
 }
 
 TEST_F(PlatformTest, ParameterFileTakesAutoOrANumber) {
-  const PipelineConfig c = parse_pipeline_config("platform:\n  sensor_height: 1.62\n  preset: none\n", "p.yaml");
+  const PipelineConfig c =
+      parse_pipeline_config("platform:\n  sensor_height: 1.62\n  preset: none\n", "p.yaml");
   ASSERT_TRUE(c.platform.sensor_height.has_value());
   EXPECT_DOUBLE_EQ(*c.platform.sensor_height, 1.62);
   EXPECT_FALSE(c.platform.seed_radius.has_value());
@@ -127,16 +129,20 @@ TEST_F(PlatformTest, ParameterFileTakesAutoOrANumber) {
   const auto error = [](const std::string& text) {
     return test::input_error_of([&] { parse_pipeline_config(text, "p.yaml"); });
   };
-  EXPECT_NE(error("platform:\n  sensor_height: tall\n").find("p.yaml:2: platform.sensor_height: expected a number or auto"),
+  EXPECT_NE(error("platform:\n  sensor_height: tall\n")
+                .find("p.yaml:2: platform.sensor_height: expected a number or auto"),
             std::string::npos);
   EXPECT_NE(error("platform:\n  sensor_height: -1\n").find("p.yaml:2"), std::string::npos);
-  EXPECT_NE(error("platform:\n  preset: kinect\n").find("p.yaml:2: platform.preset: must be auto, none, os1-64"),
-            std::string::npos);
+  EXPECT_NE(
+      error("platform:\n  preset: kinect\n").find("p.yaml:2: platform.preset: must be auto, none, os1-64"),
+      std::string::npos);
   // The key's old place says where it went.
-  EXPECT_NE(error("ground:\n  sensor_height: 1.6\n").find("ground.sensor_height is now platform.sensor_height"),
-            std::string::npos);
+  EXPECT_NE(
+      error("ground:\n  sensor_height: 1.6\n").find("ground.sensor_height is now platform.sensor_height"),
+      std::string::npos);
   // The ground keys a file sets are kept from the platform's preset.
-  EXPECT_EQ(parse_pipeline_config("ground:\n  max_gap: 3.3\n", "p.yaml").ground_keys_given, std::set<std::string>{"max_gap"});
+  EXPECT_EQ(parse_pipeline_config("ground:\n  max_gap: 3.3\n", "p.yaml").ground_keys_given,
+            std::set<std::string>{"max_gap"});
   // A resolved run's parameters read back to the same platform.
   PipelineConfig resolved;
   resolved.platform.sensor_height = 1.25;
@@ -154,7 +160,9 @@ TEST_F(PlatformTest, WarnsOnceWhenNoFloorGivesNoGroundThenCounts) {
   walk(p, 8, [this](double x) { return scan(x, 4.5, 0.55, false); });
   p.finish();
   EXPECT_TRUE(has_warning(p, "no floor found under the 1 scans measured"));
-  EXPECT_TRUE(has_warning(p, "no traversable ground in 5 keyframes in a row (to keyframe 4): no floor found below the sensor there"));
+  EXPECT_TRUE(has_warning(p,
+                          "no traversable ground in 5 keyframes in a row (to keyframe 4): no floor found "
+                          "below the sensor there"));
   EXPECT_TRUE(has_warning(p, "no traversable ground in 7 of 7 keyframes in all"))
       << ::testing::PrintToString(p.warnings());
   const auto n = std::count_if(p.warnings().begin(), p.warnings().end(),
@@ -176,7 +184,8 @@ TEST_F(PlatformTest, NoWallSaysSoAndARunWithoutARoomSaysWhyAtItsEnd) {
     const PointCloud s = sim_.scan_at(pose(x, 4.5, 0.55), 0);
     PointCloud ceiling;
     for (std::size_t i = 0; i < s.size(); ++i)
-      if (s.labels[i] == static_cast<std::uint32_t>(PointLabel::kCeiling)) ceiling.points.push_back(s.points[i]);
+      if (s.labels[i] == static_cast<std::uint32_t>(PointLabel::kCeiling))
+        ceiling.points.push_back(s.points[i]);
     return ceiling;
   });
   EXPECT_TRUE(has_warning(p, "no wall in 5 keyframes in a row (to keyframe 4): no vertical plane"))
@@ -184,7 +193,8 @@ TEST_F(PlatformTest, NoWallSaysSoAndARunWithoutARoomSaysWhyAtItsEnd) {
   EXPECT_FALSE(has_warning(p, "no room")) << "said only at the end";
   p.finish();
   EXPECT_TRUE(has_warning(p, "no wall in 7 of 7 keyframes in all"));
-  EXPECT_TRUE(has_warning(p, "no room in 7 keyframes: 0 traversable nodes and 0 walls mapped (no traversable ground)"))
+  EXPECT_TRUE(has_warning(
+      p, "no room in 7 keyframes: 0 traversable nodes and 0 walls mapped (no traversable ground)"))
       << ::testing::PrintToString(p.warnings());
 }
 
@@ -194,8 +204,10 @@ TEST_F(PlatformTest, WarningNamesTheFloorItMeasuredAgainstTheHeightGiven) {
   config.platform.sensor_height = 0.3;  // the user typed a legged robot's height; the sensor is hand-held
   Pipeline p(config);
   walk(p, 5, [this](double x) { return scan(x, 4.5, 1.6); });
-  ASSERT_TRUE(has_warning(p, "no traversable ground in 4 keyframes in a row")) << (p.warnings().empty() ? "" : p.warnings()[0]);
-  EXPECT_TRUE(has_warning(p, "the floor is 1.60 m below the sensor there and platform.sensor_height is 0.30 m"))
+  ASSERT_TRUE(has_warning(p, "no traversable ground in 4 keyframes in a row"))
+      << (p.warnings().empty() ? "" : p.warnings()[0]);
+  EXPECT_TRUE(
+      has_warning(p, "the floor is 1.60 m below the sensor there and platform.sensor_height is 0.30 m"))
       << p.warnings()[0];
 
   // Measured, the same scans give ground and no such warning.

@@ -67,7 +67,8 @@ TEST(Prefilter, EmptyAndAllNaNScansGiveEmptyClouds) {
 TEST(Prefilter, ReducesADenseCloudToOnePointPerVoxel) {
   PointCloud c;
   for (int i = 0; i < 100; ++i)
-    for (int j = 0; j < 100; ++j) c.points.emplace_back(2.0f + i * 0.01f, j * 0.01f, 0.0f);  // 1 m x 1 m, 1 cm grid
+    for (int j = 0; j < 100; ++j)
+      c.points.emplace_back(2.0f + i * 0.01f, j * 0.01f, 0.0f);  // 1 m x 1 m, 1 cm grid
   PrefilterConfig cfg;
   cfg.voxel_size = 0.1;
   EXPECT_EQ(prefilter(c, cfg).size(), 100u);

@@ -19,7 +19,8 @@ ScanRecord record_of(std::size_t i) {
   r.stamp = 0.1 * static_cast<double>(i) + 1e9;  // a UNIX time: every bit of the double matters
   r.keyframe = i % 7 == 0 ? static_cast<int>(i / 7) : -1;
   r.reference_keyframe = static_cast<int>(i / 7);
-  r.odom = make_pose(Eigen::Vector3d(0.01 * static_cast<double>(i), -2.0, 0.5), 0.001 * static_cast<double>(i));
+  r.odom =
+      make_pose(Eigen::Vector3d(0.01 * static_cast<double>(i), -2.0, 0.5), 0.001 * static_cast<double>(i));
   r.num_points = 1000 + i;
   r.prefilter_ms = 1.5;
   r.ground_ms = 2.25;

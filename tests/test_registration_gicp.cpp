@@ -99,9 +99,10 @@ TEST(RegistrationGicp, RealHdl32PairFromIdentity) {
   const RegistrationResult r = register_clouds(source, target, Pose3::Identity(), config);
   const double cpu_ms = watch.cpu_elapsed_ms(), wall_ms = watch.wall_ms();
   const PoseError e = pose_error(r.T_target_source, truth);
-  std::printf("hdl32 pair (%zu, %zu points): %.1f ms cpu (%.1f wall), error %.4f m %.4f deg, fitness %.4f, "
-              "inliers %.3f\n",
-              source.size(), target.size(), cpu_ms, wall_ms, e.trans, e.rot_deg, r.fitness, r.inlier_ratio);
+  std::printf(
+      "hdl32 pair (%zu, %zu points): %.1f ms cpu (%.1f wall), error %.4f m %.4f deg, fitness %.4f, "
+      "inliers %.3f\n",
+      source.size(), target.size(), cpu_ms, wall_ms, e.trans, e.rot_deg, r.fitness, r.inlier_ratio);
   EXPECT_TRUE(r.converged);
   EXPECT_LT(e.trans, 0.05);
   EXPECT_LT(e.rot_deg, 0.5);
@@ -130,8 +131,8 @@ TEST(RegistrationGicp, SimulatedOfficeScansFromPerturbedGuess) {
   const RegistrationConfig config;
   const RegistrationResult r = register_clouds(source, target, guess, config);
   const PoseError e = pose_error(r.T_target_source, truth);
-  std::printf("office pair: error %.4f m %.4f deg, fitness %.4f, inliers %.3f\n", e.trans, e.rot_deg, r.fitness,
-              r.inlier_ratio);
+  std::printf("office pair: error %.4f m %.4f deg, fitness %.4f, inliers %.3f\n", e.trans, e.rot_deg,
+              r.fitness, r.inlier_ratio);
   EXPECT_TRUE(r.converged);
   EXPECT_LT(e.trans, 0.03);
   EXPECT_LT(e.rot_deg, 0.3);
@@ -164,16 +165,19 @@ TEST(RegistrationGicp, Os1KeyframePairsAlongTheOfficeRun) {
     cpu_max = std::max(cpu_max, cpu_ms);
     points += source.size() + target.size();
     const PoseError e = pose_error(r.T_target_source, truth);
-    const bool passes = r.converged && r.fitness <= loop.max_fitness && r.inlier_ratio >= loop.min_inlier_ratio;
-    std::printf("  scans %zu, %zu: error %.4f m %.3f deg, fitness %.4f, inliers %.3f%s\n", i, j, e.trans, e.rot_deg,
-                r.fitness, r.inlier_ratio, passes ? "" : " (fails the loop check)");
+    const bool passes =
+        r.converged && r.fitness <= loop.max_fitness && r.inlier_ratio >= loop.min_inlier_ratio;
+    std::printf("  scans %zu, %zu: error %.4f m %.3f deg, fitness %.4f, inliers %.3f%s\n", i, j, e.trans,
+                e.rot_deg, r.fitness, r.inlier_ratio, passes ? "" : " (fails the loop check)");
     if (!passes) continue;  // e.g. the two sides of a door: little overlap
     ++accepted;
     EXPECT_LT(e.trans, 0.03) << "scans " << i << ", " << j;
     EXPECT_LT(e.rot_deg, 0.3) << "scans " << i << ", " << j;
   }
-  std::printf("os1-64 keyframe pairs (%.1f m prefilter, %zu points per cloud on average): %.1f ms cpu mean, %.1f max\n",
-              kPrefilterVoxel, points / (2 * kPairs), cpu_sum / kPairs, cpu_max);
+  std::printf(
+      "os1-64 keyframe pairs (%.1f m prefilter, %zu points per cloud on average): %.1f ms cpu mean, %.1f "
+      "max\n",
+      kPrefilterVoxel, points / (2 * kPairs), cpu_sum / kPairs, cpu_max);
   EXPECT_GE(accepted, kPairs / 2);
 }
 
@@ -184,9 +188,11 @@ TEST(RegistrationGicp, WrongPairingFailsTheLoopCheck) {
   const PointCloud source = office_scan(office_pose(17.5, 10.0, 0.0), 4);
   const RegistrationConfig config;
   const RegistrationResult r = register_clouds(source, target, Pose3::Identity(), config);
-  std::printf("wrong pairing: converged %d, fitness %.4f, inliers %.3f\n", r.converged, r.fitness, r.inlier_ratio);
+  std::printf("wrong pairing: converged %d, fitness %.4f, inliers %.3f\n", r.converged, r.fitness,
+              r.inlier_ratio);
   const graph::LoopClosureConfig loop;
-  const bool accepted = r.converged && r.fitness <= loop.max_fitness && r.inlier_ratio >= loop.min_inlier_ratio;
+  const bool accepted =
+      r.converged && r.fitness <= loop.max_fitness && r.inlier_ratio >= loop.min_inlier_ratio;
   EXPECT_FALSE(accepted);
   EXPECT_LT(r.inlier_ratio, loop.min_inlier_ratio);
 }
@@ -313,7 +319,7 @@ TEST(RegistrationGicp, SurfacesThatLeaveADirectionFreeAreMeasured) {
   const PointCloud open = test_support::corridor(20.0f, false);
   const RegistrationResult slid = register_clouds(open, open, guess, config);
   ASSERT_TRUE(slid.converged);
-  EXPECT_LT(slid.fitness, 0.01);          // a perfect-looking match...
+  EXPECT_LT(slid.fitness, 0.01);  // a perfect-looking match...
   EXPECT_GT(slid.inlier_ratio, 0.95);
   EXPECT_GT(slid.T_target_source.translation().x(), 0.1);  // ...that kept most of the error
   EXPECT_LT(slid.weakest_direction_share, 0.002);

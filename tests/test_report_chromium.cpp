@@ -33,9 +33,10 @@ using test::read_file;
 
 /// The DOM Chromium builds for `page` (stdout of --dump-dom); its stderr goes to `err`.
 std::string dump_dom(const fs::path& page, const fs::path& err) {
-  const std::string cmd = std::string("timeout 60 ") + kChromium +
-                          " --headless --no-sandbox --disable-gpu --enable-logging=stderr --v=0 --dump-dom 'file://" +
-                          page.string() + "' 2>'" + err.string() + "'";
+  const std::string cmd =
+      std::string("timeout 60 ") + kChromium +
+      " --headless --no-sandbox --disable-gpu --enable-logging=stderr --v=0 --dump-dom 'file://" +
+      page.string() + "' 2>'" + err.string() + "'";
   FILE* pipe = popen(cmd.c_str(), "r");
   if (pipe == nullptr) return "";
   std::string out;
@@ -71,7 +72,8 @@ TEST_F(ReportChromium, RunReportLoadsWithItsRoomsAndWallsAndNoErrors) {
   // Self-contained: no script, no URL of any kind besides the SVG namespace.
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_EQ(count(html, "<script"), 0u);
-  EXPECT_EQ(count(html, "http://") + count(html, "https://"), count(html, "xmlns=\"http://www.w3.org/2000/svg\""));
+  EXPECT_EQ(count(html, "http://") + count(html, "https://"),
+            count(html, "xmlns=\"http://www.w3.org/2000/svg\""));
   EXPECT_EQ(count(html, "url("), 0u);
   EXPECT_EQ(count(html, " href="), 0u);
   EXPECT_EQ(count(html, " src="), 0u);

@@ -42,7 +42,8 @@ std::string nesting_error(const std::string& svg) {
     const std::string tag = svg.substr(at + 1, end - at - 1);
     if (tag.empty() || tag.find('<') != std::string::npos) return "bad tag at " + std::to_string(at);
     if (tag[0] == '/') {
-      if (open.empty() || open.back() != tag.substr(1)) return "</" + tag.substr(1) + "> closes the wrong element";
+      if (open.empty() || open.back() != tag.substr(1))
+        return "</" + tag.substr(1) + "> closes the wrong element";
       open.pop_back();
     } else if (tag.back() != '/') {
       const std::string name = tag.substr(0, tag.find_first_of(" \n"));
@@ -101,9 +102,11 @@ TEST(ReportRunSvg, BirdseyeCountsWhatIsOnTheLevel) {
   EXPECT_EQ(count(svg, "<g class=\"legend\">"), 1u);
   EXPECT_EQ(count(svg, "<g class=\"scale-bar\">"), 1u);
   // Rooms are cyan-ish, corridors orange-ish: blue above red, and red above blue.
-  const std::regex fill("class=\"(room|corridor)\" data-id=\"[0-9]+\" fill=\"#([0-9a-f]{2})[0-9a-f]{2}([0-9a-f]{2})\"");
+  const std::regex fill(
+      "class=\"(room|corridor)\" data-id=\"[0-9]+\" fill=\"#([0-9a-f]{2})[0-9a-f]{2}([0-9a-f]{2})\"");
   std::size_t checked = 0;
-  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), fill); it != std::sregex_iterator(); ++it, ++checked) {
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), fill); it != std::sregex_iterator();
+       ++it, ++checked) {
     const int red = std::stoi((*it)[2].str(), nullptr, 16), blue = std::stoi((*it)[3].str(), nullptr, 16);
     if ((*it)[1] == "room") {
       EXPECT_GT(blue, red);
@@ -131,7 +134,8 @@ TEST(ReportRunSvg, NothingOfAnotherLevelIsDrawn) {
   EXPECT_EQ(attribute(upper, "node", "data-count"), "2");
   EXPECT_NE(upper.find(">7 \xC2\xB7 lap 1</text>"), std::string::npos);
   EXPECT_NE(upper.find(">loft</text>"), std::string::npos);
-  for (const char* other : {"0 \xC2\xB7 lap", "1 \xC2\xB7 lap", "office", "hall", "data-id=\"1\"", "data-room=\"0\""}) {
+  for (const char* other :
+       {"0 \xC2\xB7 lap", "1 \xC2\xB7 lap", "office", "hall", "data-id=\"1\"", "data-room=\"0\""}) {
     EXPECT_EQ(upper.find(other), std::string::npos) << other;
   }
   // The trajectory starts on level 0: its start marker is not on level 1.

@@ -245,7 +245,8 @@ TEST_F(ReportRunView, MalformedTimingsLineIsNamedWithItsLine) {
 
 TEST_F(ReportRunView, MalformedJsonFilesAreNamed) {
   write_file("run_A/scene_graph.json", "{\"planes\": [");
-  EXPECT_NE(test::input_error_of([&] { read_run_view(run_.string()); }).find("scene_graph.json"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { read_run_view(run_.string()); }).find("scene_graph.json"),
+            std::string::npos);
   // Valid JSON of the wrong shape: a node position with two coordinates.
   std::string graph = kSceneGraph;
   graph.replace(graph.find("[2.5, 3.0, 3.0]"), 15, "[2.5, 3.0]");
@@ -255,12 +256,14 @@ TEST_F(ReportRunView, MalformedJsonFilesAreNamed) {
   EXPECT_NE(msg.find("traversable_nodes"), std::string::npos) << msg;
   write_file("run_A/scene_graph.json", kSceneGraph);
   write_file("run_A/metrics.json", "{nope");
-  EXPECT_NE(test::input_error_of([&] { read_run_view(run_.string()); }).find("metrics.json"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { read_run_view(run_.string()); }).find("metrics.json"),
+            std::string::npos);
 }
 
 TEST_F(ReportRunView, MalformedTrajectoryAndEventsAreNamedWithTheirLine) {
   write_file("run_A/trajectory.txt", "0.0 1 2 0.55 0 0 0 1\n0.1 1 2\n");
-  EXPECT_NE(test::input_error_of([&] { read_run_view(run_.string()); }).find("trajectory.txt:2"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { read_run_view(run_.string()); }).find("trajectory.txt:2"),
+            std::string::npos);
   write_file("run_A/trajectory.txt", kTrajectory);
   write_file("run_A/rooms_events.jsonl", io::format_room_event(event(1, 1)) + "\n{broken\n");
   EXPECT_NE(test::input_error_of([&] { read_run_view(run_.string()); }).find("rooms_events.jsonl:2"),
@@ -270,11 +273,11 @@ TEST_F(ReportRunView, MalformedTrajectoryAndEventsAreNamedWithTheirLine) {
 TEST(ReportRunViewLevels, HeightsBelongToTheFloorBelowThem) {
   RunView run;
   EXPECT_EQ(report::level_of_height(run, -7.0), 0);  // no levels: everything on level 0
-  run.levels = {3.0, 0.0};                          // not sorted: the index is the level
+  run.levels = {3.0, 0.0};                           // not sorted: the index is the level
   EXPECT_EQ(report::level_of_height(run, 0.55), 1);
-  EXPECT_EQ(report::level_of_height(run, -0.3), 1);  // a floor point's noise
-  EXPECT_EQ(report::level_of_height(run, -1.0), -1); // far below the lowest floor
-  EXPECT_EQ(report::level_of_height(run, 2.9), 0);   // a wall plane starting under the slab
+  EXPECT_EQ(report::level_of_height(run, -0.3), 1);   // a floor point's noise
+  EXPECT_EQ(report::level_of_height(run, -1.0), -1);  // far below the lowest floor
+  EXPECT_EQ(report::level_of_height(run, 2.9), 0);    // a wall plane starting under the slab
   EXPECT_EQ(report::level_of_height(run, 3.55), 0);
   EXPECT_EQ(report::level_of_height(run, 6.5), -1);  // above the top storey
 }

@@ -80,7 +80,9 @@ std::string draw(const Scene& scene) { return report::scene_svg(scene, Trajector
 
 std::size_t count(const std::string& text, const std::string& needle) {
   std::size_t n = 0;
-  for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + needle.size())) ++n;
+  for (std::size_t at = text.find(needle); at != std::string::npos;
+       at = text.find(needle, at + needle.size()))
+    ++n;
   return n;
 }
 
@@ -116,7 +118,8 @@ std::string nesting_error(const std::string& svg) {
     if (tag.empty()) return "empty tag";
     if (tag[0] == '/') {
       const std::string name = tag.substr(1);
-      if (open.empty() || open.back() != name) return "</" + name + "> closes " + (open.empty() ? "nothing" : open.back());
+      if (open.empty() || open.back() != name)
+        return "</" + name + "> closes " + (open.empty() ? "nothing" : open.back());
       open.pop_back();
     } else if (tag.back() != '/') {
       const std::string name = tag.substr(0, tag.find_first_of(" \n"));
@@ -145,9 +148,13 @@ std::vector<Translate> panel_offsets(const std::string& svg) {
 Scene corridor(double length, int laps) {
   const std::string l = std::to_string(length);
   return parse_scene("name: corridor\nlevels: [{name: L0, slab: [[0,0],[" + std::to_string(length + 2.0) +
-                         ",0],[" + std::to_string(length + 2.0) + ",4],[0,4]]}]\n"
-                         "trajectory: {waypoints: [[1,2],[" + std::to_string(length + 1.0) + ",2]], closed: false, "
-                         "laps: " + std::to_string(laps) + "}\n",
+                         ",0],[" + std::to_string(length + 2.0) +
+                         ",4],[0,4]]}]\n"
+                         "trajectory: {waypoints: [[1,2],[" +
+                         std::to_string(length + 1.0) +
+                         ",2]], closed: false, "
+                         "laps: " +
+                         std::to_string(laps) + "}\n",
                      "corridor.yaml", ".");
 }
 
@@ -161,7 +168,8 @@ TEST(SceneSvg, ASceneKilometresLongFitsThePage) {
     EXPECT_TRUE(std::regex_search(svg, m, std::regex("<svg [^>]*width=\"([0-9.]+)\" height=\"([0-9.]+)\"")));
     return std::pair<double, double>(std::stod(m[1].str()), std::stod(m[2].str()));
   };
-  EXPECT_NE(draw(corridor(30.0, 1)).find("40 px per metre"), std::string::npos);  // a building keeps its scale
+  EXPECT_NE(draw(corridor(30.0, 1)).find("40 px per metre"),
+            std::string::npos);  // a building keeps its scale
   const auto [w, h] = page(draw(corridor(5000.0, 1)));
   EXPECT_LE(w, report::svg::kMaxDrawingPx + 1000.0);
   EXPECT_LE(h, report::svg::kMaxDrawingPx + 1000.0);
@@ -179,7 +187,8 @@ TEST(SceneSvg, IsWellFormedXml) {
   // Every '&' starts an entity.
   const std::regex entity("&(amp|lt|gt|quot|apos);");
   std::size_t entities = 0;
-  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), entity); it != std::sregex_iterator(); ++it) ++entities;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), entity); it != std::sregex_iterator(); ++it)
+    ++entities;
   EXPECT_EQ(count(svg, "&"), entities);
   EXPECT_GT(entities, 0u);
   // Only bytes XML allows: no control characters besides newlines.
@@ -208,7 +217,8 @@ TEST(SceneSvg, OnePanelPerLevelTitledWithNameAndElevation) {
 TEST(SceneSvg, PanelsOrderedByElevationWhateverTheFileOrder) {
   std::string text = kTwoStoreys;
   // Swap the two level entries: the upper storey is listed first.
-  const std::size_t l0 = text.find("  - name: L0"), l1 = text.find("  - name: \"Mezz"), walls = text.find("walls:");
+  const std::size_t l0 = text.find("  - name: L0"), l1 = text.find("  - name: \"Mezz"),
+                    walls = text.find("walls:");
   text = text.substr(0, l0) + text.substr(l1, walls - l1) + text.substr(l0, l1 - l0) + text.substr(walls);
   const Scene scene = parse_scene(text, "swapped.yaml", ".");
   ASSERT_EQ(scene.levels[0].name, "Mezz & <1>");
@@ -255,9 +265,12 @@ TEST(SceneSvg, EveryWallPieceIsOneRectangleOnItsLevel) {
       if (w.level != level) continue;
       for (const WallPiece& piece : wall_pieces(w)) {
         ++pieces;
-        if (piece.z0 > 0.0) ++header;
-        else if (piece.z1 < w.height) ++sill;
-        else ++full;
+        if (piece.z0 > 0.0)
+          ++header;
+        else if (piece.z1 < w.height)
+          ++sill;
+        else
+          ++full;
       }
     }
     SCOPED_TRACE("level " + scene.levels[level].name);
@@ -373,8 +386,9 @@ TEST(SceneSvg, WideScenesStackTheirPanelsTallOnesSitSideBySide) {
   const auto two_levels = [](double w, double h) {
     const std::string slab = "[[0,0],[" + std::to_string(w) + ",0],[" + std::to_string(w) + "," +
                              std::to_string(h) + "],[0," + std::to_string(h) + "]]";
-    return parse_scene("levels:\n  - {name: A, elevation: 0, slab: " + slab + "}\n  - {name: B, elevation: 3, slab: " +
-                           slab + "}\ntrajectory: {waypoints: [[1,1],[2,2]]}\n",
+    return parse_scene("levels:\n  - {name: A, elevation: 0, slab: " + slab +
+                           "}\n  - {name: B, elevation: 3, slab: " + slab +
+                           "}\ntrajectory: {waypoints: [[1,1],[2,2]]}\n",
                        "layout.yaml", ".");
   };
   const std::vector<Translate> wide = panel_offsets(draw(two_levels(40.0, 5.0)));
@@ -429,7 +443,7 @@ boxes:
   - {level: L0, min: [2.51, 4.14, 0], max: [2.55, 5.0, 2.08], label: door}
 trajectory: {waypoints: [[1, 2], [9, 2]]}
 )",
-                                  "leaf.yaml", ".");
+                            "leaf.yaml", ".");
   const std::string svg = draw(scene);
   scene.boxes.clear();
   const std::string without = draw(scene);

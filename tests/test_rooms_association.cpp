@@ -128,8 +128,8 @@ TEST(RoomAssociation, AMappedRoomALaterSegmentationDividesFollowsIt) {
 TEST(RoomAssociation, AMappedRoomTheSegmentationNoLongerCarriesFollowsTheSpaceItIsAViewOf) {
   RoomMap map;
   // A corridor, then a first view from it that ran out over a void (later rays went below the floor there).
-  map.add_extraction(room({0, 0}, {10, 2}), 0);                         // id 0: the corridor
-  map.add_extraction(room({2, 2.5}, {3, 4}), 0);                        // id 1: 1.5 m^2 on the corridor, 10.5 on the void
+  map.add_extraction(room({0, 0}, {10, 2}), 0);   // id 0: the corridor
+  map.add_extraction(room({2, 2.5}, {3, 4}), 0);  // id 1: 1.5 m^2 on the corridor, 10.5 on the void
   const ExtractedRoom corridor = room({0, 0}, {10, 2}), far = room({20, 0}, {4, 4});
   // Without a share to be carried by, nothing follows; a carried room stays as it is.
   EXPECT_TRUE(map.follow_segmentation({corridor, far}, 0).empty());
@@ -140,18 +140,18 @@ TEST(RoomAssociation, AMappedRoomTheSegmentationNoLongerCarriesFollowsTheSpaceIt
   EXPECT_EQ(map.merge_duplicates(), (std::vector<std::pair<int, int>>{{0, 1}}));
   EXPECT_EQ(map.rooms().size(), 1u);
   // A room that no space touches at all (another part of the level, not segmented now) stays.
-  map.add_extraction(room({40, 0}, {4, 4}), 0);                         // id 2
+  map.add_extraction(room({40, 0}, {4, 4}), 0);  // id 2
   EXPECT_TRUE(map.follow_segmentation({corridor, far}, 0, 0.85).empty());
   EXPECT_EQ(map.rooms().at(2).rect.center, Vec2(40, 0));
 }
 
 TEST(RoomAssociation, DuplicatesMergeIntoTheMostExtracted) {
   RoomMap map;
-  map.add_extraction(room({0, 0}, {5, 4}, {0, 1}), 0);    // id 0
-  map.add_extraction(room({10, 0}, {5, 4}, {2, 3}), 0);   // id 1
-  map.add_extraction(room({10.2, 0}, {5, 4}), 0);         // re-detects 1
-  map.add_extraction(room({20, 0}, {5, 4}, {4}), 0);      // id 2
-  map.add_extraction(room({0, 0}, {5, 4}), 1);            // id 3, another level
+  map.add_extraction(room({0, 0}, {5, 4}, {0, 1}), 0);   // id 0
+  map.add_extraction(room({10, 0}, {5, 4}, {2, 3}), 0);  // id 1
+  map.add_extraction(room({10.2, 0}, {5, 4}), 0);        // re-detects 1
+  map.add_extraction(room({20, 0}, {5, 4}, {4}), 0);     // id 2
+  map.add_extraction(room({0, 0}, {5, 4}), 1);           // id 3, another level
   EXPECT_TRUE(map.find_duplicates().empty());
   // Optimisation moves rooms 0 and 2 onto room 1: a chain of three footprints of one room.
   map.set_rect(0, room({9.5, 0}, {5, 4}).rect);

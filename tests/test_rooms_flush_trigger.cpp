@@ -126,8 +126,8 @@ TEST(MeasureAisle, CorridorWidthAndDirection) {
 TEST(MeasureAisle, WidthOfARoomIsItsShorterSideWhicheverItsAxis) {
   std::vector<Eigen::Vector3d> room;
   add_grid(room, 0.0, 7.0, 0.0, 5.0);
-  for (const Eigen::Vector3d& robot : {Eigen::Vector3d(2.0, 2.5, 0.0), Eigen::Vector3d(3.5, 1.0, 0.0),
-                                       Eigen::Vector3d(5.5, 3.5, 0.0)}) {
+  for (const Eigen::Vector3d& robot :
+       {Eigen::Vector3d(2.0, 2.5, 0.0), Eigen::Vector3d(3.5, 1.0, 0.0), Eigen::Vector3d(5.5, 3.5, 0.0)}) {
     const AisleMeasurement a = measure_aisle(room, robot);
     ASSERT_TRUE(a.valid);
     EXPECT_NEAR(a.width, 5.0, 0.25);  // near a corner a diagonal is a little shorter; never the 7 m side

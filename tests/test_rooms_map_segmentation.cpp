@@ -26,7 +26,9 @@ double best_iou(const RoomSegmentation& seg, const DrawnFloor& d, int k) {
   }
   double best = 0.0;
   for (std::size_t s = 0; s < shared.size(); ++s)
-    if (shared[s] > 0) best = std::max(best, static_cast<double>(shared[s]) / static_cast<double>(truth + size[s] - shared[s]));
+    if (shared[s] > 0)
+      best =
+          std::max(best, static_cast<double>(shared[s]) / static_cast<double>(truth + size[s] - shared[s]));
   return best;
 }
 

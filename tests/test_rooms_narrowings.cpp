@@ -35,7 +35,9 @@ struct Plan {
   }
 };
 
-int split(const Plan& p, std::vector<int>* label) { return split_at_narrowings(p.f, p.walkable, 1.0, 0.7, 2.0, label); }
+int split(const Plan& p, std::vector<int>* label) {
+  return split_at_narrowings(p.f, p.walkable, 1.0, 0.7, 2.0, label);
+}
 
 TEST(Narrowings, TwoRoomsJoinedByADoorAreTwoSpaces) {
   Plan p(12.0, 6.0);
@@ -53,8 +55,8 @@ TEST(Narrowings, RoomsOffACorridorAreSpacesOfTheirOwnAndTheCorridorIsOne) {
   Plan p(20.0, 8.0);
   p.open(1.0, 1.0, 19.0, 2.6);  // a 1.6 m corridor, 18 m long
   for (double x : {1.0, 7.0, 13.0}) {
-    p.open(x, 2.8, x + 5.8, 7.0);          // a room north of it
-    p.open(x + 2.5, 2.5, x + 3.4, 2.9);    // its 0.9 m door
+    p.open(x, 2.8, x + 5.8, 7.0);        // a room north of it
+    p.open(x + 2.5, 2.5, x + 3.4, 2.9);  // its 0.9 m door
   }
   std::vector<int> label;
   EXPECT_EQ(split(p, &label), 4);
@@ -92,7 +94,8 @@ TEST(Narrowings, AWideOpeningBetweenHallsIsNoDoorButANarrowOneIs) {
 TEST(Narrowings, RejectsAMaskOfAnotherSize) {
   Plan p(4.0, 4.0);
   std::vector<int> label;
-  EXPECT_THROW(split_at_narrowings(p.f, std::vector<std::uint8_t>(3, 1), 1.0, 0.7, 2.0, &label), std::invalid_argument);
+  EXPECT_THROW(split_at_narrowings(p.f, std::vector<std::uint8_t>(3, 1), 1.0, 0.7, 2.0, &label),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -19,9 +19,9 @@
 namespace tsgraphs::rooms {
 namespace {
 
-constexpr double kNode = 0.25;    // the node map's cell (m)
-constexpr double kLambda = 0.4;   // the free space's lambda_th (m)
-constexpr double kWallZ1 = 2.8;   // a storey's walls reach this (m)
+constexpr double kNode = 0.25;   // the node map's cell (m)
+constexpr double kLambda = 0.4;  // the free space's lambda_th (m)
+constexpr double kWallZ1 = 2.8;  // a storey's walls reach this (m)
 
 /// A wall along a -> b whose normal points to `inside` (the side it is seen from).
 WallCandidate wall(int id, Vec2 a, Vec2 b, Vec2 inside, double top = kWallZ1) {
@@ -41,7 +41,8 @@ WallCandidate wall(int id, Vec2 a, Vec2 b, Vec2 inside, double top = kWallZ1) {
 
 double distance_to_outline(const Polygon2& poly, const Vec2& p) {
   double d = 1e9;
-  for (std::size_t i = 0; i < poly.size(); ++i) d = std::min(d, distance_to_segment(p, poly[i], poly[(i + 1) % poly.size()]));
+  for (std::size_t i = 0; i < poly.size(); ++i)
+    d = std::min(d, distance_to_segment(p, poly[i], poly[(i + 1) % poly.size()]));
   return d;
 }
 
@@ -67,7 +68,8 @@ Polygon2 box(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1
 
 /// Adds the nodes of the box `outer` with wall pieces `inside` it: ground on a kNode grid
 /// everywhere, free space where the node is at least lambda from the outline and every piece.
-void add_area_with_walls(const Polygon2& outer, const std::vector<std::pair<Vec2, Vec2>>& inside, SegmentationInput* in) {
+void add_area_with_walls(const Polygon2& outer, const std::vector<std::pair<Vec2, Vec2>>& inside,
+                         SegmentationInput* in) {
   const Vec2 lo = outer[0], hi = outer[2];
   for (double x = lo.x() + 0.5 * kNode; x < hi.x(); x += kNode) {
     for (double y = lo.y() + 0.5 * kNode; y < hi.y(); y += kNode) {
@@ -184,7 +186,8 @@ TEST(RoomSegmentation, TwoDoorsBesideAPierSeparateTheRoomsTheyJoin) {
   // The wall between two rooms has two doors (1.3 m and 1.5 m) with a 0.6 m pier between them:
   // the opening from one long piece to the other is wider than a door, the pier closes it.
   SegmentationInput in = level();
-  const std::vector<std::pair<Vec2, Vec2>> pieces = {{{5, 0}, {5, 1.2}}, {{5, 2.5}, {5, 3.1}}, {{5, 4.6}, {5, 6}}};
+  const std::vector<std::pair<Vec2, Vec2>> pieces = {
+      {{5, 0}, {5, 1.2}}, {{5, 2.5}, {5, 3.1}}, {{5, 4.6}, {5, 6}}};
   add_area_with_walls(box(0, 0, 10, 6), pieces, &in);
   box_walls(0, 0, 10, 6, 0, &in);
   int id = 4;
@@ -201,7 +204,8 @@ TEST(RoomSegmentation, APierSeenOnlyBelowItsLintelStillSeparatesTheRooms) {
   // is the same wall and closes the opening. The same plane 0.5 m off the line (something
   // standing in the room) joins nothing: the opening is wider than a door, one space.
   SegmentationInput in = level();
-  const std::vector<std::pair<Vec2, Vec2>> pieces = {{{5, 0}, {5, 1.2}}, {{5, 2.5}, {5, 3.1}}, {{5, 4.6}, {5, 6}}};
+  const std::vector<std::pair<Vec2, Vec2>> pieces = {
+      {{5, 0}, {5, 1.2}}, {{5, 2.5}, {5, 3.1}}, {{5, 4.6}, {5, 6}}};
   add_area_with_walls(box(0, 0, 10, 6), pieces, &in);
   box_walls(0, 0, 10, 6, 0, &in);
   in.walls.push_back(wall(4, pieces[0].first, pieces[0].second, {2, 3}));
@@ -224,14 +228,16 @@ TEST(RoomSegmentation, ADoorBesideAJointOfTheRoomsBelowStaysClosed) {
   // closed from its east post to the 0.6 m piece of wall across it, not to that joint behind
   // the post.
   SegmentationInput in = level();
-  const std::vector<std::pair<Vec2, Vec2>> inner = {{{2, 0}, {10, 0}}, {{0.4, 0}, {1, 0}}, {{2.3, -4}, {2.3, -0.05}}};
+  const std::vector<std::pair<Vec2, Vec2>> inner = {
+      {{2, 0}, {10, 0}}, {{0.4, 0}, {1, 0}}, {{2.3, -4}, {2.3, -0.05}}};
   add_area_with_walls(box(0.4, -4, 10, 4), inner, &in);
   box_walls(0.4, -4, 10, 4, 0, &in);
   in.walls.push_back(wall(4, inner[0].first, inner[0].second, {5, 2}));
   in.walls.push_back(wall(5, inner[1].first, inner[1].second, {0.7, 2}));
   in.walls.push_back(wall(6, inner[2].first, inner[2].second, {1, -2}));
   const RoomSegmentation seg = segment_rooms(in);
-  const int north = seg.space_at({5, 2}), south_west = seg.space_at({1.3, -2}), south_east = seg.space_at({6, -2});
+  const int north = seg.space_at({5, 2}), south_west = seg.space_at({1.3, -2}),
+            south_east = seg.space_at({6, -2});
   ASSERT_GE(north, 0);
   ASSERT_GE(south_west, 0);
   EXPECT_NE(north, south_west);
@@ -243,7 +249,8 @@ TEST(RoomSegmentation, AnLShapedRoomIsOneRoomWithItsOutline) {
   const Polygon2 l = {{0, 0}, {6, 0}, {6, 3}, {3, 3}, {3, 6}, {0, 6}};
   SegmentationInput in = level();
   add_area(l, &in);
-  for (std::size_t i = 0; i < l.size(); ++i) in.walls.push_back(wall(static_cast<int>(i), l[i], l[(i + 1) % l.size()], {1, 1}));
+  for (std::size_t i = 0; i < l.size(); ++i)
+    in.walls.push_back(wall(static_cast<int>(i), l[i], l[(i + 1) % l.size()], {1, 1}));
   const RoomSegmentation seg = segment_rooms(in);
   ASSERT_EQ(seg.spaces.size(), 1u);
   const SegmentedSpace& s = seg.spaces[0];
@@ -282,7 +289,7 @@ TEST(RoomSegmentation, ADiagonalCorridorStopsAtTheFacadesItRunsInto) {
   const double yaw = 40.0 * M_PI / 180.0;
   const Vec2 u(std::cos(yaw), std::sin(yaw)), v(-u.y(), u.x());
   const double w = 2.0, x1 = 16.0;
-  const Vec2 a0 = Vec2(0, 0), b0 = a0 + x1 / u.x() * u;   // its south side, facade to facade
+  const Vec2 a0 = Vec2(0, 0), b0 = a0 + x1 / u.x() * u;          // its south side, facade to facade
   const Vec2 a1 = Vec2(0, w / u.x()), b1 = a1 + x1 / u.x() * u;  // its north side
   const Polygon2 corridor = {a0, b0, b1, a1};
   SegmentationInput in = level();
@@ -290,8 +297,8 @@ TEST(RoomSegmentation, ADiagonalCorridorStopsAtTheFacadesItRunsInto) {
   const Vec2 mid = 0.25 * (a0 + b0 + a1 + b1);
   in.walls.push_back(wall(0, a0, b0, mid));
   in.walls.push_back(wall(1, a1, b1, mid));
-  in.walls.push_back(wall(2, {0, -2}, {0, 4}, mid));        // the west facade
-  in.walls.push_back(wall(3, {x1, 10}, {x1, 18}, mid));     // the east facade
+  in.walls.push_back(wall(2, {0, -2}, {0, 4}, mid));     // the west facade
+  in.walls.push_back(wall(3, {x1, 10}, {x1, 18}, mid));  // the east facade
   const RoomSegmentation seg = segment_rooms(in);
   ASSERT_EQ(seg.spaces.size(), 1u);
   const SegmentedSpace& s = seg.spaces[0];
@@ -318,7 +325,8 @@ TEST(RoomSegmentation, ARingCorridorIsCutIntoItsLegs) {
       const Vec2 p(x, y);
       if (contains(inner, p)) continue;
       in.ground.push_back(p);
-      if (distance_to_outline(outer, p) >= kLambda && distance_to_outline(inner, p) >= kLambda) in.free_space.push_back(p);
+      if (distance_to_outline(outer, p) >= kLambda && distance_to_outline(inner, p) >= kLambda)
+        in.free_space.push_back(p);
     }
   }
   box_walls(0, 0, 14, 10, 0, &in);
@@ -378,7 +386,8 @@ TEST(RoomSegmentation, ACorridorThatWidensIsCutWhereItWidens) {
     SegmentationInput in = level();
     add_area(mirrored(c, m), &in);
     // A wall along its straight side only, shelves along the other: no wall's end closes the step.
-    in.walls.push_back(wall(0, Vec2(0, 0).cwiseProduct(m), Vec2(20, 0).cwiseProduct(m), Vec2(5, 0.8).cwiseProduct(m)));
+    in.walls.push_back(
+        wall(0, Vec2(0, 0).cwiseProduct(m), Vec2(20, 0).cwiseProduct(m), Vec2(5, 0.8).cwiseProduct(m)));
     const RoomSegmentation seg = segment_rooms(in);
     const auto at = [&](double x, double y) { return seg.space_at(Vec2(x, y).cwiseProduct(m)); };
     ASSERT_GE(at(5, 0.8), 0) << m.transpose();
@@ -412,8 +421,10 @@ TEST(RoomSegmentation, ABayWhoseMouthIsRaggedIsCutAlongTheGallerysSide) {
     SegmentationInput in = level();
     add_area(mirrored(c, m), &in);
     const Vec2 inside(10, 3);
-    for (const auto& [a, b] : std::vector<std::pair<Vec2, Vec2>>{{{0, 4}, {22, 4}}, {{0, 2}, {0, 4}}, {{22, 0}, {22, 4}}, {{18, 0}, {22, 0}}})
-      in.walls.push_back(wall(static_cast<int>(in.walls.size()), a.cwiseProduct(m), b.cwiseProduct(m), inside.cwiseProduct(m)));
+    for (const auto& [a, b] : std::vector<std::pair<Vec2, Vec2>>{
+             {{0, 4}, {22, 4}}, {{0, 2}, {0, 4}}, {{22, 0}, {22, 4}}, {{18, 0}, {22, 0}}})
+      in.walls.push_back(wall(static_cast<int>(in.walls.size()), a.cwiseProduct(m), b.cwiseProduct(m),
+                              inside.cwiseProduct(m)));
     const RoomSegmentation seg = segment_rooms(in);
     const auto at = [&](double x, double y) { return seg.space_at(Vec2(x, y).cwiseProduct(m)); };
     ASSERT_GE(at(10, 3), 0) << m.transpose();
@@ -452,8 +463,10 @@ TEST(RoomSegmentation, PillarsDoNotMakeAHallACorridor) {
   for (double x = 0.5 * kNode; x < 16.0; x += kNode) {
     for (double y = 0.5 * kNode; y < 12.0; y += kNode) {
       const Vec2 p(x, y);
-      double clear = std::min(distance_to_outline(hall, p), contains(island, p) ? 0.0 : distance_to_outline(island, p));
-      for (const Polygon2& q : pillars) clear = std::min(clear, contains(q, p) ? 0.0 : distance_to_outline(q, p));
+      double clear =
+          std::min(distance_to_outline(hall, p), contains(island, p) ? 0.0 : distance_to_outline(island, p));
+      for (const Polygon2& q : pillars)
+        clear = std::min(clear, contains(q, p) ? 0.0 : distance_to_outline(q, p));
       if (clear <= 0.0) continue;
       in.ground.push_back(p);
       if (clear >= kLambda) in.free_space.push_back(p);
@@ -600,8 +613,9 @@ TEST(SightMap, RaysThatGoBelowTheFloorMarkNoFloor) {
   std::vector<Eigen::Vector3d> returns;
   for (int k = 0; k < 40; ++k) {
     const double y = -1.0 + 0.05 * k;
-    returns.emplace_back(2.5, y, 0.0);    // the floor
-    returns.emplace_back(12.0, y, -3.0);  // the storey below, through the void (crossing the floor's height at x = 3)
+    returns.emplace_back(2.5, y, 0.0);  // the floor
+    returns.emplace_back(12.0, y,
+                         -3.0);  // the storey below, through the void (crossing the floor's height at x = 3)
   }
   sight.add_scan({0.0, 0.0, 1.0}, returns);
   const GridFrame f = GridFrame::around({-1, -1}, {7, 1}, 0.1, 0.0);
@@ -610,7 +624,7 @@ TEST(SightMap, RaysThatGoBelowTheFloorMarkNoFloor) {
   EXPECT_EQ(at(1.0, 0.0), 1);
   EXPECT_EQ(at(2.45, 0.0), 1);
   EXPECT_EQ(at(5.5, 0.0), 0);
-  EXPECT_EQ(at(-0.5, 0.9), 0); // never seen
+  EXPECT_EQ(at(-0.5, 0.9), 0);  // never seen
 }
 
 TEST(SightMap, ARayUnderTheFloorBeyondAVoidMarksNothingAboveIt) {
@@ -664,7 +678,8 @@ TEST(SightMap, AScanTakenBackLeavesWhatTheOthersSaw) {
   // second alone makes: the back-end moved the first one's keyframe and it is traced again.
   const auto scan = [](double y0, double dir) {
     std::vector<Eigen::Vector3d> returns;
-    for (int k = 0; k < 30; ++k) returns.emplace_back(dir * (1.0 + 0.1 * k), y0 + 0.02 * k, k % 5 == 0 ? 0.4 : 0.0);
+    for (int k = 0; k < 30; ++k)
+      returns.emplace_back(dir * (1.0 + 0.1 * k), y0 + 0.02 * k, k % 5 == 0 ? 0.4 : 0.0);
     return returns;
   };
   const Eigen::Vector3d s1(0.0, 0.0, 1.0), s2(0.0, 3.0, 1.0);
@@ -723,10 +738,10 @@ TEST(WallTopRays, PlanesRecordedTogetherGetWhatEachGetsAlone) {
   std::vector<Eigen::Vector3d> returns;
   for (int k = 0; k < 40; ++k) {
     const double y = -1.0 + 0.05 * k;
-    returns.emplace_back(3.0, y, 0.25);                 // the low block's face
-    returns.emplace_back(8.0, y * 8.0 / 3.0, 0.9);      // over it (at 0.65 m), to a wall
-    returns.emplace_back(y, 3.0, 0.5);                  // the taller one's face
-    returns.emplace_back(y * 8.0 / 3.0, 8.0, 3.0);      // over it (at 1.44 m), to the ceiling
+    returns.emplace_back(3.0, y, 0.25);             // the low block's face
+    returns.emplace_back(8.0, y * 8.0 / 3.0, 0.9);  // over it (at 0.65 m), to a wall
+    returns.emplace_back(y, 3.0, 0.5);              // the taller one's face
+    returns.emplace_back(y * 8.0 / 3.0, 8.0, 3.0);  // over it (at 1.44 m), to the ceiling
   }
   const freespace::WallTopRays::Wall low{1, {3.0, -0.9}, {3.0, 0.9}, 0.3};
   const freespace::WallTopRays::Wall tall{2, {-0.9, 3.0}, {0.9, 3.0}, 0.8};
@@ -785,7 +800,8 @@ TEST(RoomSegmentation, ConfigOutOfRangeIsRefused) {
   c = {};
   c.rect_fill = 1.5;
   EXPECT_THROW(c.validate(), std::invalid_argument);
-  EXPECT_THROW(freespace::SightMap(0.0, freespace::SightMapConfig{0.1, 0.2, 0.1, 12.0}), std::invalid_argument);
+  EXPECT_THROW(freespace::SightMap(0.0, freespace::SightMapConfig{0.1, 0.2, 0.1, 12.0}),
+               std::invalid_argument);
 }
 
 /// A 24 x 2.5 m corridor above a 24 x 6 m hall, the wall between them in two pieces along one
@@ -794,7 +810,7 @@ SegmentationInput corridor_over_hall(double opening) {
   SegmentationInput in = level();
   add_area(box(0, -6, 24, 2.5), &in);
   const double a = 12.0 - 0.5 * opening, b = 12.0 + 0.5 * opening;
-  in.walls = {wall(0, {0, -6}, {24, -6}, {12, -3}),  wall(1, {24, -6}, {24, 2.5}, {12, -3}),
+  in.walls = {wall(0, {0, -6}, {24, -6}, {12, -3}),   wall(1, {24, -6}, {24, 2.5}, {12, -3}),
               wall(2, {24, 2.5}, {0, 2.5}, {12, -3}), wall(3, {0, 2.5}, {0, -6}, {12, -3}),
               wall(4, {0, 0}, {a, 0}, {6, 1}),        wall(5, {b, 0}, {24, 0}, {18, 1})};
   return in;
@@ -810,7 +826,6 @@ TEST(RoomSegmentation, AWideOpeningInALongWallIsClosedAlongIt) {
   ASSERT_GE(open.space_at({12, 1.2}), 0);
   EXPECT_EQ(open.space_at({12, 1.2}), open.space_at({12, -3}));
 }
-
 
 }  // namespace
 }  // namespace tsgraphs::rooms

@@ -19,7 +19,9 @@ using namespace tsgraphs::scene;
 
 namespace {
 
-std::string scene_path(const std::string& name) { return std::string(TSGRAPHS_SCENES_DIR) + "/" + name + ".yaml"; }
+std::string scene_path(const std::string& name) {
+  return std::string(TSGRAPHS_SCENES_DIR) + "/" + name + ".yaml";
+}
 
 /// Grid points (cell centres, about `step` apart) of the room's bounding box that lie inside it.
 std::vector<Vec2> samples_inside(const Polygon2& poly, double step) {
@@ -103,8 +105,8 @@ TEST_P(BuiltinScene, RoomsLieOnTheirSlabOutsideVoids) {
     for (const Vec2& v : r.polygon) {
       // A vertex on the slab's outline counts: test it 1 cm in toward the room's centre.
       const Vec2 p = v + 0.01 * (c - v).normalized();
-      EXPECT_TRUE(contains(level.slab, p)) << r.name << ": vertex [" << v.x() << ", " << v.y()
-                                           << "] is off the slab of " << level.name;
+      EXPECT_TRUE(contains(level.slab, p))
+          << r.name << ": vertex [" << v.x() << ", " << v.y() << "] is off the slab of " << level.name;
     }
     int in_void = 0;
     const std::vector<Vec2> samples = samples_inside(r.polygon, 0.1);
@@ -121,9 +123,10 @@ TEST_P(BuiltinScene, RoomsDoNotOverlap) {
     ASSERT_FALSE(samples.empty()) << a.name;
     for (const Room& b : scene_.rooms) {
       if (&a == &b || a.level != b.level) continue;
-      const auto shared = std::count_if(samples.begin(), samples.end(), [&](const Vec2& p) { return contains(b.polygon, p); });
-      EXPECT_LE(shared, 0.01 * samples.size()) << a.name << " overlaps " << b.name << " (" << shared << " of "
-                                                << samples.size() << " samples)";
+      const auto shared = std::count_if(samples.begin(), samples.end(),
+                                        [&](const Vec2& p) { return contains(b.polygon, p); });
+      EXPECT_LE(shared, 0.01 * samples.size())
+          << a.name << " overlaps " << b.name << " (" << shared << " of " << samples.size() << " samples)";
     }
   }
 }
@@ -149,7 +152,8 @@ TEST_P(BuiltinScene, PathVisitsRooms) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, BuiltinScene,
                          ::testing::Values(Expectation{"office", 1, 3}, Expectation{"atrium", 2, 3},
-                                           Expectation{"long_corridor", 1, 3}, Expectation{"two_storeys", 2, 4}),
+                                           Expectation{"long_corridor", 1, 3},
+                                           Expectation{"two_storeys", 2, 4}),
                          [](const ::testing::TestParamInfo<Expectation>& info) { return info.param.name; });
 
 TEST(BuiltinScenes, AtriumHasAVoidRailingsOfBothStylesAndAWalkedRing) {

@@ -40,8 +40,9 @@ FloorPlan two_rooms_and_a_corridor() {
 
 int walls_between(const Scene& s, const Vec2& a, const Vec2& b) {
   int n = 0;
-  for (const Wall& w : s.walls) n += ((w.from - a).norm() < 1e-9 && (w.to - b).norm() < 1e-9) ||
-                                     ((w.from - b).norm() < 1e-9 && (w.to - a).norm() < 1e-9);
+  for (const Wall& w : s.walls)
+    n += ((w.from - a).norm() < 1e-9 && (w.to - b).norm() < 1e-9) ||
+         ((w.from - b).norm() < 1e-9 && (w.to - a).norm() < 1e-9);
   return n;
 }
 
@@ -61,8 +62,11 @@ TEST(FloorPlan, WallsOnEveryBoundaryDoorsWhereWantedRoomsToTheWallFaces) {
   int openings = 0;
   for (const Wall& w : s.walls) {
     openings += static_cast<int>(w.openings.size());
-    const auto on_facade = [](const Vec2& p) { return p.x() == 0 || p.x() == 10 || p.y() == 0 || p.y() == 7; };
-    const bool facade = on_facade(w.from) && on_facade(w.to) && (w.from.x() == w.to.x() ? w.from.x() != 4 : w.from.y() != 5);
+    const auto on_facade = [](const Vec2& p) {
+      return p.x() == 0 || p.x() == 10 || p.y() == 0 || p.y() == 7;
+    };
+    const bool facade =
+        on_facade(w.from) && on_facade(w.to) && (w.from.x() == w.to.x() ? w.from.x() != 4 : w.from.y() != 5);
     EXPECT_DOUBLE_EQ(w.thickness, facade ? 0.2 : 0.1);
   }
   EXPECT_EQ(openings, 2);
@@ -101,7 +105,8 @@ TEST(FloorPlan, OpenJointsHaveNoWallVoidsGetRailings) {
   ASSERT_EQ(s.levels[0].voids.size(), 1u);
   EXPECT_NEAR(area(s.levels[0].voids[0]), 24.0, 1e-9);
   ASSERT_EQ(s.rooms.size(), 2u);  // the void is no room
-  // corridor_a: facades on the south (0.125) and west, the railing on the north (0.02), the joint (0) on the east.
+  // corridor_a: facades on the south (0.125) and west, the railing on the north (0.02), the joint (0) on the
+  // east.
   EXPECT_NEAR(area(s.rooms[0].polygon), (6 - 0.125) * (2 - 0.125 - 0.02), 1e-9);
 }
 
@@ -124,7 +129,8 @@ TEST(FloorPlan, ConnectSpacesJoinsEveryGroupAndDropsDoorsThatCannotBe) {
   connect_spaces(&p, rng);
   ASSERT_EQ(p.doors.size(), 2u);
   EXPECT_EQ(p.doors[0].a, front);
-  EXPECT_TRUE((p.doors[1].a == back && p.doors[1].b == front) || (p.doors[1].a == front && p.doors[1].b == back));
+  EXPECT_TRUE((p.doors[1].a == back && p.doors[1].b == front) ||
+              (p.doors[1].a == front && p.doors[1].b == back));
 }
 
 TEST(FloorPlan, StackedOutlinesMakeLAndTRooms) {
@@ -149,5 +155,6 @@ TEST(FloorPlan, InsetPolygonMovesEachEdgeByItsOffset) {
   EXPECT_NEAR(in[0].y(), 0.1, 1e-12);
   // A non-convex L keeps its shape.
   const Polygon2 l = stacked_outline(0, 4, 0, 3, 0, 6, 5);
-  EXPECT_NEAR(area(inset_polygon(l, std::vector<double>(l.size(), 0.1))), area(l) - 0.1 * 22 + 0.01 * 4, 1e-9);
+  EXPECT_NEAR(area(inset_polygon(l, std::vector<double>(l.size(), 0.1))), area(l) - 0.1 * 22 + 0.01 * 4,
+              1e-9);
 }

@@ -55,7 +55,8 @@ void check(const GeneratedBuilding& b) {
     const Vec2 xy = p.translation().head<2>();
     const double floor = p.translation().z() - s.sensor.mount_height;
     for (std::size_t i = 0; i < s.rooms.size(); ++i) {
-      if (std::abs(s.levels[s.rooms[i].level].elevation - floor) < 0.05 && contains(s.rooms[i].polygon, xy)) entered[i] = true;
+      if (std::abs(s.levels[s.rooms[i].level].elevation - floor) < 0.05 && contains(s.rooms[i].polygon, xy))
+        entered[i] = true;
     }
   }
   for (std::size_t i = 0; i < s.rooms.size(); ++i) EXPECT_TRUE(entered[i]) << "room " << s.rooms[i].name;
@@ -67,11 +68,13 @@ void check(const GeneratedBuilding& b) {
     EXPECT_FALSE(find_self_intersection(a.polygon).has_value()) << a.name;
     for (std::size_t j = i + 1; j < s.rooms.size(); ++j) {
       if (s.rooms[j].level == a.level)
-        EXPECT_LT(intersection_area(a.polygon, s.rooms[j].polygon), 1e-4) << a.name << " and " << s.rooms[j].name;
+        EXPECT_LT(intersection_area(a.polygon, s.rooms[j].polygon), 1e-4)
+            << a.name << " and " << s.rooms[j].name;
     }
     const Level& l = s.levels[a.level];
     EXPECT_NEAR(intersection_area(a.polygon, l.slab), area(a.polygon), 1e-4) << a.name << " leaves the slab";
-    for (const Polygon2& v : l.voids) EXPECT_LT(intersection_area(a.polygon, v), 1e-4) << a.name << " over a void";
+    for (const Polygon2& v : l.voids)
+      EXPECT_LT(intersection_area(a.polygon, v), 1e-4) << a.name << " over a void";
   }
 }
 
@@ -117,8 +120,9 @@ TEST(Generator, PeopleWalkTheSurveyPathAndChangeNothingElse) {
       EXPECT_GE(p.speed, 0.8);
       EXPECT_LE(p.speed, 1.5);
       for (const Vec2& xy : p.path) {
-        const bool on_path = std::any_of(plain.scene.trajectory.waypoints.begin(), plain.scene.trajectory.waypoints.end(),
-                                         [&](const Waypoint& w) { return w.level == p.level && (w.xy - xy).norm() < 1e-9; });
+        const bool on_path =
+            std::any_of(plain.scene.trajectory.waypoints.begin(), plain.scene.trajectory.waypoints.end(),
+                        [&](const Waypoint& w) { return w.level == p.level && (w.xy - xy).norm() < 1e-9; });
         EXPECT_TRUE(on_path) << style << ": [" << xy.x() << ", " << xy.y() << "]";
         double z = 0.0;
         ASSERT_TRUE(walkable_height(with.scene, p.level, xy, &z));
@@ -202,7 +206,8 @@ TEST(Generator, EachStyleHasWhatMakesItThatStyle) {
   EXPECT_TRUE(ramp);
   // Three storeys are the rarer draw (a quarter of multi_storey buildings): look further.
   for (int seed = 6; seed <= 30 && !three_levels; ++seed)
-    three_levels = generate_building("multi_storey", static_cast<std::uint64_t>(seed)).scene.levels.size() == 3;
+    three_levels =
+        generate_building("multi_storey", static_cast<std::uint64_t>(seed)).scene.levels.size() == 3;
   EXPECT_TRUE(three_levels);
 }
 

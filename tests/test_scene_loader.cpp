@@ -105,19 +105,21 @@ TEST(SceneLoader, PresetsCarryTheDatasheetBeamLayouts) {
 }
 
 TEST(SceneLoader, PresetFieldsCanBeOverridden) {
-  const std::string text = replace(kRoom, "levels:", "sensor:\n  preset: vlp-16\n  max_range: 30\n  mount_height: 1.2\nlevels:");
+  const std::string text =
+      replace(kRoom, "levels:", "sensor:\n  preset: vlp-16\n  max_range: 30\n  mount_height: 1.2\nlevels:");
   const Scene s = parse_scene(text, "test.yaml", ".");
   EXPECT_EQ(s.sensor.preset, "vlp-16");
   EXPECT_EQ(s.sensor.channels, 16);
   EXPECT_DOUBLE_EQ(s.sensor.max_range, 30.0);
   EXPECT_DOUBLE_EQ(s.sensor.mount_height, 1.2);
   // Overriding the field of view spreads the beams evenly over it.
-  const Scene s2 = parse_scene(replace(text, "max_range: 30", "vertical_fov_deg: [-10, 10]"), "test.yaml", ".");
+  const Scene s2 =
+      parse_scene(replace(text, "max_range: 30", "vertical_fov_deg: [-10, 10]"), "test.yaml", ".");
   EXPECT_DOUBLE_EQ(s2.sensor.vertical_angles_deg.front(), 10.0);
   EXPECT_DOUBLE_EQ(s2.sensor.vertical_angles_deg.back(), -10.0);
   // An explicit beam table (for example from a sensor's calibration) is sorted top to bottom.
-  const Scene s3 = parse_scene(replace(kRoom, "levels:", "sensor:\n  vertical_angles_deg: [-5, 3.5, 1]\nlevels:"),
-                               "test.yaml", ".");
+  const Scene s3 = parse_scene(
+      replace(kRoom, "levels:", "sensor:\n  vertical_angles_deg: [-5, 3.5, 1]\nlevels:"), "test.yaml", ".");
   EXPECT_EQ(s3.sensor.channels, 3);
   EXPECT_THAT(s3.sensor.vertical_angles_deg, ::testing::ElementsAre(3.5, 1.0, -5.0));
 }
@@ -151,14 +153,16 @@ TEST(SceneLoader, SelfIntersectingPolygon) {
   const std::string msg = error_of(text);
   EXPECT_THAT(msg, HasSubstr(at_line(text, "slab:")));
   EXPECT_THAT(msg, HasSubstr("levels[0].slab: self-intersecting polygon"));
-  const std::string voids = replace(kRoom, "    slab: [[0,0],[10,0],[10,8],[0,8]]\n",
-                                    "    slab: [[0,0],[10,0],[10,8],[0,8]]\n    voids:\n      - [[4,4],[6,6],[6,4],[4,6]]\n");
+  const std::string voids =
+      replace(kRoom, "    slab: [[0,0],[10,0],[10,8],[0,8]]\n",
+              "    slab: [[0,0],[10,0],[10,8],[0,8]]\n    voids:\n      - [[4,4],[6,6],[6,4],[4,6]]\n");
   EXPECT_THAT(error_of(voids), HasSubstr(at_line(voids, "[[4,4]")));
   EXPECT_THAT(error_of(voids), HasSubstr("levels[0].voids[0]: self-intersecting"));
 }
 
 TEST(SceneLoader, OpeningWiderThanWall) {
-  const std::string text = replace(kRoom, "{at: 5.0, width: 1.0, height: 2.1}", "{at: 5.0, width: 12.0, height: 2.1}");
+  const std::string text =
+      replace(kRoom, "{at: 5.0, width: 1.0, height: 2.1}", "{at: 5.0, width: 12.0, height: 2.1}");
   const std::string msg = error_of(text);
   EXPECT_THAT(msg, HasSubstr(at_line(text, "width: 12.0")));
   EXPECT_THAT(msg, HasSubstr("walls[0].openings[0].width"));
@@ -175,9 +179,11 @@ TEST(SceneLoader, WaypointInsideWall) {
   const std::string msg = error_of(text);
   EXPECT_THAT(msg, HasSubstr(at_line(text, "waypoints:")));
   EXPECT_THAT(msg, HasSubstr("trajectory.waypoints[1]"));
-  EXPECT_THAT(msg, HasSubstr("inside the wall walls[0] (line " + std::to_string(line_of(text, "- level: L0")) + ")"));
+  EXPECT_THAT(
+      msg, HasSubstr("inside the wall walls[0] (line " + std::to_string(line_of(text, "- level: L0")) + ")"));
   // In the door opening (at 5.0, 1.0 wide) the same offset is allowed.
-  EXPECT_NO_THROW(parse_scene(replace(kRoom, "[[2, 2], [8, 2], [8, 6]]", "[[2, 2], [5.1, 0.05], [8, 6]]"), "t.yaml", "."));
+  EXPECT_NO_THROW(parse_scene(replace(kRoom, "[[2, 2], [8, 2], [8, 6]]", "[[2, 2], [5.1, 0.05], [8, 6]]"),
+                              "t.yaml", "."));
 }
 
 TEST(SceneLoader, WaypointOutsideEverySlab) {
@@ -185,9 +191,10 @@ TEST(SceneLoader, WaypointOutsideEverySlab) {
   const std::string msg = error_of(text);
   EXPECT_THAT(msg, HasSubstr("trajectory.waypoints[1]"));
   EXPECT_THAT(msg, HasSubstr("outside every slab of level L0"));
-  const std::string in_void = replace(replace(kRoom, "    slab: [[0,0],[10,0],[10,8],[0,8]]\n",
-                                              "    slab: [[0,0],[10,0],[10,8],[0,8]]\n    voids: [[[7,1],[9,1],[9,3],[7,3]]]\n"),
-                                      "[[2, 2], [8, 2], [8, 6]]", "[[2, 2], [4, 2], [8, 6],\n    [8, 2]]");
+  const std::string in_void =
+      replace(replace(kRoom, "    slab: [[0,0],[10,0],[10,8],[0,8]]\n",
+                      "    slab: [[0,0],[10,0],[10,8],[0,8]]\n    voids: [[[7,1],[9,1],[9,3],[7,3]]]\n"),
+              "[[2, 2], [8, 2], [8, 6]]", "[[2, 2], [4, 2], [8, 6],\n    [8, 2]]");
   const std::string msg2 = error_of(in_void);
   EXPECT_THAT(msg2, HasSubstr("test.yaml:" + std::to_string(line_of(in_void, "[8, 2]]")) + ":"));
   EXPECT_THAT(msg2, HasSubstr("trajectory.waypoints[3]"));
@@ -211,11 +218,16 @@ TEST(SceneLoader, UnknownPreset) {
 }
 
 TEST(SceneLoader, OutOfRangeValuesAndTypes) {
-  EXPECT_THAT(error_of(replace(kRoom, "levels:", "sensor: {dropout: 1.5}\nlevels:")), HasSubstr("sensor.dropout"));
-  EXPECT_THAT(error_of(replace(kRoom, "levels:", "sensor: {rate_hz: .nan}\nlevels:")), HasSubstr("not a finite number"));
-  EXPECT_THAT(error_of(replace(kRoom, "levels:", "sensor: {channels: many}\nlevels:")), HasSubstr("expected an integer"));
-  EXPECT_THAT(error_of(replace(kRoom, "waypoints:", "speed: 0\n  waypoints:")), HasSubstr("trajectory.speed: must be > 0"));
-  EXPECT_THAT(error_of(replace(kRoom, "[[2, 2], [8, 2], [8, 6]]", "[[2, 2]]")), HasSubstr("at least two waypoints"));
+  EXPECT_THAT(error_of(replace(kRoom, "levels:", "sensor: {dropout: 1.5}\nlevels:")),
+              HasSubstr("sensor.dropout"));
+  EXPECT_THAT(error_of(replace(kRoom, "levels:", "sensor: {rate_hz: .nan}\nlevels:")),
+              HasSubstr("not a finite number"));
+  EXPECT_THAT(error_of(replace(kRoom, "levels:", "sensor: {channels: many}\nlevels:")),
+              HasSubstr("expected an integer"));
+  EXPECT_THAT(error_of(replace(kRoom, "waypoints:", "speed: 0\n  waypoints:")),
+              HasSubstr("trajectory.speed: must be > 0"));
+  EXPECT_THAT(error_of(replace(kRoom, "[[2, 2], [8, 2], [8, 6]]", "[[2, 2]]")),
+              HasSubstr("at least two waypoints"));
   EXPECT_THAT(error_of("levels: [\n"), HasSubstr("YAML syntax error"));
 }
 
@@ -229,51 +241,61 @@ TEST(SceneLoader, ARecordingThatWouldFillTheDiskIsRefused) {
               HasSubstr("trajectory.laps: must be in [1, 10000]"));
   // Each value within its bounds, but together: 10,000 laps of a 16 m path at 1 m/s, 10 Hz.
   const std::string text = replace(kRoom, "waypoints:", "laps: 10000\n  waypoints:");
-  EXPECT_THAT(error_of(text), HasSubstr("test.yaml:" + std::to_string(line_of(text, "laps:")) + ": trajectory.laps:"));
+  EXPECT_THAT(error_of(text),
+              HasSubstr("test.yaml:" + std::to_string(line_of(text, "laps:")) + ": trajectory.laps:"));
   EXPECT_THAT(error_of(text), HasSubstr("more than 1000000 (speed, laps)"));
-  EXPECT_THAT(error_of(replace(kRoom, "waypoints:", "speed: 1e-9\n  waypoints:")), HasSubstr("more than 1000000"));
+  EXPECT_THAT(error_of(replace(kRoom, "waypoints:", "speed: 1e-9\n  waypoints:")),
+              HasSubstr("more than 1000000"));
   EXPECT_NO_THROW(parse_scene(replace(kRoom, "waypoints:", "laps: 100\n  waypoints:"), "test.yaml", "."));
 }
 
 TEST(SceneLoader, ASceneBeyondTheBoundsOfABuildingIsRefused) {
   // A slab vertex at 1e12 m made a 4e13-pixel drawing.
   const std::string far = replace(kRoom, "[10,0],[10,8]", "[1e12,0],[1e12,8]");
-  EXPECT_THAT(error_of(far), HasSubstr("test.yaml:" + std::to_string(line_of(far, "slab:")) + ": levels[0].slab:"));
+  EXPECT_THAT(error_of(far),
+              HasSubstr("test.yaml:" + std::to_string(line_of(far, "slab:")) + ": levels[0].slab:"));
   EXPECT_THAT(error_of(far), HasSubstr("is not a coordinate within 1e7 m"));
   EXPECT_THAT(error_of(replace(kRoom, "[10,0],[10,8]", "[20000,0],[20000,8]")), HasSubstr("more than 10 km"));
-  EXPECT_THAT(error_of(replace(kRoom, "to: [10, 0]", "to: [50000, 0]")), HasSubstr("walls[0].to: the scene spans"));
+  EXPECT_THAT(error_of(replace(kRoom, "to: [10, 0]", "to: [50000, 0]")),
+              HasSubstr("walls[0].to: the scene spans"));
 }
 
 TEST(SceneLoader, ValuesThatEmptyEveryScanOrWreckTheOdometryAreRefused) {
   // Each of these loaded and simulated: scans of 0 points, or an odometry of 1e300 m.
   const std::string high = replace(kRoom, "name: L0", "name: L0\n    elevation: 1e9");
-  EXPECT_THAT(error_of(high), HasSubstr(at_line(high, "elevation:") + " levels[0].elevation: must lie in [-10000, 10000]"));
+  EXPECT_THAT(error_of(high),
+              HasSubstr(at_line(high, "elevation:") + " levels[0].elevation: must lie in [-10000, 10000]"));
   EXPECT_THAT(error_of(replace(kRoom, "levels:", "sensor: {range_noise_std: 1e300}\nlevels:")),
               HasSubstr("sensor.range_noise_std: must lie in [0, 1]"));
   EXPECT_THAT(error_of(replace(kRoom, "levels:", "odometry: {trans_noise_per_m: 1e300}\nlevels:")),
               HasSubstr("odometry.trans_noise_per_m: must lie in [0, 1]"));
   const std::string mount = replace(kRoom, "levels:", "sensor: {mount_height: 10}\nlevels:");
-  EXPECT_THAT(error_of(mount), HasSubstr(at_line(mount, "mount_height") +
-                                         " sensor.mount_height: 10 m is not below the ceiling of level 'L0' (3 m)"));
+  EXPECT_THAT(error_of(mount),
+              HasSubstr(at_line(mount, "mount_height") +
+                        " sensor.mount_height: 10 m is not below the ceiling of level 'L0' (3 m)"));
   // A box or a railing 2,000 km long (a bars railing reached 16.7 GB in 90 s).
-  const std::string railing =
-      replace(kRoom, "trajectory:", "railings:\n  - {level: L0, from: [1, 1], to: [2e6, 1], style: bars}\ntrajectory:");
+  const std::string railing = replace(
+      kRoom,
+      "trajectory:", "railings:\n  - {level: L0, from: [1, 1], to: [2e6, 1], style: bars}\ntrajectory:");
   EXPECT_THAT(error_of(railing), HasSubstr("railings[0].to: the scene spans"));
-  const std::string box = replace(kRoom, "trajectory:", "boxes:\n  - {level: L0, min: [1, 1, 0], max: [1e300, 2, 1]}\ntrajectory:");
+  const std::string box = replace(
+      kRoom, "trajectory:", "boxes:\n  - {level: L0, min: [1, 1, 0], max: [1e300, 2, 1]}\ntrajectory:");
   EXPECT_THAT(error_of(box), HasSubstr("boxes[0].max:"));
   EXPECT_THAT(error_of(box), HasSubstr("is not a coordinate within 1e7 m"));
   // A voxel map moved 1e300 m.
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("tsgraphs_scene_offsets_" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("tsgraphs_scene_offsets_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   {
     std::ofstream pcd(dir / "w.pcd");
-    pcd << "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\n"
+    pcd << "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nVIEWPOINT 0 0 "
+           "0 1 0 0 0\n"
            "POINTS 1\nDATA ascii\n1 1 1\n";
   }
   for (const std::string offset : {"[1e300, 0, 0]", "[0, 0, 1e300]"}) {
-    const std::string voxels =
-        replace(kRoom, "trajectory:", "voxel_maps:\n  - {file: w.pcd, voxel_size: 0.1, level: L0, offset: " + offset +
-                                          "}\ntrajectory:");
+    const std::string voxels = replace(
+        kRoom, "trajectory:",
+        "voxel_maps:\n  - {file: w.pcd, voxel_size: 0.1, level: L0, offset: " + offset + "}\ntrajectory:");
     try {
       parse_scene(voxels, "test.yaml", dir.string());
       ADD_FAILURE() << offset;
@@ -321,23 +343,30 @@ TEST(SceneLoader, WarnsAboutPathsThroughWallsBoxesAndVoids) {
   EXPECT_TRUE(parse_scene(kRoom, "test.yaml", ".").warnings.empty());
   // A second wall across the room, x = 5: the legs out (y = 2) and back (the closing leg)
   // both cross it.
-  const std::string wall = replace(kRoom, "trajectory:", "  - {level: L0, from: [5, 1], to: [5, 7]}\ntrajectory:");
+  const std::string wall =
+      replace(kRoom, "trajectory:", "  - {level: L0, from: [5, 1], to: [5, 7]}\ntrajectory:");
   const Scene s1 = parse_scene(wall, "test.yaml", ".");
   ASSERT_EQ(s1.warnings.size(), 2u);
   EXPECT_THAT(s1.warnings[0], HasSubstr("trajectory.waypoints[0]-[1]: the path crosses wall walls[1]"));
   EXPECT_THAT(s1.warnings[1], HasSubstr("trajectory.waypoints[2]-[0]: the path crosses wall walls[1]"));
   EXPECT_THAT(s1.warnings[0], HasSubstr("test.yaml:" + std::to_string(line_of(wall, "waypoints:")) + ":"));
   // Through a door it is fine.
-  const std::string door = replace(wall, "to: [5, 7]}", "to: [5, 7], openings: [{at: 1.0, width: 1.0}, {at: 3.0, width: 1.2}]}");
+  const std::string door =
+      replace(wall, "to: [5, 7]}", "to: [5, 7], openings: [{at: 1.0, width: 1.0}, {at: 3.0, width: 1.2}]}");
   EXPECT_TRUE(parse_scene(door, "test.yaml", ".").warnings.empty());
-  const std::string box = replace(kRoom, "trajectory:", "boxes: [{level: L0, min: [4, 1.5, 0], max: [4.5, 2.5, 1]}]\ntrajectory:");
+  const std::string box = replace(
+      kRoom, "trajectory:", "boxes: [{level: L0, min: [4, 1.5, 0], max: [4.5, 2.5, 1]}]\ntrajectory:");
   const Scene s2 = parse_scene(box, "test.yaml", ".");
   ASSERT_EQ(s2.warnings.size(), 1u);
   EXPECT_THAT(s2.warnings[0], HasSubstr("crosses box boxes[0]"));
   // A hanging box (a shelf above head height) is not in the way.
-  EXPECT_TRUE(parse_scene(replace(box, "[4, 1.5, 0], max: [4.5, 2.5, 1]", "[4, 1.5, 2.2], max: [4.5, 2.5, 2.8]"), "test.yaml", ".").warnings.empty());
-  const std::string in_void = replace(kRoom, "    slab: [[0,0],[10,0],[10,8],[0,8]]\n",
-                                      "    slab: [[0,0],[10,0],[10,8],[0,8]]\n    voids: [[[7.5,3],[8.5,3],[8.5,4],[7.5,4]]]\n");
+  EXPECT_TRUE(
+      parse_scene(replace(box, "[4, 1.5, 0], max: [4.5, 2.5, 1]", "[4, 1.5, 2.2], max: [4.5, 2.5, 2.8]"),
+                  "test.yaml", ".")
+          .warnings.empty());
+  const std::string in_void =
+      replace(kRoom, "    slab: [[0,0],[10,0],[10,8],[0,8]]\n",
+              "    slab: [[0,0],[10,0],[10,8],[0,8]]\n    voids: [[[7.5,3],[8.5,3],[8.5,4],[7.5,4]]]\n");
   const Scene s3 = parse_scene(in_void, "test.yaml", ".");
   ASSERT_EQ(s3.warnings.size(), 1u);
   EXPECT_THAT(s3.warnings[0], HasSubstr("trajectory.waypoints[1]-[2]: the path crosses a void of level L0"));
@@ -351,7 +380,8 @@ trajectory: {waypoints: [[1, 1], [3, 1]]}
 )";
   const Scene s = parse_scene(text, "stack.yaml", ".");
   ASSERT_EQ(s.warnings.size(), 1u);
-  EXPECT_THAT(s.warnings[0], HasSubstr("stack.yaml:3: levels: the ceiling of G (z 2.7) is above the floor of U (z 2)"));
+  EXPECT_THAT(s.warnings[0],
+              HasSubstr("stack.yaml:3: levels: the ceiling of G (z 2.7) is above the floor of U (z 2)"));
   // Side by side (no overlap), the same heights are fine.
   std::string apart = text;
   apart.replace(apart.find("[[5,5],[15,5],[15,15],[5,15]]"), 29, "[[20,0],[30,0],[30,10],[20,10]]");
@@ -379,7 +409,8 @@ TEST(SceneLoader, RejectsScansTooLargeForMemory) {
 }
 
 TEST(SceneLoader, GlassRailingsHaveATransmission) {
-  const std::string railing = "railings:\n  - {level: L0, from: [1, 5], to: [9, 5], style: glass, transmission: 0.6}\n";
+  const std::string railing =
+      "railings:\n  - {level: L0, from: [1, 5], to: [9, 5], style: glass, transmission: 0.6}\n";
   const Scene s = parse_scene(replace(kRoom, "trajectory:", railing + "trajectory:"), "test.yaml", ".");
   ASSERT_EQ(s.railings.size(), 1u);
   EXPECT_EQ(s.railings[0].style, RailingStyle::kGlass);

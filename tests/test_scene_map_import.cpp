@@ -228,7 +228,8 @@ TEST_F(MapImportTest, WallsAreTheSkinOfTheOccupiedCellsFloorToCeiling) {
   EXPECT_LT(skin, occupied * 3 / 4);  // the thick walls' insides get nothing
   EXPECT_EQ(imported_.voxels.size(), skin * static_cast<std::size_t>(test::kWallHeightCells));
   for (const Eigen::Vector3f& v : imported_.voxels) {
-    const int c = static_cast<int>(std::floor(v.x() / kMapRes)), r = static_cast<int>(std::floor(v.y() / kMapRes));
+    const int c = static_cast<int>(std::floor(v.x() / kMapRes)),
+              r = static_cast<int>(std::floor(v.y() / kMapRes));
     ASSERT_TRUE(skin_cells.count({c, r})) << v.transpose();
     ASSERT_GT(v.z(), 0.0f);
     ASSERT_LT(v.z(), 2.6f);
@@ -261,17 +262,19 @@ TEST_F(MapImportTest, PathKeepsTheClearanceAndEntersEveryReachableRoom) {
       s, [&](const Vec2& xy, double, int) { return grid.clearance_at(map_.to_map(xy)) - 0.71 * kMapRes; });
   EXPECT_GE(raster.min_clearance, config_.clearance - 1e-9);
   // The exact distance to the nearest occupied or unknown cell's square, within the raster's error.
-  const PathClearance exact =
-      path_clearance(s, [&](const Vec2& xy, double, int) { return exact_clearance(map_, map_.to_map(xy), 1.0); });
+  const PathClearance exact = path_clearance(
+      s, [&](const Vec2& xy, double, int) { return exact_clearance(map_, map_.to_map(xy), 1.0); });
   EXPECT_GE(exact.min_clearance, config_.clearance - 0.71 * kMapRes);
   // Every room but the closet is entered; the closet is named in a warning.
   const Trajectory t(s);
   std::vector<bool> entered(s.rooms.size(), false);
   for (double time = 0.0; time <= t.duration(); time += 0.05) {
     const Vec2 xy = t.body_pose(time).translation().head<2>();
-    for (std::size_t i = 0; i < s.rooms.size(); ++i) entered[i] = entered[i] || contains(s.rooms[i].polygon, xy);
+    for (std::size_t i = 0; i < s.rooms.size(); ++i)
+      entered[i] = entered[i] || contains(s.rooms[i].polygon, xy);
   }
-  for (std::size_t i = 0; i < s.rooms.size(); ++i) EXPECT_EQ(entered[i], drawn_.rooms[i].reachable) << s.rooms[i].name;
+  for (std::size_t i = 0; i < s.rooms.size(); ++i)
+    EXPECT_EQ(entered[i], drawn_.rooms[i].reachable) << s.rooms[i].name;
   ASSERT_EQ(imported_.warnings.size(), 1u) << imported_.warnings.back();
   EXPECT_NE(imported_.warnings[0].find("room 'room_5'"), std::string::npos) << imported_.warnings[0];
   EXPECT_NE(imported_.warnings[0].find("left out"), std::string::npos);
@@ -292,7 +295,8 @@ TEST_F(MapImportTest, UnknownSpecklesInTheFreeSpaceDoNotWallRoomsOff) {
       if ((x >> 33) % 50 != 0 || map_.cells[i] != MapCell::kFree) continue;
       bool isolated = true;  // a speck, not part of a larger unknown patch
       for (int dr = -1; dr <= 1; ++dr)
-        for (int dc = -1; dc <= 1; ++dc) isolated = isolated && noisy.cells[i + dr * noisy.cols + dc] != MapCell::kUnknown;
+        for (int dc = -1; dc <= 1; ++dc)
+          isolated = isolated && noisy.cells[i + dr * noisy.cols + dc] != MapCell::kUnknown;
       if (!isolated) continue;
       noisy.cells[i] = MapCell::kUnknown;
       ++specks;
@@ -306,9 +310,11 @@ TEST_F(MapImportTest, UnknownSpecklesInTheFreeSpaceDoNotWallRoomsOff) {
   std::vector<bool> entered(im.scene.rooms.size(), false);
   for (double time = 0.0; time <= t.duration(); time += 0.05) {
     const Vec2 xy = t.body_pose(time).translation().head<2>();
-    for (std::size_t i = 0; i < im.scene.rooms.size(); ++i) entered[i] = entered[i] || contains(im.scene.rooms[i].polygon, xy);
+    for (std::size_t i = 0; i < im.scene.rooms.size(); ++i)
+      entered[i] = entered[i] || contains(im.scene.rooms[i].polygon, xy);
   }
-  for (std::size_t i = 0; i < im.scene.rooms.size(); ++i) EXPECT_EQ(entered[i], drawn_.rooms[i].reachable) << i;
+  for (std::size_t i = 0; i < im.scene.rooms.size(); ++i)
+    EXPECT_EQ(entered[i], drawn_.rooms[i].reachable) << i;
 }
 
 TEST_F(MapImportTest, WrittenSceneLoadsWithoutWarningsAndTheSimulatorSeesTheWalls) {
@@ -333,11 +339,12 @@ TEST_F(MapImportTest, WrittenSceneLoadsWithoutWarningsAndTheSimulatorSeesTheWall
       const Eigen::Vector3d w = pose * scan.points[i].cast<double>();
       const Vec2 m = map_.to_map(w.head<2>());
       bool near_occupied = false;
-      const int c = static_cast<int>(std::floor(m.x() / kMapRes)), r = static_cast<int>(std::floor(m.y() / kMapRes));
+      const int c = static_cast<int>(std::floor(m.x() / kMapRes)),
+                r = static_cast<int>(std::floor(m.y() / kMapRes));
       for (int dr = -2; dr <= 2 && !near_occupied; ++dr)
         for (int dc = -2; dc <= 2 && !near_occupied; ++dc)
-          near_occupied =
-              map_.at(std::clamp(c + dc, 0, map_.cols - 1), std::clamp(r + dr, 0, map_.rows - 1)) == MapCell::kOccupied;
+          near_occupied = map_.at(std::clamp(c + dc, 0, map_.cols - 1),
+                                  std::clamp(r + dr, 0, map_.rows - 1)) == MapCell::kOccupied;
       off += !near_occupied;
     }
     EXPECT_GT(walls, scan.size() / 5) << "scan " << k;
@@ -400,7 +407,7 @@ namespace {
 struct FringedRoom {
   MapRaster map;
   std::size_t occupied = 0;
-  std::vector<Cell2> fringe;    ///< unknown cells between the walls and the free space
+  std::vector<Cell2> fringe;     ///< unknown cells between the walls and the free space
   std::vector<Cell2> dash_gaps;  ///< unknown cells between the bottom wall's dashes
 };
 
@@ -441,7 +448,8 @@ FringedRoom fringed_room() {
 
 bool has_column(const std::vector<Eigen::Vector3f>& voxels, const Cell2& cell, double res) {
   for (const Eigen::Vector3f& v : voxels)
-    if (static_cast<int>(std::floor(v.x() / res)) == cell[0] && static_cast<int>(std::floor(v.y() / res)) == cell[1])
+    if (static_cast<int>(std::floor(v.x() / res)) == cell[0] &&
+        static_cast<int>(std::floor(v.y() / res)) == cell[1])
       return true;
   return false;
 }
@@ -484,7 +492,8 @@ TEST_F(MapImportTest, FringedLaserMapImportsItsWallsAndTheSensorCannotSeeOut) {
   EXPECT_TRUE(level.voids.empty());
   for (const Cell2& cell : f.fringe) {
     ASSERT_TRUE(contains(level.slab, f.map.to_world(res * Vec2(cell[0] + 0.5, cell[1] + 0.5))));
-    ASSERT_FALSE(has_column(im.voxels, cell, res) && cell[0] > 24 && cell[0] < 174) << cell[0] << " " << cell[1];
+    ASSERT_FALSE(has_column(im.voxels, cell, res) && cell[0] > 24 && cell[0] < 174)
+        << cell[0] << " " << cell[1];
   }
   // Every fringe cell is bridged but two: where the top's 4-cell fringe meets the right wall's,
   // every run across them is longer than 0.2 m. They are a small hole: floor as well.
@@ -495,7 +504,8 @@ TEST_F(MapImportTest, FringedLaserMapImportsItsWallsAndTheSensorCannotSeeOut) {
   const Scene loaded = write_and_load(im);
   const sim::Simulator simulator(loaded, 1);
   Pose3 pose = Pose3::Identity();
-  pose.translation() = Eigen::Vector3d(f.map.origin.x() + 5.0, f.map.origin.y() + 4.0, loaded.sensor.mount_height);
+  pose.translation() =
+      Eigen::Vector3d(f.map.origin.x() + 5.0, f.map.origin.y() + 4.0, loaded.sensor.mount_height);
   const PointCloud scan = simulator.scan_at(pose, 0);
   const double rays = static_cast<double>(loaded.sensor.channels) * loaded.sensor.columns;
   EXPECT_GE(static_cast<double>(scan.size()), (1.0 - loaded.sensor.dropout) * rays - 3.0 * std::sqrt(rays));
@@ -509,7 +519,8 @@ TEST_F(MapImportTest, FringedLaserMapImportsItsWallsAndTheSensorCannotSeeOut) {
   EXPECT_EQ(bare.stats.occupied_cells, 0u);
   EXPECT_TRUE(bare.voxels.empty());
   ASSERT_FALSE(bare.warnings.empty());
-  EXPECT_NE(bare.warnings[0].find("none of the map's " + std::to_string(f.occupied) + " occupied cells lies on the slab"),
+  EXPECT_NE(bare.warnings[0].find("none of the map's " + std::to_string(f.occupied) +
+                                  " occupied cells lies on the slab"),
             std::string::npos)
       << bare.warnings[0];
 }
@@ -539,11 +550,12 @@ TEST_F(MapImportTest, ColourLabelsGiveOneRoomEachAndPiecesMakeOnePolygon) {
     for (int i = 0; i < colour.width; ++i) {
       const int k = labels_.at(i, colour.height - 1 - j);
       const double x = (i + 0.5) * kMapRes, y = (colour.height - 1 - j + 0.5) * kMapRes;
-      const bool band = k == 1 && y > 5.8 && y < 6.1;  // parts room_2
+      const bool band = k == 1 && y > 5.8 && y < 6.1;              // parts room_2
       const bool door = x > 2.5 && x < 3.5 && y > 3.0 && y < 3.1;  // room_1's door: the corridor's colour
       const int room = door ? 3 : band ? -1 : k;
       if (room < 0) continue;
-      for (int ch = 0; ch < 3; ++ch) colour.samples[(static_cast<std::size_t>(j) * colour.width + i) * 3 + ch] = palette[room][ch];
+      for (int ch = 0; ch < 3; ++ch)
+        colour.samples[(static_cast<std::size_t>(j) * colour.width + i) * 3 + ch] = palette[room][ch];
     }
   }
   const io::RoomLabels labels = io::room_labels(colour);
@@ -563,7 +575,8 @@ TEST_F(MapImportTest, ColourLabelsGiveOneRoomEachAndPiecesMakeOnePolygon) {
   }
   // room_2 is one polygon over both pieces and the band between them.
   const test::MapBox& b2 = drawn_.rooms[1].box;
-  for (const double y : {4.0, 5.95, 8.0}) EXPECT_TRUE(contains(s.rooms[1].polygon, origin_ + Vec2(b2.cx(), y))) << y;
+  for (const double y : {4.0, 5.95, 8.0})
+    EXPECT_TRUE(contains(s.rooms[1].polygon, origin_ + Vec2(b2.cx(), y))) << y;
   EXPECT_GT(im.stats.room_cells_left_out, 0u);  // the corridor's cells in room_1's door, given up
   EXPECT_EQ(im.stats.room_slits, 0);
   EXPECT_EQ(im.warnings.size(), 1u);  // the closet, as with the grey labels

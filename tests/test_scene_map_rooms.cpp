@@ -106,22 +106,20 @@ TEST(MapRooms, TheClosingNeverFillsBetweenTwoRooms) {
 
 TEST(MapRooms, TouchingRoomsKeepACellApartTheLaterGivingItUp) {
   // Colour labels: rooms a and b share an edge; c touches b only at a corner.
-  const Labels l = labels({"..........",
-                           ".aaaabbbb.",
-                           ".aaaabbbb.",
-                           ".aaaabbbb.",
-                           ".........c",
-                           "........cc"});
+  const Labels l =
+      labels({"..........", ".aaaabbbb.", ".aaaabbbb.", ".aaaabbbb.", ".........c", "........cc"});
   const MapRoomRegions reg = room_regions(l.room, 3, l.cols, l.rows, 0.0);
   EXPECT_EQ(reg.labelled_out, (std::vector<std::size_t>{0, 3, 1}));
   for (int k = 0; k < 3; ++k) EXPECT_FALSE(touches_another(reg.region, l.cols, l.rows, k)) << k;
   EXPECT_EQ(l.at(reg.region, 4, 2), 0);
   EXPECT_EQ(l.at(reg.region, 5, 2), -1);  // b's column along a
   EXPECT_EQ(l.at(reg.region, 6, 2), 1);
-  const std::vector<Polygon2> out = simplify_outlines(trace_outlines(reg.region, l.cols, l.rows, 3, true), 1.0);
+  const std::vector<Polygon2> out =
+      simplify_outlines(trace_outlines(reg.region, l.cols, l.rows, 3, true), 1.0);
   for (int a = 0; a < 3; ++a) {
     EXPECT_FALSE(find_self_intersection(out[a]));
-    for (int b = a + 1; b < 3; ++b) EXPECT_NEAR(intersection_area(out[a], out[b]), 0.0, 1e-9) << a << " " << b;
+    for (int b = a + 1; b < 3; ++b)
+      EXPECT_NEAR(intersection_area(out[a], out[b]), 0.0, 1e-9) << a << " " << b;
   }
 }
 
@@ -138,7 +136,8 @@ TEST(MapRooms, AHoleHoldingAnotherRoomIsOpenedNotFilled) {
   EXPECT_EQ(reg.cells[1], 18u * 8u);
   EXPECT_EQ(reg.labelled_out[0], 10u);  // the slit: the ring's width, the shortest cut
   // The ring's outline leaves room b out: the polygons do not overlap, and b's centre is not in a's.
-  const std::vector<Polygon2> out = simplify_outlines(trace_outlines(reg.region, l.cols, l.rows, 2, true), 1.0);
+  const std::vector<Polygon2> out =
+      simplify_outlines(trace_outlines(reg.region, l.cols, l.rows, 2, true), 1.0);
   EXPECT_FALSE(find_self_intersection(out[0]));
   EXPECT_FALSE(contains(out[0], Vec2(25.0, 20.0)));
   EXPECT_NEAR(intersection_area(out[0], out[1]), 0.0, 1e-9);

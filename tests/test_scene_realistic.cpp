@@ -92,7 +92,8 @@ Census census(const Scene& s) {
             if ((hinge_end - j).norm() > 0.5 * w.thickness + 0.1) continue;
             has = true;
             ++c.leaves_at_a_jamb;
-            double open = std::abs(std::remainder(r.yaw - wall_yaw, M_PI)) * 180.0 / M_PI;  // 0..90 off the wall
+            double open =
+                std::abs(std::remainder(r.yaw - wall_yaw, M_PI)) * 180.0 / M_PI;  // 0..90 off the wall
             EXPECT_GE(open, 30.0 - 1e-6);
           }
         }

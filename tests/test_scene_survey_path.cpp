@@ -33,8 +33,9 @@ TEST(SurveyPath, VisitsEveryStopKeepingTheClearance) {
   Scene s = parse_scene(kScene, "survey.yaml", ".");
   const WalkableGrid g = rasterise_walkable(s, 0, frame_covering(s, 0.05, 0.5));
   std::vector<SurveyStop> stops = {{0, {1.0, 5.7}}};
-  for (const Polygon2& room : {Polygon2{{0, 0}, {6, 0}, {6, 5}, {0, 5}}, Polygon2{{6, 0}, {12, 0}, {12, 5}, {6, 5}},
-                               Polygon2{{12, 0}, {18, 0}, {18, 5}, {12, 5}}}) {
+  for (const Polygon2& room :
+       {Polygon2{{0, 0}, {6, 0}, {6, 5}, {0, 5}}, Polygon2{{6, 0}, {12, 0}, {12, 5}, {6, 5}},
+        Polygon2{{12, 0}, {18, 0}, {18, 5}, {12, 5}}}) {
     Vec2 p;
     ASSERT_TRUE(most_interior_point(g, room, &p));
     EXPECT_GT(g.clearance_at(p), 1.0);
@@ -49,7 +50,9 @@ TEST(SurveyPath, VisitsEveryStopKeepingTheClearance) {
     for (const Waypoint& w : s.trajectory.waypoints) visited = visited || (w.xy - stop.xy).norm() < 1e-9;
     EXPECT_TRUE(visited) << stop.xy.transpose();
   }
-  const ClearanceAt exact = [&](const Vec2& xy, double floor_z, int) { return obstacle_distance(s, xy, floor_z, 0.35); };
+  const ClearanceAt exact = [&](const Vec2& xy, double floor_z, int) {
+    return obstacle_distance(s, xy, floor_z, 0.35);
+  };
   keep_clearance_on_turns(&s, exact, config);
   EXPECT_GE(path_clearance(s, exact).min_clearance, 0.3);
   // And the result loads as a scene without warnings.
@@ -76,7 +79,9 @@ trajectory:
   yaw_rate_deg: 30
 )";
   Scene s = parse_scene(text, "bend.yaml", ".");
-  const ClearanceAt exact = [&](const Vec2& xy, double floor_z, int) { return obstacle_distance(s, xy, floor_z, 0.35); };
+  const ClearanceAt exact = [&](const Vec2& xy, double floor_z, int) {
+    return obstacle_distance(s, xy, floor_z, 0.35);
+  };
   EXPECT_LT(path_clearance(s, exact).min_clearance, 0.3);
   SurveyConfig config;
   config.clearance = 0.3;
@@ -105,7 +110,8 @@ TEST(SurveyPath, TheOrderIsShortAndTheSameEveryTime) {
   const Scene s = parse_scene(kScene, "survey.yaml", ".");
   const WalkableGrid g = rasterise_walkable(s, 0, frame_covering(s, 0.05, 0.5));
   // Stops along the corridor given out of order: the tour runs along it and back.
-  const std::vector<SurveyStop> stops = {{0, {1, 5.7}}, {0, {13, 5.7}}, {0, {5, 5.7}}, {0, {17, 5.7}}, {0, {9, 5.7}}};
+  const std::vector<SurveyStop> stops = {
+      {0, {1, 5.7}}, {0, {13, 5.7}}, {0, {5, 5.7}}, {0, {17, 5.7}}, {0, {9, 5.7}}};
   SurveyConfig config;
   config.clearance = 0.3;
   const std::vector<Waypoint> a = plan_survey({g}, {}, stops, config);

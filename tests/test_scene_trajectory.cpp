@@ -20,7 +20,8 @@ levels: [{name: L0, slab: [[0,0],[30,0],[30,20],[0,20]]}]
 trajectory:
   waypoints: [[2, 2], [22, 2], [22, 12], [2, 12]]
   closed: true
-  laps: )" + std::to_string(laps) + "\n  speed: " + std::to_string(speed) +
+  laps: )" + std::to_string(laps) +
+                           "\n  speed: " + std::to_string(speed) +
                            "\n  yaw_rate_deg: " + std::to_string(yaw_rate_deg) + "\n";
   return parse_scene(text, "rect.yaml", ".");
 }
@@ -51,7 +52,8 @@ TEST(Trajectory, CornersAreArcsAtTheYawRate) {
     EXPECT_LE((traj.body_pose(t).translation() - traj.body_pose(t - 0.01).translation()).norm(), 0.0100001);
   }
   // It returns to its start.
-  EXPECT_NEAR((traj.body_pose(traj.duration()).translation() - traj.body_pose(0).translation()).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((traj.body_pose(traj.duration()).translation() - traj.body_pose(0).translation()).norm(), 0.0,
+              1e-9);
   EXPECT_NEAR(traj.body_pose(0).translation().z(), scene.sensor.mount_height, 1e-12);
 }
 
@@ -68,7 +70,8 @@ TEST(Trajectory, ScanCountIsPathLengthOverSpeedTimesRate) {
     EXPECT_NEAR(static_cast<double>(sim.num_scans() - 1), expected, 0.5) << "speed " << speed;
     EXPECT_NEAR(sim.time_scale(), 1.0, 0.5 / expected);
     // The last scan is taken at the end of the path, back at the start.
-    EXPECT_NEAR((sim.true_poses().back().translation() - sim.true_poses().front().translation()).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((sim.true_poses().back().translation() - sim.true_poses().front().translation()).norm(), 0.0,
+                1e-9);
     // Scans are one period apart.
     EXPECT_NEAR(sim.times()[1] - sim.times()[0], 0.1, 1e-12);
   }

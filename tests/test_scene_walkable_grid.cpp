@@ -64,9 +64,9 @@ TEST(WalkableGrid, WallsRailingsAndFurnitureBlockDoorsAndWhatHangsAboveDoNot) {
   const Scene s = parse_scene(kScene, "grid.yaml", ".");
   const WalkableGrid g = rasterise_walkable(s, 0, frame_covering(s, 0.05, 0.5));
   EXPECT_TRUE(free_at(g, {1.0, 2.0}));
-  EXPECT_FALSE(free_at(g, {3.0, 4.0}));   // the wall
-  EXPECT_TRUE(free_at(g, {5.0, 4.0}));    // its door
-  EXPECT_FALSE(free_at(g, {2.0, 2.0}));   // the 4 cm railing, whichever cells it crosses
+  EXPECT_FALSE(free_at(g, {3.0, 4.0}));  // the wall
+  EXPECT_TRUE(free_at(g, {5.0, 4.0}));   // its door
+  EXPECT_FALSE(free_at(g, {2.0, 2.0}));  // the 4 cm railing, whichever cells it crosses
   EXPECT_FALSE(free_at(g, {2.02, 2.0}));
   EXPECT_FALSE(free_at(g, {7.5, 1.5}));   // the desk
   EXPECT_TRUE(free_at(g, {4.5, 1.5}));    // under the shelf that hangs at 2.5 m
@@ -77,12 +77,12 @@ TEST(WalkableGrid, WallsRailingsAndFurnitureBlockDoorsAndWhatHangsAboveDoNot) {
 
 TEST(WalkableGrid, ObstacleDistanceOnTheSceneGeometry) {
   const Scene s = parse_scene(kScene, "grid.yaml", ".");
-  EXPECT_NEAR(obstacle_distance(s, {3.0, 3.0}, 0.0, 2.0), 0.9, 1e-9);    // the wall's face at y 3.9
-  EXPECT_NEAR(obstacle_distance(s, {6.5, 1.5}, 0.0, 2.0), 0.5, 1e-9);    // the desk at x 7
-  EXPECT_NEAR(obstacle_distance(s, {2.3, 2.0}, 0.0, 2.0), 0.28, 1e-9);   // the railing's half thickness 0.02
-  EXPECT_NEAR(obstacle_distance(s, {5.0, 4.0}, 0.0, 2.0), 0.5, 1e-9);    // in the door, to its jambs
-  EXPECT_NEAR(obstacle_distance(s, {0.2, 5.0}, 0.0, 0.4), 0.2, 1e-3);    // the slab's edge, probed
-  EXPECT_EQ(obstacle_distance(s, {-1.0, 5.0}, 0.0, 0.4), 0.0);           // off the slab
+  EXPECT_NEAR(obstacle_distance(s, {3.0, 3.0}, 0.0, 2.0), 0.9, 1e-9);   // the wall's face at y 3.9
+  EXPECT_NEAR(obstacle_distance(s, {6.5, 1.5}, 0.0, 2.0), 0.5, 1e-9);   // the desk at x 7
+  EXPECT_NEAR(obstacle_distance(s, {2.3, 2.0}, 0.0, 2.0), 0.28, 1e-9);  // the railing's half thickness 0.02
+  EXPECT_NEAR(obstacle_distance(s, {5.0, 4.0}, 0.0, 2.0), 0.5, 1e-9);   // in the door, to its jambs
+  EXPECT_NEAR(obstacle_distance(s, {0.2, 5.0}, 0.0, 0.4), 0.2, 1e-3);   // the slab's edge, probed
+  EXPECT_EQ(obstacle_distance(s, {-1.0, 5.0}, 0.0, 0.4), 0.0);          // off the slab
 }
 
 TEST(WalkableGrid, OnARampTheStoreyBelowFallsAwayUnderTheWalker) {

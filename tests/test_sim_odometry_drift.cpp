@@ -59,7 +59,8 @@ TEST(OdometryDrift, TranslationErrorGrowsWithTheSquareRootOfDistance) {
   for (const double step : {0.1, 0.5}) {
     const Spread s = spread(straight_then_turn(length, step, 0.0, 0), {sigma, 0.0, 0.0}, seeds);
     const double expected = sigma * std::sqrt(length);
-    for (int a = 0; a < 3; ++a) EXPECT_NEAR(s.pos_std[a], expected, 0.12 * expected) << "axis " << a << " step " << step;
+    for (int a = 0; a < 3; ++a)
+      EXPECT_NEAR(s.pos_std[a], expected, 0.12 * expected) << "axis " << a << " step " << step;
     EXPECT_NEAR(s.yaw_std, 0.0, 1e-12);
   }
 }

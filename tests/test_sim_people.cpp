@@ -22,7 +22,8 @@ std::string scene_with(const std::string& platform, const std::string& people) {
   return R"(name: people_walk
 seed: 3
 sensor: {preset: vlp-16, mount_height: 1.0, rate_hz: 5}
-)" + platform + R"(
+)" + platform +
+         R"(
 levels:
   - {name: G, elevation: 0.0, ceiling: 3.0, slab: [[0,0],[12,0],[12,8],[0,8]]}
 walls:
@@ -30,7 +31,8 @@ walls:
   - {level: G, from: [12, 0], to: [12, 8]}
   - {level: G, from: [12, 8], to: [0, 8]}
   - {level: G, from: [0, 8], to: [0, 0]}
-)" + people + R"(
+)" + people +
+         R"(
 trajectory:
   level: G
   laps: 1
@@ -46,16 +48,17 @@ sim::Simulator simulate(const std::string& text) {
 
 TEST(People, WalkThereAndBackAlongTheirPath) {
   const scene::Scene scene = scene::parse_scene(
-      scene_with("", "people:\n  - {level: G, path: [[1, 1], [5, 1], [5, 3]], speed: 2.0, offset: 1.0}\n"), "p.yaml", ".");
+      scene_with("", "people:\n  - {level: G, path: [[1, 1], [5, 1], [5, 3]], speed: 2.0, offset: 1.0}\n"),
+      "p.yaml", ".");
   const sim::People people(scene);
   ASSERT_EQ(people.size(), 1u);
   // 6 m of path at 2 m/s, 1 m along at t = 0.
   EXPECT_TRUE(people.position(0, 0.0).isApprox(Eigen::Vector3d(2, 1, 0)));
-  EXPECT_TRUE(people.position(0, 2.0).isApprox(Eigen::Vector3d(5, 2, 0)));   // 5 m: round the corner
-  EXPECT_TRUE(people.position(0, 2.5).isApprox(Eigen::Vector3d(5, 3, 0)));   // the end
-  EXPECT_TRUE(people.position(0, 3.0).isApprox(Eigen::Vector3d(5, 2, 0)));   // and back
-  EXPECT_TRUE(people.position(0, 5.5).isApprox(Eigen::Vector3d(1, 1, 0)));   // the start
-  EXPECT_TRUE(people.position(0, 6.0).isApprox(Eigen::Vector3d(2, 1, 0)));   // and again
+  EXPECT_TRUE(people.position(0, 2.0).isApprox(Eigen::Vector3d(5, 2, 0)));  // 5 m: round the corner
+  EXPECT_TRUE(people.position(0, 2.5).isApprox(Eigen::Vector3d(5, 3, 0)));  // the end
+  EXPECT_TRUE(people.position(0, 3.0).isApprox(Eigen::Vector3d(5, 2, 0)));  // and back
+  EXPECT_TRUE(people.position(0, 5.5).isApprox(Eigen::Vector3d(1, 1, 0)));  // the start
+  EXPECT_TRUE(people.position(0, 6.0).isApprox(Eigen::Vector3d(2, 1, 0)));  // and again
 }
 
 TEST(People, AScanSeesThemWhereTheyStandAtItsTime) {
@@ -79,7 +82,8 @@ TEST(People, AScanSeesThemWhereTheyStandAtItsTime) {
   // Without people, nothing carries their label.
   const sim::Simulator empty = simulate(scene_with("", ""));
   const PointCloud scan = empty.scan(0);
-  EXPECT_EQ(std::count(scan.labels.begin(), scan.labels.end(), static_cast<std::uint32_t>(PointLabel::kPerson)), 0);
+  EXPECT_EQ(
+      std::count(scan.labels.begin(), scan.labels.end(), static_cast<std::uint32_t>(PointLabel::kPerson)), 0);
 }
 
 TEST(People, ASweptScanSeesThemWhereTheyStandWhenEachColumnFires) {
@@ -106,10 +110,12 @@ TEST(People, ASweptScanSeesThemWhereTheyStandWhenEachColumnFires) {
 }
 
 TEST(People, TheSectionIsCheckedAndWrittenBack) {
-  const scene::Scene scene = scene::parse_scene(
-      scene_with("", "people:\n  - {level: G, path: [[1, 1], [5, 1.5]], speed: 0.8, offset: 2.5, height: 1.6, radius: 0.2}\n"
-                     "  - {level: G, path: [[2, 2], [2, 6], [4, 6]]}\n"),
-      "p.yaml", ".");
+  const scene::Scene scene =
+      scene::parse_scene(scene_with("",
+                                    "people:\n  - {level: G, path: [[1, 1], [5, 1.5]], speed: 0.8, offset: "
+                                    "2.5, height: 1.6, radius: 0.2}\n"
+                                    "  - {level: G, path: [[2, 2], [2, 6], [4, 6]]}\n"),
+                         "p.yaml", ".");
   ASSERT_EQ(scene.people.size(), 2u);
   EXPECT_DOUBLE_EQ(scene.people[0].speed, 0.8);
   EXPECT_DOUBLE_EQ(scene.people[1].speed, 1.2);  // the defaults
@@ -126,16 +132,23 @@ TEST(People, TheSectionIsCheckedAndWrittenBack) {
   }
 
   const auto error = [](const std::string& person) {
-    return test::input_error_of([&] { scene::parse_scene(scene_with("", "people:\n  - " + person + "\n"), "b.yaml", "."); });
+    return test::input_error_of(
+        [&] { scene::parse_scene(scene_with("", "people:\n  - " + person + "\n"), "b.yaml", "."); });
   };
   EXPECT_NE(error("{level: G, path: [[1, 1]]}").find("b.yaml:"), std::string::npos);
-  EXPECT_NE(error("{level: G, path: [[1, 1]]}").find("path: expected a list of at least two [x, y] points"), std::string::npos);
-  EXPECT_NE(error("{level: G, path: [[1, 1], [20, 1]]}").find("people[0].path[1]: [20, 1] is outside every slab"),
+  EXPECT_NE(error("{level: G, path: [[1, 1]]}").find("path: expected a list of at least two [x, y] points"),
             std::string::npos);
-  EXPECT_NE(error("{level: G, path: [[1, 1], [1, 1]]}").find("repeats the previous point"), std::string::npos);
-  EXPECT_NE(error("{level: G, path: [[1, 1], [2, 1]], speed: 0}").find("speed: must be > 0"), std::string::npos);
-  EXPECT_NE(error("{level: G, path: [[1, 1], [2, 1]], speed: 50}").find("speed: must be <= 10"), std::string::npos);
-  EXPECT_NE(error("{level: G, path: [[1, 1], [2, 1]], radius: 100}").find("radius: must be <= 5 m"), std::string::npos);
+  EXPECT_NE(
+      error("{level: G, path: [[1, 1], [20, 1]]}").find("people[0].path[1]: [20, 1] is outside every slab"),
+      std::string::npos);
+  EXPECT_NE(error("{level: G, path: [[1, 1], [1, 1]]}").find("repeats the previous point"),
+            std::string::npos);
+  EXPECT_NE(error("{level: G, path: [[1, 1], [2, 1]], speed: 0}").find("speed: must be > 0"),
+            std::string::npos);
+  EXPECT_NE(error("{level: G, path: [[1, 1], [2, 1]], speed: 50}").find("speed: must be <= 10"),
+            std::string::npos);
+  EXPECT_NE(error("{level: G, path: [[1, 1], [2, 1]], radius: 100}").find("radius: must be <= 5 m"),
+            std::string::npos);
   EXPECT_NE(error("{level: G, path: [[1, 1], [2, 1]], offset: .nan}").find("offset: not a finite number"),
             std::string::npos);
   EXPECT_NE(error("{level: X, path: [[1, 1], [2, 1]]}").find("unknown level 'X'"), std::string::npos);

@@ -24,7 +24,8 @@ std::string scene_with(const std::string& platform) {
   return R"(name: platform_walk
 seed: 2
 sensor: {preset: vlp-16, mount_height: 1.4, rate_hz: 5}
-)" + platform + R"(
+)" + platform +
+         R"(
 levels:
   - {name: G, elevation: 0.0, ceiling: 3.0, slab: [[0,0],[10,0],[10,6],[0,6]]}
 walls:
@@ -40,8 +41,8 @@ trajectory:
 }
 
 struct Motion {
-  double z_range = 0.0;      ///< max - min of the sensor's height (m)
-  double max_tilt_deg = 0.0; ///< the largest angle of the sensor's z from the vertical
+  double z_range = 0.0;       ///< max - min of the sensor's height (m)
+  double max_tilt_deg = 0.0;  ///< the largest angle of the sensor's z from the vertical
 };
 
 // Over the first 10 s, every 10 ms (the scans alone may sample a gait at one phase).
@@ -62,7 +63,8 @@ Motion motion_of(const sim::Simulator& sim) {
 
 TEST(SimPlatforms, HandHeldBobsSwaysAndSweepsWheeledRollsLevel) {
   const sim::Simulator wheeled(scene::parse_scene(scene_with(""), "w.yaml", "."), 1);
-  const sim::Simulator handheld(scene::parse_scene(scene_with("platform: {type: handheld}"), "h.yaml", "."), 1);
+  const sim::Simulator handheld(scene::parse_scene(scene_with("platform: {type: handheld}"), "h.yaml", "."),
+                                1);
   const sim::Simulator legged(scene::parse_scene(scene_with("platform: {type: legged}"), "l.yaml", "."), 1);
   const Motion w = motion_of(wheeled), h = motion_of(handheld), l = motion_of(legged);
   EXPECT_LT(w.z_range, 1e-9);
@@ -78,7 +80,9 @@ TEST(SimPlatforms, HandHeldBobsSwaysAndSweepsWheeledRollsLevel) {
   // The same path: the platforms differ only by their gait.
   ASSERT_EQ(handheld.num_scans(), wheeled.num_scans());
   for (std::size_t k = 0; k < wheeled.num_scans(); k += 7)
-    EXPECT_LT((handheld.true_poses()[k].translation() - wheeled.true_poses()[k].translation()).head<2>().norm(), 1e-9);
+    EXPECT_LT(
+        (handheld.true_poses()[k].translation() - wheeled.true_poses()[k].translation()).head<2>().norm(),
+        1e-9);
 
   EXPECT_FALSE(wheeled.scan(3).has_times());
   const PointCloud swept = handheld.scan(3);
@@ -91,8 +95,8 @@ TEST(SimPlatforms, HandHeldBobsSwaysAndSweepsWheeledRollsLevel) {
 }
 
 TEST(SimPlatforms, SectionLoadsIsCheckedAndIsWrittenBack) {
-  const scene::Scene s = scene::parse_scene(scene_with("platform: {type: legged, bob: 0.02, motion_distortion: false}"),
-                                            "p.yaml", ".");
+  const scene::Scene s = scene::parse_scene(
+      scene_with("platform: {type: legged, bob: 0.02, motion_distortion: false}"), "p.yaml", ".");
   EXPECT_EQ(s.platform.type, scene::PlatformType::kLegged);
   EXPECT_DOUBLE_EQ(s.platform.bob, 0.02);
   EXPECT_DOUBLE_EQ(s.platform.step_hz, scene::platform_defaults(scene::PlatformType::kLegged).step_hz);
@@ -102,7 +106,8 @@ TEST(SimPlatforms, SectionLoadsIsCheckedAndIsWrittenBack) {
   EXPECT_DOUBLE_EQ(again.platform.bob, 0.02);
   EXPECT_EQ(again.platform.motion_distortion, false);
   // A wheeled scene writes no platform section: old readers still load it.
-  EXPECT_EQ(scene::scene_yaml(scene::parse_scene(scene_with(""), "w.yaml", "."), "w").find("platform:"), std::string::npos);
+  EXPECT_EQ(scene::scene_yaml(scene::parse_scene(scene_with(""), "w.yaml", "."), "w").find("platform:"),
+            std::string::npos);
 
   const auto error = [](const std::string& platform) {
     return test::input_error_of([&] { scene::parse_scene(scene_with(platform), "p.yaml", "."); });
@@ -112,8 +117,10 @@ TEST(SimPlatforms, SectionLoadsIsCheckedAndIsWrittenBack) {
       << error("platform: {type: hovering}");
   EXPECT_NE(error("platform: {type: handheld, sway_deg: 45}").find("platform.sway_deg: must lie in [0, 30]"),
             std::string::npos);
-  EXPECT_NE(error("platform: {bob: 0.05}").find("platform.step_hz: must be > 0 when bob is"), std::string::npos);
-  EXPECT_NE(error("platform: {type: legged, wobble: 1}").find("unknown key 'platform.wobble'"), std::string::npos)
+  EXPECT_NE(error("platform: {bob: 0.05}").find("platform.step_hz: must be > 0 when bob is"),
+            std::string::npos);
+  EXPECT_NE(error("platform: {type: legged, wobble: 1}").find("unknown key 'platform.wobble'"),
+            std::string::npos)
       << error("platform: {type: legged, wobble: 1}");
 }
 
@@ -140,6 +147,8 @@ TEST(SimPlatforms, ARecordingKeepsEveryNthSweep) {
   EXPECT_GT(*std::max_element(scan.times.begin(), scan.times.end()), 0.09f);
   std::string bad = scene_with("");
   bad.replace(bad.find("rate_hz: 5"), 10, "rate_hz: 5, record_hz: 8");
-  EXPECT_NE(test::input_error_of([&] { scene::parse_scene(bad, "b.yaml", "."); }).find("sensor.record_hz: must lie in (0, rate_hz]"),
+  EXPECT_NE(test::input_error_of([&] {
+              scene::parse_scene(bad, "b.yaml", ".");
+            }).find("sensor.record_hz: must lie in (0, rate_hz]"),
             std::string::npos);
 }

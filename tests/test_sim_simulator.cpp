@@ -133,7 +133,8 @@ TEST(Simulator, SameSeedSameScansWhateverTheThreads) {
   for (std::size_t i = 0; i < one_thread.size(); ++i) ASSERT_EQ(one_thread.points[i], two_threads.points[i]);
   EXPECT_EQ(one_thread.labels, two_threads.labels);
   bool differs = other_seed.size() != one_thread.size();
-  for (std::size_t i = 0; !differs && i < one_thread.size(); ++i) differs = one_thread.points[i] != other_seed.points[i];
+  for (std::size_t i = 0; !differs && i < one_thread.size(); ++i)
+    differs = one_thread.points[i] != other_seed.points[i];
   EXPECT_TRUE(differs);
 }
 
@@ -189,14 +190,17 @@ TEST_F(Cli, BadSceneExitsTwoWithOneLineNamingFileAndLine) {
   // A folder that is not an earlier sequence is never overwritten.
   fs::create_directories(dir_ / "mine");
   std::ofstream(dir_ / "mine" / "notes.txt") << "keep";
-  std::ofstream(scene) << "levels:\n  - name: L0\n    slab: [[0,0],[5,0],[5,5],[0,5]]\n"
-                          "trajectory: {waypoints: [[1,1],[2,2]], laps: 1}\nsensor: {channels: 4, columns: 16}\n";
+  std::ofstream(scene)
+      << "levels:\n  - name: L0\n    slab: [[0,0],[5,0],[5,5],[0,5]]\n"
+         "trajectory: {waypoints: [[1,1],[2,2]], laps: 1}\nsensor: {channels: 4, columns: 16}\n";
   EXPECT_EQ(run("-q simulate " + scene.string() + " --out " + (dir_ / "mine").string(), &err), 2);
   EXPECT_EQ(read_file(dir_ / "mine" / "notes.txt"), "keep");
   // A good run writes the folder; a second run replaces it; no temporary folder is left.
-  EXPECT_EQ(run("-q simulate " + scene.string() + " --out " + (dir_ / "seq").string() + " --seed 4", &err), 0) << err;
+  EXPECT_EQ(run("-q simulate " + scene.string() + " --out " + (dir_ / "seq").string() + " --seed 4", &err), 0)
+      << err;
   EXPECT_TRUE(fs::exists(dir_ / "seq" / "times.txt"));
-  EXPECT_EQ(run("-q simulate " + scene.string() + " --out " + (dir_ / "seq").string() + " --laps 2", &err), 0) << err;
+  EXPECT_EQ(run("-q simulate " + scene.string() + " --out " + (dir_ / "seq").string() + " --laps 2", &err), 0)
+      << err;
   EXPECT_EQ(io::SequenceReader((dir_ / "seq").string()).info().lap_starts.size(), 2u);
   int entries = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_)) ++entries;
@@ -232,7 +236,9 @@ TEST_F(Cli, KilledRunLeavesNoSequenceAndTheNextRunCleansUp) {
   for (int i = 0; i < 400 && !writing; ++i) {
     ::usleep(25000);
     for (const auto& e : fs::directory_iterator(dir_)) {
-      if (e.path().filename().string().rfind("seq.tmp-", 0) == 0 && fs::exists(e.path() / "scans" / "000005.bin")) writing = true;
+      if (e.path().filename().string().rfind("seq.tmp-", 0) == 0 &&
+          fs::exists(e.path() / "scans" / "000005.bin"))
+        writing = true;
     }
   }
   ::kill(pid, SIGKILL);

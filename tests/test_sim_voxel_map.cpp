@@ -43,9 +43,10 @@ fs::path write_map(const fs::path& dir) {
 
 Scene scene_with_map(const fs::path& dir, const std::string& extra) {
   const fs::path scene = dir / "scene.yaml";
-  std::ofstream(scene) << "levels: [{name: L0, elevation: 1.0, ceiling: 3.0, slab: [[-5,-5],[5,-5],[5,5],[-5,5]]}]\n"
-                          "voxel_maps:\n  - {file: maps/block.pcd, voxel_size: 0.1, level: L0"
-                       << extra << "}\ntrajectory: {waypoints: [[0.5, 0.5], [1.5, 0.5]]}\n";
+  std::ofstream(scene)
+      << "levels: [{name: L0, elevation: 1.0, ceiling: 3.0, slab: [[-5,-5],[5,-5],[5,5],[-5,5]]}]\n"
+         "voxel_maps:\n  - {file: maps/block.pcd, voxel_size: 0.1, level: L0"
+      << extra << "}\ntrajectory: {waypoints: [[0.5, 0.5], [1.5, 0.5]]}\n";
   return load_scene(scene.string());
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 /// Scaffolding shared by the test executables: a fresh temporary folder per test, a file's bytes,
-/// and the message of the InputError a piece of code throws. Header only: tests/CMakeLists.txt makes an executable
-/// of every tests/test_*.cpp, so this file must not become one.
+/// and the message of the InputError a piece of code throws. Header only: tests/CMakeLists.txt makes an
+/// executable of every tests/test_*.cpp, so this file must not become one.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -74,7 +74,8 @@ inline int run_tsgraphs(const std::string& args, std::string* out, std::string* 
   const std::filesystem::path base =
       std::filesystem::path(::testing::TempDir()) / ("tsgraphs_cli_" + std::to_string(::getpid()));
   const std::string o = base.string() + ".out", e = base.string() + ".err";
-  const int status = std::system((std::string(TSGRAPHS_BINARY) + " " + args + " > " + o + " 2> " + e).c_str());
+  const int status =
+      std::system((std::string(TSGRAPHS_BINARY) + " " + args + " > " + o + " 2> " + e).c_str());
   if (out != nullptr) *out = read_file(o);
   if (err != nullptr) *err = read_file(e);
   std::filesystem::remove(o);

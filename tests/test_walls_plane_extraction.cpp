@@ -29,15 +29,16 @@ using walls::PlaneObservation;
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-constexpr double kPrefilterVoxel = 0.1;   // the pipeline's default prefilter voxel (m)
-constexpr double kNearRange = 8.0;        // wall faces this close to the sensor must be found (m)
-constexpr double kOnFace = 0.05;          // a point this close to a true face lies on it (m)
-constexpr double kMatchAngleDeg = 10.0;   // an observation belongs to a true face within this...
-constexpr double kMatchOffset = 0.1;      // ...and this (m)
-constexpr double kMaxAngleErrDeg = 0.5;   // wall faces...
-constexpr double kAngleRefExtent = 1.0;   // ...at least this long (m); a shorter face may tilt as far as puts its
-                                          // ends as far off the true face (a fit's tilt grows as 1 / its extent)
-constexpr double kMaxOffsetErr = 0.02;    // at the observation's centroid (m)
+constexpr double kPrefilterVoxel = 0.1;  // the pipeline's default prefilter voxel (m)
+constexpr double kNearRange = 8.0;       // wall faces this close to the sensor must be found (m)
+constexpr double kOnFace = 0.05;         // a point this close to a true face lies on it (m)
+constexpr double kMatchAngleDeg = 10.0;  // an observation belongs to a true face within this...
+constexpr double kMatchOffset = 0.1;     // ...and this (m)
+constexpr double kMaxAngleErrDeg = 0.5;  // wall faces...
+constexpr double kAngleRefExtent =
+    1.0;  // ...at least this long (m); a shorter face may tilt as far as puts its
+          // ends as far off the true face (a fit's tilt grows as 1 / its extent)
+constexpr double kMaxOffsetErr = 0.02;  // at the observation's centroid (m)
 constexpr std::uint32_t kWall = static_cast<std::uint32_t>(PointLabel::kWall);
 
 // The pipeline's own prefilter (NaN drop, range crop, one centroid per voxel).
@@ -89,7 +90,8 @@ TrueFace make_face(const Eigen::Vector2d& a, const Eigen::Vector2d& dir, double 
   f.z0 = z0;
   f.z1 = z1;
   f.label = static_cast<std::uint32_t>(label);
-  f.plane = Plane::from_point_normal(Eigen::Vector3d(a.x(), a.y(), z0), Eigen::Vector3d(outward.x(), outward.y(), 0.0));
+  f.plane = Plane::from_point_normal(Eigen::Vector3d(a.x(), a.y(), z0),
+                                     Eigen::Vector3d(outward.x(), outward.y(), 0.0));
   return f;
 }
 
@@ -120,7 +122,7 @@ Truth truth_of(const scene::Scene& scene) {
   for (const scene::Railing& r : scene.railings) {
     const double z0 = scene.levels[r.level].elevation;
     const double thickness = r.style == scene::RailingStyle::kSolid ? scene::RailingGeometry::kSolidThickness
-                                                                  : scene::RailingGeometry::kPostWidth;
+                                                                    : scene::RailingGeometry::kPostWidth;
     add_slab_faces(r.from, r.to, thickness, 0.0, 0.0, z0, z0 + r.height, PointLabel::kRailing, &t.faces);
   }
   for (const scene::Box& b : scene.boxes) {
@@ -141,7 +143,8 @@ Truth truth_of(const scene::Scene& scene) {
     // The edge of the slab round a void, down to the ceiling of the storey below.
     double below_ceiling = -std::numeric_limits<double>::infinity();
     for (const scene::Level& other : scene.levels) {
-      if (other.elevation < l.elevation) below_ceiling = std::max(below_ceiling, other.elevation + other.ceiling);
+      if (other.elevation < l.elevation)
+        below_ceiling = std::max(below_ceiling, other.elevation + other.ceiling);
     }
     if (!std::isfinite(below_ceiling) || below_ceiling >= l.elevation) continue;
     for (const Polygon2& v : l.voids) {
@@ -150,7 +153,8 @@ Truth truth_of(const scene::Scene& scene) {
         const Eigen::Vector2d a = v[i], b = v[(i + 1) % v.size()];
         const Eigen::Vector2d dir = (b - a).normalized();
         const Eigen::Vector2d into_void = ccw * Eigen::Vector2d(-dir.y(), dir.x());
-        t.faces.push_back(make_face(a, dir, 0.0, (b - a).norm(), into_void, below_ceiling, l.elevation, PointLabel::kWall));
+        t.faces.push_back(
+            make_face(a, dir, 0.0, (b - a).norm(), into_void, below_ceiling, l.elevation, PointLabel::kWall));
       }
     }
   }
@@ -164,8 +168,8 @@ scene::Scene builtin(const std::string& name) {
 // Pieces of a face's points that no gap wider than `tolerance` separates. A sliver of wall
 // seen just above a door does not join the two sides: points within kOpeningMargin of an
 // opening are left out.
-std::vector<std::vector<Eigen::Vector3d>> face_pieces(const std::vector<Eigen::Vector3d>& all, const TrueFace& face,
-                                                      double tolerance) {
+std::vector<std::vector<Eigen::Vector3d>> face_pieces(const std::vector<Eigen::Vector3d>& all,
+                                                      const TrueFace& face, double tolerance) {
   constexpr double kOpeningMargin = 0.2;
   std::vector<Eigen::Vector3d> pts;
   for (const Eigen::Vector3d& p : all) {
@@ -198,20 +202,21 @@ std::vector<std::vector<Eigen::Vector3d>> face_pieces(const std::vector<Eigen::V
 }
 
 struct Scores {
-  int faces_checked = 0;     // pieces of wall faces near the sensor, clearly visible
-  int faces_found = 0;       // ... half covered by observations
-  int faces_split = 0;       // wall faces with more observations than visible pieces
+  int faces_checked = 0;  // pieces of wall faces near the sensor, clearly visible
+  int faces_found = 0;    // ... half covered by observations
+  int faces_split = 0;    // wall faces with more observations than visible pieces
   int vertical = 0, horizontal = 0, unmatched = 0;
   int wall_obs = 0;
-  double wall_angle_max = 0.0, wall_angle_sum = 0.0;   // deg
-  double wall_angle_excess = 0.0;  // the largest angle error over its face's bound (kMaxAngleErrDeg, scaled for a short face)
-  double wall_offset_max = 0.0, wall_offset_sum = 0.0; // at the centroid, m
-  double wall_d_max = 0.0;                             // |d| error in the sensor frame, m
+  double wall_angle_max = 0.0, wall_angle_sum = 0.0;  // deg
+  double wall_angle_excess =
+      0.0;  // the largest angle error over its face's bound (kMaxAngleErrDeg, scaled for a short face)
+  double wall_offset_max = 0.0, wall_offset_sum = 0.0;   // at the centroid, m
+  double wall_d_max = 0.0;                               // |d| error in the sensor frame, m
   double other_angle_max = 0.0, other_offset_max = 0.0;  // boxes, railings, void edges
   double horizontal_angle_max = 0.0, horizontal_offset_max = 0.0;
   int scans_with_floor = 0, scans = 0;
-  int ceiling_points = 0, ceiling_inliers = 0;         // true ceiling points, inliers of ceiling planes
-  double covered_points = 0.0, face_points = 0.0;     // wall points of checked faces in an observation
+  int ceiling_points = 0, ceiling_inliers = 0;     // true ceiling points, inliers of ceiling planes
+  double covered_points = 0.0, face_points = 0.0;  // wall points of checked faces in an observation
   bool finite = true, towards_sensor = true;
 };
 
@@ -237,8 +242,9 @@ Scores score_scene(const scene::Scene& scene, const std::vector<std::size_t>& sc
     for (const scene::Level& l : scene.levels) {
       if (l.elevation < T.translation().z()) floor_z = std::max(floor_z, l.elevation);
     }
-    std::vector<int> obs_per_face(faces.size(), 0);                      // by the face most of its points lie on
-    std::vector<std::vector<Eigen::Vector3d>> covering(faces.size());   // points of observations in the face's plane
+    std::vector<int> obs_per_face(faces.size(), 0);  // by the face most of its points lie on
+    std::vector<std::vector<Eigen::Vector3d>> covering(
+        faces.size());  // points of observations in the face's plane
     bool floor = false;
     int ceiling_inliers = 0;
     for (const PlaneObservation& o : obs) {
@@ -271,8 +277,9 @@ Scores score_scene(const scene::Scene& scene, const std::vector<std::size_t>& sc
       std::size_t best_count = 0;
       for (std::size_t f = 0; f < faces.size(); ++f) {
         if (angle_deg(pw.n, faces[f].plane.n) > kMatchAngleDeg) continue;
-        const std::size_t on = std::count_if(pts.begin(), pts.end(),
-                                             [&](const Eigen::Vector3d& p) { return faces[f].contains(p, kMatchOffset); });
+        const std::size_t on = std::count_if(pts.begin(), pts.end(), [&](const Eigen::Vector3d& p) {
+          return faces[f].contains(p, kMatchOffset);
+        });
         if (on > 0 && std::abs(faces[f].plane.signed_distance(cw)) <= kMatchOffset) {
           covering[f].insert(covering[f].end(), pts.begin(), pts.end());
         }
@@ -282,8 +289,9 @@ Scores score_scene(const scene::Scene& scene, const std::vector<std::size_t>& sc
         }
       }
       if (best < 0 || 2 * best_count < pts.size()) {
-        std::printf("  scan %zu: unmatched vertical plane at %.2f %.2f %.2f, normal %.2f %.2f %.2f, %d inliers\n", k,
-                    cw.x(), cw.y(), cw.z(), pw.n.x(), pw.n.y(), pw.n.z(), o.num_inliers);
+        std::printf(
+            "  scan %zu: unmatched vertical plane at %.2f %.2f %.2f, normal %.2f %.2f %.2f, %d inliers\n", k,
+            cw.x(), cw.y(), cw.z(), pw.n.x(), pw.n.y(), pw.n.z(), o.num_inliers);
         ++st.unmatched;
         continue;
       }
@@ -347,7 +355,8 @@ Scores score_scene(const scene::Scene& scene, const std::vector<std::size_t>& sc
           lo = std::min(lo, faces[f].s_of(p));
           hi = std::max(hi, faces[f].s_of(p));
         }
-        if (static_cast<int>(piece.size()) < 2 * config.min_inliers || hi - lo < 2 * config.min_extent) continue;
+        if (static_cast<int>(piece.size()) < 2 * config.min_inliers || hi - lo < 2 * config.min_extent)
+          continue;
         ++st.faces_checked;
         std::size_t covered = 0;
         for (const Eigen::Vector3d& p : piece) {
@@ -357,23 +366,28 @@ Scores score_scene(const scene::Scene& scene, const std::vector<std::size_t>& sc
         }
         st.covered_points += static_cast<double>(covered);
         st.face_points += static_cast<double>(piece.size());
-        if (2 * covered >= piece.size()) ++st.faces_found;
-        else std::printf("  scan %zu: face %zu (n %.2f %.2f, d %.2f) missed (%zu points, %.1f m long, %zu covered)\n", k,
-                         f, faces[f].plane.n.x(), faces[f].plane.n.y(), faces[f].plane.d, piece.size(), hi - lo, covered);
+        if (2 * covered >= piece.size())
+          ++st.faces_found;
+        else
+          std::printf(
+              "  scan %zu: face %zu (n %.2f %.2f, d %.2f) missed (%zu points, %.1f m long, %zu covered)\n", k,
+              f, faces[f].plane.n.x(), faces[f].plane.n.y(), faces[f].plane.d, piece.size(), hi - lo,
+              covered);
       }
     }
   }
-  std::printf("[%s, %d scans] wall faces: %d checked, %d found, %d split, point coverage %.3f; "
-              "%d vertical (%d on walls), %d horizontal, %d unmatched observations\n"
-              "  walls: angle err mean %.3f max %.3f deg, offset err mean %.4f max %.4f m, d err max %.4f m\n"
-              "  boxes/railings: angle err max %.3f deg, offset max %.4f m; horizontal: angle max %.3f deg, "
-              "offset max %.4f m; floor in %d scans; ceiling: %d inliers of %d points\n",
-              scene.name.c_str(), st.scans, st.faces_checked, st.faces_found, st.faces_split,
-              st.covered_points / std::max(1.0, st.face_points), st.vertical, st.wall_obs, st.horizontal,
-              st.unmatched, st.wall_angle_sum / std::max(1, st.wall_obs), st.wall_angle_max,
-              st.wall_offset_sum / std::max(1, st.wall_obs), st.wall_offset_max, st.wall_d_max, st.other_angle_max,
-              st.other_offset_max, st.horizontal_angle_max, st.horizontal_offset_max, st.scans_with_floor,
-              st.ceiling_inliers, st.ceiling_points);
+  std::printf(
+      "[%s, %d scans] wall faces: %d checked, %d found, %d split, point coverage %.3f; "
+      "%d vertical (%d on walls), %d horizontal, %d unmatched observations\n"
+      "  walls: angle err mean %.3f max %.3f deg, offset err mean %.4f max %.4f m, d err max %.4f m\n"
+      "  boxes/railings: angle err max %.3f deg, offset max %.4f m; horizontal: angle max %.3f deg, "
+      "offset max %.4f m; floor in %d scans; ceiling: %d inliers of %d points\n",
+      scene.name.c_str(), st.scans, st.faces_checked, st.faces_found, st.faces_split,
+      st.covered_points / std::max(1.0, st.face_points), st.vertical, st.wall_obs, st.horizontal,
+      st.unmatched, st.wall_angle_sum / std::max(1, st.wall_obs), st.wall_angle_max,
+      st.wall_offset_sum / std::max(1, st.wall_obs), st.wall_offset_max, st.wall_d_max, st.other_angle_max,
+      st.other_offset_max, st.horizontal_angle_max, st.horizontal_offset_max, st.scans_with_floor,
+      st.ceiling_inliers, st.ceiling_points);
   return st;
 }
 
@@ -402,14 +416,16 @@ void expect_good(const Scores& st, int min_faces) {
 TEST(PlaneExtraction, OfficeWallFacesFoundOnceWithSmallErrors) {
   const scene::Scene scene = builtin("office");
   const sim::Simulator probe(scene, 3);
-  const Scores st = score_scene(scene, spread(probe.num_scans() / 2, 24), PlaneExtractionConfig{});  // one lap
+  const Scores st =
+      score_scene(scene, spread(probe.num_scans() / 2, 24), PlaneExtractionConfig{});  // one lap
   expect_good(st, 40);
 }
 
 TEST(PlaneExtraction, AtriumWallFacesFoundOnceWithSmallErrors) {
   const scene::Scene scene = builtin("atrium");
   const sim::Simulator probe(scene, 3);
-  const Scores st = score_scene(scene, spread(probe.num_scans() / 2, 16), PlaneExtractionConfig{});  // one lap
+  const Scores st =
+      score_scene(scene, spread(probe.num_scans() / 2, 16), PlaneExtractionConfig{});  // one lap
   expect_good(st, 25);
 }
 
@@ -417,19 +433,25 @@ TEST(PlaneExtraction, AtriumWallFacesFoundOnceWithSmallErrors) {
 // one face or two. The sensor heads towards the walls and may be pitched.
 scene::Scene gap_scene(double gap, double tilt_deg) {
   const double a = 4.5 - 0.5 * gap, b = 4.5 + 0.5 * gap;
-  const std::string text = "name: gap\nsensor: {preset: os1-64, tilt_deg: " + std::to_string(tilt_deg) +
-                           "}\n"
-                           "levels:\n  - {name: G, elevation: 0.0, ceiling: 3.0, slab: [[-2,-2],[11,-2],[11,8],[-2,8]]}\n"
-                           "walls:\n  - {level: G, from: [0, 5], to: [" + std::to_string(a) + ", 5]}\n"
-                           "  - {level: G, from: [" + std::to_string(b) + ", 5], to: [9, 5]}\n"
-                           "trajectory:\n  level: G\n  waypoints: [[4.5, 2.0], [4.5, 3.0]]\n";
+  const std::string text =
+      "name: gap\nsensor: {preset: os1-64, tilt_deg: " + std::to_string(tilt_deg) +
+      "}\n"
+      "levels:\n  - {name: G, elevation: 0.0, ceiling: 3.0, slab: [[-2,-2],[11,-2],[11,8],[-2,8]]}\n"
+      "walls:\n  - {level: G, from: [0, 5], to: [" +
+      std::to_string(a) +
+      ", 5]}\n"
+      "  - {level: G, from: [" +
+      std::to_string(b) +
+      ", 5], to: [9, 5]}\n"
+      "trajectory:\n  level: G\n  waypoints: [[4.5, 2.0], [4.5, 3.0]]\n";
   return scene::parse_scene(text, "gap.yaml", ".");
 }
 
 std::vector<PlaneObservation> walls_facing_sensor(const std::vector<PlaneObservation>& obs, const Pose3& T) {
   std::vector<PlaneObservation> out;
   for (const PlaneObservation& o : obs) {
-    if (o.vertical && o.plane.transformed(T).n.dot(-Eigen::Vector3d::UnitY()) > std::cos(kMaxAngleErrDeg * kDeg)) {
+    if (o.vertical &&
+        o.plane.transformed(T).n.dot(-Eigen::Vector3d::UnitY()) > std::cos(kMaxAngleErrDeg * kDeg)) {
       out.push_back(o);
     }
   }
@@ -442,7 +464,8 @@ TEST(PlaneExtraction, GapWiderThanToleranceSplitsCollinearWalls) {
     const sim::Simulator sim(gap_scene(gap, 0.0), 5);
     const Pose3 T = sim.true_poses()[0];
     const PointCloud cloud = voxel_filter(sim.scan(0), kPrefilterVoxel);
-    const std::vector<PlaneObservation> faces = walls_facing_sensor(extract_planes(cloud, T.linear(), config), T);
+    const std::vector<PlaneObservation> faces =
+        walls_facing_sensor(extract_planes(cloud, T.linear(), config), T);
     const std::size_t expected = gap > config.cluster_tolerance ? 2 : 1;
     ASSERT_EQ(faces.size(), expected) << "gap " << gap;
     for (const PlaneObservation& f : faces) {
@@ -472,7 +495,8 @@ TEST(PlaneExtraction, ClassesAreJudgedInTheMapFrame) {
   bool floor = false;
   for (const PlaneObservation& o : planes) {
     const Plane pw = o.plane.transformed(T);
-    if (!o.vertical && pw.n.z() > std::cos(kMaxAngleErrDeg * kDeg) && std::abs(pw.d) < kMaxOffsetErr) floor = true;
+    if (!o.vertical && pw.n.z() > std::cos(kMaxAngleErrDeg * kDeg) && std::abs(pw.d) < kMaxOffsetErr)
+      floor = true;
   }
   EXPECT_TRUE(floor);
   // Taken as level, the same scan has its walls and floor tilted by 20 degrees: neither class.
@@ -551,7 +575,8 @@ TEST(PlaneExtraction, RealScansGiveRepeatablePlanes) {
   const PlaneExtractionConfig config;
   const std::vector<PlaneObservation> a = extract_planes(target, Eigen::Matrix3d::Identity(), config);
   const std::vector<PlaneObservation> b = extract_planes(source, T_target_source.linear(), config);
-  std::printf("[hdl32] %zu and %zu points -> %zu and %zu planes\n", target.size(), source.size(), a.size(), b.size());
+  std::printf("[hdl32] %zu and %zu points -> %zu and %zu planes\n", target.size(), source.size(), a.size(),
+              b.size());
   ASSERT_GE(a.size(), 3u);
   int matched = 0, large = 0;
   double max_angle = 0.0, max_offset = 0.0;
@@ -564,7 +589,8 @@ TEST(PlaneExtraction, RealScansGiveRepeatablePlanes) {
     bool found = false;
     for (const PlaneObservation& q : a) {
       const double angle = angle_deg(p.n, q.plane.n), offset = std::abs(q.plane.signed_distance(c));
-      if (q.vertical == o.vertical && angle <= kMatchAngleDeg && offset <= kMatchOffset && angle + offset < best_angle + best_offset) {
+      if (q.vertical == o.vertical && angle <= kMatchAngleDeg && offset <= kMatchOffset &&
+          angle + offset < best_angle + best_offset) {
         best_angle = angle;
         best_offset = offset;
         found = true;
@@ -575,8 +601,9 @@ TEST(PlaneExtraction, RealScansGiveRepeatablePlanes) {
     max_angle = std::max(max_angle, best_angle);
     max_offset = std::max(max_offset, best_offset);
   }
-  std::printf("[hdl32] %d of %d large source planes matched in the target, angle max %.3f deg, offset max %.4f m\n",
-              matched, large, max_angle, max_offset);
+  std::printf(
+      "[hdl32] %d of %d large source planes matched in the target, angle max %.3f deg, offset max %.4f m\n",
+      matched, large, max_angle, max_offset);
   EXPECT_GE(large, 3);
   EXPECT_GE(matched, large - 1);
   // Within 1 degree and 5 cm: the relative pose is itself a registration result, and some
@@ -586,7 +613,8 @@ TEST(PlaneExtraction, RealScansGiveRepeatablePlanes) {
   // The ground: a large horizontal plane below the sensor (which is pitched about 6 degrees).
   bool ground = false;
   for (const PlaneObservation& o : a) {
-    ground = ground || (!o.vertical && o.plane.n.z() > std::cos(10.0 * kDeg) && o.num_inliers >= 2 * config.min_inliers);
+    ground = ground || (!o.vertical && o.plane.n.z() > std::cos(10.0 * kDeg) &&
+                        o.num_inliers >= 2 * config.min_inliers);
   }
   EXPECT_TRUE(ground);
 }

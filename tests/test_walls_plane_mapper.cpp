@@ -64,8 +64,8 @@ Pose3 pose_at(double x, double y, double yaw = 0.0) { return make_pose(Eigen::Ve
 
 // Feeds one keyframe's observations to the mapper: associate or create. Returns the landmark
 // id given to each observation.
-std::vector<int> map_keyframe(PlaneMapper* mapper, const std::vector<PlaneObservation>& obs, const Pose3& T, int kf,
-                              int* next_id) {
+std::vector<int> map_keyframe(PlaneMapper* mapper, const std::vector<PlaneObservation>& obs, const Pose3& T,
+                              int kf, int* next_id) {
   std::vector<int> ids;
   for (const PlaneObservation& o : obs) {
     int id = mapper->associate(o, T);
@@ -87,8 +87,10 @@ TEST(PlaneMapper, OneFaceFromSeveralPosesIsOneLandmark) {
   // each seeing the part within 4 m.
   for (int kf = 0; kf < 6; ++kf) {
     const Pose3 T = pose_at(1.0 + 1.5 * kf, 2.0, 0.3 * kf);
-    const double x0 = std::max(0.0, T.translation().x() - 4.0), x1 = std::min(10.0, T.translation().x() + 4.0);
-    const std::vector<int> ids = map_keyframe(&mapper, {observe_rectangle({x0, 4.9}, {x1, 4.9}, 2.9, T)}, T, kf, &next_id);
+    const double x0 = std::max(0.0, T.translation().x() - 4.0),
+                 x1 = std::min(10.0, T.translation().x() + 4.0);
+    const std::vector<int> ids =
+        map_keyframe(&mapper, {observe_rectangle({x0, 4.9}, {x1, 4.9}, 2.9, T)}, T, kf, &next_id);
     EXPECT_EQ(ids[0], 0) << "keyframe " << kf;
   }
   ASSERT_EQ(mapper.landmarks().size(), 1u);
@@ -106,7 +108,8 @@ TEST(PlaneMapper, TheTwoFacesOfAThinWallNeverAssociate) {
     const bool south = kf % 2 == 0;
     const Pose3 T = pose_at(2.0 + 0.5 * kf, south ? 3.0 : 7.0);
     const double y = south ? 4.95 : 5.05;
-    const std::vector<int> ids = map_keyframe(&mapper, {observe_rectangle({0.0, y}, {8.0, y}, 2.9, T)}, T, kf, &next_id);
+    const std::vector<int> ids =
+        map_keyframe(&mapper, {observe_rectangle({0.0, y}, {8.0, y}, 2.9, T)}, T, kf, &next_id);
     EXPECT_EQ(ids[0], south ? 0 : 1) << "keyframe " << kf;
   }
   ASSERT_EQ(mapper.landmarks().size(), 2u);
@@ -338,8 +341,8 @@ std::vector<TrueFace> wall_faces(const scene::Scene& scene) {
         for (const Eigen::Vector2d& e : {other.from, other.to}) {
           const Eigen::Vector3d e3(e.x(), e.y(), f.z0);
           const double s = f.s_of(e3);
-          if (&other != &w && std::abs(f.plane.signed_distance(e3)) <= 0.5 * w.thickness + 1e-6 && s > cuts[0] &&
-              s < cuts[1]) {
+          if (&other != &w && std::abs(f.plane.signed_distance(e3)) <= 0.5 * w.thickness + 1e-6 &&
+              s > cuts[0] && s < cuts[1]) {
             cuts.push_back(s);
           }
         }
@@ -364,14 +367,15 @@ std::vector<TrueFace> wall_faces(const scene::Scene& scene) {
 }
 
 // How many of `pts` (map frame) lie on each face that faces like `n`.
-std::vector<std::size_t> points_on_faces(const std::vector<TrueFace>& faces, const std::vector<Eigen::Vector3f>& pts,
-                                         const Eigen::Vector3d& n) {
+std::vector<std::size_t> points_on_faces(const std::vector<TrueFace>& faces,
+                                         const std::vector<Eigen::Vector3f>& pts, const Eigen::Vector3d& n) {
   constexpr double kMargin = 0.1;
   std::vector<std::size_t> on(faces.size(), 0);
   for (std::size_t f = 0; f < faces.size(); ++f) {
     if (faces[f].plane.n.dot(n) < std::cos(10.0 * kDeg)) continue;
-    on[f] = std::count_if(pts.begin(), pts.end(),
-                          [&](const Eigen::Vector3f& p) { return faces[f].contains(p.cast<double>(), kMargin); });
+    on[f] = std::count_if(pts.begin(), pts.end(), [&](const Eigen::Vector3f& p) {
+      return faces[f].contains(p.cast<double>(), kMargin);
+    });
   }
   return on;
 }
@@ -393,8 +397,8 @@ TEST(PlaneMapper, OfficeLapFromTruePosesGivesOneLandmarkPerFace) {
   for (std::size_t k = 0; k < lap; k += kKeyframeStep, ++kf) {
     const Pose3& T = sim.true_poses()[k];
     poses[kf] = T;
-    const std::vector<PlaneObservation> obs =
-        walls::extract_planes(voxel_filter(sim.scan(k), kPrefilterVoxel), T.linear(), PlaneExtractionConfig{});
+    const std::vector<PlaneObservation> obs = walls::extract_planes(
+        voxel_filter(sim.scan(k), kPrefilterVoxel), T.linear(), PlaneExtractionConfig{});
     observations += static_cast<int>(obs.size());
     map_keyframe(&mapper, obs, T, kf, &next_id);
   }
@@ -416,7 +420,8 @@ TEST(PlaneMapper, OfficeLapFromTruePosesGivesOneLandmarkPerFace) {
     if (!lm.vertical) continue;
     const std::vector<std::size_t> on = points_on_faces(faces, lm.points, lm.plane.n);
     const std::size_t main_face = std::max_element(on.begin(), on.end()) - on.begin();
-    if (2 * on[main_face] < lm.points.size() && 2 * std::accumulate(on.begin(), on.end(), std::size_t{0}) < lm.points.size()) {
+    if (2 * on[main_face] < lm.points.size() &&
+        2 * std::accumulate(on.begin(), on.end(), std::size_t{0}) < lm.points.size()) {
       continue;  // furniture
     }
     ++wall_landmarks;
@@ -444,7 +449,8 @@ TEST(PlaneMapper, OfficeLapFromTruePosesGivesOneLandmarkPerFace) {
     for (const Eigen::Vector3f& p : lm.points) centroid += p.cast<double>();
     centroid /= static_cast<double>(lm.points.size());
     const Plane& plane = truth.plane;
-    max_angle = std::max(max_angle, std::atan2(lm.plane.n.cross(plane.n).norm(), lm.plane.n.dot(plane.n)) / kDeg);
+    max_angle =
+        std::max(max_angle, std::atan2(lm.plane.n.cross(plane.n).norm(), lm.plane.n.dot(plane.n)) / kDeg);
     max_offset = std::max(max_offset, std::abs(plane.signed_distance(centroid)));
   }
   int faces_with_several = 0;
@@ -454,16 +460,19 @@ TEST(PlaneMapper, OfficeLapFromTruePosesGivesOneLandmarkPerFace) {
       std::printf("  face %d (n %.1f %.1f, d %.2f, s %.2f..%.2f) has %zu landmarks:", f, faces[f].plane.n.x(),
                   faces[f].plane.n.y(), faces[f].plane.d, faces[f].s0, faces[f].s1, ids.size());
       for (const int id : ids) {
-        const auto on = points_on_faces(faces, mapper.landmarks().at(id).points, mapper.landmarks().at(id).plane.n);
+        const auto on =
+            points_on_faces(faces, mapper.landmarks().at(id).points, mapper.landmarks().at(id).plane.n);
         std::printf(" %d (%zu of %zu points)", id, on[f], mapper.landmarks().at(id).points.size());
       }
       std::printf("\n");
     }
   }
-  std::printf("[office lap] %d keyframes, %d observations -> %zu landmarks, %d merged as duplicates, %zu left; "
-              "%d on %zu of %zu wall face pieces, %d impure, %d pieces with several; plane error max %.3f deg, %.4f m\n",
-              kf, observations, before_merge, merged, mapper.landmarks().size(), wall_landmarks,
-              landmarks_of_face.size(), faces.size(), impure, faces_with_several, max_angle, max_offset);
+  std::printf(
+      "[office lap] %d keyframes, %d observations -> %zu landmarks, %d merged as duplicates, %zu left; "
+      "%d on %zu of %zu wall face pieces, %d impure, %d pieces with several; plane error max %.3f deg, %.4f "
+      "m\n",
+      kf, observations, before_merge, merged, mapper.landmarks().size(), wall_landmarks,
+      landmarks_of_face.size(), faces.size(), impure, faces_with_several, max_angle, max_offset);
   EXPECT_GE(landmarks_of_face.size(), 20u);
   EXPECT_EQ(impure, 0);
   EXPECT_EQ(faces_with_several, 0);

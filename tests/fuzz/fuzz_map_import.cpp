@@ -38,8 +38,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string image = cut == std::string::npos ? "" : bytes.substr(cut + sizeof kImageStarts - 1);
   std::filesystem::create_directories(fuzz::scratch_dir() / "map");
   app::ImportMapOptions options;
-  options.map = fuzz::input_file(reinterpret_cast<const std::uint8_t*>(yaml.data()), yaml.size(), "map/map.yaml");
-  options.rooms = fuzz::input_file(reinterpret_cast<const std::uint8_t*>(image.data()), image.size(), "map/map.pgm");
+  options.map =
+      fuzz::input_file(reinterpret_cast<const std::uint8_t*>(yaml.data()), yaml.size(), "map/map.yaml");
+  options.rooms =
+      fuzz::input_file(reinterpret_cast<const std::uint8_t*>(image.data()), image.size(), "map/map.pgm");
   options.out = (fuzz::scratch_dir() / "out" / "scene.yaml").string();
   options.quiet = true;
   if (too_large(options.map)) return 0;

@@ -9,7 +9,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fuzz::only_input_errors("parse_scene", [&] {
     // A base folder that holds nothing: a scene naming a voxel map or floor plan gets the
     // missing-file error, not another fuzz input.
-    const scene::Scene loaded = scene::parse_scene(text, "scene.yaml", (fuzz::scratch_dir() / "none").string());
+    const scene::Scene loaded =
+        scene::parse_scene(text, "scene.yaml", (fuzz::scratch_dir() / "none").string());
     scene::sequence_scans(loaded);
   });
   return 0;

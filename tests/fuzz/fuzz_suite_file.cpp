@@ -13,7 +13,8 @@ const std::filesystem::path& suite_folder() {
   static const std::filesystem::path folder = [] {
     const std::filesystem::path dir = tsgraphs::fuzz::scratch_dir() / "suite";
     std::filesystem::create_directories(dir / "seq" / "scans");
-    for (const char* name : {"map.yaml", "rooms.png", "seq/times.txt", "seq/odom.txt"}) std::ofstream(dir / name);
+    for (const char* name : {"map.yaml", "rooms.png", "seq/times.txt", "seq/odom.txt"})
+      std::ofstream(dir / name);
     return dir;
   }();
   return folder;

@@ -21,7 +21,8 @@ namespace tsgraphs::fuzz {
 inline const std::filesystem::path& scratch_dir() {
   struct Scratch {
     std::filesystem::path dir;
-    Scratch() : dir(std::filesystem::temp_directory_path() / ("tsgraphs-fuzz-" + std::to_string(::getpid()))) {
+    Scratch()
+        : dir(std::filesystem::temp_directory_path() / ("tsgraphs-fuzz-" + std::to_string(::getpid()))) {
       std::filesystem::create_directories(dir);
     }
     ~Scratch() {

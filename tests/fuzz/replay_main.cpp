@@ -51,9 +51,20 @@ bool find_number(const std::string& s, std::size_t from, std::size_t& begin, std
 }
 
 void mutate_once(std::string& s, Rng& rng) {
-  static const std::uint32_t kWords[] = {0u, 1u, 0x7fu, 0xffu, 0x7fffffffu, 0x80000000u, 0xfffffffeu, 0xffffffffu};
-  static const char* const kNumbers[] = {"0", "-1", "1e308", "-1e308", "1e400", "nan", "inf", "1e-9",
-                                         "4294967296", "2147483648", "99999999999999999999", "0.5"};
+  static const std::uint32_t kWords[] = {0u,          1u,          0x7fu,       0xffu,
+                                         0x7fffffffu, 0x80000000u, 0xfffffffeu, 0xffffffffu};
+  static const char* const kNumbers[] = {"0",
+                                         "-1",
+                                         "1e308",
+                                         "-1e308",
+                                         "1e400",
+                                         "nan",
+                                         "inf",
+                                         "1e-9",
+                                         "4294967296",
+                                         "2147483648",
+                                         "99999999999999999999",
+                                         "0.5"};
   switch (below(rng, 8)) {
     case 0:  // one bit
       if (!s.empty()) s[below(rng, s.size())] ^= static_cast<char>(1u << below(rng, 8));
@@ -140,7 +151,8 @@ int main(int argc, char** argv) {
     // regression_* seeds are inputs that once crashed a reader: refusing them is right.
     const bool regression = path.filename().string().rfind("regression_", 0) == 0;
     if (!regression && seed_tally.refusals == seed_tally.reads) {
-      std::fprintf(stderr, "%s: every reader refuses this seed: %s\n", path.c_str(), seed_tally.refusal.c_str());
+      std::fprintf(stderr, "%s: every reader refuses this seed: %s\n", path.c_str(),
+                   seed_tally.refusal.c_str());
       return 1;
     }
     Rng rng(seed ^ std::hash<std::string>{}(path.filename().string()));

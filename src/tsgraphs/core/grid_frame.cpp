@@ -58,13 +58,15 @@ GridFrame GridFrame::around(const Vec2& lo, const Vec2& hi, double resolution, d
   return f;
 }
 
-std::vector<float> distance_transform(const GridFrame& f, const std::vector<std::uint8_t>& free, bool border_blocked) {
+std::vector<float> distance_transform(const GridFrame& f, const std::vector<std::uint8_t>& free,
+                                      bool border_blocked) {
   constexpr float kInf = std::numeric_limits<float>::infinity();
   // Blocked cells are the sources; one ring outside the raster stands for what lies beyond it.
   const int W = f.cols + 2, H = f.rows + 2;
   std::vector<float> d(static_cast<std::size_t>(W) * H, border_blocked ? 0.0f : kInf);
   for (int r = 0; r < f.rows; ++r) {
-    for (int c = 0; c < f.cols; ++c) d[static_cast<std::size_t>(r + 1) * W + c + 1] = free[f.index(c, r)] ? kInf : 0.0f;
+    for (int c = 0; c < f.cols; ++c)
+      d[static_cast<std::size_t>(r + 1) * W + c + 1] = free[f.index(c, r)] ? kInf : 0.0f;
   }
   std::vector<int> v;
   std::vector<float> z, col(H), out(std::max(W, H));
@@ -81,7 +83,8 @@ std::vector<float> distance_transform(const GridFrame& f, const std::vector<std:
   std::vector<float> metres(f.size(), 0.0f);
   for (int r = 0; r < f.rows; ++r) {
     for (int c = 0; c < f.cols; ++c)
-      metres[f.index(c, r)] = static_cast<float>(std::sqrt(d[static_cast<std::size_t>(r + 1) * W + c + 1]) * f.resolution);
+      metres[f.index(c, r)] =
+          static_cast<float>(std::sqrt(d[static_cast<std::size_t>(r + 1) * W + c + 1]) * f.resolution);
   }
   return metres;
 }

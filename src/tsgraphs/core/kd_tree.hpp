@@ -14,7 +14,9 @@ namespace tsgraphs {
 struct PointsAdaptor {
   const std::vector<Eigen::Vector3f>* points;
   std::size_t kdtree_get_point_count() const { return points->size(); }
-  float kdtree_get_pt(std::size_t i, std::size_t dim) const { return (*points)[i][static_cast<Eigen::Index>(dim)]; }
+  float kdtree_get_pt(std::size_t i, std::size_t dim) const {
+    return (*points)[i][static_cast<Eigen::Index>(dim)];
+  }
   template <class BBox>
   bool kdtree_get_bbox(BBox&) const {
     return false;
@@ -39,8 +41,8 @@ class KdTree3f {
   std::size_t size() const { return adaptor_.points->size(); }
 
  private:
-  using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointsAdaptor>, PointsAdaptor,
-                                                    3, std::uint32_t>;
+  using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointsAdaptor>,
+                                                    PointsAdaptor, 3, std::uint32_t>;
   PointsAdaptor adaptor_;
   Index index_;  // nanoflann >= 1.4 builds the index in its constructor
 };

@@ -11,7 +11,7 @@ struct Rgb {
 
 /// Distinct colours for neighbouring wall ids; the other layers use fixed colours.
 inline Rgb wall_colour(int id) {
-  static constexpr Rgb kPalette[] = {{230, 25, 75},  {60, 180, 75},  {0, 130, 200}, {245, 130, 48},
+  static constexpr Rgb kPalette[] = {{230, 25, 75},  {60, 180, 75},  {0, 130, 200},  {245, 130, 48},
                                      {145, 30, 180}, {70, 240, 240}, {240, 50, 230}, {210, 245, 60},
                                      {0, 128, 128},  {170, 110, 40}, {128, 0, 0},    {0, 0, 128}};
   constexpr std::size_t kCount = sizeof kPalette / sizeof kPalette[0];

@@ -21,8 +21,8 @@ enum class PointLabel : std::uint32_t {
 
 struct PointCloud {
   std::vector<Eigen::Vector3f> points;
-  std::vector<float> intensity;        ///< empty or one per point
-  std::vector<std::uint32_t> labels;   ///< empty or one per point (PointLabel values)
+  std::vector<float> intensity;       ///< empty or one per point
+  std::vector<std::uint32_t> labels;  ///< empty or one per point (PointLabel values)
   /// Empty or one per point: when it was measured, seconds after the scan's stamp (a spinning
   /// sensor sweeps its scan over its period while it moves; negative: before the stamp).
   std::vector<float> times;

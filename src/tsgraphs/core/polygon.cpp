@@ -45,9 +45,8 @@ Vec2 centroid(const Polygon2& poly) {
 }
 
 Polygon2 convex_hull(std::vector<Vec2> points) {
-  std::sort(points.begin(), points.end(), [](const Vec2& a, const Vec2& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
+  std::sort(points.begin(), points.end(),
+            [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
   points.erase(std::unique(points.begin(), points.end()), points.end());
   if (points.size() < 3) return points;
   Polygon2 hull(2 * points.size());
@@ -190,8 +189,7 @@ std::vector<Triangle2> triangulate_region(const std::vector<Polygon2>& include,
     }
   }
   std::sort(ys.begin(), ys.end());
-  ys.erase(std::unique(ys.begin(), ys.end(), [](double p, double q) { return q - p < 1e-10; }),
-           ys.end());
+  ys.erase(std::unique(ys.begin(), ys.end(), [](double p, double q) { return q - p < 1e-10; }), ys.end());
 
   std::vector<Triangle2> triangles;
   struct Crossing {
@@ -207,7 +205,9 @@ std::vector<Triangle2> triangulate_region(const std::vector<Polygon2>& include,
     crossings.clear();
     for (const Edge& e : edges) {
       if (e.a.y() >= ym || e.b.y() <= ym) continue;
-      auto x_at = [&](double y) { return e.a.x() + (y - e.a.y()) * (e.b.x() - e.a.x()) / (e.b.y() - e.a.y()); };
+      auto x_at = [&](double y) {
+        return e.a.x() + (y - e.a.y()) * (e.b.x() - e.a.x()) / (e.b.y() - e.a.y());
+      };
       crossings.push_back({x_at(ym), x_at(y0), x_at(y1), e.poly});
     }
     std::sort(crossings.begin(), crossings.end(),

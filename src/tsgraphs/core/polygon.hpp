@@ -31,8 +31,7 @@ bool contains(const Polygon2& poly, const Vec2& p);
 double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b);
 
 /// True when the closed segments [a, b] and [c, d] share a point; `at` gets one of them.
-bool segments_intersect(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d,
-                        Vec2* at = nullptr);
+bool segments_intersect(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d, Vec2* at = nullptr);
 
 /// A pair of edge indices (edge i joins vertex i and i+1) of a polygon that is not simple:
 /// two non-adjacent edges that touch, adjacent edges that fold back, or a repeated vertex.

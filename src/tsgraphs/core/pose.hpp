@@ -10,9 +10,9 @@ using Pose3 = Eigen::Isometry3d;
 /// Pose from a position, a yaw about z and a pitch about the body's y axis (applied after yaw).
 inline Pose3 make_pose(const Eigen::Vector3d& position, double yaw, double pitch = 0.0) {
   Pose3 T = Pose3::Identity();
-  T.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
-                   .toRotationMatrix();
+  T.linear() =
+      (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
+          .toRotationMatrix();
   T.translation() = position;
   return T;
 }

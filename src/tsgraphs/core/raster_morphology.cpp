@@ -14,7 +14,8 @@ constexpr double kSlack = 1e-4;
 
 void check(std::size_t size, int cols, int rows, double length) {
   if (cols < 1 || rows < 1 || size != static_cast<std::size_t>(cols) * rows || !(length >= 0.0))
-    throw std::invalid_argument("raster morphology: a mask's size disagrees with the raster, or a negative length");
+    throw std::invalid_argument(
+        "raster morphology: a mask's size disagrees with the raster, or a negative length");
 }
 
 /// Marks the gap runs of one line of cells (indices `line`) that qualify (see bridge_gaps).
@@ -50,8 +51,9 @@ std::vector<std::uint8_t> dilate(const std::vector<std::uint8_t>& mask, int cols
   return out;
 }
 
-std::vector<std::uint8_t> bridge_gaps(const std::vector<std::uint8_t>& end, const std::vector<std::uint8_t>& gap,
-                                      int cols, int rows, double max_length) {
+std::vector<std::uint8_t> bridge_gaps(const std::vector<std::uint8_t>& end,
+                                      const std::vector<std::uint8_t>& gap, int cols, int rows,
+                                      double max_length) {
   check(end.size(), cols, rows, max_length);
   check(gap.size(), cols, rows, max_length);
   std::vector<std::uint8_t> out(end.size(), 0);

@@ -16,7 +16,8 @@ std::vector<std::uint8_t> dilate(const std::vector<std::uint8_t>& mask, int cols
 /// `end` cell at each end, the run no longer than `max_length` cells (a diagonal step counts
 /// sqrt(2)): the gaps of a fringe between known cells, or of a wall seen in dashes. Cells that
 /// are neither end nor gap break a run; the raster's edge is no end.
-std::vector<std::uint8_t> bridge_gaps(const std::vector<std::uint8_t>& end, const std::vector<std::uint8_t>& gap,
-                                      int cols, int rows, double max_length);
+std::vector<std::uint8_t> bridge_gaps(const std::vector<std::uint8_t>& end,
+                                      const std::vector<std::uint8_t>& gap, int cols, int rows,
+                                      double max_length);
 
 }  // namespace tsgraphs

@@ -10,8 +10,9 @@
 namespace tsgraphs {
 namespace {
 
-constexpr double kSaddleCut = 0.1;  // cells cut off a corner the outline passes twice: well above the writer's 0.1 mm
-constexpr int kBucketCells = 16;         // cells a side of the buckets that find meeting edges
+constexpr double kSaddleCut =
+    0.1;  // cells cut off a corner the outline passes twice: well above the writer's 0.1 mm
+constexpr int kBucketCells = 16;  // cells a side of the buckets that find meeting edges
 
 using Cell = std::array<int, 2>;
 
@@ -41,7 +42,8 @@ std::pair<long, double> farthest_in_span(const Polygon2& p, std::size_t i, std::
 
 /// Douglas-Peucker of the span (i, j) of a ring, appending the kept vertices (no recursion:
 /// outlines can be long).
-void dp_span(const Polygon2& p, std::size_t i, std::size_t j, double tolerance, std::vector<std::size_t>* kept) {
+void dp_span(const Polygon2& p, std::size_t i, std::size_t j, double tolerance,
+             std::vector<std::size_t>* kept) {
   std::vector<std::pair<std::size_t, std::size_t>> pending = {{i, j}};
   while (!pending.empty()) {
     const auto [a, b] = pending.back();
@@ -203,7 +205,8 @@ std::vector<int> label_regions(const std::vector<std::uint8_t>& in, int cols, in
   return label;
 }
 
-std::vector<std::uint8_t> enclosed_regions(const std::vector<std::uint8_t>& in, int cols, int rows, double max_cells) {
+std::vector<std::uint8_t> enclosed_regions(const std::vector<std::uint8_t>& in, int cols, int rows,
+                                           double max_cells) {
   std::vector<std::size_t> sizes;
   const std::vector<int> parts = label_regions(in, cols, rows, true, &sizes);
   std::vector<std::uint8_t> enclosed(sizes.size(), 1);
@@ -217,7 +220,8 @@ std::vector<std::uint8_t> enclosed_regions(const std::vector<std::uint8_t>& in, 
     for (int c : {0, cols - 1})
       if (at(c, r) >= 0) enclosed[static_cast<std::size_t>(at(c, r))] = 0;
   std::vector<std::uint8_t> out(in.size(), 0);
-  for (std::size_t i = 0; i < in.size(); ++i) out[i] = parts[i] >= 0 && enclosed[static_cast<std::size_t>(parts[i])] ? 1 : 0;
+  for (std::size_t i = 0; i < in.size(); ++i)
+    out[i] = parts[i] >= 0 && enclosed[static_cast<std::size_t>(parts[i])] ? 1 : 0;
   return out;
 }
 

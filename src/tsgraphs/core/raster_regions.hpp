@@ -18,7 +18,8 @@ std::vector<int> label_regions(const std::vector<std::uint8_t>& in, int cols, in
 /// most `max_cells` cells: what the rest surrounds. Of the blocked cells of a map, what stands
 /// free inside the building (furniture, a pillar) rather than its structure, which is joined to
 /// what lies round it.
-std::vector<std::uint8_t> enclosed_regions(const std::vector<std::uint8_t>& in, int cols, int rows, double max_cells);
+std::vector<std::uint8_t> enclosed_regions(const std::vector<std::uint8_t>& in, int cols, int rows,
+                                           double max_cells);
 
 /// The outer outlines of the 4-connected (eight_connected false) or 8-connected regions of
 /// `mask` (cols x rows, row 0 at the bottom), traced along cell edges, counter-clockwise, in

@@ -38,7 +38,8 @@ double distance(const OrientedRect& r, const Vec2& a, const Vec2& b) {
     const Vec2& p = k[i];
     const Vec2& q = k[(i + 1) % k.size()];
     if (segments_intersect(a, b, p, q)) return 0.0;
-    d = std::min({d, distance_to_segment(p, a, b), distance_to_segment(a, p, q), distance_to_segment(b, p, q)});
+    d = std::min(
+        {d, distance_to_segment(p, a, b), distance_to_segment(a, p, q), distance_to_segment(b, p, q)});
   }
   return d;
 }

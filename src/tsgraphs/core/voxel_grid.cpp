@@ -63,7 +63,10 @@ PointCloud voxel_downsample(const PointCloud& scan, double voxel_size, double mi
     out.reserve(scan.size(), with_intensity, with_labels);
     for (std::size_t i = 0; i < scan.size(); ++i) {
       const Eigen::Vector3f& p = scan.points[i];
-      if (!p.allFinite()) { ++non_finite; continue; }
+      if (!p.allFinite()) {
+        ++non_finite;
+        continue;
+      }
       const double r2 = p.squaredNorm();
       if (r2 < min2 || r2 > max2) continue;
       out.points.push_back(p);
@@ -78,7 +81,10 @@ PointCloud voxel_downsample(const PointCloud& scan, double voxel_size, double mi
     voxels.reserve(scan.size() / 2);
     for (std::size_t i = 0; i < scan.size(); ++i) {
       const Eigen::Vector3f& p = scan.points[i];
-      if (!p.allFinite()) { ++non_finite; continue; }
+      if (!p.allFinite()) {
+        ++non_finite;
+        continue;
+      }
       const double r2 = p.squaredNorm();
       if (r2 < min2 || r2 > max2) continue;
       bool fresh = false;

@@ -26,7 +26,9 @@ inline std::uint64_t voxel_key(std::int64_t a, std::int64_t b, std::int64_t c) {
 inline Eigen::Vector3i voxel_of_key(std::uint64_t key) {
   constexpr std::int64_t kOffset = std::int64_t{1} << (kVoxelKeyBits - 1);
   constexpr std::uint64_t kMask = (std::uint64_t{1} << kVoxelKeyBits) - 1;
-  auto axis = [&](int shift) { return static_cast<int>(static_cast<std::int64_t>((key >> shift) & kMask) - kOffset); };
+  auto axis = [&](int shift) {
+    return static_cast<int>(static_cast<std::int64_t>((key >> shift) & kMask) - kOffset);
+  };
   return {axis(0), axis(kVoxelKeyBits), axis(2 * kVoxelKeyBits)};
 }
 
@@ -38,7 +40,8 @@ inline std::uint64_t voxel_key(const Eigen::Vector3f& p, double inv_size) {
 
 /// Key of 2-D cell (column, row): the two indices' low 32 bits side by side.
 inline std::uint64_t cell_key(std::int64_t column, std::int64_t row) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(column)) << 32) | static_cast<std::uint32_t>(row);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(column)) << 32) |
+         static_cast<std::uint32_t>(row);
 }
 
 /// Hash of a packed key for open-addressing tables: a full-avalanche mix (splitmix64's

@@ -121,8 +121,9 @@ void YamlMap::check_keys(const std::vector<std::string>& allowed) const {
     const int line = it->first.Mark().line + 1;
     // The key is the file's text, any bytes: quoted printable.
     if (const auto [first, fresh] = seen.emplace(key, line); !fresh) {
-      throw input_error(file_, line, "duplicate key '" + key_path(printable(key)) + "' (first at line " +
-                                         std::to_string(first->second) + ")");
+      throw input_error(file_, line,
+                        "duplicate key '" + key_path(printable(key)) + "' (first at line " +
+                            std::to_string(first->second) + ")");
     }
     bool known = false;
     for (const std::string& a : allowed) known = known || key == a;

@@ -60,7 +60,8 @@ std::vector<CellKey> raster_cells(const Polygon2& polygon, double cell) {
   constexpr double kIndexLimit = static_cast<double>(kBias - 1);
   // The area bounds the cells made, the rows the time (a long thin strip is cheap).
   if (area(polygon) > kMaxRasterCells * cell * cell || j1 - j0 + 1 > kMaxRasterCells ||
-      std::max(std::abs(i0), std::abs(i1)) > kIndexLimit || std::max(std::abs(j0), std::abs(j1)) > kIndexLimit)
+      std::max(std::abs(i0), std::abs(i1)) > kIndexLimit ||
+      std::max(std::abs(j0), std::abs(j1)) > kIndexLimit)
     throw std::invalid_argument("polygon too large to rasterise");
 
   std::vector<double> crossings;
@@ -70,7 +71,7 @@ std::vector<CellKey> raster_cells(const Polygon2& polygon, double cell) {
     for (std::size_t k = 0; k < polygon.size(); ++k) {
       Vec2 a = polygon[k], b = polygon[(k + 1) % polygon.size()];
       if ((a.y() <= yc) == (b.y() <= yc)) continue;  // half-open in y: a centre on a bottom edge is inside
-      if (a.y() > b.y()) std::swap(a, b);             // the same crossing whichever way the edge runs
+      if (a.y() > b.y()) std::swap(a, b);            // the same crossing whichever way the edge runs
       crossings.push_back(a.x() + (yc - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
     }
     std::sort(crossings.begin(), crossings.end());

@@ -6,7 +6,8 @@
 
 namespace tsgraphs::eval {
 
-IpaFigures ipa_precision_recall(const std::vector<CellRegion>& segments, const std::vector<CellRegion>& truth) {
+IpaFigures ipa_precision_recall(const std::vector<CellRegion>& segments,
+                                const std::vector<CellRegion>& truth) {
   const auto large = [](const std::vector<CellRegion>& regions) {
     std::vector<const CellRegion*> out;
     for (const CellRegion& r : regions)
@@ -18,7 +19,8 @@ IpaFigures ipa_precision_recall(const std::vector<CellRegion>& segments, const s
   std::vector<std::vector<double>> overlap(seg.size(), std::vector<double>(gt.size(), 0.0));
   for (std::size_t s = 0; s < seg.size(); ++s)
     for (std::size_t g = 0; g < gt.size(); ++g)
-      if (seg[s]->level == gt[g]->level) overlap[s][g] = static_cast<double>(shared_cells(seg[s]->cells, gt[g]->cells));
+      if (seg[s]->level == gt[g]->level)
+        overlap[s][g] = static_cast<double>(shared_cells(seg[s]->cells, gt[g]->cells));
 
   IpaFigures f;
   f.n_segments = static_cast<int>(seg.size());
@@ -61,7 +63,8 @@ std::vector<CellRegion> regions_of(const std::vector<io::RoomTruth>& truth) {
 std::vector<CellRegion> segments_of(const std::vector<LevelFootprint>& footprints,
                                     const std::vector<io::RoomTruth>& free_space) {
   std::map<std::string, std::vector<CellKey>> free;  // per level
-  for (const io::RoomTruth& t : free_space) free[t.level] = cell_union(free[t.level], raster_cells(t.polygon));
+  for (const io::RoomTruth& t : free_space)
+    free[t.level] = cell_union(free[t.level], raster_cells(t.polygon));
 
   // Every (level, cell, area, index) claim; the first claim of a cell after sorting wins.
   std::map<std::string, int> level_ids;
@@ -85,7 +88,8 @@ std::vector<CellRegion> segments_of(const std::vector<LevelFootprint>& footprint
   for (std::size_t i = 0; i < footprints.size(); ++i) out[i].level = footprints[i].level;
   for (std::size_t k = 0; k < claims.size(); ++k) {
     if (k > 0 && claims[k].cell == claims[k - 1].cell && claims[k].level == claims[k - 1].level) continue;
-    out[claims[k].index].cells.push_back(claims[k].cell);  // ascending: a footprint's claims are sorted by cell
+    out[claims[k].index].cells.push_back(
+        claims[k].cell);  // ascending: a footprint's claims are sorted by cell
   }
   for (CellRegion& r : out) {
     const auto it = free.find(r.level);

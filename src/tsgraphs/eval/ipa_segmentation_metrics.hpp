@@ -34,7 +34,8 @@ struct IpaFigures {
 /// kIpaMaxSmallRegionCells cells: for each segment the most cells it shares with one true room
 /// of its level, over its size (precision), and for each true room the most it shares with one
 /// segment, over its size (recall).
-IpaFigures ipa_precision_recall(const std::vector<CellRegion>& segments, const std::vector<CellRegion>& truth);
+IpaFigures ipa_precision_recall(const std::vector<CellRegion>& segments,
+                                const std::vector<CellRegion>& truth);
 
 /// The segments of a room map: each footprint's cells on its level, a cell in two footprints
 /// given to the one of smaller polygon area (ties: the lower index), clipped to the free space

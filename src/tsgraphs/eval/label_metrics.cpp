@@ -17,7 +17,8 @@ std::vector<CellRegion> regions_of_labels(const std::vector<int>& labels, int co
   for (std::size_t i = 0; i < labels.size(); ++i)
     if (labels[i] >= 0)
       out[static_cast<std::size_t>(labels[i])].cells.push_back(
-          cell_key(static_cast<int>(i % static_cast<std::size_t>(cols)), static_cast<int>(i / static_cast<std::size_t>(cols))));
+          cell_key(static_cast<int>(i % static_cast<std::size_t>(cols)),
+                   static_cast<int>(i / static_cast<std::size_t>(cols))));
   return out;
 }
 
@@ -43,8 +44,8 @@ LabelRoomFigures match_rooms(const std::vector<int>& segments, const std::vector
   std::vector<std::tuple<double, int, int>> candidates;  // (-IoU, segment, truth)
   for (const auto& [pair, n] : shared) {
     if (!large(seg_size, pair.first) || !large(truth_size, pair.second)) continue;
-    const double iou = static_cast<double>(n) /
-                       static_cast<double>(seg_size[pair.first] + truth_size[pair.second] - n);
+    const double iou =
+        static_cast<double>(n) / static_cast<double>(seg_size[pair.first] + truth_size[pair.second] - n);
     if (iou >= kMatchMinIou) candidates.emplace_back(-iou, pair.first, pair.second);
   }
   std::sort(candidates.begin(), candidates.end());

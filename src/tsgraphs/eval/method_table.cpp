@@ -6,11 +6,7 @@
 
 namespace tsgraphs::eval {
 
-namespace {
-
-
-
-}  // namespace
+namespace {}  // namespace
 
 std::vector<TableColumn> table1_columns() {
   return {
@@ -64,7 +60,8 @@ std::string cell_text(const Spread& s, int decimals) {
   return fixed_text(s.mean, decimals) + " ± " + fixed_text(s.sd, decimals);
 }
 
-std::string markdown_table(const std::vector<MethodResult>& results, const std::vector<TableColumn>& columns) {
+std::string markdown_table(const std::vector<MethodResult>& results,
+                           const std::vector<TableColumn>& columns) {
   std::string out = "| scene | method |";
   std::string rule = "|---|---|";
   for (const TableColumn& c : columns) {
@@ -88,7 +85,8 @@ std::string csv_table(const std::vector<MethodResult>& results, const std::vecto
     out += csv_field(r.scene) + "," + csv_field(r.method) + "," + std::to_string(r.seeds.size());
     for (const TableColumn& c : columns) {
       const Spread s = spread(r, c);
-      out += s.n == 0 ? std::string(",,") : "," + fixed_text(s.mean, 6) + "," + (s.n < 2 ? std::string() : fixed_text(s.sd, 6));
+      out += s.n == 0 ? std::string(",,")
+                      : "," + fixed_text(s.mean, 6) + "," + (s.n < 2 ? std::string() : fixed_text(s.sd, 6));
     }
     out += "\n";
   }

@@ -33,9 +33,9 @@ std::vector<TableColumn> truth_columns();
 
 /// Mean and sample standard deviation of a column over the seeds that have the figure.
 struct Spread {
-  int n = 0;          ///< seeds with the figure
+  int n = 0;  ///< seeds with the figure
   double mean = 0.0;
-  double sd = 0.0;    ///< 0 for fewer than two seeds
+  double sd = 0.0;  ///< 0 for fewer than two seeds
 };
 Spread spread(const MethodResult& result, const TableColumn& column);
 

@@ -46,13 +46,15 @@ std::string metrics_json(const Metrics& m) {
                    {"ipa_recall_micro", value(r.ipa_recall_micro)},
                    {"ipa_precision_macro", value(r.ipa_precision_macro)},
                    {"ipa_recall_macro", value(r.ipa_recall_macro)}};
-  j["ground"] = {{"precision", value(m.ground.precision)}, {"recall", value(m.ground.recall)},
+  j["ground"] = {{"precision", value(m.ground.precision)},
+                 {"recall", value(m.ground.recall)},
                  {"f1", value(m.ground.f1)}};
   const auto& w = m.walls;
-  j["walls"] = {{"mean_dist_err", value(w.mean_dist_err)},   {"mean_angle_err_deg", value(w.mean_angle_err_deg)},
-                {"max_dist_err", value(w.max_dist_err)},     {"max_angle_err_deg", value(w.max_angle_err_deg)},
-                {"n_faces_seen", value(w.n_faces_seen)},     {"n_faces_mapped", value(w.n_faces_mapped)},
-                {"n_duplicates", value(w.n_duplicates)}};
+  j["walls"] = {
+      {"mean_dist_err", value(w.mean_dist_err)}, {"mean_angle_err_deg", value(w.mean_angle_err_deg)},
+      {"max_dist_err", value(w.max_dist_err)},   {"max_angle_err_deg", value(w.max_angle_err_deg)},
+      {"n_faces_seen", value(w.n_faces_seen)},   {"n_faces_mapped", value(w.n_faces_mapped)},
+      {"n_duplicates", value(w.n_duplicates)}};
   const auto& s = m.speed;
   j["speed"] = {{"rtf", value(s.rtf)},
                 {"frontend_ms_mean", value(s.frontend_ms_mean)},
@@ -89,17 +91,19 @@ std::string metrics_table(const Metrics& m) {
           cell(m.pgo.t_pgo_p95_s ? Figure(*m.pgo.t_pgo_p95_s * 1e3) : Figure{}, "%.1f"));
   row("variables / factors (last)", cell(m.pgo.n_variables, "%.0f") + " / " + cell(m.pgo.n_factors, "%.0f"));
   out += "rooms\n";
-  row("N1st / N2nd / N_re", cell(m.consistency.N1st, "%.0f") + " / " + cell(m.consistency.N2nd, "%.0f") + " / " +
-                                 cell(m.consistency.N_re, "%.0f"));
-  row("f_re / DCS / d_center (m)", cell(m.consistency.f_re, "%.2f") + " / " + cell(m.consistency.dcs, "%.2f") +
-                                       " / " + cell(m.consistency.d_center, "%.2f"));
-  row("vs truth P / R / F1", cell(m.rooms_gt.precision, "%.2f") + " / " + cell(m.rooms_gt.recall, "%.2f") + " / " +
-                                 cell(m.rooms_gt.f1, "%.2f"));
+  row("N1st / N2nd / N_re", cell(m.consistency.N1st, "%.0f") + " / " + cell(m.consistency.N2nd, "%.0f") +
+                                " / " + cell(m.consistency.N_re, "%.0f"));
+  row("f_re / DCS / d_center (m)", cell(m.consistency.f_re, "%.2f") + " / " +
+                                       cell(m.consistency.dcs, "%.2f") + " / " +
+                                       cell(m.consistency.d_center, "%.2f"));
+  row("vs truth P / R / F1", cell(m.rooms_gt.precision, "%.2f") + " / " + cell(m.rooms_gt.recall, "%.2f") +
+                                 " / " + cell(m.rooms_gt.f1, "%.2f"));
   row("mean IoU, under / over-seg.", cell(m.rooms_gt.mean_iou, "%.2f") + ", " +
                                          cell(m.rooms_gt.under_segmented, "%.0f") + " / " +
                                          cell(m.rooms_gt.over_segmented, "%.0f"));
   row("final rooms", cell(m.rooms_gt.n_rooms_final, "%.0f"));
-  row("truth rooms visited / all", cell(m.rooms_gt.n_truth_visited, "%.0f") + " / " + cell(m.rooms_gt.n_truth, "%.0f"));
+  row("truth rooms visited / all",
+      cell(m.rooms_gt.n_truth_visited, "%.0f") + " / " + cell(m.rooms_gt.n_truth, "%.0f"));
   row("unsupported (max share)",
       cell(m.rooms_gt.unsupported, "%.0f") + " (" + cell(m.rooms_gt.unsupported_fraction_max, "%.2f") + ")");
   row("IPA P / R micro",
@@ -107,10 +111,11 @@ std::string metrics_table(const Metrics& m) {
   row("IPA P / R macro",
       cell(m.rooms_gt.ipa_precision_macro, "%.3f") + " / " + cell(m.rooms_gt.ipa_recall_macro, "%.3f"));
   out += "ground\n";
-  row("precision / recall / F1",
-      cell(m.ground.precision, "%.3f") + " / " + cell(m.ground.recall, "%.3f") + " / " + cell(m.ground.f1, "%.3f"));
+  row("precision / recall / F1", cell(m.ground.precision, "%.3f") + " / " + cell(m.ground.recall, "%.3f") +
+                                     " / " + cell(m.ground.f1, "%.3f"));
   out += "walls\n";
-  row("faces seen / mapped", cell(m.walls.n_faces_seen, "%.0f") + " / " + cell(m.walls.n_faces_mapped, "%.0f"));
+  row("faces seen / mapped",
+      cell(m.walls.n_faces_seen, "%.0f") + " / " + cell(m.walls.n_faces_mapped, "%.0f"));
   row("distance err mean / max (m)",
       cell(m.walls.mean_dist_err, "%.4f") + " / " + cell(m.walls.max_dist_err, "%.4f"));
   row("angle err mean / max (deg)",

@@ -21,7 +21,7 @@ struct Metrics {
   struct {
     Figure precision, recall, f1, mean_iou, under_segmented, over_segmented, n_rooms_final;
     Figure n_truth, n_truth_visited;  ///< ground-truth rooms, and those the path enters (recall's base)
-    Figure unsupported;               ///< final rooms more than kMaxUnwalkableShare not walkable (room_support.hpp)
+    Figure unsupported;  ///< final rooms more than kMaxUnwalkableShare not walkable (room_support.hpp)
     Figure unsupported_fraction_max;  ///< the largest non-walkable share of a final room
     /// IPA room-segmentation figures (ipa_segmentation_metrics.hpp)
     Figure ipa_precision_micro, ipa_recall_micro, ipa_precision_macro, ipa_recall_macro;
@@ -38,7 +38,8 @@ struct Metrics {
   } speed;
   struct {
     Figure n_loops, n_loops_correct;  ///< loop closures, and those within tolerance of the truth
-    Figure n_loops_room, n_loops_room_correct;  ///< of them, proposed by a room re-detection (the rest by distance)
+    Figure n_loops_room,
+        n_loops_room_correct;  ///< of them, proposed by a room re-detection (the rest by distance)
     Figure max_loop_err_m, max_loop_err_deg;
   } loops;
 };

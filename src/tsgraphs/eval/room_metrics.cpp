@@ -33,7 +33,8 @@ std::vector<Candidate> greedy_pairs(std::vector<Candidate> candidates, std::size
 
 }  // namespace
 
-Consistency consistency_between(const std::vector<DetectedRoom>& first, const std::vector<DetectedRoom>& second) {
+Consistency consistency_between(const std::vector<DetectedRoom>& first,
+                                const std::vector<DetectedRoom>& second) {
   std::vector<Candidate> candidates;
   std::vector<Polygon2> fa, fb;
   for (const DetectedRoom& r : first) fa.push_back(r.footprint());
@@ -85,7 +86,8 @@ double iou(const OrientedRect& rect, const Polygon2& polygon) {
   return uni > 0.0 ? inter / uni : 0.0;
 }
 
-RoomsVsTruth rooms_vs_truth(const std::vector<DetectedRoom>& detected, const std::vector<io::RoomTruth>& truth) {
+RoomsVsTruth rooms_vs_truth(const std::vector<DetectedRoom>& detected,
+                            const std::vector<io::RoomTruth>& truth) {
   const std::size_t nd = detected.size(), nt = truth.size();
   std::vector<double> truth_area(nt);
   std::vector<Polygon2> footprint(nd);
@@ -99,7 +101,8 @@ RoomsVsTruth rooms_vs_truth(const std::vector<DetectedRoom>& detected, const std
   std::vector<std::vector<double>> inter(nd, std::vector<double>(nt, 0.0));
   for (std::size_t d = 0; d < nd; ++d)
     for (std::size_t g = 0; g < nt; ++g)
-      if (detected[d].level == truth[g].level) inter[d][g] = tsgraphs::intersection_area(footprint[d], truth[g].polygon);
+      if (detected[d].level == truth[g].level)
+        inter[d][g] = tsgraphs::intersection_area(footprint[d], truth[g].polygon);
 
   // Greedy matching on the pairs at the threshold only: lower pairs are taken after every
   // pair above it, so they could not change those.
@@ -142,7 +145,8 @@ RoomsVsTruth rooms_vs_truth(const std::vector<DetectedRoom>& detected, const std
   return r;
 }
 
-std::vector<io::RoomTruth> visited_rooms(const std::vector<io::RoomTruth>& truth, const std::vector<Pose3>& poses) {
+std::vector<io::RoomTruth> visited_rooms(const std::vector<io::RoomTruth>& truth,
+                                         const std::vector<Pose3>& poses) {
   std::vector<bool> visited(truth.size(), false);
   for (const Pose3& pose : poses) {
     const Eigen::Vector3d p = pose.translation();
@@ -150,7 +154,8 @@ std::vector<io::RoomTruth> visited_rooms(const std::vector<io::RoomTruth>& truth
     for (const io::RoomTruth& t : truth)
       if (t.elevation <= p.z()) floor = std::max(floor, t.elevation);
     for (std::size_t i = 0; i < truth.size(); ++i)
-      if (!visited[i] && truth[i].elevation == floor && contains(truth[i].polygon, p.head<2>())) visited[i] = true;
+      if (!visited[i] && truth[i].elevation == floor && contains(truth[i].polygon, p.head<2>()))
+        visited[i] = true;
   }
   std::vector<io::RoomTruth> out;
   for (std::size_t i = 0; i < truth.size(); ++i)

@@ -41,16 +41,17 @@ struct RoomPair {
 /// The Table 1 figures; dcs and d_center are empty when nothing pairs.
 struct Consistency {
   int N1st = 0, N2nd = 0, N_re = 0;
-  double f_re = 0.0;                ///< N_re / N1st, 0 when N1st = 0
-  std::optional<double> dcs;        ///< mean Dice over the pairs
-  std::optional<double> d_center;   ///< mean distance between paired centres, m
-  std::vector<RoomPair> pairs;      ///< in the order they were taken (highest Dice first)
+  double f_re = 0.0;               ///< N_re / N1st, 0 when N1st = 0
+  std::optional<double> dcs;       ///< mean Dice over the pairs
+  std::optional<double> d_center;  ///< mean distance between paired centres, m
+  std::vector<RoomPair> pairs;     ///< in the order they were taken (highest Dice first)
 };
 
 /// Pairs rooms of `first` with rooms of `second` one-to-one, greedily by the highest Dice score
 /// first (ties: lower index in `first`, then in `second`); a pair needs Dice >= kPairMinDice and
 /// the same level. N1st = |first|, N2nd = |second|. Also compares two runs (`eval --against`).
-Consistency consistency_between(const std::vector<DetectedRoom>& first, const std::vector<DetectedRoom>& second);
+Consistency consistency_between(const std::vector<DetectedRoom>& first,
+                                const std::vector<DetectedRoom>& second);
 
 /// consistency_between the footprints of every lap-1 event and of every lap-2 event (new or
 /// associated); events of later laps are not used.
@@ -76,11 +77,13 @@ double iou(const OrientedRect& rect, const Polygon2& polygon);
 /// The ground-truth rooms the sensor's path enters: a pose inside the polygon, on the room's
 /// level (the highest level elevation at or below the pose). A method that extracts rooms from
 /// the free space it walks can find only these, so recall is counted over them (metrics.md).
-std::vector<io::RoomTruth> visited_rooms(const std::vector<io::RoomTruth>& truth, const std::vector<Pose3>& poses);
+std::vector<io::RoomTruth> visited_rooms(const std::vector<io::RoomTruth>& truth,
+                                         const std::vector<Pose3>& poses);
 
 /// Matches detections one-to-one to ground-truth rooms of the same level (level name), greedily
 /// by the highest IoU first (ties: lower detection index, then lower truth index), keeping pairs
 /// with IoU >= kMatchMinIou, and counts under- and over-segmentation (metrics.md).
-RoomsVsTruth rooms_vs_truth(const std::vector<DetectedRoom>& detected, const std::vector<io::RoomTruth>& truth);
+RoomsVsTruth rooms_vs_truth(const std::vector<DetectedRoom>& detected,
+                            const std::vector<io::RoomTruth>& truth);
 
 }  // namespace tsgraphs::eval

@@ -78,7 +78,8 @@ std::vector<double> unwalkable_shares(const std::vector<LevelFootprint>& rooms, 
   return shares;
 }
 
-std::vector<double> unwalkable_shares(const std::vector<LevelFootprint>& rooms, const std::vector<io::RoomTruth>& truth) {
+std::vector<double> unwalkable_shares(const std::vector<LevelFootprint>& rooms,
+                                      const std::vector<io::RoomTruth>& truth) {
   std::map<std::string, std::vector<CellKey>> walkable;  // per level: the union of its true rooms
   for (const io::RoomTruth& t : truth) {
     std::vector<CellKey>& level = walkable[t.level];

@@ -25,10 +25,11 @@ std::vector<double> unwalkable_shares(const std::vector<LevelFootprint>& rooms, 
 
 /// The same without a scene: a cell is not walkable when it lies in no ground-truth room of the
 /// footprint's level.
-std::vector<double> unwalkable_shares(const std::vector<LevelFootprint>& rooms, const std::vector<io::RoomTruth>& truth);
+std::vector<double> unwalkable_shares(const std::vector<LevelFootprint>& rooms,
+                                      const std::vector<io::RoomTruth>& truth);
 
 struct RoomSupport {
-  int unsupported = 0;                      ///< rooms with a share above kMaxUnwalkableShare
+  int unsupported = 0;                         ///< rooms with a share above kMaxUnwalkableShare
   std::optional<double> max_unwalkable_share;  ///< empty without rooms
 };
 RoomSupport room_support(const std::vector<double>& unwalkable_shares);

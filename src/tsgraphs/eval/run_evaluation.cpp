@@ -62,7 +62,8 @@ void timing_figures(const io::Timings& timings, Metrics* m) {
     if (tp + fp > 0) m->ground.precision = static_cast<double>(tp) / (tp + fp);
     if (tp + fn > 0) m->ground.recall = static_cast<double>(tp) / (tp + fn);
     if (m->ground.precision && m->ground.recall && *m->ground.precision + *m->ground.recall > 0)
-      m->ground.f1 = 2 * *m->ground.precision * *m->ground.recall / (*m->ground.precision + *m->ground.recall);
+      m->ground.f1 =
+          2 * *m->ground.precision * *m->ground.recall / (*m->ground.precision + *m->ground.recall);
   }
   double total = 0;
   for (double t : pgo) total += t;
@@ -91,11 +92,12 @@ struct TruthFrameRoom {
 };
 
 /// The rooms under T_truth_map; a room's floor is its level's height (0 for an unknown level).
-std::vector<TruthFrameRoom> in_truth_frame(const std::vector<FinalRoom>& rooms, const std::vector<double>& level_heights,
-                                           const Pose3& T) {
+std::vector<TruthFrameRoom> in_truth_frame(const std::vector<FinalRoom>& rooms,
+                                           const std::vector<double>& level_heights, const Pose3& T) {
   std::vector<TruthFrameRoom> out;
   for (const auto& [rect, level, polygon] : rooms) {
-    const double floor = level >= 0 && level < static_cast<int>(level_heights.size()) ? level_heights[level] : 0.0;
+    const double floor =
+        level >= 0 && level < static_cast<int>(level_heights.size()) ? level_heights[level] : 0.0;
     const Eigen::Vector3d c = T * Eigen::Vector3d(rect.center.x(), rect.center.y(), floor);
     TruthFrameRoom r;
     r.rect = rect;
@@ -109,7 +111,8 @@ std::vector<TruthFrameRoom> in_truth_frame(const std::vector<FinalRoom>& rooms, 
 }
 
 /// The name of the level whose height is nearest `z` (ties: the first); "" without levels.
-std::string nearest_level(double z, const std::vector<std::string>& names, const std::vector<double>& heights) {
+std::string nearest_level(double z, const std::vector<std::string>& names,
+                          const std::vector<double>& heights) {
   std::string name;
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < names.size(); ++i) {
@@ -196,7 +199,8 @@ Consistency compare_runs(const std::string& run_a, const std::string& run_b) {
   const auto detected = [](const std::string& dir) {
     if (!fs::is_directory(dir)) throw input_error(dir, 0, "not a run folder");
     std::vector<DetectedRoom> out;
-    for (const FinalRoom& r : read_final_rooms(dir)) out.push_back({r.rect, std::to_string(r.level), r.polygon});
+    for (const FinalRoom& r : read_final_rooms(dir))
+      out.push_back({r.rect, std::to_string(r.level), r.polygon});
     return out;
   };
   return consistency_between(detected(run_a), detected(run_b));
@@ -207,15 +211,10 @@ std::string comparison_json(const Consistency& c, const std::string& run_a, cons
   json pairs = json::array();
   for (const RoomPair& p : c.pairs)
     pairs.push_back({{"a", p.a}, {"b", p.b}, {"dice", p.dice}, {"center_distance", p.center_distance}});
-  const json doc = {{"run", run_a},
-                    {"against", run_b},
-                    {"N_a", c.N1st},
-                    {"N_b", c.N2nd},
-                    {"N_re", c.N_re},
-                    {"f_re", c.f_re},
-                    {"dcs", figure(c.dcs)},
-                    {"d_center", figure(c.d_center)},
-                    {"pairs", pairs}};
+  const json doc = {
+      {"run", run_a},   {"against", run_b}, {"N_a", c.N1st},        {"N_b", c.N2nd},
+      {"N_re", c.N_re}, {"f_re", c.f_re},   {"dcs", figure(c.dcs)}, {"d_center", figure(c.d_center)},
+      {"pairs", pairs}};
   return doc.dump(2) + "\n";
 }
 
@@ -309,13 +308,15 @@ Metrics evaluate_run(const EvalOptions& options) {
     // A room the raster would refuse is the run's fault, not the ground truth's (the catch below).
     for (std::size_t i = 0; i < placed.size(); ++i) {
       if (placed[i].rect.area() > kMaxRasterCells * kRasterCell * kRasterCell)
-        throw input_error(graph_file, 0, "'rooms[" + std::to_string(i) + "].rect.size' is too large for a room");
+        throw input_error(graph_file, 0,
+                          "'rooms[" + std::to_string(i) + "].rect.size' is too large for a room");
       if (placed[i].polygon.empty()) continue;
       double y_min = placed[i].polygon[0].y(), y_max = y_min;
       for (const Vec2& p : placed[i].polygon) y_min = std::min(y_min, p.y()), y_max = std::max(y_max, p.y());
       if (area(placed[i].polygon) > kMaxRasterCells * kRasterCell * kRasterCell ||
           (y_max - y_min) / kRasterCell + 1 > kMaxRasterCells)
-        throw input_error(graph_file, 0, "'rooms[" + std::to_string(i) + "].polygon' is too large for a room");
+        throw input_error(graph_file, 0,
+                          "'rooms[" + std::to_string(i) + "].polygon' is too large for a room");
     }
     try {
       truth_room_figures(placed, si, scene ? &*scene : nullptr, &m);
@@ -328,10 +329,12 @@ Metrics evaluate_run(const EvalOptions& options) {
   // The odometry the run started from: its own odometry.txt (LiDAR odometry, or a copy of the
   // input's), or the sequence's for run folders written before it existed.
   const std::string odometry_file = dir + "/odometry.txt";
-  const std::vector<Pose3> odometry = fs::exists(odometry_file) ? poses_of(io::read_tum(odometry_file)) : si.odometry;
+  const std::vector<Pose3> odometry =
+      fs::exists(odometry_file) ? poses_of(io::read_tum(odometry_file)) : si.odometry;
   if (odometry.size() != si.groundtruth.size())
-    throw input_error(odometry_file, 0, std::to_string(odometry.size()) + " poses but the sequence has " +
-                                            std::to_string(si.groundtruth.size()) + " scans");
+    throw input_error(odometry_file, 0,
+                      std::to_string(odometry.size()) + " poses but the sequence has " +
+                          std::to_string(si.groundtruth.size()) + " scans");
   m.trajectory.odom_ate_rmse = ate_rmse(odometry, si.groundtruth);
 
   // Loop closures against the true relative poses of their keyframes.

@@ -13,10 +13,10 @@ namespace tsgraphs::eval {
 
 struct EvalOptions {
   std::string run_dir;
-  std::string seq_dir;               ///< "" when there is no ground truth
+  std::string seq_dir;  ///< "" when there is no ground truth
   WallMetricsConfig walls;
-  double loop_tolerance_m = 0.10;    ///< a loop closure is correct within this of the true relative pose...
-  double loop_tolerance_deg = 1.0;   ///< ...and this rotation
+  double loop_tolerance_m = 0.10;   ///< a loop closure is correct within this of the true relative pose...
+  double loop_tolerance_deg = 1.0;  ///< ...and this rotation
 };
 
 /// Reads the run (and sequence) and computes every figure it can; the rest stay null.

@@ -17,7 +17,6 @@ nlohmann::json value(const Figure& f) {
   return f && std::isfinite(*f) ? nlohmann::json(*f) : nlohmann::json(nullptr);
 }
 
-
 ordered_json parse_json(const std::string& text, const std::string& file) {
   try {
     return ordered_json::parse(text);
@@ -27,9 +26,11 @@ ordered_json parse_json(const std::string& text, const std::string& file) {
 }
 
 /// The string at `key` of `j`; an InputError naming the key when absent or not a string.
-std::string string_at(const ordered_json& j, const char* key, const std::string& file, const std::string& where = "") {
+std::string string_at(const ordered_json& j, const char* key, const std::string& file,
+                      const std::string& where = "") {
   const std::string path = where.empty() ? key : where + "." + key;
-  if (!j.is_object() || !j.contains(key) || !j[key].is_string()) throw input_error(file, 0, path + ": expected a string");
+  if (!j.is_object() || !j.contains(key) || !j[key].is_string())
+    throw input_error(file, 0, path + ": expected a string");
   return j[key].get<std::string>();
 }
 
@@ -70,8 +71,9 @@ const std::vector<std::string>& case_info_keys() {
   // source: the scene file, built-in scene or sequence folder; platform: the suite's platform
   // name ("default": the generator's own draw); carrier: wheeled, handheld or legged (the
   // scene's platform type); levels and rooms: of the ground truth.
-  static const std::vector<std::string> keys = {"source", "style",   "seed", "size",   "platform", "preset",
-                                                "mount_height", "carrier", "rate_hz", "laps", "levels", "rooms"};
+  static const std::vector<std::string> keys = {"source",   "style",  "seed",         "size",
+                                                "platform", "preset", "mount_height", "carrier",
+                                                "rate_hz",  "laps",   "levels",       "rooms"};
   return keys;
 }
 
@@ -127,7 +129,8 @@ CaseRecord parse_case_record(const std::string& text, const std::string& file) {
       m.method.name = string_at(jm, "name", file, where);
       m.wall_s = figure_at(jm, "wall_s");
       if (jm.contains("figures") && jm["figures"].is_object())
-        for (const auto& [key, v] : jm["figures"].items()) m.figures[key] = figure_at(jm["figures"], key.c_str());
+        for (const auto& [key, v] : jm["figures"].items())
+          m.figures[key] = figure_at(jm["figures"], key.c_str());
       r.methods.push_back(std::move(m));
     }
   }
@@ -152,11 +155,14 @@ SuiteIndex read_suite_index(const std::string& file) {
   const ordered_json j = parse_json(read_text_file(file), file);
   SuiteIndex index;
   index.name = string_at(j, "name", file);
-  if (j.contains("suite_file") && j["suite_file"].is_string()) index.suite_file = j["suite_file"].get<std::string>();
-  if (!j.contains("methods") || !j["methods"].is_array()) throw input_error(file, 0, "methods: expected a list");
+  if (j.contains("suite_file") && j["suite_file"].is_string())
+    index.suite_file = j["suite_file"].get<std::string>();
+  if (!j.contains("methods") || !j["methods"].is_array())
+    throw input_error(file, 0, "methods: expected a list");
   for (std::size_t i = 0; i < j["methods"].size(); ++i) {
     const std::string where = "methods[" + std::to_string(i) + "]";
-    index.methods.push_back({string_at(j["methods"][i], "slug", file, where), string_at(j["methods"][i], "name", file, where)});
+    index.methods.push_back(
+        {string_at(j["methods"][i], "slug", file, where), string_at(j["methods"][i], "name", file, where)});
   }
   if (!j.contains("cases") || !j["cases"].is_array()) throw input_error(file, 0, "cases: expected a list");
   for (const auto& id : j["cases"]) {
@@ -169,7 +175,8 @@ SuiteIndex read_suite_index(const std::string& file) {
       const ordered_json& g = j["groups"][i];
       const std::string where = "groups[" + std::to_string(i) + "]";
       CaseGroup group{string_at(g, "name", file, where), {}};
-      if (!g.contains("cases") || !g["cases"].is_array()) throw input_error(file, 0, where + ".cases: expected a list");
+      if (!g.contains("cases") || !g["cases"].is_array())
+        throw input_error(file, 0, where + ".cases: expected a list");
       for (const auto& id : g["cases"]) {
         if (!id.is_string()) throw input_error(file, 0, where + ".cases: expected a list of case ids");
         group.case_ids.push_back(id.get<std::string>());

@@ -17,7 +17,7 @@ namespace tsgraphs::eval {
 namespace suite_files {
 inline constexpr const char* kIndex = "suite.json";
 inline constexpr const char* kPlan = "plan.txt";
-inline constexpr const char* kCases = "cases";      ///< DIR/cases/ID/ per case
+inline constexpr const char* kCases = "cases";  ///< DIR/cases/ID/ per case
 inline constexpr const char* kCase = "case.json";
 inline constexpr const char* kSpec = "spec.txt";  ///< the definition the case folder's runs belong to
 inline constexpr const char* kLog = "log.txt";
@@ -52,7 +52,7 @@ struct CaseMethod {
 /// case.json.
 struct CaseRecord {
   std::string id;
-  std::string kind;     ///< generate, scene, sequence
+  std::string kind;  ///< generate, scene, sequence
   /// The case's definition as it ran (its kind and parameters in one line): a case whose
   /// definition changed since is run again, not reused.
   std::string spec;
@@ -81,17 +81,17 @@ CaseRecord read_case_record(const std::string& file);
 
 /// The cases one entry of a suite file's `cases:` made (a generate entry: its styles x seeds).
 struct CaseGroup {
-  std::string name;                     ///< e.g. "cases[1]: generate, realistic"
-  std::vector<std::string> case_ids;    ///< in plan order
+  std::string name;                   ///< e.g. "cases[1]: generate, realistic"
+  std::vector<std::string> case_ids;  ///< in plan order
 };
 
 /// suite.json: what --collect needs to know of the suite without its file.
 struct SuiteIndex {
   std::string name;
-  std::string suite_file;               ///< the suite file's absolute path
-  std::vector<SuiteMethod> methods;     ///< in the suite's order
-  std::vector<std::string> case_ids;    ///< in plan order
-  std::vector<CaseGroup> groups;        ///< the suite file's entries; empty in a folder older than groups
+  std::string suite_file;             ///< the suite file's absolute path
+  std::vector<SuiteMethod> methods;   ///< in the suite's order
+  std::vector<std::string> case_ids;  ///< in plan order
+  std::vector<CaseGroup> groups;      ///< the suite file's entries; empty in a folder older than groups
 };
 
 std::string suite_index_json(const SuiteIndex& index);

@@ -12,7 +12,6 @@
 namespace tsgraphs::eval {
 namespace {
 
-
 /// A CSV number: enough digits to read back what metrics.json holds.
 std::string csv_number(double v) {
   char buf[64];
@@ -20,14 +19,16 @@ std::string csv_number(double v) {
   return buf;
 }
 
-
 /// A markdown cell: pipes escaped, line breaks flattened.
 std::string md_cell(std::string text) {
   std::string out;
   for (char c : text) {
-    if (c == '|') out += "\\|";
-    else if (c == '\n' || c == '\r') out += ' ';
-    else out += c;
+    if (c == '|')
+      out += "\\|";
+    else if (c == '\n' || c == '\r')
+      out += ' ';
+    else
+      out += c;
   }
   return out;
 }
@@ -135,7 +136,8 @@ std::string key_method(const SuiteResults& results) {
   return results.methods.empty() ? "" : results.methods.front().slug;
 }
 
-std::vector<std::pair<std::string, double>> pgo_ratios(const SuiteResults& results, const std::string& other) {
+std::vector<std::pair<std::string, double>> pgo_ratios(const SuiteResults& results,
+                                                       const std::string& other) {
   const std::string key = key_method(results);
   std::vector<std::pair<std::string, double>> out;
   for (const CaseRecord& c : results.cases) {
@@ -172,7 +174,8 @@ std::vector<const CaseRecord*> worst_first(const SuiteResults& results) {
   const auto sort_key = [&](const CaseRecord& c) {
     const CaseMethod* run = c.done() ? c.method(key) : nullptr;
     if (run == nullptr) return std::make_tuple(0, kFirst, kFirst);
-    return std::make_tuple(1, suite_value(*run, f1).value_or(kFirst), suite_value(*run, f_re).value_or(kFirst));
+    return std::make_tuple(1, suite_value(*run, f1).value_or(kFirst),
+                           suite_value(*run, f_re).value_or(kFirst));
   };
   std::vector<const CaseRecord*> out;
   for (const CaseRecord& c : results.cases) out.push_back(&c);
@@ -193,9 +196,7 @@ std::string case_figure_text(const CaseMethod& run, const std::string& key) {
 
 std::string cases_text(std::size_t n) { return std::to_string(n) + (n == 1 ? " case" : " cases"); }
 
-std::string better_text(Better better) {
-  return better == Better::kHigher ? "higher (p10)" : "lower (p90)";
-}
+std::string better_text(Better better) { return better == Better::kHigher ? "higher (p10)" : "lower (p90)"; }
 
 std::string case_line(const CaseRecord& c, const SuiteResults& results) {
   if (!c.done()) return c.id + ": failed: " + c.message;
@@ -206,8 +207,8 @@ std::string case_line(const CaseRecord& c, const SuiteResults& results) {
   };
   if (const CaseMethod* run = c.method(key)) {
     line += " " + run->method.name + " " + add(*run, "rooms_gt.f1", "F1", "") + ", " +
-            add(*run, "consistency.f_re", "f_re", "") + ", " + add(*run, "consistency.dcs", "DCS", "") + ", " +
-            add(*run, "consistency.d_center", "d_center", " m") + ";";
+            add(*run, "consistency.f_re", "f_re", "") + ", " + add(*run, "consistency.dcs", "DCS", "") +
+            ", " + add(*run, "consistency.d_center", "d_center", " m") + ";";
   }
   for (const CaseMethod& run : c.methods) {
     if (run.method.slug == key) continue;
@@ -223,7 +224,8 @@ std::string suite_csv(const SuiteResults& results) {
   for (const std::string& k : metrics_keys()) out += "," + k;
   out += "\n";
   for (const CaseRecord& c : results.cases) {
-    std::string lead = csv_field(c.id) + "," + csv_field(c.status) + "," + csv_field(c.message) + "," + csv_field(c.kind);
+    std::string lead =
+        csv_field(c.id) + "," + csv_field(c.status) + "," + csv_field(c.message) + "," + csv_field(c.kind);
     for (const std::string& k : case_info_keys()) lead += "," + csv_field(c.info_value(k));
     for (const SuiteMethod& m : results.methods) {
       const CaseMethod* run = c.done() ? c.method(m.slug) : nullptr;
@@ -246,10 +248,12 @@ SuiteResults group_results(const SuiteResults& results, const CaseGroup& group) 
   out.name = results.name;
   out.methods = results.methods;
   for (const CaseRecord& c : results.cases) {
-    if (std::find(group.case_ids.begin(), group.case_ids.end(), c.id) != group.case_ids.end()) out.cases.push_back(c);
+    if (std::find(group.case_ids.begin(), group.case_ids.end(), c.id) != group.case_ids.end())
+      out.cases.push_back(c);
   }
   for (const std::string& id : results.pending) {
-    if (std::find(group.case_ids.begin(), group.case_ids.end(), id) != group.case_ids.end()) out.pending.push_back(id);
+    if (std::find(group.case_ids.begin(), group.case_ids.end(), id) != group.case_ids.end())
+      out.pending.push_back(id);
   }
   return out;
 }
@@ -267,9 +271,10 @@ std::string figure_tables(const std::vector<MethodSummary>& summaries, const std
     for (std::size_t k = 0; k < suite_figures().size(); ++k) {
       const SuiteFigure& f = suite_figures()[k];
       const FigureStats& st = s.stats[k];
-      md += "| " + f.header + " | " + better_text(f.better) + " | " + figure_text(st.median, f.decimals) + " | " +
-            figure_text(st.worst_decile, f.decimals) + " | " + figure_text(st.worst, f.decimals) + " | " +
-            (st.worst_case.empty() ? "-" : md_cell(st.worst_case)) + " | " + std::to_string(st.n) + " |\n";
+      md += "| " + f.header + " | " + better_text(f.better) + " | " + figure_text(st.median, f.decimals) +
+            " | " + figure_text(st.worst_decile, f.decimals) + " | " + figure_text(st.worst, f.decimals) +
+            " | " + (st.worst_case.empty() ? "-" : md_cell(st.worst_case)) + " | " + std::to_string(st.n) +
+            " |\n";
     }
   }
   return md;
@@ -292,13 +297,16 @@ std::string suite_markdown(const SuiteResults& results) {
         " s of case wall time. Methods: ";
   for (std::size_t i = 0; i < results.methods.size(); ++i) md += (i ? ", " : "") + results.methods[i].name;
   md += ".\n\n";
-  md += "Per method and figure, over the counted cases that have the figure (`cases`): the median, the worst "
-        "decile (the 10th percentile where higher is better, the 90th where lower is better; linear between "
-        "ranks), the worst value and the first case with it. DCS, d_center and mean IoU exist only where "
-        "rooms were paired or matched; rooms F1 is 0 where a run has no final room.\n";
+  md +=
+      "Per method and figure, over the counted cases that have the figure (`cases`): the median, the worst "
+      "decile (the 10th percentile where higher is better, the 90th where lower is better; linear between "
+      "ranks), the worst value and the first case with it. DCS, d_center and mean IoU exist only where "
+      "rooms were paired or matched; rooms F1 is 0 where a run has no final room.\n";
   md += figure_tables(summaries, "##");
   if (results.groups.size() > 1) {
-    md += "\n## Case groups\n\nThe same tables over the cases of each entry of the suite file's `cases:` alone.\n";
+    md +=
+        "\n## Case groups\n\nThe same tables over the cases of each entry of the suite file's `cases:` "
+        "alone.\n";
     for (const CaseGroup& g : results.groups) {
       const SuiteResults sub = group_results(results, g);
       md += "\n### " + md_cell(g.name) + "\n\n" + cases_text(g.case_ids.size()) + ": " +
@@ -314,25 +322,31 @@ std::string suite_markdown(const SuiteResults& results) {
     if (m.slug == key) key_name = m.name;
   if (results.methods.size() > 1) {
     md += "\n## T_PGO against " + md_cell(key_name) + "\n\n";
-    md += "Per case, " + md_cell(key_name) + "'s T_PGO over the other method's on the same sequence (below 1: cheaper); "
+    md += "Per case, " + md_cell(key_name) +
+          "'s T_PGO over the other method's on the same sequence (below 1: cheaper); "
           "the worst decile is the 90th percentile.\n\n";
     md += "| method | median | worst decile | worst | worst case | cases |\n|---|---|---|---|---|---|\n";
     for (const SuiteMethod& m : results.methods) {
       if (m.slug == key) continue;
       const FigureStats st = figure_stats(pgo_ratios(results, m.slug), Better::kLower);
-      md += "| " + md_cell(m.name) + " | " + figure_text(st.median, 2) + " | " + figure_text(st.worst_decile, 2) + " | " +
-            figure_text(st.worst, 2) + " | " + (st.worst_case.empty() ? "-" : md_cell(st.worst_case)) + " | " +
-            std::to_string(st.n) + " |\n";
+      md += "| " + md_cell(m.name) + " | " + figure_text(st.median, 2) + " | " +
+            figure_text(st.worst_decile, 2) + " | " + figure_text(st.worst, 2) + " | " +
+            (st.worst_case.empty() ? "-" : md_cell(st.worst_case)) + " | " + std::to_string(st.n) + " |\n";
     }
   }
   md += "\n## Loop closures\n\n";
-  md += "Summed over the counted cases: found and correct (eval's tolerance of the truth), in all and as the room "
-        "rule proposed them (the rest: the distance rule).\n\n";
-  md += "| method | found | correct | room rule: found | room rule: correct | cases |\n|---|---|---|---|---|---|\n";
+  md +=
+      "Summed over the counted cases: found and correct (eval's tolerance of the truth), in all and as the "
+      "room "
+      "rule proposed them (the rest: the distance rule).\n\n";
+  md +=
+      "| method | found | correct | room rule: found | room rule: correct | cases "
+      "|\n|---|---|---|---|---|---|\n";
   for (const SuiteMethod& m : results.methods) {
     const LoopTotals t = loop_totals(results, m.slug);
     md += "| " + md_cell(m.name) + " | " + fixed_text(t.found, 0) + " | " + fixed_text(t.correct, 0) + " | " +
-          fixed_text(t.room_found, 0) + " | " + fixed_text(t.room_correct, 0) + " | " + std::to_string(t.cases) + " |\n";
+          fixed_text(t.room_found, 0) + " | " + fixed_text(t.room_correct, 0) + " | " +
+          std::to_string(t.cases) + " |\n";
   }
 
   md += "\n## Cases, worst first\n\n";

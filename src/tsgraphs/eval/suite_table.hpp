@@ -18,7 +18,7 @@ struct SuiteFigure {
   std::string key;     ///< metrics.json "group.key"
   std::string header;  ///< as the tables name it
   Better better;
-  int decimals;        ///< shown in suite.md and report.html
+  int decimals;  ///< shown in suite.md and report.html
   /// When not empty: a null figure counts as 0 where this figure exists (rooms F1 without a
   /// final room: recall is 0 then, so F1 is 0, and a method that finds nothing must not drop
   /// out of the statistics).

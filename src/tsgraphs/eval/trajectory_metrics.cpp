@@ -36,7 +36,8 @@ double segment_drift(const std::vector<Pose3>& estimate, const std::vector<Pose3
   std::size_t count = 0;
   for (std::size_t i = 0; i < truth.size(); i += stride) {
     for (const double length : lengths) {
-      const auto end = std::lower_bound(along.begin() + static_cast<std::ptrdiff_t>(i), along.end(), along[i] + length);
+      const auto end =
+          std::lower_bound(along.begin() + static_cast<std::ptrdiff_t>(i), along.end(), along[i] + length);
       if (end == along.end() || !(length > 0.0)) continue;
       const std::size_t j = static_cast<std::size_t>(end - along.begin());
       const Pose3 error = (truth[i].inverse() * truth[j]).inverse() * (estimate[i].inverse() * estimate[j]);

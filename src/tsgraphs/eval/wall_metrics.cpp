@@ -70,8 +70,9 @@ std::vector<WallFaceTruth> wall_faces(const scene::Scene& scene) {
   return faces;
 }
 
-void count_face_hits(const std::vector<WallFaceTruth>& faces, const PointCloud& scan, const Pose3& T_world_sensor,
-                     const WallMetricsConfig& config, std::vector<FaceHits>* hits) {
+void count_face_hits(const std::vector<WallFaceTruth>& faces, const PointCloud& scan,
+                     const Pose3& T_world_sensor, const WallMetricsConfig& config,
+                     std::vector<FaceHits>* hits) {
   hits->resize(faces.size());
   if (!scan.has_labels()) return;
   const double max2 = config.max_range * config.max_range;
@@ -85,10 +86,12 @@ void count_face_hits(const std::vector<WallFaceTruth>& faces, const PointCloud& 
       // On the face's front side (the side the sensor can see), within its rectangle.
       if (std::abs(face.plane.signed_distance(p)) > config.attribution_distance) continue;
       if (face.plane.signed_distance(T_world_sensor.translation()) <= 0.0) continue;
-      if (p.z() < face.z0 - config.attribution_distance || p.z() > face.z1 + config.attribution_distance) continue;
+      if (p.z() < face.z0 - config.attribution_distance || p.z() > face.z1 + config.attribution_distance)
+        continue;
       const Eigen::Vector2d u = (face.b - face.a).normalized();
       const double s = u.dot(p.head<2>() - face.a);
-      if (s < -config.attribution_distance || s > (face.b - face.a).norm() + config.attribution_distance) continue;
+      if (s < -config.attribution_distance || s > (face.b - face.a).norm() + config.attribution_distance)
+        continue;
       (*hits)[f].count += 1;
       (*hits)[f].sum += p;
       break;
@@ -135,8 +138,8 @@ WallErrors wall_errors(const std::vector<WallFaceTruth>& faces, const std::vecto
     // The associated plane is the closest at the seen centre; the others, where they cover
     // the same stretch of the face as it, are duplicates.
     const auto err_of = [&](std::size_t m) { return std::abs(world[m].plane.signed_distance(centre)); };
-    const std::size_t best = *std::min_element(matches.begin(), matches.end(),
-                                               [&](std::size_t x, std::size_t y) { return err_of(x) < err_of(y); });
+    const std::size_t best = *std::min_element(
+        matches.begin(), matches.end(), [&](std::size_t x, std::size_t y) { return err_of(x) < err_of(y); });
     const double dist = err_of(best);
     const double angle =
         std::acos(std::clamp(world[best].plane.n.dot(face.plane.n), -1.0, 1.0)) * 180.0 / M_PI;
@@ -145,7 +148,8 @@ WallErrors wall_errors(const std::vector<WallFaceTruth>& faces, const std::vecto
     e.max_dist_err = std::max(e.max_dist_err, dist);
     e.max_angle_err_deg = std::max(e.max_angle_err_deg, angle);
     for (std::size_t m : matches)
-      if (m != best && overlap_along(u, world[best].a, world[best].b, world[m].a, world[m].b) >= config.min_overlap)
+      if (m != best &&
+          overlap_along(u, world[best].a, world[best].b, world[m].a, world[m].b) >= config.min_overlap)
         ++e.n_duplicates;
   }
   if (e.n_faces_mapped > 0) {

@@ -11,7 +11,8 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // The 8 horizontal neighbour offsets of a slice cell.
-constexpr int kNeighbourOffsets[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+constexpr int kNeighbourOffsets[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0},
+                                         {1, 0},   {-1, 1}, {0, 1},  {1, 1}};
 
 // Exact 1-D squared distance transform of sampled function f (Felzenszwalb & Huttenlocher,
 // lower envelope of parabolas), in place on n values spaced `stride` apart. Infinite samples
@@ -21,7 +22,8 @@ void distance_transform_1d(double* f, int n, int stride, std::vector<double>& va
   values.resize(static_cast<std::size_t>(n));
   v.resize(static_cast<std::size_t>(n));
   z.resize(static_cast<std::size_t>(n) + 1);
-  for (int q = 0; q < n; ++q) values[static_cast<std::size_t>(q)] = f[static_cast<std::ptrdiff_t>(q) * stride];
+  for (int q = 0; q < n; ++q)
+    values[static_cast<std::size_t>(q)] = f[static_cast<std::ptrdiff_t>(q) * stride];
   int k = -1;  // index of the rightmost parabola of the envelope
   for (int q = 0; q < n; ++q) {
     const double fq = values[static_cast<std::size_t>(q)];
@@ -54,7 +56,8 @@ void distance_transform_1d(double* f, int n, int stride, std::vector<double>& va
   for (int q = 0; q < n; ++q) {
     while (z[static_cast<std::size_t>(k) + 1] < q) ++k;
     const int p = v[static_cast<std::size_t>(k)];
-    f[static_cast<std::ptrdiff_t>(q) * stride] = double(q - p) * (q - p) + values[static_cast<std::size_t>(p)];
+    f[static_cast<std::ptrdiff_t>(q) * stride] =
+        double(q - p) * (q - p) + values[static_cast<std::size_t>(p)];
   }
 }
 
@@ -125,7 +128,8 @@ EsdfFreeSpace esdf_free_space(const std::vector<Eigen::Vector3d>& occupied, doub
   std::vector<double> values, z;
   std::vector<int> v;
   for (int row = 0; row < slice.height; ++row)
-    distance_transform_1d(d.data() + static_cast<std::ptrdiff_t>(row) * slice.width, slice.width, 1, values, v, z);
+    distance_transform_1d(d.data() + static_cast<std::ptrdiff_t>(row) * slice.width, slice.width, 1, values,
+                          v, z);
   for (int column = 0; column < slice.width; ++column)
     distance_transform_1d(d.data() + column, slice.height, slice.width, values, v, z);
   for (double& x : d) x = std::min(std::sqrt(x) * vs, config.max_distance);
@@ -150,7 +154,8 @@ EsdfFreeSpace esdf_free_space(const std::vector<Eigen::Vector3d>& occupied, doub
     }
   }
   out.free_space = connected_components(positions, kept, neighbours);
-  identify_robot_cluster(out.free_space, positions, robot, config.robot_radius, config.robot_height_tolerance);
+  identify_robot_cluster(out.free_space, positions, robot, config.robot_radius,
+                         config.robot_height_tolerance);
   compute_robot_path_distance(out.free_space, positions, kept, neighbours);
   return out;
 }

@@ -13,11 +13,12 @@
 namespace tsgraphs::freespace {
 
 struct EsdfFreeSpaceConfig {
-  double voxel_size = 0.2;          ///< voxel edge (m), S-Graphs+'s TSDF resolution
-  double max_distance = 5.0;        ///< ESDF distances are capped here (m)
-  double min_free_distance = 0.8;   ///< free-space vertices: slice voxels farther than this from any occupied voxel (m)
-  double slice_height = 1.0;        ///< the slice is the voxel layer holding this height above the floor (m)
-  double robot_radius = 1.0;        ///< the robot's vertex: nearest vertex within this horizontally (m)...
+  double voxel_size = 0.2;    ///< voxel edge (m), S-Graphs+'s TSDF resolution
+  double max_distance = 5.0;  ///< ESDF distances are capped here (m)
+  double min_free_distance =
+      0.8;  ///< free-space vertices: slice voxels farther than this from any occupied voxel (m)
+  double slice_height = 1.0;  ///< the slice is the voxel layer holding this height above the floor (m)
+  double robot_radius = 1.0;  ///< the robot's vertex: nearest vertex within this horizontally (m)...
   double robot_height_tolerance = 1.5;  ///< ...and within this of the robot position's height (m)
 
   template <class V>
@@ -36,12 +37,12 @@ struct EsdfFreeSpaceConfig {
 /// map frame.
 struct EsdfSlice {
   double voxel_size = 0.2;
-  int min_i = 0;                   ///< voxel index of column 0
-  int min_j = 0;                   ///< voxel index of row 0
-  int layer = 0;                   ///< voxel index k of the slice
-  int width = 0;                   ///< columns (along x)
-  int height = 0;                  ///< rows (along y)
-  std::vector<double> distance;    ///< per cell, row-major (cell = row * width + column), metres
+  int min_i = 0;                 ///< voxel index of column 0
+  int min_j = 0;                 ///< voxel index of row 0
+  int layer = 0;                 ///< voxel index k of the slice
+  int width = 0;                 ///< columns (along x)
+  int height = 0;                ///< rows (along y)
+  std::vector<double> distance;  ///< per cell, row-major (cell = row * width + column), metres
 
   /// Centre of a cell in [0, width * height) (map frame).
   Eigen::Vector3d centre(int cell) const;
@@ -51,7 +52,7 @@ struct EsdfSlice {
 
 struct EsdfFreeSpace {
   EsdfSlice slice;
-  FreeSpace free_space;   ///< candidate vertex i is slice cell i
+  FreeSpace free_space;  ///< candidate vertex i is slice cell i
 };
 
 /// Free space from the `occupied` points (map frame; the pipeline passes the non-ground points)

@@ -61,7 +61,8 @@ void identify_robot_cluster(FreeSpace& free_space, const std::vector<Eigen::Vect
 }
 
 void compute_robot_path_distance(FreeSpace& free_space, const std::vector<Eigen::Vector3d>& positions,
-                                 const std::vector<bool>& kept, const std::vector<std::vector<int>>& neighbours) {
+                                 const std::vector<bool>& kept,
+                                 const std::vector<std::vector<int>>& neighbours) {
   std::vector<double>& dist = free_space.robot_path_distance;
   dist.assign(positions.size(), std::numeric_limits<double>::infinity());
   if (free_space.robot_vertex < 0) return;

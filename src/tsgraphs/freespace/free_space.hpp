@@ -9,8 +9,8 @@ namespace tsgraphs::freespace {
 
 /// One connected component of kept vertices.
 struct FreeSpaceCluster {
-  std::vector<int> vertices;              ///< candidate vertex indices, increasing
-  std::vector<Eigen::Vector3d> points;    ///< their positions (map frame), same order
+  std::vector<int> vertices;            ///< candidate vertex indices, increasing
+  std::vector<Eigen::Vector3d> points;  ///< their positions (map frame), same order
 };
 
 struct FreeSpace {
@@ -43,6 +43,7 @@ void identify_robot_cluster(FreeSpace& free_space, const std::vector<Eigen::Vect
 /// Fills robot_path_distance (Dijkstra over the edges of `neighbours` between kept vertices,
 /// each as long as the distance between its ends); all infinity without a robot vertex.
 void compute_robot_path_distance(FreeSpace& free_space, const std::vector<Eigen::Vector3d>& positions,
-                                 const std::vector<bool>& kept, const std::vector<std::vector<int>>& neighbours);
+                                 const std::vector<bool>& kept,
+                                 const std::vector<std::vector<int>>& neighbours);
 
 }  // namespace tsgraphs::freespace

@@ -6,7 +6,8 @@
 
 namespace tsgraphs::freespace {
 
-std::vector<Eigen::Vector3d> select_obstacles(const std::vector<Eigen::Vector3d>& points, const GroundHeight& ground_height,
+std::vector<Eigen::Vector3d> select_obstacles(const std::vector<Eigen::Vector3d>& points,
+                                              const GroundHeight& ground_height,
                                               const TraversableFreeSpaceConfig& config) {
   std::vector<Eigen::Vector3d> out;
   for (const auto& p : points) {
@@ -39,10 +40,12 @@ std::vector<Eigen::Vector3d> select_obstacles(const std::vector<Eigen::Vector3d>
     std::optional<double> ground;
     // Higher above every node than an obstacle reaches (the ceiling), or no higher above any
     // than the floor's roughness: no obstacle whatever its ground, so none is looked for.
-    if (p.z() - top > config.obstacle_max_height || p.z() - bottom <= config.obstacle_min_height) return ground;
+    if (p.z() - top > config.obstacle_max_height || p.z() - bottom <= config.obstacle_min_height)
+      return ground;
     index.visit_cells(p, config.ground_search_radius, [&](const int* first, const int* last) {
       // Past the nodes above p (a binary search on the cell's heights, highest first)...
-      const int* i = std::partition_point(first, last, [&](int k) { return by_height[static_cast<std::size_t>(k)].z() > p.z(); });
+      const int* i = std::partition_point(
+          first, last, [&](int k) { return by_height[static_cast<std::size_t>(k)].z() > p.z(); });
       // ...the first near enough is the highest of the cell; none lower can beat what is found.
       for (; i != last; ++i) {
         const double z = by_height[static_cast<std::size_t>(*i)].z();

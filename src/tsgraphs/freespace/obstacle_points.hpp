@@ -16,7 +16,8 @@ using GroundHeight = std::function<std::optional<double>(const Eigen::Vector3d& 
 
 /// The points whose height above ground_height(p) is in (obstacle_min_height, obstacle_max_height],
 /// in input order. Points with no known ground are not obstacles.
-std::vector<Eigen::Vector3d> select_obstacles(const std::vector<Eigen::Vector3d>& points, const GroundHeight& ground_height,
+std::vector<Eigen::Vector3d> select_obstacles(const std::vector<Eigen::Vector3d>& points,
+                                              const GroundHeight& ground_height,
                                               const TraversableFreeSpaceConfig& config = {});
 
 /// As above, the local ground of a point being the highest traversable node within

@@ -10,7 +10,8 @@ constexpr double kMaxCellsPerPoint = 4.0;  // a sparser grid costs more to build
 }  // namespace
 
 PlanarIndex::PlanarIndex(const std::vector<Eigen::Vector3d>& points, double cell) : cell_(cell) {
-  if (!(cell > 0.0) || !std::isfinite(cell)) throw std::invalid_argument("PlanarIndex: cell must be > 0 and finite");
+  if (!(cell > 0.0) || !std::isfinite(cell))
+    throw std::invalid_argument("PlanarIndex: cell must be > 0 and finite");
   xy_.reserve(points.size());
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(INFINITY), hi = -lo;
   for (const Eigen::Vector3d& p : points) {
@@ -26,7 +27,8 @@ PlanarIndex::PlanarIndex(const std::vector<Eigen::Vector3d>& points, double cell
   const Eigen::Vector2d extent = hi - lo;
   const double budget = kMaxCellsPerPoint * static_cast<double>(points.size()) + 64.0;
   if ((extent.x() / cell_ + 1.0) * (extent.y() / cell_ + 1.0) > budget)
-    cell_ = std::max(cell_, std::sqrt(extent.x() * extent.y() / budget) + std::max(extent.x(), extent.y()) / budget);
+    cell_ = std::max(cell_,
+                     std::sqrt(extent.x() * extent.y() / budget) + std::max(extent.x(), extent.y()) / budget);
   origin_ = lo;
   cols_ = static_cast<long>(std::floor(extent.x() / cell_)) + 1;
   rows_ = static_cast<long>(std::floor(extent.y() / cell_)) + 1;

@@ -41,9 +41,9 @@ class PlanarIndex {
   void within(const Eigen::Vector3d& p, double radius, std::vector<int>& out) const;
 
  private:
-  std::vector<Eigen::Vector2d> xy_;   ///< by point index
-  std::vector<int> order_;            ///< point indices by cell, increasing within one
-  std::vector<std::size_t> start_;    ///< cell k's points are order_[start_[k] .. start_[k + 1])
+  std::vector<Eigen::Vector2d> xy_;  ///< by point index
+  std::vector<int> order_;           ///< point indices by cell, increasing within one
+  std::vector<std::size_t> start_;   ///< cell k's points are order_[start_[k] .. start_[k + 1])
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   double cell_ = 1.0;
   long cols_ = 0, rows_ = 0;
@@ -56,8 +56,10 @@ void PlanarIndex::visit_cells(const Eigen::Vector3d& p, double radius, F&& f) co
   const double fc = std::floor((p.x() - origin_.x()) / cell_), fr = std::floor((p.y() - origin_.y()) / cell_);
   const double last_c = static_cast<double>(cols_ - 1), last_r = static_cast<double>(rows_ - 1);
   if (fc + reach < 0.0 || fc - reach > last_c || fr + reach < 0.0 || fr - reach > last_r) return;
-  const long c0 = static_cast<long>(std::max(0.0, fc - reach)), c1 = static_cast<long>(std::min(last_c, fc + reach));
-  const long r0 = static_cast<long>(std::max(0.0, fr - reach)), r1 = static_cast<long>(std::min(last_r, fr + reach));
+  const long c0 = static_cast<long>(std::max(0.0, fc - reach)),
+             c1 = static_cast<long>(std::min(last_c, fc + reach));
+  const long r0 = static_cast<long>(std::max(0.0, fr - reach)),
+             r1 = static_cast<long>(std::min(last_r, fr + reach));
   for (long r = r0; r <= r1; ++r) {
     for (long c = c0; c <= c1; ++c) {
       const std::size_t k = static_cast<std::size_t>(r * cols_ + c);

@@ -11,8 +11,10 @@ namespace tsgraphs::freespace {
 namespace {
 
 void bump(std::uint32_t& count, int delta) {
-  if (delta > 0) ++count;
-  else if (count > 0) --count;
+  if (delta > 0)
+    ++count;
+  else if (count > 0)
+    --count;
 }
 
 }  // namespace
@@ -24,7 +26,8 @@ SightMap::SightMap(double floor_z, const SightMapConfig& config)
       hi_(-lo_) {
   if (!(config.cell > 0.0)) throw std::invalid_argument("SightMapConfig: cell must be > 0");
   if (!(config.floor_step >= 0.0)) throw std::invalid_argument("SightMapConfig: floor_step must be >= 0");
-  if (!(config.headroom > config.floor_step)) throw std::invalid_argument("SightMapConfig: headroom must be above floor_step");
+  if (!(config.headroom > config.floor_step))
+    throw std::invalid_argument("SightMapConfig: headroom must be above floor_step");
   if (!(config.max_range > 0.0)) throw std::invalid_argument("SightMapConfig: max_range must be > 0");
 }
 
@@ -95,7 +98,8 @@ void SightMap::trace(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vec
     // where it enters the cell.
     const Eigen::Vector2d a = sensor.head<2>() / res;
     long c = static_cast<long>(std::floor(a.x())), r = static_cast<long>(std::floor(a.y()));
-    const long c_end = static_cast<long>(std::floor(p.x() / res)), r_end = static_cast<long>(std::floor(p.y() / res));
+    const long c_end = static_cast<long>(std::floor(p.x() / res)),
+               r_end = static_cast<long>(std::floor(p.y() / res));
     const int step_c = d.x() > 0 ? 1 : -1, step_r = d.y() > 0 ? 1 : -1;
     const double inv_x = d.x() != 0.0 ? std::abs(res / d.x()) : std::numeric_limits<double>::infinity();
     const double inv_y = d.y() != 0.0 ? std::abs(res / d.y()) : std::numeric_limits<double>::infinity();
@@ -110,8 +114,10 @@ void SightMap::trace(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vec
       if (z > top && rising) break;  // above walking height, and only higher on
       std::size_t i;
       Tile& cell = tile_at(c, r, &i);
-      if (z < low) bump(cell.below[i], delta);
-      else if (z <= top) bump(cell.passed[i], delta);
+      if (z < low)
+        bump(cell.below[i], delta);
+      else if (z <= top)
+        bump(cell.passed[i], delta);
       if (t_x < t_y) {
         t = t_x;
         t_x += inv_x;
@@ -122,9 +128,12 @@ void SightMap::trace(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vec
         r += step_r;
       }
     }
-    if (std::abs(p.z() - floor_z_) <= config_.floor_step) mark(c_end, r_end, Mark::floor, delta);
-    else if (p.z() >= under && p.z() < low) mark(c_end, r_end, Mark::below, delta);
-    else if (p.z() >= low) mark(c_end, r_end, Mark::hit, delta, p.z());
+    if (std::abs(p.z() - floor_z_) <= config_.floor_step)
+      mark(c_end, r_end, Mark::floor, delta);
+    else if (p.z() >= under && p.z() < low)
+      mark(c_end, r_end, Mark::below, delta);
+    else if (p.z() >= low)
+      mark(c_end, r_end, Mark::hit, delta, p.z());
     lo_ = lo_.cwiseMin(sensor.head<2>()).cwiseMin(p.head<2>());
     hi_ = hi_.cwiseMax(sensor.head<2>()).cwiseMax(p.head<2>());
   }
@@ -132,7 +141,8 @@ void SightMap::trace(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vec
 
 const SightMap::Tile* SightMap::cell(const GridFrame& f, int col, int row, std::size_t* i) const {
   const Eigen::Vector2d q = f.center(col, row);
-  const long c = static_cast<long>(std::floor(q.x() / config_.cell)), r = static_cast<long>(std::floor(q.y() / config_.cell));
+  const long c = static_cast<long>(std::floor(q.x() / config_.cell)),
+             r = static_cast<long>(std::floor(q.y() / config_.cell));
   *i = index_in_tile(c, r);
   return tile(c >> kTileBits, r >> kTileBits);
 }
@@ -151,7 +161,8 @@ std::vector<std::uint8_t> SightMap::cells_where(const GridFrame& f, Test test) c
 }
 
 bool SightMap::return_near(const Eigen::Vector2d& xy, double z) const {
-  const long c = static_cast<long>(std::floor(xy.x() / config_.cell)), r = static_cast<long>(std::floor(xy.y() / config_.cell));
+  const long c = static_cast<long>(std::floor(xy.x() / config_.cell)),
+             r = static_cast<long>(std::floor(xy.y() / config_.cell));
   const std::uint8_t code = height_code(z);
   for (long dr = -1; dr <= 1; ++dr) {
     for (long dc = -1; dc <= 1; ++dc) {

@@ -23,10 +23,13 @@
 namespace tsgraphs::freespace {
 
 struct SightMapConfig {
-  double cell = 0.1;         ///< raster cell (m), the room segmentation's
-  double floor_step = 0.2;   ///< a return within this of the floor height is the floor (m); the free space's obstacle_min_height
-  double headroom = 2.0;     ///< a ray below this above the floor passes at walking height (m); the free space's obstacle_max_height
-  double max_range = 20.0;   ///< returns farther than this horizontally are not traced (m): far returns on the floor are tilt-sensitive
+  double cell = 0.1;        ///< raster cell (m), the room segmentation's
+  double floor_step = 0.2;  ///< a return within this of the floor height is the floor (m); the free space's
+                            ///< obstacle_min_height
+  double headroom = 2.0;  ///< a ray below this above the floor passes at walking height (m); the free space's
+                          ///< obstacle_max_height
+  double max_range = 20.0;  ///< returns farther than this horizontally are not traced (m): far returns on the
+                            ///< floor are tilt-sensitive
 
   template <class V>
   void visit(V& v) {
@@ -73,7 +76,8 @@ class SightMap {
     std::uint32_t floor[kTileSide * kTileSide] = {};
     std::uint32_t below[kTileSide * kTileSide] = {};
     std::uint32_t hit[kTileSide * kTileSide] = {};  ///< returns above the floor that ended here
-    std::uint8_t low[kTileSide * kTileSide] = {};  ///< the lowest return in it, kLowStep units above the floor (0: none)
+    std::uint8_t low[kTileSide * kTileSide] =
+        {};  ///< the lowest return in it, kLowStep units above the floor (0: none)
   };
   static constexpr double kLowStep = 0.05;  // m: 12.7 m in a byte
   /// A height above the floor in kLowStep units, 1 to 255 (0 is "none").

@@ -10,8 +10,8 @@ namespace {
 
 // A vertex is removed when an obstacle point within lambda_th horizontally stands over it:
 // at most obstacle_max_height above it, and not below it (the storey under a landing).
-bool blocked(const Eigen::Vector3d& vertex, const std::vector<Eigen::Vector3d>& obstacles, const PlanarIndex& index,
-             const TraversableFreeSpaceConfig& config) {
+bool blocked(const Eigen::Vector3d& vertex, const std::vector<Eigen::Vector3d>& obstacles,
+             const PlanarIndex& index, const TraversableFreeSpaceConfig& config) {
   bool over = false;
   index.visit_within(vertex, config.lambda_th, [&](int j) {
     const double dz = obstacles[static_cast<std::size_t>(j)].z() - vertex.z();
@@ -23,10 +23,12 @@ bool blocked(const Eigen::Vector3d& vertex, const std::vector<Eigen::Vector3d>& 
 
 }  // namespace
 
-FreeSpace traversable_free_space(const std::vector<Eigen::Vector3d>& nodes, const std::vector<Eigen::Vector3d>& obstacles,
-                                 const Eigen::Vector3d& robot, const TraversableFreeSpaceConfig& config) {
+FreeSpace traversable_free_space(const std::vector<Eigen::Vector3d>& nodes,
+                                 const std::vector<Eigen::Vector3d>& obstacles, const Eigen::Vector3d& robot,
+                                 const TraversableFreeSpaceConfig& config) {
   if (!(config.edge_length > 0.0) || !(config.lambda_th >= 0.0) || !(config.max_height_step >= 0.0))
-    throw std::invalid_argument("traversable_free_space: edge_length > 0, lambda_th >= 0 and max_height_step >= 0 required");
+    throw std::invalid_argument(
+        "traversable_free_space: edge_length > 0, lambda_th >= 0 and max_height_step >= 0 required");
 
   const std::size_t n = nodes.size();
   const PlanarIndex obstacle_index(obstacles, config.lambda_th > 0.0 ? config.lambda_th : config.edge_length);

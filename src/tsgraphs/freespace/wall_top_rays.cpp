@@ -15,12 +15,14 @@ WallTopRays::WallTopRays(double cell) : cell_(cell) {
 }
 
 std::uint64_t WallTopRays::key(const Eigen::Vector2d& p) const {
-  const auto c = static_cast<std::int64_t>(std::floor(p.x() / cell_)), r = static_cast<std::int64_t>(std::floor(p.y() / cell_));
+  const auto c = static_cast<std::int64_t>(std::floor(p.x() / cell_)),
+             r = static_cast<std::int64_t>(std::floor(p.y() / cell_));
   return cell_key(c, r);
 }
 
 void WallTopRays::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points,
-                           const std::vector<Wall>& walls, const SightMap& sight, double margin, double beyond) {
+                           const std::vector<Wall>& walls, const SightMap& sight, double margin,
+                           double beyond) {
   if (walls.empty() || points.empty()) return;
   const Eigen::Vector2d s = sensor.head<2>();
   // Only rays that rise above the lowest plane's top can count, and none reaches a plane
@@ -48,7 +50,8 @@ void WallTopRays::add_scan(const Eigen::Vector3d& sensor, const std::vector<Eige
       const Eigen::Vector3d& p = *q;
       if (std::max(sensor.z(), p.z()) <= over) continue;  // never that high
       const double side_p = n.dot(p.head<2>() - w.a);
-      if ((side_p > 0.0) == (side_s > 0.0) || std::abs(side_p) < beyond) continue;  // ends before or on its face
+      if ((side_p > 0.0) == (side_s > 0.0) || std::abs(side_p) < beyond)
+        continue;                                   // ends before or on its face
       const double t = side_s / (side_s - side_p);  // where the ray's track crosses the line
       const Eigen::Vector2d x = s + t * (p.head<2>() - s);
       const double u = along.dot(x - w.a) / (length * length);

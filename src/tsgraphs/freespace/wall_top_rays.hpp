@@ -32,8 +32,8 @@ class WallTopRays {
   /// Records the rays from `sensor` to `points` (map frame) that cross above one of `walls`
   /// (higher than its top + margin, ending at least `beyond` past its line); `sight` must
   /// already hold this scan.
-  void add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points, const std::vector<Wall>& walls,
-                const SightMap& sight, double margin, double beyond);
+  void add_scan(const Eigen::Vector3d& sensor, const std::vector<Eigen::Vector3d>& points,
+                const std::vector<Wall>& walls, const SightMap& sight, double margin, double beyond);
 
   /// Drops what was recorded for plane `id` (its rays are to be recorded again, from where
   /// their keyframes now are).

@@ -31,8 +31,7 @@ constexpr int kCenterSize = 2;
 using PoseBlock = std::array<double, kPoseSize>;
 using PlaneBlock = std::array<double, kPlaneSize>;
 using CenterBlock = std::array<double, kCenterSize>;
-using PoseManifold =
-    ceres::ProductManifold<ceres::EuclideanManifold<3>, ceres::EigenQuaternionManifold>;
+using PoseManifold = ceres::ProductManifold<ceres::EuclideanManifold<3>, ceres::EigenQuaternionManifold>;
 using PlaneManifold = ceres::ProductManifold<ceres::SphereManifold<3>, ceres::EuclideanManifold<1>>;
 
 // Relative pose T_ab between keyframes a and b minus its measurement: translation in a's
@@ -47,8 +46,7 @@ struct BetweenResidual {
   template <class T>
   bool operator()(const T* a, const T* b, T* residual) const {
     const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t_a(a), t_b(b);
-    const Eigen::Map<const Eigen::Quaternion<T>> q_a(a + kQuaternionOffset),
-        q_b(b + kQuaternionOffset);
+    const Eigen::Map<const Eigen::Quaternion<T>> q_a(a + kQuaternionOffset), q_b(b + kQuaternionOffset);
     const Eigen::Quaternion<T> q_a_inv = q_a.conjugate();
     const Eigen::Matrix<T, 3, 1> t_ab_est = q_a_inv * (t_b - t_a);
     const Eigen::Quaternion<T> q_err = q_ab_inv.template cast<T>() * (q_a_inv * q_b);
@@ -91,8 +89,7 @@ struct PlaneResidual {
     return true;
   }
 
-  static ceres::CostFunction* create(const Plane& measured, double sigma_angle,
-                                     double sigma_distance) {
+  static ceres::CostFunction* create(const Plane& measured, double sigma_angle, double sigma_distance) {
     return new ceres::AutoDiffCostFunction<PlaneResidual, 4, kPoseSize, kPlaneSize>(
         new PlaneResidual(measured, sigma_angle, sigma_distance));
   }
@@ -122,8 +119,7 @@ struct RoomResidual {
   explicit RoomResidual(double sigma) : inv_sigma(1.0 / sigma) {}
 
   template <class T>
-  bool operator()(const T* center, const T* a1, const T* a2, const T* b1, const T* b2,
-                  T* residual) const {
+  bool operator()(const T* center, const T* a1, const T* a2, const T* b1, const T* b2, T* residual) const {
     const Eigen::Matrix<T, 2, 1> c(center[0], center[1]);
     residual[0] = midplane_offset(a1, a2, c) * T(inv_sigma);
     residual[1] = midplane_offset(b1, b2, c) * T(inv_sigma);
@@ -131,8 +127,8 @@ struct RoomResidual {
   }
 
   static ceres::CostFunction* create(double sigma) {
-    return new ceres::AutoDiffCostFunction<RoomResidual, 2, kCenterSize, kPlaneSize, kPlaneSize,
-                                           kPlaneSize, kPlaneSize>(new RoomResidual(sigma));
+    return new ceres::AutoDiffCostFunction<RoomResidual, 2, kCenterSize, kPlaneSize, kPlaneSize, kPlaneSize,
+                                           kPlaneSize>(new RoomResidual(sigma));
   }
 
   double inv_sigma;
@@ -149,8 +145,7 @@ struct CorridorResidual {
     const Eigen::Matrix<T, 2, 1> c(center[0], center[1]);
     const Eigen::Matrix<T, 2, 1> n_a(a[0], a[1]), n_b(b[0], b[1]);
     const Eigen::Matrix<T, 2, 1> across = n_a / n_a.norm() - n_b / n_b.norm();
-    const Eigen::Matrix<T, 2, 1> along = Eigen::Matrix<T, 2, 1>(-across.y(), across.x()) /
-                                         across.norm();
+    const Eigen::Matrix<T, 2, 1> along = Eigen::Matrix<T, 2, 1>(-across.y(), across.x()) / across.norm();
     residual[0] = midplane_offset(a, b, c) * T(inv_sigma);
     residual[1] = along.dot(c - cluster.template cast<T>()) * T(inv_along_sigma);
     return true;
@@ -158,8 +153,7 @@ struct CorridorResidual {
 
   static ceres::CostFunction* create(const Eigen::Vector2d& cluster_center, double sigma,
                                      double along_sigma) {
-    return new ceres::AutoDiffCostFunction<CorridorResidual, 2, kCenterSize, kPlaneSize,
-                                           kPlaneSize>(
+    return new ceres::AutoDiffCostFunction<CorridorResidual, 2, kCenterSize, kPlaneSize, kPlaneSize>(
         new CorridorResidual(cluster_center, sigma, along_sigma));
   }
 
@@ -176,8 +170,7 @@ class FloorResidual : public ceres::CostFunction {
     mutable_parameter_block_sizes()->assign(static_cast<std::size_t>(num_rooms) + 1, kCenterSize);
   }
 
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const double room_weight = 1.0 / num_rooms_;
     for (int i = 0; i < kCenterSize; ++i) {
       double mean = 0.0;
@@ -188,8 +181,7 @@ class FloorResidual : public ceres::CostFunction {
     for (int b = 0; b <= num_rooms_; ++b) {
       if (!jacobians[b]) continue;
       const double diagonal = b == 0 ? inv_sigma_ : -inv_sigma_ * room_weight;
-      Eigen::Map<Eigen::Matrix<double, kCenterSize, kCenterSize, Eigen::RowMajor>> jacobian(
-          jacobians[b]);
+      Eigen::Map<Eigen::Matrix<double, kCenterSize, kCenterSize, Eigen::RowMajor>> jacobian(jacobians[b]);
       jacobian = Eigen::Matrix2d::Identity() * diagonal;
     }
     return true;
@@ -203,8 +195,7 @@ class FloorResidual : public ceres::CostFunction {
 ceres::Solver::Options solver_options(const GraphOptimizerConfig& config, bool full) {
   ceres::Solver::Options options;
   if (!ceres::StringToLinearSolverType(config.linear_solver, &options.linear_solver_type))
-    throw std::invalid_argument("GraphOptimizer: unknown linear_solver '" + config.linear_solver +
-                                "'");
+    throw std::invalid_argument("GraphOptimizer: unknown linear_solver '" + config.linear_solver + "'");
   if (!ceres::StringToSparseLinearAlgebraLibraryType(config.sparse_library,
                                                      &options.sparse_linear_algebra_library_type) ||
       !ceres::IsSparseLinearAlgebraLibraryTypeAvailable(options.sparse_linear_algebra_library_type))
@@ -223,26 +214,17 @@ void check_config(const GraphOptimizerConfig& c) {
   solver_options(c, false);
   solver_options(c, true);
   const bool positive = c.odometry_sigma_trans > 0 && c.odometry_sigma_rot_deg > 0 &&
-                        c.loop_sigma_trans > 0 && c.loop_sigma_rot_deg > 0 &&
-                        c.plane_sigma_angle_deg > 0 && c.plane_sigma_distance > 0 &&
-                        c.huber_plane > 0 && c.huber_loop > 0 && c.room_sigma > 0 &&
-                        c.corridor_sigma > 0 && c.corridor_along_sigma > 0 &&
-                        c.floor_sigma > 0 && c.huber_room > 0 && c.huber_floor > 0 &&
-                        c.local_window > 0;
+                        c.loop_sigma_trans > 0 && c.loop_sigma_rot_deg > 0 && c.plane_sigma_angle_deg > 0 &&
+                        c.plane_sigma_distance > 0 && c.huber_plane > 0 && c.huber_loop > 0 &&
+                        c.room_sigma > 0 && c.corridor_sigma > 0 && c.corridor_along_sigma > 0 &&
+                        c.floor_sigma > 0 && c.huber_room > 0 && c.huber_floor > 0 && c.local_window > 0;
   if (!positive)
-    throw std::invalid_argument(
-        "GraphOptimizer: sigmas, Huber deltas and local_window must be > 0");
+    throw std::invalid_argument("GraphOptimizer: sigmas, Huber deltas and local_window must be > 0");
 }
 
 PoseBlock to_block(const Pose3& pose) {
   const Eigen::Quaterniond q = Eigen::Quaterniond(pose.linear()).normalized();
-  return {pose.translation().x(),
-          pose.translation().y(),
-          pose.translation().z(),
-          q.x(),
-          q.y(),
-          q.z(),
-          q.w()};
+  return {pose.translation().x(), pose.translation().y(), pose.translation().z(), q.x(), q.y(), q.z(), q.w()};
 }
 
 Pose3 from_block(const PoseBlock& b) {
@@ -307,13 +289,9 @@ class GraphProblem {
     return it->second.data();
   }
 
-  double* room(int id, bool free) {
-    return center(rooms_, id, graph_.rooms().at(id).center, free);
-  }
+  double* room(int id, bool free) { return center(rooms_, id, graph_.rooms().at(id).center, free); }
 
-  double* floor(int id, bool free) {
-    return center(floors_, id, graph_.floors().at(id).center, free);
-  }
+  double* floor(int id, bool free) { return center(floors_, id, graph_.floors().at(id).center, free); }
 
   int num_free() const { return num_free_; }
 
@@ -343,8 +321,7 @@ class GraphProblem {
     return options;
   }
 
-  double* center(std::map<int, CenterBlock>& blocks, int id, const Eigen::Vector2d& value,
-                 bool free) {
+  double* center(std::map<int, CenterBlock>& blocks, int id, const Eigen::Vector2d& value, bool free) {
     auto [it, inserted] = blocks.try_emplace(id);
     if (inserted) {
       it->second = {value.x(), value.y()};
@@ -386,8 +363,9 @@ void check_between(const BetweenEdge& e, const SituationalGraph& graph) {
 // into the room: opposite sides of it). Ceres also refuses a block named twice in one factor.
 void check_room_edge(const RoomPlanesEdge& e, const SituationalGraph& graph) {
   if (!graph.rooms().count(e.room) || e.planes.size() != planes_of(e.kind))
-    throw std::invalid_argument("GraphOptimizer: room edge with an unknown room or a plane count "
-                                "that does not fit its kind");
+    throw std::invalid_argument(
+        "GraphOptimizer: room edge with an unknown room or a plane count "
+        "that does not fit its kind");
   for (int id : e.planes) {
     const auto it = graph.planes().find(id);
     if (it == graph.planes().end() || !it->second.vertical)
@@ -422,7 +400,8 @@ OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {
   for (const PlaneEdge& e : graph.plane_edges()) {
     if (e.keyframe < 0 || e.keyframe >= num_keyframes || !graph.planes().count(e.plane) ||
         graph.keyframes()[e.keyframe].retired)
-      throw std::invalid_argument("GraphOptimizer: plane edge with an unknown or retired keyframe, or unknown plane");
+      throw std::invalid_argument(
+          "GraphOptimizer: plane edge with an unknown or retired keyframe, or unknown plane");
     if (keyframe_free(e.keyframe)) free_planes.insert(e.plane);
   }
   const auto plane_free = [&free_planes](int id) { return free_planes.count(id) > 0; };
@@ -431,8 +410,7 @@ OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {
   std::set<int> free_rooms;
   for (const RoomPlanesEdge& e : graph.room_edges()) {
     check_room_edge(e, graph);
-    if (full || std::any_of(e.planes.begin(), e.planes.end(), plane_free))
-      free_rooms.insert(e.room);
+    if (full || std::any_of(e.planes.begin(), e.planes.end(), plane_free)) free_rooms.insert(e.room);
   }
   const auto room_free = [&free_rooms](int id) { return free_rooms.count(id) > 0; };
   // A floor follows its rooms: free when one of them is (always in a full solve).
@@ -456,10 +434,9 @@ OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {
       sigma_trans = e.sigmas.trans;
       sigma_rot_deg = e.sigmas.rot_deg;
     }
-    problem.AddResidualBlock(
-        BetweenResidual::create(e.measurement, sigma_trans, sigma_rot_deg * kDegToRad), loss,
-        graph_problem.pose(e.from, keyframe_free(e.from)),
-        graph_problem.pose(e.to, keyframe_free(e.to)));
+    problem.AddResidualBlock(BetweenResidual::create(e.measurement, sigma_trans, sigma_rot_deg * kDegToRad),
+                             loss, graph_problem.pose(e.from, keyframe_free(e.from)),
+                             graph_problem.pose(e.to, keyframe_free(e.to)));
   };
   for (const BetweenEdge& e : graph.odometry_edges())
     add_between(e, config_.odometry_sigma_trans, config_.odometry_sigma_rot_deg, nullptr);
@@ -467,11 +444,11 @@ OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {
     add_between(e, config_.loop_sigma_trans, config_.loop_sigma_rot_deg, graph_problem.loop_loss());
   for (const PlaneEdge& e : graph.plane_edges()) {
     if (!keyframe_free(e.keyframe) && !plane_free(e.plane)) continue;
-    problem.AddResidualBlock(
-        PlaneResidual::create(e.measurement, config_.plane_sigma_angle_deg * kDegToRad,
-                              config_.plane_sigma_distance),
-        graph_problem.plane_loss(), graph_problem.pose(e.keyframe, keyframe_free(e.keyframe)),
-        graph_problem.plane(e.plane, plane_free(e.plane)));
+    problem.AddResidualBlock(PlaneResidual::create(e.measurement, config_.plane_sigma_angle_deg * kDegToRad,
+                                                   config_.plane_sigma_distance),
+                             graph_problem.plane_loss(),
+                             graph_problem.pose(e.keyframe, keyframe_free(e.keyframe)),
+                             graph_problem.plane(e.plane, plane_free(e.plane)));
   }
 
   for (const RoomPlanesEdge& e : graph.room_edges()) {
@@ -480,12 +457,12 @@ OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {
     for (int id : e.planes) walls.push_back(graph_problem.plane(id, plane_free(id)));
     double* center = graph_problem.room(e.room, true);
     if (e.kind == RoomKind::room)
-      problem.AddResidualBlock(RoomResidual::create(config_.room_sigma), graph_problem.room_loss(),
-                               center, walls[0], walls[1], walls[2], walls[3]);
+      problem.AddResidualBlock(RoomResidual::create(config_.room_sigma), graph_problem.room_loss(), center,
+                               walls[0], walls[1], walls[2], walls[3]);
     else
-      problem.AddResidualBlock(CorridorResidual::create(e.cluster_center, config_.corridor_sigma,
-                                                        config_.corridor_along_sigma),
-                               graph_problem.room_loss(), center, walls[0], walls[1]);
+      problem.AddResidualBlock(
+          CorridorResidual::create(e.cluster_center, config_.corridor_sigma, config_.corridor_along_sigma),
+          graph_problem.room_loss(), center, walls[0], walls[1]);
   }
   for (const auto& [floor, rooms] : rooms_of_floor) {
     if (!full && std::none_of(rooms.begin(), rooms.end(), room_free)) continue;
@@ -503,8 +480,7 @@ OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {
   ceres::Solver::Summary summary;
   const auto start = std::chrono::steady_clock::now();
   ceres::Solve(options, &problem, &summary);
-  stats.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!summary.IsSolutionUsable())
     throw std::runtime_error("GraphOptimizer: Ceres failed: " + summary.message);
 

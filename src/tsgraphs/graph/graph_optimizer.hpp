@@ -42,7 +42,7 @@ struct GraphOptimizerConfig {
   /// Sparse solvers' back-end, or suite_sparse, cx_sparse: Eigen's and CXSparse were the fastest
   /// on bench_graph (2000 keyframes), SuiteSparse 10-100% slower there.
   std::string sparse_library = "eigen_sparse";
-  int num_threads = 1;                  ///< Ceres threads (1 keeps runs byte-identical)
+  int num_threads = 1;  ///< Ceres threads (1 keeps runs byte-identical)
 
   template <class V>
   void visit(V& v) {
@@ -73,8 +73,8 @@ struct GraphOptimizerConfig {
 struct OptimizationStats {
   bool full = false;
   double wall_time_s = 0.0;
-  int n_variables = 0;          ///< parameter blocks freed
-  int n_factors = 0;            ///< residual blocks in the problem
+  int n_variables = 0;  ///< parameter blocks freed
+  int n_factors = 0;    ///< residual blocks in the problem
   int iterations = 0;
   double initial_cost = 0.0, final_cost = 0.0;
 };

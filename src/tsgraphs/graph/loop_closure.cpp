@@ -61,7 +61,8 @@ std::optional<BetweenEdge> LoopDetector::detect(const SituationalGraph& graph, i
   return verify(graph, id, candidates(graph, id), cloud_of);
 }
 
-std::optional<BetweenEdge> LoopDetector::verify(const SituationalGraph& graph, int id, const std::vector<int>& candidates,
+std::optional<BetweenEdge> LoopDetector::verify(const SituationalGraph& graph, int id,
+                                                const std::vector<int>& candidates,
                                                 const std::function<const PointCloud&(int)>& cloud_of) {
   const KeyframeNode& current = keyframe_at(graph, id);
   std::vector<int> ks;
@@ -87,7 +88,8 @@ std::optional<BetweenEdge> LoopDetector::verify(const SituationalGraph& graph, i
   for (std::size_t i = 0; i < ks.size(); ++i) {
     const Pose3& guess = guesses[i];
     const registration::RegistrationResult& r = results[i];
-    if (!r.converged || r.fitness > config_.max_fitness || r.inlier_ratio < config_.min_inlier_ratio) continue;
+    if (!r.converged || r.fitness > config_.max_fitness || r.inlier_ratio < config_.min_inlier_ratio)
+      continue;
     // Surfaces that leave a direction free let GICP slide along it (a corridor's length).
     if (r.weakest_direction_share < config_.min_facing_share) continue;
     // A large correction means GICP slid to another optimum (a corridor's length, a twin room).
@@ -111,8 +113,8 @@ std::optional<BetweenEdge> LoopDetector::verify(const SituationalGraph& graph, i
   return std::nullopt;
 }
 
-std::vector<registration::PreparedCloud> LoopDetector::prepared(const std::vector<int>& ids,
-                                                              const std::function<const PointCloud&(int)>& cloud_of) {
+std::vector<registration::PreparedCloud> LoopDetector::prepared(
+    const std::vector<int>& ids, const std::function<const PointCloud&(int)>& cloud_of) {
   std::vector<registration::PreparedCloud> out(ids.size());
   std::vector<std::size_t> missing;
   for (std::size_t i = 0; i < ids.size(); ++i) {
@@ -130,9 +132,9 @@ std::vector<registration::PreparedCloud> LoopDetector::prepared(const std::vecto
   for (const std::size_t i : missing) {
     if (prepared_.size() >= kPreparedKept) {
       // Drop the least recently used.
-      const auto oldest = std::min_element(prepared_.begin(), prepared_.end(), [](const auto& a, const auto& b) {
-        return a.second.last_use < b.second.last_use;
-      });
+      const auto oldest = std::min_element(
+          prepared_.begin(), prepared_.end(),
+          [](const auto& a, const auto& b) { return a.second.last_use < b.second.last_use; });
       prepared_.erase(oldest);
     }
     prepared_[ids[i]] = {out[i], ++uses_};

@@ -22,14 +22,15 @@ struct LoopClosureConfig {
   double min_inlier_ratio = 0.7;   ///< ...and this share of points found a close match (the figure that
                                    ///< tells a wrong place: floor and ceiling match anywhere indoors)
   double max_correction = 2.0;     ///< reject when registration moves the guess by more than this (m)
-  double min_facing_share = 0.01;  ///< reject when fewer than this share of the matched points lie on surfaces
-                                   ///< facing the direction they pin least (a corridor without its ends in
-                                   ///< view: the match slides along it); 0.01 of a keyframe's few thousand
-                                   ///< matched points is a door frame or a wall's end
-  double max_reverse_disagreement = 0.02;  ///< reject when registering the pair the other way round, from the
-                                   ///< inverse guess, ends farther than this from the first match (m): a match
-                                   ///< with one optimum is found from both sides alike; partial overlap with
-                                   ///< repeated shelves gave two wrong loops 0.02-0.05 m apart, right ones < 0.01
+  double min_facing_share = 0.01;  ///< reject when fewer than this share of the matched points lie on
+                                   ///< surfaces facing the direction they pin least (a corridor without its
+                                   ///< ends in view: the match slides along it); 0.01 of a keyframe's few
+                                   ///< thousand matched points is a door frame or a wall's end
+  double max_reverse_disagreement =
+      0.02;  ///< reject when registering the pair the other way round, from the
+             ///< inverse guess, ends farther than this from the first match (m): a match
+             ///< with one optimum is found from both sides alike; partial overlap with
+             ///< repeated shelves gave two wrong loops 0.02-0.05 m apart, right ones < 0.01
   registration::RegistrationConfig registration;  ///< GICP settings for the check
 
   template <class V>
@@ -69,7 +70,7 @@ class LoopDetector {
   /// cached. The candidates of consecutive keyframes are mostly the same, so the newest
   /// preparations are kept (kPreparedKept); the results never depend on the cache, only the time.
   std::vector<registration::PreparedCloud> prepared(const std::vector<int>& ids,
-                                                   const std::function<const PointCloud&(int)>& cloud_of);
+                                                    const std::function<const PointCloud&(int)>& cloud_of);
 
   LoopClosureConfig config_;
   double last_loop_travel_ = -1e18;

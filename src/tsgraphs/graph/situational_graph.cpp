@@ -27,7 +27,9 @@ namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
 
-PoseSigmas sigmas_of(const BetweenEdge& e, const PoseSigmas& fallback) { return e.folded > 0 ? e.sigmas : fallback; }
+PoseSigmas sigmas_of(const BetweenEdge& e, const PoseSigmas& fallback) {
+  return e.folded > 0 ? e.sigmas : fallback;
+}
 
 // The noise of A then B, B's translation being `lever` (see retire_keyframe's comment).
 PoseSigmas compose(const PoseSigmas& a, const PoseSigmas& b, double lever) {
@@ -49,16 +51,17 @@ void SituationalGraph::merge_planes(int keep, int drop) {
     throw std::invalid_argument("merge_planes: unknown plane or keep == drop");
   for (PlaneEdge& e : plane_edges_)
     if (e.plane == drop) e.plane = keep;
-  for (RoomPlanesEdge& e : room_edges_)
-    std::replace(e.planes.begin(), e.planes.end(), drop, keep);
+  for (RoomPlanesEdge& e : room_edges_) std::replace(e.planes.begin(), e.planes.end(), drop, keep);
   room_edges_.erase(std::remove_if(room_edges_.begin(), room_edges_.end(), names_a_plane_twice),
                     room_edges_.end());
   planes_.erase(drop);
 }
 
-void SituationalGraph::retire_keyframe(int id, int anchor, const PoseSigmas& odometry, const PoseSigmas& loop) {
+void SituationalGraph::retire_keyframe(int id, int anchor, const PoseSigmas& odometry,
+                                       const PoseSigmas& loop) {
   const int n = static_cast<int>(keyframes_.size());
-  if (id <= 0 || id >= n || keyframes_[id].retired || anchor < 0 || anchor >= id || keyframes_[anchor].retired)
+  if (id <= 0 || id >= n || keyframes_[id].retired || anchor < 0 || anchor >= id ||
+      keyframes_[anchor].retired)
     throw std::invalid_argument("retire_keyframe: keyframe " + std::to_string(id) + " (anchor " +
                                 std::to_string(anchor) + ") cannot be retired");
   std::vector<std::size_t> in, out;  // odometry edges into and out of it
@@ -96,18 +99,20 @@ void SituationalGraph::retire_keyframe(int id, int anchor, const PoseSigmas& odo
       ++e.folded;
     }
   }
-  loops_.erase(std::remove_if(loops_.begin(), loops_.end(), [](const BetweenEdge& e) { return e.from == e.to; }),
-               loops_.end());
+  loops_.erase(
+      std::remove_if(loops_.begin(), loops_.end(), [](const BetweenEdge& e) { return e.from == e.to; }),
+      loops_.end());
   // Folded loops on the successor: only the most certain stays (each carries odometry noise
   // that grows with every keyframe it is moved past; keeping them all would pile them up).
   const auto folded_on_successor = [successor](const BetweenEdge& e) {
     return e.folded > 0 && (e.from == successor || e.to == successor);
   };
-  const auto best = std::min_element(loops_.begin(), loops_.end(), [&](const BetweenEdge& x, const BetweenEdge& y) {
-    const bool fx = folded_on_successor(x), fy = folded_on_successor(y);
-    if (fx != fy) return fx;
-    return x.sigmas.trans < y.sigmas.trans;
-  });
+  const auto best =
+      std::min_element(loops_.begin(), loops_.end(), [&](const BetweenEdge& x, const BetweenEdge& y) {
+        const bool fx = folded_on_successor(x), fy = folded_on_successor(y);
+        if (fx != fy) return fx;
+        return x.sigmas.trans < y.sigmas.trans;
+      });
   if (best != loops_.end() && folded_on_successor(*best)) {
     const BetweenEdge kept = *best;
     loops_.erase(std::remove_if(loops_.begin(), loops_.end(), folded_on_successor), loops_.end());
@@ -139,8 +144,7 @@ int SituationalGraph::add_room(const RoomNode& room) {
 
 int SituationalGraph::add_floor(const FloorNode& floor) {
   if (floor_of_level(floor.level) >= 0)
-    throw std::invalid_argument("add_floor: level " + std::to_string(floor.level) +
-                                " has a floor");
+    throw std::invalid_argument("add_floor: level " + std::to_string(floor.level) + " has a floor");
   FloorNode node = floor;
   node.id = next_floor_id_++;
   floors_.emplace(node.id, node);

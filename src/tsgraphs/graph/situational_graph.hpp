@@ -15,11 +15,11 @@ namespace tsgraphs::graph {
 
 struct KeyframeNode {
   int id = -1;
-  std::size_t scan_index = 0;   ///< index of the scan in the input sequence
-  double stamp = 0.0;           ///< s
-  Pose3 pose = Pose3::Identity();   ///< current estimate, map <- keyframe (sensor)
-  Pose3 odom = Pose3::Identity();   ///< the input odometry at this keyframe
-  double accum_distance = 0.0;  ///< odometry distance travelled from the start (m)
+  std::size_t scan_index = 0;      ///< index of the scan in the input sequence
+  double stamp = 0.0;              ///< s
+  Pose3 pose = Pose3::Identity();  ///< current estimate, map <- keyframe (sensor)
+  Pose3 odom = Pose3::Identity();  ///< the input odometry at this keyframe
+  double accum_distance = 0.0;     ///< odometry distance travelled from the start (m)
   /// Retired (keyframe_retirement.hpp): out of the factors, which were folded into its
   /// neighbours'; its pose follows an older keyframe's, pose = anchor's pose * T_anchor_keyframe.
   bool retired = false;
@@ -29,8 +29,8 @@ struct KeyframeNode {
 
 struct PlaneNode {
   int id = -1;
-  Plane plane;          ///< map frame, S-Graphs sign convention (normal towards its observers)
-  bool vertical = true; ///< wall face; false: floor or ceiling
+  Plane plane;           ///< map frame, S-Graphs sign convention (normal towards its observers)
+  bool vertical = true;  ///< wall face; false: floor or ceiling
 };
 
 /// Standard deviations of a relative pose measurement, isotropic in translation and rotation.

@@ -58,8 +58,8 @@ std::vector<SmoothedNode> bgk_smooth(const TriGridField& field, const std::vecto
   return out;
 }
 
-void bgk_smooth(const TriGridField& field, const std::vector<std::uint8_t>& reached, const GroundConfig& config,
-                std::vector<SmoothedNode>* smoothed) {
+void bgk_smooth(const TriGridField& field, const std::vector<std::uint8_t>& reached,
+                const GroundConfig& config, std::vector<SmoothedNode>* smoothed) {
   const TriGrid& grid = field.grid;
   std::vector<SmoothedNode>& out = *smoothed;
   out.assign(field.nodes.size(), SmoothedNode{});
@@ -84,7 +84,8 @@ void bgk_smooth(const TriGridField& field, const std::vector<std::uint8_t>& reac
       sum_normal += e.weight * other.normal.cast<double>();
     }
     SmoothedNode& s = out[i];
-    s.probability = static_cast<float>((sum_wy + config.bgk_prior * kPriorTraversability) / (sum_w + config.bgk_prior));
+    s.probability =
+        static_cast<float>((sum_wy + config.bgk_prior * kPriorTraversability) / (sum_w + config.bgk_prior));
     if (surface_w > 0.0) {
       s.has_surface = true;
       s.height = static_cast<float>(sum_height / surface_w);
@@ -93,7 +94,8 @@ void bgk_smooth(const TriGridField& field, const std::vector<std::uint8_t>& reac
   }
 }
 
-std::vector<std::uint8_t> decide_traversable(const TriGridField& field, const std::vector<SmoothedNode>& smoothed,
+std::vector<std::uint8_t> decide_traversable(const TriGridField& field,
+                                             const std::vector<SmoothedNode>& smoothed,
                                              const std::vector<int>& seeds, const GroundConfig& config) {
   const std::size_t n = field.nodes.size();
   std::vector<std::uint8_t> candidate(n, 0);
@@ -109,8 +111,8 @@ std::vector<std::uint8_t> decide_traversable(const TriGridField& field, const st
     candidate[i] = 1;
   }
   // Only what is linked to the robot's seeds stays.
-  const std::vector<std::uint8_t> traversable =
-      flood_from(field, seeds, config, [&](int i) { return candidate[i] != 0; }, [](int, int) { return true; });
+  const std::vector<std::uint8_t> traversable = flood_from(
+      field, seeds, config, [&](int i) { return candidate[i] != 0; }, [](int, int) { return true; });
   return traversable;
 }
 

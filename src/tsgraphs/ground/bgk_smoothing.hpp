@@ -20,10 +20,10 @@ double sparse_kernel(double distance, double length_scale);
 
 /// The smoothed state of one node.
 struct SmoothedNode {
-  bool has_surface = false;   ///< a reached node lies within the kernel's support
-  float height = 0.0f;        ///< smoothed ground height at the node's centroid (reached nodes' planes)
+  bool has_surface = false;  ///< a reached node lies within the kernel's support
+  float height = 0.0f;       ///< smoothed ground height at the node's centroid (reached nodes' planes)
   Eigen::Vector3f normal = Eigen::Vector3f::UnitZ();  ///< smoothed ground normal
-  float probability = 0.5f;   ///< smoothed traversability in [0, 1]
+  float probability = 0.5f;                           ///< smoothed traversability in [0, 1]
 };
 
 /// BGK over the nodes within bgk_length_scale (centroid to centroid) of each non-empty node:
@@ -33,8 +33,8 @@ struct SmoothedNode {
 std::vector<SmoothedNode> bgk_smooth(const TriGridField& field, const std::vector<std::uint8_t>& reached,
                                      const GroundConfig& config);
 /// The same into `smoothed`, reusing its buffer.
-void bgk_smooth(const TriGridField& field, const std::vector<std::uint8_t>& reached, const GroundConfig& config,
-                std::vector<SmoothedNode>* smoothed);
+void bgk_smooth(const TriGridField& field, const std::vector<std::uint8_t>& reached,
+                const GroundConfig& config, std::vector<SmoothedNode>* smoothed);
 
 /// The own height of a node that smoothing compares with the smoothed surface: its plane at
 /// the centroid when ground-like, else its robust lowest level.
@@ -44,7 +44,8 @@ float node_level(const TriGridNode& node);
 /// is never restored) is traversable when its smoothed probability is at least
 /// th_traversable, its own height is within bgk_max_height_gap of the smoothed surface, and
 /// it is linked (NodeLinker) through such nodes to a seed.
-std::vector<std::uint8_t> decide_traversable(const TriGridField& field, const std::vector<SmoothedNode>& smoothed,
+std::vector<std::uint8_t> decide_traversable(const TriGridField& field,
+                                             const std::vector<SmoothedNode>& smoothed,
                                              const std::vector<int>& seeds, const GroundConfig& config);
 
 }  // namespace tsgraphs::ground

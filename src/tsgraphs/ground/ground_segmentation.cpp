@@ -16,8 +16,8 @@ namespace {
 
 /// For every node, the traversable node nearest to it over the grid's edges (itself when it
 /// is traversable), or -1 when there is none.
-void nearest_traversable(const TriGrid& grid, const std::vector<std::uint8_t>& traversable, std::vector<int>* out,
-                         std::vector<int>* queue_buffer) {
+void nearest_traversable(const TriGrid& grid, const std::vector<std::uint8_t>& traversable,
+                         std::vector<int>* out, std::vector<int>* queue_buffer) {
   std::vector<int>& nearest = *out;
   nearest.assign(traversable.size(), -1);
   std::vector<int>& queue = *queue_buffer;
@@ -61,7 +61,9 @@ class FootMap {
     marks_.push_back({k, p.x(), p.y()});
   }
   /// Call once after the last add().
-  void index() { std::sort(marks_.begin(), marks_.end(), [](const Mark& a, const Mark& b) { return a.key < b.key; }); }
+  void index() {
+    std::sort(marks_.begin(), marks_.end(), [](const Mark& a, const Mark& b) { return a.key < b.key; });
+  }
 
   bool near_mark(const Eigen::Vector3f& p) const {
     const std::int64_t u = cell(p.x(), origin_), v = cell(p.y(), origin_);
@@ -70,7 +72,8 @@ class FootMap {
       for (std::int64_t b = std::max<std::int64_t>(v - 1, 0); b <= std::min(v + 1, cells_ - 1); ++b) {
         const std::int64_t k = a * cells_ + b;
         if (!(bits_[k / 64] >> (k % 64) & 1)) continue;
-        auto it = std::lower_bound(marks_.begin(), marks_.end(), k, [](const Mark& m, std::int64_t x) { return m.key < x; });
+        auto it = std::lower_bound(marks_.begin(), marks_.end(), k,
+                                   [](const Mark& m, std::int64_t x) { return m.key < x; });
         for (; it != marks_.end() && it->key == k; ++it) {
           const double dx = it->x - p.x(), dy = it->y - p.y();
           if (dx * dx + dy * dy <= r_sq) return true;
@@ -85,7 +88,9 @@ class FootMap {
     std::int64_t key;
     float x, y;
   };
-  std::int64_t cell(float x, double origin) const { return static_cast<std::int64_t>(std::floor((x - origin) / radius_)); }
+  std::int64_t cell(float x, double origin) const {
+    return static_cast<std::int64_t>(std::floor((x - origin) / radius_));
+  }
   double radius_ = 1.0;
   std::int64_t cells_ = 0;
   double origin_ = 0.0;
@@ -143,7 +148,8 @@ std::string preset_for_ring_spacing(double spacing_deg) {
   return best;
 }
 
-GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_sensor, const GroundConfig& config) {
+GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_sensor,
+                          const GroundConfig& config) {
   thread_local Workspace ws;
   GroundScan scan;
   scan.R_level_sensor = level_rotation(R_map_sensor);
@@ -197,7 +203,8 @@ GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_
   }
   feet.index();
   for (std::size_t i = 0; i < cloud.size(); ++i)
-    if (scan.labels[i] == GroundLabel::kGround && feet.near_mark(field.points[i])) scan.labels[i] = GroundLabel::kObstacle;
+    if (scan.labels[i] == GroundLabel::kGround && feet.near_mark(field.points[i]))
+      scan.labels[i] = GroundLabel::kObstacle;
 
   // Each node stands where its ground points are (a node cut by a wall or a railing edge has
   // its ground on one side); a traversable node left with no ground point is not ground.
@@ -215,7 +222,8 @@ GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_
     out.centre = node.centre;
     const double count = ground_sum[k].z();
     if (traversable[k] && count > 0.0) {
-      const float x = static_cast<float>(ground_sum[k].x() / count), y = static_cast<float>(ground_sum[k].y() / count);
+      const float x = static_cast<float>(ground_sum[k].x() / count),
+                  y = static_cast<float>(ground_sum[k].y() / count);
       out.centre = Eigen::Vector3f(x, y, ground[k].height_at(x, y));
       out.traversable = true;
     }

@@ -15,42 +15,61 @@ namespace tsgraphs::ground {
 
 /// Label of each input point.
 enum class GroundLabel : std::uint8_t {
-  kOther = 0,     ///< not classified: out of range, no ground under it, below the ground, or above th_obstacle
-  kGround = 1,    ///< on traversable ground
-  kObstacle = 2,  ///< above traversable ground by more than the ground band and at most th_obstacle, or the foot of such an obstacle
+  kOther = 0,   ///< not classified: out of range, no ground under it, below the ground, or above th_obstacle
+  kGround = 1,  ///< on traversable ground
+  kObstacle = 2,  ///< above traversable ground by more than the ground band and at most th_obstacle, or the
+                  ///< foot of such an obstacle
 };
 
 /// Every parameter of the ground layer (TRAVEL's names where they exist). Defaults are for
 /// an indoor 64-beam sensor on a ground robot; see per_sensor_preset().
 struct GroundConfig {
-  double sensor_height = 0.55;   ///< height of the sensor above the floor under the robot (m); the pipeline sets it from the platform (pipeline/platform.hpp)
-  double resolution = 0.5;       ///< tri-grid cell size (m); each cell is split into 4 triangles by its diagonals
-  double min_range = 0.5;        ///< points nearer than this are not used (m)
-  double max_range = 15.0;       ///< ...nor farther than this (m)
-  int num_iter = 3;              ///< PCA rounds per node
-  int num_lpr = 5;               ///< points averaged for the lowest-point representative
-  int num_min_pts = 10;          ///< fewer points than this: the node is unknown
-  int sparse_min_pts = 1;        ///< a node the search cannot join by its plane joins the ground reaching it when this many of its points lie within th_dist of that ground's level, none below (traversable_search.hpp, adopt_plane)
-  double th_seeds = 0.5;         ///< seeds: points within this above the LPR (m)
-  double th_dist = 0.06;         ///< inliers of the node plane, and ground points: within this of it (m)
-  double th_outlier = 0.3;       ///< points more than this below the node's robust lowest level are rejected (m)
-  double fit_column = 0.02;      ///< node planes are fitted to the lowest point of each column this wide (m), so a wall in the node adds only its foot
-  double plane_prior_spread = 0.02;  ///< horizontal spread (m) added to every node's PCA, so points on one scan line get the least tilted plane through them
-  double th_normal = 0.94;       ///< ground-like: normal z at least this
-  double th_lcc_normal = 0.12;   ///< local convexity/concavity: normal similarity term (TRAVEL's 0.03 is for 2 m cells, whose centres are 4 times farther apart)
-  double th_lcc_planar = 0.2;    ///< local convexity/concavity: plane distance term (rad)
-  double th_obstacle = 2.0;      ///< obstacle points: at most this above the local ground (m)
-  double foot_radius = 0.02;     ///< a ground-band point with obstacle points within this (horizontally)...
-  double foot_height = 0.3;      ///< ...and this above the band is the foot of a wall or a box: an obstacle (m)...
-  double foot_rings = 2.0;       ///< ...or as high as this many rings above it reach on a wall at its range (ring_spacing_deg; one ring may be lost to dropout or land beyond foot_radius by range noise)
-  double seed_radius = 3.0;      ///< the search starts at ground-like nodes within this of the robot (m; the pipeline sets it from the platform)...
+  double sensor_height = 0.55;  ///< height of the sensor above the floor under the robot (m); the pipeline
+                                ///< sets it from the platform (pipeline/platform.hpp)
+  double resolution = 0.5;  ///< tri-grid cell size (m); each cell is split into 4 triangles by its diagonals
+  double min_range = 0.5;   ///< points nearer than this are not used (m)
+  double max_range = 15.0;  ///< ...nor farther than this (m)
+  int num_iter = 3;         ///< PCA rounds per node
+  int num_lpr = 5;          ///< points averaged for the lowest-point representative
+  int num_min_pts = 10;     ///< fewer points than this: the node is unknown
+  int sparse_min_pts = 1;   ///< a node the search cannot join by its plane joins the ground reaching it when
+                            ///< this many of its points lie within th_dist of that ground's level, none below
+                            ///< (traversable_search.hpp, adopt_plane)
+  double th_seeds = 0.5;    ///< seeds: points within this above the LPR (m)
+  double th_dist = 0.06;    ///< inliers of the node plane, and ground points: within this of it (m)
+  double th_outlier = 0.3;  ///< points more than this below the node's robust lowest level are rejected (m)
+  double fit_column = 0.02;  ///< node planes are fitted to the lowest point of each column this wide (m), so
+                             ///< a wall in the node adds only its foot
+  double plane_prior_spread = 0.02;  ///< horizontal spread (m) added to every node's PCA, so points on one
+                                     ///< scan line get the least tilted plane through them
+  double th_normal = 0.94;           ///< ground-like: normal z at least this
+  double th_lcc_normal = 0.12;  ///< local convexity/concavity: normal similarity term (TRAVEL's 0.03 is for 2
+                                ///< m cells, whose centres are 4 times farther apart)
+  double th_lcc_planar = 0.2;   ///< local convexity/concavity: plane distance term (rad)
+  double th_obstacle = 2.0;     ///< obstacle points: at most this above the local ground (m)
+  double foot_radius = 0.02;    ///< a ground-band point with obstacle points within this (horizontally)...
+  double foot_height =
+      0.3;  ///< ...and this above the band is the foot of a wall or a box: an obstacle (m)...
+  double foot_rings =
+      2.0;  ///< ...or as high as this many rings above it reach on a wall at its range (ring_spacing_deg; one
+            ///< ring may be lost to dropout or land beyond foot_radius by range noise)
+  double seed_radius = 3.0;  ///< the search starts at ground-like nodes within this of the robot (m; the
+                             ///< pipeline sets it from the platform)...
   double seed_height_tolerance = 0.2;  ///< ...whose plane passes within this of the floor under the robot (m)
-  double seed_max_slope = 0.21;  ///< ...whose plane rises no more than this per metre, nor its own height more than seed_height_tolerance plus this per metre of distance from that floor: the steepest ramp a robot climbs (12 degrees, the generator's steepest; wheelchair ramps are 1:12)
-  double max_gap = 2.0;          ///< the search links nodes across runs of empty or unknown nodes up to this long (m), or across the gap to the next floor ring out where that is longer (link_gap())
-  double ring_spacing_deg = 45.0 / 63.0;  ///< angle between neighbouring beams (deg; the pipeline sets it from the platform): far floor rings are this far apart in elevation
-  double bgk_length_scale = 1.0; ///< BGK sparse kernel support (m)
-  double bgk_prior = 0.5;        ///< BGK prior weight (pseudo-observations) of traversability 0.5
-  double th_traversable = 0.4;   ///< a node is traversable when its smoothed probability is at least this (below 0.5: floors are seen on sparse rings, walls densely)
+  double seed_max_slope =
+      0.21;  ///< ...whose plane rises no more than this per metre, nor its own height more than
+             ///< seed_height_tolerance plus this per metre of distance from that floor: the steepest ramp a
+             ///< robot climbs (12 degrees, the generator's steepest; wheelchair ramps are 1:12)
+  double max_gap =
+      2.0;  ///< the search links nodes across runs of empty or unknown nodes up to this long (m), or across
+            ///< the gap to the next floor ring out where that is longer (link_gap())
+  double ring_spacing_deg =
+      45.0 / 63.0;  ///< angle between neighbouring beams (deg; the pipeline sets it from the platform): far
+                    ///< floor rings are this far apart in elevation
+  double bgk_length_scale = 1.0;     ///< BGK sparse kernel support (m)
+  double bgk_prior = 0.5;            ///< BGK prior weight (pseudo-observations) of traversability 0.5
+  double th_traversable = 0.4;       ///< a node is traversable when its smoothed probability is at least this
+                                     ///< (below 0.5: floors are seen on sparse rings, walls densely)
   double bgk_max_height_gap = 0.25;  ///< ...and its own height is within this of the smoothed surface (m)
 
   /// Every field but sensor_height and seed_radius, which belong to the platform (the
@@ -109,24 +128,27 @@ struct GroundNode {
   /// height there (a node cut by a wall or a railing has its ground on one side). Others: the
   /// triangle's centroid at the node plane's height (or its lowest level when unmodelled).
   Eigen::Vector3f centre = Eigen::Vector3f::Zero();
-  Eigen::Vector3f normal = Eigen::Vector3f::UnitZ(); ///< smoothed plane normal (z up)
-  float probability = 0.0f;   ///< smoothed traversability in [0, 1]
+  Eigen::Vector3f normal = Eigen::Vector3f::UnitZ();  ///< smoothed plane normal (z up)
+  float probability = 0.0f;                           ///< smoothed traversability in [0, 1]
   int num_points = 0;
-  bool ground_like = false;   ///< the plane test alone
-  bool reached = false;       ///< reached by the search from the robot
-  bool traversable = false;   ///< the final decision: smoothed probability, height and link to the robot (bgk_smoothing.hpp), with ground points
+  bool ground_like = false;  ///< the plane test alone
+  bool reached = false;      ///< reached by the search from the robot
+  bool traversable = false;  ///< the final decision: smoothed probability, height and link to the robot
+                             ///< (bgk_smoothing.hpp), with ground points
 };
 
 /// The result for one scan.
 struct GroundScan {
-  Eigen::Matrix3d R_level_sensor = Eigen::Matrix3d::Identity();  ///< rotates sensor-frame vectors into the level frame
-  std::vector<GroundNode> nodes;     ///< every node with points (unknown ones too)
-  std::vector<GroundLabel> labels;   ///< one per input point
+  Eigen::Matrix3d R_level_sensor =
+      Eigen::Matrix3d::Identity();  ///< rotates sensor-frame vectors into the level frame
+  std::vector<GroundNode> nodes;    ///< every node with points (unknown ones too)
+  std::vector<GroundLabel> labels;  ///< one per input point
 };
 
 /// Segments `cloud` (sensor frame, NaN points allowed: labelled kOther). `R_map_sensor` is
 /// the sensor's orientation; only its roll and pitch are used, to find the gravity direction.
 /// Deterministic. Thread-safe: each thread reuses its own working buffers from call to call.
-GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_sensor, const GroundConfig& config);
+GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_sensor,
+                          const GroundConfig& config);
 
 }  // namespace tsgraphs::ground

@@ -23,8 +23,10 @@ constexpr double kMinSpreadRatio = 0.1;
 std::vector<double> ground_slopes(const std::vector<Eigen::Vector3d>& positions,
                                   const std::vector<Eigen::Vector3d>& normals, double cell, double radius) {
   if (!(cell > 0.0) || !std::isfinite(cell)) throw std::invalid_argument("ground_slopes: cell must be > 0");
-  if (!(radius >= 0.0) || !std::isfinite(radius)) throw std::invalid_argument("ground_slopes: radius must be >= 0");
-  if (positions.size() != normals.size()) throw std::invalid_argument("ground_slopes: one normal per position");
+  if (!(radius >= 0.0) || !std::isfinite(radius))
+    throw std::invalid_argument("ground_slopes: radius must be >= 0");
+  if (positions.size() != normals.size())
+    throw std::invalid_argument("ground_slopes: one normal per position");
   std::vector<double> slopes(positions.size(), 0.0);
   const auto usable = [&](std::size_t i) {
     return positions[i].allFinite() && normals[i].allFinite() && std::abs(normals[i].z()) > 1e-6;
@@ -46,7 +48,9 @@ std::vector<double> ground_slopes(const std::vector<Eigen::Vector3d>& positions,
   const std::size_t stride = static_cast<std::size_t>(cols) + 1;
   std::vector<std::array<double, kSums>> table(stride * (static_cast<std::size_t>(rows) + 1));
   for (auto& t : table) t.fill(0.0);
-  const auto at = [&](int c, int r) { return static_cast<std::size_t>(r) * stride + static_cast<std::size_t>(c); };
+  const auto at = [&](int c, int r) {
+    return static_cast<std::size_t>(r) * stride + static_cast<std::size_t>(c);
+  };
   for (std::size_t i = 0; i < positions.size(); ++i) {
     if (!usable(i)) continue;
     const Eigen::Vector3d p = positions[i] - lo;
@@ -76,12 +80,14 @@ std::vector<double> ground_slopes(const std::vector<Eigen::Vector3d>& positions,
     const int c0 = std::max(c.x() - reach, 0), c1 = std::min(c.x() + reach, cols - 1) + 1;
     const int r0 = std::max(c.y() - reach, 0), r1 = std::min(c.y() + reach, rows - 1) + 1;
     std::array<double, kSums> s;
-    for (int k = 0; k < kSums; ++k) s[k] = table[at(c1, r1)][k] - table[at(c0, r1)][k] - table[at(c1, r0)][k] + table[at(c0, r0)][k];
+    for (int k = 0; k < kSums; ++k)
+      s[k] = table[at(c1, r1)][k] - table[at(c0, r1)][k] - table[at(c1, r0)][k] + table[at(c0, r0)][k];
     const double m = s[kN];
     if (!(m > 0.0)) continue;
     const double tilt = std::hypot(s[kGX], s[kGY]) / m;
     // The plane z = a + g . (x, y) through the window's nodes, from their centred moments.
-    const double sxx = s[kXX] - s[kX] * s[kX] / m, sxy = s[kXY] - s[kX] * s[kY] / m, syy = s[kYY] - s[kY] * s[kY] / m;
+    const double sxx = s[kXX] - s[kX] * s[kX] / m, sxy = s[kXY] - s[kX] * s[kY] / m,
+                 syy = s[kYY] - s[kY] * s[kY] / m;
     const double sxz = s[kXZ] - s[kX] * s[kZ] / m, syz = s[kYZ] - s[kY] * s[kZ] / m;
     const double det = sxx * syy - sxy * sxy;
     // det / trace^2 is about the square of the spreads' ratio.

@@ -22,7 +22,8 @@ Eigen::Vector3d mean_normal(const Eigen::Vector3d& a, double wa, const Eigen::Ve
 /// Drops the oldest entries beyond `cap` (a negative cap keeps none).
 void keep_most_recent(std::vector<int>& keyframes, int cap) {
   const auto n = static_cast<std::size_t>(std::max(cap, 0));
-  if (keyframes.size() > n) keyframes.erase(keyframes.begin(), keyframes.end() - static_cast<std::ptrdiff_t>(n));
+  if (keyframes.size() > n)
+    keyframes.erase(keyframes.begin(), keyframes.end() - static_cast<std::ptrdiff_t>(n));
 }
 
 /// p expressed in the frame of T (T^-1 p), without forming the inverse.
@@ -41,7 +42,7 @@ TraversableNodeMap::TraversableNodeMap(NodeMapConfig config) : config_(std::move
 
 std::uint64_t TraversableNodeMap::cell_key(const Eigen::Vector3d& p) const {
   return tsgraphs::cell_key(static_cast<std::int64_t>(std::floor(p.x() / config_.cell_size)),
-                   static_cast<std::int64_t>(std::floor(p.y() / config_.cell_size)));
+                            static_cast<std::int64_t>(std::floor(p.y() / config_.cell_size)));
 }
 
 int TraversableNodeMap::find_layer(std::uint64_t key, double z) const {
@@ -88,9 +89,8 @@ void TraversableNodeMap::merge(GlobalNode& keep, const GlobalNode& gone) const {
   // Both lists hold keyframes given to fuse(); order them by when they were last fused.
   std::vector<int> kfs = keep.keyframes;
   kfs.insert(kfs.end(), gone.keyframes.begin(), gone.keyframes.end());
-  std::sort(kfs.begin(), kfs.end(), [&](int a, int b) {
-    return keyframes_.at(a).fused_at < keyframes_.at(b).fused_at;
-  });
+  std::sort(kfs.begin(), kfs.end(),
+            [&](int a, int b) { return keyframes_.at(a).fused_at < keyframes_.at(b).fused_at; });
   kfs.erase(std::unique(kfs.begin(), kfs.end()), kfs.end());
   keep_most_recent(kfs, config_.max_keyframes_per_node);
   keep.keyframes = std::move(kfs);
@@ -107,7 +107,8 @@ void TraversableNodeMap::fuse(int keyframe_id, const Pose3& T_map_keyframe,
   record.fused_at = ++fuse_calls_;
 
   for (const NodeObservation& obs : nodes) {
-    if (!(obs.probability >= config_.min_probability) || !obs.position.allFinite() || !obs.normal.allFinite()) {
+    if (!(obs.probability >= config_.min_probability) || !obs.position.allFinite() ||
+        !obs.normal.allFinite()) {
       continue;
     }
     const double normal_norm = obs.normal.norm();
@@ -189,7 +190,8 @@ std::vector<const GlobalNode*> TraversableNodeMap::nodes_near(const Eigen::Vecto
     const double x0 = std::floor((p.x() - radius) / cs), x1 = std::floor((p.x() + radius) / cs);
     const double y0 = std::floor((p.y() - radius) / cs), y1 = std::floor((p.y() + radius) / cs);
     if ((x1 - x0 + 1.0) * (y1 - y0 + 1.0) > static_cast<double>(nodes_.size())) {
-      for (std::size_t i = 0; i < nodes_.size(); ++i) consider(static_cast<int>(i));  // cheaper than the cells
+      for (std::size_t i = 0; i < nodes_.size(); ++i)
+        consider(static_cast<int>(i));  // cheaper than the cells
     } else {
       for (auto ix = static_cast<std::int64_t>(x0); ix <= static_cast<std::int64_t>(x1); ++ix) {
         for (auto iy = static_cast<std::int64_t>(y0); iy <= static_cast<std::int64_t>(y1); ++iy) {

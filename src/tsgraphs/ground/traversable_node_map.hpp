@@ -16,10 +16,11 @@
 namespace tsgraphs::ground {
 
 struct NodeMapConfig {
-  double cell_size = 0.25;          ///< grid cell of the global map (m)
-  double level_tolerance = 0.5;     ///< observations within this height of a node fuse with it (m); farther: another layer
-  int max_keyframes_per_node = 8;   ///< the most recent keyframes that saw a node, kept per node
-  double min_probability = 0.5;     ///< only observations at least this traversable are fused
+  double cell_size = 0.25;  ///< grid cell of the global map (m)
+  double level_tolerance =
+      0.5;  ///< observations within this height of a node fuse with it (m); farther: another layer
+  int max_keyframes_per_node = 8;  ///< the most recent keyframes that saw a node, kept per node
+  double min_probability = 0.5;    ///< only observations at least this traversable are fused
 
   template <class V>
   void visit(V& v) {
@@ -34,20 +35,20 @@ struct NodeMapConfig {
 struct NodeObservation {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< on the ground
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
-  double probability = 1.0;                            ///< traversability
+  double probability = 1.0;  ///< traversability
 };
 
 /// A node of the global map.
 struct GlobalNode {
   int id = -1;
-  int anchor_keyframe = -1;              ///< the keyframe whose frame holds it
-  Eigen::Vector3d local = Eigen::Vector3d::Zero();         ///< fused position in the anchor's frame
-  Eigen::Vector3d local_normal = Eigen::Vector3d::UnitZ(); ///< fused normal in the anchor's frame
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();      ///< map frame (anchor pose * local)
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();       ///< map frame
-  double probability = 0.0;              ///< fused traversability: mean of the observations' probabilities
-  int observations = 0;                  ///< observations fused; the weight of the means above
-  std::vector<int> keyframes;            ///< the most recent keyframes that saw it, oldest first
+  int anchor_keyframe = -1;                                 ///< the keyframe whose frame holds it
+  Eigen::Vector3d local = Eigen::Vector3d::Zero();          ///< fused position in the anchor's frame
+  Eigen::Vector3d local_normal = Eigen::Vector3d::UnitZ();  ///< fused normal in the anchor's frame
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();       ///< map frame (anchor pose * local)
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();        ///< map frame
+  double probability = 0.0;    ///< fused traversability: mean of the observations' probabilities
+  int observations = 0;        ///< observations fused; the weight of the means above
+  std::vector<int> keyframes;  ///< the most recent keyframes that saw it, oldest first
 };
 
 /// The node pointers that the queries return stay valid until the next fuse() or update().
@@ -97,12 +98,13 @@ class TraversableNodeMap {
   void merge(GlobalNode& keep, const GlobalNode& gone) const;
 
   NodeMapConfig config_;
-  std::vector<GlobalNode> nodes_;                    ///< the live nodes in id order (update() drops merged ones)
-  std::vector<int> next_in_cell_;                    ///< by index in nodes_: the next layer of its cell, -1 at the end
-  std::unordered_map<std::uint64_t, int> cells_;     ///< cell key -> index of the first node of the cell's layers
+  std::vector<GlobalNode> nodes_;  ///< the live nodes in id order (update() drops merged ones)
+  std::vector<int> next_in_cell_;  ///< by index in nodes_: the next layer of its cell, -1 at the end
+  std::unordered_map<std::uint64_t, int>
+      cells_;  ///< cell key -> index of the first node of the cell's layers
   std::unordered_map<int, KeyframeRecord> keyframes_;  ///< every keyframe given, by id
   std::uint64_t fuse_calls_ = 0;
-  int next_id_ = 0;                                  ///< ids are never reused
+  int next_id_ = 0;  ///< ids are never reused
 };
 
 }  // namespace tsgraphs::ground

@@ -128,7 +128,8 @@ std::vector<std::uint8_t> search_traversable(TriGridField* field, const std::vec
   return flood_from(
       f, seeds, config, [&](int i) { return f.nodes[i].state != NodeState::kEmpty; },
       [&](int a, int b) {
-        if (!adopted[a] && f.nodes[b].ground_like && locally_convex(f.nodes[a], f.nodes[b], config)) return true;
+        if (!adopted[a] && f.nodes[b].ground_like && locally_convex(f.nodes[a], f.nodes[b], config))
+          return true;
         if (!adopt_plane(f, f.nodes[a], b, config, &plane)) return false;
         // flood_from asks link_ok last: a true answer reaches b. From now on b is a modelled
         // node, so runs of empty or unknown nodes end at it as at any other.

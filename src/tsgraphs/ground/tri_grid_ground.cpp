@@ -221,10 +221,18 @@ Eigen::Vector2d TriGrid::centroid(int node) const {
   Eigen::Vector2d p(origin_ + (row(node) + 0.5) * resolution_, origin_ + (column(node) + 0.5) * resolution_);
   const double off = kCentroidOffset * resolution_;
   switch (triangle(node)) {
-    case kPlusX: p.x() += off; break;
-    case kPlusY: p.y() += off; break;
-    case kMinusX: p.x() -= off; break;
-    default: p.y() -= off; break;
+    case kPlusX:
+      p.x() += off;
+      break;
+    case kPlusY:
+      p.y() += off;
+      break;
+    case kMinusX:
+      p.x() -= off;
+      break;
+    default:
+      p.y() -= off;
+      break;
   }
   return p;
 }
@@ -237,10 +245,18 @@ int TriGrid::adjacent(int node, std::array<int, 3>* out) const {
   (*out)[1] = base + (t + 3) % 4;
   int across = -1;
   switch (t) {
-    case kPlusX: across = this->node(r + 1, c, kMinusX); break;
-    case kPlusY: across = this->node(r, c + 1, kMinusY); break;
-    case kMinusX: across = this->node(r - 1, c, kPlusX); break;
-    default: across = this->node(r, c - 1, kPlusY); break;
+    case kPlusX:
+      across = this->node(r + 1, c, kMinusX);
+      break;
+    case kPlusY:
+      across = this->node(r, c + 1, kMinusY);
+      break;
+    case kMinusX:
+      across = this->node(r - 1, c, kPlusX);
+      break;
+    default:
+      across = this->node(r, c - 1, kPlusY);
+      break;
   }
   if (across < 0) return 2;
   (*out)[2] = across;
@@ -254,8 +270,8 @@ Eigen::Matrix3d level_rotation(const Eigen::Matrix3d& R_map_sensor) {
   return Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * R_map_sensor;
 }
 
-void build_tri_grid_field(const PointCloud& cloud, const Eigen::Matrix3d& R_level_sensor, const GroundConfig& config,
-                          TriGridField* out) {
+void build_tri_grid_field(const PointCloud& cloud, const Eigen::Matrix3d& R_level_sensor,
+                          const GroundConfig& config, TriGridField* out) {
   TriGridField& field = *out;  // every buffer is refilled; their capacity is kept
   field.grid = TriGrid(config.resolution, config.max_range);
   const int num_nodes = field.grid.num_nodes();

@@ -57,13 +57,13 @@ enum class NodeState : std::uint8_t {
 /// One node's points and plane, in the level frame.
 struct TriGridNode {
   NodeState state = NodeState::kEmpty;
-  bool ground_like = false;   ///< modelled with normal z >= th_normal
+  bool ground_like = false;  ///< modelled with normal z >= th_normal
   /// Ground-like only on one line (the plane's tilt is the prior's) with a steep face standing
   /// on it: the foot of a wall, or of a void's edge seen from above.
   bool face_foot = false;
   int num_points = 0;
-  int num_inliers = 0;        ///< column-lowest points within th_dist of the plane
-  float lowest = 0.0f;        ///< the robust lowest level (z) of the points
+  int num_inliers = 0;  ///< column-lowest points within th_dist of the plane
+  float lowest = 0.0f;  ///< the robust lowest level (z) of the points
   /// Centroid (x, y) of the triangle; z: the plane's height there (modelled nodes) or the
   /// robust lowest level (unknown nodes).
   Eigen::Vector3f centre = Eigen::Vector3f::Zero();
@@ -94,7 +94,7 @@ Eigen::Matrix3d level_rotation(const Eigen::Matrix3d& R_map_sensor);
 TriGridField build_tri_grid_field(const PointCloud& cloud, const Eigen::Matrix3d& R_level_sensor,
                                   const GroundConfig& config);
 /// The same into `field`, reusing its buffers (a scan after another allocates nothing new).
-void build_tri_grid_field(const PointCloud& cloud, const Eigen::Matrix3d& R_level_sensor, const GroundConfig& config,
-                          TriGridField* field);
+void build_tri_grid_field(const PointCloud& cloud, const Eigen::Matrix3d& R_level_sensor,
+                          const GroundConfig& config, TriGridField* field);
 
 }  // namespace tsgraphs::ground

@@ -26,7 +26,8 @@ std::string unique_suffix() {
 // Removes temporary siblings of `final_path` left by runs that were killed (their process
 // no longer exists), so that killed runs leave no garbage behind for long.
 void remove_stale_temporaries(const std::string& final_path) {
-  const fs::path parent = fs::path(final_path).parent_path().empty() ? fs::path(".") : fs::path(final_path).parent_path();
+  const fs::path parent =
+      fs::path(final_path).parent_path().empty() ? fs::path(".") : fs::path(final_path).parent_path();
   const std::string prefix = fs::path(final_path).filename().string() + ".tmp-";
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(parent, ec)) {
@@ -34,7 +35,8 @@ void remove_stale_temporaries(const std::string& final_path) {
     if (name.rfind(prefix, 0) != 0) continue;
     const std::string rest = name.substr(prefix.size());
     const pid_t pid = static_cast<pid_t>(std::atol(rest.substr(0, rest.find('-')).c_str()));
-    if (pid > 0 && pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
+    if (pid > 0 && pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH)
+      fs::remove_all(entry.path(), ec);
   }
 }
 
@@ -67,15 +69,16 @@ AtomicDirectory::AtomicDirectory(std::string final_path, const std::string& mark
     : final_path_(fs::path(std::move(final_path)).lexically_normal().string()) {
   if (!final_path_.empty() && final_path_.back() == '/') final_path_.pop_back();
   // "/" (or "", ".." above it) names no folder that a temporary sibling could be renamed to.
-  if (fs::path(final_path_).filename().empty() || fs::absolute(fs::path(final_path_)).lexically_normal() == "/")
+  if (fs::path(final_path_).filename().empty() ||
+      fs::absolute(fs::path(final_path_)).lexically_normal() == "/")
     throw InputError((final_path_.empty() ? std::string("/") : final_path_) +
                      ": not a folder to write into; give a new folder, or an earlier output to replace");
   if (fs::exists(final_path_)) {
     if (!fs::is_directory(final_path_)) throw InputError(final_path_ + ": exists and is not a folder");
     const bool empty = fs::is_empty(final_path_);
     if (!empty && !fs::exists(fs::path(final_path_) / marker_file)) {
-      throw InputError(final_path_ + ": folder exists and does not hold an earlier output (no " + marker_file +
-                       "); refusing to overwrite it");
+      throw InputError(final_path_ + ": folder exists and does not hold an earlier output (no " +
+                       marker_file + "); refusing to overwrite it");
     }
   }
   const fs::path parent = fs::path(final_path_).parent_path();
@@ -111,7 +114,8 @@ void AtomicDirectory::commit() {
 
 InputError AtomicDirectory::named_as_final(const InputError& error) const {
   std::string message = error.what();
-  for (std::size_t at = message.find(tmp_path_); at != std::string::npos; at = message.find(tmp_path_, at + final_path_.size())) {
+  for (std::size_t at = message.find(tmp_path_); at != std::string::npos;
+       at = message.find(tmp_path_, at + final_path_.size())) {
     message.replace(at, tmp_path_.size(), final_path_);
   }
   return InputError(message);

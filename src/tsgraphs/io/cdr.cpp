@@ -10,19 +10,24 @@ namespace tsgraphs::io {
 constexpr std::size_t kHeaderBytes = 4;
 
 CdrReader::CdrReader(const std::string& bytes, std::string where) : bytes_(bytes), where_(std::move(where)) {
-  if (bytes.size() < kHeaderBytes) throw input_error(where_, 0, "CDR message of " + std::to_string(bytes.size()) + " bytes: no encapsulation header");
+  if (bytes.size() < kHeaderBytes)
+    throw input_error(where_, 0,
+                      "CDR message of " + std::to_string(bytes.size()) + " bytes: no encapsulation header");
   if (bytes[0] != 0 || (bytes[1] != 0 && bytes[1] != 1)) {
-    throw input_error(where_, 0, "CDR encapsulation " + std::to_string(static_cast<unsigned char>(bytes[0])) + " " +
-                                     std::to_string(static_cast<unsigned char>(bytes[1])) +
-                                     ": not plain CDR (0 0 big-endian or 0 1 little-endian)");
+    throw input_error(where_, 0,
+                      "CDR encapsulation " + std::to_string(static_cast<unsigned char>(bytes[0])) + " " +
+                          std::to_string(static_cast<unsigned char>(bytes[1])) +
+                          ": not plain CDR (0 0 big-endian or 0 1 little-endian)");
   }
   little_ = bytes[1] == 1;
 }
 
 void CdrReader::need(std::size_t n, const char* field) const {
   if (n > bytes_.size() - at_) {
-    throw input_error(where_, 0, std::string("CDR field ") + field + " (" + std::to_string(n) + " bytes at byte " +
-                                     std::to_string(at_) + ") runs past the message's end (" + std::to_string(bytes_.size()) + " bytes)");
+    throw input_error(where_, 0,
+                      std::string("CDR field ") + field + " (" + std::to_string(n) + " bytes at byte " +
+                          std::to_string(at_) + ") runs past the message's end (" +
+                          std::to_string(bytes_.size()) + " bytes)");
   }
 }
 
@@ -37,7 +42,8 @@ T CdrReader::number(const char* field) {
   need(sizeof(T), field);
   T v = 0;
   for (std::size_t i = 0; i < sizeof(T); ++i) {
-    const auto b = static_cast<T>(static_cast<unsigned char>(bytes_[at_ + (little_ ? i : sizeof(T) - 1 - i)]));
+    const auto b =
+        static_cast<T>(static_cast<unsigned char>(bytes_[at_ + (little_ ? i : sizeof(T) - 1 - i)]));
     v |= static_cast<T>(b << (8 * i));
   }
   at_ += sizeof(T);
@@ -68,9 +74,10 @@ std::string CdrReader::string(const char* field) {
 std::uint32_t CdrReader::sequence(const char* field, std::size_t min_element_bytes) {
   const std::uint32_t n = number<std::uint32_t>(field);
   if (min_element_bytes > 0 && n > (bytes_.size() - at_) / min_element_bytes) {
-    throw input_error(where_, 0, std::string("CDR sequence ") + field + " of " + std::to_string(n) +
-                                     " elements at byte " + std::to_string(at_) + " runs past the message's end (" +
-                                     std::to_string(bytes_.size()) + " bytes)");
+    throw input_error(where_, 0,
+                      std::string("CDR sequence ") + field + " of " + std::to_string(n) +
+                          " elements at byte " + std::to_string(at_) + " runs past the message's end (" +
+                          std::to_string(bytes_.size()) + " bytes)");
   }
   return n;
 }

@@ -24,7 +24,8 @@ class GrowingOutput {
   bool room() {
     if (produced_ < out_.size()) return true;
     if (out_.size() == size_) return false;
-    out_.resize(static_cast<std::size_t>(std::min<std::uint64_t>(size_, std::max<std::uint64_t>(2 * out_.size(), kFirstBytes))));
+    out_.resize(static_cast<std::size_t>(
+        std::min<std::uint64_t>(size_, std::max<std::uint64_t>(2 * out_.size(), kFirstBytes))));
     return true;
   }
   char* next() { return out_.data() + produced_; }
@@ -95,8 +96,9 @@ std::string decompress(const std::string& compression, const char* src, std::uin
                        const std::string& path, const std::string& where) {
   if (compression.empty()) {
     if (n != size) {
-      throw input_error(path, 0, where + ": uncompressed records of " + std::to_string(n) + " bytes, its size field says " +
-                                     std::to_string(size));
+      throw input_error(path, 0,
+                        where + ": uncompressed records of " + std::to_string(n) +
+                            " bytes, its size field says " + std::to_string(size));
     }
     return std::string(src, n);
   }
@@ -107,12 +109,14 @@ std::string decompress(const std::string& compression, const char* src, std::uin
   } else if (compression == "lz4") {
     why = lz4_into(src, n, out);
   } else {
-    throw input_error(path, 0, where + ": unknown compression '" + compression + "' (expected none, lz4 or zstd)");
+    throw input_error(path, 0,
+                      where + ": unknown compression '" + compression + "' (expected none, lz4 or zstd)");
   }
   if (why.empty() && out.produced() != size) why = std::to_string(out.produced()) + " bytes";
   if (!why.empty()) {
-    throw input_error(path, 0, where + ": " + compression + " data does not decompress to its " + std::to_string(size) +
-                                   " bytes (" + why + ")");
+    throw input_error(path, 0,
+                      where + ": " + compression + " data does not decompress to its " +
+                          std::to_string(size) + " bytes (" + why + ")");
   }
   return out.take();
 }
@@ -121,9 +125,10 @@ std::string decompress_zstd(const char* src, std::uint64_t n, std::uint64_t max_
                             const std::string& where) {
   GrowingOutput out(max_size);
   if (const std::string why = zstd_into(src, n, out); !why.empty()) {
-    throw input_error(path, 0, where + ": zstd data that does not decompress (" +
-                                   (why == "more data than that" ? "more than " + std::to_string(max_size) + " bytes" : why) +
-                                   ")");
+    throw input_error(
+        path, 0,
+        where + ": zstd data that does not decompress (" +
+            (why == "more data than that" ? "more than " + std::to_string(max_size) + " bytes" : why) + ")");
   }
   return out.take();
 }
@@ -146,8 +151,9 @@ void decompress_zstd_file(const std::string& from, const std::string& to) {
       ZSTD_outBuffer ob{out_buf.data(), out_buf.size(), 0};
       ret = ZSTD_decompressStream(ctx.get(), &ob, &ib);
       if (ZSTD_isError(ret)) {
-        throw input_error(from, 0, "zstd data that does not decompress near byte " + std::to_string(at + ib.pos) + " (" +
-                                       ZSTD_getErrorName(ret) + ")");
+        throw input_error(from, 0,
+                          "zstd data that does not decompress near byte " + std::to_string(at + ib.pos) +
+                              " (" + ZSTD_getErrorName(ret) + ")");
       }
       out.write(out_buf.data(), static_cast<std::streamsize>(ob.pos));
     }
@@ -158,7 +164,8 @@ void decompress_zstd_file(const std::string& from, const std::string& to) {
     ZSTD_inBuffer ib{nullptr, 0, 0};
     ZSTD_outBuffer ob{out_buf.data(), out_buf.size(), 0};
     ret = ZSTD_decompressStream(ctx.get(), &ob, &ib);
-    if (ZSTD_isError(ret) || ob.pos == 0) throw input_error(from, 0, "zstd data that ends inside a frame (cut off?)");
+    if (ZSTD_isError(ret) || ob.pos == 0)
+      throw input_error(from, 0, "zstd data that ends inside a frame (cut off?)");
     out.write(out_buf.data(), static_cast<std::streamsize>(ob.pos));
   }
   if (!any) throw input_error(from, 0, "an empty file, not zstd data");

@@ -23,16 +23,18 @@ constexpr int kMaxSide = 1 << 20;    // pixels a side (libpng's own limit is 2^3
 std::string size_text(long long w, long long h) { return std::to_string(w) + " x " + std::to_string(h); }
 
 void check_size(long long w, long long h, const std::string& name) {
-  if (w <= 0 || h <= 0) throw input_error(name, 0, "image size " + size_text(w, h) + ": must be at least 1 x 1");
+  if (w <= 0 || h <= 0)
+    throw input_error(name, 0, "image size " + size_text(w, h) + ": must be at least 1 x 1");
   if (w > kMaxSide || h > kMaxSide || w * h > kMaxImagePixels)
-    throw input_error(
-        name, 0,
-        "image size " + size_text(w, h) + " is absurd (more than " + std::to_string(kMaxImagePixels) + " pixels)");
+    throw input_error(name, 0,
+                      "image size " + size_text(w, h) + " is absurd (more than " +
+                          std::to_string(kMaxImagePixels) + " pixels)");
 }
 
 /// A value of 0..maxval as 0..255, rounded.
 std::uint8_t scale_to_8bit(unsigned v, unsigned maxval) {
-  return maxval == 255 ? static_cast<std::uint8_t>(v) : static_cast<std::uint8_t>((v * 255u + maxval / 2) / maxval);
+  return maxval == 255 ? static_cast<std::uint8_t>(v)
+                       : static_cast<std::uint8_t>((v * 255u + maxval / 2) / maxval);
 }
 
 /// The netpbm header and plain raster: whitespace and '#' comments between numbers.
@@ -44,8 +46,10 @@ class PgmReader {
     if (b_.size() < 2 || b_[0] != 'P') throw input_error(name_, 0, "not a PGM file (no 'P' magic number)");
     const char kind = b_[1];
     if (kind == '1' || kind == '3' || kind == '4' || kind == '6' || kind == '7')
-      throw input_error(name_, 0, std::string("a P") + kind + " netpbm image: only PGM (P5, P2) and PNG maps are read");
-    if (kind != '5' && kind != '2') throw input_error(name_, 0, "not a PGM file (magic number is not P5 or P2)");
+      throw input_error(name_, 0,
+                        std::string("a P") + kind + " netpbm image: only PGM (P5, P2) and PNG maps are read");
+    if (kind != '5' && kind != '2')
+      throw input_error(name_, 0, "not a PGM file (magic number is not P5 or P2)");
     pos_ = 2;
     if (pos_ < b_.size() && !is_space(b_[pos_]) && b_[pos_] != '#')
       throw input_error(name_, 0, "PGM header: no whitespace after the magic number");
@@ -89,7 +93,9 @@ class PgmReader {
   }
 
  private:
-  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
+  static bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+  }
 
   void skip_space_and_comments() {
     while (pos_ < b_.size()) {
@@ -117,8 +123,9 @@ class PgmReader {
     }
     if (digits == 0) {
       const char c = b_[pos_];
-      const std::string shown =
-          (c >= 32 && c < 127) ? std::string("'") + c + "'" : "byte " + std::to_string(static_cast<unsigned char>(c));
+      const std::string shown = (c >= 32 && c < 127)
+                                    ? std::string("'") + c + "'"
+                                    : "byte " + std::to_string(static_cast<unsigned char>(c));
       throw input_error(name_, 0, "PGM: " + what + " is not a number (found " + shown + ")");
     }
     if (pos_ < b_.size() && !is_space(b_[pos_]) && b_[pos_] != '#')
@@ -128,13 +135,14 @@ class PgmReader {
 
   InputError truncated(std::size_t found, std::size_t expected) const {
     return input_error(
-        name_, 0, "truncated PGM: " + std::to_string(found) + " of " + std::to_string(expected) + " pixels present");
+        name_, 0,
+        "truncated PGM: " + std::to_string(found) + " of " + std::to_string(expected) + " pixels present");
   }
   InputError bad_value(std::size_t i, long long width, unsigned v, unsigned maxval) const {
     const std::size_t w = static_cast<std::size_t>(width);
     return input_error(name_, 0,
-                       "PGM pixel at column " + std::to_string(i % w) + ", row " + std::to_string(i / w) + ": value " +
-                           std::to_string(v) + " exceeds maxval " + std::to_string(maxval));
+                       "PGM pixel at column " + std::to_string(i % w) + ", row " + std::to_string(i / w) +
+                           ": value " + std::to_string(v) + " exceeds maxval " + std::to_string(maxval));
   }
 
   const std::string& b_;
@@ -236,7 +244,8 @@ bool png_write_all(png_structp png, png_infop info, PngSink* sink, const Image* 
 Image decode_pgm(const std::string& bytes, const std::string& name) { return PgmReader(bytes, name).read(); }
 
 Image decode_png(const std::string& bytes, const std::string& name) {
-  if (bytes.size() < sizeof(kPngSignature) || std::memcmp(bytes.data(), kPngSignature, sizeof(kPngSignature)) != 0)
+  if (bytes.size() < sizeof(kPngSignature) ||
+      std::memcmp(bytes.data(), kPngSignature, sizeof(kPngSignature)) != 0)
     throw input_error(name, 0, "not a PNG file (bad signature)");
   PngSource src{reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), 0, {0}};
   PngRead r;
@@ -246,26 +255,32 @@ Image decode_png(const std::string& bytes, const std::string& name) {
   if (r.info == nullptr) throw std::runtime_error("libpng: cannot create an info structure");
   png_uint_32 w = 0, h = 0;
   int channels = 0;
-  if (!png_read_header(&r, &src, &w, &h, &channels)) throw input_error(name, 0, std::string("bad PNG: ") + src.message);
+  if (!png_read_header(&r, &src, &w, &h, &channels))
+    throw input_error(name, 0, std::string("bad PNG: ") + src.message);
   check_size(w, h, name);
-  if (channels < 1 || channels > 4) throw input_error(name, 0, "PNG with " + std::to_string(channels) + " channels");
+  if (channels < 1 || channels > 4)
+    throw input_error(name, 0, "PNG with " + std::to_string(channels) + " channels");
   Image img;
   img.width = static_cast<int>(w);
   img.height = static_cast<int>(h);
   img.channels = channels;
   img.samples.resize(static_cast<std::size_t>(w) * h * channels);
   std::vector<png_bytep> rows(h);
-  for (png_uint_32 y = 0; y < h; ++y) rows[y] = img.samples.data() + static_cast<std::size_t>(y) * w * channels;
+  for (png_uint_32 y = 0; y < h; ++y)
+    rows[y] = img.samples.data() + static_cast<std::size_t>(y) * w * channels;
   if (!png_read_pixels(&r, rows.data())) throw input_error(name, 0, std::string("bad PNG: ") + src.message);
   return img;
 }
 
 Image decode_image(const std::string& bytes, const std::string& name) {
   if (bytes.empty()) throw input_error(name, 0, "empty file (not an image)");
-  if (bytes.size() >= sizeof(kPngSignature) && std::memcmp(bytes.data(), kPngSignature, sizeof(kPngSignature)) == 0)
+  if (bytes.size() >= sizeof(kPngSignature) &&
+      std::memcmp(bytes.data(), kPngSignature, sizeof(kPngSignature)) == 0)
     return decode_png(bytes, name);
-  if (bytes[0] == 'P' && bytes.size() >= 2 && bytes[1] >= '1' && bytes[1] <= '7') return decode_pgm(bytes, name);
-  if (bytes.size() >= 4 && bytes.compare(0, 4, "\x89PNG") == 0) return decode_png(bytes, name);  // a damaged signature
+  if (bytes[0] == 'P' && bytes.size() >= 2 && bytes[1] >= '1' && bytes[1] <= '7')
+    return decode_pgm(bytes, name);
+  if (bytes.size() >= 4 && bytes.compare(0, 4, "\x89PNG") == 0)
+    return decode_png(bytes, name);  // a damaged signature
   throw input_error(name, 0, "not a PGM or PNG image (unknown first bytes)");
 }
 
@@ -286,12 +301,14 @@ std::string encode_png(const Image& image) {
     throw std::invalid_argument("encode_png: bad image");
   std::string out;
   PngSink sink{&out, {0}};
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, png_write_error, png_ignore_warning);
+  png_structp png =
+      png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, png_write_error, png_ignore_warning);
   if (png == nullptr) throw std::runtime_error("libpng: cannot create a write structure");
   png_infop info = png_create_info_struct(png);
   std::vector<png_bytep> rows(image.height);
   for (int y = 0; y < image.height; ++y)
-    rows[y] = const_cast<png_bytep>(image.samples.data()) + static_cast<std::size_t>(y) * image.width * image.channels;
+    rows[y] = const_cast<png_bytep>(image.samples.data()) +
+              static_cast<std::size_t>(y) * image.width * image.channels;
   const bool ok = info != nullptr && png_write_all(png, info, &sink, &image, rows.data());
   png_destroy_write_struct(&png, info ? &info : nullptr);
   if (!ok) throw std::runtime_error(std::string("libpng: ") + sink.message);

@@ -19,7 +19,7 @@ namespace {
 constexpr std::size_t kFloatsPerPoint = 4;  // x y z intensity
 constexpr std::size_t kRecordBytes = kFloatsPerPoint * sizeof(float);
 constexpr std::size_t kProbeBlockPoints = 1024;  // points read at a time looking for a finite one
-constexpr int kPoseFields = 12;             // row-major 3x4
+constexpr int kPoseFields = 12;                  // row-major 3x4
 // A pose row's 3x3 part is a rotation when R^T R is I within this (rows printed with six
 // digits are off by ~1e-6; a scaled or sheared matrix by far more) and det(R) is +1.
 constexpr double kOrthonormalTolerance = 1e-3;
@@ -77,7 +77,8 @@ KittiBinPresence probe_kitti_bin(const std::string& path) {
     if (!in.read(reinterpret_cast<char*>(block.data()), static_cast<std::streamsize>(m * kRecordBytes)))
       throw input_error(path, 0, "cannot read scan");
     for (std::size_t i = 0; i < m && !out.has_finite; ++i)
-      out.has_finite = std::isfinite(block[4 * i]) && std::isfinite(block[4 * i + 1]) && std::isfinite(block[4 * i + 2]);
+      out.has_finite =
+          std::isfinite(block[4 * i]) && std::isfinite(block[4 * i + 1]) && std::isfinite(block[4 * i + 2]);
     done += m;
   }
   return out;
@@ -96,15 +97,18 @@ std::vector<Pose3> read_kitti_poses(const std::string& path) {
     double v[kPoseFields + 1];
     int count = 0;
     for (std::string f; fields >> f;) {
-      if (count == kPoseFields) throw input_error(path, line, "more than 12 numbers (KITTI poses: a 3x4 matrix a line)");
+      if (count == kPoseFields)
+        throw input_error(path, line, "more than 12 numbers (KITTI poses: a 3x4 matrix a line)");
       char* end = nullptr;
       v[count] = std::strtod(f.c_str(), &end);
-      if (end == f.c_str() || *end != '\0') throw input_error(path, line, "'" + printable(f) + "' is not a number");
+      if (end == f.c_str() || *end != '\0')
+        throw input_error(path, line, "'" + printable(f) + "' is not a number");
       if (!std::isfinite(v[count])) throw input_error(path, line, "non-finite value");
       ++count;
     }
     if (count != kPoseFields)
-      throw input_error(path, line, std::to_string(count) + " numbers, expected 12 (KITTI poses: a 3x4 matrix a line)");
+      throw input_error(path, line,
+                        std::to_string(count) + " numbers, expected 12 (KITTI poses: a 3x4 matrix a line)");
     Pose3 T = Pose3::Identity();
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 3; ++c) T.linear()(r, c) = v[4 * r + c];
@@ -113,16 +117,18 @@ std::vector<Pose3> read_kitti_poses(const std::string& path) {
     // A position is bounded as a TUM file's is (coordinate_limit.hpp).
     if (!(T.translation().cwiseAbs().maxCoeff() <= kMaxCoordinate)) {
       char what[120];
-      std::snprintf(what, sizeof what, "the position [%.6g, %.6g, %.6g] is not within 1e8 m", T.translation().x(),
-                    T.translation().y(), T.translation().z());
+      std::snprintf(what, sizeof what, "the position [%.6g, %.6g, %.6g] is not within 1e8 m",
+                    T.translation().x(), T.translation().y(), T.translation().z());
       throw input_error(path, line, what);
     }
     // A zero, scaled or reflected matrix is no rotation; its nearest rotation would be a guess.
     const Eigen::Matrix3d R = T.linear();
     const double off = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
     if (!(off <= kOrthonormalTolerance))
-      throw input_error(path, line, "the 3x3 part is not a rotation (R^T R differs from I by " + std::to_string(off) + ")");
-    if (R.determinant() < 0.0) throw input_error(path, line, "the 3x3 part is a reflection (determinant -1), not a rotation");
+      throw input_error(
+          path, line, "the 3x3 part is not a rotation (R^T R differs from I by " + std::to_string(off) + ")");
+    if (R.determinant() < 0.0)
+      throw input_error(path, line, "the 3x3 part is a reflection (determinant -1), not a rotation");
     // Rows printed with few digits are not exactly orthonormal: take the nearest rotation.
     const Eigen::Quaterniond q(T.linear());
     T.linear() = q.normalized().toRotationMatrix();

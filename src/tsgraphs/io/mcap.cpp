@@ -22,22 +22,33 @@ namespace {
 
 constexpr char kMagic[] = "\x89MCAP0\r\n";
 constexpr std::uint64_t kMagicBytes = 8;
-constexpr std::uint64_t kPrefixBytes = 9;         // opcode (1) and content length (8)
-constexpr std::uint64_t kFooterContentBytes = 20; // summary_start, summary_offset_start, summary_crc
+constexpr std::uint64_t kPrefixBytes = 9;          // opcode (1) and content length (8)
+constexpr std::uint64_t kFooterContentBytes = 20;  // summary_start, summary_offset_start, summary_crc
 // A chunk's uncompressed records at most (as ROS1 bag chunks): a larger size word is corrupt,
 // and decompressing it would allocate what the file does not hold.
 constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{1} << 30;
 
 enum Op : std::uint8_t {
-  kHeader = 0x01, kFooter = 0x02, kSchema = 0x03, kChannel = 0x04, kMessage = 0x05, kChunk = 0x06,
-  kMessageIndex = 0x07, kChunkIndex = 0x08, kStatistics = 0x0B, kMetadata = 0x0C, kMetadataIndex = 0x0D,
-  kSummaryOffset = 0x0E, kDataEnd = 0x0F,
+  kHeader = 0x01,
+  kFooter = 0x02,
+  kSchema = 0x03,
+  kChannel = 0x04,
+  kMessage = 0x05,
+  kChunk = 0x06,
+  kMessageIndex = 0x07,
+  kChunkIndex = 0x08,
+  kStatistics = 0x0B,
+  kMetadata = 0x0C,
+  kMetadataIndex = 0x0D,
+  kSummaryOffset = 0x0E,
+  kDataEnd = 0x0F,
 };
 
 std::string op_name(std::uint8_t op) {
-  static const char* const kNames[] = {"opcode 0", "Header", "Footer", "Schema", "Channel", "Message", "Chunk",
-                                       "Message Index", "Chunk Index", "Attachment", "Attachment Index", "Statistics",
-                                       "Metadata", "Metadata Index", "Summary Offset", "Data End"};
+  static const char* const kNames[] = {
+      "opcode 0", "Header",         "Footer",         "Schema",     "Channel",          "Message",
+      "Chunk",    "Message Index",  "Chunk Index",    "Attachment", "Attachment Index", "Statistics",
+      "Metadata", "Metadata Index", "Summary Offset", "Data End"};
   return op < sizeof kNames / sizeof kNames[0] ? kNames[op] : "opcode " + std::to_string(op);
 }
 
@@ -90,7 +101,8 @@ class Fields {
   std::pair<std::uint64_t, std::uint64_t> fixed_entries(std::uint64_t entry_bytes, const char* what) {
     const std::uint32_t bytes = num<std::uint32_t>(what);
     need(bytes, what);
-    if (bytes % entry_bytes != 0) fail(std::string(what) + " holds " + std::to_string(bytes) + " bytes, not whole entries");
+    if (bytes % entry_bytes != 0)
+      fail(std::string(what) + " holds " + std::to_string(bytes) + " bytes, not whole entries");
     const std::uint64_t start = at_;
     at_ += bytes;
     return {start, bytes / entry_bytes};
@@ -127,8 +139,9 @@ std::string record_at(std::uint8_t op, std::uint64_t offset, const std::string& 
 std::string unpack(const std::string& compression, const char* src, std::uint64_t n, std::uint64_t size,
                    const std::string& path, const std::string& where) {
   if (size > kMaxChunkBytes) {
-    throw input_error(path, 0, where + ": uncompressed size " + std::to_string(size) + " is beyond " +
-                                   std::to_string(kMaxChunkBytes) + " bytes (corrupt?)");
+    throw input_error(path, 0,
+                      where + ": uncompressed size " + std::to_string(size) + " is beyond " +
+                          std::to_string(kMaxChunkBytes) + " bytes (corrupt?)");
   }
   return io::decompress(compression, src, n, size, path, where);
 }
@@ -167,9 +180,12 @@ std::string compress(Compression c, const std::string& in) {
 
 const char* compression_name(Compression c) {
   switch (c) {
-    case Compression::lz4: return "lz4";
-    case Compression::zstd: return "zstd";
-    default: return "";
+    case Compression::lz4:
+      return "lz4";
+    case Compression::zstd:
+      return "zstd";
+    default:
+      return "";
   }
 }
 
@@ -190,13 +206,15 @@ struct Reader::File {
   /// n bytes at `offset`, or an InputError saying what ran past the end.
   std::string read(std::uint64_t offset, std::uint64_t n, const std::string& what) const {
     if (offset > size || n > size - offset) {
-      throw input_error(path, 0, what + " runs past the end of the file (" + std::to_string(size) + " bytes; cut short?)");
+      throw input_error(
+          path, 0, what + " runs past the end of the file (" + std::to_string(size) + " bytes; cut short?)");
     }
     std::string out(n, '\0');
     for (std::uint64_t done = 0; done < n;) {
       const ssize_t got = ::pread(fd, out.data() + done, n - done, static_cast<off_t>(offset + done));
       if (got < 0 && errno == EINTR) continue;
-      if (got <= 0) throw input_error(path, 0, "cannot read " + what + ": " + std::strerror(got < 0 ? errno : EIO));
+      if (got <= 0)
+        throw input_error(path, 0, "cannot read " + what + ": " + std::strerror(got < 0 ? errno : EIO));
       done += static_cast<std::uint64_t>(got);
     }
     return out;
@@ -212,16 +230,19 @@ struct Reader::File {
 
 Reader::Reader(const std::string& path) : Reader(path, path) {}
 
-Reader::Reader(const std::string& path, const std::string& shown) : path_(shown), file_(std::make_unique<File>()) {
+Reader::Reader(const std::string& path, const std::string& shown)
+    : path_(shown), file_(std::make_unique<File>()) {
   file_->path = shown;
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw input_error(shown, 0, "is a folder, not an MCAP file");
   file_->fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (file_->fd < 0) throw input_error(shown, 0, std::string("cannot open file: ") + std::strerror(errno));
   struct stat st {};
-  if (::fstat(file_->fd, &st) != 0) throw input_error(shown, 0, std::string("cannot read file: ") + std::strerror(errno));
+  if (::fstat(file_->fd, &st) != 0)
+    throw input_error(shown, 0, std::string("cannot read file: ") + std::strerror(errno));
   file_->size = static_cast<std::uint64_t>(st.st_size);
-  if (file_->read(0, std::min<std::uint64_t>(kMagicBytes, file_->size), "the magic") != std::string(kMagic, kMagicBytes)) {
+  if (file_->read(0, std::min<std::uint64_t>(kMagicBytes, file_->size), "the magic") !=
+      std::string(kMagic, kMagicBytes)) {
     throw input_error(shown, 0, "not an MCAP file (no MCAP magic at its start)");
   }
   const auto [op, content] = file_->record(kMagicBytes, "the Header record");
@@ -238,13 +259,15 @@ void Reader::read_summary_or_scan() {
   if (read_index(&why)) {
     indexed_ = true;
   } else {
-    if (!why.empty()) warnings_.push_back(path_ + ": " + why + "; its messages are found by reading it from the start");
+    if (!why.empty())
+      warnings_.push_back(path_ + ": " + why + "; its messages are found by reading it from the start");
     schemas_.clear(), channels_.clear(), messages_.clear();
     scan();
   }
   // By log time; among equal times, in file order.
   const auto position = [](const MessageRef& m) {
-    return m.chunk != MessageRef::kNoChunk ? std::make_tuple(m.log_time, m.chunk, m.offset) : std::make_tuple(m.log_time, m.offset, std::uint64_t{0});
+    return m.chunk != MessageRef::kNoChunk ? std::make_tuple(m.log_time, m.chunk, m.offset)
+                                           : std::make_tuple(m.log_time, m.offset, std::uint64_t{0});
   };
   std::stable_sort(messages_.begin(), messages_.end(),
                    [&](const MessageRef& a, const MessageRef& b) { return position(a) < position(b); });
@@ -259,8 +282,8 @@ bool Reader::read_index(std::string* why) {
   }
   const std::uint64_t footer_at = f.size - tail;
   const std::string end = f.read(footer_at, tail, "the footer");
-  if (end.compare(kPrefixBytes + kFooterContentBytes, kMagicBytes, kMagic, kMagicBytes) != 0 || end[0] != kFooter ||
-      little<std::uint64_t>(end.data() + 1) != kFooterContentBytes) {
+  if (end.compare(kPrefixBytes + kFooterContentBytes, kMagicBytes, kMagic, kMagicBytes) != 0 ||
+      end[0] != kFooter || little<std::uint64_t>(end.data() + 1) != kFooterContentBytes) {
     *why = "it does not end in an MCAP footer (cut short?)";
     return false;
   }
@@ -268,14 +291,16 @@ bool Reader::read_index(std::string* why) {
   const auto summary_crc = little<std::uint32_t>(end.data() + kPrefixBytes + 16);
   if (summary_start == 0) return false;  // no summary: nothing to warn about
   if (summary_start < kMagicBytes || summary_start > footer_at) {
-    throw input_error(path_, 0, "Footer: summary_start " + std::to_string(summary_start) + " is outside the file");
+    throw input_error(path_, 0,
+                      "Footer: summary_start " + std::to_string(summary_start) + " is outside the file");
   }
   const std::string summary = f.read(summary_start, footer_at - summary_start, "the summary section");
   if (summary_crc != 0) {
     const std::uint32_t crc = crc_of(end.data(), kPrefixBytes + 16, crc_of(summary.data(), summary.size()));
     if (crc != summary_crc) {
-      throw input_error(path_, 0, "the summary section at byte " + std::to_string(summary_start) +
-                                      " does not match its CRC (corrupt)");
+      throw input_error(path_, 0,
+                        "the summary section at byte " + std::to_string(summary_start) +
+                            " does not match its CRC (corrupt)");
     }
   }
   struct ChunkIndex {
@@ -286,7 +311,8 @@ bool Reader::read_index(std::string* why) {
   std::optional<std::uint64_t> message_count;  // the Statistics record's, when there is one
   for (std::uint64_t at = 0; at < summary.size();) {
     const std::uint64_t abs = summary_start + at;
-    if (summary.size() - at < kPrefixBytes) throw input_error(path_, 0, "a record at byte " + std::to_string(abs) + " is cut short");
+    if (summary.size() - at < kPrefixBytes)
+      throw input_error(path_, 0, "a record at byte " + std::to_string(abs) + " is cut short");
     const auto op = static_cast<std::uint8_t>(summary[at]);
     const auto n = little<std::uint64_t>(summary.data() + at + 1);
     if (n > summary.size() - at - kPrefixBytes) {
@@ -301,7 +327,8 @@ bool Reader::read_index(std::string* why) {
     } else if (op == kChannel) {
       Channel c;
       c.id = r.num<std::uint16_t>("id"), c.schema_id = r.num<std::uint16_t>("schema_id");
-      c.topic = r.str("topic"), c.message_encoding = r.str("message_encoding"), c.metadata = r.string_map("metadata");
+      c.topic = r.str("topic"), c.message_encoding = r.str("message_encoding"),
+      c.metadata = r.string_map("metadata");
       channels_.emplace(c.id, c);
     } else if (op == kChunkIndex) {
       ChunkIndex c;
@@ -329,16 +356,19 @@ bool Reader::read_index(std::string* why) {
     }
     for (const auto& [channel, offset] : c.message_indexes) {
       if (!channels_.count(channel)) {
-        *why = "the summary lacks channel " + std::to_string(channel) + " of the chunk at byte " + std::to_string(c.offset);
+        *why = "the summary lacks channel " + std::to_string(channel) + " of the chunk at byte " +
+               std::to_string(c.offset);
         return false;
       }
       const auto [op, content] = f.record(offset, "the Message Index of channel " + std::to_string(channel));
       if (op != kMessageIndex) {
-        throw input_error(path_, 0, "byte " + std::to_string(offset) + ": a Chunk Index points at a " + op_name(op) +
-                                        " record, not a Message Index");
+        throw input_error(path_, 0,
+                          "byte " + std::to_string(offset) + ": a Chunk Index points at a " + op_name(op) +
+                              " record, not a Message Index");
       }
       Fields r(content.data(), content.size(), path_, record_at(op, offset));
-      if (r.num<std::uint16_t>("channel_id") != channel) r.fail("its channel is not the one the Chunk Index names");
+      if (r.num<std::uint16_t>("channel_id") != channel)
+        r.fail("its channel is not the one the Chunk Index names");
       const auto [start, count] = r.fixed_entries(16, "records");
       for (std::uint64_t i = 0; i < count; ++i) {
         const char* e = content.data() + start + 16 * i;
@@ -348,8 +378,8 @@ bool Reader::read_index(std::string* why) {
   }
   // Messages outside chunks have no index: the statistics tell whether there are any.
   if (message_count && *message_count != messages_.size()) {
-    *why = "its index holds " + std::to_string(messages_.size()) + " of the " + std::to_string(*message_count) +
-           " messages its statistics count";
+    *why = "its index holds " + std::to_string(messages_.size()) + " of the " +
+           std::to_string(*message_count) + " messages its statistics count";
     return false;
   }
   return true;
@@ -368,7 +398,8 @@ void Reader::scan() {
     } else {
       Channel c;
       c.id = r.num<std::uint16_t>("id"), c.schema_id = r.num<std::uint16_t>("schema_id");
-      c.topic = r.str("topic"), c.message_encoding = r.str("message_encoding"), c.metadata = r.string_map("metadata");
+      c.topic = r.str("topic"), c.message_encoding = r.str("message_encoding"),
+      c.metadata = r.string_map("metadata");
       channels_.emplace(c.id, c);
     }
   };
@@ -376,23 +407,28 @@ void Reader::scan() {
     const auto channel = r.num<std::uint16_t>("channel_id");
     r.num<std::uint32_t>("sequence");
     const auto log_time = r.num<std::uint64_t>("log_time");
-    if (!channels_.count(channel)) r.fail("a message on channel " + std::to_string(channel) + " before its Channel record");
+    if (!channels_.count(channel))
+      r.fail("a message on channel " + std::to_string(channel) + " before its Channel record");
     messages_.push_back({channel, log_time, chunk, offset});
   };
   for (bool first = true;; first = false) {
     if (pos + kPrefixBytes > f.size) {
-      throw input_error(path_, 0, "the data section ends at byte " + std::to_string(f.size) +
-                                      " without a Data End or Footer record (cut short?)");
+      throw input_error(path_, 0,
+                        "the data section ends at byte " + std::to_string(f.size) +
+                            " without a Data End or Footer record (cut short?)");
     }
     const std::string prefix = f.read(pos, kPrefixBytes, "record prefix");
     const auto op = static_cast<std::uint8_t>(prefix[0]);
     const auto n = little<std::uint64_t>(prefix.data() + 1);
-    const std::string content = f.read(pos + kPrefixBytes, n, record_at(op, pos, " (" + std::to_string(n) + " bytes)"));
+    const std::string content =
+        f.read(pos + kPrefixBytes, n, record_at(op, pos, " (" + std::to_string(n) + " bytes)"));
     Fields r(content.data(), content.size(), path_, record_at(op, pos));
     if (op == kDataEnd) {
       const auto expected = r.num<std::uint32_t>("data_section_crc");
       if (expected != 0 && expected != crc) {
-        throw input_error(path_, 0, "the data section (bytes 0 to " + std::to_string(pos) + ") does not match its CRC (corrupt)");
+        throw input_error(
+            path_, 0,
+            "the data section (bytes 0 to " + std::to_string(pos) + ") does not match its CRC (corrupt)");
       }
       return;
     }
@@ -411,7 +447,8 @@ void Reader::scan() {
         if (records->size() - at < kPrefixBytes) throw input_error(path_, 0, where + ": cut short");
         const auto inner = static_cast<std::uint8_t>((*records)[at]);
         const auto m = little<std::uint64_t>(records->data() + at + 1);
-        if (m > records->size() - at - kPrefixBytes) throw input_error(path_, 0, where + ": runs past the chunk's records");
+        if (m > records->size() - at - kPrefixBytes)
+          throw input_error(path_, 0, where + ": runs past the chunk's records");
         Fields ir(records->data() + at + kPrefixBytes, m, path_, where + " (" + op_name(inner) + ")");
         if (inner == kSchema || inner == kChannel) define(inner, ir);
         if (inner == kMessage) message(ir, pos, at);
@@ -428,7 +465,9 @@ std::shared_ptr<const std::string> Reader::chunk_records(std::uint64_t chunk_off
     if (file_->cached_chunk == chunk_offset) return file_->cached;
   }
   const auto [op, content] = file_->record(chunk_offset, "a Chunk record");
-  if (op != kChunk) throw input_error(path_, 0, "byte " + std::to_string(chunk_offset) + ": expected a Chunk record, found " + op_name(op));
+  if (op != kChunk)
+    throw input_error(
+        path_, 0, "byte " + std::to_string(chunk_offset) + ": expected a Chunk record, found " + op_name(op));
   auto records = unpack_chunk(content, chunk_offset);
   std::lock_guard<std::mutex> lock(file_->cache_mutex);
   file_->cached_chunk = chunk_offset;
@@ -436,7 +475,8 @@ std::shared_ptr<const std::string> Reader::chunk_records(std::uint64_t chunk_off
   return records;
 }
 
-std::shared_ptr<const std::string> Reader::unpack_chunk(const std::string& content, std::uint64_t chunk_offset) const {
+std::shared_ptr<const std::string> Reader::unpack_chunk(const std::string& content,
+                                                        std::uint64_t chunk_offset) const {
   const std::string where = record_at(kChunk, chunk_offset);
   Fields r(content.data(), content.size(), path_, where);
   r.num<std::uint64_t>("message_start_time"), r.num<std::uint64_t>("message_end_time");
@@ -444,7 +484,8 @@ std::shared_ptr<const std::string> Reader::unpack_chunk(const std::string& conte
   const auto crc = r.num<std::uint32_t>("uncompressed_crc");
   const std::string compression = r.str("compression");
   const auto [start, n] = r.span64("records");
-  auto records = std::make_shared<const std::string>(unpack(compression, content.data() + start, n, size, path_, where));
+  auto records =
+      std::make_shared<const std::string>(unpack(compression, content.data() + start, n, size, path_, where));
   if (crc != 0 && crc_of(records->data(), records->size()) != crc) {
     throw input_error(path_, 0, where + ": its records do not match their CRC (corrupt)");
   }
@@ -452,11 +493,13 @@ std::shared_ptr<const std::string> Reader::unpack_chunk(const std::string& conte
 }
 
 Message Reader::message_at(const std::string& bytes, std::uint64_t offset, const std::string& where) const {
-  if (offset > bytes.size() || bytes.size() - offset < kPrefixBytes) throw input_error(path_, 0, where + ": outside its chunk");
+  if (offset > bytes.size() || bytes.size() - offset < kPrefixBytes)
+    throw input_error(path_, 0, where + ": outside its chunk");
   const auto op = static_cast<std::uint8_t>(bytes[offset]);
   const auto n = little<std::uint64_t>(bytes.data() + offset + 1);
   if (op != kMessage) throw input_error(path_, 0, where + ": a " + op_name(op) + " record, not a Message");
-  if (n > bytes.size() - offset - kPrefixBytes) throw input_error(path_, 0, where + ": runs past its chunk's records");
+  if (n > bytes.size() - offset - kPrefixBytes)
+    throw input_error(path_, 0, where + ": runs past its chunk's records");
   Fields r(bytes.data() + offset + kPrefixBytes, n, path_, where);
   Message m;
   m.channel_id = r.num<std::uint16_t>("channel_id");
@@ -481,7 +524,8 @@ Message Reader::read(const MessageRef& ref) const {
 
 void Reader::read_each(const std::vector<MessageRef>& refs,
                        const std::function<void(const MessageRef&, const Message&)>& f) const {
-  for (const MessageRef& ref : refs) f(ref, read(ref));  // the one-chunk cache keeps each chunk's decompression to one per run
+  for (const MessageRef& ref : refs)
+    f(ref, read(ref));  // the one-chunk cache keeps each chunk's decompression to one per run
 }
 
 // ---- writing -------------------------------------------------------------------------------
@@ -518,7 +562,8 @@ struct Writer::State {
     if (chunk.empty()) return;
     const std::string packed = compress(options.compression, chunk);
     std::string content;
-    put_u64(content, chunk_has_messages ? chunk_start : 0), put_u64(content, chunk_has_messages ? chunk_end : 0);
+    put_u64(content, chunk_has_messages ? chunk_start : 0),
+        put_u64(content, chunk_has_messages ? chunk_end : 0);
     put_u64(content, chunk.size());
     put_u32(content, crc_of(chunk.data(), chunk.size()));
     put_str(content, compression_name(options.compression));
@@ -570,7 +615,8 @@ Writer::~Writer() {
   }
 }
 
-std::uint16_t Writer::add_schema(const std::string& name, const std::string& encoding, const std::string& data) {
+std::uint16_t Writer::add_schema(const std::string& name, const std::string& encoding,
+                                 const std::string& data) {
   const auto id = static_cast<std::uint16_t>(s_->schema_records.size() + 1);
   std::string c;
   put_u16(c, id), put_str(c, name), put_str(c, encoding), put_str(c, data);
@@ -579,22 +625,27 @@ std::uint16_t Writer::add_schema(const std::string& name, const std::string& enc
   return id;
 }
 
-std::uint16_t Writer::add_channel(std::uint16_t schema_id, const std::string& topic, const std::string& message_encoding,
+std::uint16_t Writer::add_channel(std::uint16_t schema_id, const std::string& topic,
+                                  const std::string& message_encoding,
                                   const std::map<std::string, std::string>& metadata) {
   const auto id = static_cast<std::uint16_t>(s_->channel_records.size() + 1);
   std::string c;
-  put_u16(c, id), put_u16(c, schema_id), put_str(c, topic), put_str(c, message_encoding), put_map(c, metadata);
+  put_u16(c, id), put_u16(c, schema_id), put_str(c, topic), put_str(c, message_encoding),
+      put_map(c, metadata);
   s_->channel_records.push_back(record(kChannel, c));
   s_->chunk += s_->channel_records.back();
   s_->channel_counts[id] = 0;
   return id;
 }
 
-void Writer::write(std::uint16_t channel_id, std::uint64_t log_time, std::uint64_t publish_time, const std::string& data) {
-  if (channel_id == 0 || channel_id > s_->channel_records.size()) throw std::invalid_argument("mcap::Writer::write: no channel " + std::to_string(channel_id));
+void Writer::write(std::uint16_t channel_id, std::uint64_t log_time, std::uint64_t publish_time,
+                   const std::string& data) {
+  if (channel_id == 0 || channel_id > s_->channel_records.size())
+    throw std::invalid_argument("mcap::Writer::write: no channel " + std::to_string(channel_id));
   State& s = *s_;
   std::string m;
-  put_u16(m, channel_id), put_u32(m, s.sequences[channel_id]++), put_u64(m, log_time), put_u64(m, publish_time);
+  put_u16(m, channel_id), put_u32(m, s.sequences[channel_id]++), put_u64(m, log_time),
+      put_u64(m, publish_time);
   m += data;
   std::string& index = s.chunk_message_index[channel_id];
   put_u64(index, log_time), put_u64(index, s.chunk.size());

@@ -38,9 +38,9 @@ struct Channel {
 struct MessageRef {
   static constexpr std::uint64_t kNoChunk = std::numeric_limits<std::uint64_t>::max();
   std::uint16_t channel_id = 0;
-  std::uint64_t log_time = 0;         ///< ns
-  std::uint64_t chunk = kNoChunk;     ///< file offset of the Chunk record holding it, or kNoChunk
-  std::uint64_t offset = 0;           ///< of its Message record: in the chunk's uncompressed records, or in the file
+  std::uint64_t log_time = 0;      ///< ns
+  std::uint64_t chunk = kNoChunk;  ///< file offset of the Chunk record holding it, or kNoChunk
+  std::uint64_t offset = 0;  ///< of its Message record: in the chunk's uncompressed records, or in the file
 };
 
 /// A message's fields as its record holds them.
@@ -88,8 +88,10 @@ class Reader {
   void read_summary_or_scan();
   bool read_index(std::string* why_not);
   void scan();
-  std::shared_ptr<const std::string> chunk_records(std::uint64_t chunk_offset) const;  // cached, one at a time
-  std::shared_ptr<const std::string> unpack_chunk(const std::string& content, std::uint64_t chunk_offset) const;
+  std::shared_ptr<const std::string> chunk_records(
+      std::uint64_t chunk_offset) const;  // cached, one at a time
+  std::shared_ptr<const std::string> unpack_chunk(const std::string& content,
+                                                  std::uint64_t chunk_offset) const;
   Message message_at(const std::string& bytes, std::uint64_t offset, const std::string& where) const;
 
   std::string path_;
@@ -103,7 +105,7 @@ class Reader {
 };
 
 struct WriterOptions {
-  std::string profile;              ///< e.g. "ros2"
+  std::string profile;  ///< e.g. "ros2"
   std::string library = "tsgraphs";
   Compression compression = Compression::zstd;
   std::uint64_t chunk_size = 1u << 20;  ///< a chunk is written once its records reach this many bytes
@@ -121,10 +123,12 @@ class Writer {
 
   /// Ids from 1, in the order added.
   std::uint16_t add_schema(const std::string& name, const std::string& encoding, const std::string& data);
-  std::uint16_t add_channel(std::uint16_t schema_id, const std::string& topic, const std::string& message_encoding,
+  std::uint16_t add_channel(std::uint16_t schema_id, const std::string& topic,
+                            const std::string& message_encoding,
                             const std::map<std::string, std::string>& metadata = {});
   /// A message on `channel_id` (sequence numbers counted per channel).
-  void write(std::uint16_t channel_id, std::uint64_t log_time, std::uint64_t publish_time, const std::string& data);
+  void write(std::uint16_t channel_id, std::uint64_t log_time, std::uint64_t publish_time,
+             const std::string& data);
   /// Adds a Metadata record (rosbag2 keeps its bag metadata in one named "rosbag2").
   void add_metadata(const std::string& name, const std::map<std::string, std::string>& metadata);
   void finish();

@@ -14,7 +14,8 @@ namespace tsgraphs::io {
 namespace {
 
 constexpr double kMaxResolution = 10.0;  // m per pixel: beyond this no indoor map makes sense
-constexpr int kRawUnknownAbove = 100;    // raw mode: occupancy is in percent, ROS's -1 (255) and beyond mean unknown
+constexpr int kRawUnknownAbove =
+    100;  // raw mode: occupancy is in percent, ROS's -1 (255) and beyond mean unknown
 
 bool parse_negate(const YamlMap& m) {
   if (!m.has("negate")) return false;
@@ -41,7 +42,8 @@ MapMetadata parse_map_yaml(const std::string& text, const std::string& file, con
   const std::string image = m.require<std::string>("image");
   if (image.empty()) throw m.error("image", "is empty");
   const std::filesystem::path p(image);
-  meta.image = p.is_absolute() ? p.string() : (std::filesystem::path(base_dir) / p).lexically_normal().string();
+  meta.image =
+      p.is_absolute() ? p.string() : (std::filesystem::path(base_dir) / p).lexically_normal().string();
   meta.resolution = m.require<double>("resolution");
   if (!(meta.resolution > 0.0) || meta.resolution > kMaxResolution)
     throw m.error("resolution",
@@ -55,12 +57,17 @@ MapMetadata parse_map_yaml(const std::string& text, const std::string& file, con
   meta.negate = parse_negate(m);
   meta.occupied_thresh = threshold(m, "occupied_thresh", meta.occupied_thresh);
   meta.free_thresh = threshold(m, "free_thresh", meta.free_thresh);
-  if (meta.free_thresh > meta.occupied_thresh) throw m.error("free_thresh", "must not exceed occupied_thresh");
+  if (meta.free_thresh > meta.occupied_thresh)
+    throw m.error("free_thresh", "must not exceed occupied_thresh");
   const std::string mode = m.get<std::string>("mode", "trinary");
-  if (mode == "trinary") meta.mode = MapMode::kTrinary;
-  else if (mode == "scale") meta.mode = MapMode::kScale;
-  else if (mode == "raw") meta.mode = MapMode::kRaw;
-  else throw m.error("mode", "unknown mode '" + printable(mode) + "' (trinary, scale, raw)");
+  if (mode == "trinary")
+    meta.mode = MapMode::kTrinary;
+  else if (mode == "scale")
+    meta.mode = MapMode::kScale;
+  else if (mode == "raw")
+    meta.mode = MapMode::kRaw;
+  else
+    throw m.error("mode", "unknown mode '" + printable(mode) + "' (trinary, scale, raw)");
   return meta;
 }
 
@@ -101,13 +108,18 @@ OccupancyMap classify(const Image& image, const MapMetadata& meta) {
       if (meta.mode == MapMode::kRaw) {
         const int value = static_cast<int>(static_cast<unsigned char>(avg));  // map_server's cast
         const double occ = value / 100.0;
-        if (value > kRawUnknownAbove) state = CellState::kUnknown;
-        else if (occ > meta.occupied_thresh) state = CellState::kOccupied;
-        else if (occ < meta.free_thresh) state = CellState::kFree;
+        if (value > kRawUnknownAbove)
+          state = CellState::kUnknown;
+        else if (occ > meta.occupied_thresh)
+          state = CellState::kOccupied;
+        else if (occ < meta.free_thresh)
+          state = CellState::kFree;
       } else {
         const double occ = (255 - avg) / 255.0;
-        if (occ > meta.occupied_thresh) state = CellState::kOccupied;
-        else if (occ < meta.free_thresh) state = CellState::kFree;
+        if (occ > meta.occupied_thresh)
+          state = CellState::kOccupied;
+        else if (occ < meta.free_thresh)
+          state = CellState::kFree;
       }
       // The image's row 0 is the map's top: cell row height - 1 - j.
       map.cells[static_cast<std::size_t>(image.height - 1 - j) * image.width + i] = state;

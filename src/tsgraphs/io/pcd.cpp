@@ -39,11 +39,11 @@ constexpr unsigned long long kLzfMaxExpansion = 88;
 /// (binary_compressed stores field after field, each for all points).
 struct PcdField {
   std::string name;
-  char type = 'F';          // F, I or U
-  unsigned size = 4;        // bytes of one value
+  char type = 'F';    // F, I or U
+  unsigned size = 4;  // bytes of one value
   unsigned long long count = 1;
-  std::size_t offset = 0;   // bytes from the start of a point (binary)
-  std::size_t value = 0;    // values from the start of a row (ascii)
+  std::size_t offset = 0;  // bytes from the start of a point (binary)
+  std::size_t value = 0;   // values from the start of a row (ascii)
 };
 
 struct PcdHeader {
@@ -81,7 +81,8 @@ PcdHeader parse_header(const std::string& path, const std::string& bytes) {
   int line_no = 0;
   while (!keys.count("DATA")) {
     if (at >= bytes.size()) {
-      throw input_error(path, line_no, bytes.empty() ? "empty file, not a PCD" : "PCD header has no DATA line");
+      throw input_error(path, line_no,
+                        bytes.empty() ? "empty file, not a PCD" : "PCD header has no DATA line");
     }
     const std::size_t eol = std::min(bytes.find('\n', at), bytes.size());
     std::string line = bytes.substr(at, eol - at);
@@ -92,15 +93,17 @@ PcdHeader parse_header(const std::string& path, const std::string& bytes) {
     std::istringstream s(line);
     std::string key;
     s >> key;
-    static const char* const kKnown[] = {"VERSION", "FIELDS", "SIZE", "TYPE", "COUNT",
-                                         "WIDTH", "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+    static const char* const kKnown[] = {"VERSION", "FIELDS", "SIZE",      "TYPE",   "COUNT",
+                                         "WIDTH",   "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
     if (std::find(std::begin(kKnown), std::end(kKnown), key) == std::end(kKnown)) {
       throw input_error(path, line_no, "not a PCD header line: '" + printable(line) + "'");
     }
     std::vector<std::string> values;
     for (std::string v; s >> v;) values.push_back(v);
     if (keys.count(key)) {  // ambiguous: which one holds?
-      throw input_error(path, line_no, "PCD header: " + key + " given twice (first on line " + std::to_string(key_line[key]) + ")");
+      throw input_error(
+          path, line_no,
+          "PCD header: " + key + " given twice (first on line " + std::to_string(key_line[key]) + ")");
     }
     keys[key] = values;
     key_line[key] = line_no;
@@ -120,19 +123,23 @@ PcdHeader parse_header(const std::string& path, const std::string& bytes) {
   before("FIELDS", "COUNT");
   before("SIZE", "TYPE");
   if (keys.count("VIEWPOINT") && keys["VIEWPOINT"].size() != 7) {
-    throw input_error(path, key_line["VIEWPOINT"], "PCD header: VIEWPOINT needs 7 numbers (tx ty tz qw qx qy qz)");
+    throw input_error(path, key_line["VIEWPOINT"],
+                      "PCD header: VIEWPOINT needs 7 numbers (tx ty tz qw qx qy qz)");
   }
   const std::size_t n_fields = keys["FIELDS"].size();
   if (n_fields == 0 || keys["SIZE"].size() != n_fields || keys["TYPE"].size() != n_fields ||
       (keys.count("COUNT") && keys["COUNT"].size() != n_fields)) {
-    throw input_error(path, key_line["FIELDS"], "PCD header: FIELDS, SIZE, TYPE and COUNT disagree in length");
+    throw input_error(path, key_line["FIELDS"],
+                      "PCD header: FIELDS, SIZE, TYPE and COUNT disagree in length");
   }
   auto number = [&](const std::string& key) -> unsigned long long {
-    if (keys[key].size() != 1) throw input_error(path, key_line[key], "PCD header: " + key + " is not one number");
+    if (keys[key].size() != 1)
+      throw input_error(path, key_line[key], "PCD header: " + key + " is not one number");
     const unsigned long long v = header_count(path, key_line[key], key, keys[key][0], "");
     if (v > kMaxPcdDimension) {
-      throw input_error(path, key_line[key], "PCD header: " + key + " " + keys[key][0] + " is larger than " +
-                                                 std::to_string(kMaxPcdDimension));
+      throw input_error(
+          path, key_line[key],
+          "PCD header: " + key + " " + keys[key][0] + " is larger than " + std::to_string(kMaxPcdDimension));
     }
     return v;
   };
@@ -140,8 +147,9 @@ PcdHeader parse_header(const std::string& path, const std::string& bytes) {
   const unsigned long long height = keys.count("HEIGHT") ? number("HEIGHT") : 1;
   h.points = number("POINTS");
   if (h.points != width * height) {  // no overflow: both are at most 2^32 - 1
-    throw input_error(path, key_line["POINTS"], "PCD header: POINTS " + std::to_string(h.points) + " is not WIDTH * HEIGHT (" +
-                                                    std::to_string(width) + " x " + std::to_string(height) + ")");
+    throw input_error(path, key_line["POINTS"],
+                      "PCD header: POINTS " + std::to_string(h.points) + " is not WIDTH * HEIGHT (" +
+                          std::to_string(width) + " x " + std::to_string(height) + ")");
   }
   h.data = keys["DATA"].size() == 1 ? keys["DATA"][0] : "";
   if (h.data != "ascii" && h.data != "binary" && h.data != "binary_compressed") {
@@ -151,21 +159,27 @@ PcdHeader parse_header(const std::string& path, const std::string& bytes) {
     PcdField f;
     f.name = keys["FIELDS"][i];
     const unsigned long long size = header_count(path, key_line["SIZE"], "SIZE", keys["SIZE"][i], f.name);
-    f.count = keys.count("COUNT") ? header_count(path, key_line["COUNT"], "COUNT", keys["COUNT"][i], f.name) : 1;
+    f.count =
+        keys.count("COUNT") ? header_count(path, key_line["COUNT"], "COUNT", keys["COUNT"][i], f.name) : 1;
     const std::string& type = keys["TYPE"][i];
     if (type != "F" && type != "I" && type != "U") {
-      throw input_error(path, key_line["TYPE"], "PCD header: TYPE '" + printable(type) + "' of field " + printable(f.name) + " is not F, I or U");
+      throw input_error(
+          path, key_line["TYPE"],
+          "PCD header: TYPE '" + printable(type) + "' of field " + printable(f.name) + " is not F, I or U");
     }
     // The specification's types: floats of 4 or 8 bytes, integers of 1, 2, 4 or 8 (a 2-byte
     // float has no C type; one was read as 4 bytes, past the last point: found by fuzzing).
-    const bool known = type == "F" ? (size == 4 || size == 8) : (size == 1 || size == 2 || size == 4 || size == 8);
+    const bool known =
+        type == "F" ? (size == 4 || size == 8) : (size == 1 || size == 2 || size == 4 || size == 8);
     if (!known) {
-      throw input_error(path, key_line["SIZE"], "PCD header: field " + printable(f.name) + " of TYPE " + type + " and SIZE " +
-                                                    std::to_string(size) + ": not a PCD type (F 4 or 8, I and U 1, 2, 4 or 8)");
+      throw input_error(path, key_line["SIZE"],
+                        "PCD header: field " + printable(f.name) + " of TYPE " + type + " and SIZE " +
+                            std::to_string(size) + ": not a PCD type (F 4 or 8, I and U 1, 2, 4 or 8)");
     }
     if (f.count < 1 || f.count > kMaxPcdFieldCount) {
       throw input_error(path, key_line.count("COUNT") ? key_line["COUNT"] : key_line["FIELDS"],
-                        "PCD header: COUNT of field " + printable(f.name) + " must be 1 to " + std::to_string(kMaxPcdFieldCount));
+                        "PCD header: COUNT of field " + printable(f.name) + " must be 1 to " +
+                            std::to_string(kMaxPcdFieldCount));
     }
     f.type = type[0];
     f.size = static_cast<unsigned>(size);
@@ -191,20 +205,29 @@ double decode(const std::uint8_t* p, const PcdField& f) {
     return static_cast<double>(v);
   };
   switch (f.type) {
-    case 'F': return f.size == 4 ? get(float{}) : get(double{});
+    case 'F':
+      return f.size == 4 ? get(float{}) : get(double{});
     case 'I':
       switch (f.size) {
-        case 1: return get(std::int8_t{});
-        case 2: return get(std::int16_t{});
-        case 4: return get(std::int32_t{});
-        default: return get(std::int64_t{});
+        case 1:
+          return get(std::int8_t{});
+        case 2:
+          return get(std::int16_t{});
+        case 4:
+          return get(std::int32_t{});
+        default:
+          return get(std::int64_t{});
       }
     default:
       switch (f.size) {
-        case 1: return get(std::uint8_t{});
-        case 2: return get(std::uint16_t{});
-        case 4: return get(std::uint32_t{});
-        default: return get(std::uint64_t{});
+        case 1:
+          return get(std::uint8_t{});
+        case 2:
+          return get(std::uint16_t{});
+        case 4:
+          return get(std::uint32_t{});
+        default:
+          return get(std::uint64_t{});
       }
   }
 }
@@ -212,19 +235,23 @@ double decode(const std::uint8_t* p, const PcdField& f) {
 /// The body's values: value(f, i) is the first value of field f of point i.
 class PcdBody {
  public:
-  PcdBody(const std::string& path, const std::string& bytes, const PcdHeader& h) : h_(h), ascii_body_(h.data == "ascii") {
+  PcdBody(const std::string& path, const std::string& bytes, const PcdHeader& h)
+      : h_(h), ascii_body_(h.data == "ascii") {
     if (ascii_body_) read_ascii(path, bytes);
     if (h.data == "binary") {
       const unsigned long long available = bytes.size() - h.body;
       const unsigned long long needed = h.points * h.point_bytes;  // no overflow (parse_header)
       if (available < needed) {
-        throw input_error(path, 0, "PCD body after byte " + std::to_string(h.body) + " has " + std::to_string(available) +
-                                       " bytes, POINTS x point size is " + std::to_string(needed) + " (truncated file?)");
+        throw input_error(path, 0,
+                          "PCD body after byte " + std::to_string(h.body) + " has " +
+                              std::to_string(available) + " bytes, POINTS x point size is " +
+                              std::to_string(needed) + " (truncated file?)");
       }
       if (available > needed) {  // as an ascii body with rows after the last point
-        throw input_error(path, 0, "PCD body has more points than POINTS (" + std::to_string(h.points) + "): " +
-                                       std::to_string(available - needed) + " bytes after the last point, from byte " +
-                                       std::to_string(h.body + needed));
+        throw input_error(path, 0,
+                          "PCD body has more points than POINTS (" + std::to_string(h.points) +
+                              "): " + std::to_string(available - needed) +
+                              " bytes after the last point, from byte " + std::to_string(h.body + needed));
       }
       binary_ = reinterpret_cast<const std::uint8_t*>(bytes.data()) + h.body;
     }
@@ -257,67 +284,85 @@ class PcdBody {
         t = end;
         char* stop = nullptr;
         const double v = std::strtod(token.c_str(), &stop);  // reads nan and inf, as PCD writers do
-        if (stop == token.c_str() || *stop != '\0') throw input_error(path, line_no, "not a number: '" + printable(token) + "'");
-        if (rows >= h_.points) throw input_error(path, line_no, "PCD body has more points than POINTS (" + std::to_string(h_.points) + ")");
+        if (stop == token.c_str() || *stop != '\0')
+          throw input_error(path, line_no, "not a number: '" + printable(token) + "'");
+        if (rows >= h_.points)
+          throw input_error(path, line_no,
+                            "PCD body has more points than POINTS (" + std::to_string(h_.points) + ")");
         ascii_.push_back(v);
         ++k;
       }
       if (k != 0 && k != h_.row_values) {
-        throw input_error(path, line_no, "expected " + std::to_string(h_.row_values) + " values, found " + std::to_string(k));
+        throw input_error(
+            path, line_no,
+            "expected " + std::to_string(h_.row_values) + " values, found " + std::to_string(k));
       }
       if (k != 0) ++rows;
     }
     if (rows < h_.points) {
-      throw input_error(path, line_no, "PCD body has " + std::to_string(rows) + " points, POINTS says " + std::to_string(h_.points));
+      throw input_error(
+          path, line_no,
+          "PCD body has " + std::to_string(rows) + " points, POINTS says " + std::to_string(h_.points));
     }
   }
 
   void read_compressed(const std::string& path, const std::string& bytes) {
     const unsigned long long available = bytes.size() - h_.body;
     const std::string what = "binary_compressed block at byte " + std::to_string(h_.body) + ": ";
-    if (available < kCompressedSizeWords) throw input_error(path, 0, what + "shorter than its two 4-byte size words");
+    if (available < kCompressedSizeWords)
+      throw input_error(path, 0, what + "shorter than its two 4-byte size words");
     const auto* words = reinterpret_cast<const std::uint8_t*>(bytes.data()) + h_.body;
     const auto word = [&](std::size_t at) {  // little-endian, whatever the host
-      return static_cast<unsigned long long>(words[at]) | static_cast<unsigned long long>(words[at + 1]) << 8 |
-             static_cast<unsigned long long>(words[at + 2]) << 16 | static_cast<unsigned long long>(words[at + 3]) << 24;
+      return static_cast<unsigned long long>(words[at]) |
+             static_cast<unsigned long long>(words[at + 1]) << 8 |
+             static_cast<unsigned long long>(words[at + 2]) << 16 |
+             static_cast<unsigned long long>(words[at + 3]) << 24;
     };
     const unsigned long long compressed = word(0), uncompressed = word(4);
     const unsigned long long expected = h_.points * h_.point_bytes;  // no overflow (parse_header)
     if (uncompressed != expected) {
-      throw input_error(path, 0, what + "uncompressed size " + std::to_string(uncompressed) + ", expected " +
-                                     std::to_string(expected) + " bytes for POINTS x SIZE");
+      throw input_error(path, 0,
+                        what + "uncompressed size " + std::to_string(uncompressed) + ", expected " +
+                            std::to_string(expected) + " bytes for POINTS x SIZE");
     }
     if (compressed > available - kCompressedSizeWords) {
-      throw input_error(path, 0, what + "compressed size " + std::to_string(compressed) + " runs past the end of the file (" +
-                                     std::to_string(available - kCompressedSizeWords) + " bytes follow)");
+      throw input_error(path, 0,
+                        what + "compressed size " + std::to_string(compressed) +
+                            " runs past the end of the file (" +
+                            std::to_string(available - kCompressedSizeWords) + " bytes follow)");
     }
     // As a binary body longer than POINTS: bytes past the block are no part of the cloud.
     if (compressed < available - kCompressedSizeWords) {
       const unsigned long long end = h_.body + kCompressedSizeWords + compressed;
-      throw input_error(path, 0, what + std::to_string(bytes.size() - end) + " bytes after the compressed block, from byte " +
-                                     std::to_string(end));
+      throw input_error(path, 0,
+                        what + std::to_string(bytes.size() - end) +
+                            " bytes after the compressed block, from byte " + std::to_string(end));
     }
     if (expected == 0) return;
     if (compressed == 0) throw input_error(path, 0, what + "compressed size 0 for a non-empty cloud");
     if (uncompressed > compressed * kLzfMaxExpansion) {
-      throw input_error(path, 0, what + std::to_string(compressed) + " compressed bytes cannot hold " +
-                                     std::to_string(uncompressed) + " (LZF expands at most " + std::to_string(kLzfMaxExpansion) + " times)");
+      throw input_error(path, 0,
+                        what + std::to_string(compressed) + " compressed bytes cannot hold " +
+                            std::to_string(uncompressed) + " (LZF expands at most " +
+                            std::to_string(kLzfMaxExpansion) + " times)");
     }
     block_.resize(uncompressed);
     // liblzf checks every back-reference and length against both buffers (CHECK_INPUT).
-    const unsigned int got = lzf_decompress(words + kCompressedSizeWords, static_cast<unsigned int>(compressed), block_.data(),
-                                            static_cast<unsigned int>(uncompressed));
+    const unsigned int got =
+        lzf_decompress(words + kCompressedSizeWords, static_cast<unsigned int>(compressed), block_.data(),
+                       static_cast<unsigned int>(uncompressed));
     if (got != uncompressed) {
-      throw input_error(path, 0, what + "corrupt LZF data: it decompresses to " + std::to_string(got) + " of " +
-                                     std::to_string(uncompressed) + " bytes");
+      throw input_error(path, 0,
+                        what + "corrupt LZF data: it decompresses to " + std::to_string(got) + " of " +
+                            std::to_string(uncompressed) + " bytes");
     }
   }
 
   const PcdHeader& h_;
   const bool ascii_body_;
-  std::vector<double> ascii_;               // ascii: row after row
-  const std::uint8_t* binary_ = nullptr;    // binary: the file's bytes, point after point
-  std::vector<std::uint8_t> block_;         // binary_compressed: decompressed, field after field
+  std::vector<double> ascii_;             // ascii: row after row
+  const std::uint8_t* binary_ = nullptr;  // binary: the file's bytes, point after point
+  std::vector<std::uint8_t> block_;       // binary_compressed: decompressed, field after field
 };
 
 }  // namespace
@@ -326,7 +371,8 @@ PointCloud read_pcd(const std::string& path) {
   // The error_code form: a symlink loop or an unreadable folder is the file's error, not ours.
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
-  if (ec && status.type() != std::filesystem::file_type::not_found) throw input_error(path, 0, "cannot open file: " + ec.message());
+  if (ec && status.type() != std::filesystem::file_type::not_found)
+    throw input_error(path, 0, "cannot open file: " + ec.message());
   if (!std::filesystem::is_regular_file(status)) throw input_error(path, 0, "no such file");
   const std::string bytes = read_text_file(path);
   const PcdHeader h = parse_header(path, bytes);
@@ -369,7 +415,9 @@ PointCloud read_pcd(const std::string& path) {
     if (ft) {
       const double t = body.value(*ft, i) * time_scale;
       if (!std::isfinite(t))
-        throw input_error(path, 0, "point " + std::to_string(i) + ": field '" + printable(ft->name) + "' is not a finite number");
+        throw input_error(
+            path, 0,
+            "point " + std::to_string(i) + ": field '" + printable(ft->name) + "' is not a finite number");
       seconds.push_back(t);
     }
   }
@@ -379,7 +427,8 @@ PointCloud read_pcd(const std::string& path) {
 
 std::string encode_pcd(const PointCloud& cloud) {
   const bool with_i = cloud.has_intensity();
-  if (with_i && cloud.intensity.size() != cloud.size()) throw std::invalid_argument("encode_pcd: one intensity per point");
+  if (with_i && cloud.intensity.size() != cloud.size())
+    throw std::invalid_argument("encode_pcd: one intensity per point");
   const std::size_t n = cloud.size();
   std::ostringstream h;
   h << "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z" << (with_i ? " intensity" : "")
@@ -392,7 +441,8 @@ std::string encode_pcd(const PointCloud& cloud) {
   out.resize(header + n * stride * sizeof(float));
   char* p = out.data() + header;
   for (std::size_t i = 0; i < n; ++i) {
-    float v[4] = {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z(), with_i ? cloud.intensity[i] : 0.0f};
+    float v[4] = {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z(),
+                  with_i ? cloud.intensity[i] : 0.0f};
     std::memcpy(p, v, stride * sizeof(float));
     p += stride * sizeof(float);
   }

@@ -13,7 +13,16 @@
 namespace tsgraphs::io {
 
 /// sensor_msgs/PointField datatypes.
-enum class FieldType : std::uint8_t { int8 = 1, uint8 = 2, int16 = 3, uint16 = 4, int32 = 5, uint32 = 6, float32 = 7, float64 = 8 };
+enum class FieldType : std::uint8_t {
+  int8 = 1,
+  uint8 = 2,
+  int16 = 3,
+  uint16 = 4,
+  int32 = 5,
+  uint32 = 6,
+  float32 = 7,
+  float64 = 8
+};
 
 struct PointField2 {
   std::string name;
@@ -50,6 +59,7 @@ struct PointCloud2Message {
 /// Every length (frame_id, the field list, each field's name, data) is checked against the
 /// `size` bytes of `bytes` before it is used: a message cut short or claiming more than it
 /// holds is an InputError naming `where` and the byte offset in the message.
-PointCloud2Message parse_point_cloud2_message(const std::uint8_t* bytes, std::size_t size, const std::string& where);
+PointCloud2Message parse_point_cloud2_message(const std::uint8_t* bytes, std::size_t size,
+                                              const std::string& where);
 
 }  // namespace tsgraphs::io

@@ -8,16 +8,19 @@ Pose3 interpolate(const StampedBase& a, const StampedBase& b, double t) {
   const double s = b.t > a.t ? (t - a.t) / (b.t - a.t) : 0.0;
   Pose3 T = Pose3::Identity();
   T.translation() = (1.0 - s) * a.pose.translation() + s * b.pose.translation();
-  T.linear() = Eigen::Quaterniond(a.pose.linear()).slerp(s, Eigen::Quaterniond(b.pose.linear())).toRotationMatrix();
+  T.linear() =
+      Eigen::Quaterniond(a.pose.linear()).slerp(s, Eigen::Quaterniond(b.pose.linear())).toRotationMatrix();
   return T;
 }
 
-ScanPlacement place_scans(const std::vector<double>& cloud_stamps, std::vector<StampedBase> odom, bool has_odometry,
-                          const Pose3& sensor_to_base) {
-  std::stable_sort(odom.begin(), odom.end(), [](const StampedBase& a, const StampedBase& b) { return a.t < b.t; });
+ScanPlacement place_scans(const std::vector<double>& cloud_stamps, std::vector<StampedBase> odom,
+                          bool has_odometry, const Pose3& sensor_to_base) {
+  std::stable_sort(odom.begin(), odom.end(),
+                   [](const StampedBase& a, const StampedBase& b) { return a.t < b.t; });
   std::vector<std::size_t> order(cloud_stamps.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cloud_stamps[a] < cloud_stamps[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return cloud_stamps[a] < cloud_stamps[b]; });
   ScanPlacement out;
   std::size_t k = 0;
   for (const std::size_t i : order) {

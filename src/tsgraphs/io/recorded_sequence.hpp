@@ -15,11 +15,11 @@ namespace tsgraphs::io {
 
 /// What to read from a bag (ROS 1 or rosbag2).
 struct BagOptions {
-  std::string bag;            ///< the .bag file, or the rosbag2 folder, .db3 or .mcap file
-  std::string points_topic;   ///< sensor_msgs/PointCloud2
-  std::string odom_topic;     ///< nav_msgs/Odometry or geometry_msgs/PoseStamped: the base in a fixed frame
-  std::string odom_tum;       ///< or a TUM file of the same (used when odom_topic is empty); with
-                              ///< neither, the scans come without odometry (run estimates it)
+  std::string bag;           ///< the .bag file, or the rosbag2 folder, .db3 or .mcap file
+  std::string points_topic;  ///< sensor_msgs/PointCloud2
+  std::string odom_topic;    ///< nav_msgs/Odometry or geometry_msgs/PoseStamped: the base in a fixed frame
+  std::string odom_tum;      ///< or a TUM file of the same (used when odom_topic is empty); with
+                             ///< neither, the scans come without odometry (run estimates it)
   /// T_base_sensor; when empty, the /tf_static transform whose child is the clouds' frame (one
   /// hop), else identity.
   std::optional<Pose3> sensor_to_base;
@@ -70,7 +70,7 @@ struct ScanPlacement {
 
 /// The clouds stamped `cloud_stamps` placed by `odom` (sorted here by stamp) times
 /// `sensor_to_base`; without odometry (`has_odometry` false) they keep their stamps only.
-ScanPlacement place_scans(const std::vector<double>& cloud_stamps, std::vector<StampedBase> odom, bool has_odometry,
-                          const Pose3& sensor_to_base);
+ScanPlacement place_scans(const std::vector<double>& cloud_stamps, std::vector<StampedBase> odom,
+                          bool has_odometry, const Pose3& sensor_to_base);
 
 }  // namespace tsgraphs::io

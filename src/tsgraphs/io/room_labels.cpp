@@ -80,15 +80,17 @@ void colour_rooms(const Image& image, RoomLabels* out) {
     if (sizes[id] > kMaxSmallRoomPixels) out->colours.push_back(colours[id]);
   }
   if (out->count == 0)
-    out->warnings.push_back("no room: the image has colours (one colour per room, black none) but no colour other "
-                            "than black covers more than " +
-                            std::to_string(kMaxSmallRoomPixels) + " pixels");
+    out->warnings.push_back(
+        "no room: the image has colours (one colour per room, black none) but no colour other "
+        "than black covers more than " +
+        std::to_string(kMaxSmallRoomPixels) + " pixels");
 }
 
 }  // namespace
 
 const char* convention_name(RoomLabelConvention convention) {
-  return convention == RoomLabelConvention::kIpa ? "IPA: white rooms, black door lines" : "one colour per room";
+  return convention == RoomLabelConvention::kIpa ? "IPA: white rooms, black door lines"
+                                                 : "one colour per room";
 }
 
 RoomLabels room_labels(const Image& image) {
@@ -106,9 +108,10 @@ RoomLabels room_labels(const Image& image) {
 RoomLabels read_room_labels(const std::string& file, const OccupancyMap& map) {
   const Image image = read_image(file);
   if (image.width != map.width || image.height != map.height) {
-    throw input_error(file, 0, "room labels are " + std::to_string(image.width) + " x " +
-                                   std::to_string(image.height) + " pixels but the map " + map.meta.image + " is " +
-                                   std::to_string(map.width) + " x " + std::to_string(map.height));
+    throw input_error(file, 0,
+                      "room labels are " + std::to_string(image.width) + " x " +
+                          std::to_string(image.height) + " pixels but the map " + map.meta.image + " is " +
+                          std::to_string(map.width) + " x " + std::to_string(map.height));
   }
   return room_labels(image);
 }

@@ -21,7 +21,8 @@ const std::map<std::string, std::string>& field_texts() {
       {"std_msgs/Header", "builtin_interfaces/Time stamp\nstring frame_id\n"},
       {"sensor_msgs/PointField", "string name\nuint32 offset\nuint8 datatype\nuint32 count\n"},
       {"sensor_msgs/PointCloud2",
-       "std_msgs/Header header\nuint32 height\nuint32 width\nsensor_msgs/PointField[] fields\nbool is_bigendian\n"
+       "std_msgs/Header header\nuint32 height\nuint32 width\nsensor_msgs/PointField[] fields\nbool "
+       "is_bigendian\n"
        "uint32 point_step\nuint32 row_step\nuint8[] data\nbool is_dense\n"},
       {"geometry_msgs/Point", "float64 x\nfloat64 y\nfloat64 z\n"},
       {"geometry_msgs/Vector3", "float64 x\nfloat64 y\nfloat64 z\n"},
@@ -91,7 +92,8 @@ Pose3 read_pose(CdrReader& r, const std::string& where, const char* position, co
   for (double& v : q) v = r.f64(orientation);
   const Eigen::Quaterniond quat(q[3], q[0], q[1], q[2]);
   if (!t.allFinite() || !quat.coeffs().allFinite() || quat.norm() < 1e-6) {
-    throw input_error(where, 0, std::string(orientation) + " or " + position + " is not finite, or not a rotation");
+    throw input_error(where, 0,
+                      std::string(orientation) + " or " + position + " is not finite, or not a rotation");
   }
   Pose3 pose = Pose3::Identity();
   pose.linear() = quat.normalized().toRotationMatrix();
@@ -129,7 +131,8 @@ const std::string& definition(const std::string& type) {
         for (std::string line; std::getline(lines, line);) {
           std::string field_type = line.substr(0, line.find(' '));
           field_type = field_type.substr(0, field_type.find('['));
-          if (field_type.find('/') != std::string::npos && std::find(seen.begin(), seen.end(), field_type) == seen.end()) {
+          if (field_type.find('/') != std::string::npos &&
+              std::find(seen.begin(), seen.end(), field_type) == seen.end()) {
             seen.push_back(field_type);
             used.push_back(field_type);
             text += "\n" + std::string(80, '=') + "\nMSG: " + field_type + "\n" + texts.at(field_type);
@@ -156,7 +159,8 @@ std::string definition_mismatch(const std::string& type, const std::string& text
     for (const auto& [t, n] : f) s += (s.empty() ? "" : ", ") + t + " " + n;
     return s;
   };
-  return "its definition declares (" + list(recorded) + "), not the fields of " + type + " (" + list(expected) + ")";
+  return "its definition declares (" + list(recorded) + "), not the fields of " + type + " (" +
+         list(expected) + ")";
 }
 
 PointCloud2Message parse_point_cloud2(const std::string& cdr, const std::string& where) {
@@ -216,7 +220,8 @@ std::vector<TransformMessage> parse_tf_message(const std::string& cdr, const std
     t.stamp = stamp_of(r);
     t.parent = r.string("transforms[].header.frame_id");
     t.child = r.string("transforms[].child_frame_id");
-    t.transform = read_pose(r, where, "transforms[].transform.translation", "transforms[].transform.rotation");
+    t.transform =
+        read_pose(r, where, "transforms[].transform.translation", "transforms[].transform.rotation");
     out.push_back(std::move(t));
   }
   return out;

@@ -75,8 +75,8 @@ constexpr char kBagMagic[] = "#ROSBAG V2.0\n";
 constexpr std::size_t kBagMagicBytes = sizeof(kBagMagic) - 1;
 constexpr std::uint8_t kOpMessageData = 0x02, kOpBagHeader = 0x03, kOpIndexData = 0x04, kOpChunk = 0x05,
                        kOpChunkInfo = 0x06, kOpConnection = 0x07;
-constexpr std::uint64_t kLengthBytes = 4;          // every length word
-constexpr std::uint64_t kIndexEntryBytes = 12;     // index data entry: time (8), offset (4)
+constexpr std::uint64_t kLengthBytes = 4;       // every length word
+constexpr std::uint64_t kIndexEntryBytes = 12;  // index data entry: time (8), offset (4)
 // A TransformStamped serialized at its smallest: header (seq 4, stamp 8, empty frame_id 4), an
 // empty child_frame_id (4), translation and rotation (7 doubles, 56).
 constexpr std::uint64_t kMinTransformBytes = 76;
@@ -97,12 +97,18 @@ std::uint64_t little_endian(const std::string& bytes) {
 
 std::string op_name(std::uint8_t op) {
   switch (op) {
-    case kOpMessageData: return "message data";
-    case kOpBagHeader: return "bag header";
-    case kOpIndexData: return "index data";
-    case kOpChunk: return "chunk";
-    case kOpChunkInfo: return "chunk info";
-    case kOpConnection: return "connection";
+    case kOpMessageData:
+      return "message data";
+    case kOpBagHeader:
+      return "bag header";
+    case kOpIndexData:
+      return "index data";
+    case kOpChunk:
+      return "chunk";
+    case kOpChunkInfo:
+      return "chunk info";
+    case kOpConnection:
+      return "connection";
   }
   return "unknown";
 }
@@ -127,7 +133,8 @@ class BagChecker {
   explicit BagChecker(const std::string& path) : path_(path), in_(path, std::ios::binary) {
     std::error_code ec;
     size_ = fs::file_size(path, ec);
-    if (ec || !in_) throw input_error(path, 0, "cannot read the bag" + (ec ? ": " + ec.message() : std::string()));
+    if (ec || !in_)
+      throw input_error(path, 0, "cannot read the bag" + (ec ? ": " + ec.message() : std::string()));
   }
 
   BagLimits check() {
@@ -135,18 +142,21 @@ class BagChecker {
       throw input_error(path_, 0, "not a ROS bag 2.0 (it does not start with '#ROSBAG V2.0')");
     const std::string eof = "the end of the file (" + std::to_string(size_) + " bytes)";
     const BagRecord head = record(kBagMagicBytes, size_, eof);
-    if (head.op != kOpBagHeader) fail(head.pos, "the first record is " + op_name(head.op) + ", not the bag header");
+    if (head.op != kOpBagHeader)
+      fail(head.pos, "the first record is " + op_name(head.op) + ", not the bag header");
     const std::uint64_t index_pos = number(head, "index_pos", 8);
-    const std::uint64_t conn_count = number(head, "conn_count", 4), chunk_count = number(head, "chunk_count", 4);
+    const std::uint64_t conn_count = number(head, "conn_count", 4),
+                        chunk_count = number(head, "chunk_count", 4);
     const auto encryptor = head.fields.find("encryptor");
-    const bool encrypted = encryptor != head.fields.end() && !encryptor->second.empty() && encryptor->second != kNoEncryptor;
+    const bool encrypted =
+        encryptor != head.fields.end() && !encryptor->second.empty() && encryptor->second != kNoEncryptor;
     if (index_pos > size_) fail(head.pos, "index_pos " + std::to_string(index_pos) + " is past " + eof);
 
     BagLimits limits;
     std::vector<BagRecord> records;  // the top-level ones, in file order (headers only kept)
     struct Chunk {
       std::uint64_t size = 0;
-      bool opaque = false;                  ///< compressed or encrypted: its records cannot be seen
+      bool opaque = false;                 ///< compressed or encrypted: its records cannot be seen
       std::set<std::uint64_t> message_at;  ///< offsets of its message data records
     };
     std::map<std::uint64_t, Chunk> chunks;
@@ -161,11 +171,13 @@ class BagChecker {
             fail(r.pos, "chunk compression '" + printable(compression) + "' is none of none, bz2, lz4");
           c.size = number(r, "size", 4);
           if (c.size > kMaxChunkBytes)
-            fail(r.pos, "chunk size " + std::to_string(c.size) + " is over the " + std::to_string(kMaxChunkBytes) + " bytes any chunk has");
+            fail(r.pos, "chunk size " + std::to_string(c.size) + " is over the " +
+                            std::to_string(kMaxChunkBytes) + " bytes any chunk has");
           c.opaque = compression != "none" || encrypted;
           if (!c.opaque) {
             if (c.size != r.data_len)
-              fail(r.pos, "uncompressed chunk of size " + std::to_string(c.size) + " holds " + std::to_string(r.data_len) + " bytes");
+              fail(r.pos, "uncompressed chunk of size " + std::to_string(c.size) + " holds " +
+                              std::to_string(r.data_len) + " bytes");
             const std::string chunk_end = "the end of its chunk (byte " + std::to_string(r.end()) + ")";
             for (std::uint64_t p = r.data_pos; p < r.end();) {
               const BagRecord inner = record(p, r.end(), chunk_end);
@@ -191,7 +203,8 @@ class BagChecker {
           number(r, "conn", 4);
           const std::uint64_t count = number(r, "count", 4);
           if (count * kIndexEntryBytes != r.data_len)
-            fail(r.pos, "index data of " + std::to_string(count) + " entries holds " + std::to_string(r.data_len) + " bytes");
+            fail(r.pos, "index data of " + std::to_string(count) + " entries holds " +
+                            std::to_string(r.data_len) + " bytes");
           if (!last_chunk) fail(r.pos, "index data before any chunk");
           const std::string entries = read(r.data_pos, r.data_len);
           for (std::uint64_t i = 0; i < count; ++i) {
@@ -201,11 +214,14 @@ class BagChecker {
               fail(r.data_pos + at, "index offset " + std::to_string(offset) + " is past its chunk's " +
                                         std::to_string(last_chunk->size) + " bytes");
             if (!last_chunk->opaque && !last_chunk->message_at.count(offset))
-              fail(r.data_pos + at, "index offset " + std::to_string(offset) + " is not a message in its chunk");
+              fail(r.data_pos + at,
+                   "index offset " + std::to_string(offset) + " is not a message in its chunk");
           }
           break;
         }
-        case kOpConnection: connection(r); break;
+        case kOpConnection:
+          connection(r);
+          break;
         case kOpChunkInfo: {
           if (number(r, "ver", 4) != kIndexVersion) fail(r.pos, "chunk info version is not 1");
           const std::uint64_t chunk_pos = number(r, "chunk_pos", 8);
@@ -213,11 +229,15 @@ class BagChecker {
           number(r, "end_time", 8);
           const std::uint64_t count = number(r, "count", 4);
           if (count * kChunkInfoEntryBytes != r.data_len)
-            fail(r.pos, "chunk info of " + std::to_string(count) + " entries holds " + std::to_string(r.data_len) + " bytes");
-          if (!chunks.count(chunk_pos)) fail(r.pos, "chunk info points at byte " + std::to_string(chunk_pos) + ", where no chunk starts");
+            fail(r.pos, "chunk info of " + std::to_string(count) + " entries holds " +
+                            std::to_string(r.data_len) + " bytes");
+          if (!chunks.count(chunk_pos))
+            fail(r.pos, "chunk info points at byte " + std::to_string(chunk_pos) + ", where no chunk starts");
           break;
         }
-        default: fail(r.pos, op_name(r.op) + " record (op " + std::to_string(r.op) + ") where a chunk, index or connection belongs");
+        default:
+          fail(r.pos, op_name(r.op) + " record (op " + std::to_string(r.op) +
+                          ") where a chunk, index or connection belongs");
       }
       pos = r.end();
       r.fields.clear();  // only op and place are looked at again
@@ -228,7 +248,8 @@ class BagChecker {
     // index_pos on, and after each chunk the index data records its chunk info counts.
     if (index_pos == 0) return limits;  // an unindexed bag: rosbag says so itself
     const auto at = [&](std::uint64_t pos) {
-      return std::lower_bound(records.begin(), records.end(), pos, [](const BagRecord& r, std::uint64_t p) { return r.pos < p; });
+      return std::lower_bound(records.begin(), records.end(), pos,
+                              [](const BagRecord& r, std::uint64_t p) { return r.pos < p; });
     };
     auto it = at(index_pos);
     if (it == records.end() || it->pos != index_pos)
@@ -236,9 +257,10 @@ class BagChecker {
     for (std::uint64_t i = 0; i < conn_count + chunk_count; ++i, ++it) {
       const std::uint8_t wanted = i < conn_count ? kOpConnection : kOpChunkInfo;
       if (it == records.end())
-        fail(size_, "the index ends after " + std::to_string(i) + " of " + std::to_string(conn_count) + " connections and " +
-                        std::to_string(chunk_count) + " chunk infos");
-      if (it->op != wanted) fail(it->pos, op_name(it->op) + " record where the index has a " + op_name(wanted));
+        fail(size_, "the index ends after " + std::to_string(i) + " of " + std::to_string(conn_count) +
+                        " connections and " + std::to_string(chunk_count) + " chunk infos");
+      if (it->op != wanted)
+        fail(it->pos, op_name(it->op) + " record where the index has a " + op_name(wanted));
       if (wanted == kOpChunkInfo) chunk_indexes(at, records, it->pos);
     }
     return limits;
@@ -254,18 +276,21 @@ class BagChecker {
     std::string bytes(n, '\0');
     in_.clear();
     in_.seekg(static_cast<std::streamoff>(pos));
-    if (!in_.read(bytes.data(), static_cast<std::streamsize>(n))) fail(pos, "cannot read " + std::to_string(n) + " bytes");
+    if (!in_.read(bytes.data(), static_cast<std::streamsize>(n)))
+      fail(pos, "cannot read " + std::to_string(n) + " bytes");
     return bytes;
   }
 
   /// `name=value` fields, each after its 4-byte length, filling `bytes` (which start at byte `pos`).
-  std::map<std::string, std::string> fields(const std::string& bytes, std::uint64_t pos, const std::string& what) const {
+  std::map<std::string, std::string> fields(const std::string& bytes, std::uint64_t pos,
+                                            const std::string& what) const {
     std::map<std::string, std::string> out;
     for (std::uint64_t i = 0; i < bytes.size();) {
       if (bytes.size() - i < kLengthBytes) fail(pos + i, what + " ends inside a field's length");
       const std::uint64_t length = little_endian(bytes.substr(i, kLengthBytes));
       if (length > bytes.size() - i - kLengthBytes)
-        fail(pos + i, what + " field length " + std::to_string(length) + " runs past its " + std::to_string(bytes.size()) + " bytes");
+        fail(pos + i, what + " field length " + std::to_string(length) + " runs past its " +
+                          std::to_string(bytes.size()) + " bytes");
       const std::string field = bytes.substr(i + kLengthBytes, length);
       const std::size_t eq = field.find('=');
       if (eq == std::string::npos) fail(pos + i, what + " field without '='");
@@ -284,9 +309,10 @@ class BagChecker {
     if (header_len > end - pos - kLengthBytes)
       fail(pos, "record header length " + std::to_string(header_len) + " runs past " + where);
     if (header_len > kMaxRecordHeaderBytes)
-      fail(pos, "record header length " + std::to_string(header_len) + " is over the " + std::to_string(kMaxRecordHeaderBytes) +
-                    " bytes any record header has");
-    if (end - pos - kLengthBytes - header_len < kLengthBytes) fail(pos, "record has no data length before " + where);
+      fail(pos, "record header length " + std::to_string(header_len) + " is over the " +
+                    std::to_string(kMaxRecordHeaderBytes) + " bytes any record header has");
+    if (end - pos - kLengthBytes - header_len < kLengthBytes)
+      fail(pos, "record has no data length before " + where);
     const std::string bytes = read(pos + kLengthBytes, header_len + kLengthBytes);
     r.fields = fields(bytes.substr(0, header_len), pos + kLengthBytes, "record header");
     const auto op = r.fields.find("op");
@@ -295,7 +321,8 @@ class BagChecker {
     r.data_pos = pos + 2 * kLengthBytes + header_len;
     r.data_len = little_endian(bytes.substr(header_len));
     if (r.data_len > end - r.data_pos)
-      fail(pos, op_name(r.op) + " record's data length " + std::to_string(r.data_len) + " runs past " + where);
+      fail(pos,
+           op_name(r.op) + " record's data length " + std::to_string(r.data_len) + " runs past " + where);
     return r;
   }
 
@@ -303,7 +330,8 @@ class BagChecker {
   std::uint64_t number(const BagRecord& r, const std::string& name, std::size_t bytes) const {
     const auto f = r.fields.find(name);
     if (f == r.fields.end() || f->second.size() != bytes)
-      fail(r.pos, op_name(r.op) + " header field '" + name + "' is missing or not " + std::to_string(bytes) + " bytes");
+      fail(r.pos, op_name(r.op) + " header field '" + name + "' is missing or not " + std::to_string(bytes) +
+                      " bytes");
     return little_endian(f->second);
   }
 
@@ -329,7 +357,8 @@ class BagChecker {
     for (std::uint64_t i = 0; i < count; ++i) {
       if (++it == records.end() || it->op != kOpIndexData)
         fail(info_pos, "chunk info counts " + std::to_string(count) + " connections, the chunk at byte " +
-                           std::to_string(chunk_pos) + " is followed by " + std::to_string(i) + " index records");
+                           std::to_string(chunk_pos) + " is followed by " + std::to_string(i) +
+                           " index records");
     }
   }
 
@@ -339,11 +368,13 @@ class BagChecker {
 };
 
 /// The serialized bytes of a message, refused when longer than any chunk of the bag.
-std::vector<std::uint8_t> message_bytes(const rosbag::MessageInstance& m, const BagLimits& limits, const std::string& where) {
+std::vector<std::uint8_t> message_bytes(const rosbag::MessageInstance& m, const BagLimits& limits,
+                                        const std::string& where) {
   const std::uint32_t n = m.size();
   if (n > limits.largest_chunk)
-    throw input_error(where, 0, "message of " + std::to_string(n) + " bytes, longer than any chunk of the bag (" +
-                                    std::to_string(limits.largest_chunk) + ")");
+    throw input_error(where, 0,
+                      "message of " + std::to_string(n) + " bytes, longer than any chunk of the bag (" +
+                          std::to_string(limits.largest_chunk) + ")");
   std::vector<std::uint8_t> bytes(n);
   ros::serialization::OStream stream(bytes.data(), n);
   m.write(stream);
@@ -354,7 +385,8 @@ std::vector<std::uint8_t> message_bytes(const rosbag::MessageInstance& m, const 
 bool is_bag_file(const std::string& path) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
-  if (ec && status.type() != fs::file_type::not_found) throw input_error(path, 0, "cannot read the bag: " + ec.message());
+  if (ec && status.type() != fs::file_type::not_found)
+    throw input_error(path, 0, "cannot read the bag: " + ec.message());
   return fs::is_regular_file(status);
 }
 
@@ -406,10 +438,12 @@ struct BagSequence::Impl {
   mutable std::mutex mutex;                     ///< rosbag reads seek one file
 };
 
-BagSequence::BagSequence(const BagOptions& options) : RecordedSequence(options.bag), impl_(std::make_unique<Impl>()) {
+BagSequence::BagSequence(const BagOptions& options)
+    : RecordedSequence(options.bag), impl_(std::make_unique<Impl>()) {
   const std::string& path = options.bag;
   if (!is_bag_file(path)) throw input_error(path, 0, "no such bag");
-  if (options.points_topic.empty()) throw input_error(path, 0, "no points topic given (--points-topic; see bag-info)");
+  if (options.points_topic.empty())
+    throw input_error(path, 0, "no points topic given (--points-topic; see bag-info)");
   impl_->limits = BagChecker(path).check();
   const RosbagLines rosbag_lines;
   try {
@@ -438,7 +472,8 @@ BagSequence::BagSequence(const BagOptions& options) : RecordedSequence(options.b
       require(options.odom_topic, {kOdometryType, kPoseType});
       rosbag::View view(impl_->bag, rosbag::TopicQuery(options.odom_topic));
       for (const rosbag::MessageInstance& m : view) {
-        if (const auto o = m.instantiate<nav_msgs::Odometry>()) odom.push_back({o->header.stamp.toSec(), pose_of(o->pose.pose)});
+        if (const auto o = m.instantiate<nav_msgs::Odometry>())
+          odom.push_back({o->header.stamp.toSec(), pose_of(o->pose.pose)});
         else if (const auto p = m.instantiate<geometry_msgs::PoseStamped>())
           odom.push_back({p->header.stamp.toSec(), pose_of(p->pose)});
       }
@@ -447,7 +482,9 @@ BagSequence::BagSequence(const BagOptions& options) : RecordedSequence(options.b
     }
     const bool has_odometry = !options.odom_topic.empty() || !options.odom_tum.empty();
     if (has_odometry && odom.empty())
-      throw input_error(path, 0, "no odometry messages on " + (options.odom_topic.empty() ? options.odom_tum : options.odom_topic));
+      throw input_error(
+          path, 0,
+          "no odometry messages on " + (options.odom_topic.empty() ? options.odom_tum : options.odom_topic));
 
     // The clouds, in stamp order; their frame finds the sensor-to-base transform.
     struct Cloud {
@@ -460,7 +497,8 @@ BagSequence::BagSequence(const BagOptions& options) : RecordedSequence(options.b
     for (const rosbag::MessageInstance& m : view) {
       if (!m.isType<sensor_msgs::PointCloud2>()) continue;
       // Taken apart by hand: rosbag's deserializer allocates whatever a corrupt length says.
-      const std::string where = path + ": " + options.points_topic + ", message " + std::to_string(clouds.size());
+      const std::string where =
+          path + ": " + options.points_topic + ", message " + std::to_string(clouds.size());
       const std::vector<std::uint8_t> bytes = message_bytes(m, impl_->limits, where);
       const PointCloud2Message c = parse_point_cloud2_message(bytes.data(), bytes.size(), where);
       if (cloud_frame.empty()) cloud_frame = c.frame_id;
@@ -481,10 +519,13 @@ BagSequence::BagSequence(const BagOptions& options) : RecordedSequence(options.b
         const std::string where = path + ": " + kTfStaticTopic + ", message " + std::to_string(index++);
         const std::vector<std::uint8_t> bytes = message_bytes(m, impl_->limits, where);
         const std::uint64_t count =
-            bytes.size() < kLengthBytes ? 0 : little_endian(std::string(bytes.begin(), bytes.begin() + kLengthBytes));
+            bytes.size() < kLengthBytes
+                ? 0
+                : little_endian(std::string(bytes.begin(), bytes.begin() + kLengthBytes));
         if (bytes.size() < kLengthBytes || count > (bytes.size() - kLengthBytes) / kMinTransformBytes) {
-          throw input_error(where, 0, "claims " + std::to_string(count) + " transforms, more than its " +
-                                          std::to_string(bytes.size()) + " bytes hold");
+          throw input_error(where, 0,
+                            "claims " + std::to_string(count) + " transforms, more than its " +
+                                std::to_string(bytes.size()) + " bytes hold");
         }
         const auto msg = m.instantiate<tf2_msgs::TFMessage>();
         if (!msg) continue;
@@ -511,7 +552,8 @@ BagSequence::BagSequence(const BagOptions& options) : RecordedSequence(options.b
     info_.odometry = std::move(placed.odometry);
     dropped_ = placed.dropped;
     if (info_.times.empty())
-      throw input_error(path, 0, "no scan on " + options.points_topic + " lies within the odometry's time span");
+      throw input_error(path, 0,
+                        "no scan on " + options.points_topic + " lies within the odometry's time span");
     for (const std::string& line : rosbag_lines.lines()) warnings_.push_back("rosbag: " + line);
   } catch (const ros::Exception& e) {  // rosbag's, and the deserializer's stream overruns
     throw input_error(path, 0, std::string("cannot read the bag: ") + e.what() + rosbag_lines.last());
@@ -567,8 +609,8 @@ std::string bag_info(const std::string& path) {
     for (const auto& [name, t] : topics) {
       char line[512];
       const double rate = t.count > 1 && t.last > t.first ? (t.count - 1) / (t.last - t.first) : 0.0;
-      std::snprintf(line, sizeof(line), "  %-32s %-28s %8zu msgs  %7.2f Hz\n", name.c_str(), t.type.c_str(), t.count,
-                    rate);
+      std::snprintf(line, sizeof(line), "  %-32s %-28s %8zu msgs  %7.2f Hz\n", name.c_str(), t.type.c_str(),
+                    t.count, rate);
       out += line;
     }
     for (const std::string& line : rosbag_lines.lines()) out += "  warning: rosbag: " + line + "\n";

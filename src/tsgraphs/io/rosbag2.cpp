@@ -78,7 +78,9 @@ std::string head_of(const std::string& path, std::size_t n) {
   return s;
 }
 
-bool is_sqlite(const std::string& path) { return head_of(path, sizeof kSqliteMagic) == std::string(kSqliteMagic, sizeof kSqliteMagic); }
+bool is_sqlite(const std::string& path) {
+  return head_of(path, sizeof kSqliteMagic) == std::string(kSqliteMagic, sizeof kSqliteMagic);
+}
 bool is_mcap(const std::string& path) { return head_of(path, 8) == std::string(kMcapMagic, 8); }
 
 /// rosbag2's SQLite storage: tables topics (id, name, type, serialization_format, ...) and
@@ -87,14 +89,16 @@ class SqliteStorage : public Storage {
  public:
   /// The file at `path`, named `shown` in errors.
   SqliteStorage(const std::string& path, const std::string& shown) : path_(shown) {
-    if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_FULLMUTEX, nullptr) != SQLITE_OK) {
+    if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_FULLMUTEX, nullptr) !=
+        SQLITE_OK) {
       const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
       sqlite3_close(db_);
       throw input_error(shown, 0, "cannot open the SQLite file: " + why);
     }
     try {
       for (const char* table : {"topics", "messages"}) {
-        if (!has_table(table)) throw input_error(shown, 0, std::string("not a rosbag2 SQLite file: no table '") + table + "'");
+        if (!has_table(table))
+          throw input_error(shown, 0, std::string("not a rosbag2 SQLite file: no table '") + table + "'");
       }
     } catch (...) {  // no destructor runs for an object whose constructor throws (LeakSanitizer found it)
       sqlite3_close(db_);
@@ -106,13 +110,15 @@ class SqliteStorage : public Storage {
   std::vector<Topic> topics() const override {
     std::map<std::string, std::string> definitions;
     if (has_table("message_definitions")) {
-      query("SELECT topic_type, encoding, encoded_message_definition FROM message_definitions", {}, [&](sqlite3_stmt* s) {
-        if (text(s, 1) == "ros2msg") definitions[text(s, 0)] = text(s, 2);
-      });
+      query("SELECT topic_type, encoding, encoded_message_definition FROM message_definitions", {},
+            [&](sqlite3_stmt* s) {
+              if (text(s, 1) == "ros2msg") definitions[text(s, 0)] = text(s, 2);
+            });
     }
     std::map<std::int64_t, std::uint64_t> counts;
-    query("SELECT topic_id, COUNT(*) FROM messages GROUP BY topic_id", {},
-          [&](sqlite3_stmt* s) { counts[sqlite3_column_int64(s, 0)] = static_cast<std::uint64_t>(sqlite3_column_int64(s, 1)); });
+    query("SELECT topic_id, COUNT(*) FROM messages GROUP BY topic_id", {}, [&](sqlite3_stmt* s) {
+      counts[sqlite3_column_int64(s, 0)] = static_cast<std::uint64_t>(sqlite3_column_int64(s, 1));
+    });
     std::vector<Topic> out;
     query("SELECT id, name, type, serialization_format FROM topics ORDER BY id", {}, [&](sqlite3_stmt* s) {
       Topic t{text(s, 1), text(s, 2), text(s, 3), "", counts[sqlite3_column_int64(s, 0)]};
@@ -124,15 +130,16 @@ class SqliteStorage : public Storage {
 
   std::vector<Located> messages(const std::string& topic, std::size_t file) const override {
     std::vector<Located> out;
-    query("SELECT m.id, m.timestamp FROM messages m JOIN topics t ON m.topic_id = t.id WHERE t.name = ?1 "
-          "ORDER BY m.timestamp, m.id",
-          {topic}, [&](sqlite3_stmt* s) {
-            Located m;
-            m.file = file;
-            m.row = sqlite3_column_int64(s, 0);
-            m.time = static_cast<std::uint64_t>(sqlite3_column_int64(s, 1));
-            out.push_back(m);
-          });
+    query(
+        "SELECT m.id, m.timestamp FROM messages m JOIN topics t ON m.topic_id = t.id WHERE t.name = ?1 "
+        "ORDER BY m.timestamp, m.id",
+        {topic}, [&](sqlite3_stmt* s) {
+          Located m;
+          m.file = file;
+          m.row = sqlite3_column_int64(s, 0);
+          m.time = static_cast<std::uint64_t>(sqlite3_column_int64(s, 1));
+          out.push_back(m);
+        });
     return out;
   }
 
@@ -152,7 +159,8 @@ class SqliteStorage : public Storage {
     std::optional<TimeSpan> span;  // rosbag2's timestamp index makes this two lookups
     query("SELECT MIN(timestamp), MAX(timestamp) FROM messages", {}, [&](sqlite3_stmt* s) {
       if (sqlite3_column_type(s, 0) == SQLITE_NULL) return;
-      span = TimeSpan{static_cast<std::uint64_t>(sqlite3_column_int64(s, 0)), static_cast<std::uint64_t>(sqlite3_column_int64(s, 1))};
+      span = TimeSpan{static_cast<std::uint64_t>(sqlite3_column_int64(s, 0)),
+                      static_cast<std::uint64_t>(sqlite3_column_int64(s, 1))};
     });
     return span;
   }
@@ -164,7 +172,8 @@ class SqliteStorage : public Storage {
   }
   bool has_table(const std::string& name) const {
     bool found = false;
-    query("SELECT name FROM sqlite_master WHERE type = 'table' AND name = ?1", {name}, [&](sqlite3_stmt*) { found = true; });
+    query("SELECT name FROM sqlite_master WHERE type = 'table' AND name = ?1", {name},
+          [&](sqlite3_stmt*) { found = true; });
     return found;
   }
   /// Runs `sql` with text parameters, calling `row` for each result row; SQLite's errors (a
@@ -236,7 +245,8 @@ class McapStorage : public Storage {
   std::optional<TimeSpan> time_span() const override {
     std::optional<TimeSpan> span;  // the message list is in memory once the file is open
     for (const mcap::MessageRef& m : reader_.messages()) {
-      span = span ? TimeSpan{std::min(span->first, m.log_time), std::max(span->last, m.log_time)} : TimeSpan{m.log_time, m.log_time};
+      span = span ? TimeSpan{std::min(span->first, m.log_time), std::max(span->last, m.log_time)}
+                  : TimeSpan{m.log_time, m.log_time};
     }
     return span;
   }
@@ -249,7 +259,8 @@ class McapStorage : public Storage {
 /// Messages rosbag2 compressed one by one (compression_mode MESSAGE), decompressed as read.
 class ZstdMessages : public Storage {
  public:
-  ZstdMessages(std::unique_ptr<Storage> inner, std::string path) : inner_(std::move(inner)), path_(std::move(path)) {}
+  ZstdMessages(std::unique_ptr<Storage> inner, std::string path)
+      : inner_(std::move(inner)), path_(std::move(path)) {}
   std::vector<Topic> topics() const override { return inner_->topics(); }
   std::vector<Located> messages(const std::string& topic, std::size_t file) const override {
     return inner_->messages(topic, file);
@@ -281,8 +292,9 @@ std::unique_ptr<Storage> open_storage(const std::string& path, const std::string
 /// however the run ends (the open descriptor keeps it readable).
 std::unique_ptr<Storage> open_compressed_storage(const std::string& path) {
   static std::atomic<unsigned> count{0};
-  const fs::path tmp = fs::temp_directory_path() / ("tsgraphs-" + std::to_string(::getpid()) + "-" + std::to_string(count++) +
-                                                    "-" + fs::path(path).stem().string());
+  const fs::path tmp =
+      fs::temp_directory_path() / ("tsgraphs-" + std::to_string(::getpid()) + "-" + std::to_string(count++) +
+                                   "-" + fs::path(path).stem().string());
   struct Unlink {
     fs::path path;
     ~Unlink() {
@@ -302,7 +314,8 @@ Rosbag2Compression compression_of(const YAML::Node& info, const std::string& met
   };
   const auto [written, mode_line] = scalar("compression_mode");
   std::string mode = written;  // rosbag2 writes FILE and MESSAGE; its reader takes any case
-  std::transform(mode.begin(), mode.end(), mode.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(mode.begin(), mode.end(), mode.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   Rosbag2Compression out;
   if (mode.empty() || mode == "none") return Rosbag2Compression::none;
   if (mode == "file") {
@@ -310,10 +323,13 @@ Rosbag2Compression compression_of(const YAML::Node& info, const std::string& met
   } else if (mode == "message") {
     out = Rosbag2Compression::message;
   } else {
-    throw input_error(metadata, mode_line, "compression_mode " + printable(written) + ": expected FILE, MESSAGE or none");
+    throw input_error(metadata, mode_line,
+                      "compression_mode " + printable(written) + ": expected FILE, MESSAGE or none");
   }
   if (const auto [format, line] = scalar("compression_format"); format != "zstd") {
-    throw input_error(metadata, line, "compression_format '" + printable(format) + "': only zstd, rosbag2's own compressor, is read");
+    throw input_error(
+        metadata, line,
+        "compression_format '" + printable(format) + "': only zstd, rosbag2's own compressor, is read");
   }
   return out;
 }
@@ -340,25 +356,30 @@ YAML::Node bagfile_information(const std::string& metadata) {
 std::string listed_file(const YAML::Node& entry, const std::string& folder, const std::string& metadata,
                         std::map<fs::path, std::pair<std::string, int>>& listed) {
   const int line = entry.Mark().line + 1;
-  if (!entry.IsScalar()) throw input_error(metadata, line, "relative_file_paths: an entry that is not a file name");
+  if (!entry.IsScalar())
+    throw input_error(metadata, line, "relative_file_paths: an entry that is not a file name");
   const std::string name = entry.Scalar();
   // rosbag2 names files relative to the bag folder; an absolute name or one climbing out of it
   // would read a file elsewhere.
   const fs::path home = fs::absolute(folder).lexically_normal();
   const fs::path relative = (home / name).lexically_normal().lexically_relative(home);
   if (fs::path(name).is_absolute())
-    throw input_error(metadata, line, "lists " + printable(name) + ", an absolute path: files are named from the bag folder");
+    throw input_error(metadata, line,
+                      "lists " + printable(name) + ", an absolute path: files are named from the bag folder");
   if (relative.empty() || *relative.begin() == "..")
     throw input_error(metadata, line, "lists " + printable(name) + ", which is not inside the bag folder");
   const std::string file = (fs::path(folder) / name).string();
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) throw input_error(metadata, line, "lists " + printable(name) + ", which is not in the folder");
+  if (!fs::is_regular_file(file, ec))
+    throw input_error(metadata, line, "lists " + printable(name) + ", which is not in the folder");
   const fs::path canonical = fs::canonical(file, ec);
-  if (ec) throw input_error(metadata, line, "lists " + printable(name) + ", which cannot be read: " + ec.message());
+  if (ec)
+    throw input_error(metadata, line, "lists " + printable(name) + ", which cannot be read: " + ec.message());
   const auto [first, fresh] = listed.emplace(canonical, std::make_pair(name, line));
   if (!fresh) {
-    throw input_error(metadata, line, "lists " + printable(name) + " again (as " + printable(first->second.first) + " on line " +
-                                          std::to_string(first->second.second) + "): each file is read once");
+    throw input_error(metadata, line,
+                      "lists " + printable(name) + " again (as " + printable(first->second.first) +
+                          " on line " + std::to_string(first->second.second) + "): each file is read once");
   }
   return file;
 }
@@ -379,8 +400,10 @@ std::string seconds(std::uint64_t ns) {
 void check_follows(const std::string& metadata, int line, const std::string& file, const TimeSpan& span,
                    const std::string& previous_file, const TimeSpan& previous) {
   if (span.first >= previous.last) return;
-  throw input_error(metadata, line, printable(file) + ": its first message (t " + seconds(span.first) + ") is before the last of " +
-                                        printable(previous_file) + " (t " + seconds(previous.last) + "): a file repeated?");
+  throw input_error(metadata, line,
+                    printable(file) + ": its first message (t " + seconds(span.first) +
+                        ") is before the last of " + printable(previous_file) + " (t " +
+                        seconds(previous.last) + "): a file repeated?");
 }
 
 /// The span metadata.yaml's `files` section gives a file (rosbag2 from Humble on writes each
@@ -411,7 +434,8 @@ void check_listed_order(const YAML::Node& info, const Rosbag2Metadata& listed, c
   for (std::size_t i = 1; i < listed.names.size(); ++i) {
     const auto previous = spans.find(listed.names[i - 1]), span = spans.find(listed.names[i]);
     if (previous == spans.end() || span == spans.end()) continue;
-    check_follows(metadata, span->second.second, listed.names[i], span->second.first, listed.names[i - 1], previous->second.first);
+    check_follows(metadata, span->second.second, listed.names[i], span->second.first, listed.names[i - 1],
+                  previous->second.first);
   }
 }
 
@@ -420,7 +444,8 @@ void check_listed_order(const YAML::Node& info, const Rosbag2Metadata& listed, c
 Rosbag2Metadata read_rosbag2_metadata(const std::string& folder) {
   const std::string metadata = (fs::path(folder) / kMetadataFile).string();
   std::error_code ec;
-  if (!fs::is_regular_file(metadata, ec)) throw input_error(folder, 0, "a folder without metadata.yaml: not a rosbag2 bag");
+  if (!fs::is_regular_file(metadata, ec))
+    throw input_error(folder, 0, "a folder without metadata.yaml: not a rosbag2 bag");
   const YAML::Node info = bagfile_information(metadata);
   Rosbag2Metadata out;
   out.compression = compression_of(info, metadata);
@@ -459,7 +484,9 @@ std::vector<std::unique_ptr<Storage>> open_recording(const std::string& path) {
     // The files' own times: metadata.yaml may give none, or not the file's.
     const std::optional<TimeSpan> span = out.back()->time_span();
     if (!span) continue;
-    if (previous) check_follows((fs::path(path) / kMetadataFile).string(), 0, metadata.names[i], *span, previous_name, *previous);
+    if (previous)
+      check_follows((fs::path(path) / kMetadataFile).string(), 0, metadata.names[i], *span, previous_name,
+                    *previous);
     previous = span;
     previous_name = metadata.names[i];
   }
@@ -467,29 +494,33 @@ std::vector<std::unique_ptr<Storage>> open_recording(const std::string& path) {
 }
 
 /// Topics of every file, merged by name; a topic of two types is an error.
-std::map<std::string, Topic> topics_of(const std::vector<std::unique_ptr<Storage>>& storages, const std::string& path) {
+std::map<std::string, Topic> topics_of(const std::vector<std::unique_ptr<Storage>>& storages,
+                                       const std::string& path) {
   std::map<std::string, Topic> out;
   for (const auto& s : storages) {
     for (const Topic& t : s->topics()) {
       auto [it, fresh] = out.emplace(t.name, t);
       if (fresh) continue;
-      if (it->second.type != t.type) throw input_error(path, 0, t.name + " is " + it->second.type + " in one file, " + t.type + " in another");
+      if (it->second.type != t.type)
+        throw input_error(path, 0,
+                          t.name + " is " + it->second.type + " in one file, " + t.type + " in another");
       it->second.count += t.count;
     }
   }
   return out;
 }
 
-std::vector<Located> messages_of(const std::vector<std::unique_ptr<Storage>>& storages, const std::string& topic) {
+std::vector<Located> messages_of(const std::vector<std::unique_ptr<Storage>>& storages,
+                                 const std::string& topic) {
   std::vector<Located> out;
   for (std::size_t i = 0; i < storages.size(); ++i) {
     const std::vector<Located> m = storages[i]->messages(topic, i);
     out.insert(out.end(), m.begin(), m.end());
   }
-  std::stable_sort(out.begin(), out.end(), [](const Located& a, const Located& b) { return a.time < b.time; });
+  std::stable_sort(out.begin(), out.end(),
+                   [](const Located& a, const Located& b) { return a.time < b.time; });
   return out;
 }
-
 
 }  // namespace
 
@@ -505,9 +536,11 @@ struct Rosbag2Sequence::Impl {
   std::string topic;
 };
 
-Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options) : RecordedSequence(options.bag), impl_(std::make_unique<Impl>()) {
+Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options)
+    : RecordedSequence(options.bag), impl_(std::make_unique<Impl>()) {
   const std::string& path = options.bag;
-  if (options.points_topic.empty()) throw input_error(path, 0, "no points topic given (--points-topic; see bag-info)");
+  if (options.points_topic.empty())
+    throw input_error(path, 0, "no points topic given (--points-topic; see bag-info)");
   impl_->storages = open_recording(path);
   for (const auto& s : impl_->storages) {
     for (const std::string& w : s->warnings()) warnings_.push_back(w);
@@ -526,7 +559,8 @@ Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options) : RecordedSequence(o
       for (const char* w : wanted) names += std::string(names.empty() ? "" : " or ") + w;
       throw input_error(path, 0, topic + " is " + t.type + ", expected " + names);
     }
-    if (t.format != "cdr") throw input_error(path, 0, topic + " is serialized as '" + t.format + "', expected cdr");
+    if (t.format != "cdr")
+      throw input_error(path, 0, topic + " is serialized as '" + t.format + "', expected cdr");
     if (const std::string why = ros2::definition_mismatch(t.type, t.definition); !why.empty()) {
       throw input_error(path, 0, topic + " (" + t.type + "): " + why);
     }
@@ -534,7 +568,9 @@ Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options) : RecordedSequence(o
   };
   impl_->topic = options.points_topic;
   require(options.points_topic, {ros2::kPointCloud2});
-  const auto where = [&](const std::string& topic, std::size_t i) { return path + ": " + topic + ", message " + std::to_string(i); };
+  const auto where = [&](const std::string& topic, std::size_t i) {
+    return path + ": " + topic + ", message " + std::to_string(i);
+  };
   const auto read = [&](const Located& m) { return impl_->storages[m.file]->read(m); };
 
   bool is_odometry = false;
@@ -560,7 +596,8 @@ Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options) : RecordedSequence(o
     const bool chunked = m.ref.chunk != mcap::MessageRef::kNoChunk;
     return std::make_tuple(m.file, chunked ? m.ref.chunk : m.ref.offset, chunked ? m.ref.offset : 0, m.row);
   };
-  std::sort(reads.begin(), reads.end(), [&](const Read& a, const Read& b) { return position(*a.m) < position(*b.m); });
+  std::sort(reads.begin(), reads.end(),
+            [&](const Read& a, const Read& b) { return position(*a.m) < position(*b.m); });
   std::vector<StampedBase> odom(odom_messages.size());
   std::vector<double> stamps(clouds.size());
   std::string cloud_frame;  // the first cloud's
@@ -571,8 +608,9 @@ Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options) : RecordedSequence(o
       stamps[r.i] = c.stamp;
       if (r.i == 0) cloud_frame = c.frame_id;
     } else {
-      const ros2::StampedPoseMessage p = is_odometry ? ros2::parse_odometry(cdr, where(options.odom_topic, r.i))
-                                                     : ros2::parse_pose_stamped(cdr, where(options.odom_topic, r.i));
+      const ros2::StampedPoseMessage p = is_odometry
+                                             ? ros2::parse_odometry(cdr, where(options.odom_topic, r.i))
+                                             : ros2::parse_pose_stamped(cdr, where(options.odom_topic, r.i));
       odom[r.i] = {p.stamp, p.pose};
     }
   }
@@ -581,7 +619,9 @@ Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options) : RecordedSequence(o
   }
   const bool has_odometry = !options.odom_topic.empty() || !options.odom_tum.empty();
   if (has_odometry && odom.empty())
-    throw input_error(path, 0, "no odometry messages on " + (options.odom_topic.empty() ? options.odom_tum : options.odom_topic));
+    throw input_error(
+        path, 0,
+        "no odometry messages on " + (options.odom_topic.empty() ? options.odom_tum : options.odom_topic));
 
   if (options.sensor_to_base) {
     sensor_to_base_ = *options.sensor_to_base;
@@ -603,7 +643,9 @@ Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options) : RecordedSequence(o
   info_.times = std::move(placed.times);
   info_.odometry = std::move(placed.odometry);
   dropped_ = placed.dropped;
-  if (info_.times.empty()) throw input_error(path, 0, "no scan on " + options.points_topic + " lies within the odometry's time span");
+  if (info_.times.empty())
+    throw input_error(path, 0,
+                      "no scan on " + options.points_topic + " lies within the odometry's time span");
 }
 
 Rosbag2Sequence::~Rosbag2Sequence() = default;
@@ -613,13 +655,14 @@ PointCloud Rosbag2Sequence::scan(std::size_t index) const {
   const std::string where = name_ + ": " + impl_->topic + ", scan " + std::to_string(index);
   const std::string cdr = impl_->storages[m.file]->read(m);
   const PointCloud2Message msg = ros2::parse_point_cloud2(cdr, where);
-  return decode_point_cloud2(msg.layout, reinterpret_cast<const std::uint8_t*>(cdr.data()) + msg.data_offset, msg.data_size,
-                             where);
+  return decode_point_cloud2(msg.layout, reinterpret_cast<const std::uint8_t*>(cdr.data()) + msg.data_offset,
+                             msg.data_size, where);
 }
 
 std::string rosbag2_info(const std::string& path) {
   const auto storages = open_recording(path);
-  std::string out = path + ": " + std::to_string(storages.size()) + " file" + (storages.size() == 1 ? "" : "s") + "\n";
+  std::string out =
+      path + ": " + std::to_string(storages.size()) + " file" + (storages.size() == 1 ? "" : "s") + "\n";
   for (const auto& [name, t] : topics_of(storages, path)) {
     const std::vector<Located> m = messages_of(storages, name);
     const double span = m.size() >= 2 ? 1e-9 * static_cast<double>(m.back().time - m.front().time) : 0.0;
@@ -644,7 +687,8 @@ namespace {
 
 /// Offered QoS as rosbag2 records it (YAML): reliable; /tf_static transient local, as tf2 publishes it.
 std::string qos_profile(bool transient_local) {
-  return std::string("- history: 3\n  depth: 0\n  reliability: 1\n  durability: ") + (transient_local ? "1" : "2") +
+  return std::string("- history: 3\n  depth: 0\n  reliability: 1\n  durability: ") +
+         (transient_local ? "1" : "2") +
          "\n  deadline:\n    sec: 2147483647\n    nsec: 4294967295\n  lifespan:\n    sec: 2147483647\n"
          "    nsec: 4294967295\n  liveliness: 1\n  liveliness_lease_duration:\n    sec: 2147483647\n"
          "    nsec: 4294967295\n  avoid_ros_namespace_conventions: false";
@@ -676,14 +720,17 @@ struct Tally {
 };
 
 /// rosbag2's BagMetadata (version 5, as Humble writes it) for one file, listed as `file`.
-std::string bag_metadata(const std::string& storage_id, const std::string& file, const std::vector<TopicToWrite>& topics,
-                         const Tally& tally, Rosbag2Compression compression) {
+std::string bag_metadata(const std::string& storage_id, const std::string& file,
+                         const std::vector<TopicToWrite>& topics, const Tally& tally,
+                         Rosbag2Compression compression) {
   YAML::Emitter y;
   const auto duration = [&] {
-    y << YAML::BeginMap << YAML::Key << "nanoseconds" << YAML::Value << tally.last - tally.first << YAML::EndMap;
+    y << YAML::BeginMap << YAML::Key << "nanoseconds" << YAML::Value << tally.last - tally.first
+      << YAML::EndMap;
   };
   const auto starting = [&] {
-    y << YAML::BeginMap << YAML::Key << "nanoseconds_since_epoch" << YAML::Value << tally.first << YAML::EndMap;
+    y << YAML::BeginMap << YAML::Key << "nanoseconds_since_epoch" << YAML::Value << tally.first
+      << YAML::EndMap;
   };
   y << YAML::BeginMap << YAML::Key << "rosbag2_bagfile_information" << YAML::Value << YAML::BeginMap;
   y << YAML::Key << "version" << YAML::Value << 5;
@@ -697,7 +744,8 @@ std::string bag_metadata(const std::string& storage_id, const std::string& file,
     y << YAML::Key << "name" << YAML::Value << topics[i].name;
     y << YAML::Key << "type" << YAML::Value << topics[i].type;
     y << YAML::Key << "serialization_format" << YAML::Value << "cdr";
-    y << YAML::Key << "offered_qos_profiles" << YAML::Value << YAML::DoubleQuoted << qos_profile(topics[i].transient_local);
+    y << YAML::Key << "offered_qos_profiles" << YAML::Value << YAML::DoubleQuoted
+      << qos_profile(topics[i].transient_local);
     y << YAML::EndMap;
     y << YAML::Key << "message_count" << YAML::Value << (i < tally.counts.size() ? tally.counts[i] : 0);
     y << YAML::EndMap;
@@ -706,7 +754,9 @@ std::string bag_metadata(const std::string& storage_id, const std::string& file,
   const bool compressed = compression != Rosbag2Compression::none;
   y << YAML::Key << "compression_format" << YAML::Value << YAML::DoubleQuoted << (compressed ? "zstd" : "");
   y << YAML::Key << "compression_mode" << YAML::Value << YAML::DoubleQuoted
-    << (!compressed ? "" : compression == Rosbag2Compression::file ? "FILE" : "MESSAGE");
+    << (!compressed                               ? ""
+        : compression == Rosbag2Compression::file ? "FILE"
+                                                  : "MESSAGE");
   y << YAML::Key << "relative_file_paths" << YAML::Value << YAML::BeginSeq << file << YAML::EndSeq;
   y << YAML::Key << "files" << YAML::Value << YAML::BeginSeq << YAML::BeginMap;
   y << YAML::Key << "path" << YAML::Value << file;
@@ -727,8 +777,8 @@ struct Layout {
 /// Every message of `sequence` in write_bag's order: /tf_static, then per scan /points, /odom
 /// and /groundtruth; each message's data zstd-compressed in MESSAGE mode.
 template <class Sink>
-void for_each_message(const ScanSequence& sequence, const Pose3& sensor_to_base, Rosbag2Compression compression,
-                      Sink&& write) {
+void for_each_message(const ScanSequence& sequence, const Pose3& sensor_to_base,
+                      Rosbag2Compression compression, Sink&& write) {
   const auto sink = [&](Out m) {
     if (compression == Rosbag2Compression::message) m.cdr = compress_zstd(m.cdr);
     write(m);
@@ -739,10 +789,13 @@ void for_each_message(const ScanSequence& sequence, const Pose3& sensor_to_base,
   sink(Out{2, stamp_ns(first), ros2::encode_tf_message({{first, "base_link", "lidar", sensor_to_base}})});
   const Pose3 base_to_sensor = sensor_to_base.inverse();
   for (std::size_t i = 0; i < sequence.size(); ++i) {
-    sink(Out{0, stamp_ns(info.times[i]), ros2::encode_point_cloud2(info.times[i], "lidar", sequence.scan(i))});
-    sink(Out{1, stamp_ns(info.times[i]), ros2::encode_odometry({info.times[i], "odom", "base_link", info.odometry[i] * base_to_sensor})});
+    sink(
+        Out{0, stamp_ns(info.times[i]), ros2::encode_point_cloud2(info.times[i], "lidar", sequence.scan(i))});
+    sink(Out{1, stamp_ns(info.times[i]),
+             ros2::encode_odometry({info.times[i], "odom", "base_link", info.odometry[i] * base_to_sensor})});
     if (i < info.groundtruth.size())
-      sink(Out{3, stamp_ns(info.times[i]), ros2::encode_pose_stamped({info.times[i], "world", "", info.groundtruth[i]})});
+      sink(Out{3, stamp_ns(info.times[i]),
+               ros2::encode_pose_stamped({info.times[i], "world", "", info.groundtruth[i]})});
   }
 }
 
@@ -764,15 +817,18 @@ std::string write_sqlite(const ScanSequence& sequence, const std::string& tmp, c
     }
   };
   try {
-    exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; BEGIN;"
-         "CREATE TABLE schema(schema_version INTEGER PRIMARY KEY, ros_distro TEXT NOT NULL);"
-         "INSERT INTO schema VALUES (3, 'humble');"
-         "CREATE TABLE metadata(id INTEGER PRIMARY KEY, metadata_version INTEGER NOT NULL, metadata TEXT NOT NULL);"
-         "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, "
-         "serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);"
-         "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT NULL, "
-         "data BLOB NOT NULL);"
-         "CREATE INDEX timestamp_idx ON messages (timestamp ASC);");
+    exec(
+        "PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; BEGIN;"
+        "CREATE TABLE schema(schema_version INTEGER PRIMARY KEY, ros_distro TEXT NOT NULL);"
+        "INSERT INTO schema VALUES (3, 'humble');"
+        "CREATE TABLE metadata(id INTEGER PRIMARY KEY, metadata_version INTEGER NOT NULL, metadata TEXT NOT "
+        "NULL);"
+        "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, "
+        "serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);"
+        "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT "
+        "NULL, "
+        "data BLOB NOT NULL);"
+        "CREATE INDEX timestamp_idx ON messages (timestamp ASC);");
     for (std::size_t i = 0; i < topics.size(); ++i) {
       sqlite3_stmt* s = nullptr;
       sqlite3_prepare_v2(db, "INSERT INTO topics VALUES (?1, ?2, ?3, 'cdr', ?4)", -1, &s, nullptr);
@@ -785,7 +841,8 @@ std::string write_sqlite(const ScanSequence& sequence, const std::string& tmp, c
       if (rc != SQLITE_DONE) throw std::runtime_error(tmp + ": SQLite: " + sqlite3_errmsg(db));
     }
     sqlite3_stmt* insert = nullptr;
-    sqlite3_prepare_v2(db, "INSERT INTO messages (topic_id, timestamp, data) VALUES (?1, ?2, ?3)", -1, &insert, nullptr);
+    sqlite3_prepare_v2(db, "INSERT INTO messages (topic_id, timestamp, data) VALUES (?1, ?2, ?3)", -1,
+                       &insert, nullptr);
     Tally tally;
     try {
       for_each_message(sequence, sensor_to_base, layout.compression, [&](const Out& m) {
@@ -794,7 +851,8 @@ std::string write_sqlite(const ScanSequence& sequence, const std::string& tmp, c
         sqlite3_bind_int64(insert, 1, static_cast<sqlite3_int64>(m.topic + 1));
         sqlite3_bind_int64(insert, 2, static_cast<sqlite3_int64>(m.time));
         sqlite3_bind_blob(insert, 3, m.cdr.data(), static_cast<int>(m.cdr.size()), SQLITE_TRANSIENT);
-        if (sqlite3_step(insert) != SQLITE_DONE) throw std::runtime_error(tmp + ": SQLite: " + sqlite3_errmsg(db));
+        if (sqlite3_step(insert) != SQLITE_DONE)
+          throw std::runtime_error(tmp + ": SQLite: " + sqlite3_errmsg(db));
       });
     } catch (...) {
       sqlite3_finalize(insert);
@@ -803,7 +861,8 @@ std::string write_sqlite(const ScanSequence& sequence, const std::string& tmp, c
     sqlite3_finalize(insert);
     metadata = bag_metadata("sqlite3", layout.file, topics, tally, layout.compression);
     sqlite3_stmt* s = nullptr;
-    sqlite3_prepare_v2(db, "INSERT INTO metadata (metadata_version, metadata) VALUES (5, ?1)", -1, &s, nullptr);
+    sqlite3_prepare_v2(db, "INSERT INTO metadata (metadata_version, metadata) VALUES (5, ?1)", -1, &s,
+                       nullptr);
     sqlite3_bind_text(s, 1, metadata.c_str(), -1, SQLITE_TRANSIENT);
     const int rc = sqlite3_step(s);
     sqlite3_finalize(s);
@@ -818,7 +877,8 @@ std::string write_sqlite(const ScanSequence& sequence, const std::string& tmp, c
 }
 
 std::string write_mcap(const ScanSequence& sequence, const std::string& path, const Layout& layout,
-                       const std::vector<TopicToWrite>& topics, mcap::Compression compression, const Pose3& sensor_to_base) {
+                       const std::vector<TopicToWrite>& topics, mcap::Compression compression,
+                       const Pose3& sensor_to_base) {
   mcap::WriterOptions o;
   o.profile = "ros2";
   o.compression = compression;
@@ -827,7 +887,8 @@ std::string write_mcap(const ScanSequence& sequence, const std::string& path, co
   std::vector<std::uint16_t> channels;
   for (const TopicToWrite& t : topics) {
     if (!schemas.count(t.type)) schemas[t.type] = w.add_schema(t.type, "ros2msg", ros2::definition(t.type));
-    channels.push_back(w.add_channel(schemas[t.type], t.name, "cdr", {{"offered_qos_profiles", qos_profile(t.transient_local)}}));
+    channels.push_back(w.add_channel(schemas[t.type], t.name, "cdr",
+                                     {{"offered_qos_profiles", qos_profile(t.transient_local)}}));
   }
   Tally tally;
   for_each_message(sequence, sensor_to_base, layout.compression, [&](const Out& m) {
@@ -843,7 +904,8 @@ std::string write_mcap(const ScanSequence& sequence, const std::string& path, co
 }  // namespace
 
 void write_rosbag2(const ScanSequence& sequence, const std::string& path, Rosbag2Storage storage,
-                   mcap::Compression compression, const Pose3& sensor_to_base, Rosbag2Compression bag_compression) {
+                   mcap::Compression compression, const Pose3& sensor_to_base,
+                   Rosbag2Compression bag_compression) {
   std::vector<TopicToWrite> topics = {{"/points", ros2::kPointCloud2, false},
                                       {"/odom", ros2::kOdometry, false},
                                       {kTfStaticTopic, ros2::kTfMessage, true}};
@@ -852,22 +914,27 @@ void write_rosbag2(const ScanSequence& sequence, const std::string& path, Rosbag
   const bool folder = fs::path(path).extension() != ext;
   // A folder is made under a temporary name; a single file is written to one.
   const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  const std::string file = folder ? fs::path(path).filename().string() + "_0" + ext : fs::path(path).filename().string();
+  const std::string file =
+      folder ? fs::path(path).filename().string() + "_0" + ext : fs::path(path).filename().string();
   const std::string target = folder ? (fs::path(tmp) / file).string() : tmp;
   const bool file_compressed = bag_compression == Rosbag2Compression::file;
   const Layout layout{file_compressed ? file + ".zstd" : file, bag_compression};
   std::error_code ec;
   if (!folder && bag_compression != Rosbag2Compression::none) {
-    throw input_error(path, 0, "rosbag2's own compression is for a bag folder, whose metadata.yaml records it: give a "
-                               "name without " + ext);
+    throw input_error(path, 0,
+                      "rosbag2's own compression is for a bag folder, whose metadata.yaml records it: give a "
+                      "name without " +
+                          ext);
   }
   if (folder && fs::exists(path, ec)) throw input_error(path, 0, "exists: a bag folder is not written over");
   fs::remove_all(tmp, ec);
   try {
-    if (folder && !fs::create_directory(tmp, ec)) throw input_error(path, 0, "cannot make the bag folder: " + ec.message());
-    const std::string metadata = storage == Rosbag2Storage::mcap
-                                     ? write_mcap(sequence, target, layout, topics, compression, sensor_to_base)
-                                     : write_sqlite(sequence, target, layout, topics, sensor_to_base);
+    if (folder && !fs::create_directory(tmp, ec))
+      throw input_error(path, 0, "cannot make the bag folder: " + ec.message());
+    const std::string metadata =
+        storage == Rosbag2Storage::mcap
+            ? write_mcap(sequence, target, layout, topics, compression, sensor_to_base)
+            : write_sqlite(sequence, target, layout, topics, sensor_to_base);
     if (file_compressed) {  // as rosbag2 does once a file is closed: the file replaced by its .zstd
       compress_zstd_file(target, target + ".zstd");
       fs::remove(target);

@@ -78,18 +78,22 @@ json parse_json(const std::string& text, const std::string& path, int line = 0) 
     const std::string what = e.what();
     const std::size_t quote = what.find('\'');
     throw input_error(path, line,
-                      "number out of the range of a double" + (quote == std::string::npos ? "" : ": " + what.substr(quote)));
+                      "number out of the range of a double" +
+                          (quote == std::string::npos ? "" : ": " + what.substr(quote)));
   }
 }
 
 // ---- typed access to JSON values ----------------------------------------------------------
 
 const json& object(const json& v, const std::string& name) {
-  if (!v.is_object()) throw FieldError(name.empty() ? "expected a JSON object" : quoted(name) + " must be an object");
+  if (!v.is_object())
+    throw FieldError(name.empty() ? "expected a JSON object" : quoted(name) + " must be an object");
   return v;
 }
 
-std::string child(const std::string& parent, const char* key) { return parent.empty() ? key : parent + "." + key; }
+std::string child(const std::string& parent, const char* key) {
+  return parent.empty() ? key : parent + "." + key;
+}
 std::string item(const std::string& parent, std::size_t i) { return parent + "[" + std::to_string(i) + "]"; }
 
 const json& member(const json& obj, const char* key, const std::string& parent) {
@@ -128,7 +132,9 @@ double bounded_coordinate(double x, const std::string& name) {
   return x;
 }
 
-double coordinate(const json& v, const std::string& name) { return bounded_coordinate(number(v, name), name); }
+double coordinate(const json& v, const std::string& name) {
+  return bounded_coordinate(number(v, name), name);
+}
 
 template <class Int>
 Int integer(const json& v, const std::string& name) {
@@ -141,7 +147,8 @@ Int integer(const json& v, const std::string& name) {
     }
     throw FieldError(quoted(name) + " must not be negative");
   } else {
-    if (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<Int>::max()))
+    if (v.is_number_unsigned() &&
+        v.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<Int>::max()))
       throw FieldError(quoted(name) + " is out of range");
     const std::int64_t i = v.get<std::int64_t>();
     if (i < std::numeric_limits<Int>::min() || i > std::numeric_limits<Int>::max())
@@ -209,7 +216,9 @@ void for_each_object(const json& obj, const char* key, const std::string& parent
 json xy(const Vec2& v) { return {v.x(), v.y()}; }
 json xyz(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 json pose_json(const PoseRecord& p) { return {{"t", xyz(p.t)}, {"q", {p.q.x(), p.q.y(), p.q.z(), p.q.w()}}}; }
-json rect_json(const OrientedRect& r) { return {{"center", xy(r.center)}, {"size", xy(r.size)}, {"yaw", r.yaw}}; }
+json rect_json(const OrientedRect& r) {
+  return {{"center", xy(r.center)}, {"size", xy(r.size)}, {"yaw", r.yaw}};
+}
 json polygon_json(const Polygon2& p) {
   json out = json::array();
   for (const Vec2& v : p) out.push_back(xy(v));
@@ -233,7 +242,8 @@ OrientedRect rect_at(const json& obj, const char* key, const std::string& parent
   OrientedRect rect;
   rect.center = vector_at<2>(r, "center", name);
   rect.size = vector_at<2>(r, "size", name);
-  if (rect.size.x() < 0.0 || rect.size.y() < 0.0) throw FieldError(quoted(child(name, "size")) + " must not be negative");
+  if (rect.size.x() < 0.0 || rect.size.y() < 0.0)
+    throw FieldError(quoted(child(name, "size")) + " must not be negative");
   rect.yaw = number_at(r, "yaw", name);
   return rect;
 }
@@ -244,7 +254,8 @@ Polygon2 polygon_at(const json& obj, const char* key, const std::string& parent)
   if (v == nullptr) return {};
   const std::string name = child(parent, key);
   Polygon2 out;
-  for (std::size_t i = 0; i < array(*v, name).size(); ++i) out.push_back(vector_of<2>((*v)[i], item(name, i)));
+  for (std::size_t i = 0; i < array(*v, name).size(); ++i)
+    out.push_back(vector_of<2>((*v)[i], item(name, i)));
   if (out.size() < 3) throw FieldError(quoted(name) + " must have at least 3 vertices");
   return out;
 }
@@ -265,12 +276,15 @@ SceneGraph::Plane plane_of(const json& p, const std::string& name) {
   out.n = vector_at<3>(p, "n", name);
   out.d = coordinate(member(p, "d", name), child(name, "d"));
   out.keyframes = ints(member(p, "keyframes", name), child(name, "keyframes"));
-  if (const json* v = optional_member(p, "num_points")) out.num_points = integer<std::size_t>(*v, child(name, "num_points"));
-  if (const json* v = optional_member(p, "centroid")) out.centroid = vector_of<3>(*v, child(name, "centroid"));
+  if (const json* v = optional_member(p, "num_points"))
+    out.num_points = integer<std::size_t>(*v, child(name, "num_points"));
+  if (const json* v = optional_member(p, "centroid"))
+    out.centroid = vector_of<3>(*v, child(name, "centroid"));
   if (const json* v = optional_member(p, "segment")) {
     const std::string seg = child(name, "segment");
     if (!v->is_array() || v->size() != 2) throw FieldError(quoted(seg) + " must be [[x, y], [x, y]]");
-    out.segment = std::array<Vec2, 2>{vector_of<2>((*v)[0], item(seg, 0)), vector_of<2>((*v)[1], item(seg, 1))};
+    out.segment =
+        std::array<Vec2, 2>{vector_of<2>((*v)[0], item(seg, 0)), vector_of<2>((*v)[1], item(seg, 1))};
   }
   if (const json* v = optional_member(p, "z_range")) {
     const Vec2 z = vector_of<2>(*v, child(name, "z_range"));
@@ -285,7 +299,8 @@ SceneGraph::TraversableNode node_of(const json& n, const std::string& name) {
   out.position = vector_at<3>(n, "position", name);
   out.normal = vector_at<3>(n, "normal", name);
   out.probability = number_at(n, "probability", name);
-  if (const json* v = optional_member(n, "observations")) out.observations = integer<int>(*v, child(name, "observations"));
+  if (const json* v = optional_member(n, "observations"))
+    out.observations = integer<int>(*v, child(name, "observations"));
   if (const json* v = optional_member(n, "anchor_keyframe"))
     out.anchor_keyframe = integer<int>(*v, child(name, "anchor_keyframe"));
   if (const json* v = optional_member(n, "keyframes")) out.keyframes = ints(*v, child(name, "keyframes"));
@@ -300,12 +315,14 @@ SceneGraph::Room room_of(const json& r, const std::string& name) {
   out.rect = rect_at(r, "rect", name);
   out.polygon = polygon_at(r, "polygon", name);
   if (const json* v = optional_member(r, "walls")) out.walls = ints(*v, child(name, "walls"));
-  if (const json* v = optional_member(r, "extractions")) out.extractions = integer<int>(*v, child(name, "extractions"));
+  if (const json* v = optional_member(r, "extractions"))
+    out.extractions = integer<int>(*v, child(name, "extractions"));
   if (const json* v = optional_member(r, "node"); v != nullptr && !v->is_null())
     out.node = integer<int>(*v, child(name, "node"));
   if (const json* v = optional_member(r, "free_space")) {
     const std::string space = child(name, "free_space");
-    for (std::size_t i = 0; i < array(*v, space).size(); ++i) out.free_space.push_back(vector_of<3>((*v)[i], item(space, i)));
+    for (std::size_t i = 0; i < array(*v, space).size(); ++i)
+      out.free_space.push_back(vector_of<3>((*v)[i], item(space, i)));
   }
   return out;
 }
@@ -320,8 +337,9 @@ void add_edge(const json& e, const std::string& name, SceneGraph* g) {
                              number_at(e, "fitness", name), pose_at(e, "measurement", name),
                              optional_member(e, "folded") ? integer_at<int>(e, "folded", name) : 0});
   } else if (type == "keyframe_plane") {
-    g->keyframe_plane_edges.push_back(
-        {integer_at<int>(e, "keyframe", name), integer_at<int>(e, "plane", name), vector_at<4>(e, "measurement", name)});
+    g->keyframe_plane_edges.push_back({integer_at<int>(e, "keyframe", name),
+                                       integer_at<int>(e, "plane", name),
+                                       vector_at<4>(e, "measurement", name)});
   } else if (type == "room_planes") {
     g->room_planes_edges.push_back({integer_at<int>(e, "room", name), room_kind_at(e, name),
                                     ints(member(e, "planes", name), child(name, "planes")),
@@ -441,7 +459,8 @@ std::string format_scene_graph(const SceneGraph& g) {
   }
   json edges = json::array();
   for (const SceneGraph::OdometryEdge& e : g.odometry_edges)
-    edges.push_back({{"type", "odometry"}, {"from", e.from}, {"to", e.to}, {"measurement", pose_json(e.measurement)}});
+    edges.push_back(
+        {{"type", "odometry"}, {"from", e.from}, {"to", e.to}, {"measurement", pose_json(e.measurement)}});
   for (const SceneGraph::LoopEdge& e : g.loop_edges) {
     edges.push_back({{"type", "loop"},
                      {"from", e.from},
@@ -451,10 +470,11 @@ std::string format_scene_graph(const SceneGraph& g) {
     if (e.folded > 0) edges.back()["folded"] = e.folded;
   }
   for (const SceneGraph::KeyframePlaneEdge& e : g.keyframe_plane_edges)
-    edges.push_back({{"type", "keyframe_plane"},
-                     {"keyframe", e.keyframe},
-                     {"plane", e.plane},
-                     {"measurement", {e.measurement[0], e.measurement[1], e.measurement[2], e.measurement[3]}}});
+    edges.push_back(
+        {{"type", "keyframe_plane"},
+         {"keyframe", e.keyframe},
+         {"plane", e.plane},
+         {"measurement", {e.measurement[0], e.measurement[1], e.measurement[2], e.measurement[3]}}});
   for (const SceneGraph::RoomPlanesEdge& e : g.room_planes_edges)
     edges.push_back({{"type", "room_planes"},
                      {"room", e.room},
@@ -538,13 +558,14 @@ SceneGraph read_scene_graph(const std::string& path) {
     });
     for_each_object(doc, "planes", "", true,
                     [&](const json& p, const std::string& name) { g.planes.push_back(plane_of(p, name)); });
-    for_each_object(doc, "traversable_nodes", "", false,
-                    [&](const json& n, const std::string& name) { g.traversable_nodes.push_back(node_of(n, name)); });
+    for_each_object(doc, "traversable_nodes", "", false, [&](const json& n, const std::string& name) {
+      g.traversable_nodes.push_back(node_of(n, name));
+    });
     for_each_object(doc, "rooms", "", false,
                     [&](const json& r, const std::string& name) { g.rooms.push_back(room_of(r, name)); });
     for_each_object(doc, "room_nodes", "", false, [&](const json& r, const std::string& name) {
-      g.room_nodes.push_back({integer_at<int>(r, "id", name), room_kind_at(r, name), integer_at<int>(r, "level", name),
-                              vector_at<2>(r, "center", name)});
+      g.room_nodes.push_back({integer_at<int>(r, "id", name), room_kind_at(r, name),
+                              integer_at<int>(r, "level", name), vector_at<2>(r, "center", name)});
     });
     for_each_object(doc, "floors", "", false, [&](const json& f, const std::string& name) {
       g.floors.push_back({integer_at<int>(f, "id", name), integer_at<int>(f, "level", name),
@@ -554,7 +575,8 @@ SceneGraph read_scene_graph(const std::string& path) {
       for (std::size_t i = 0; i < array(*levels, "levels").size(); ++i)
         g.levels.push_back(coordinate((*levels)[i], item("levels", i)));
     }
-    for_each_object(doc, "edges", "", true, [&](const json& e, const std::string& name) { add_edge(e, name, &g); });
+    for_each_object(doc, "edges", "", true,
+                    [&](const json& e, const std::string& name) { add_edge(e, name, &g); });
     for_each_object(doc, "loop_closures", "", false, [&](const json& l, const std::string& name) {
       g.loop_closures.push_back({integer_at<int>(l, "from", name), integer_at<int>(l, "to", name),
                                  number_at(l, "fitness", name), pose_at(l, "measurement", name),
@@ -625,13 +647,15 @@ std::vector<RoomEvent> read_room_events(const std::string& path) {
 std::string format_timings(const Timings& t) {
   std::string out = std::string(kTimingsHeader) + "," + kActiveKeyframes + "\n";
   for (const ScanTiming& s : t.scans) {
-    append(&out, "scan,%zu,%.6f,%d,%zu,%.3f,%.3f,%.3f,%.3f,,,,,,%s,%.3f,%zu,%ld,%ld,%ld,%.3f,\n", s.index, s.stamp,
-           s.keyframe, s.num_points, s.prefilter_ms, s.walls_ms, s.loop_ms, s.frontend_ms, quote_csv(s.warning).c_str(),
-           s.ground_ms, s.ground_nodes, s.ground_tp, s.ground_fp, s.ground_fn, s.rooms_ms);
+    append(&out, "scan,%zu,%.6f,%d,%zu,%.3f,%.3f,%.3f,%.3f,,,,,,%s,%.3f,%zu,%ld,%ld,%ld,%.3f,\n", s.index,
+           s.stamp, s.keyframe, s.num_points, s.prefilter_ms, s.walls_ms, s.loop_ms, s.frontend_ms,
+           quote_csv(s.warning).c_str(), s.ground_ms, s.ground_nodes, s.ground_tp, s.ground_fp, s.ground_fn,
+           s.rooms_ms);
   }
   for (const OptimizationTiming& o : t.optimizations) {
-    append(&out, "optimization,%zu,%.6f,%d,,,,,,%.6f,%d,%d,%d,%d,%s,,,,,,,%d\n", o.index, o.stamp, o.keyframe, o.seconds,
-           o.full ? 1 : 0, o.n_variables, o.n_factors, o.iterations, o.reason.c_str(), o.active_keyframes);
+    append(&out, "optimization,%zu,%.6f,%d,,,,,,%.6f,%d,%d,%d,%d,%s,,,,,,,%d\n", o.index, o.stamp, o.keyframe,
+           o.seconds, o.full ? 1 : 0, o.n_variables, o.n_factors, o.iterations, o.reason.c_str(),
+           o.active_keyframes);
   }
   return out;
 }
@@ -656,10 +680,31 @@ Timings read_timings(const std::string& path) {
     col.push_back(static_cast<std::size_t>(it - header.begin()));
   }
   const auto active_at = std::find(header.begin(), header.end(), kActiveKeyframes);
-  const std::size_t active_col = active_at == header.end() ? header.size() : static_cast<std::size_t>(active_at - header.begin());
+  const std::size_t active_col =
+      active_at == header.end() ? header.size() : static_cast<std::size_t>(active_at - header.begin());
   const std::vector<std::string> names = split_csv(kTimingsHeader);
-  enum Column { kIndex = 1, kStamp, kKeyframe, kNumPoints, kPrefilter, kWalls, kLoop, kFrontend, kSeconds, kFull,
-                kVariables, kFactors, kIterations, kReason, kGroundMs, kGroundNodes, kTp, kFp, kFn, kRoomsMs };
+  enum Column {
+    kIndex = 1,
+    kStamp,
+    kKeyframe,
+    kNumPoints,
+    kPrefilter,
+    kWalls,
+    kLoop,
+    kFrontend,
+    kSeconds,
+    kFull,
+    kVariables,
+    kFactors,
+    kIterations,
+    kReason,
+    kGroundMs,
+    kGroundNodes,
+    kTp,
+    kFp,
+    kFn,
+    kRoomsMs
+  };
   Timings t;
   int line_no = 1;
   while (std::getline(in, line)) {
@@ -674,7 +719,8 @@ Timings read_timings(const std::string& path) {
         return col[c] < cols.size() ? cols[col[c]] : kNone;
       };
       auto bad = [&](Column c) {
-        return FieldError("malformed " + names[c] + (kind == "scan" ? " in a scan row" : " in an optimization row"));
+        return FieldError("malformed " + names[c] +
+                          (kind == "scan" ? " in a scan row" : " in an optimization row"));
       };
       auto real = [&](Column c) {
         double v = 0.0;
@@ -703,7 +749,8 @@ Timings read_timings(const std::string& path) {
         // eval sums these over the scans: a corrupt count must not overflow the sum.
         for (const auto& [c, v] : {std::pair{kTp, s.ground_tp}, {kFp, s.ground_fp}, {kFn, s.ground_fn}}) {
           if (v < -1 || v > kMaxScanPoints)
-            throw FieldError(names[c] + " in a scan row must be -1 (no labels) or a count of a scan's points");
+            throw FieldError(names[c] +
+                             " in a scan row must be -1 (no labels) or a count of a scan's points");
         }
         s.rooms_ms = real(kRoomsMs);
         t.scans.push_back(std::move(s));
@@ -847,10 +894,12 @@ MapVertex ply_vertex(const char* v, std::size_t i) {
   std::memcpy(xyz, v, sizeof xyz);
   MapVertex out;
   for (std::size_t a = 0; a < kPlyAxes; ++a) {
-    out.p[static_cast<Eigen::Index>(a)] = bounded_coordinate(static_cast<double>(xyz[a]), item("vertex", i) + "." + kPlyAxisNames[a]);
+    out.p[static_cast<Eigen::Index>(a)] =
+        bounded_coordinate(static_cast<double>(xyz[a]), item("vertex", i) + "." + kPlyAxisNames[a]);
   }
   const char* colour = v + sizeof xyz;
-  out.r = static_cast<std::uint8_t>(colour[0]), out.g = static_cast<std::uint8_t>(colour[1]), out.b = static_cast<std::uint8_t>(colour[2]);
+  out.r = static_cast<std::uint8_t>(colour[0]), out.g = static_cast<std::uint8_t>(colour[1]),
+  out.b = static_cast<std::uint8_t>(colour[2]);
   return out;
 }
 
@@ -858,16 +907,21 @@ MapVertex ply_vertex(const char* v, std::size_t i) {
 // a body short of the count, or bytes after it (a header saying float over doubles, a file
 // appended to), is an InputError naming the file and the byte.
 template <class Scalar>
-std::vector<MapVertex> ply_vertices(const std::string& path, const std::string& bytes, std::size_t at, std::size_t count) {
+std::vector<MapVertex> ply_vertices(const std::string& path, const std::string& bytes, std::size_t at,
+                                    std::size_t count) {
   const std::size_t stride = ply_vertex_bytes<Scalar>(), body = bytes.size() - at;
   if (body / stride < count) {
-    throw input_error(path, 0, "holds " + std::to_string(body / stride) + " vertices of " + std::to_string(stride) + " bytes from byte " +
-                                   std::to_string(at) + ", its header says " + std::to_string(count));
+    throw input_error(path, 0,
+                      "holds " + std::to_string(body / stride) + " vertices of " + std::to_string(stride) +
+                          " bytes from byte " + std::to_string(at) + ", its header says " +
+                          std::to_string(count));
   }
   if (body != count * stride) {  // no overflow: count * stride <= body
-    throw input_error(path, 0, std::to_string(body - count * stride) + " bytes after the last of the header's " +
-                                   std::to_string(count) + " vertices of " + std::to_string(stride) + " bytes, from byte " +
-                                   std::to_string(at + count * stride) + " (are the properties' types the body's?)");
+    throw input_error(path, 0,
+                      std::to_string(body - count * stride) + " bytes after the last of the header's " +
+                          std::to_string(count) + " vertices of " + std::to_string(stride) +
+                          " bytes, from byte " + std::to_string(at + count * stride) +
+                          " (are the properties' types the body's?)");
   }
   std::vector<MapVertex> out(count);
   for (std::size_t i = 0; i < count; ++i) {
@@ -902,14 +956,18 @@ std::vector<MapVertex> read_map_ply(const std::string& path) {
     if (key == "element" && a == "vertex") {
       unsigned long long n = 0;
       const auto [ptr, ec] = std::from_chars(b.data(), b.data() + b.size(), n);
-      if (ec != std::errc() || ptr != b.data() + b.size()) throw input_error(path, line_no, "vertex count '" + printable(b) + "' is not a whole number");
+      if (ec != std::errc() || ptr != b.data() + b.size())
+        throw input_error(path, line_no, "vertex count '" + printable(b) + "' is not a whole number");
       count = static_cast<std::size_t>(n);
     }
     if (key == "property") properties.push_back(a + " " + b);
   }
-  const bool doubles = properties == std::vector<std::string>{"double x", "double y", "double z", "uchar red", "uchar green", "uchar blue"};
-  const bool floats = properties == std::vector<std::string>{"float x", "float y", "float z", "uchar red", "uchar green", "uchar blue"};
-  if (!doubles && !floats) throw input_error(path, 0, "vertices are not x y z (float or double) then red green blue (uchar)");
+  const bool doubles = properties == std::vector<std::string>{"double x",  "double y",    "double z",
+                                                              "uchar red", "uchar green", "uchar blue"};
+  const bool floats = properties == std::vector<std::string>{"float x",   "float y",     "float z",
+                                                             "uchar red", "uchar green", "uchar blue"};
+  if (!doubles && !floats)
+    throw input_error(path, 0, "vertices are not x y z (float or double) then red green blue (uchar)");
   const std::size_t at = body + end.size();
   return doubles ? ply_vertices<double>(path, bytes, at, count) : ply_vertices<float>(path, bytes, at, count);
 }

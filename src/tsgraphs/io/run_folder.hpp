@@ -57,7 +57,8 @@ struct SceneGraph {
     double accum_distance = 0.0;  ///< odometry distance from the start, m
     PoseRecord pose;              ///< optimised, map <- keyframe
     PoseRecord odom;              ///< the input odometry
-    int anchor = -1;              ///< [anchor]: retired (keyframe_retirement), its pose follows this keyframe's; -1: in the graph
+    int anchor =
+        -1;  ///< [anchor]: retired (keyframe_retirement), its pose follows this keyframe's; -1: in the graph
   };
   /// A mapped plane; the extent fields exist when it has points (segment: walls only).
   struct Plane {
@@ -65,20 +66,20 @@ struct SceneGraph {
     std::string kind = "wall";  ///< "wall" or "horizontal"
     Eigen::Vector3d n = Eigen::Vector3d::UnitX();
     double d = 0.0;
-    std::vector<int> keyframes;                   ///< observers, ascending
-    std::optional<std::size_t> num_points;        ///< [num_points]
-    std::optional<Eigen::Vector3d> centroid;      ///< [centroid], on the plane
-    std::optional<std::array<Vec2, 2>> segment;   ///< [segment]: ends of the points' extent, x-y
-    std::optional<std::array<double, 2>> z_range; ///< [z_range]: the points' heights
+    std::vector<int> keyframes;                    ///< observers, ascending
+    std::optional<std::size_t> num_points;         ///< [num_points]
+    std::optional<Eigen::Vector3d> centroid;       ///< [centroid], on the plane
+    std::optional<std::array<Vec2, 2>> segment;    ///< [segment]: ends of the points' extent, x-y
+    std::optional<std::array<double, 2>> z_range;  ///< [z_range]: the points' heights
   };
   struct TraversableNode {
     int id = -1;
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
     Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
     double probability = 0.0;
-    int observations = 0;      ///< [observations]
-    int anchor_keyframe = -1;  ///< [anchor_keyframe]
-    std::vector<int> keyframes;///< [keyframes]
+    int observations = 0;        ///< [observations]
+    int anchor_keyframe = -1;    ///< [anchor_keyframe]
+    std::vector<int> keyframes;  ///< [keyframes]
   };
   /// A footprint of the room map.
   struct Room {
@@ -86,10 +87,10 @@ struct SceneGraph {
     std::string kind = "room";  ///< "room" or "corridor"
     int level = 0;              ///< index into `levels`
     OrientedRect rect;          ///< the footprint, or the smallest rectangle round `polygon`
-    Polygon2 polygon;           ///< [polygon]: the footprint when it is no rectangle (counter-clockwise), else empty
-    std::vector<int> walls;     ///< [walls]
-    int extractions = 0;        ///< [extractions]: extractions associated with it
-    std::optional<int> node;    ///< [node]: its room node, null when it has none
+    Polygon2 polygon;  ///< [polygon]: the footprint when it is no rectangle (counter-clockwise), else empty
+    std::vector<int> walls;                   ///< [walls]
+    int extractions = 0;                      ///< [extractions]: extractions associated with it
+    std::optional<int> node;                  ///< [node]: its room node, null when it has none
     std::vector<Eigen::Vector3d> free_space;  ///< [free_space]: vertices of its latest extraction
   };
   /// A room node of the graph (optimised centre).
@@ -149,7 +150,7 @@ struct SceneGraph {
   std::vector<KeyframePlaneEdge> keyframe_plane_edges;
   std::vector<RoomPlanesEdge> room_planes_edges;
   std::vector<FloorRoomEdge> floor_room_edges;
-  std::vector<LoopClosure> loop_closures;          ///< [loop_closures]: every accepted loop, in order
+  std::vector<LoopClosure> loop_closures;  ///< [loop_closures]: every accepted loop, in order
 };
 
 /// scene_graph.json's text ("format": "tsgraphs-scene-graph", "version": 1).
@@ -161,16 +162,17 @@ SceneGraph read_scene_graph(const std::string& path);
 
 /// One line of rooms_events.jsonl: one room extraction (docs/metrics.md).
 struct RoomEvent {
-  double t = 0.0;            ///< time of the extraction, s
-  int lap = 1;               ///< traversal it happened in, from 1
-  int room_id = -1;          ///< the room node it created or was associated with
-  bool is_new = true;        ///< key "new": false for a re-detection of an existing room node
-  int level = 0;             ///< index of the level
+  double t = 0.0;      ///< time of the extraction, s
+  int lap = 1;         ///< traversal it happened in, from 1
+  int room_id = -1;    ///< the room node it created or was associated with
+  bool is_new = true;  ///< key "new": false for a re-detection of an existing room node
+  int level = 0;       ///< index of the level
   Vec2 center = Vec2::Zero();
-  OrientedRect rect;         ///< footprint in the map frame at the time of extraction (or the rectangle round `polygon`)
-  Polygon2 polygon;          ///< [polygon]: the footprint when it is no rectangle, else empty
-  std::vector<int> walls;    ///< ids of the wall planes that bound it
-  std::string kind = "room"; ///< "room" or "corridor"
+  OrientedRect
+      rect;  ///< footprint in the map frame at the time of extraction (or the rectangle round `polygon`)
+  Polygon2 polygon;           ///< [polygon]: the footprint when it is no rectangle, else empty
+  std::vector<int> walls;     ///< ids of the wall planes that bound it
+  std::string kind = "room";  ///< "room" or "corridor"
 };
 
 /// The event as one line of JSON without the newline, keys in alphabetical order (as `run`
@@ -187,10 +189,10 @@ std::vector<RoomEvent> read_room_events(const std::string& path);
 struct ScanTiming {
   std::size_t index = 0;  ///< scan index
   double stamp = 0.0;
-  int keyframe = -1;      ///< keyframe made from it, -1 for none
+  int keyframe = -1;  ///< keyframe made from it, -1 for none
   std::size_t num_points = 0;
   double prefilter_ms = 0.0, walls_ms = 0.0, loop_ms = 0.0, frontend_ms = 0.0;
-  std::string warning;    ///< column "reason": why it was skipped, "" for none
+  std::string warning;  ///< column "reason": why it was skipped, "" for none
   double ground_ms = 0.0;
   std::size_t ground_nodes = 0;
   long ground_tp = -1, ground_fp = -1, ground_fn = -1;  ///< -1: the scan had no labels
@@ -205,8 +207,9 @@ struct OptimizationTiming {
   double seconds = 0.0;   ///< column "optimization_s"
   bool full = false;
   int n_variables = 0, n_factors = 0, iterations = 0;
-  std::string reason;     ///< "schedule", "loop", "periodic" or "final"
-  int active_keyframes = -1;  ///< keyframes in the graph after it (retired ones not counted); -1: not recorded
+  std::string reason;  ///< "schedule", "loop", "periodic" or "final"
+  int active_keyframes =
+      -1;  ///< keyframes in the graph after it (retired ones not counted); -1: not recorded
 };
 
 struct Timings {
@@ -224,17 +227,17 @@ Timings read_timings(const std::string& path);
 
 /// The platform the run measured or was given (pipeline/platform.hpp).
 struct RunPlatform {
-  double sensor_height = 0.0;          ///< m above the floor
-  std::string sensor_height_source;    ///< "measured", "config" or "fallback"
-  double tilt_deg = 0.0;               ///< measured: the sensor's z against the floor's normal
+  double sensor_height = 0.0;        ///< m above the floor
+  std::string sensor_height_source;  ///< "measured", "config" or "fallback"
+  double tilt_deg = 0.0;             ///< measured: the sensor's z against the floor's normal
   std::size_t scans_measured = 0, floors_found = 0;
-  double height_spread = 0.0;          ///< m, max - min over the scans with a floor
-  int rings = 0;                       ///< beam rings found
+  double height_spread = 0.0;  ///< m, max - min over the scans with a floor
+  int rings = 0;               ///< beam rings found
   double ring_spacing_deg = 0.0, lowest_ring_deg = 0.0;
-  std::string preset;                  ///< the ground's preset ("" none)
-  std::string preset_source;           ///< "beams", "config" or "none"
-  double seed_radius = 0.0;            ///< m
-  std::string seed_radius_source;      ///< "beams", "config" or "default"
+  std::string preset;              ///< the ground's preset ("" none)
+  std::string preset_source;       ///< "beams", "config" or "none"
+  double seed_radius = 0.0;        ///< m
+  std::string seed_radius_source;  ///< "beams", "config" or "default"
 };
 
 /// The run's summary.
@@ -242,15 +245,16 @@ struct RunSummary {
   std::string sequence;  ///< input folder or file
   std::size_t num_scans = 0, num_skipped = 0;
   std::string odometry = "input";  ///< "input" or "lidar": where the poses came from
-  std::size_t num_keyframes = 0, num_planes = 0, num_traversable_nodes = 0, num_rooms = 0, num_room_events = 0,
-              num_loops = 0, num_optimizations = 0;
-  double t_pgo_s = 0.0;              ///< total back-end time
+  std::size_t num_keyframes = 0, num_planes = 0, num_traversable_nodes = 0, num_rooms = 0,
+              num_room_events = 0, num_loops = 0, num_optimizations = 0;
+  double t_pgo_s = 0.0;  ///< total back-end time
   double sequence_duration_s = 0.0;
   double wall_time_s = 0.0;
-  double rtf = 0.0;                  ///< sequence_duration_s / wall_time_s (0 when no time passed)
+  double rtf = 0.0;  ///< sequence_duration_s / wall_time_s (0 when no time passed)
   double peak_rss_mb = 0.0;
   std::optional<RunPlatform> platform;  ///< absent in runs written before tsgraphs measured it
-  std::vector<std::string> warnings;    ///< the pipeline's warnings (a layer left empty, the platform), in order
+  std::vector<std::string>
+      warnings;  ///< the pipeline's warnings (a layer left empty, the platform), in order
 };
 
 std::string format_run_summary(const RunSummary& summary);

@@ -30,7 +30,8 @@ constexpr double kStampTolerance = 1e-6;
 bool is_file(const fs::path& p) {
   std::error_code ec;
   const fs::file_status status = fs::status(p, ec);
-  if (ec && status.type() != fs::file_type::not_found) throw input_error(p.string(), 0, "cannot read: " + ec.message());
+  if (ec && status.type() != fs::file_type::not_found)
+    throw input_error(p.string(), 0, "cannot read: " + ec.message());
   return fs::is_regular_file(status);
 }
 
@@ -92,8 +93,8 @@ namespace {
 // TUM poses carry their own stamps: each must be its scan's time, up to one offset for all
 // (times.txt may count from the start, the poses in Unix time). A pose nearer another scan's
 // time than its own (half the gap to a neighbour) belongs to another scan.
-void check_stamps_agree(const std::string& poses, const std::vector<double>& pose_stamps, const std::string& times,
-                        const std::vector<double>& scan_times) {
+void check_stamps_agree(const std::string& poses, const std::vector<double>& pose_stamps,
+                        const std::string& times, const std::vector<double>& scan_times) {
   const double offset = pose_stamps.front() - scan_times.front();
   for (std::size_t i = 0; i < scan_times.size(); ++i) {
     double gap = std::numeric_limits<double>::infinity();
@@ -102,8 +103,10 @@ void check_stamps_agree(const std::string& poses, const std::vector<double>& pos
     const double off = std::abs(pose_stamps[i] - offset - scan_times[i]);
     if (off > kStampTolerance && !(off < 0.5 * gap)) {
       char what[200];
-      std::snprintf(what, sizeof what, "pose %zu: stamp %.6f is %.6g s from the scan's time in %s (offset %.6f s): "
-                    "not this scan's pose", i + 1, pose_stamps[i], off, times.c_str(), offset);
+      std::snprintf(what, sizeof what,
+                    "pose %zu: stamp %.6f is %.6g s from the scan's time in %s (offset %.6f s): "
+                    "not this scan's pose",
+                    i + 1, pose_stamps[i], off, times.c_str(), offset);
       throw input_error(poses, 0, what);
     }
   }
@@ -137,22 +140,27 @@ ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
         std::string missing;
         for (const char* f : {"times.txt", "odom.txt"})
           if (!is_file(d / f)) missing += std::string(missing.empty() ? "" : " and ") + f;
-        throw input_error(options.folder, 0,
-                          "scans/ holds " + std::to_string(in_scans) + " scans but " + missing +
-                              (missing.find(" and ") != std::string::npos ? " are" : " is") +
-                              " missing: a sequence folder needs times.txt and odom.txt (to run the scans alone, "
-                              "--scans '" + (d / "scans").string() + "/*')");
+        throw input_error(
+            options.folder, 0,
+            "scans/ holds " + std::to_string(in_scans) + " scans but " + missing +
+                (missing.find(" and ") != std::string::npos ? " are" : " is") +
+                " missing: a sequence folder needs times.txt and odom.txt (to run the scans alone, "
+                "--scans '" +
+                (d / "scans").string() + "/*')");
       }
-      throw input_error(options.folder, 0,
-                        "no scans: neither a sequence folder (times.txt, odom.txt, scans/) nor .pcd or .bin files "
-                        "(in it or in velodyne/)");
+      throw input_error(
+          options.folder, 0,
+          "no scans: neither a sequence folder (times.txt, odom.txt, scans/) nor .pcd or .bin files "
+          "(in it or in velodyne/)");
     }
   }
   const auto is_pcd = [](const std::string& f) { return fs::path(f).extension() == ".pcd"; };
   pcd_ = is_pcd(files_.front());
   for (const std::string& f : files_) {
-    if (is_pcd(f) != pcd_) throw input_error(f, 0, std::string("a ") + (pcd_ ? ".bin" : ".pcd") + " scan among " +
-                                                       (pcd_ ? ".pcd" : ".bin") + " scans: pass --scans GLOB");
+    if (is_pcd(f) != pcd_)
+      throw input_error(f, 0,
+                        std::string("a ") + (pcd_ ? ".bin" : ".pcd") + " scan among " +
+                            (pcd_ ? ".pcd" : ".bin") + " scans: pass --scans GLOB");
     if (!is_pcd(f) && fs::path(f).extension() != ".bin")
       throw input_error(f, 0, "not a scan (.pcd or KITTI .bin): narrow --scans");
   }
@@ -161,15 +169,20 @@ ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
   const std::size_t n = files_.size();
 
   // The poses.
-  const std::string poses = options.poses.empty() ? find_beside(beside, {"poses.txt", "odom.txt"}) : options.poses;
+  const std::string poses =
+      options.poses.empty() ? find_beside(beside, {"poses.txt", "odom.txt"}) : options.poses;
   std::string format = poses.empty() ? "none" : options.pose_format;
   if (format == "auto") {
     const int fields = fields_on_first_line(poses);
-    if (fields == kTumFields) format = "tum";
-    else if (fields == kKittiFields) format = "kitti";
+    if (fields == kTumFields)
+      format = "tum";
+    else if (fields == kKittiFields)
+      format = "kitti";
     else
-      throw input_error(poses, 0, std::to_string(fields) + " fields on the first line: neither TUM (8) nor KITTI (12); "
-                                                            "set --pose-format");
+      throw input_error(poses, 0,
+                        std::to_string(fields) +
+                            " fields on the first line: neither TUM (8) nor KITTI (12); "
+                            "set --pose-format");
   }
   std::vector<double> pose_stamps;
   if (format == "tum") {
@@ -183,20 +196,24 @@ ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
     throw input_error(poses, 0, "pose format '" + format + "': expected tum, kitti or auto");
   }
   if (!poses.empty() && info_.odometry.size() != n)
-    throw input_error(poses, 0, "has " + std::to_string(info_.odometry.size()) + " poses for " + std::to_string(n) +
-                                    " scans (one pose per scan, in scan order)" + first_beyond(files_, info_.odometry.size(), "pose"));
+    throw input_error(poses, 0,
+                      "has " + std::to_string(info_.odometry.size()) + " poses for " + std::to_string(n) +
+                          " scans (one pose per scan, in scan order)" +
+                          first_beyond(files_, info_.odometry.size(), "pose"));
 
   // The times.
   const std::string times = options.times.empty() ? find_beside(beside, {"times.txt"}) : options.times;
   if (!times.empty()) {
     info_.times = read_times(times);
     if (info_.times.size() != n)
-      throw input_error(times, 0, "has " + std::to_string(info_.times.size()) + " times for " + std::to_string(n) + " scans" +
-                                      first_beyond(files_, info_.times.size(), "time"));
+      throw input_error(times, 0,
+                        "has " + std::to_string(info_.times.size()) + " times for " + std::to_string(n) +
+                            " scans" + first_beyond(files_, info_.times.size(), "time"));
     if (!pose_stamps.empty()) check_stamps_agree(poses, pose_stamps, times, info_.times);
   } else if (!pose_stamps.empty()) {
     for (std::size_t i = 1; i < n; ++i)
-      if (pose_stamps[i] < pose_stamps[i - 1]) throw input_error(poses, static_cast<int>(i) + 1, "times go backwards");
+      if (pose_stamps[i] < pose_stamps[i - 1])
+        throw input_error(poses, static_cast<int>(i) + 1, "times go backwards");
     info_.times = pose_stamps;
   } else {
     if (!(options.scan_period > 0.0)) throw input_error(name_, 0, "scan period must be positive");

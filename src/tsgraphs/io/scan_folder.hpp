@@ -16,12 +16,12 @@
 namespace tsgraphs::io {
 
 struct ScanFolderOptions {
-  std::string folder;              ///< the folder to detect the layout in ("" with a `scans` glob)
-  std::string scans;               ///< a glob of scan files (e.g. "run1/*.pcd"), or "" to detect
-  std::string poses;               ///< the pose file, or "" to detect
+  std::string folder;                ///< the folder to detect the layout in ("" with a `scans` glob)
+  std::string scans;                 ///< a glob of scan files (e.g. "run1/*.pcd"), or "" to detect
+  std::string poses;                 ///< the pose file, or "" to detect
   std::string pose_format = "auto";  ///< "tum", "kitti", or "auto" (by the first line's field count)
-  std::string times;               ///< a times file (one number a line), or "" to detect
-  double scan_period = 0.1;        ///< s between scans when no times are given (a 10 Hz LiDAR)
+  std::string times;                 ///< a times file (one number a line), or "" to detect
+  double scan_period = 0.1;          ///< s between scans when no times are given (a 10 Hz LiDAR)
 };
 
 /// Whether `dir` is a sequence folder of docs/scene-format.md (times.txt, odom.txt, scans/).

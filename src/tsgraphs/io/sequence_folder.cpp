@@ -26,10 +26,11 @@ void write_binary(const fs::path& path, const void* data, std::size_t bytes) {
   if (!out) throw std::runtime_error(path.string() + ": write failed");
 }
 
-void write_text(const fs::path& path, const std::string& text) { write_binary(path, text.data(), text.size()); }
+void write_text(const fs::path& path, const std::string& text) {
+  write_binary(path, text.data(), text.size());
+}
 
 std::string read_all(const fs::path& path) { return read_text_file(path.string()); }
-
 
 std::string format_times(const std::vector<double>& times) {
   std::string out;
@@ -76,12 +77,15 @@ void check_no_scan_beyond(const fs::path& scans, std::size_t n) {
   std::string first;
   for (; it != fs::directory_iterator(); it.increment(ec)) {
     const fs::path& p = it->path();
-    if (p.extension() == kScanExtension && !is_listed_scan(p.filename(), n) && (first.empty() || p.string() < first)) first = p.string();
+    if (p.extension() == kScanExtension && !is_listed_scan(p.filename(), n) &&
+        (first.empty() || p.string() < first))
+      first = p.string();
   }
   if (ec) throw input_error(scans.string(), 0, "cannot list the folder: " + ec.message());
   if (!first.empty()) {
-    throw input_error(first, 0, "a scan beyond the " + std::to_string(n) +
-                                    " of times.txt and odom.txt: a sequence folder's files agree in number");
+    throw input_error(first, 0,
+                      "a scan beyond the " + std::to_string(n) +
+                          " of times.txt and odom.txt: a sequence folder's files agree in number");
   }
 }
 
@@ -111,7 +115,8 @@ void SequenceWriter::write_scan(std::size_t index, const PointCloud& cloud) {
   if (cloud.has_labels()) {
     write_binary(stem.string() + ".label", cloud.labels.data(), cloud.labels.size() * sizeof(std::uint32_t));
   }
-  if (cloud.has_times()) write_binary(stem.string() + ".time", cloud.times.data(), cloud.times.size() * sizeof(float));
+  if (cloud.has_times())
+    write_binary(stem.string() + ".time", cloud.times.data(), cloud.times.size() * sizeof(float));
   ++impl_->scans_written;
 }
 
@@ -122,7 +127,8 @@ void SequenceWriter::commit(const SequenceInfo& info) {
     throw std::logic_error("SequenceWriter::commit: scans, times and poses disagree in number");
   }
   write_text(dir / "odom.txt", format_tum(stamp(info.times, info.odometry)));
-  if (!info.groundtruth.empty()) write_text(dir / "groundtruth.txt", format_tum(stamp(info.times, info.groundtruth)));
+  if (!info.groundtruth.empty())
+    write_text(dir / "groundtruth.txt", format_tum(stamp(info.times, info.groundtruth)));
   if (!info.lap_starts.empty()) write_text(dir / "laps.txt", format_times(info.lap_starts));
   if (info.has_rooms) {
     nlohmann::json rooms = nlohmann::json::array();
@@ -138,7 +144,8 @@ void SequenceWriter::commit(const SequenceInfo& info) {
     std::error_code ec;
     fs::create_directories(to.parent_path(), ec);
     if (ec || !fs::copy_file(source, to, fs::copy_options::overwrite_existing, ec) || ec)
-      throw input_error(source, 0, "cannot copy into the sequence as " + inside + (ec ? ": " + ec.message() : ""));
+      throw input_error(source, 0,
+                        "cannot copy into the sequence as " + inside + (ec ? ": " + ec.message() : ""));
   }
   if (!info.scene_yaml.empty()) write_text(dir / "scene.yaml", info.scene_yaml);
   // times.txt last: it marks a folder as a sequence.
@@ -149,15 +156,17 @@ void SequenceWriter::commit(const SequenceInfo& info) {
 SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
   const fs::path d(dir);
   if (!fs::is_directory(d)) throw input_error(dir, 0, "not a folder");
-  if (!fs::exists(d / "times.txt")) throw input_error((d / "times.txt").string(), 0, "missing: not a sequence folder");
+  if (!fs::exists(d / "times.txt"))
+    throw input_error((d / "times.txt").string(), 0, "missing: not a sequence folder");
   info_.times = read_times((d / "times.txt").string());
   if (info_.times.empty()) throw input_error((d / "times.txt").string(), 0, "no timestamps");
   const std::size_t n = info_.times.size();
   auto poses_of = [&](const fs::path& p) {
     const std::vector<StampedPose> stamped = read_tum(p.string());
     if (stamped.size() != n) {
-      throw input_error(p.string(), 0, "has " + std::to_string(stamped.size()) + " poses but times.txt has " +
-                                           std::to_string(n) + " scans");
+      throw input_error(p.string(), 0,
+                        "has " + std::to_string(stamped.size()) + " poses but times.txt has " +
+                            std::to_string(n) + " scans");
     }
     std::vector<Pose3> poses;
     for (std::size_t i = 0; i < n; ++i) {
@@ -174,7 +183,8 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
   if (fs::exists(d / "laps.txt")) info_.lap_starts = read_times((d / "laps.txt").string());
   for (std::size_t i = 0; i < n; ++i) {
     const fs::path bin = d / "scans" / (scan_stem(i) + kScanExtension);
-    if (!fs::exists(bin)) throw input_error(bin.string(), 0, "missing scan (times.txt lists " + std::to_string(n) + ")");
+    if (!fs::exists(bin))
+      throw input_error(bin.string(), 0, "missing scan (times.txt lists " + std::to_string(n) + ")");
   }
   check_no_scan_beyond(d / "scans", n);
   if (fs::exists(d / "rooms_gt.json")) {
@@ -193,11 +203,13 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
         for (const auto& p : r.at("polygon")) {
           const Vec2 v(p.at(0).get<double>(), p.at(1).get<double>());
           if (!v.allFinite() || v.cwiseAbs().maxCoeff() > kMaxCoordinate)
-            throw input_error(path, 0, "room " + std::to_string(i) + " (" + room.name + "): polygon vertex " +
-                                           std::to_string(room.polygon.size()) + " is not a coordinate within 1e8 m");
+            throw input_error(path, 0,
+                              "room " + std::to_string(i) + " (" + room.name + "): polygon vertex " +
+                                  std::to_string(room.polygon.size()) + " is not a coordinate within 1e8 m");
           room.polygon.push_back(v);
         }
-        if (room.polygon.size() < 3) throw input_error(path, 0, "room " + std::to_string(i) + ": polygon needs 3 points");
+        if (room.polygon.size() < 3)
+          throw input_error(path, 0, "room " + std::to_string(i) + ": polygon needs 3 points");
         info_.rooms.push_back(std::move(room));
       }
     } catch (const nlohmann::json::exception& e) {
@@ -216,7 +228,8 @@ namespace {
 /// A scan's .label file holding `bytes` for `n` points: an InputError unless one label a point.
 void check_label_count(const std::string& path, std::uintmax_t bytes, std::size_t n) {
   if (bytes != n * sizeof(std::uint32_t))
-    throw input_error(path, 0, "has " + std::to_string(bytes / 4) + " labels for " + std::to_string(n) + " points");
+    throw input_error(path, 0,
+                      "has " + std::to_string(bytes / 4) + " labels for " + std::to_string(n) + " points");
 }
 
 }  // namespace
@@ -254,7 +267,9 @@ PointCloud SequenceReader::scan(std::size_t index) const {
   if (fs::exists(time_path)) {
     const std::string raw = read_all(time_path);
     if (raw.size() != n * sizeof(float))
-      throw input_error(time_path, 0, "has " + std::to_string(raw.size() / 4) + " times for " + std::to_string(n) + " points");
+      throw input_error(
+          time_path, 0,
+          "has " + std::to_string(raw.size() / 4) + " times for " + std::to_string(n) + " points");
     cloud.times.resize(n);
     std::memcpy(cloud.times.data(), raw.data(), raw.size());
     for (std::size_t i = 0; i < n; ++i)

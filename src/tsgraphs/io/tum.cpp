@@ -24,9 +24,12 @@ double number_of(const std::string& word, const char* field, const std::string& 
   const char* end = word.data() + word.size();
   const auto [ptr, ec] = std::from_chars(begin, end, x);
   if (ec == std::errc::result_out_of_range)
-    throw input_error(path, line_no, std::string(field) + " is " + printable(word) + ": out of the range of a double");
+    throw input_error(path, line_no,
+                      std::string(field) + " is " + printable(word) + ": out of the range of a double");
   if (ec != std::errc() || ptr != end)
-    throw input_error(path, line_no, "expected 8 numbers: t x y z qx qy qz qw, " + std::string(field) + " is '" + printable(word) + "'");
+    throw input_error(
+        path, line_no,
+        "expected 8 numbers: t x y z qx qy qz qw, " + std::string(field) + " is '" + printable(word) + "'");
   if (!std::isfinite(x)) throw input_error(path, line_no, "non-finite value");
   return x;
 }
@@ -39,8 +42,8 @@ std::string format_tum(const std::vector<StampedPose>& poses) {
   for (const StampedPose& p : poses) {
     const Eigen::Vector3d t = p.pose.translation();
     const Eigen::Quaterniond q(p.pose.linear());
-    std::snprintf(line, sizeof(line), "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", p.t, t.x(), t.y(), t.z(),
-                  q.x(), q.y(), q.z(), q.w());
+    std::snprintf(line, sizeof(line), "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", p.t, t.x(), t.y(),
+                  t.z(), q.x(), q.y(), q.z(), q.w());
     out += line;
   }
   return out;
@@ -64,10 +67,14 @@ std::vector<StampedPose> read_tum(const std::string& path) {
       v[i] = number_of(word, kFieldNames[i], path, line_no);
       // The stamp may be a Unix time; a position is bounded, the quaternion is checked below.
       if (i >= 1 && i <= 3 && std::abs(v[i]) > kMaxCoordinate)
-        throw input_error(path, line_no, std::string(kFieldNames[i]) + " is " + printable(word) + ": not a coordinate within 1e8 m");
+        throw input_error(
+            path, line_no,
+            std::string(kFieldNames[i]) + " is " + printable(word) + ": not a coordinate within 1e8 m");
     }
     std::string rest;
-    if (s >> rest) throw input_error(path, line_no, "expected 8 numbers: t x y z qx qy qz qw, found more: '" + printable(rest) + "'");
+    if (s >> rest)
+      throw input_error(path, line_no,
+                        "expected 8 numbers: t x y z qx qy qz qw, found more: '" + printable(rest) + "'");
     Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
     if (std::abs(q.norm() - 1.0) > 1e-3) throw input_error(path, line_no, "quaternion is not unit length");
     StampedPose p;

@@ -13,7 +13,8 @@ double pose_displacement(const Pose3& delta, double max_range) {
 
 AdaptiveThreshold::AdaptiveThreshold(double initial_threshold, double min_motion, double max_range)
     : initial_threshold_(initial_threshold), min_motion_(min_motion), max_range_(max_range) {
-  if (!(initial_threshold > 0.0)) throw std::invalid_argument("AdaptiveThreshold: initial_threshold must be > 0");
+  if (!(initial_threshold > 0.0))
+    throw std::invalid_argument("AdaptiveThreshold: initial_threshold must be > 0");
   if (!(min_motion >= 0.0)) throw std::invalid_argument("AdaptiveThreshold: min_motion must be >= 0");
   if (!(max_range > 0.0)) throw std::invalid_argument("AdaptiveThreshold: max_range must be > 0");
 }

@@ -21,7 +21,8 @@ std::pair<Pose3, double> sweep_motion(std::size_t index, const std::vector<doubl
     if (index < 1 || index >= times.size()) return {Pose3::Identity(), 0.0};
     return {odometry->last_motion(), times[index] - times[index - 1]};
   }
-  if (poses.size() != times.size() || times.size() < 2 || index >= times.size()) return {Pose3::Identity(), 0.0};
+  if (poses.size() != times.size() || times.size() < 2 || index >= times.size())
+    return {Pose3::Identity(), 0.0};
   const std::size_t a = index + 1 < times.size() ? index : index - 1;
   return {poses[a].inverse() * poses[a + 1], times[a + 1] - times[a]};
 }

@@ -14,12 +14,13 @@
 
 namespace tsgraphs::odometry {
 namespace {
-constexpr int kRefitRounds = 5;          // least-squares refits at most (they settle in two or three)
+constexpr int kRefitRounds = 5;  // least-squares refits at most (they settle in two or three)
 }  // namespace
 
 void FloorLevellingConfig::validate() const {
   check_ranges(*this, "FloorLevellingConfig");  // each field's limits, declared in visit()
-  if (!(max_range > min_range)) throw std::invalid_argument("FloorLevellingConfig: max_range must be > min_range");
+  if (!(max_range > min_range))
+    throw std::invalid_argument("FloorLevellingConfig: max_range must be > min_range");
 }
 
 namespace {
@@ -41,7 +42,7 @@ Eigen::Vector3d at(const Cloud& cloud, int i) { return cloud[i].getVector3fMap()
 std::optional<PlaneFit> ransac_plane(const Cloud::Ptr& cloud, const FloorLevellingConfig& config,
                                      std::size_t min_inliers) {
   if (cloud->size() < min_inliers) return std::nullopt;
-  pcl::SACSegmentation<pcl::PointXYZ> ransac(false);      // false: the fixed seed
+  pcl::SACSegmentation<pcl::PointXYZ> ransac(false);       // false: the fixed seed
   ransac.setModelType(pcl::SACMODEL_PERPENDICULAR_PLANE);  // PCL's name for "normal along the axis"
   // RANSAC, not MSAC: PCL's MSAC stops with an error at the first sample outside the axis
   // constraint.
@@ -73,7 +74,8 @@ PlaneFit refine(const Cloud& cloud, PlaneFit plane, const FloorLevellingConfig& 
   for (int round = 0; round < kRefitRounds; ++round) {
     std::vector<int> next;
     for (int i = 0; i < static_cast<int>(cloud.size()); ++i)
-      if (std::abs(plane.normal.dot(at(cloud, i) - plane.mean)) <= config.distance_threshold) next.push_back(i);
+      if (std::abs(plane.normal.dot(at(cloud, i) - plane.mean)) <= config.distance_threshold)
+        next.push_back(i);
     if (next.size() < 3 || next == members) break;
     members = std::move(next);
     plane.mean.setZero();
@@ -94,12 +96,14 @@ PlaneFit refine(const Cloud& cloud, PlaneFit plane, const FloorLevellingConfig& 
 /// The lowest point of each cell of a grid in the frame level with `plane` (TRAVEL's
 /// lowest-point representatives): the floor, where it is seen, and no ring trace above it.
 Cloud::Ptr lowest_per_cell(const Cloud& cloud, const PlaneFit& plane, double cell) {
-  const Eigen::Matrix3f R =
-      Eigen::Quaterniond::FromTwoVectors(plane.normal, Eigen::Vector3d::UnitZ()).toRotationMatrix().cast<float>();
+  const Eigen::Matrix3f R = Eigen::Quaterniond::FromTwoVectors(plane.normal, Eigen::Vector3d::UnitZ())
+                                .toRotationMatrix()
+                                .cast<float>();
   std::map<std::pair<long, long>, std::pair<float, int>> lowest;  // ordered: the same output every time
   for (int i = 0; i < static_cast<int>(cloud.size()); ++i) {
     const Eigen::Vector3f q = R * cloud[i].getVector3fMap();
-    const std::pair<long, long> key(std::lround(std::floor(q.x() / cell)), std::lround(std::floor(q.y() / cell)));
+    const std::pair<long, long> key(std::lround(std::floor(q.x() / cell)),
+                                    std::lround(std::floor(q.y() / cell)));
     const auto it = lowest.find(key);
     if (it == lowest.end() || q.z() < it->second.first) lowest[key] = {q.z(), i};
   }
@@ -127,7 +131,8 @@ FloorLevel level_from_floor(const PointCloud& scan, const FloorLevellingConfig& 
   const std::size_t min_inliers = static_cast<std::size_t>(config.min_inliers);
   const std::optional<PlaneFit> first = ransac_plane(candidates, config, min_inliers);
   if (!first) return level;
-  const Cloud::Ptr lowest = lowest_per_cell(*candidates, refine(*candidates, *first, config), config.cell_size);
+  const Cloud::Ptr lowest =
+      lowest_per_cell(*candidates, refine(*candidates, *first, config), config.cell_size);
   const std::optional<PlaneFit> seed =
       ransac_plane(lowest, config, static_cast<std::size_t>(config.min_cells));
   if (!seed) return level;

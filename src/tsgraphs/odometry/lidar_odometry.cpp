@@ -128,11 +128,13 @@ std::vector<std::size_t> in_range(const PointCloud& cloud, double min_range, dou
 
 void LidarOdometryConfig::validate() const {
   check_ranges(*this, "LidarOdometryConfig");  // each field's limits, declared in visit()
-  if (!(max_range > min_range)) throw std::invalid_argument("LidarOdometryConfig: max_range must be > min_range");
+  if (!(max_range > min_range))
+    throw std::invalid_argument("LidarOdometryConfig: max_range must be > min_range");
 }
 
-IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map, const Pose3& initial_guess,
-                       double max_correspondence_distance, double kernel_scale, const LidarOdometryConfig& config) {
+IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map,
+                       const Pose3& initial_guess, double max_correspondence_distance, double kernel_scale,
+                       const LidarOdometryConfig& config) {
   IcpResult result;
   result.pose = initial_guess;
   if (source.empty() || map.empty()) return result;
@@ -207,7 +209,8 @@ IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHa
   return result;
 }
 
-LidarOdometry::LidarOdometry(LidarOdometryConfig config, const Pose3& first_pose, SweepRegistrationConfig sweep)
+LidarOdometry::LidarOdometry(LidarOdometryConfig config, const Pose3& first_pose,
+                             SweepRegistrationConfig sweep)
     : config_(validated(config)),
       sweep_(validated(sweep)),
       first_pose_(first_pose),
@@ -256,7 +259,9 @@ Pose3 LidarOdometry::predict_with(bool repeat_tilt, double seconds) const {
 void LidarOdometry::score_tilt_predictions(const Pose3& pose) {
   if (poses_.size() < 2) return;
   // The tilt is where the map's up points in the sensor's frame: the turn about z drops out.
-  const auto up = [](const Pose3& T) -> Eigen::Vector3d { return T.linear().transpose() * Eigen::Vector3d::UnitZ(); };
+  const auto up = [](const Pose3& T) -> Eigen::Vector3d {
+    return T.linear().transpose() * Eigen::Vector3d::UnitZ();
+  };
   const auto error = [&](const Pose3& predicted) {
     return std::acos(std::clamp(up(predicted).dot(up(pose)), -1.0, 1.0));
   };
@@ -275,7 +280,7 @@ double voxel_overlap(const std::vector<Eigen::Vector3d>& source, const VoxelHash
 }
 
 std::vector<LidarOdometry::Start> LidarOdometry::initial_guesses(const std::vector<Eigen::Vector3d>& source,
-                                                                  const Pose3& prediction) const {
+                                                                 const Pose3& prediction) const {
   if (config_.yaw_search_deg <= 0.0 || poses_.empty()) return {{prediction, 0.0}};
   const std::size_t stride = overlap_stride(source);
   const double predicted = voxel_overlap(source, map_, prediction, stride);
@@ -291,7 +296,8 @@ std::vector<LidarOdometry::Start> LidarOdometry::initial_guesses(const std::vect
     for (const int sign : {1, -1}) {
       if (k == 0 && sign < 0) continue;
       const double turn = sign * k * config_.yaw_search_step_deg;
-      const Eigen::Matrix3d R = Eigen::AngleAxisd(turn * kDegToRad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      const Eigen::Matrix3d R =
+          Eigen::AngleAxisd(turn * kDegToRad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
       const Pose3& still = poses_.back();
       for (const Pose3* base : {&prediction, &still}) {
         if (k == 0 && base == &prediction) continue;
@@ -302,8 +308,10 @@ std::vector<LidarOdometry::Start> LidarOdometry::initial_guesses(const std::vect
     }
   }
   // Best first; stable, so that of equal scores the smaller turn comes first.
-  std::stable_sort(tried.begin(), tried.end(), [](const Scored& a, const Scored& b) { return a.score > b.score; });
-  if (tried.empty() || tried.front().score < predicted + config_.yaw_search_margin) return {{prediction, 0.0}};
+  std::stable_sort(tried.begin(), tried.end(),
+                   [](const Scored& a, const Scored& b) { return a.score > b.score; });
+  if (tried.empty() || tried.front().score < predicted + config_.yaw_search_margin)
+    return {{prediction, 0.0}};
   // The search's best, the prediction, then the next best turns that are more than two steps
   // from every turn already taken (a neighbour of a taken turn converges to the same pose).
   std::vector<Start> starts{tried.front().start};
@@ -320,7 +328,8 @@ std::vector<LidarOdometry::Start> LidarOdometry::initial_guesses(const std::vect
 }
 
 std::pair<LidarOdometry::Start, Pose3> LidarOdometry::choose_start(const std::vector<Eigen::Vector3d>& source,
-                                                                    const Pose3& prediction, double sigma) const {
+                                                                   const Pose3& prediction,
+                                                                   double sigma) const {
   const std::vector<Start> starts = initial_guesses(source, prediction);
   if (starts.size() == 1) return {starts.front(), starts.front().pose};
   // Each start gets a few ICP iterations; the one whose result overlaps the map most (the
@@ -375,7 +384,8 @@ std::size_t LidarOdometry::overlap_stride(const std::vector<Eigen::Vector3d>& so
   return std::max<std::size_t>(1, source.size() / static_cast<std::size_t>(config_.yaw_search_points));
 }
 
-Pose3 LidarOdometry::recovery_start(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction) const {
+Pose3 LidarOdometry::recovery_start(const std::vector<Eigen::Vector3d>& source,
+                                    const Pose3& prediction) const {
   const std::size_t stride =
       std::max<std::size_t>(1, source.size() / static_cast<std::size_t>(config_.recovery_points));
   double best = -1.0;
@@ -383,13 +393,15 @@ Pose3 LidarOdometry::recovery_start(const std::vector<Eigen::Vector3d>& source, 
   Pose3 best_pose = prediction;
   const double step = config_.voxel_size;  // a shift by less changes which voxels the points fall in little
   const int reach = static_cast<int>(std::floor(config_.recovery_search_m / step + 1e-9));
-  const int turns = static_cast<int>(std::floor(config_.yaw_search_deg / config_.recovery_turn_step_deg + 1e-9));
+  const int turns =
+      static_cast<int>(std::floor(config_.yaw_search_deg / config_.recovery_turn_step_deg + 1e-9));
   const Pose3& still = poses_.back();
   for (const Pose3* base : {&prediction, &still}) {
     for (int t = -turns; t <= turns; ++t) {
       Pose3 turned = *base;
       turned.linear() =
-          Eigen::AngleAxisd(t * config_.recovery_turn_step_deg * kDegToRad, Eigen::Vector3d::UnitZ()) * base->linear();
+          Eigen::AngleAxisd(t * config_.recovery_turn_step_deg * kDegToRad, Eigen::Vector3d::UnitZ()) *
+          base->linear();
       for (int i = -reach; i <= reach; ++i) {
         for (int j = -reach; j <= reach; ++j) {
           if (i * i + j * j > reach * reach) continue;
@@ -426,8 +438,8 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan, double stamp) {
   // Two resolutions: a finer one keeps the map detailed, a coarser one makes ICP cheap.
   std::vector<Eigen::Vector3d> frame, source;
   std::vector<double> frame_times, source_times;
-  first_points_in_range(scan, config_.min_range, config_.max_range, config_.voxel_size * config_.map_voxel_factor,
-                        frame, frame_times);
+  first_points_in_range(scan, config_.min_range, config_.max_range,
+                        config_.voxel_size * config_.map_voxel_factor, frame, frame_times);
   if (frame.empty()) {
     poses_.push_back(prediction);
     return prediction;
@@ -457,7 +469,8 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan, double stamp) {
       }
     }
     recent_overlaps_.push_back(last_icp_.overlap);
-    if (recent_overlaps_.size() > static_cast<std::size_t>(config_.recovery_window)) recent_overlaps_.pop_front();
+    if (recent_overlaps_.size() > static_cast<std::size_t>(config_.recovery_window))
+      recent_overlaps_.pop_front();
     pose = last_icp_.pose;
     if (swept && !last_icp_.lost) {
       // The rigid pose fits the sweep as a whole; the sweep's own motion, found from there,
@@ -487,7 +500,8 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan, double stamp) {
   }
 
   if (swept && last_sweep_.registered) {
-    for (std::size_t i = 0; i < frame.size(); ++i) frame[i] = pose * (last_sweep_.after(frame_times[i]) * frame[i]);
+    for (std::size_t i = 0; i < frame.size(); ++i)
+      frame[i] = pose * (last_sweep_.after(frame_times[i]) * frame[i]);
   } else {
     for (Eigen::Vector3d& p : frame) p = pose * p;  // to the world, in place: not needed after
   }

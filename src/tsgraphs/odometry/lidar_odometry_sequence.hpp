@@ -19,11 +19,13 @@ namespace tsgraphs::odometry {
 /// each scan's final voxel overlap.
 std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, LidarOdometry& odometry,
                                      const std::function<void(std::size_t, std::size_t)>& progress = {},
-                                     std::vector<std::size_t>* lost = nullptr, std::vector<double>* overlaps = nullptr);
+                                     std::vector<std::size_t>* lost = nullptr,
+                                     std::vector<double>* overlaps = nullptr);
 /// The same with an odometry of `config` starting at `initial_pose`.
 std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, const LidarOdometryConfig& config,
                                      const std::function<void(std::size_t, std::size_t)>& progress = {},
                                      const Pose3& initial_pose = Pose3::Identity(),
-                                     std::vector<std::size_t>* lost = nullptr, std::vector<double>* overlaps = nullptr);
+                                     std::vector<std::size_t>* lost = nullptr,
+                                     std::vector<double>* overlaps = nullptr);
 
 }  // namespace tsgraphs::odometry

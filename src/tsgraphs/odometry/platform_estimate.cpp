@@ -43,7 +43,8 @@ BeamLayout measure_beam_layout(const PointCloud& scan, const PlatformEstimateCon
   for (std::size_t begin = 0; begin < elevations.size();) {
     std::size_t end = begin + 1;
     while (end < elevations.size() && elevations[end] - elevations[end - 1] <= config.ring_gap_deg) ++end;
-    if (end - begin >= static_cast<std::size_t>(config.ring_min_points)) rings.push_back(elevations[(begin + end) / 2]);
+    if (end - begin >= static_cast<std::size_t>(config.ring_min_points))
+      rings.push_back(elevations[(begin + end) / 2]);
     begin = end;
   }
   BeamLayout layout;
@@ -61,14 +62,15 @@ BeamLayout measure_beam_layout(const PointCloud& scan, const PlatformEstimateCon
 
 namespace {
 
-constexpr int kRefits = 3;  // plane refits of the floor's returns (they settle in one or two)
+constexpr int kRefits = 3;               // plane refits of the floor's returns (they settle in one or two)
 constexpr double kMinFloorSpread = 0.5;  // m (sd) both ways: floor returns that fix a plane's tilt
 
 /// The lowest return of each grid cell in the frame whose z is `up` (z: height over the sensor).
 std::vector<Eigen::Vector3d> lowest_per_cell(const PointCloud& scan, const Eigen::Matrix3d& R_level_sensor,
                                              const FloorLevellingConfig& levelling) {
   std::map<std::pair<long, long>, Eigen::Vector3d> lowest;  // ordered: the same output every time
-  const double min_sq = levelling.min_range * levelling.min_range, max_sq = levelling.max_range * levelling.max_range;
+  const double min_sq = levelling.min_range * levelling.min_range,
+               max_sq = levelling.max_range * levelling.max_range;
   for (const Eigen::Vector3f& p : scan.points) {
     if (!p.allFinite()) continue;
     const Eigen::Vector3d q = R_level_sensor * p.cast<double>();
@@ -96,7 +98,8 @@ FloorHeight floor_height(const PointCloud& scan, const Eigen::Vector3d& up, bool
   double height = 0.0;
   std::size_t cells = 0;
   for (int round = 0; round <= (fit_tilt ? kRefits : 1); ++round) {
-    const Eigen::Matrix3d R = Eigen::Quaterniond::FromTwoVectors(normal, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::Matrix3d R =
+        Eigen::Quaterniond::FromTwoVectors(normal, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     const std::vector<Eigen::Vector3d> low = lowest_per_cell(scan, R, levelling);
     if (low.empty()) return out;
     // The fullest height bin (the first round) or the returns near the plane found (refits).
@@ -108,7 +111,10 @@ FloorHeight floor_height(const PointCloud& scan, const Eigen::Vector3d& up, bool
       std::size_t best_count = 0;
       for (const auto& [bin, count] : bins) {
         // A level's returns straddle two bins: count each bin with its neighbours.
-        const auto near = [&bins](long b) { const auto it = bins.find(b); return it == bins.end() ? std::size_t{0} : it->second; };
+        const auto near = [&bins](long b) {
+          const auto it = bins.find(b);
+          return it == bins.end() ? std::size_t{0} : it->second;
+        };
         const std::size_t c = count + near(bin - 1) + near(bin + 1);
         if (c > best_count) {
           best_count = c;
@@ -141,8 +147,10 @@ FloorHeight floor_height(const PointCloud& scan, const Eigen::Vector3d& up, bool
   return out;
 }
 
-PlatformEstimate estimate_platform(const std::vector<PointCloud>& scans, const FloorLevellingConfig& levelling,
-                                   const PlatformEstimateConfig& config, const std::vector<Eigen::Vector3d>& ups) {
+PlatformEstimate estimate_platform(const std::vector<PointCloud>& scans,
+                                   const FloorLevellingConfig& levelling,
+                                   const PlatformEstimateConfig& config,
+                                   const std::vector<Eigen::Vector3d>& ups) {
   config.validate();
   if (!ups.empty() && ups.size() != scans.size())
     throw std::invalid_argument("estimate_platform: " + std::to_string(ups.size()) + " up directions for " +
@@ -159,7 +167,8 @@ PlatformEstimate estimate_platform(const std::vector<PointCloud>& scans, const F
       const FloorLevel level = level_from_floor(scans[i], levelling);
       if (level.found) up = level.sensor_pose.linear().transpose() * Eigen::Vector3d::UnitZ();
     }
-    const FloorHeight floor = up ? floor_height(scans[i], *up, ups.empty(), levelling, config) : FloorHeight{};
+    const FloorHeight floor =
+        up ? floor_height(scans[i], *up, ups.empty(), levelling, config) : FloorHeight{};
     if (floor.found) {
       heights.push_back(floor.height);
       tilts.push_back(floor.tilt_deg);
@@ -171,8 +180,8 @@ PlatformEstimate estimate_platform(const std::vector<PointCloud>& scans, const F
   if (heights.empty()) return estimate;
   estimate.height_found = true;
   estimate.height = median(heights);
-  estimate.height_spread = *std::max_element(heights.begin(), heights.end()) -
-                           *std::min_element(heights.begin(), heights.end());
+  estimate.height_spread =
+      *std::max_element(heights.begin(), heights.end()) - *std::min_element(heights.begin(), heights.end());
   estimate.tilt_deg = median(tilts);
   return estimate;
 }

@@ -13,15 +13,17 @@
 namespace tsgraphs::odometry {
 
 struct PlatformEstimateConfig {
-  int scans = 30;               ///< scans measured, spread over the run (a median over them: a hand-held sensor
-                                ///< bobs and tilts within a sweep, one room may show little floor; with 10 the
-                                ///< carriers suite's worst error was 0.08 m, with 30 0.02 m)
-  double floor_bin = 0.02;      ///< m; height bins of the lowest returns, whose fullest bin is the floor
-  double ring_gap_deg = 0.2;    ///< elevations closer than this belong to one ring (beams are >= 0.35 deg apart)
-  double ring_min_range = 1.0;  ///< returns nearer than this are not used for rings (m): a beam's offset from the
-                                ///< sensor's axis (about 1.5 cm) bends a nearer return's elevation by more than
-                                ///< ring_gap_deg; farther, the floor's nearest rings of a low sensor still count
-  int ring_min_points = 10;     ///< a ring holds at least this many returns (fewer: stray returns between rings)
+  int scans = 30;           ///< scans measured, spread over the run (a median over them: a hand-held sensor
+                            ///< bobs and tilts within a sweep, one room may show little floor; with 10 the
+                            ///< carriers suite's worst error was 0.08 m, with 30 0.02 m)
+  double floor_bin = 0.02;  ///< m; height bins of the lowest returns, whose fullest bin is the floor
+  double ring_gap_deg =
+      0.2;  ///< elevations closer than this belong to one ring (beams are >= 0.35 deg apart)
+  double ring_min_range =
+      1.0;  ///< returns nearer than this are not used for rings (m): a beam's offset from the
+            ///< sensor's axis (about 1.5 cm) bends a nearer return's elevation by more than
+            ///< ring_gap_deg; farther, the floor's nearest rings of a low sensor still count
+  int ring_min_points = 10;  ///< a ring holds at least this many returns (fewer: stray returns between rings)
 
   template <class V>
   void visit(V& v) {
@@ -37,10 +39,10 @@ struct PlatformEstimateConfig {
 
 /// The rings of a spinning LiDAR: the elevations of its beams as seen in a scan's returns.
 struct BeamLayout {
-  int rings = 0;                ///< rings found (0: no layout, e.g. an empty scan)
-  double lowest_deg = 0.0;      ///< elevation of the lowest ring (sensor frame, negative below the horizon)
-  double highest_deg = 0.0;     ///< ...and of the highest
-  double spacing_deg = 0.0;     ///< the median angle between neighbouring rings
+  int rings = 0;             ///< rings found (0: no layout, e.g. an empty scan)
+  double lowest_deg = 0.0;   ///< elevation of the lowest ring (sensor frame, negative below the horizon)
+  double highest_deg = 0.0;  ///< ...and of the highest
+  double spacing_deg = 0.0;  ///< the median angle between neighbouring rings
 };
 
 /// The rings of `scan` (sensor frame): its returns beyond ring_min_range grouped by elevation.
@@ -50,9 +52,9 @@ BeamLayout measure_beam_layout(const PointCloud& scan, const PlatformEstimateCon
 /// The floor under one scan.
 struct FloorHeight {
   bool found = false;
-  double height = 0.0;          ///< the sensor above the floor, along the floor's normal (m)
-  double tilt_deg = 0.0;        ///< the angle between the sensor's z and the floor's normal
-  std::size_t num_cells = 0;    ///< grid cells whose lowest return lies on it
+  double height = 0.0;        ///< the sensor above the floor, along the floor's normal (m)
+  double tilt_deg = 0.0;      ///< the angle between the sensor's z and the floor's normal
+  std::size_t num_cells = 0;  ///< grid cells whose lowest return lies on it
 };
 
 /// The floor under `scan` given `up`, the gravity's up in the sensor frame: the height at
@@ -64,24 +66,26 @@ struct FloorHeight {
 /// the lowest returns of walls, spread over heights, make no such level; a plane fitted to all
 /// lowest returns (floor_levelling.hpp) leans towards them where little floor is seen.
 FloorHeight floor_height(const PointCloud& scan, const Eigen::Vector3d& up, bool fit_tilt,
-                         const FloorLevellingConfig& levelling = {}, const PlatformEstimateConfig& config = {});
+                         const FloorLevellingConfig& levelling = {},
+                         const PlatformEstimateConfig& config = {});
 
 /// What the scans say about the platform.
 struct PlatformEstimate {
-  std::size_t scans_measured = 0;   ///< scans looked at
-  std::size_t floors_found = 0;     ///< ...with a floor under the sensor
-  bool height_found = false;        ///< at least one floor was found
-  double height = 0.0;              ///< median height of the sensor above the floor (m)
-  double height_spread = 0.0;       ///< max - min of the per-scan heights (m)
-  double tilt_deg = 0.0;            ///< median angle between the sensor's z and the floor's normal
-  BeamLayout beams;                 ///< from the scan with the most rings
+  std::size_t scans_measured = 0;  ///< scans looked at
+  std::size_t floors_found = 0;    ///< ...with a floor under the sensor
+  bool height_found = false;       ///< at least one floor was found
+  double height = 0.0;             ///< median height of the sensor above the floor (m)
+  double height_spread = 0.0;      ///< max - min of the per-scan heights (m)
+  double tilt_deg = 0.0;           ///< median angle between the sensor's z and the floor's normal
+  BeamLayout beams;                ///< from the scan with the most rings
 };
 
 /// Measures the platform from `scans` (sensor frames; at most config.scans of them are used).
 /// `ups` (empty, or one per scan): the gravity's up in each scan's frame when the poses give it;
 /// otherwise each scan's own floor levelling (floor_levelling.hpp) gives it. The height and
 /// tilt are the medians over the scans with a floor. Deterministic.
-PlatformEstimate estimate_platform(const std::vector<PointCloud>& scans, const FloorLevellingConfig& levelling = {},
+PlatformEstimate estimate_platform(const std::vector<PointCloud>& scans,
+                                   const FloorLevellingConfig& levelling = {},
                                    const PlatformEstimateConfig& config = {},
                                    const std::vector<Eigen::Vector3d>& ups = {});
 

@@ -33,7 +33,8 @@ inline Pose3 se3_exp(const Vector6d& xi) {
   } else {
     const double t2 = theta * theta;
     R = Eigen::AngleAxisd(theta, phi / theta).toRotationMatrix();
-    V = Eigen::Matrix3d::Identity() + (1.0 - std::cos(theta)) / t2 * K + (theta - std::sin(theta)) / (t2 * theta) * K * K;
+    V = Eigen::Matrix3d::Identity() + (1.0 - std::cos(theta)) / t2 * K +
+        (theta - std::sin(theta)) / (t2 * theta) * K * K;
   }
   Pose3 T = Pose3::Identity();
   T.linear() = R;

@@ -18,7 +18,8 @@ const SweepRegistrationConfig& validated(const SweepRegistrationConfig& c) {
 SweepDeskewer::SweepDeskewer(const LidarOdometryConfig& map_config, const SweepRegistrationConfig& config)
     : map_config_(map_config),
       config_(validated(config)),
-      map_(map_config.voxel_size, static_cast<std::size_t>(map_config.max_points_per_voxel), map_config.surface()) {}
+      map_(map_config.voxel_size, static_cast<std::size_t>(map_config.max_points_per_voxel),
+           map_config.surface()) {}
 
 PointCloud SweepDeskewer::deskew(const PointCloud& scan, const Pose3& pose, const Pose3& prior_motion,
                                  double prior_interval) {

@@ -28,7 +28,8 @@ class SweepDeskewer {
   /// after the stamp, as deskew() takes it; interval 0: no prior, standing still) and the map;
   /// `pose`: the sensor's pose at the stamp in the map's frame (the odometry's). The sweep
   /// then joins the map. A scan without times is returned as it is.
-  PointCloud deskew(const PointCloud& scan, const Pose3& pose, const Pose3& prior_motion, double prior_interval);
+  PointCloud deskew(const PointCloud& scan, const Pose3& pose, const Pose3& prior_motion,
+                    double prior_interval);
 
   /// The last sweep's estimate.
   const SweepMotion& last() const { return last_; }

@@ -58,7 +58,8 @@ SweepMotion SweepMotion::from_motion(const Pose3& pose, const Pose3& motion, dou
 }
 
 SweepMotion align_sweep_to_map(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& times,
-                               const VoxelHashMap& map, const SweepMotion& prior, const SweepRegistrationConfig& config) {
+                               const VoxelHashMap& map, const SweepMotion& prior,
+                               const SweepRegistrationConfig& config) {
   if (points.size() != times.size()) throw std::invalid_argument("align_sweep_to_map: one time per point");
   SweepMotion m = prior;
   m.registered = false;
@@ -73,7 +74,7 @@ SweepMotion align_sweep_to_map(const std::vector<Eigen::Vector3d>& points, const
   const std::size_t grain = static_cast<std::size_t>(config.reduction_grain);
 
   double distance = config.initial_distance;
-  for (int iteration = 0;; ) {
+  for (int iteration = 0;;) {
     ++iteration;
     ++m.iterations;
     const double kernel_sq = std::pow(distance / config.kernel_divisor, 2);
@@ -103,7 +104,8 @@ SweepMotion align_sweep_to_map(const std::vector<Eigen::Vector3d>& points, const
               acc.H.noalias() += w * Jn * Jn.transpose();
               acc.g.noalias() += w * e * Jn;
             } else if (nb.surface == Surface::scattered) {
-              const double w = kernel_sq * kernel_sq / std::pow(kernel_sq + r.squaredNorm(), 2) * inv_point_var;
+              const double w =
+                  kernel_sq * kernel_sq / std::pow(kernel_sq + r.squaredNorm(), 2) * inv_point_var;
               acc.H.noalias() += w * J.transpose() * J;
               acc.g.noalias() += w * J.transpose() * r;
             } else {

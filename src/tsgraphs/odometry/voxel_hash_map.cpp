@@ -18,10 +18,12 @@ VoxelHashMap::VoxelHashMap(double voxel_size, std::size_t max_points_per_voxel, 
   if (!(voxel_size > 0.0) || !std::isfinite(voxel_size)) {
     throw std::invalid_argument("VoxelHashMap: voxel_size must be positive and finite");
   }
-  if (max_points_per_voxel < 1) throw std::invalid_argument("VoxelHashMap: max_points_per_voxel must be >= 1");
+  if (max_points_per_voxel < 1)
+    throw std::invalid_argument("VoxelHashMap: max_points_per_voxel must be >= 1");
   if (surface.min_points < 3) throw std::invalid_argument("VoxelHashMap: surface min_points must be >= 3");
   if (!(surface.min_spread_factor > 0.0) || !(surface.max_thickness_ratio > 0.0))
-    throw std::invalid_argument("VoxelHashMap: surface min_spread_factor and max_thickness_ratio must be > 0");
+    throw std::invalid_argument(
+        "VoxelHashMap: surface min_spread_factor and max_thickness_ratio must be > 0");
 }
 
 VoxelIndex VoxelHashMap::voxel_of(const Eigen::Vector3d& p) const {
@@ -67,7 +69,7 @@ void VoxelHashMap::fit_surface(Voxel* voxel) const {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect(cov);
   const Eigen::Vector3d sd = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();  // ascending
-  if (sd[1] < surface_.min_spread_factor * voxel_size_) return;             // a line or a blob
+  if (sd[1] < surface_.min_spread_factor * voxel_size_) return;            // a line or a blob
   if (sd[0] <= surface_.max_thickness_ratio * sd[1]) {
     voxel->surface = Surface::planar;
     voxel->normal = eig.eigenvectors().col(0).normalized();

@@ -24,19 +24,21 @@ enum class Surface : std::uint8_t {
 
 /// When a voxel's points make a plane (VoxelHashMap::surface_of).
 struct SurfaceConfig {
-  int min_points = 4;             ///< fewer points: unknown
-  double min_spread_factor = 0.15;///< a plane spreads at least voxel_size * this (m, second principal sd) in
-                                  ///< both directions; less is a line, such as one ring of a scan on the floor
-  double max_thickness_ratio = 0.3;///< a plane is at most this thick (smallest sd) for its width (second sd)
+  int min_points = 4;  ///< fewer points: unknown
+  double min_spread_factor =
+      0.15;  ///< a plane spreads at least voxel_size * this (m, second principal sd) in
+             ///< both directions; less is a line, such as one ring of a scan on the floor
+  double max_thickness_ratio =
+      0.3;  ///< a plane is at most this thick (smallest sd) for its width (second sd)
 };
 
 /// Result of VoxelHashMap::nearest.
 struct Neighbour {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  double distance = 0.0;  ///< Euclidean distance from the query (m)
-  bool found = false;     ///< false when the 27 voxels around the query are empty
-  Surface surface = Surface::unknown;              ///< the shape of the point's voxel
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();///< unit normal of that voxel when it is planar
+  double distance = 0.0;                             ///< Euclidean distance from the query (m)
+  bool found = false;                                ///< false when the 27 voxels around the query are empty
+  Surface surface = Surface::unknown;                ///< the shape of the point's voxel
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< unit normal of that voxel when it is planar
 };
 
 class VoxelHashMap {

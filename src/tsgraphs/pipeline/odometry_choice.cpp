@@ -5,17 +5,20 @@
 namespace tsgraphs::pipeline {
 
 OdometryChoice choose_odometry(const io::ScanSequence& sequence, const std::string& mode,
-                               const std::optional<Pose3>& sensor_to_base, const odometry::FloorLevellingConfig& levelling) {
+                               const std::optional<Pose3>& sensor_to_base,
+                               const odometry::FloorLevellingConfig& levelling) {
   const std::vector<Pose3>& input = sequence.info().odometry;
   OdometryChoice choice;
   if (mode == "input") {
     if (input.empty())
-      throw input_error(sequence.dir(), 0,
-                        "has no odometry: give poses (--poses, --odom-topic or --odom-tum), or --odometry lidar to "
-                        "estimate them from the scans");
+      throw input_error(
+          sequence.dir(), 0,
+          "has no odometry: give poses (--poses, --odom-topic or --odom-tum), or --odometry lidar to "
+          "estimate them from the scans");
     return choice;
   }
-  if (mode != "lidar" && mode != "auto") throw input_error("--odometry", 0, "'" + mode + "': expected auto, input or lidar");
+  if (mode != "lidar" && mode != "auto")
+    throw input_error("--odometry", 0, "'" + mode + "': expected auto, input or lidar");
   if (mode == "auto" && !input.empty()) return choice;
   choice.options.estimate = true;
   if (!input.empty()) {
@@ -33,8 +36,9 @@ OdometryChoice choose_odometry(const io::ScanSequence& sequence, const std::stri
       choice.options.initial_pose = level.sensor_pose;
       choice.level = level;
     } else {
-      choice.warning = "no floor found under the first scan: the map frame is the first scan's (give --sensor-to-base "
-                       "if the sensor is tilted)";
+      choice.warning =
+          "no floor found under the first scan: the map frame is the first scan's (give --sensor-to-base "
+          "if the sensor is tilted)";
     }
   }
   return choice;

@@ -23,7 +23,8 @@ struct OdometryChoice {
 /// `mode`: "input" (the sequence's poses; an InputError naming it when it has none), "lidar"
 /// (estimated), or "auto" (the input's when it has them). `sensor_to_base`: the mount, when known.
 OdometryChoice choose_odometry(const io::ScanSequence& sequence, const std::string& mode,
-                               const std::optional<Pose3>& sensor_to_base, const odometry::FloorLevellingConfig& levelling);
+                               const std::optional<Pose3>& sensor_to_base,
+                               const odometry::FloorLevellingConfig& levelling);
 
 /// The LiDAR odometry every command estimates with: the config's `lidar_odometry` and
 /// `deskew.registration`, its first pose `first_pose`.

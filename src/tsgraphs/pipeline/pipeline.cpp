@@ -38,7 +38,8 @@ Pipeline::Pipeline(PipelineConfig config)
       loop_detector_(config_.loop_closure) {}
 
 void Pipeline::set_platform(const std::vector<PointCloud>& scans, const std::vector<Eigen::Vector3d>& ups) {
-  if (platform_ || !scan_log_.empty()) throw std::logic_error("Pipeline::set_platform: once, before the first scan");
+  if (platform_ || !scan_log_.empty())
+    throw std::logic_error("Pipeline::set_platform: once, before the first scan");
   platform_ = resolve_platform(config_.platform, config_.floor_levelling, config_.ground, scans, ups);
   config_.ground = apply_platform(*platform_, config_.ground, config_.ground_keys_given);
   // The run's parameters record what was used: the same file gives the same run again.
@@ -48,8 +49,8 @@ void Pipeline::set_platform(const std::vector<PointCloud>& scans, const std::vec
   warnings_.insert(warnings_.end(), platform_->warnings.begin(), platform_->warnings.end());
 }
 
-PreparedScan Pipeline::prepare(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom,
-                               bool keyframe_candidate) const {
+PreparedScan Pipeline::prepare(std::size_t scan_index, double stamp, const PointCloud& scan,
+                               const Pose3& odom, bool keyframe_candidate) const {
   if (!platform_) throw std::logic_error("Pipeline::prepare: the platform is not set (set_platform)");
   if (!odom.matrix().allFinite() || !std::isfinite(stamp))
     throw std::invalid_argument("scan " + std::to_string(scan_index) + ": non-finite pose or time");
@@ -83,7 +84,8 @@ void Pipeline::run_keyframe_steps(const PointCloud& scan, const Pose3& odom, Pre
   out->keyframe_steps = true;
 }
 
-void Pipeline::score_ground(const PointCloud& scan, const ground::GroundScan& ground, ScanRecord* record) const {
+void Pipeline::score_ground(const PointCloud& scan, const ground::GroundScan& ground,
+                            ScanRecord* record) const {
   // Scored over the points the ground layer looks at (its range). Floor more than
   // kOtherStorey below the robot's floor is another storey seen through a void: not this
   // robot's ground, and not scored.
@@ -108,7 +110,8 @@ void Pipeline::score_ground(const PointCloud& scan, const ground::GroundScan& gr
   }
 }
 
-const ScanRecord& Pipeline::process(std::size_t scan_index, double stamp, const PointCloud& scan, const Pose3& odom) {
+const ScanRecord& Pipeline::process(std::size_t scan_index, double stamp, const PointCloud& scan,
+                                    const Pose3& odom) {
   if (!platform_) set_platform({scan}, {odom.linear().transpose() * Eigen::Vector3d::UnitZ()});
   return process(prepare(scan_index, stamp, scan, odom, selector_.is_keyframe(odom)), scan);
 }
@@ -116,20 +119,22 @@ const ScanRecord& Pipeline::process(std::size_t scan_index, double stamp, const 
 const ScanRecord& Pipeline::process(PreparedScan prepared, const PointCloud& scan) {
   const auto start = std::chrono::steady_clock::now();
   // Thread time of the steps prepare() ran; those run here are inside ms_since(start).
-  const double prepared_ms = prepared.record.prefilter_ms + prepared.record.ground_ms + prepared.record.walls_ms;
+  const double prepared_ms =
+      prepared.record.prefilter_ms + prepared.record.ground_ms + prepared.record.walls_ms;
   if (last_odom_) accum_distance_ += (last_odom_->translation() - prepared.record.odom.translation()).norm();
   last_odom_ = prepared.record.odom;
 
   const bool keyframe = selector_.is_keyframe(prepared.record.odom);
   if (keyframe && !prepared.keyframe_steps) run_keyframe_steps(scan, prepared.record.odom, &prepared);
   ScanRecord record = prepared.record;
-  record.reference_keyframe = graph_.keyframes().empty() ? -1 : static_cast<int>(graph_.keyframes().size()) - 1;
+  record.reference_keyframe =
+      graph_.keyframes().empty() ? -1 : static_cast<int>(graph_.keyframes().size()) - 1;
   if (keyframe) {
     last_ground_ = std::move(prepared.ground);
     if (prepared.cloud.empty()) {
-      record.warning = !prepared.input_empty ? "no point left after prefiltering: skipped"
+      record.warning = !prepared.input_empty      ? "no point left after prefiltering: skipped"
                        : prepared.input_no_points ? "empty scan: skipped"
-                                             : "no finite point (all NaN): skipped";
+                                                  : "no finite point (all NaN): skipped";
     } else {
       selector_.accept(record.odom);
       add_keyframe(record, std::move(prepared.cloud), std::move(prepared.planes));
@@ -193,7 +198,8 @@ void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud,
   const Pose3& T = graph_.keyframes()[id].pose;
   // Only the gravity direction of the rotation matters to the extraction, so planes
   // prepared ahead from the odometry's rotation are the same as those from T's.
-  if (!planes) planes = walls::extract_planes(keyframe_clouds_.back(), record.odom.linear(), config_.plane_extraction);
+  if (!planes)
+    planes = walls::extract_planes(keyframe_clouds_.back(), record.odom.linear(), config_.plane_extraction);
   const std::vector<walls::PlaneObservation>& observations = *planes;
   std::size_t walls_seen = 0;
   for (const walls::PlaneObservation& obs : observations) {
@@ -247,7 +253,8 @@ void Pipeline::check_empty_layers(int keyframe, std::size_t ground_nodes, std::s
   };
   count(no_ground_, ground_nodes == 0);
   count(no_walls_, walls == 0);
-  const std::string span = " in " + std::to_string(n) + " keyframes in a row (to keyframe " + std::to_string(keyframe) + ")";
+  const std::string span =
+      " in " + std::to_string(n) + " keyframes in a row (to keyframe " + std::to_string(keyframe) + ")";
   if (no_ground_.in_row >= n && !no_ground_.warned) {
     no_ground_.warned = true;
     warnings_.push_back("no traversable ground" + span + ": " + no_ground_cause());
@@ -260,21 +267,24 @@ void Pipeline::check_empty_layers(int keyframe, std::size_t ground_nodes, std::s
 
 std::string Pipeline::no_ground_cause() const {
   // What the ground layer was told against what the latest keyframe shows.
-  const odometry::FloorLevel floor = odometry::level_from_floor(keyframe_clouds_.back(), config_.floor_levelling);
+  const odometry::FloorLevel floor =
+      odometry::level_from_floor(keyframe_clouds_.back(), config_.floor_levelling);
   const double told = config_.ground.sensor_height;
-  if (!floor.found) return "no floor found below the sensor there; platform.sensor_height is " + fixed(told, 2) + " m";
+  if (!floor.found)
+    return "no floor found below the sensor there; platform.sensor_height is " + fixed(told, 2) + " m";
   if (std::abs(floor.height - told) > config_.ground.seed_height_tolerance)
-    return "the floor is " + fixed(floor.height, 2) + " m below the sensor there and platform.sensor_height is " +
-           fixed(told, 2) + " m";
+    return "the floor is " + fixed(floor.height, 2) +
+           " m below the sensor there and platform.sensor_height is " + fixed(told, 2) + " m";
   return "the floor is " + fixed(floor.height, 2) + " m below the sensor there, as platform.sensor_height (" +
          fixed(told, 2) + " m) says: the ground layer's own settings (ground.*) keep every node out";
 }
 
 std::string Pipeline::no_walls_cause(int keyframe) const {
-  return "no vertical plane of plane_extraction.min_inliers (" + std::to_string(config_.plane_extraction.min_inliers) +
+  return "no vertical plane of plane_extraction.min_inliers (" +
+         std::to_string(config_.plane_extraction.min_inliers) +
          ") points within plane_extraction.max_range (" + fixed(config_.plane_extraction.max_range, 1) +
-         " m); keyframe " + std::to_string(keyframe) + " holds " + std::to_string(keyframe_clouds_.back().size()) +
-         " points after prefiltering";
+         " m); keyframe " + std::to_string(keyframe) + " holds " +
+         std::to_string(keyframe_clouds_.back().size()) + " points after prefiltering";
 }
 
 void Pipeline::optimize(bool full, const std::string& reason) {
@@ -319,8 +329,10 @@ bool Pipeline::loop_asks_for_full_solve(const graph::BetweenEdge& loop) const {
   const int first_free = std::max(1, newest + 1 - config_.optimizer.local_window);
   // Retired keyframes count: their odometry noise is folded into their neighbours' edges.
   const int drifting = corrected_at_ >= first_free - 1 ? newest - corrected_at_ : 0;
-  const double loop_trans = config_.optimizer.loop_sigma_trans, odo_trans = config_.optimizer.odometry_sigma_trans;
-  const double loop_rot = config_.optimizer.loop_sigma_rot_deg, odo_rot = config_.optimizer.odometry_sigma_rot_deg;
+  const double loop_trans = config_.optimizer.loop_sigma_trans,
+               odo_trans = config_.optimizer.odometry_sigma_trans;
+  const double loop_rot = config_.optimizer.loop_sigma_rot_deg,
+               odo_rot = config_.optimizer.odometry_sigma_rot_deg;
   const double sigma_trans = std::sqrt(loop_trans * loop_trans + drifting * odo_trans * odo_trans);
   const double sigma_rot = std::sqrt(loop_rot * loop_rot + drifting * odo_rot * odo_rot) * M_PI / 180.0;
   const Pose3 error = (kf[loop.from].pose.inverse() * kf[loop.to].pose).inverse() * loop.measurement;
@@ -339,7 +351,8 @@ void Pipeline::retire_redundant_keyframes(bool whole_graph, const std::function<
     const int first = whole_graph ? 1 : std::max(1, newest + 1 - config_.optimizer.local_window);
     for (int k = first; k < newest; ++k)
       if (!graph_.keyframes()[k].retired) candidates.push_back(k);
-    const graph::PoseSigmas odometry{config_.optimizer.odometry_sigma_trans, config_.optimizer.odometry_sigma_rot_deg};
+    const graph::PoseSigmas odometry{config_.optimizer.odometry_sigma_trans,
+                                     config_.optimizer.odometry_sigma_rot_deg};
     const graph::PoseSigmas loop{config_.optimizer.loop_sigma_trans, config_.optimizer.loop_sigma_rot_deg};
     const auto in_space = [this](int k) { return in_mapped_space(graph_.keyframes()[k].pose); };
     std::vector<int> retired;
@@ -369,7 +382,9 @@ bool Pipeline::in_mapped_space(const Pose3& pose) const {
   const auto& levels = rooms_.levels();
   for (const auto& [id, room] : rooms_.room_map().rooms()) {
     if (room.level < 0 || static_cast<std::size_t>(room.level) >= levels.size()) continue;
-    if (std::abs(levels[static_cast<std::size_t>(room.level)] - floor_z) > config_.rooms.layer.level_tolerance) continue;
+    if (std::abs(levels[static_cast<std::size_t>(room.level)] - floor_z) >
+        config_.rooms.layer.level_tolerance)
+      continue;
     if (contains(room.footprint(), xy)) return true;
   }
   return false;
@@ -382,14 +397,16 @@ void Pipeline::finish() {
   const int keyframes = static_cast<int>(graph_.keyframes().size());
   const std::string of = " of " + std::to_string(keyframes) + " keyframes in all";
   const bool warn = config_.diagnostics.empty_layer_keyframes > 0 && keyframes > 0;
-  if (no_ground_.warned) warnings_.push_back("no traversable ground in " + std::to_string(no_ground_.total) + of);
+  if (no_ground_.warned)
+    warnings_.push_back("no traversable ground in " + std::to_string(no_ground_.total) + of);
   else if (warn && no_ground_.total == keyframes)
-    warnings_.push_back("no traversable ground in any of the run's " + std::to_string(keyframes) + " keyframes: " +
-                        no_ground_cause());
-  if (no_walls_.warned) warnings_.push_back("no wall in " + std::to_string(no_walls_.total) + of);
+    warnings_.push_back("no traversable ground in any of the run's " + std::to_string(keyframes) +
+                        " keyframes: " + no_ground_cause());
+  if (no_walls_.warned)
+    warnings_.push_back("no wall in " + std::to_string(no_walls_.total) + of);
   else if (warn && no_walls_.total == keyframes)
-    warnings_.push_back("no wall in any of the run's " + std::to_string(keyframes) + " keyframes: " +
-                        no_walls_cause(keyframes - 1));
+    warnings_.push_back("no wall in any of the run's " + std::to_string(keyframes) +
+                        " keyframes: " + no_walls_cause(keyframes - 1));
   if (graph_.keyframes().size() >= 2) optimize(true, "final");
   if (!graph_.keyframes().empty()) {
     add_room_events(rooms_.finish(room_input(static_cast<int>(graph_.keyframes().size()) - 1)));
@@ -403,9 +420,9 @@ void Pipeline::finish() {
     const std::string cause = node_map_.size() == 0 ? "no traversable ground"
                               : mapped_walls < 2    ? "fewer than two walls"
                                                     : "no space of the free space bounded by walls";
-    warnings_.push_back("no room in " + std::to_string(graph_.keyframes().size()) + " keyframes: " +
-                        std::to_string(node_map_.size()) + " traversable nodes and " + std::to_string(mapped_walls) +
-                        " walls mapped (" + cause + ")");
+    warnings_.push_back("no room in " + std::to_string(graph_.keyframes().size()) +
+                        " keyframes: " + std::to_string(node_map_.size()) + " traversable nodes and " +
+                        std::to_string(mapped_walls) + " walls mapped (" + cause + ")");
   }
 }
 
@@ -425,7 +442,8 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
     const Eigen::Isometry3f T = graph_.keyframes()[k].pose.cast<float>();
     for (const Eigen::Vector3f& p : keyframe_clouds_[k].points) {
       const Eigen::Vector3f q = T * p;
-      if ((q.head<2>() - kf.pose.translation().head<2>().cast<float>()).norm() <= radius) near.points.push_back(q);
+      if ((q.head<2>() - kf.pose.translation().head<2>().cast<float>()).norm() <= radius)
+        near.points.push_back(q);
     }
   }
   for (const Eigen::Vector3f& p : voxel_downsample(near, config_.rooms.layer.obstacle_voxel).points)
@@ -491,7 +509,7 @@ void Pipeline::add_room_events(const std::vector<RoomEventRecord>& events) {
     node.center = e.rect.center;
     node.level = e.level;
     node.kind = e.factor_walls.size() == graph::planes_of(rooms::RoomKind::room) ? rooms::RoomKind::room
-                                                                                : rooms::RoomKind::corridor;
+                                                                                 : rooms::RoomKind::corridor;
     const int id = graph_.add_room(node);
     graph_.add_room_edge({id, node.kind, e.factor_walls, e.rect.center});
     int floor = graph_.floor_of_level(e.level);

@@ -24,12 +24,12 @@ namespace tsgraphs::pipeline {
 /// Pipeline::prepare, which may run on other threads, ahead of process(). Only a keyframe's
 /// prefiltered cloud, ground and planes are used, so only keyframe candidates get them here.
 struct PreparedScan {
-  ScanRecord record;          ///< with the prepare-time fields filled
-  bool keyframe_steps = false;///< prefilter, ground and planes ran (a keyframe candidate)
-  PointCloud cloud;           ///< prefiltered
+  ScanRecord record;            ///< with the prepare-time fields filled
+  bool keyframe_steps = false;  ///< prefilter, ground and planes ran (a keyframe candidate)
+  PointCloud cloud;             ///< prefiltered
   ground::GroundScan ground;
   std::optional<std::vector<walls::PlaneObservation>> planes;
-  bool input_empty = false;   ///< no finite point (empty or all NaN): skipped with a warning
+  bool input_empty = false;      ///< no finite point (empty or all NaN): skipped with a warning
   bool input_no_points = false;  ///< no point at all (the warning says "empty", not "all NaN")
 };
 
@@ -41,10 +41,10 @@ struct LoopClosureRecord {
 
 /// One back-end run.
 struct OptimizationRecord {
-  int after_keyframe = -1;    ///< the newest keyframe when it ran
-  std::string reason;         ///< "schedule", "loop", "periodic" or "final"
+  int after_keyframe = -1;  ///< the newest keyframe when it ran
+  std::string reason;       ///< "schedule", "loop", "periodic" or "final"
   graph::OptimizationStats stats;
-  int active_keyframes = 0;   ///< keyframes in the graph after it and the retirements that followed
+  int active_keyframes = 0;  ///< keyframes in the graph after it and the retirements that followed
 };
 
 class Pipeline {
@@ -111,7 +111,8 @@ class Pipeline {
   std::vector<Pose3> trajectory() const;
 
  private:
-  void add_keyframe(ScanRecord& record, PointCloud cloud, std::optional<std::vector<walls::PlaneObservation>> planes);
+  void add_keyframe(ScanRecord& record, PointCloud cloud,
+                    std::optional<std::vector<walls::PlaneObservation>> planes);
   RoomLayerInput room_input(int keyframe) const;
   /// Records room events and puts new rooms, and merges, into the graph.
   void add_room_events(const std::vector<RoomEventRecord>& events);
@@ -152,8 +153,8 @@ class Pipeline {
   RoomLayer rooms_;
   std::vector<RoomEventRecord> room_events_;
   struct RoomNodeLink {
-    int node = -1;                      ///< graph room id
-    Vec2 center = Vec2::Zero();         ///< its centre when the room map last followed it
+    int node = -1;               ///< graph room id
+    Vec2 center = Vec2::Zero();  ///< its centre when the room map last followed it
   };
   std::map<int, RoomNodeLink> room_nodes_;  ///< room map id -> graph room node
   ground::GroundScan last_ground_;
@@ -167,7 +168,7 @@ class Pipeline {
   std::vector<OptimizationRecord> optimizations_;
   std::vector<LoopClosureRecord> loop_closures_;
   std::map<int, std::vector<int>> room_walls_;  ///< room map id -> the walls of its latest extraction
-  int revisited_room_ = -1;                     ///< a mapped room the newest keyframe re-detected with its walls, or -1
+  int revisited_room_ = -1;  ///< a mapped room the newest keyframe re-detected with its walls, or -1
   double accum_distance_ = 0.0;
   std::optional<Pose3> last_odom_;
   int keyframes_since_solve_ = 0;

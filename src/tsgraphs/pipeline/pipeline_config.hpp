@@ -27,13 +27,14 @@ namespace tsgraphs::pipeline {
 /// When the back-end runs.
 struct ScheduleConfig {
   int optimize_every_keyframes = 5;  ///< a local solve after this many new keyframes
-  int full_every_keyframes = 50;     ///< a full solve after the graph grew by this many keyframes (retired ones leave it; 0 = only after loops and at the end)
+  int full_every_keyframes = 50;  ///< a full solve after the graph grew by this many keyframes (retired ones
+                                  ///< leave it; 0 = only after loops and at the end)
   /// A loop this many sigmas or more from the estimate asks for a full solve (the old graph has
   /// drift to correct); a nearer one is taken in by a local solve (0: every loop a full solve).
   /// Sigmas: the loop's, with the odometry's of the keyframes since the last correction when
   /// that lies in the local window (Pipeline::loop_asks_for_full_solve).
   double full_solve_loop_sigmas = 3.0;
-  bool merge_duplicate_planes = true;///< merge landmarks found to be one face after each solve
+  bool merge_duplicate_planes = true;  ///< merge landmarks found to be one face after each solve
 
   template <class V>
   void visit(V& v) {
@@ -46,12 +47,13 @@ struct ScheduleConfig {
 
 /// De-skewing of scans that carry per-point times (odometry/deskew.hpp, sweep_registration.hpp).
 struct DeskewConfig {
-  bool enabled = true;             ///< de-skew scans with per-point times
-  std::string motion = "auto";     ///< the motion during a sweep: "poses" (from the poses around the scan, or the
-                                   ///< LiDAR odometry's last motion), "registration" (each sweep registered to a
-                                   ///< map of the ones before, the motion among the unknowns), "auto"
-  double max_interval_ratio = 1.5; ///< auto registers the sweeps when scans are farther apart than this times a
-                                   ///< sweep's duration: the poses then do not sample the motion inside a sweep
+  bool enabled = true;          ///< de-skew scans with per-point times
+  std::string motion = "auto";  ///< the motion during a sweep: "poses" (from the poses around the scan, or
+                                ///< the LiDAR odometry's last motion), "registration" (each sweep registered
+                                ///< to a map of the ones before, the motion among the unknowns), "auto"
+  double max_interval_ratio =
+      1.5;  ///< auto registers the sweeps when scans are farther apart than this times a
+            ///< sweep's duration: the poses then do not sample the motion inside a sweep
   odometry::SweepRegistrationConfig registration;  ///< the sweep registration's fields
 
   template <class V>
@@ -68,7 +70,8 @@ struct DeskewConfig {
 
 /// What the pipeline says about layers that stay empty.
 struct DiagnosticsConfig {
-  int empty_layer_keyframes = 50;  ///< warn when no ground or wall came for this many keyframes, or a run this long has no room (0: never)
+  int empty_layer_keyframes = 50;  ///< warn when no ground or wall came for this many keyframes, or a run
+                                   ///< this long has no room (0: never)
 
   template <class V>
   void visit(V& v) {
@@ -77,10 +80,12 @@ struct DiagnosticsConfig {
 };
 
 struct PipelineConfig {
-  PlatformConfig platform;                       ///< the sensor's height, seed radius and ground preset: measured unless given
-  DeskewConfig deskew;                           ///< step 1: scans moved into the frame of their stamp
-  odometry::LidarOdometryConfig lidar_odometry;  ///< step 2 when the input has no odometry (or `run --odometry lidar`)
-  odometry::FloorLevellingConfig floor_levelling;///< step 2: the map's first pose when nothing gives the sensor's mount
+  PlatformConfig platform;  ///< the sensor's height, seed radius and ground preset: measured unless given
+  DeskewConfig deskew;      ///< step 1: scans moved into the frame of their stamp
+  odometry::LidarOdometryConfig
+      lidar_odometry;  ///< step 2 when the input has no odometry (or `run --odometry lidar`)
+  odometry::FloorLevellingConfig
+      floor_levelling;  ///< step 2: the map's first pose when nothing gives the sensor's mount
   PrefilterConfig prefilter;
   KeyframeConfig keyframes;
   ground::GroundConfig ground;

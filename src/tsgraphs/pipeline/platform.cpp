@@ -67,8 +67,9 @@ Platform resolve_platform(const PlatformConfig& config, const odometry::FloorLev
     p.preset = ground::preset_for_ring_spacing(e.beams.spacing_deg);
     p.preset_source = p.preset.empty() ? "none" : "beams";
     if (p.preset.empty())
-      p.warnings.push_back("no beam layout found in the " + std::to_string(e.scans_measured) +
-                           " scans measured: the ground keeps its ring-density settings (give platform.preset)");
+      p.warnings.push_back(
+          "no beam layout found in the " + std::to_string(e.scans_measured) +
+          " scans measured: the ground keeps its ring-density settings (give platform.preset)");
   } else if (config.preset == "none") {
     p.preset_source = "none";
   } else {
@@ -86,7 +87,8 @@ ground::GroundConfig apply_platform(const Platform& platform, ground::GroundConf
     ground::copy_ring_density_fields(ground::per_sensor_preset(platform.preset), &ground,
                                      [&given](const char* key) { return given.count(key) > 0; });
   // The beams measured are the sensor's own: nearer the truth than a preset's nominal spacing.
-  if (platform.estimate.beams.spacing_deg > 0.0) ground.ring_spacing_deg = platform.estimate.beams.spacing_deg;
+  if (platform.estimate.beams.spacing_deg > 0.0)
+    ground.ring_spacing_deg = platform.estimate.beams.spacing_deg;
   return ground;
 }
 
@@ -100,9 +102,10 @@ std::string describe(const Platform& p) {
     text += p.sensor_height_source == "config" ? "platform.sensor_height)" : "fallback: no floor found)";
   }
   if (e.beams.rings > 0)
-    text += "; " + std::to_string(e.beams.rings) + " rings " + fixed(e.beams.spacing_deg, 2) + " deg apart, lowest " +
-            fixed(e.beams.lowest_deg, 1) + " deg";
-  text += "; ground preset " + (p.preset.empty() ? std::string("none") : p.preset) + " (" + p.preset_source + ")";
+    text += "; " + std::to_string(e.beams.rings) + " rings " + fixed(e.beams.spacing_deg, 2) +
+            " deg apart, lowest " + fixed(e.beams.lowest_deg, 1) + " deg";
+  text +=
+      "; ground preset " + (p.preset.empty() ? std::string("none") : p.preset) + " (" + p.preset_source + ")";
   text += "; seed radius " + fixed(p.seed_radius, 1) + " m (" + p.seed_radius_source + ")";
   return text;
 }

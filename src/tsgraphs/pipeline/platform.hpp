@@ -18,16 +18,19 @@ namespace tsgraphs::pipeline {
 
 /// The `platform` section of the parameters. `auto` (unset) values are measured.
 struct PlatformConfig {
-  std::optional<double> sensor_height;  ///< m above the floor under the robot; auto: the median floor under the scans measured
-  std::optional<double> seed_radius;    ///< m; auto: where the lowest beam meets the floor (on the tilted side) plus
-                                        ///< seed_radius_margin, within [min_seed_radius, ground.max_range]
-  std::string preset = "auto";          ///< the ground's ring-density settings: auto (the measured ring spacing),
-                                        ///< os1-64, os0-128, vlp-16, hesai-xt32, or none (the ground section as it is)
-  double seed_radius_margin = 1.5;      ///< m beyond the first floor ring: that ring is thin (a node needs
-                                        ///< ground.num_min_pts points), so seeds come from the next rings out too;
-                                        ///< three tri-grid cells
-  double min_seed_radius = 3.0;         ///< m; the search may always start this far out
-  double fallback_sensor_height = 0.55; ///< m; when no floor is found under the scans measured (a warning says so)
+  std::optional<double>
+      sensor_height;  ///< m above the floor under the robot; auto: the median floor under the scans measured
+  std::optional<double> seed_radius;  ///< m; auto: where the lowest beam meets the floor (on the tilted side)
+                                      ///< plus seed_radius_margin, within [min_seed_radius, ground.max_range]
+  std::string preset =
+      "auto";  ///< the ground's ring-density settings: auto (the measured ring spacing),
+               ///< os1-64, os0-128, vlp-16, hesai-xt32, or none (the ground section as it is)
+  double seed_radius_margin = 1.5;  ///< m beyond the first floor ring: that ring is thin (a node needs
+                                    ///< ground.num_min_pts points), so seeds come from the next rings out
+                                    ///< too; three tri-grid cells
+  double min_seed_radius = 3.0;     ///< m; the search may always start this far out
+  double fallback_sensor_height =
+      0.55;  ///< m; when no floor is found under the scans measured (a warning says so)
   odometry::PlatformEstimateConfig measure;  ///< how the scans are measured
 
   template <class V>
@@ -47,13 +50,14 @@ struct PlatformConfig {
 /// The platform resolved: every value the pipeline uses, and where each came from.
 struct Platform {
   odometry::PlatformEstimate estimate;
-  double sensor_height = 0.0;       ///< m
-  std::string sensor_height_source; ///< "measured", "config" or "fallback"
-  double seed_radius = 0.0;         ///< m
-  std::string seed_radius_source;   ///< "beams" (the rule above), "config" or "default" (no ring below the horizon)
-  std::string preset;               ///< the ground settings' preset, "" for none
-  std::string preset_source;        ///< "beams", "config" or "none"
-  std::vector<std::string> warnings;///< what could not be measured, one line each
+  double sensor_height = 0.0;        ///< m
+  std::string sensor_height_source;  ///< "measured", "config" or "fallback"
+  double seed_radius = 0.0;          ///< m
+  std::string
+      seed_radius_source;     ///< "beams" (the rule above), "config" or "default" (no ring below the horizon)
+  std::string preset;         ///< the ground settings' preset, "" for none
+  std::string preset_source;  ///< "beams", "config" or "none"
+  std::vector<std::string> warnings;  ///< what could not be measured, one line each
 };
 
 /// Resolves the platform from `config` and scans of the run (sensor frames; `ups`, empty or

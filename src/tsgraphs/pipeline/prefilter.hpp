@@ -23,6 +23,7 @@ struct PrefilterConfig {
 /// Returns the filtered cloud, in the order the voxels were first hit (deterministic). Each
 /// voxel keeps the centroid of its points, the mean intensity and the first point's label.
 /// `num_non_finite`, when given, receives the number of NaN/inf points dropped.
-PointCloud prefilter(const PointCloud& scan, const PrefilterConfig& config, std::size_t* num_non_finite = nullptr);
+PointCloud prefilter(const PointCloud& scan, const PrefilterConfig& config,
+                     std::size_t* num_non_finite = nullptr);
 
 }  // namespace tsgraphs::pipeline

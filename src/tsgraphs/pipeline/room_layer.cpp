@@ -48,7 +48,8 @@ RoomLayer::RoomLayer(RoomLayerSettings settings)
       wall_tops_(settings_.sight.cell) {
   const RoomLayerConfig& c = settings_.layer;
   if (c.free_space_method != "traversable" && c.free_space_method != "esdf")
-    throw std::invalid_argument("free_space_method must be traversable or esdf, not '" + c.free_space_method + "'");
+    throw std::invalid_argument("free_space_method must be traversable or esdf, not '" + c.free_space_method +
+                                "'");
   if (c.room_trigger != "flush" && c.room_trigger != "timer")
     throw std::invalid_argument("room_trigger must be flush or timer, not '" + c.room_trigger + "'");
   if (!(c.max_floor_slope > 0.0)) throw std::invalid_argument("max_floor_slope must be > 0");
@@ -82,14 +83,15 @@ bool RoomLayer::robot_space(const RoomLayerInput& input, const Eigen::Vector3d& 
     if (path_distance <= settings_.layer.segment_radius) out.near.emplace(key, p);
   };
   if (esdf()) {
-    const freespace::EsdfFreeSpace space =
-        freespace::esdf_free_space(input.obstacle_candidates, floor.z(), input.pose.translation(), settings_.esdf);
+    const freespace::EsdfFreeSpace space = freespace::esdf_free_space(
+        input.obstacle_candidates, floor.z(), input.pose.translation(), settings_.esdf);
     const freespace::FreeSpaceCluster* cluster = space.free_space.robot();
     last_cluster_size_ = cluster ? cluster->points.size() : 0;
     if (!cluster) return false;
     for (std::size_t k = 0; k < cluster->vertices.size(); ++k) {
       const int cell = cluster->vertices[k];
-      add(cell_key(space.slice.min_i + cell % space.slice.width, space.slice.min_j + cell / space.slice.width),
+      add(cell_key(space.slice.min_i + cell % space.slice.width,
+                   space.slice.min_j + cell / space.slice.width),
           cluster->points[k], space.free_space.robot_path_distance[static_cast<std::size_t>(cell)]);
     }
     return true;
@@ -124,7 +126,8 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
     sight.floor_step = settings_.free_space.obstacle_min_height;
     sight.headroom = settings_.free_space.obstacle_max_height;
     auto it = sight_.find(level);
-    if (it == sight_.end()) it = sight_.emplace(level, freespace::SightMap(levels_[static_cast<std::size_t>(level)], sight)).first;
+    if (it == sight_.end())
+      it = sight_.emplace(level, freespace::SightMap(levels_[static_cast<std::size_t>(level)], sight)).first;
     retrace(input);
     TracedScan scan{input.keyframe, level, input.pose, {}, 0.0};
     const Pose3 to_sensor = input.pose.inverse();
@@ -141,15 +144,19 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
     // foot); only those of this level short of wall_reach_height need the rays' word.
     const rooms::RoomSegmentationConfig& seg = settings_.segmentation;
     const double level_floor = levels_[static_cast<std::size_t>(level)];
-    const auto top_of = [](const rooms::WallCandidate& w) { return freespace::WallTopRays::Wall{w.id, w.end_a, w.end_b, w.z1}; };
+    const auto top_of = [](const rooms::WallCandidate& w) {
+      return freespace::WallTopRays::Wall{w.id, w.end_a, w.end_b, w.z1};
+    };
     std::vector<freespace::WallTopRays::Wall> short_walls, stale_walls;
     for (const rooms::WallCandidate& w : input.walls) {
       if (!rooms::short_of_reach(w, level_floor, seg)) continue;
       // A plane whose rays were recorded before kept scans were traced again is recorded anew
       // from all of them, where their keyframes are now.
       const auto at = wall_tops_at_.find(w.id);
-      if (at != wall_tops_at_.end() && at->second != retraced_) stale_walls.push_back(top_of(w));
-      else short_walls.push_back(top_of(w));
+      if (at != wall_tops_at_.end() && at->second != retraced_)
+        stale_walls.push_back(top_of(w));
+      else
+        short_walls.push_back(top_of(w));
       wall_tops_at_[w.id] = retraced_;
     }
     wall_tops_.add_scan(input.pose.translation(), points, short_walls, it->second, seg.wall_top_margin,
@@ -162,14 +169,16 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
                               seg.wall_top_margin, seg.wall_top_beyond);
     }
     walls_ = input.walls;
-    for (rooms::WallCandidate& w : walls_) w.top_seen = wall_tops_.share_above(top_of(w), seg.wall_top_margin) >= seg.wall_top_share;
+    for (rooms::WallCandidate& w : walls_)
+      w.top_seen = wall_tops_.share_above(top_of(w), seg.wall_top_margin) >= seg.wall_top_share;
   }
   if (settings_.layer.room_trigger == "timer") {
     // S-Graphs+: every period, the robot's whole cluster as it is now.
     if (!timer_trigger_.update(input.stamp)) return {};
     KeyframeSpace space;
     if (!robot_space(input, floor, space)) return {};
-    if (!esdf()) for (const auto& entry : space.cluster) free_nodes_.insert(static_cast<int>(entry.first));
+    if (!esdf())
+      for (const auto& entry : space.cluster) free_nodes_.insert(static_cast<int>(entry.first));
     segment_path_ = {floor};
     return extract(input, space.cluster, level);
   }
@@ -186,11 +195,14 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
     // one, whatever the free space under the robot shows (a high sensor sees little floor).
     // So does a step into another space of the latest segmentation (an open joint, a bend):
     // extracting at every change of space makes one extraction a visit, the same on every lap.
-    const Eigen::Vector3d from = pending_.empty() ? (last_position_ ? *last_position_ : floor) : pending_.back().position;
-    const bool crossed = rooms::crosses_wall(from.head<2>(), floor.head<2>(), walls_, floor.z(), settings_.segmentation);
+    const Eigen::Vector3d from =
+        pending_.empty() ? (last_position_ ? *last_position_ : floor) : pending_.back().position;
+    const bool crossed =
+        rooms::crosses_wall(from.head<2>(), floor.head<2>(), walls_, floor.z(), settings_.segmentation);
     // A step into the other space for less than min_visit_length (a corner, a doorway's
     // strip) is no change: the robot must walk that far in it.
-    const int now_in = last_segmentation_ && last_segmentation_level_ == level ? space_of(*last_segmentation_, floor) : -1;
+    const int now_in =
+        last_segmentation_ && last_segmentation_level_ == level ? space_of(*last_segmentation_, floor) : -1;
     bool moved_on = false;
     if (now_in >= 0 && last_space_ >= 0 && now_in != last_space_) {
       const double step = (floor - from).head<2>().norm();
@@ -224,8 +236,8 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
   return update_flush(input, std::move(space), level, passed_doorway);
 }
 
-std::vector<RoomEventRecord> RoomLayer::update_flush(const RoomLayerInput& input, KeyframeSpace space, int level,
-                                                     bool passed_doorway) {
+std::vector<RoomEventRecord> RoomLayer::update_flush(const RoomLayerInput& input, KeyframeSpace space,
+                                                     int level, bool passed_doorway) {
   std::vector<Eigen::Vector3d> cluster = points_of(space.cluster);
   const rooms::AisleMeasurement aisle = rooms::measure_aisle(cluster, space.position, settings_.aisle);
   const bool new_level = segment_level_ >= 0 && level != segment_level_;
@@ -240,7 +252,8 @@ std::vector<RoomEventRecord> RoomLayer::update_flush(const RoomLayerInput& input
     // A segment walked less than min_segment_length (a corner, a doorway) is no room of its
     // own: it is carried into the next one.
     if (segment_length_ >= settings_.layer.min_segment_length) {
-      if (!segment_.empty() || (!esdf() && !segment_path_.empty())) events = extract(input, segment_, segment_level_);
+      if (!segment_.empty() || (!esdf() && !segment_path_.empty()))
+        events = extract(input, segment_, segment_level_);
       clear_segment();
     }
     // Of the keyframes that confirmed the change only the latest starts the new segment: the
@@ -248,7 +261,8 @@ std::vector<RoomEventRecord> RoomLayer::update_flush(const RoomLayerInput& input
     if (starting > 0) pending_.erase(pending_.begin(), pending_.end() - 1);
   }
   // Keyframes the trigger is not holding join the segment.
-  const std::size_t held = std::min(pending_.size(), static_cast<std::size_t>(flush_trigger_.pending_keyframes()));
+  const std::size_t held =
+      std::min(pending_.size(), static_cast<std::size_t>(flush_trigger_.pending_keyframes()));
   for (std::size_t k = 0; k + held < pending_.size(); ++k) commit(pending_[k]);
   pending_.erase(pending_.begin(), pending_.end() - static_cast<std::ptrdiff_t>(held));
   segment_level_ = level;
@@ -279,7 +293,8 @@ void RoomLayer::retrace(const RoomLayerInput& input) {
     // How far its farthest point has moved: a shift under a cell changes no cell it marks by
     // more than one.
     const double angle = Eigen::AngleAxisd(now.linear() * scan.traced_at.linear().transpose()).angle();
-    const double shift = (now.translation() - scan.traced_at.translation()).norm() + 2.0 * std::sin(angle / 2.0) * scan.reach;
+    const double shift =
+        (now.translation() - scan.traced_at.translation()).norm() + 2.0 * std::sin(angle / 2.0) * scan.reach;
     if (shift <= settings_.sight.cell) continue;
     freespace::SightMap& sight = sight_.at(scan.level);
     sight.remove_scan(scan.traced_at.translation(), map_points(scan));
@@ -327,8 +342,8 @@ void RoomLayer::move_room(int id, const Vec2& center) {
   map_.set_rect(id, rect);
 }
 
-std::vector<RoomEventRecord> RoomLayer::extract(const RoomLayerInput& input, const Vertices& segment, int level,
-                                                bool final) {
+std::vector<RoomEventRecord> RoomLayer::extract(const RoomLayerInput& input, const Vertices& segment,
+                                                int level, bool final) {
   std::vector<RoomEventRecord> events;
   std::optional<rooms::ExtractedRoom> room;
   std::vector<Eigen::Vector3d> free_space;
@@ -336,7 +351,8 @@ std::vector<RoomEventRecord> RoomLayer::extract(const RoomLayerInput& input, con
     // S-Graphs+ pairs the planes the last keyframe sees.
     std::vector<rooms::WallCandidate> seen;
     for (const rooms::WallCandidate& w : input.walls)
-      if (std::find(input.keyframe_planes.begin(), input.keyframe_planes.end(), w.id) != input.keyframe_planes.end())
+      if (std::find(input.keyframe_planes.begin(), input.keyframe_planes.end(), w.id) !=
+          input.keyframe_planes.end())
         seen.push_back(w);
     free_space = points_of(segment);
     room = rooms::extract_room_sgraphs(free_space, seen, settings_.sgraphs_extraction);
@@ -380,8 +396,10 @@ RoomEventRecord RoomLayer::event_of(const RoomLayerInput& input, const rooms::Ex
   return e;
 }
 
-std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInput& input, const Vertices& segment,
-                                                              std::vector<Eigen::Vector3d> path, int level, bool final) {
+std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInput& input,
+                                                              const Vertices& segment,
+                                                              std::vector<Eigen::Vector3d> path, int level,
+                                                              bool final) {
   // The floor points of spaces deferred before (the same level's) come first.
   std::vector<Eigen::Vector3d> deferred;
   deferred.swap(deferred_path_);
@@ -423,8 +441,8 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
     positions.push_back(n->position);
     normals.push_back(n->normal);
   }
-  const std::vector<double> slopes =
-      ground::ground_slopes(positions, normals, input.nodes->config().cell_size, 0.5 * settings_.layer.floor_window);
+  const std::vector<double> slopes = ground::ground_slopes(
+      positions, normals, input.nodes->config().cell_size, 0.5 * settings_.layer.floor_window);
   std::unordered_set<int> sloped;
   for (std::size_t i = 0; i < level_nodes.size(); ++i) {
     const bool level = slopes[i] <= settings_.layer.max_floor_slope;
@@ -481,7 +499,8 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
     const Vec2 a = path[k - 1].head<2>(), b = path[k].head<2>();
     const int end_a = seg.space_at(a, reach), end_b = seg.space_at(b, reach);
     const double length = (b - a).norm();
-    const int pieces = static_cast<int>(std::clamp(std::ceil(length / settings_.segmentation.cell), 1.0, across));
+    const int pieces =
+        static_cast<int>(std::clamp(std::ceil(length / settings_.segmentation.cell), 1.0, across));
     for (int j = 0; j < pieces; ++j) {
       const int s = seg.space_at(a + (b - a) * ((j + 0.5) / pieces), reach);
       if (s >= 0 && (s == end_a || s == end_b)) walked[s] += length / pieces;

@@ -41,24 +41,26 @@ namespace tsgraphs::pipeline {
 struct RoomLayerConfig {
   std::string free_space_method = "traversable";  ///< "traversable" (TS-graphs) or "esdf" (S-Graphs+)
   std::string room_trigger = "flush";             ///< "flush" (TS-graphs) or "timer" (S-Graphs+)
-  double free_space_radius = 8.0;  ///< free space is computed within this of the robot (m)
-  int obstacle_keyframes = 5;      ///< obstacle points come from the clouds of this many latest keyframes
-  double level_tolerance = 1.5;    ///< floors within this height of a known level belong to it (m)
-  double obstacle_voxel = 0.2;     ///< obstacle candidate points are thinned to this (m)
-  double segment_radius = 2.5;     ///< flush: only the cluster's vertices this near the robot along the free space join the segment (m):
-                                   ///< the aisle it walks, not everything in view
-  double min_segment_length = 2.0; ///< flush: a segment walked less than this (a corner, a doorway passed
-                                   ///< through) is not extracted but carried into the next one (m)
-  double min_visit_length = 1.0;   ///< flush: a space the segment's path runs this far in is extracted (m); a step
-                                   ///< through a doorway is no visit
-  double max_frontier = 0.1;       ///< flush: a space more than this share of whose edge borders the unseen waits for a
-                                   ///< later flush (or the end): its footprint is still growing
-  double level_band = 0.3;         ///< flush: ground within this height of the walked floor is the level's (m): steps, not a ramp's rise
-  double max_floor_slope = 0.05;   ///< a level's floor rises less than this per metre walked (1:20, where building codes
-                                   ///< call a walk a ramp); on a steeper path (ramp, stairs) the robot is between levels,
-                                   ///< and steeper ground round a node (a ramp's foot) is no floor of the level
-  double floor_window = 2.0;       ///< the floor's rise is measured over this much of the path, the ground's over this
-                                   ///< square round a node (m)
+  double free_space_radius = 8.0;                 ///< free space is computed within this of the robot (m)
+  int obstacle_keyframes = 5;    ///< obstacle points come from the clouds of this many latest keyframes
+  double level_tolerance = 1.5;  ///< floors within this height of a known level belong to it (m)
+  double obstacle_voxel = 0.2;   ///< obstacle candidate points are thinned to this (m)
+  double segment_radius = 2.5;   ///< flush: only the cluster's vertices this near the robot along the free
+                                 ///< space join the segment (m): the aisle it walks, not everything in view
+  double min_segment_length = 2.0;  ///< flush: a segment walked less than this (a corner, a doorway passed
+                                    ///< through) is not extracted but carried into the next one (m)
+  double min_visit_length = 1.0;  ///< flush: a space the segment's path runs this far in is extracted (m); a
+                                  ///< step through a doorway is no visit
+  double max_frontier = 0.1;  ///< flush: a space more than this share of whose edge borders the unseen waits
+                              ///< for a later flush (or the end): its footprint is still growing
+  double level_band = 0.3;    ///< flush: ground within this height of the walked floor is the level's (m):
+                              ///< steps, not a ramp's rise
+  double max_floor_slope =
+      0.05;  ///< a level's floor rises less than this per metre walked (1:20, where building codes
+             ///< call a walk a ramp); on a steeper path (ramp, stairs) the robot is between levels,
+             ///< and steeper ground round a node (a ramp's foot) is no floor of the level
+  double floor_window = 2.0;  ///< the floor's rise is measured over this much of the path, the ground's over
+                              ///< this square round a node (m)
 
   template <class V>
   void visit(V& v) {
@@ -101,25 +103,27 @@ struct RoomEventRecord {
   int level = 0;
   rooms::RoomKind kind = rooms::RoomKind::room;
   OrientedRect rect;
-  Polygon2 outline;                       ///< the footprint when it is no rectangle (empty: rect)
-  std::vector<int> walls;                 ///< every plane that bounds it
-  std::vector<int> factor_walls;          ///< the planes of its room-planes factor (4, 2, or none)
-  std::vector<std::pair<int, int>> merged;///< (keep, drop) room ids merged as duplicates after it
-  std::vector<Eigen::Vector3d> free_space;///< the free-space vertices it was extracted from (map frame)
+  Polygon2 outline;                         ///< the footprint when it is no rectangle (empty: rect)
+  std::vector<int> walls;                   ///< every plane that bounds it
+  std::vector<int> factor_walls;            ///< the planes of its room-planes factor (4, 2, or none)
+  std::vector<std::pair<int, int>> merged;  ///< (keep, drop) room ids merged as duplicates after it
+  std::vector<Eigen::Vector3d> free_space;  ///< the free-space vertices it was extracted from (map frame)
 };
 
 /// What the layer needs of the rest of the map at a keyframe.
 struct RoomLayerInput {
   double stamp = 0.0;
   int keyframe = -1;
-  Pose3 pose = Pose3::Identity();          ///< the keyframe's current estimate (sensor)
-  double sensor_height = 0.0;              ///< the sensor above the floor (m)
+  Pose3 pose = Pose3::Identity();  ///< the keyframe's current estimate (sensor)
+  double sensor_height = 0.0;      ///< the sensor above the floor (m)
   const ground::TraversableNodeMap* nodes = nullptr;
   std::vector<Eigen::Vector3d> obstacle_candidates;  ///< map-frame points of the latest keyframes
-  std::vector<Eigen::Vector3d> scan_points;          ///< this keyframe's points, map frame, thinned (the sight map's rays)
-  std::vector<Pose3> keyframe_poses;                 ///< TS-graphs: every keyframe's current estimate by index, so that earlier rays follow their keyframes (empty: they stay where traced)
-  std::vector<rooms::WallCandidate> walls;           ///< every mapped vertical plane with its extent
-  std::vector<int> keyframe_planes;                  ///< ids of the planes this keyframe observes
+  std::vector<Eigen::Vector3d>
+      scan_points;                    ///< this keyframe's points, map frame, thinned (the sight map's rays)
+  std::vector<Pose3> keyframe_poses;  ///< TS-graphs: every keyframe's current estimate by index, so that
+                                      ///< earlier rays follow their keyframes (empty: they stay where traced)
+  std::vector<rooms::WallCandidate> walls;  ///< every mapped vertical plane with its extent
+  std::vector<int> keyframe_planes;         ///< ids of the planes this keyframe observes
 };
 
 class RoomLayer {
@@ -164,8 +168,10 @@ class RoomLayer {
   /// The spaces explored enough are returned; the path in the others is kept in deferred_path_
   /// for the next extraction (all are returned when `final`).
   std::vector<rooms::ExtractedRoom> segmented_spaces(const RoomLayerInput& input, const Vertices& segment,
-                                                     std::vector<Eigen::Vector3d> path, int level, bool final);
-  /// The space of `seg` holding the floor point (or the nearest within a node's reach of the free space), or -1.
+                                                     std::vector<Eigen::Vector3d> path, int level,
+                                                     bool final);
+  /// The space of `seg` holding the floor point (or the nearest within a node's reach of the free space), or
+  /// -1.
   int space_of(const rooms::RoomSegmentation& seg, const Eigen::Vector3d& floor) const;
   RoomEventRecord event_of(const RoomLayerInput& input, const rooms::ExtractedRoom& room, int level,
                            std::vector<Eigen::Vector3d> free_space);
@@ -193,28 +199,32 @@ class RoomLayer {
   rooms::RoomFlushTrigger flush_trigger_;
   rooms::RoomTimerTrigger timer_trigger_;
   rooms::RoomMap map_;
-  Vertices segment_;                        ///< the free space walked since the last flush
-  double segment_length_ = 0.0;             ///< path walked in the segment (m)
+  Vertices segment_;             ///< the free space walked since the last flush
+  double segment_length_ = 0.0;  ///< path walked in the segment (m)
   std::optional<Eigen::Vector3d> last_position_;
-  std::vector<Eigen::Vector3d> segment_path_; ///< the robot's floor points in the segment, in order
-  std::optional<rooms::RoomSegmentation> last_segmentation_;  ///< TS-graphs: the latest one, to tell a change of space
+  std::vector<Eigen::Vector3d> segment_path_;  ///< the robot's floor points in the segment, in order
+  std::optional<rooms::RoomSegmentation>
+      last_segmentation_;  ///< TS-graphs: the latest one, to tell a change of space
   int last_segmentation_level_ = -1;
-  int last_space_ = -1;                     ///< the space of it the robot is in
-  int entering_space_ = -1;                 ///< another space the robot has stepped into...
-  double entering_length_ = 0.0;            ///< ...and how far it has walked in it (m)
-  double nodes_cell_ = 0.25;                ///< the node map's cell (the reach of a node)
-  std::vector<Eigen::Vector3d> deferred_path_;///< TS-graphs: floor points in spaces not yet explored enough
-  std::map<int, freespace::SightMap> sight_;   ///< TS-graphs: per level, what the rays saw
-  freespace::WallTopRays wall_tops_;           ///< TS-graphs: the rays that passed above the planes' tops
-  std::vector<TracedScan> traced_;             ///< TS-graphs: every keyframe's rays in the sight map
-  int retraced_ = 0;                           ///< TS-graphs: how many times kept scans were traced again
-  std::map<int, int> wall_tops_at_;            ///< TS-graphs: per plane, retraced_ when its rays were recorded
-  std::set<int> free_nodes_;                ///< TS-graphs: every node that was in the robot's free space
-  std::vector<KeyframeSpace> pending_;      ///< the latest keyframes' free space, held while the trigger confirms a change
-  std::vector<double> levels_;              ///< floor heights of the levels seen
-  std::vector<rooms::WallCandidate> walls_; ///< TS-graphs: the keyframe's walls, whether rays saw above their tops set
-  std::deque<std::pair<double, Eigen::Vector3d>> floor_track_;  ///< (path length, floor point) over the last floor_window
-  double track_length_ = 0.0;               ///< the robot's path length so far (m)
+  int last_space_ = -1;                         ///< the space of it the robot is in
+  int entering_space_ = -1;                     ///< another space the robot has stepped into...
+  double entering_length_ = 0.0;                ///< ...and how far it has walked in it (m)
+  double nodes_cell_ = 0.25;                    ///< the node map's cell (the reach of a node)
+  std::vector<Eigen::Vector3d> deferred_path_;  ///< TS-graphs: floor points in spaces not yet explored enough
+  std::map<int, freespace::SightMap> sight_;    ///< TS-graphs: per level, what the rays saw
+  freespace::WallTopRays wall_tops_;            ///< TS-graphs: the rays that passed above the planes' tops
+  std::vector<TracedScan> traced_;              ///< TS-graphs: every keyframe's rays in the sight map
+  int retraced_ = 0;                            ///< TS-graphs: how many times kept scans were traced again
+  std::map<int, int> wall_tops_at_;  ///< TS-graphs: per plane, retraced_ when its rays were recorded
+  std::set<int> free_nodes_;         ///< TS-graphs: every node that was in the robot's free space
+  std::vector<KeyframeSpace>
+      pending_;  ///< the latest keyframes' free space, held while the trigger confirms a change
+  std::vector<double> levels_;  ///< floor heights of the levels seen
+  std::vector<rooms::WallCandidate>
+      walls_;  ///< TS-graphs: the keyframe's walls, whether rays saw above their tops set
+  std::deque<std::pair<double, Eigen::Vector3d>>
+      floor_track_;            ///< (path length, floor point) over the last floor_window
+  double track_length_ = 0.0;  ///< the robot's path length so far (m)
   int segment_level_ = -1;
   bool was_in_free_space_ = true;
   std::size_t last_cluster_size_ = 0;

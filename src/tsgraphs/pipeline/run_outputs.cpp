@@ -108,19 +108,23 @@ io::SceneGraph scene_graph_of(const Pipeline& pipeline, const Eigen::Vector3d& o
   for (const graph::BetweenEdge& e : g.loop_edges())
     out.loop_edges.push_back({e.from, e.to, e.fitness, io::PoseRecord::of(e.measurement), e.folded});
   for (const LoopClosureRecord& l : pipeline.loop_closures())
-    out.loop_closures.push_back({l.edge.from, l.edge.to, l.edge.fitness, io::PoseRecord::of(l.edge.measurement), l.proposer});
+    out.loop_closures.push_back(
+        {l.edge.from, l.edge.to, l.edge.fitness, io::PoseRecord::of(l.edge.measurement), l.proposer});
   for (const graph::PlaneEdge& e : g.plane_edges())
     out.keyframe_plane_edges.push_back(
-        {e.keyframe, e.plane, Eigen::Vector4d(e.measurement.n.x(), e.measurement.n.y(), e.measurement.n.z(), e.measurement.d)});
+        {e.keyframe, e.plane,
+         Eigen::Vector4d(e.measurement.n.x(), e.measurement.n.y(), e.measurement.n.z(), e.measurement.d)});
   for (const graph::RoomPlanesEdge& e : g.room_edges())
     out.room_planes_edges.push_back({e.room, rooms::to_string(e.kind), e.planes, e.cluster_center});
-  for (const graph::FloorRoomEdge& e : g.floor_room_edges()) out.floor_room_edges.push_back({e.floor, e.room});
+  for (const graph::FloorRoomEdge& e : g.floor_room_edges())
+    out.floor_room_edges.push_back({e.floor, e.room});
   for (const ground::GlobalNode* n : pipeline.node_map().nodes())
     out.traversable_nodes.push_back(
         {n->id, n->position, n->normal, n->probability, n->observations, n->anchor_keyframe, n->keyframes});
   // Graph nodes of rooms and floors (optimised centres); "rooms" are the room map's
   // footprints, each naming its graph node when it has one.
-  for (const auto& [id, r] : g.rooms()) out.room_nodes.push_back({id, rooms::to_string(r.kind), r.level, r.center});
+  for (const auto& [id, r] : g.rooms())
+    out.room_nodes.push_back({id, rooms::to_string(r.kind), r.level, r.center});
   for (const auto& [id, f] : g.floors()) out.floors.push_back({id, f.level, f.center});
   // Each room's free space: the vertices of its latest extraction (for drawing).
   std::map<int, const std::vector<Eigen::Vector3d>*> free_space;
@@ -149,13 +153,14 @@ std::string scene_graph_json(const Pipeline& pipeline, const Eigen::Vector3d& or
 
 std::vector<int> laps_of(const std::vector<double>& stamps, const std::vector<Pose3>& poses,
                          const std::vector<double>& lap_starts) {
-  constexpr double kLapRadius = 1.5;     // m, docs/metrics.md
-  constexpr double kLapMinTravel = 20.0; // m
+  constexpr double kLapRadius = 1.5;      // m, docs/metrics.md
+  constexpr double kLapMinTravel = 20.0;  // m
   std::vector<int> laps(stamps.size(), 1);
   if (!lap_starts.empty()) {
     for (std::size_t i = 0; i < stamps.size(); ++i)
-      laps[i] = std::max<int>(1, static_cast<int>(std::upper_bound(lap_starts.begin(), lap_starts.end(), stamps[i]) -
-                                                  lap_starts.begin()));
+      laps[i] = std::max<int>(
+          1, static_cast<int>(std::upper_bound(lap_starts.begin(), lap_starts.end(), stamps[i]) -
+                              lap_starts.begin()));
     return laps;
   }
   int lap = 1;
@@ -240,7 +245,8 @@ std::string map_ply(const Pipeline& pipeline, const Eigen::Vector3d& origin) {
     const Eigen::Isometry3f T = k.pose.cast<float>();
     for (const Eigen::Vector3f& p : pipeline.keyframe_cloud(k.id).points) {
       const Eigen::Vector3f q = T * p;
-      if (occupied.insert(voxel_key(q, 1.0 / kMapVoxel)).second) vertices.push_back({q, kKeyframePointColour});
+      if (occupied.insert(voxel_key(q, 1.0 / kMapVoxel)).second)
+        vertices.push_back({q, kKeyframePointColour});
     }
   }
   for (const auto& [id, lm] : pipeline.plane_map().landmarks()) {
@@ -255,10 +261,12 @@ std::string map_ply(const Pipeline& pipeline, const Eigen::Vector3d& origin) {
     if (f.level < 0 || static_cast<std::size_t>(f.level) >= levels.size()) continue;
     const float z = static_cast<float>(levels[static_cast<std::size_t>(f.level)] + kOutlineLift);
     for (double t = -kFloorCross; t <= kFloorCross; t += kOutlineStep) {
-      vertices.push_back({Eigen::Vector3f(static_cast<float>(f.center.x() + t), static_cast<float>(f.center.y()), z),
-                          kFloorNodeColour});
-      vertices.push_back({Eigen::Vector3f(static_cast<float>(f.center.x()), static_cast<float>(f.center.y() + t), z),
-                          kFloorNodeColour});
+      vertices.push_back(
+          {Eigen::Vector3f(static_cast<float>(f.center.x() + t), static_cast<float>(f.center.y()), z),
+           kFloorNodeColour});
+      vertices.push_back(
+          {Eigen::Vector3f(static_cast<float>(f.center.x()), static_cast<float>(f.center.y() + t), z),
+           kFloorNodeColour});
     }
   }
   // Room and corridor footprints: their outlines just above their level's floor.
@@ -277,18 +285,20 @@ std::string map_ply(const Pipeline& pipeline, const Eigen::Vector3d& origin) {
       }
     }
   }
-  std::string out = "ply\nformat binary_little_endian 1.0\ncomment tsgraphs map: grey keyframe points, "
-                    "coloured wall faces, beige floors and ceilings, magenta traversable nodes, cyan room and orange "
-                    "corridor outlines, yellow floor-node crosses\nelement vertex " +
-                    std::to_string(vertices.size()) +
-                    "\nproperty double x\nproperty double y\nproperty double z\n"
-                    "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
+  std::string out =
+      "ply\nformat binary_little_endian 1.0\ncomment tsgraphs map: grey keyframe points, "
+      "coloured wall faces, beige floors and ceilings, magenta traversable nodes, cyan room and orange "
+      "corridor outlines, yellow floor-node crosses\nelement vertex " +
+      std::to_string(vertices.size()) +
+      "\nproperty double x\nproperty double y\nproperty double z\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
   const std::size_t header = out.size();
   constexpr std::size_t kVertexBytes = 3 * sizeof(double) + 3;
   out.resize(header + vertices.size() * kVertexBytes);
   char* dst = out.data() + header;
   for (const Vertex& v : vertices) {
-    const Eigen::Vector3d p = v.p.cast<double>() + origin;  // the input's frame, to the millimetre at UTM coordinates
+    const Eigen::Vector3d p =
+        v.p.cast<double>() + origin;  // the input's frame, to the millimetre at UTM coordinates
     std::memcpy(dst, p.data(), 3 * sizeof(double));  // x86 and ARM are little-endian
     dst[24] = static_cast<char>(v.c.r);
     dst[25] = static_cast<char>(v.c.g);
@@ -345,7 +355,8 @@ void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std:
   std::vector<io::StampedPose> odometry;
   odometry.reserve(poses.size());
   pipeline.scan_log().for_each([&](const ScanRecord& r) {
-    stamped.push_back({r.stamp, origin.isZero() ? poses[stamped.size()] : moved(poses[stamped.size()], origin)});
+    stamped.push_back(
+        {r.stamp, origin.isZero() ? poses[stamped.size()] : moved(poses[stamped.size()], origin)});
     odometry.push_back({r.stamp, origin.isZero() ? r.odom : moved(r.odom, origin)});
   });
   io::write_file_atomic(dir + "/" + run_files::kTrajectory, io::format_tum(stamped));
@@ -353,10 +364,12 @@ void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std:
   io::write_file_atomic(dir + "/" + run_files::kSceneGraph, scene_graph_json(pipeline, origin));
   io::write_file_atomic(dir + "/" + run_files::kMap, map_ply(pipeline, origin));
   io::write_file_atomic(dir + "/" + run_files::kTimings, timings_csv(pipeline));
-  io::write_file_atomic(dir + "/" + run_files::kRoomEvents, room_events_jsonl(pipeline, info.lap_starts, origin));
+  io::write_file_atomic(dir + "/" + run_files::kRoomEvents,
+                        room_events_jsonl(pipeline, info.lap_starts, origin));
   io::write_file_atomic(dir + "/" + run_files::kParams, dump_pipeline_config(pipeline.config()));
 
-  io::write_file_atomic(dir + "/" + run_files::kRunInfo, io::format_run_summary(run_summary_of(pipeline, info)));
+  io::write_file_atomic(dir + "/" + run_files::kRunInfo,
+                        io::format_run_summary(run_summary_of(pipeline, info)));
 }
 
 }  // namespace tsgraphs::pipeline

@@ -1,7 +1,7 @@
 #pragma once
 /// What `tsgraphs run` writes into its output folder (docs/run.md): the trajectory of every
-/// scan and the odometry it started from (TUM), the scene graph (JSON), the map (PLY, coloured by layer), the timings
-/// (CSV), the parameters actually used and a run summary. The files' schema is io/run_folder.hpp;
+/// scan and the odometry it started from (TUM), the scene graph (JSON), the map (PLY, coloured by layer), the
+/// timings (CSV), the parameters actually used and a run summary. The files' schema is io/run_folder.hpp;
 /// this fills it from a Pipeline.
 #include <string>
 
@@ -12,15 +12,15 @@ namespace tsgraphs::pipeline {
 
 /// Facts about the run that the pipeline does not know.
 struct RunInfo {
-  std::string sequence;          ///< input folder or file
-  double sequence_duration_s = 0;///< last stamp - first stamp (+ one scan period)
-  double wall_time_s = 0;        ///< whole run, reading included
+  std::string sequence;            ///< input folder or file
+  double sequence_duration_s = 0;  ///< last stamp - first stamp (+ one scan period)
+  double wall_time_s = 0;          ///< whole run, reading included
   double peak_rss_mb = 0;
   std::size_t num_scans = 0;
-  std::size_t num_skipped = 0;   ///< scans with a warning
-  std::vector<double> lap_starts;///< the sequence's laps.txt (empty: laps found from the trajectory)
-  bool estimated_odometry = false;///< the poses came from LiDAR odometry, not the input
-  std::size_t num_odometry_lost = 0;///< scans the LiDAR odometry reported lost (lidar_odometry.min_overlap)
+  std::size_t num_skipped = 0;        ///< scans with a warning
+  std::vector<double> lap_starts;     ///< the sequence's laps.txt (empty: laps found from the trajectory)
+  bool estimated_odometry = false;    ///< the poses came from LiDAR odometry, not the input
+  std::size_t num_odometry_lost = 0;  ///< scans the LiDAR odometry reported lost (lidar_odometry.min_overlap)
   /// Where the pipeline's map frame is in the input's frame (run_sequence: map_origin_of); the
   /// pipeline holds everything relative to it, the files are written in the input's frame.
   Eigen::Vector3d map_origin = Eigen::Vector3d::Zero();
@@ -44,9 +44,11 @@ void write_run_outputs(const Pipeline& pipeline, const RunInfo& info, const std:
 
 /// Every node and edge of the pipeline's graph, its traversable nodes and its room map, moved
 /// by `origin` (RunInfo::map_origin) into the input's frame.
-io::SceneGraph scene_graph_of(const Pipeline& pipeline, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
+io::SceneGraph scene_graph_of(const Pipeline& pipeline,
+                              const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 /// scene_graph.json's text: format_scene_graph(scene_graph_of(pipeline, origin)).
-std::string scene_graph_json(const Pipeline& pipeline, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
+std::string scene_graph_json(const Pipeline& pipeline,
+                             const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 /// Lap (1, 2, ...) of each scan: from `lap_starts` when given, else a lap ends when the sensor
 /// comes back within kLapRadius of its start after travelling more than kLapMinTravel
 /// (docs/metrics.md).

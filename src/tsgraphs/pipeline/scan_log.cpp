@@ -118,7 +118,10 @@ ScanLog::~ScanLog() {
 }
 
 ScanLog::ScanLog(ScanLog&& other) noexcept
-    : in_memory_(other.in_memory_), recent_(std::move(other.recent_)), file_(other.file_), spilled_(other.spilled_) {
+    : in_memory_(other.in_memory_),
+      recent_(std::move(other.recent_)),
+      file_(other.file_),
+      spilled_(other.spilled_) {
   other.file_ = nullptr;
   other.spilled_ = 0;
   other.recent_.clear();
@@ -150,7 +153,8 @@ void ScanLog::spill() {
   }
   std::string bytes;
   for (const ScanRecord& r : recent_) serialise(r, &bytes);
-  if (std::fseek(file_, 0, SEEK_END) != 0 || std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size())
+  if (std::fseek(file_, 0, SEEK_END) != 0 ||
+      std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size())
     fail("cannot write (is the disk full?)");
   spilled_ += recent_.size();
   recent_.clear();

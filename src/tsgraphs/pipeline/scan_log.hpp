@@ -17,22 +17,22 @@ namespace tsgraphs::pipeline {
 struct ScanRecord {
   std::size_t scan_index = 0;
   double stamp = 0.0;
-  int keyframe = -1;          ///< id of the keyframe made from this scan, or -1
-  int reference_keyframe = -1;///< the keyframe this scan's pose hangs from (-1 before the first)
+  int keyframe = -1;            ///< id of the keyframe made from this scan, or -1
+  int reference_keyframe = -1;  ///< the keyframe this scan's pose hangs from (-1 before the first)
   Pose3 odom = Pose3::Identity();
-  std::size_t num_points = 0;       ///< after prefiltering (keyframes: only they are prefiltered; else 0)
+  std::size_t num_points = 0;  ///< after prefiltering (keyframes: only they are prefiltered; else 0)
   double prefilter_ms = 0.0;
-  double ground_ms = 0.0;           ///< traversable ground of the scan (keyframes)
-  std::size_t num_ground_nodes = 0; ///< traversable nodes of the scan (keyframes)
-  double rooms_ms = 0.0;            ///< free space, flush rule and room extraction (keyframes)
+  double ground_ms = 0.0;            ///< traversable ground of the scan (keyframes)
+  std::size_t num_ground_nodes = 0;  ///< traversable nodes of the scan (keyframes)
+  double rooms_ms = 0.0;             ///< free space, flush rule and room extraction (keyframes)
   /// Ground points against the input's labels (1 floor, 2 ramp), over the points within the
   /// ground layer's range: true positives, false positives, false negatives; -1 without labels
   /// and for scans that are not keyframes (their ground is not segmented).
   long ground_tp = -1, ground_fp = -1, ground_fn = -1;
-  double walls_ms = 0.0;            ///< plane extraction and association (keyframes)
-  double loop_ms = 0.0;             ///< loop-closure search and registration (keyframes)
-  double frontend_ms = 0.0;         ///< all of the above and bookkeeping, not the back-end (thread time summed)
-  std::string warning;              ///< why the scan was skipped or not made a keyframe
+  double walls_ms = 0.0;     ///< plane extraction and association (keyframes)
+  double loop_ms = 0.0;      ///< loop-closure search and registration (keyframes)
+  double frontend_ms = 0.0;  ///< all of the above and bookkeeping, not the back-end (thread time summed)
+  std::string warning;       ///< why the scan was skipped or not made a keyframe
 };
 
 class ScanLog {

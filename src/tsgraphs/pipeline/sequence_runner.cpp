@@ -38,7 +38,7 @@ struct Loaded {
   bool loaded = false;  ///< `scan` read whole (else only its presence: no keyframe is expected)
   PointCloud scan;      ///< as read (de-skewed), until processed
   PreparedScan prepared;
-  std::string error;    ///< why the scan file could not be read
+  std::string error;             ///< why the scan file could not be read
   std::string odometry_warning;  ///< the LiDAR odometry lost this scan
 };
 
@@ -69,17 +69,16 @@ void measure_platform(const io::ScanSequence& sequence, bool poses_estimated, Pi
   pipeline.set_platform(scans, ups);
 }
 
-Eigen::Vector3d map_origin_of(const Pose3& first) {
-  return float_safe_origin(first.translation());
-}
+Eigen::Vector3d map_origin_of(const Pose3& first) { return float_safe_origin(first.translation()); }
 
 RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const RunCallbacks& callbacks,
                      const OdometryOptions& odometry) {
   const auto start = std::chrono::steady_clock::now();
   const io::SequenceInfo& info = sequence.info();
   if (!odometry.estimate && info.odometry.size() != sequence.size())
-    throw std::invalid_argument("run_sequence: " + sequence.dir() + " has " + std::to_string(info.odometry.size()) +
-                                " odometry poses for " + std::to_string(sequence.size()) + " scans; estimate them");
+    throw std::invalid_argument("run_sequence: " + sequence.dir() + " has " +
+                                std::to_string(info.odometry.size()) + " odometry poses for " +
+                                std::to_string(sequence.size()) + " scans; estimate them");
   RunInfo run;
   run.sequence = sequence.dir();
   run.num_scans = sequence.size();
@@ -128,9 +127,10 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
   // them (read whole, they were 9 % of the built-in atrium's CPU). The LiDAR odometry needs
   // every scan whole.
   const bool presence_first = !odometry.estimate && sequence.presence_is_cheap();
-  const std::size_t tokens = (presence_first ? kTokensPerThreadPresenceFirst : kTokensPerThread) *
-                             static_cast<std::size_t>(std::max(1, static_cast<int>(tbb::global_control::active_value(
-                                                                      tbb::global_control::max_allowed_parallelism))));
+  const std::size_t tokens =
+      (presence_first ? kTokensPerThreadPresenceFirst : kTokensPerThread) *
+      static_cast<std::size_t>(std::max(1, static_cast<int>(tbb::global_control::active_value(
+                                               tbb::global_control::max_allowed_parallelism))));
   const auto read_whole = [&](Loaded& l) {
     l.scan = sequence.scan(l.index);
     l.loaded = true;
@@ -144,116 +144,105 @@ RunInfo run_sequence(const io::ScanSequence& sequence, Pipeline& pipeline, const
     l.prepared.input_no_points = l.presence.empty;
   };
   tbb::parallel_pipeline(
-      tokens,
-      tbb::make_filter<void, Loaded>(tbb::filter_mode::serial_in_order,
-                                     [&](tbb::flow_control& fc) {
-                                       Loaded l;
-                                       if (next >= sequence.size()) {
-                                         fc.stop();
-                                         return l;
-                                       }
-                                       l.index = next++;
-                                       return l;
-                                     }) &
-          tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::parallel,
-                                           [&](Loaded l) {
-                                             try {
-                                               if (presence_first) {
-                                                 l.presence = sequence.presence(l.index);
-                                                 if (l.presence.has_times) read_whole(l);  // de-skewed in order
-                                               } else {
-                                                 read_whole(l);
-                                               }
-                                             } catch (const std::exception& e) {
-                                               l.error = e.what();
-                                             }
-                                             return l;
-                                           }) &
-          tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::serial_in_order,
-                                           [&](Loaded l) {
-                                             // An unreadable scan is empty here: the odometry keeps its prediction.
-                                             l.odom = lidar_odometry
-                                                          ? lidar_odometry->register_scan(l.scan, info.times[l.index])
-                                                          : in_map(info.odometry[l.index]);
-                                             // De-skewed after the odometry: with the motion its sweep
-                                             // registration found, else with the poses' motion or a
-                                             // registration of the sweep's own (deskew.hpp, sweep_motion).
-                                             if (deskew.enabled && l.scan.has_times() && lidar_odometry &&
-                                                 lidar_odometry->last_sweep().registered) {
-                                               l.scan = odometry::deskew(l.scan, lidar_odometry->last_sweep().after(1.0), 1.0);
-                                             } else if (deskew.enabled && l.scan.has_times()) {
-                                               const auto [motion, interval] = odometry::sweep_motion(
-                                                   l.index, info.times, info.odometry,
-                                                   lidar_odometry ? &*lidar_odometry : nullptr);
-                                               if (register_sweep(l.index, l.scan)) {
-                                                 if (!sweeps) sweeps.emplace(pipeline.config().lidar_odometry, deskew.registration);
-                                                 l.scan = sweeps->deskew(l.scan, l.odom, motion, interval);
-                                               } else {
-                                                 l.scan = odometry::deskew(l.scan, motion, interval);
-                                               }
-                                             }
-                                             if (lidar_odometry && lidar_odometry->last_icp().lost) {
-                                               const odometry::IcpResult& icp = lidar_odometry->last_icp();
-                                               l.odometry_warning =
-                                                   "scan " + std::to_string(l.index) + ": LiDAR odometry lost: " +
-                                                   std::to_string(static_cast<int>(std::lround(100.0 * icp.overlap))) +
-                                                   " % of its points fall in the map (below lidar_odometry.min_overlap)"
-                                                   "; its pose is kept, its points stay out of the odometry's map";
-                                             }
-                                             // As Pipeline::process: a scan without a finite point is no keyframe.
-                                             l.keyframe_candidate =
-                                                 l.presence.has_finite && candidates.is_keyframe(l.odom);
-                                             if (l.keyframe_candidate) candidates.accept(l.odom);
-                                             return l;
-                                           }) &
-          tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::parallel,
-                                           [&](Loaded l) {
-                                             const std::size_t i = l.index;
-                                             if (l.keyframe_candidate && !l.loaded) {
-                                               try {
-                                                 read_whole(l);
-                                               } catch (const std::exception& e) {
-                                                 l.error = e.what();
-                                                 l.keyframe_candidate = false;
-                                               }
-                                             }
-                                             l.prepared = pipeline.prepare(i, info.times[i], l.scan, l.odom,
-                                                                           l.keyframe_candidate);
-                                             if (!l.loaded && l.error.empty()) tell_presence(l);
-                                             return l;
-                                           }) &
-          tbb::make_filter<Loaded, void>(tbb::filter_mode::serial_in_order, [&](Loaded l) {
-            const std::size_t i = l.index;
-            // A keyframe the guess missed (after a scan without points) is read whole now.
-            if (!l.loaded && l.error.empty() && pipeline.would_be_keyframe(l.odom)) {
-              try {
-                read_whole(l);
-              } catch (const std::exception& e) {
-                l.error = e.what();
-                l.prepared.input_empty = l.prepared.input_no_points = true;  // as an unreadable scan
-              }
-            }
-            const ScanRecord& rec = pipeline.process(std::move(l.prepared), l.scan);
-            if (!l.odometry_warning.empty()) {
-              ++run.num_odometry_lost;
-              if (callbacks.warning && run.num_odometry_lost <= kLostScansTold) callbacks.warning(l.odometry_warning);
-            }
-            if (!l.error.empty()) {
-              ++run.num_skipped;
-              if (callbacks.warning) callbacks.warning(l.error + ": scan skipped, its pose taken from odometry");
-            } else if (!rec.warning.empty()) {
-              ++run.num_skipped;
-              if (callbacks.warning) callbacks.warning("scan " + std::to_string(i) + ": " + rec.warning);
-            }
-            tell_warnings();
-            if (callbacks.progress) callbacks.progress(i + 1, sequence.size());
-          }));
+      tokens, tbb::make_filter<void, Loaded>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& fc) {
+                Loaded l;
+                if (next >= sequence.size()) {
+                  fc.stop();
+                  return l;
+                }
+                l.index = next++;
+                return l;
+              }) & tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::parallel, [&](Loaded l) {
+                try {
+                  if (presence_first) {
+                    l.presence = sequence.presence(l.index);
+                    if (l.presence.has_times) read_whole(l);  // de-skewed in order
+                  } else {
+                    read_whole(l);
+                  }
+                } catch (const std::exception& e) {
+                  l.error = e.what();
+                }
+                return l;
+              }) & tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::serial_in_order, [&](Loaded l) {
+                // An unreadable scan is empty here: the odometry keeps its prediction.
+                l.odom = lidar_odometry ? lidar_odometry->register_scan(l.scan, info.times[l.index])
+                                        : in_map(info.odometry[l.index]);
+                // De-skewed after the odometry: with the motion its sweep
+                // registration found, else with the poses' motion or a
+                // registration of the sweep's own (deskew.hpp, sweep_motion).
+                if (deskew.enabled && l.scan.has_times() && lidar_odometry &&
+                    lidar_odometry->last_sweep().registered) {
+                  l.scan = odometry::deskew(l.scan, lidar_odometry->last_sweep().after(1.0), 1.0);
+                } else if (deskew.enabled && l.scan.has_times()) {
+                  const auto [motion, interval] = odometry::sweep_motion(
+                      l.index, info.times, info.odometry, lidar_odometry ? &*lidar_odometry : nullptr);
+                  if (register_sweep(l.index, l.scan)) {
+                    if (!sweeps) sweeps.emplace(pipeline.config().lidar_odometry, deskew.registration);
+                    l.scan = sweeps->deskew(l.scan, l.odom, motion, interval);
+                  } else {
+                    l.scan = odometry::deskew(l.scan, motion, interval);
+                  }
+                }
+                if (lidar_odometry && lidar_odometry->last_icp().lost) {
+                  const odometry::IcpResult& icp = lidar_odometry->last_icp();
+                  l.odometry_warning = "scan " + std::to_string(l.index) + ": LiDAR odometry lost: " +
+                                       std::to_string(static_cast<int>(std::lround(100.0 * icp.overlap))) +
+                                       " % of its points fall in the map (below lidar_odometry.min_overlap)"
+                                       "; its pose is kept, its points stay out of the odometry's map";
+                }
+                // As Pipeline::process: a scan without a finite point is no keyframe.
+                l.keyframe_candidate = l.presence.has_finite && candidates.is_keyframe(l.odom);
+                if (l.keyframe_candidate) candidates.accept(l.odom);
+                return l;
+              }) & tbb::make_filter<Loaded, Loaded>(tbb::filter_mode::parallel, [&](Loaded l) {
+                const std::size_t i = l.index;
+                if (l.keyframe_candidate && !l.loaded) {
+                  try {
+                    read_whole(l);
+                  } catch (const std::exception& e) {
+                    l.error = e.what();
+                    l.keyframe_candidate = false;
+                  }
+                }
+                l.prepared = pipeline.prepare(i, info.times[i], l.scan, l.odom, l.keyframe_candidate);
+                if (!l.loaded && l.error.empty()) tell_presence(l);
+                return l;
+              }) & tbb::make_filter<Loaded, void>(tbb::filter_mode::serial_in_order, [&](Loaded l) {
+                const std::size_t i = l.index;
+                // A keyframe the guess missed (after a scan without points) is read whole now.
+                if (!l.loaded && l.error.empty() && pipeline.would_be_keyframe(l.odom)) {
+                  try {
+                    read_whole(l);
+                  } catch (const std::exception& e) {
+                    l.error = e.what();
+                    l.prepared.input_empty = l.prepared.input_no_points = true;  // as an unreadable scan
+                  }
+                }
+                const ScanRecord& rec = pipeline.process(std::move(l.prepared), l.scan);
+                if (!l.odometry_warning.empty()) {
+                  ++run.num_odometry_lost;
+                  if (callbacks.warning && run.num_odometry_lost <= kLostScansTold)
+                    callbacks.warning(l.odometry_warning);
+                }
+                if (!l.error.empty()) {
+                  ++run.num_skipped;
+                  if (callbacks.warning)
+                    callbacks.warning(l.error + ": scan skipped, its pose taken from odometry");
+                } else if (!rec.warning.empty()) {
+                  ++run.num_skipped;
+                  if (callbacks.warning) callbacks.warning("scan " + std::to_string(i) + ": " + rec.warning);
+                }
+                tell_warnings();
+                if (callbacks.progress) callbacks.progress(i + 1, sequence.size());
+              }));
   pipeline.finish();
   tell_warnings();
   if (callbacks.warning && run.num_odometry_lost > kLostScansTold)
     callbacks.warning("LiDAR odometry lost " + std::to_string(run.num_odometry_lost) + " scans in all");
   if (info.times.size() >= 2) {
-    const double period = (info.times.back() - info.times.front()) / static_cast<double>(info.times.size() - 1);
+    const double period =
+        (info.times.back() - info.times.front()) / static_cast<double>(info.times.size() - 1);
     run.sequence_duration_s = info.times.back() - info.times.front() + period;
   }
   run.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

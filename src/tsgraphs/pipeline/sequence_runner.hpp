@@ -14,8 +14,9 @@ namespace tsgraphs::pipeline {
 
 struct RunCallbacks {
   std::function<void(std::size_t done, std::size_t total)> progress;  ///< after each scan
-  std::function<void(const std::string&)> warning;                    ///< one line per skipped scan, and the pipeline's warnings
-  std::function<void(const std::string&)> note;                       ///< what was measured of the platform
+  std::function<void(const std::string&)>
+      warning;                                   ///< one line per skipped scan, and the pipeline's warnings
+  std::function<void(const std::string&)> note;  ///< what was measured of the platform
 };
 
 /// Where the scans' poses come from.

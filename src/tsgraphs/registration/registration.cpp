@@ -62,7 +62,8 @@ class NanoflannSearch : public pcl::search::KdTree<PclPoint> {
 
   // GICP is given this tree with "no recompute"; a new cloud would be a misuse.
   void setInputCloud(const PclCloud::ConstPtr& cloud, const pcl::IndicesConstPtr& indices) override {
-    if (cloud != input_ || indices) throw std::logic_error("NanoflannSearch: the cloud is fixed at construction");
+    if (cloud != input_ || indices)
+      throw std::logic_error("NanoflannSearch: the cloud is fixed at construction");
   }
 
   int nearestKSearch(const PclPoint& point, int k, pcl::Indices& k_indices,
@@ -177,7 +178,7 @@ struct PreparedCloud::Data {
   double voxel_size = 0.0;
   int k = 0;
   PclCloud::Ptr cloud;
-  std::shared_ptr<const NanoflannSearch> search;  // null when the cloud has fewer than k points
+  std::shared_ptr<const NanoflannSearch> search;   // null when the cloud has fewer than k points
   std::shared_ptr<const Covariances> covariances;  // GICP's, shared with every registration
 };
 
@@ -206,13 +207,14 @@ PreparedCloud prepare_cloud(const PointCloud& cloud, const RegistrationConfig& c
   return out;
 }
 
-RegistrationResult register_clouds(const PreparedCloud& source, const PreparedCloud& target, const Pose3& initial_guess,
-                                   const RegistrationConfig& config) {
+RegistrationResult register_clouds(const PreparedCloud& source, const PreparedCloud& target,
+                                   const Pose3& initial_guess, const RegistrationConfig& config) {
   check_config(config);
   for (const PreparedCloud* c : {&source, &target}) {
     if (!c->data_) throw std::invalid_argument("register_clouds: a cloud was not prepared");
     if (c->data_->voxel_size != config.voxel_size || c->data_->k != config.k_correspondences)
-      throw std::invalid_argument("register_clouds: a cloud was prepared with another voxel_size or k_correspondences");
+      throw std::invalid_argument(
+          "register_clouds: a cloud was prepared with another voxel_size or k_correspondences");
   }
   RegistrationResult result;
   result.T_target_source = initial_guess;
@@ -260,8 +262,9 @@ RegistrationResult register_clouds(const PreparedCloud& source, const PreparedCl
   estimate.linear() = Eigen::Quaterniond(Td.topLeftCorner<3, 3>()).normalized().toRotationMatrix();
   estimate.translation() = Td.topRightCorner<3, 1>();
 
-  const Fitness fit = measure_fitness(source_search->points(), *src.covariances, estimate.matrix().cast<float>(),
-                                      target_search->tree(), *tgt.covariances, config.fitness_distance);
+  const Fitness fit =
+      measure_fitness(source_search->points(), *src.covariances, estimate.matrix().cast<float>(),
+                      target_search->tree(), *tgt.covariances, config.fitness_distance);
   result.T_target_source = estimate;
   result.fitness = fit.mean_squared;
   result.inlier_ratio = fit.inlier_ratio;
@@ -270,8 +273,8 @@ RegistrationResult register_clouds(const PreparedCloud& source, const PreparedCl
   return result;
 }
 
-RegistrationResult register_clouds(const PointCloud& source, const PointCloud& target, const Pose3& initial_guess,
-                                   const RegistrationConfig& config) {
+RegistrationResult register_clouds(const PointCloud& source, const PointCloud& target,
+                                   const Pose3& initial_guess, const RegistrationConfig& config) {
   return register_clouds(prepare_cloud(source, config), prepare_cloud(target, config), initial_guess, config);
 }
 

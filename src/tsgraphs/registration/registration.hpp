@@ -11,14 +11,14 @@
 namespace tsgraphs::registration {
 
 struct RegistrationConfig {
-  double voxel_size = 0.2;                   ///< both clouds are voxel-downsampled to this (m); 0 = keep all
-  double max_correspondence_distance = 1.0;  ///< GICP correspondence gate (m): the capture range
-  double fine_correspondence_distance = 0.5; ///< gate of a second GICP pass from the first one's result (m), so that
-                                             ///< far pairs do not bias the final pose; 0 = one pass
-  int max_iterations = 64;                   ///< GICP outer iterations
-  int k_correspondences = 20;                ///< neighbours for each point's covariance
-  double transformation_epsilon = 1e-4;      ///< convergence: change of the transform between iterations
-  double fitness_distance = 0.3;             ///< only correspondences closer than this count in `fitness` (m)
+  double voxel_size = 0.2;                    ///< both clouds are voxel-downsampled to this (m); 0 = keep all
+  double max_correspondence_distance = 1.0;   ///< GICP correspondence gate (m): the capture range
+  double fine_correspondence_distance = 0.5;  ///< gate of a second GICP pass from the first one's result (m),
+                                              ///< so that far pairs do not bias the final pose; 0 = one pass
+  int max_iterations = 64;                    ///< GICP outer iterations
+  int k_correspondences = 20;                 ///< neighbours for each point's covariance
+  double transformation_epsilon = 1e-4;       ///< convergence: change of the transform between iterations
+  double fitness_distance = 0.3;  ///< only correspondences closer than this count in `fitness` (m)
 
   template <class V>
   void visit(V& v) {
@@ -34,8 +34,10 @@ struct RegistrationConfig {
 
 struct RegistrationResult {
   Pose3 T_target_source = Pose3::Identity();  ///< maps source points into the target frame
-  double fitness = 0.0;       ///< mean squared distance (m^2) of source points to their nearest target point, over those within fitness_distance
-  double inlier_ratio = 0.0;  ///< share of source points within fitness_distance of the target after alignment
+  double fitness = 0.0;  ///< mean squared distance (m^2) of source points to their nearest target point, over
+                         ///< those within fitness_distance
+  double inlier_ratio =
+      0.0;  ///< share of source points within fitness_distance of the target after alignment
   /// How well the matched surfaces pin the translation: the share of the pairs within
   /// fitness_distance whose surfaces face the direction they pin least (from GICP's
   /// translation information, sum of (C_target + R C_source R^T)^-1 over the pairs). Near 0:
@@ -79,11 +81,11 @@ PreparedCloud prepare_cloud(const PointCloud& cloud, const RegistrationConfig& c
 /// converged = false (T = the guess, inlier_ratio 0), never an exception; a config out of range
 /// (negative sizes, k < 3) is a std::invalid_argument. `converged` is PCL's: the iterations
 /// stopped (by epsilon or by max_iterations) without a numerical failure.
-RegistrationResult register_clouds(const PreparedCloud& source, const PreparedCloud& target, const Pose3& initial_guess,
-                                   const RegistrationConfig& config);
+RegistrationResult register_clouds(const PreparedCloud& source, const PreparedCloud& target,
+                                   const Pose3& initial_guess, const RegistrationConfig& config);
 
 /// The same for clouds not prepared yet (prepares both).
-RegistrationResult register_clouds(const PointCloud& source, const PointCloud& target, const Pose3& initial_guess,
-                                   const RegistrationConfig& config);
+RegistrationResult register_clouds(const PointCloud& source, const PointCloud& target,
+                                   const Pose3& initial_guess, const RegistrationConfig& config);
 
 }  // namespace tsgraphs::registration

@@ -21,12 +21,13 @@ namespace {
 
 using json = nlohmann::ordered_json;  // keys in the order written: the same run gives the same bytes
 
-constexpr double kLabelLift = 0.6;      // room labels above their outline (m)
-constexpr double kWallThickness = 0.05; // a wall plane drawn as a box this thick (m)
-constexpr double kWallAlpha = 0.6;      // walls half seen through, so that the rooms behind them show
-constexpr double kLineWidth = 0.05;     // outlines and the trajectory (m)
-constexpr double kLabelSize = 0.5;      // text height (m)
-constexpr std::size_t kMaxTrajectoryPoints = 5000;  // the trajectory line thinned to at most this many vertices
+constexpr double kLabelLift = 0.6;       // room labels above their outline (m)
+constexpr double kWallThickness = 0.05;  // a wall plane drawn as a box this thick (m)
+constexpr double kWallAlpha = 0.6;       // walls half seen through, so that the rooms behind them show
+constexpr double kLineWidth = 0.05;      // outlines and the trajectory (m)
+constexpr double kLabelSize = 0.5;       // text height (m)
+constexpr std::size_t kMaxTrajectoryPoints =
+    5000;  // the trajectory line thinned to at most this many vertices
 // Foxglove's numeric types (foxglove.NumericType).
 constexpr int kUint8 = 1, kFloat32 = 7;
 
@@ -58,38 +59,70 @@ json array_of(const json& items) { return json{{"type", "array"}, {"items", item
 std::map<std::string, json> make_schemas() {
   const json time = object({{"sec", integer(0)}, {"nsec", integer(0, 999999999)}}, "time");
   const json duration = object({{"sec", integer()}, {"nsec", integer(0, 999999999)}}, "duration");
-  const json vector3 = object({{"x", typed("number")}, {"y", typed("number")}, {"z", typed("number")}}, "foxglove.Vector3");
-  const json quaternion = object({{"x", typed("number")}, {"y", typed("number")}, {"z", typed("number")}, {"w", typed("number")}},
-                                 "foxglove.Quaternion");
+  const json vector3 =
+      object({{"x", typed("number")}, {"y", typed("number")}, {"z", typed("number")}}, "foxglove.Vector3");
+  const json quaternion =
+      object({{"x", typed("number")}, {"y", typed("number")}, {"z", typed("number")}, {"w", typed("number")}},
+             "foxglove.Quaternion");
   const json pose = object({{"position", vector3}, {"orientation", quaternion}}, "foxglove.Pose");
-  const json color = object({{"r", typed("number")}, {"g", typed("number")}, {"b", typed("number")}, {"a", typed("number")}},
-                            "foxglove.Color");
-  const json field = object({{"name", typed("string")}, {"offset", integer(0)}, {"type", integer(0, 8)}}, "foxglove.PackedElementField");
-  const json line = object({{"type", integer(0, 2)}, {"pose", pose}, {"thickness", typed("number")}, {"scale_invariant", typed("boolean")},
-                            {"points", array_of(vector3)}, {"color", color}, {"colors", array_of(color)}, {"indices", array_of(integer(0))}},
+  const json color =
+      object({{"r", typed("number")}, {"g", typed("number")}, {"b", typed("number")}, {"a", typed("number")}},
+             "foxglove.Color");
+  const json field = object({{"name", typed("string")}, {"offset", integer(0)}, {"type", integer(0, 8)}},
+                            "foxglove.PackedElementField");
+  const json line = object({{"type", integer(0, 2)},
+                            {"pose", pose},
+                            {"thickness", typed("number")},
+                            {"scale_invariant", typed("boolean")},
+                            {"points", array_of(vector3)},
+                            {"color", color},
+                            {"colors", array_of(color)},
+                            {"indices", array_of(integer(0))}},
                            "foxglove.LinePrimitive");
   const json cube = object({{"pose", pose}, {"size", vector3}, {"color", color}}, "foxglove.CubePrimitive");
-  const json text = object({{"pose", pose}, {"billboard", typed("boolean")}, {"font_size", typed("number")},
-                            {"scale_invariant", typed("boolean")}, {"color", color}, {"text", typed("string")}},
+  const json text = object({{"pose", pose},
+                            {"billboard", typed("boolean")},
+                            {"font_size", typed("number")},
+                            {"scale_invariant", typed("boolean")},
+                            {"color", color},
+                            {"text", typed("string")}},
                            "foxglove.TextPrimitive");
-  const json key_value = object({{"key", typed("string")}, {"value", typed("string")}}, "foxglove.KeyValuePair");
+  const json key_value =
+      object({{"key", typed("string")}, {"value", typed("string")}}, "foxglove.KeyValuePair");
   json none = typed("array");  // primitive kinds the export does not write: always empty
   none["maxItems"] = 0;
-  const json entity = object({{"timestamp", time}, {"frame_id", typed("string")}, {"id", typed("string")}, {"lifetime", duration},
-                              {"frame_locked", typed("boolean")}, {"metadata", array_of(key_value)}, {"arrows", none},
-                              {"cubes", array_of(cube)}, {"spheres", none}, {"cylinders", none}, {"lines", array_of(line)},
-                              {"triangles", none}, {"texts", array_of(text)}, {"models", none}},
+  const json entity = object({{"timestamp", time},
+                              {"frame_id", typed("string")},
+                              {"id", typed("string")},
+                              {"lifetime", duration},
+                              {"frame_locked", typed("boolean")},
+                              {"metadata", array_of(key_value)},
+                              {"arrows", none},
+                              {"cubes", array_of(cube)},
+                              {"spheres", none},
+                              {"cylinders", none},
+                              {"lines", array_of(line)},
+                              {"triangles", none},
+                              {"texts", array_of(text)},
+                              {"models", none}},
                              "foxglove.SceneEntity");
-  const json deletion = object({{"timestamp", time}, {"type", integer(0, 1)}, {"id", typed("string")}}, "foxglove.SceneEntityDeletion");
+  const json deletion = object({{"timestamp", time}, {"type", integer(0, 1)}, {"id", typed("string")}},
+                               "foxglove.SceneEntityDeletion");
   json data = typed("string");
   data["contentEncoding"] = "base64";
   return {
-      {"foxglove.FrameTransform",
-       object({{"timestamp", time}, {"parent_frame_id", typed("string")}, {"child_frame_id", typed("string")},
-               {"translation", vector3}, {"rotation", quaternion}},
-              "foxglove.FrameTransform")},
-      {"foxglove.PointCloud", object({{"timestamp", time}, {"frame_id", typed("string")}, {"pose", pose}, {"point_stride", integer(0)},
-                                      {"fields", array_of(field)}, {"data", data}},
+      {"foxglove.FrameTransform", object({{"timestamp", time},
+                                          {"parent_frame_id", typed("string")},
+                                          {"child_frame_id", typed("string")},
+                                          {"translation", vector3},
+                                          {"rotation", quaternion}},
+                                         "foxglove.FrameTransform")},
+      {"foxglove.PointCloud", object({{"timestamp", time},
+                                      {"frame_id", typed("string")},
+                                      {"pose", pose},
+                                      {"point_stride", integer(0)},
+                                      {"fields", array_of(field)},
+                                      {"data", data}},
                                      "foxglove.PointCloud")},
       {"foxglove.SceneUpdate",
        object({{"deletions", array_of(deletion)}, {"entities", array_of(entity)}}, "foxglove.SceneUpdate")},
@@ -128,25 +161,44 @@ std::string base64(const std::string& in) {
 }
 
 json entity(double t, const std::string& id) {
-  return {{"timestamp", time_of(t)}, {"frame_id", "map"}, {"id", id}, {"lifetime", {{"sec", 0}, {"nsec", 0}}},
-          {"frame_locked", false}, {"metadata", json::array()}, {"arrows", json::array()}, {"cubes", json::array()},
-          {"spheres", json::array()}, {"cylinders", json::array()}, {"lines", json::array()}, {"triangles", json::array()},
-          {"texts", json::array()}, {"models", json::array()}};
+  return {{"timestamp", time_of(t)},
+          {"frame_id", "map"},
+          {"id", id},
+          {"lifetime", {{"sec", 0}, {"nsec", 0}}},
+          {"frame_locked", false},
+          {"metadata", json::array()},
+          {"arrows", json::array()},
+          {"cubes", json::array()},
+          {"spheres", json::array()},
+          {"cylinders", json::array()},
+          {"lines", json::array()},
+          {"triangles", json::array()},
+          {"texts", json::array()},
+          {"models", json::array()}};
 }
 
 json line(int type, const std::vector<Eigen::Vector3d>& points, const json& color) {
   json pts = json::array();
   for (const Eigen::Vector3d& p : points) pts.push_back(vec3(p));
-  return {{"type", type}, {"pose", pose_of(Eigen::Vector3d::Zero())}, {"thickness", kLineWidth}, {"scale_invariant", false},
-          {"points", pts}, {"color", color}, {"colors", json::array()}, {"indices", json::array()}};
+  return {{"type", type},
+          {"pose", pose_of(Eigen::Vector3d::Zero())},
+          {"thickness", kLineWidth},
+          {"scale_invariant", false},
+          {"points", pts},
+          {"color", color},
+          {"colors", json::array()},
+          {"indices", json::array()}};
 }
 
 json text(const Eigen::Vector3d& at, const std::string& what, const json& color) {
-  return {{"pose", pose_of(at)}, {"billboard", true}, {"font_size", kLabelSize}, {"scale_invariant", false}, {"color", color}, {"text", what}};
+  return {{"pose", pose_of(at)},      {"billboard", true}, {"font_size", kLabelSize},
+          {"scale_invariant", false}, {"color", color},    {"text", what}};
 }
 
-/// A PointCloud of `points` (relative to `origin`), x y z float32 and, with colours, red green blue alpha uint8.
-json point_cloud(double t, const Eigen::Vector3d& origin, const std::vector<io::MapVertex>& points, bool coloured) {
+/// A PointCloud of `points` (relative to `origin`), x y z float32 and, with colours, red green blue alpha
+/// uint8.
+json point_cloud(double t, const Eigen::Vector3d& origin, const std::vector<io::MapVertex>& points,
+                 bool coloured) {
   const std::size_t stride = coloured ? 16 : 12;
   std::string data(points.size() * stride, '\0');
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -158,15 +210,15 @@ json point_cloud(double t, const Eigen::Vector3d& origin, const std::vector<io::
     }
   }
   json fields = json::array();
-  for (int k = 0; k < 3; ++k) fields.push_back({{"name", std::string(1, "xyz"[k])}, {"offset", 4 * k}, {"type", kFloat32}});
+  for (int k = 0; k < 3; ++k)
+    fields.push_back({{"name", std::string(1, "xyz"[k])}, {"offset", 4 * k}, {"type", kFloat32}});
   if (coloured) {
     const char* const names[] = {"red", "green", "blue", "alpha"};
     for (int k = 0; k < 4; ++k) fields.push_back({{"name", names[k]}, {"offset", 12 + k}, {"type", kUint8}});
   }
-  return {{"timestamp", time_of(t)}, {"frame_id", "map"}, {"pose", pose_of(origin)}, {"point_stride", stride},
-          {"fields", fields}, {"data", base64(data)}};
+  return {{"timestamp", time_of(t)}, {"frame_id", "map"}, {"pose", pose_of(origin)},
+          {"point_stride", stride},  {"fields", fields},  {"data", base64(data)}};
 }
-
 
 }  // namespace
 
@@ -188,7 +240,8 @@ void export_foxglove_mcap(const std::string& run_dir, const std::string& out) {
   const io::SceneGraph graph = io::read_scene_graph(file(io::run_files::kSceneGraph));
   const std::vector<io::RoomEvent> events = io::read_room_events(file(io::run_files::kRoomEvents));
   const std::vector<io::MapVertex> map = io::read_map_ply(file(io::run_files::kMap));
-  if (trajectory.empty()) throw input_error(file(io::run_files::kTrajectory), 0, "no poses: nothing to export");
+  if (trajectory.empty())
+    throw input_error(file(io::run_files::kTrajectory), 0, "no poses: nothing to export");
   const double end = trajectory.back().t;
   // PointCloud positions are float32 relative to the cloud's pose, put near the run's start.
   const Eigen::Vector3d origin = float_safe_origin(trajectory.front().pose.translation());
@@ -197,43 +250,59 @@ void export_foxglove_mcap(const std::string& run_dir, const std::string& out) {
   std::map<std::string, std::uint16_t> schema;
   for (const char* type : {"foxglove.FrameTransform", "foxglove.PointCloud", "foxglove.SceneUpdate"})
     schema[type] = w.add_schema(type, "jsonschema", foxglove_schema(type));
-  const auto channel = [&](const char* topic, const char* type) { return w.add_channel(schema.at(type), topic, "json"); };
-  const std::uint16_t tf = channel("/tf", "foxglove.FrameTransform"), map_ch = channel("/map", "foxglove.PointCloud"),
+  const auto channel = [&](const char* topic, const char* type) {
+    return w.add_channel(schema.at(type), topic, "json");
+  };
+  const std::uint16_t tf = channel("/tf", "foxglove.FrameTransform"),
+                      map_ch = channel("/map", "foxglove.PointCloud"),
                       nodes_ch = channel("/traversable_nodes", "foxglove.PointCloud"),
-                      free_ch = channel("/free_space", "foxglove.PointCloud"), scene = channel("/scene", "foxglove.SceneUpdate"),
+                      free_ch = channel("/free_space", "foxglove.PointCloud"),
+                      scene = channel("/scene", "foxglove.SceneUpdate"),
                       rooms = channel("/rooms", "foxglove.SceneUpdate");
-  const auto put = [&](std::uint16_t ch, double t, const json& message) { w.write(ch, nanoseconds(t), nanoseconds(t), message.dump()); };
+  const auto put = [&](std::uint16_t ch, double t, const json& message) {
+    w.write(ch, nanoseconds(t), nanoseconds(t), message.dump());
+  };
 
   // Messages in time order: the room events interleaved with the poses, the maps at the end.
   std::size_t e = 0;
   const auto level_z = [&](int level) {
-    return level >= 0 && static_cast<std::size_t>(level) < graph.levels.size() ? graph.levels[static_cast<std::size_t>(level)] : 0.0;
+    return level >= 0 && static_cast<std::size_t>(level) < graph.levels.size()
+               ? graph.levels[static_cast<std::size_t>(level)]
+               : 0.0;
   };
   const auto room_update = [&](const io::RoomEvent& ev) {
     const bool corridor = ev.kind == "corridor";
     const json colour = rgba(corridor ? kCorridorOutlineColour : kRoomOutlineColour);
     const double z = level_z(ev.level) + kOutlineLift;
     std::vector<Eigen::Vector3d> outline;
-    for (const Vec2& v : ev.polygon.size() >= 3 ? ev.polygon : ev.rect.corners()) outline.emplace_back(v.x(), v.y(), z);
+    for (const Vec2& v : ev.polygon.size() >= 3 ? ev.polygon : ev.rect.corners())
+      outline.emplace_back(v.x(), v.y(), z);
     json ent = entity(ev.t, "room/" + std::to_string(ev.room_id));
     ent["lines"].push_back(line(1, outline, colour));
     ent["texts"].push_back(text(Eigen::Vector3d(ev.center.x(), ev.center.y(), z + kLabelLift),
                                 (corridor ? "corridor " : "room ") + std::to_string(ev.room_id), colour));
-    ent["metadata"] = json::array({{{"key", "kind"}, {"value", ev.kind}}, {{"key", "level"}, {"value", std::to_string(ev.level)}},
-                                   {{"key", "lap"}, {"value", std::to_string(ev.lap)}}, {{"key", "new"}, {"value", ev.is_new ? "true" : "false"}}});
+    ent["metadata"] = json::array({{{"key", "kind"}, {"value", ev.kind}},
+                                   {{"key", "level"}, {"value", std::to_string(ev.level)}},
+                                   {{"key", "lap"}, {"value", std::to_string(ev.lap)}},
+                                   {{"key", "new"}, {"value", ev.is_new ? "true" : "false"}}});
     put(rooms, ev.t, {{"deletions", json::array()}, {"entities", json::array({ent})}});
   };
   for (const io::StampedPose& p : trajectory) {
     for (; e < events.size() && events[e].t <= p.t; ++e) room_update(events[e]);
-    put(tf, p.t, {{"timestamp", time_of(p.t)}, {"parent_frame_id", "map"}, {"child_frame_id", "sensor"},
-                  {"translation", vec3(p.pose.translation())}, {"rotation", quat(Eigen::Quaterniond(p.pose.linear()))}});
+    put(tf, p.t,
+        {{"timestamp", time_of(p.t)},
+         {"parent_frame_id", "map"},
+         {"child_frame_id", "sensor"},
+         {"translation", vec3(p.pose.translation())},
+         {"rotation", quat(Eigen::Quaterniond(p.pose.linear()))}});
   }
   for (; e < events.size(); ++e) room_update(events[e]);
 
   put(map_ch, end, point_cloud(end, origin, map, true));
   std::vector<io::MapVertex> nodes;
   for (const auto& n : graph.traversable_nodes)
-    nodes.push_back({n.position, kTraversableNodeColour.r, kTraversableNodeColour.g, kTraversableNodeColour.b});
+    nodes.push_back(
+        {n.position, kTraversableNodeColour.r, kTraversableNodeColour.g, kTraversableNodeColour.b});
   put(nodes_ch, end, point_cloud(end, origin, nodes, false));
   // Each room's free space (its latest extraction's vertices), coloured as its outline.
   std::vector<io::MapVertex> free_space;
@@ -248,21 +317,27 @@ void export_foxglove_mcap(const std::string& run_dir, const std::string& out) {
     if (p.kind != "wall" || !p.segment || !p.z_range) continue;
     const Vec2 a = (*p.segment)[0], b = (*p.segment)[1];
     const double z0 = (*p.z_range)[0], z1 = (*p.z_range)[1];
-    const Eigen::Quaterniond yaw(Eigen::AngleAxisd(std::atan2(b.y() - a.y(), b.x() - a.x()), Eigen::Vector3d::UnitZ()));
-    walls["cubes"].push_back({{"pose", pose_of(Eigen::Vector3d(0.5 * (a.x() + b.x()), 0.5 * (a.y() + b.y()), 0.5 * (z0 + z1)), yaw)},
-                              {"size", vec3(Eigen::Vector3d((b - a).norm(), kWallThickness, std::max(z1 - z0, kWallThickness)))},
-                              {"color", rgba(wall_colour(p.id), kWallAlpha)}});
+    const Eigen::Quaterniond yaw(
+        Eigen::AngleAxisd(std::atan2(b.y() - a.y(), b.x() - a.x()), Eigen::Vector3d::UnitZ()));
+    walls["cubes"].push_back(
+        {{"pose",
+          pose_of(Eigen::Vector3d(0.5 * (a.x() + b.x()), 0.5 * (a.y() + b.y()), 0.5 * (z0 + z1)), yaw)},
+         {"size", vec3(Eigen::Vector3d((b - a).norm(), kWallThickness, std::max(z1 - z0, kWallThickness)))},
+         {"color", rgba(wall_colour(p.id), kWallAlpha)}});
   }
   json path = entity(end, "trajectory");
   std::vector<Eigen::Vector3d> points;
-  const std::size_t step = std::max<std::size_t>(1, (trajectory.size() + kMaxTrajectoryPoints - 1) / kMaxTrajectoryPoints);
-  for (std::size_t i = 0; i < trajectory.size(); i += step) points.push_back(trajectory[i].pose.translation());
+  const std::size_t step =
+      std::max<std::size_t>(1, (trajectory.size() + kMaxTrajectoryPoints - 1) / kMaxTrajectoryPoints);
+  for (std::size_t i = 0; i < trajectory.size(); i += step)
+    points.push_back(trajectory[i].pose.translation());
   if ((trajectory.size() - 1) % step != 0) points.push_back(trajectory.back().pose.translation());
   path["lines"].push_back(line(0, points, rgba(0.1, 0.3, 0.9)));
   json floors = entity(end, "floors");
   for (const auto& f : graph.floors)
-    floors["texts"].push_back(text(Eigen::Vector3d(f.center.x(), f.center.y(), level_z(f.level) + 2 * kLabelLift),
-                                   "floor " + std::to_string(f.id), rgba(kFloorNodeColour)));
+    floors["texts"].push_back(
+        text(Eigen::Vector3d(f.center.x(), f.center.y(), level_z(f.level) + 2 * kLabelLift),
+             "floor " + std::to_string(f.id), rgba(kFloorNodeColour)));
   put(scene, end, {{"deletions", json::array()}, {"entities", json::array({walls, path, floors})}});
   w.finish();
 }

@@ -66,10 +66,10 @@ constexpr MetricRow kMetricRows[] = {
     {"speed", "rtf", "real-time factor (sequence time / wall time)", 2},
 };
 
-
 std::string metrics_table(const std::string& metrics_json) {
   if (metrics_json.empty()) {
-    return "<p class=\"note\">No metrics.json in the run folder: run <code>tsgraphs eval RUN_DIR --seq SEQ_DIR</code> "
+    return "<p class=\"note\">No metrics.json in the run folder: run <code>tsgraphs eval RUN_DIR --seq "
+           "SEQ_DIR</code> "
            "to compute the figures.</p>\n";
   }
   nlohmann::json m;
@@ -86,8 +86,8 @@ std::string metrics_table(const std::string& metrics_json) {
       out += "<tr class=\"group\"><td colspan=\"3\">" + xml_escape(group) + "</td></tr>\n";
     }
     std::string value = kMissing;
-    if (m.is_object() && m.contains(row.group) && m[row.group].is_object() && m[row.group].contains(row.key) &&
-        m[row.group][row.key].is_number()) {
+    if (m.is_object() && m.contains(row.group) && m[row.group].is_object() &&
+        m[row.group].contains(row.key) && m[row.group][row.key].is_number()) {
       const double v = m[row.group][row.key].get<double>();
       if (std::isfinite(v)) value = eval::fixed_text(v, row.decimals);
     }
@@ -98,8 +98,9 @@ std::string metrics_table(const std::string& metrics_json) {
 }
 
 std::string page_head(const std::string& title) {
-  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + xml_escape(title) +
-         "</title>\n<style>\n" + kCss + "</style>\n</head>\n<body>\n<h1>" + xml_escape(title) + "</h1>\n";
+  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" +
+         xml_escape(title) + "</title>\n<style>\n" + kCss + "</style>\n</head>\n<body>\n<h1>" +
+         xml_escape(title) + "</h1>\n";
 }
 
 constexpr const char* kPageTail = "</body>\n</html>\n";
@@ -112,7 +113,8 @@ bool multi_level_scene(const RunView& run) { return run.scene && run.scene->leve
 
 std::string level_caption(const RunView& run, int level) {
   std::string s = run.label + ", level " + std::to_string(level);
-  if (static_cast<std::size_t>(level) < run.levels.size()) s += " (floor at " + svg::num(run.levels[level]) + " m)";
+  if (static_cast<std::size_t>(level) < run.levels.size())
+    s += " (floor at " + svg::num(run.levels[level]) + " m)";
   return s;
 }
 
@@ -124,24 +126,26 @@ constexpr const char* kSideViewCaption =
 
 std::string run_report_html(const RunView& run, const std::string& title) {
   std::string out = page_head(title);
-  out += "<p class=\"note\">Run: " + xml_escape(run.label) + "; " + std::to_string(run.estimated.size()) + " poses, " +
-         std::to_string(run.rooms.size()) + " rooms and corridors, " + std::to_string(run.walls.size()) +
-         " wall planes, " + std::to_string(run.nodes.size()) + " traversable nodes.</p>\n";
+  out += "<p class=\"note\">Run: " + xml_escape(run.label) + "; " + std::to_string(run.estimated.size()) +
+         " poses, " + std::to_string(run.rooms.size()) + " rooms and corridors, " +
+         std::to_string(run.walls.size()) + " wall planes, " + std::to_string(run.nodes.size()) +
+         " traversable nodes.</p>\n";
   out += "<section class=\"metrics\">\n<h2>Metrics</h2>\n" + metrics_table(run.metrics_json) + "</section>\n";
   out += "<section class=\"birdseye\">\n<h2>Bird's-eye view</h2>\n";
   for (int level : visited_levels(run)) out += figure(birdseye_svg(run, level), level_caption(run, level));
   out += "</section>\n";
   if (multi_level_scene(run)) {
-    out += "<section class=\"side-view\">\n<h2>Side view</h2>\n" + figure(side_view_svg(run), kSideViewCaption) +
-           "</section>\n";
+    out += "<section class=\"side-view\">\n<h2>Side view</h2>\n" +
+           figure(side_view_svg(run), kSideViewCaption) + "</section>\n";
   }
   out += "<section class=\"timing\">\n<h2>Timing</h2>\n" +
-         figure(timing_svg(run), "Front-end time per scan and wall time of each optimisation.") + "</section>\n";
+         figure(timing_svg(run), "Front-end time per scan and wall time of each optimisation.") +
+         "</section>\n";
   return out + kPageTail;
 }
 
-std::string demo_report_html(const std::string& title, const std::string& intro_html, const std::string& table_html,
-                             const std::vector<DemoSection>& sections) {
+std::string demo_report_html(const std::string& title, const std::string& intro_html,
+                             const std::string& table_html, const std::vector<DemoSection>& sections) {
   std::string out = page_head(title);
   out += "<section class=\"intro\">\n" + intro_html + "\n</section>\n";
   out += "<section class=\"table\">\n" + table_html + "\n</section>\n";
@@ -155,7 +159,8 @@ std::string demo_report_html(const std::string& title, const std::string& intro_
     if (!s.runs.empty()) {
       const RunView& first = s.runs.front();
       if (multi_level_scene(first)) {
-        out += "<h3>Side view: " + xml_escape(first.label) + "</h3>\n" + figure(side_view_svg(first), kSideViewCaption);
+        out += "<h3>Side view: " + xml_escape(first.label) + "</h3>\n" +
+               figure(side_view_svg(first), kSideViewCaption);
       }
       out += "<h3>Timing: " + xml_escape(first.label) + "</h3>\n" +
              figure(timing_svg(first), "Front-end time per scan and wall time of each optimisation.");
@@ -181,8 +186,8 @@ std::string method_table_html(const std::vector<eval::MethodResult>& results,
   return out + "</tbody>\n</table>\n";
 }
 
-RunReportFiles run_report_files(const std::string& run_dir, const std::string& seq_dir, const std::string& title,
-                                const std::optional<std::string>& metrics_json) {
+RunReportFiles run_report_files(const std::string& run_dir, const std::string& seq_dir,
+                                const std::string& title, const std::optional<std::string>& metrics_json) {
   RunView run = read_run_view(run_dir, seq_dir, !metrics_json.has_value());
   if (metrics_json) run.metrics_json = *metrics_json;
   run.label = title;

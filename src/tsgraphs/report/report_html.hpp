@@ -25,8 +25,8 @@ struct DemoSection {
 /// per section a bird's-eye of each run's main level side by side, captioned with the run's
 /// label, the side view of its first run when the scene has more than one level, and the
 /// first run's time plot.
-std::string demo_report_html(const std::string& title, const std::string& intro_html, const std::string& table_html,
-                             const std::vector<DemoSection>& sections);
+std::string demo_report_html(const std::string& title, const std::string& intro_html,
+                             const std::string& table_html, const std::vector<DemoSection>& sections);
 
 /// `text` with &, <, > and " escaped, for HTML text and attributes.
 std::string html_escape(const std::string& text);
@@ -48,7 +48,8 @@ struct RunReportFiles {
 /// The report write_run_report writes, made but written nowhere. `metrics_json`, when given,
 /// stands for RUN/metrics.json (an earlier one is not read): eval makes the report of the
 /// metrics it has yet to write.
-RunReportFiles run_report_files(const std::string& run_dir, const std::string& seq_dir, const std::string& title,
+RunReportFiles run_report_files(const std::string& run_dir, const std::string& seq_dir,
+                                const std::string& title,
                                 const std::optional<std::string>& metrics_json = std::nullopt);
 
 /// Writes RUN_DIR/report.html (run_report_html) and RUN_DIR/birdseye.svg (the main level)

@@ -32,58 +32,58 @@ using svg::xml_escape;
 // Layout shared by the pictures (pixels unless the name says metres)
 
 constexpr double kPageMargin = 16.0;
-constexpr double kTitleBaseline = 18.0;     // below the page margin
+constexpr double kTitleBaseline = 18.0;  // below the page margin
 constexpr double kSubtitleBaseline = 35.0;
-constexpr double kTitleHeight = 48.0;       // title and subtitle
+constexpr double kTitleHeight = 48.0;  // title and subtitle
 constexpr double kLegendRow = 18.0;
-constexpr double kLegendSwatch = 28.0;      // width of the sample before each entry
-constexpr double kLegendGap = 8.0;          // between sample and text, and above the legend
+constexpr double kLegendSwatch = 28.0;  // width of the sample before each entry
+constexpr double kLegendGap = 8.0;      // between sample and text, and above the legend
 constexpr double kLegendColumnWidth = 250.0;
 constexpr double kSwatchTall = 12.0;        // heights of the legend's samples: areas,
 constexpr double kSwatchThin = 6.0;         // floors seen from the side
 constexpr double kTextBaselineShift = 4.0;  // a row's text baseline below the row's middle
 
 // Bird's-eye
-constexpr double kPlanPxPerMetre = 24.0;    // lowered for runs kilometres long (svg::drawing_scale)
-constexpr double kPlanPaddingM = 0.8;       // around what is drawn
+constexpr double kPlanPxPerMetre = 24.0;  // lowered for runs kilometres long (svg::drawing_scale)
+constexpr double kPlanPaddingM = 0.8;     // around what is drawn
 constexpr double kMinPlanWidth = 2.0 * kLegendColumnWidth;
 constexpr int kScaleBarMetres = 5;
-constexpr double kScaleBarGap = 12.0;       // between the plan and the scale bar
-constexpr double kScaleBarHeight = 34.0;    // the bar and its numbers
+constexpr double kScaleBarGap = 12.0;     // between the plan and the scale bar
+constexpr double kScaleBarHeight = 34.0;  // the bar and its numbers
 constexpr double kScaleBarThickness = 6.0;
 constexpr double kScaleTextGap = 12.0;
 constexpr double kScaleTextShift = 3.0;
-constexpr double kStartRadius = 5.0;        // the estimated trajectory's first pose
+constexpr double kStartRadius = 5.0;  // the estimated trajectory's first pose
 
 // Dots
-constexpr double kNodeCellPx = 2.0;         // one node dot per cell of this size (no visible loss)
-constexpr double kFreeSpaceCellM = 0.2;     // one free-space dot per cell (the ESDF's grid): a tint
-constexpr double kNodeDotPx = 2.2;          // diameters of the dots
+constexpr double kNodeCellPx = 2.0;      // one node dot per cell of this size (no visible loss)
+constexpr double kFreeSpaceCellM = 0.2;  // one free-space dot per cell (the ESDF's grid): a tint
+constexpr double kNodeDotPx = 2.2;       // diameters of the dots
 constexpr double kFreeSpaceDotPx = 3.4;
 constexpr double kSideFreeSpaceDotPx = 3.0;
-constexpr double kTrajectoryStepM = 0.15;   // trajectory vertices at least this far apart
+constexpr double kTrajectoryStepM = 0.15;  // trajectory vertices at least this far apart
 
 // Labels
-constexpr double kLabelCharWidth = 6.6;     // rough width of a label character (11 px bold)
+constexpr double kLabelCharWidth = 6.6;  // rough width of a label character (11 px bold)
 constexpr double kLabelHeight = 14.0;
-constexpr int kLabelMaxShifts = 8;          // tries to move a label off the ones already placed
-constexpr double kTruthNameInset = 4.0;     // a ground-truth room's name, from its top left corner
+constexpr int kLabelMaxShifts = 8;           // tries to move a label off the ones already placed
+constexpr double kTruthNameInset = 4.0;      // a ground-truth room's name, from its top left corner
 constexpr double kTruthNameBaseline = 11.0;  // within its label box
 
 // Side view
 constexpr double kSidePxPerMetre = 28.0;
 constexpr double kSidePaddingM = 0.6;
-constexpr double kSlabThicknessM = 0.25;    // drawn under each scene floor
-constexpr double kAxisLeft = 44.0;          // room for the z tick labels
-constexpr double kAxisBottom = 34.0;        // room for the x tick labels and title
+constexpr double kSlabThicknessM = 0.25;  // drawn under each scene floor
+constexpr double kAxisLeft = 44.0;        // room for the z tick labels
+constexpr double kAxisBottom = 34.0;      // room for the x tick labels and title
 constexpr double kTickLength = 4.0;
-constexpr double kTickLabelGap = 14.0;      // tick to the baseline of its number (x axis)
-constexpr double kTickLabelPad = 2.0;       // tick to the end of its number (value axis)
-constexpr double kAxisTitleGap = 30.0;       // below the x axis
-constexpr double kAxisTitleInset = 10.0;    // the z axis title's baseline from the page margin
-constexpr int kSideTicksX = 10;             // about this many ticks along x
+constexpr double kTickLabelGap = 14.0;    // tick to the baseline of its number (x axis)
+constexpr double kTickLabelPad = 2.0;     // tick to the end of its number (value axis)
+constexpr double kAxisTitleGap = 30.0;    // below the x axis
+constexpr double kAxisTitleInset = 10.0;  // the z axis title's baseline from the page margin
+constexpr int kSideTicksX = 10;           // about this many ticks along x
 constexpr int kSideTicksZ = 5;
-constexpr double kLevelNameGap = 4.0;       // a level's name above its line / slab
+constexpr double kLevelNameGap = 4.0;  // a level's name above its line / slab
 
 // Timing
 constexpr double kTimingPlotWidth = 760.0;
@@ -94,13 +94,13 @@ constexpr double kTimingPanelGap = 26.0;    // under the top panel's plot
 constexpr int kTimingTicksX = 10;
 constexpr int kTimingTicksY = 4;
 constexpr double kMinTimeRangeS = 1.0;
-constexpr double kMinMsRange = 0.1;         // so that tick steps stay >= 0.01 (two decimals)
-constexpr double kValueHeadroom = 1.05;     // the highest value stays clear of the panel's top
-constexpr double kSolveRadius = 3.2;        // local solve: a ring
-constexpr double kSolveHalfSize = 3.4;      // full solve: a square
-constexpr double kKeyWidth = 80.0;          // one marker entry of the bottom panel's key
+constexpr double kMinMsRange = 0.1;      // so that tick steps stay >= 0.01 (two decimals)
+constexpr double kValueHeadroom = 1.05;  // the highest value stays clear of the panel's top
+constexpr double kSolveRadius = 3.2;     // local solve: a ring
+constexpr double kSolveHalfSize = 3.4;   // full solve: a square
+constexpr double kKeyWidth = 80.0;       // one marker entry of the bottom panel's key
 constexpr double kMsPerSecond = 1000.0;
-constexpr double kEps = 1e-9;               // relative slack when counting ticks
+constexpr double kEps = 1e-9;  // relative slack when counting ticks
 
 // Colours
 constexpr const char* kBackground = "#ffffff";
@@ -113,7 +113,7 @@ constexpr const char* kSceneSlabStroke = "#dddddd";
 constexpr const char* kSceneWall = "#c6c6c6";
 constexpr const char* kSideSlab = "#b8b8b8";
 constexpr const char* kMappedWall = "#1b1b1b";
-constexpr const char* kNode = "#d020c8";    // magenta, as in map.ply
+constexpr const char* kNode = "#d020c8";  // magenta, as in map.ply
 constexpr const char* kTruthRoom = "#555555";
 constexpr const char* kEstimated = "#1f3fbf";
 constexpr const char* kTrue = "#2ca02c";
@@ -151,7 +151,7 @@ std::string xy(const Vec2& p) { return num(p.x()) + "," + num(p.y()); }
 struct Frame {
   double min_x = 0.0, max_y = 0.0;  // world corner drawn at (left, top)
   double left = 0.0, top = 0.0;
-  double scale = 1.0;               // px per metre
+  double scale = 1.0;  // px per metre
   Vec2 px(const Vec2& p) const { return {left + (p.x() - min_x) * scale, top + (max_y - p.y()) * scale}; }
 };
 
@@ -186,8 +186,9 @@ class Dots {
       }
       row = r, col = c, first = false;
     }
-    return "<path class=\"" + cls + "\"" + attrs + " data-count=\"" + std::to_string(count_) + "\" transform=\"scale(" +
-           num(cell_) + ")\" stroke-width=\"" + num(dot_px_ / cell_) + "\" d=\"" + d + "\"/>\n";
+    return "<path class=\"" + cls + "\"" + attrs + " data-count=\"" + std::to_string(count_) +
+           "\" transform=\"scale(" + num(cell_) + ")\" stroke-width=\"" + num(dot_px_ / cell_) + "\" d=\"" +
+           d + "\"/>\n";
   }
 
  private:
@@ -219,7 +220,8 @@ std::string open_svg(double w, double h, const std::string& root, const std::str
       {".subtitle", std::string("font-size: 11px; fill: ") + kMutedInk + ";"},
       {".legend-text", "font-size: 11px;"},
       {".scale-text", "font-size: 10px;"},
-      {".halo", std::string("stroke: ") + kHalo + "; stroke-width: 3px; stroke-linejoin: round; paint-order: stroke;"},
+      {".halo",
+       std::string("stroke: ") + kHalo + "; stroke-width: 3px; stroke-linejoin: round; paint-order: stroke;"},
   };
   for (const auto* list : {&common, &rules}) {
     for (const auto& [selectors, declarations] : *list) {
@@ -236,8 +238,8 @@ std::string open_svg(double w, double h, const std::string& root, const std::str
     }
   }
   out += "</style>\n";
-  out += "<rect class=\"background\" x=\"0\" y=\"0\" width=\"" + num(w) + "\" height=\"" + num(h) + "\" fill=\"" +
-         kBackground + "\"/>\n";
+  out += "<rect class=\"background\" x=\"0\" y=\"0\" width=\"" + num(w) + "\" height=\"" + num(h) +
+         "\" fill=\"" + kBackground + "\"/>\n";
   return out;
 }
 
@@ -303,14 +305,16 @@ double nice_step(double range, int ticks) {
 /// Multiples of `step` within [lo, hi] (to rounding).
 std::vector<double> ticks_between(double lo, double hi, double step) {
   std::vector<double> out;
-  for (long k = std::lround(std::ceil(lo / step - kEps)); static_cast<double>(k) * step <= hi + kEps * step; ++k) {
+  for (long k = std::lround(std::ceil(lo / step - kEps)); static_cast<double>(k) * step <= hi + kEps * step;
+       ++k) {
     out.push_back(static_cast<double>(k) * step);
   }
   return out;
 }
 
 /// Pieces of a trajectory whose poses lie on `level`, thinned.
-std::vector<std::vector<Vec2>> runs_on_level(const RunView& run, const std::vector<RunView::Stamped>& traj, int level) {
+std::vector<std::vector<Vec2>> runs_on_level(const RunView& run, const std::vector<RunView::Stamped>& traj,
+                                             int level) {
   std::vector<std::vector<Vec2>> runs;
   bool open = false;
   for (const RunView::Stamped& s : traj) {
@@ -342,7 +346,8 @@ class BirdseyeDrawer {
     }
     if (run.scene) {
       for (std::size_t i = 0; i < run.scene->levels.size(); ++i) {
-        if (level_of_height(run, run.scene->levels[i].elevation) == level) scene_levels_.push_back(static_cast<int>(i));
+        if (level_of_height(run, run.scene->levels[i].elevation) == level)
+          scene_levels_.push_back(static_cast<int>(i));
       }
     }
     for (const RunView::Wall& w : run.walls) {
@@ -361,16 +366,17 @@ class BirdseyeDrawer {
   std::string draw() {
     layout();
     const double floor_z = run_.levels.empty() ? 0.0 : run_.levels[level_];
-    out_ = open_svg(page_w_, page_h_, "tsg-birdseye", run_.label + " \xE2\x80\x94 level " + std::to_string(level_),
-                    style());
-    out_ += text(kPageMargin, kPageMargin + kTitleBaseline, "title",
-                 run_.label + " \xE2\x80\x94 level " + std::to_string(level_) + ", floor at " + num(floor_z) + " m");
+    out_ = open_svg(page_w_, page_h_, "tsg-birdseye",
+                    run_.label + " \xE2\x80\x94 level " + std::to_string(level_), style());
+    out_ += text(
+        kPageMargin, kPageMargin + kTitleBaseline, "title",
+        run_.label + " \xE2\x80\x94 level " + std::to_string(level_) + ", floor at " + num(floor_z) + " m");
     std::size_t n_rooms = 0;
     for (const RunView::Room* r : rooms_) n_rooms += is_corridor(*r) ? 0 : 1;
     out_ += text(kPageMargin, kPageMargin + kSubtitleBaseline, "subtitle",
-                 std::to_string(n_rooms) + " rooms, " + std::to_string(rooms_.size() - n_rooms) + " corridors, " +
-                     std::to_string(walls_.size()) + " wall planes on this level; " + short_num(frame_.scale) +
-                     " px per metre, y up");
+                 std::to_string(n_rooms) + " rooms, " + std::to_string(rooms_.size() - n_rooms) +
+                     " corridors, " + std::to_string(walls_.size()) + " wall planes on this level; " +
+                     short_num(frame_.scale) + " px per metre, y up");
     out_ += "<g class=\"plan\">\n";
     draw_scene();
     draw_nodes();
@@ -390,7 +396,8 @@ class BirdseyeDrawer {
     bar.ink = kInk;
     bar.paper = kBackground;
     out_ += svg::scale_bar(kPageMargin, frame_.top + plan_h_ + kScaleBarGap, bar);
-    out_ += draw_legend(legend(), kPageMargin, frame_.top + plan_h_ + kScaleBarGap + kScaleBarHeight, plan_w_);
+    out_ +=
+        draw_legend(legend(), kPageMargin, frame_.top + plan_h_ + kScaleBarGap + kScaleBarHeight, plan_w_);
     out_ += "</svg>\n";
     return out_;
   }
@@ -433,13 +440,14 @@ class BirdseyeDrawer {
     frame_.top = kPageMargin + kTitleHeight;
     frame_.scale = scale;
     page_w_ = plan_w_ + 2.0 * kPageMargin;
-    page_h_ = frame_.top + plan_h_ + kScaleBarGap + kScaleBarHeight + legend_height(legend().size(), plan_w_) +
-              kPageMargin;
+    page_h_ = frame_.top + plan_h_ + kScaleBarGap + kScaleBarHeight +
+              legend_height(legend().size(), plan_w_) + kPageMargin;
   }
 
   std::vector<std::pair<std::string, std::string>> style() const {
     return {
-        {".scene-slab", std::string("fill: ") + kSceneSlab + "; stroke: " + kSceneSlabStroke + "; stroke-width: 1;"},
+        {".scene-slab",
+         std::string("fill: ") + kSceneSlab + "; stroke: " + kSceneSlabStroke + "; stroke-width: 1;"},
         {".scene-void", std::string("fill: ") + kBackground + "; stroke: " + kSceneSlabStroke +
                             "; stroke-width: 1; stroke-dasharray: 4 3;"},
         {".scene-wall, .key-scene-wall", std::string("fill: ") + kSceneWall + "; stroke: none;"},
@@ -448,18 +456,21 @@ class BirdseyeDrawer {
         // Dots: widths are attributes (in the path's scaled units); the keys' are in px.
         {".node", std::string("fill: none; stroke: ") + kNode + "; stroke-linecap: round;"},
         {".free-space", "fill: none; stroke-linecap: round; stroke-opacity: 0.5;"},
-        {".key-node", std::string("fill: none; stroke: ") + kNode + "; stroke-linecap: round; stroke-width: " +
-                          num(kNodeDotPx) + ";"},
+        {".key-node", std::string("fill: none; stroke: ") + kNode +
+                          "; stroke-linecap: round; stroke-width: " + num(kNodeDotPx) + ";"},
         {".key-free-space", "fill: none; stroke-linecap: round; stroke-opacity: 0.5; stroke-width: " +
                                 num(kFreeSpaceDotPx) + ";"},
-        {".room, .corridor, .key-room, .key-corridor", "fill-opacity: 0.14; stroke-width: 2; stroke-opacity: 0.9;"},
-        {".truth-room, .key-truth-room", std::string("fill: none; stroke: ") + kTruthRoom +
-                            "; stroke-width: 1.2; stroke-dasharray: 6 4;"},
-        {".wall, .key-wall", std::string("stroke: ") + kMappedWall + "; stroke-width: 3; stroke-linecap: round;"},
-        {".trajectory-true, .key-trajectory-true", std::string("fill: none; stroke: ") + kTrue +
-                                 "; stroke-width: 4.5; stroke-opacity: 0.45; stroke-linejoin: round;"},
-        {".trajectory-estimated, .key-trajectory-estimated", std::string("fill: none; stroke: ") + kEstimated +
-                                      "; stroke-width: 1.4; stroke-linejoin: round;"},
+        {".room, .corridor, .key-room, .key-corridor",
+         "fill-opacity: 0.14; stroke-width: 2; stroke-opacity: 0.9;"},
+        {".truth-room, .key-truth-room",
+         std::string("fill: none; stroke: ") + kTruthRoom + "; stroke-width: 1.2; stroke-dasharray: 6 4;"},
+        {".wall, .key-wall",
+         std::string("stroke: ") + kMappedWall + "; stroke-width: 3; stroke-linecap: round;"},
+        {".trajectory-true, .key-trajectory-true",
+         std::string("fill: none; stroke: ") + kTrue +
+             "; stroke-width: 4.5; stroke-opacity: 0.45; stroke-linejoin: round;"},
+        {".trajectory-estimated, .key-trajectory-estimated",
+         std::string("fill: none; stroke: ") + kEstimated + "; stroke-width: 1.4; stroke-linejoin: round;"},
         {".start", std::string("fill: ") + kBackground + "; stroke: " + kEstimated + "; stroke-width: 2;"},
         {".room-label, .key-room-label", "font-size: 11px; font-weight: bold; text-anchor: middle;"},
         {".truth-name", std::string("font-size: 10px; font-style: italic; fill: ") + kTruthRoom + ";"},
@@ -478,11 +489,13 @@ class BirdseyeDrawer {
         {key_dot("key-node"), "traversable node"},
         {key_dot("key-free-space", " stroke=\"" + rc + "\""), "free space of a room (its colour)"},
         {"<rect class=\"key-room\" fill=\"" + rc + "\" stroke=\"" + rc + "\"" + box + "/>", "room (cyan)"},
-        {"<rect class=\"key-corridor\" fill=\"" + cc + "\" stroke=\"" + cc + "\"" + box + "/>", "corridor (orange)"},
+        {"<rect class=\"key-corridor\" fill=\"" + cc + "\" stroke=\"" + cc + "\"" + box + "/>",
+         "corridor (orange)"},
         {"<rect class=\"key-truth-room\"" + box + "/>", "ground-truth room and its name"},
         {key_line("key-trajectory-true"), "true trajectory"},
         {key_line("key-trajectory-estimated"), "estimated trajectory (circle: start)"},
-        {"<text class=\"key-room-label halo\" x=\"{XM}\" y=\"{Y}\" dy=\"" + num(kTextBaselineShift) + "\">3</text>",
+        {"<text class=\"key-room-label halo\" x=\"{XM}\" y=\"{Y}\" dy=\"" + num(kTextBaselineShift) +
+             "\">3</text>",
          "room id \xC2\xB7 lap of its first extraction"},
     };
   }
@@ -492,7 +505,8 @@ class BirdseyeDrawer {
     const scene::Scene& scene = *run_.scene;
     out_ += "<g class=\"layer-scene\">\n";
     for (int l : scene_levels_) {
-      out_ += "<polygon class=\"scene-slab\" points=\"" + points_attr(frame_, scene.levels[l].slab) + "\"/>\n";
+      out_ +=
+          "<polygon class=\"scene-slab\" points=\"" + points_attr(frame_, scene.levels[l].slab) + "\"/>\n";
       for (const Polygon2& v : scene.levels[l].voids) {
         out_ += "<polygon class=\"scene-void\" points=\"" + points_attr(frame_, v) + "\"/>\n";
       }
@@ -509,11 +523,12 @@ class BirdseyeDrawer {
     for (const scene::Railing& r : scene.railings) {
       if (!on_scene_level(r.level)) continue;
       const Vec2 a = frame_.px(r.from), b = frame_.px(r.to);
-      out_ += std::string("<line class=\"scene-railing") + (r.style == scene::RailingStyle::kBars    ? " bars"
-                                                      : r.style == scene::RailingStyle::kGlass ? " glass"
-                                                                                                : "") +
-              "\" x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) + "\" y2=\"" + num(b.y()) +
-              "\"/>\n";
+      out_ += std::string("<line class=\"scene-railing") +
+              (r.style == scene::RailingStyle::kBars    ? " bars"
+               : r.style == scene::RailingStyle::kGlass ? " glass"
+                                                        : "") +
+              "\" x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) + "\" y2=\"" +
+              num(b.y()) + "\"/>\n";
     }
     out_ += "</g>\n";
   }
@@ -560,8 +575,8 @@ class BirdseyeDrawer {
     out_ += "<g class=\"layer-walls\">\n";
     for (const RunView::Wall* w : walls_) {
       const Vec2 a = frame_.px(w->a), b = frame_.px(w->b);
-      out_ += "<line class=\"wall\" data-id=\"" + std::to_string(w->id) + "\" x1=\"" + num(a.x()) + "\" y1=\"" +
-              num(a.y()) + "\" x2=\"" + num(b.x()) + "\" y2=\"" + num(b.y()) + "\"/>\n";
+      out_ += "<line class=\"wall\" data-id=\"" + std::to_string(w->id) + "\" x1=\"" + num(a.x()) +
+              "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) + "\" y2=\"" + num(b.y()) + "\"/>\n";
     }
     out_ += "</g>\n";
   }
@@ -576,8 +591,8 @@ class BirdseyeDrawer {
     }
     if (!run_.estimated.empty() && on_level(run_.estimated.front().p)) {
       const Vec2 c = frame_.px(run_.estimated.front().p.head<2>());
-      out_ += "<circle class=\"start\" cx=\"" + num(c.x()) + "\" cy=\"" + num(c.y()) + "\" r=\"" + num(kStartRadius) +
-              "\"/>\n";
+      out_ += "<circle class=\"start\" cx=\"" + num(c.x()) + "\" cy=\"" + num(c.y()) + "\" r=\"" +
+              num(kStartRadius) + "\"/>\n";
     }
     out_ += "</g>\n";
   }
@@ -608,23 +623,27 @@ class BirdseyeDrawer {
     out_ += "<g class=\"layer-labels\">\n";
     if (!run_.estimated.empty() && on_level(run_.estimated.front().p)) {  // keep the start marker visible
       const Vec2 c = frame_.px(run_.estimated.front().p.head<2>());
-      placed_.push_back({c.x() - kStartRadius, c.y() - kStartRadius, c.x() + kStartRadius, c.y() + kStartRadius});
+      placed_.push_back(
+          {c.x() - kStartRadius, c.y() - kStartRadius, c.x() + kStartRadius, c.y() + kStartRadius});
     }
     for (const io::RoomTruth* t : truth_rooms_) {
       Extent e;
       e.add(t->polygon);
       const Vec2 corner = frame_.px(Vec2(e.min_x, e.max_y));
       const double w = kLabelCharWidth * static_cast<double>(t->name.size());
-      const Box b = place({corner.x() + kTruthNameInset, corner.y() + kTruthNameInset, corner.x() + kTruthNameInset + w,
-                           corner.y() + kTruthNameInset + kLabelHeight});
+      const Box b = place({corner.x() + kTruthNameInset, corner.y() + kTruthNameInset,
+                           corner.x() + kTruthNameInset + w, corner.y() + kTruthNameInset + kLabelHeight});
       out_ += text(b.x0, b.y0 + kTruthNameBaseline, "truth-name halo", t->name);
     }
     for (const RunView::Room* r : rooms_) {
-      const std::string label = std::to_string(r->id) + " \xC2\xB7 " +
-                                (r->first_lap > 0 ? "lap " + std::to_string(r->first_lap) : std::string("no event"));
+      const std::string label =
+          std::to_string(r->id) + " \xC2\xB7 " +
+          (r->first_lap > 0 ? "lap " + std::to_string(r->first_lap) : std::string("no event"));
       const Vec2 c = frame_.px(r->center());
-      const double half = 0.5 * kLabelCharWidth * static_cast<double>(label.size() - 1);  // the dot is 2 bytes
-      const Box b = place({c.x() - half, c.y() - 0.5 * kLabelHeight, c.x() + half, c.y() + 0.5 * kLabelHeight});
+      const double half =
+          0.5 * kLabelCharWidth * static_cast<double>(label.size() - 1);  // the dot is 2 bytes
+      const Box b =
+          place({c.x() - half, c.y() - 0.5 * kLabelHeight, c.x() + half, c.y() + 0.5 * kLabelHeight});
       out_ += text(0.5 * (b.x0 + b.x1), 0.5 * (b.y0 + b.y1) + kTextBaselineShift, "room-label halo", label);
     }
     out_ += "</g>\n";
@@ -647,7 +666,8 @@ class BirdseyeDrawer {
 // Side view
 
 /// Pieces of [lo, hi] left after removing the intervals `cut`.
-std::vector<std::pair<double, double>> subtract(double lo, double hi, std::vector<std::pair<double, double>> cut) {
+std::vector<std::pair<double, double>> subtract(double lo, double hi,
+                                                std::vector<std::pair<double, double>> cut) {
   std::sort(cut.begin(), cut.end());
   std::vector<std::pair<double, double>> out;
   double at = lo;
@@ -678,7 +698,8 @@ class SideViewDrawer {
     draw_levels();
     draw_points();
     draw_trajectories();
-    out_ += draw_legend(legend(), kPageMargin, plot_bottom() + kAxisBottom + kLegendGap, page_w_ - 2.0 * kPageMargin);
+    out_ += draw_legend(legend(), kPageMargin, plot_bottom() + kAxisBottom + kLegendGap,
+                        page_w_ - 2.0 * kPageMargin);
     out_ += "</svg>\n";
     return out_;
   }
@@ -742,26 +763,29 @@ class SideViewDrawer {
         {".level-name", std::string("font-size: 10px; text-anchor: end; fill: ") + kMutedInk + ";"},
         {".node", std::string("fill: none; stroke: ") + kNode + "; stroke-linecap: round;"},
         {".free-space", "fill: none; stroke-linecap: round; stroke-opacity: 0.6;"},
-        {".key-node", std::string("fill: none; stroke: ") + kNode + "; stroke-linecap: round; stroke-width: " +
-                          num(kNodeDotPx) + ";"},
+        {".key-node", std::string("fill: none; stroke: ") + kNode +
+                          "; stroke-linecap: round; stroke-width: " + num(kNodeDotPx) + ";"},
         {".key-free-space", "fill: none; stroke-linecap: round; stroke-opacity: 0.6; stroke-width: " +
                                 num(kSideFreeSpaceDotPx) + ";"},
-        {".trajectory-true, .key-trajectory-true", std::string("fill: none; stroke: ") + kTrue +
-                                 "; stroke-width: 4; stroke-opacity: 0.45; stroke-linejoin: round;"},
-        {".trajectory-estimated, .key-trajectory-estimated", std::string("fill: none; stroke: ") + kEstimated +
-                                      "; stroke-width: 1.2; stroke-linejoin: round;"},
+        {".trajectory-true, .key-trajectory-true",
+         std::string("fill: none; stroke: ") + kTrue +
+             "; stroke-width: 4; stroke-opacity: 0.45; stroke-linejoin: round;"},
+        {".trajectory-estimated, .key-trajectory-estimated",
+         std::string("fill: none; stroke: ") + kEstimated + "; stroke-width: 1.2; stroke-linejoin: round;"},
     };
   }
 
   std::vector<LegendEntry> legend() const {
     RunView::Room room;
     return {
-        {"<rect class=\"key-scene-slab\" x=\"{X0}\" y=\"{Y}\" transform=\"translate(0," + num(-0.5 * kSwatchThin) +
-             ")\" width=\"" + num(kLegendSwatch) + "\" height=\"" + num(kSwatchThin) + "\"/>",
+        {"<rect class=\"key-scene-slab\" x=\"{X0}\" y=\"{Y}\" transform=\"translate(0," +
+             num(-0.5 * kSwatchThin) + ")\" width=\"" + num(kLegendSwatch) + "\" height=\"" +
+             num(kSwatchThin) + "\"/>",
          "scene floor (truth)"},
         {key_line("key-level-line"), "floor of a run level"},
         {key_dot("key-node"), "traversable node"},
-        {key_dot("key-free-space", " stroke=\"" + room_colour(room) + "\""), "free space of a room (its colour)"},
+        {key_dot("key-free-space", " stroke=\"" + room_colour(room) + "\""),
+         "free space of a room (its colour)"},
         {key_line("key-trajectory-true"), "true sensor height"},
         {key_line("key-trajectory-estimated"), "estimated sensor height"},
     };
@@ -773,19 +797,19 @@ class SideViewDrawer {
     const double sx = nice_step(extent_.max_x - extent_.min_x, kSideTicksX);
     for (double x : ticks_between(extent_.min_x, extent_.max_x, sx)) {
       const double px = frame_.px(Vec2(x, 0.0)).x();
-      out_ += "<line class=\"grid\" x1=\"" + num(px) + "\" y1=\"" + num(top) + "\" x2=\"" + num(px) + "\" y2=\"" +
-              num(bottom) + "\"/>\n";
-      out_ += "<line class=\"tick\" x1=\"" + num(px) + "\" y1=\"" + num(bottom) + "\" x2=\"" + num(px) + "\" y2=\"" +
-              num(bottom + kTickLength) + "\"/>\n";
+      out_ += "<line class=\"grid\" x1=\"" + num(px) + "\" y1=\"" + num(top) + "\" x2=\"" + num(px) +
+              "\" y2=\"" + num(bottom) + "\"/>\n";
+      out_ += "<line class=\"tick\" x1=\"" + num(px) + "\" y1=\"" + num(bottom) + "\" x2=\"" + num(px) +
+              "\" y2=\"" + num(bottom + kTickLength) + "\"/>\n";
       out_ += text(px, bottom + kTickLabelGap, "tick-label x", short_num(x));
     }
     const double sz = nice_step(extent_.max_y - extent_.min_y, kSideTicksZ);
     for (double z : ticks_between(extent_.min_y, extent_.max_y, sz)) {
       const double py = frame_.px(Vec2(0.0, z)).y();
-      out_ += "<line class=\"grid\" x1=\"" + num(left) + "\" y1=\"" + num(py) + "\" x2=\"" + num(right) + "\" y2=\"" +
-              num(py) + "\"/>\n";
-      out_ += "<line class=\"tick\" x1=\"" + num(left - kTickLength) + "\" y1=\"" + num(py) + "\" x2=\"" + num(left) +
+      out_ += "<line class=\"grid\" x1=\"" + num(left) + "\" y1=\"" + num(py) + "\" x2=\"" + num(right) +
               "\" y2=\"" + num(py) + "\"/>\n";
+      out_ += "<line class=\"tick\" x1=\"" + num(left - kTickLength) + "\" y1=\"" + num(py) + "\" x2=\"" +
+              num(left) + "\" y2=\"" + num(py) + "\"/>\n";
       out_ += text(left - kTickLength - kTickLabelPad, py + kTextBaselineShift, "tick-label z", short_num(z));
     }
     out_ += "<rect class=\"frame\" x=\"" + num(left) + "\" y=\"" + num(top) + "\" width=\"" + num(plot_w_) +
@@ -793,8 +817,8 @@ class SideViewDrawer {
     out_ += text(right - 2.0 * kLegendSwatch, bottom + kAxisTitleGap, "axis-title", "x (m)");
     // Rotated along the z axis, clear of the tick numbers.
     const double zx = kPageMargin + kAxisTitleInset, zy = 0.5 * (top + bottom);
-    out_ += "<text class=\"axis-title z\" x=\"" + num(zx) + "\" y=\"" + num(zy) + "\" transform=\"rotate(-90 " +
-            num(zx) + " " + num(zy) + ")\">z (m)</text>\n";
+    out_ += "<text class=\"axis-title z\" x=\"" + num(zx) + "\" y=\"" + num(zy) +
+            "\" transform=\"rotate(-90 " + num(zx) + " " + num(zy) + ")\">z (m)</text>\n";
     out_ += "</g>\n";
   }
 
@@ -812,7 +836,8 @@ class SideViewDrawer {
       }
       const auto pieces = subtract(slab.min_x, slab.max_x, voids);
       for (const auto& [x0, x1] : pieces) {
-        const Vec2 a = frame_.px(Vec2(x0, l.elevation)), b = frame_.px(Vec2(x1, l.elevation - kSlabThicknessM));
+        const Vec2 a = frame_.px(Vec2(x0, l.elevation)),
+                   b = frame_.px(Vec2(x1, l.elevation - kSlabThicknessM));
         out_ += "<rect class=\"scene-slab\" x=\"" + num(a.x()) + "\" y=\"" + num(a.y()) + "\" width=\"" +
                 num(b.x() - a.x()) + "\" height=\"" + num(b.y() - a.y()) + "\"/>\n";
       }
@@ -829,8 +854,8 @@ class SideViewDrawer {
     const double left = frame_.left, right = frame_.left + plot_w_;
     for (std::size_t i = 0; i < run_.levels.size(); ++i) {
       const double py = frame_.px(Vec2(0.0, run_.levels[i])).y();
-      out_ += "<line class=\"level-line\" x1=\"" + num(left) + "\" y1=\"" + num(py) + "\" x2=\"" + num(right) +
-              "\" y2=\"" + num(py) + "\"/>\n";
+      out_ += "<line class=\"level-line\" x1=\"" + num(left) + "\" y1=\"" + num(py) + "\" x2=\"" +
+              num(right) + "\" y2=\"" + num(py) + "\"/>\n";
       out_ += text(right - kLevelNameGap, py - kLevelNameGap, "level-name halo",
                    "run level " + std::to_string(i) + ", z " + num(run_.levels[i]) + " m");
     }
@@ -845,7 +870,8 @@ class SideViewDrawer {
     for (const RunView::Room& r : run_.rooms) {
       Dots dots(kNodeCellPx, kSideFreeSpaceDotPx);
       for (const Eigen::Vector3d& p : r.free_space) dots.add(frame_.px(xz(p)));
-      out_ += dots.path("free-space", " data-room=\"" + std::to_string(r.id) + "\" stroke=\"" + room_colour(r) + "\"");
+      out_ += dots.path("free-space",
+                        " data-room=\"" + std::to_string(r.id) + "\" stroke=\"" + room_colour(r) + "\"");
     }
     out_ += "</g>\n";
   }
@@ -942,7 +968,8 @@ class TimingDrawer {
         {".tick-label.t", "text-anchor: middle;"},
         {".axis-title", "font-size: 11px;"},
         {".panel-title", "font-size: 12px; font-weight: bold;"},
-        {".frontend", std::string("fill: none; stroke: ") + kFrontend + "; stroke-width: 1; stroke-linejoin: round;"},
+        {".frontend",
+         std::string("fill: none; stroke: ") + kFrontend + "; stroke-width: 1; stroke-linejoin: round;"},
         {".solve.local, .key-local",
          std::string("fill: ") + kBackground + "; stroke: " + kSolveLocal + "; stroke-width: 1.3;"},
         {".solve.full, .key-full", std::string("fill: ") + kSolveFull + "; stroke: none;"},
@@ -957,21 +984,21 @@ class TimingDrawer {
     const double st = nice_step(t_max_, kTimingTicksX);
     for (double t : ticks_between(0.0, t_max_, st)) {
       const double x = px_t(t);
-      out_ += "<line class=\"grid\" x1=\"" + num(x) + "\" y1=\"" + num(p.top) + "\" x2=\"" + num(x) + "\" y2=\"" +
-              num(bottom) + "\"/>\n";
-      out_ += "<line class=\"tick\" x1=\"" + num(x) + "\" y1=\"" + num(bottom) + "\" x2=\"" + num(x) + "\" y2=\"" +
-              num(bottom + kTickLength) + "\"/>\n";
+      out_ += "<line class=\"grid\" x1=\"" + num(x) + "\" y1=\"" + num(p.top) + "\" x2=\"" + num(x) +
+              "\" y2=\"" + num(bottom) + "\"/>\n";
+      out_ += "<line class=\"tick\" x1=\"" + num(x) + "\" y1=\"" + num(bottom) + "\" x2=\"" + num(x) +
+              "\" y2=\"" + num(bottom + kTickLength) + "\"/>\n";
     }
     for (double v : ticks_between(0.0, p.max_value, p.step)) {
       const double y = px_v(p, v);
-      out_ += "<line class=\"grid\" x1=\"" + num(left_) + "\" y1=\"" + num(y) + "\" x2=\"" + num(right) + "\" y2=\"" +
-              num(y) + "\"/>\n";
-      out_ += "<line class=\"tick\" x1=\"" + num(left_ - kTickLength) + "\" y1=\"" + num(y) + "\" x2=\"" + num(left_) +
+      out_ += "<line class=\"grid\" x1=\"" + num(left_) + "\" y1=\"" + num(y) + "\" x2=\"" + num(right) +
               "\" y2=\"" + num(y) + "\"/>\n";
+      out_ += "<line class=\"tick\" x1=\"" + num(left_ - kTickLength) + "\" y1=\"" + num(y) + "\" x2=\"" +
+              num(left_) + "\" y2=\"" + num(y) + "\"/>\n";
       out_ += text(left_ - kTickLength - kTickLabelPad, y + kTextBaselineShift, "tick-label v", short_num(v));
     }
-    out_ += "<rect class=\"frame\" x=\"" + num(left_) + "\" y=\"" + num(p.top) + "\" width=\"" + num(kTimingPlotWidth) +
-            "\" height=\"" + num(p.height) + "\"/>\n";
+    out_ += "<rect class=\"frame\" x=\"" + num(left_) + "\" y=\"" + num(p.top) + "\" width=\"" +
+            num(kTimingPlotWidth) + "\" height=\"" + num(p.height) + "\"/>\n";
     out_ += "</g>\n";
   }
 
@@ -981,17 +1008,18 @@ class TimingDrawer {
     for (const RunView::ScanTime& s : run_.scans) {
       pts += (pts.empty() ? "" : " ") + num(px_t(s.t)) + "," + num(px_v(top_, s.frontend_ms));
     }
-    out_ += "<polyline class=\"frontend\" data-count=\"" + std::to_string(run_.scans.size()) + "\" points=\"" + pts +
-            "\"/>\n";
+    out_ += "<polyline class=\"frontend\" data-count=\"" + std::to_string(run_.scans.size()) +
+            "\" points=\"" + pts + "\"/>\n";
   }
 
   static std::string square(const std::string& cls, double x, double y) {
-    return "<rect class=\"" + cls + "\" x=\"" + num(x - kSolveHalfSize) + "\" y=\"" + num(y - kSolveHalfSize) +
-           "\" width=\"" + num(2.0 * kSolveHalfSize) + "\" height=\"" + num(2.0 * kSolveHalfSize) + "\"/>\n";
+    return "<rect class=\"" + cls + "\" x=\"" + num(x - kSolveHalfSize) + "\" y=\"" +
+           num(y - kSolveHalfSize) + "\" width=\"" + num(2.0 * kSolveHalfSize) + "\" height=\"" +
+           num(2.0 * kSolveHalfSize) + "\"/>\n";
   }
   static std::string ring(const std::string& cls, double x, double y) {
-    return "<circle class=\"" + cls + "\" cx=\"" + num(x) + "\" cy=\"" + num(y) + "\" r=\"" + num(kSolveRadius) +
-           "\"/>\n";
+    return "<circle class=\"" + cls + "\" cx=\"" + num(x) + "\" cy=\"" + num(y) + "\" r=\"" +
+           num(kSolveRadius) + "\"/>\n";
   }
 
   /// Local solves first, full ones over them: the few full solves stay visible.
@@ -1007,8 +1035,10 @@ class TimingDrawer {
     // The key, right-aligned in the panel's title row.
     const double y = bottom_.top - kLevelNameGap - kTextBaselineShift - kTextBaselineShift;
     const double x_full = left_ + kTimingPlotWidth - kKeyWidth, x_local = x_full - kKeyWidth;
-    out_ += ring("key-local", x_local, y) + text(x_local + kLegendGap, y + kTextBaselineShift, "legend-text", "local");
-    out_ += square("key-full", x_full, y) + text(x_full + kLegendGap, y + kTextBaselineShift, "legend-text", "full");
+    out_ += ring("key-local", x_local, y) +
+            text(x_local + kLegendGap, y + kTextBaselineShift, "legend-text", "local");
+    out_ += square("key-full", x_full, y) +
+            text(x_full + kLegendGap, y + kTextBaselineShift, "legend-text", "full");
     out_ += "</g>\n";
   }
 

@@ -65,7 +65,8 @@ std::vector<RunView::Stamped> positions(const std::vector<io::StampedPose>& pose
 /// The scan and optimization rows of timings.csv: when, and how long.
 void take_timings(const io::Timings& timings, RunView* run) {
   for (const io::ScanTiming& s : timings.scans) run->scans.push_back({s.stamp, s.frontend_ms});
-  for (const io::OptimizationTiming& o : timings.optimizations) run->solves.push_back({o.stamp, o.seconds, o.full});
+  for (const io::OptimizationTiming& o : timings.optimizations)
+    run->solves.push_back({o.stamp, o.seconds, o.full});
 }
 
 }  // namespace

@@ -35,8 +35,8 @@ struct RunView {
     std::string kind = "room";  ///< "room" or "corridor"
     int level = 0;              ///< index into `levels`
     OrientedRect rect;
-    Polygon2 polygon;           ///< the footprint when it is no rectangle (empty: rect)
-    int first_lap = 0;          ///< lowest lap of its rooms_events.jsonl lines; 0 without one
+    Polygon2 polygon;                         ///< the footprint when it is no rectangle (empty: rect)
+    int first_lap = 0;                        ///< lowest lap of its rooms_events.jsonl lines; 0 without one
     std::vector<Eigen::Vector3d> free_space;  ///< vertices of its latest extraction
 
     Polygon2 footprint() const { return footprint_of(rect, polygon); }
@@ -59,14 +59,14 @@ struct RunView {
   std::vector<Wall> walls;
   std::vector<Node> nodes;
   std::vector<Room> rooms;
-  std::vector<double> levels;               ///< floor height of each level index (scene_graph.json)
-  std::vector<Stamped> estimated;           ///< trajectory.txt
-  std::vector<Stamped> truth;               ///< SEQ/groundtruth.txt; empty without it
-  std::vector<io::RoomTruth> truth_rooms;   ///< SEQ/rooms_gt.json; empty without it
-  std::optional<scene::Scene> scene;          ///< SEQ/scene.yaml (simulated sequences)
+  std::vector<double> levels;              ///< floor height of each level index (scene_graph.json)
+  std::vector<Stamped> estimated;          ///< trajectory.txt
+  std::vector<Stamped> truth;              ///< SEQ/groundtruth.txt; empty without it
+  std::vector<io::RoomTruth> truth_rooms;  ///< SEQ/rooms_gt.json; empty without it
+  std::optional<scene::Scene> scene;       ///< SEQ/scene.yaml (simulated sequences)
   std::vector<ScanTime> scans;
   std::vector<Solve> solves;
-  std::string metrics_json;                 ///< RUN/metrics.json text, "" without it
+  std::string metrics_json;  ///< RUN/metrics.json text, "" without it
 };
 
 /// Reads `run_dir` (scene_graph.json, trajectory.txt and timings.csv required;

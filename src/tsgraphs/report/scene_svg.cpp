@@ -34,64 +34,64 @@ using scene::Scene;
 // ---------------------------------------------------------------------------------------
 // Layout (pixels unless the name says metres or seconds)
 
-constexpr double kPxPerMetre = 40.0;          // common scale of every panel (svg::drawing_scale may lower it)
-constexpr double kWorldPaddingM = 0.6;        // free space around the scene's extent
-constexpr double kPageMargin = 20.0;          // around the whole picture
-constexpr double kTitleHeight = 56.0;         // scene name and subtitle
-constexpr double kTitleBaseline = 22.0;       // of the scene name, below the page margin
+constexpr double kPxPerMetre = 40.0;     // common scale of every panel (svg::drawing_scale may lower it)
+constexpr double kWorldPaddingM = 0.6;   // free space around the scene's extent
+constexpr double kPageMargin = 20.0;     // around the whole picture
+constexpr double kTitleHeight = 56.0;    // scene name and subtitle
+constexpr double kTitleBaseline = 22.0;  // of the scene name, below the page margin
 constexpr double kSubtitleBaseline = 42.0;
-constexpr double kPanelGap = 24.0;            // between panels, and panels to legend
-constexpr double kPanelPadding = 12.0;        // inside a panel's border, around the plan
-constexpr double kPanelTitleHeight = 26.0;    // level name and elevation above the plan
+constexpr double kPanelGap = 24.0;          // between panels, and panels to legend
+constexpr double kPanelPadding = 12.0;      // inside a panel's border, around the plan
+constexpr double kPanelTitleHeight = 26.0;  // level name and elevation above the plan
 constexpr double kPanelTitleBaseline = 14.0;
-constexpr double kScaleBarHeight = 36.0;      // below the plan
-constexpr double kMinPlanWidth = 280.0;       // so the title and scale bar always fit
-constexpr double kScaleBarMetres = 5.0;       // with a tick every metre
+constexpr double kScaleBarHeight = 36.0;  // below the plan
+constexpr double kMinPlanWidth = 280.0;   // so the title and scale bar always fit
+constexpr double kScaleBarMetres = 5.0;   // with a tick every metre
 constexpr double kScaleBarThickness = 6.0;
-constexpr double kScaleBarGap = 14.0;         // between the plan and the scale bar
-constexpr double kScaleTextGap = 12.0;        // between the bar and its numbers' baseline
-constexpr double kScaleTextShift = 3.0;       // numbers start this far left of their tick
+constexpr double kScaleBarGap = 14.0;    // between the plan and the scale bar
+constexpr double kScaleTextGap = 12.0;   // between the bar and its numbers' baseline
+constexpr double kScaleTextShift = 3.0;  // numbers start this far left of their tick
 constexpr double kLegendWidth = 220.0;
 constexpr double kLegendRow = 20.0;
-constexpr double kLegendSwatch = 34.0;        // width of the sample drawn before each entry
-constexpr double kLegendInset = 10.0;         // inside the legend's border
-constexpr double kLegendTitleRows = 1.5;      // the heading takes this many rows
-constexpr int kLegendFixedRows = 15;          // entries always shown (voxel maps add one)
-constexpr double kSwatchTall = 12.0;          // heights of the legend's samples: areas,
-constexpr double kSwatchThin = 6.0;           // walls,
-constexpr double kSwatchLine = 5.0;           // the path's colour bar
-constexpr double kSwatchInset = 4.0;          // the ramp arrow inside its sample
+constexpr double kLegendSwatch = 34.0;    // width of the sample drawn before each entry
+constexpr double kLegendInset = 10.0;     // inside the legend's border
+constexpr double kLegendTitleRows = 1.5;  // the heading takes this many rows
+constexpr int kLegendFixedRows = 15;      // entries always shown (voxel maps add one)
+constexpr double kSwatchTall = 12.0;      // heights of the legend's samples: areas,
+constexpr double kSwatchThin = 6.0;       // walls,
+constexpr double kSwatchLine = 5.0;       // the path's colour bar
+constexpr double kSwatchInset = 4.0;      // the ramp arrow inside its sample
 constexpr double kLegendDoorRadius = 14.0;
 
 // Path
-constexpr double kSampleStepS = 0.1;          // the path is sampled this often
-constexpr double kPathChunkS = 1.0;           // one colour per second of travel
-constexpr double kArrowSpacingM = 3.0;        // an arrowhead every this many metres
+constexpr double kSampleStepS = 0.1;    // the path is sampled this often
+constexpr double kPathChunkS = 1.0;     // one colour per second of travel
+constexpr double kArrowSpacingM = 3.0;  // an arrowhead every this many metres
 constexpr double kArrowLength = 12.0;
 constexpr double kArrowHalfWidth = 5.5;
 constexpr double kStartRadius = 6.5;
 constexpr double kEndHalfSize = 5.0;
-constexpr double kEndMinDistanceM = 0.5;      // closer to the start than this: no end marker
+constexpr double kEndMinDistanceM = 0.5;  // closer to the start than this: no end marker
 
 // Labels
-constexpr double kLabelBaseline = 4.0;        // text baseline below the labelled point
-constexpr double kLabelCharWidth = 7.5;       // rough width of a label character
+constexpr double kLabelBaseline = 4.0;   // text baseline below the labelled point
+constexpr double kLabelCharWidth = 7.5;  // rough width of a label character
 constexpr double kLabelLineHeight = 14.0;
-constexpr double kLabelMarkerShift = 18.0;    // a label over the start marker moves down this much
+constexpr double kLabelMarkerShift = 18.0;  // a label over the start marker moves down this much
 
 // Strokes and sizes
 constexpr double kMinRailingWidth = 2.5;
-constexpr double kBarsDotSize = 4.5;          // bars: a dotted line (a symbol: real posts are
-constexpr double kBarsDotSpacing = 8.0;       // 0.12 m apart, too close to show one by one)
-constexpr double kBarsRailWidth = 1.0;        // the top rail under the dots
-constexpr double kRampArrowFraction = 0.7;    // of the ramp's length along its axis
+constexpr double kBarsDotSize = 4.5;        // bars: a dotted line (a symbol: real posts are
+constexpr double kBarsDotSpacing = 8.0;     // 0.12 m apart, too close to show one by one)
+constexpr double kBarsRailWidth = 1.0;      // the top rail under the dots
+constexpr double kRampArrowFraction = 0.7;  // of the ramp's length along its axis
 constexpr double kRampArrowHead = 9.0;
-constexpr double kRampLabelGapM = 0.35;       // the ramp's label sits this far before its entry
-constexpr double kRoomHueStartDeg = 205.0;    // room colours: golden-angle hues from here
+constexpr double kRampLabelGapM = 0.35;     // the ramp's label sits this far before its entry
+constexpr double kRoomHueStartDeg = 205.0;  // room colours: golden-angle hues from here
 constexpr double kGoldenAngleDeg = 137.50776;
 constexpr double kRoomSaturation = 0.62;
 constexpr double kRoomLightness = 0.48;
-constexpr double kHatchSpacing = 8.0;         // void hatching: line spacing and width
+constexpr double kHatchSpacing = 8.0;  // void hatching: line spacing and width
 constexpr double kHatchWidth = 3.0;
 constexpr double kEps = 1e-9;
 
@@ -110,7 +110,7 @@ constexpr const char* kWindowColour = "#2a86d6";
 constexpr const char* kWindowSillFill = "#b9dcf7";
 constexpr const char* kRailingColour = "#1d4fb8";
 constexpr const char* kPersonColour = "#c2185b";
-constexpr const char* kGlassColour = "#37b6d6";     // glass railings: lighter, the LiDAR sees through them
+constexpr const char* kGlassColour = "#37b6d6";  // glass railings: lighter, the LiDAR sees through them
 constexpr const char* kBoxFill = "#b9834f";
 constexpr const char* kBoxStroke = "#6b4523";
 constexpr const char* kRampLow = "#fbf0cf";
@@ -156,7 +156,8 @@ std::string path_colour(double u) {
 
 /// Distinct colour of the i-th room: hues a golden angle apart.
 std::string room_colour(std::size_t i) {
-  return svg::hsl_colour(kRoomHueStartDeg + kGoldenAngleDeg * static_cast<double>(i), kRoomSaturation, kRoomLightness);
+  return svg::hsl_colour(kRoomHueStartDeg + kGoldenAngleDeg * static_cast<double>(i), kRoomSaturation,
+                         kRoomLightness);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -169,9 +170,7 @@ struct Frame {
   double min_x = 0.0, max_y = 0.0;  // world corner drawn at (left, top)
   double left = 0.0, top = 0.0;     // pixel position of that corner
   double scale = kPxPerMetre;       // px per metre
-  Vec2 px(const Vec2& p) const {
-    return {left + (p.x() - min_x) * scale, top + (max_y - p.y()) * scale};
-  }
+  Vec2 px(const Vec2& p) const { return {left + (p.x() - min_x) * scale, top + (max_y - p.y()) * scale}; }
 };
 
 std::string xy(const Vec2& p) { return num(p.x()) + "," + num(p.y()); }
@@ -200,8 +199,8 @@ Polygon2 box_corners(const scene::Box& box) {
   const Vec2 c = 0.5 * (box.min.head<2>() + box.max.head<2>());
   const Vec2 h = 0.5 * (box.max.head<2>() - box.min.head<2>());
   const double yaw = box.yaw_deg * M_PI / 180.0;
-  return {c + rotate({-h.x(), -h.y()}, yaw), c + rotate({h.x(), -h.y()}, yaw), c + rotate({h.x(), h.y()}, yaw),
-          c + rotate({-h.x(), h.y()}, yaw)};
+  return {c + rotate({-h.x(), -h.y()}, yaw), c + rotate({h.x(), -h.y()}, yaw),
+          c + rotate({h.x(), h.y()}, yaw), c + rotate({-h.x(), h.y()}, yaw)};
 }
 
 /// A point inside `poly` to put its name at: the area centroid, or for shapes that do not
@@ -245,9 +244,9 @@ Vec2 ramp_uphill(const Scene& scene, const scene::Ramp& ramp) {
 struct PathSample {
   Vec2 xy;
   double yaw;
-  double t;      // s since the start
-  double s;      // m travelled
-  int level;     // panel it is drawn on
+  double t;   // s since the start
+  double s;   // m travelled
+  int level;  // panel it is drawn on
 };
 
 /// The level whose elevation is closest to the walkable surface under the sensor; among
@@ -302,7 +301,8 @@ VoxelFootprint voxel_footprint(const Scene& scene, const scene::VoxelMap& vm) {
   for (const Eigen::Vector3f& pf : cloud.points) {
     const Eigen::Vector3d p = pf.cast<double>();
     const double z = p.z() + vm.offset.z();
-    if (vm.label == scene::VoxelLabel::kAuto && (std::abs(z) <= vm.voxel_size || std::abs(z - ceiling) <= vm.voxel_size)) {
+    if (vm.label == scene::VoxelLabel::kAuto &&
+        (std::abs(z) <= vm.voxel_size || std::abs(z - ceiling) <= vm.voxel_size)) {
       continue;
     }
     const double x = c * p.x() - s * p.y() + vm.offset.x(), y = s * p.x() + c * p.y() + vm.offset.y();
@@ -315,8 +315,8 @@ VoxelFootprint voxel_footprint(const Scene& scene, const scene::VoxelMap& vm) {
 // Drawing
 
 struct Label {
-  Vec2 at;             // world
-  std::string text;    // raw, escaped when written
+  Vec2 at;           // world
+  std::string text;  // raw, escaped when written
   std::string cls;
 };
 
@@ -352,7 +352,8 @@ class SceneDrawer {
       for (const Polygon2& v : l.voids) e.add(v);
     }
     for (const scene::Wall& w : scene_.walls) {
-      for (const scene::WallPiece& p : scene::wall_pieces(w)) e.add(strip(w.from, w.to, p.s0, p.s1, w.thickness));
+      for (const scene::WallPiece& p : scene::wall_pieces(w))
+        e.add(strip(w.from, w.to, p.s0, p.s1, w.thickness));
     }
     for (const scene::Railing& r : scene_.railings) e.add(r.from), e.add(r.to);
     for (const scene::Box& b : scene_.boxes) e.add(box_corners(b));
@@ -381,12 +382,14 @@ class SceneDrawer {
     const auto n = static_cast<double>(std::max<std::size_t>(scene_.levels.size(), 1));
     auto page = [&](bool stacked) {
       const double w = (stacked ? panel_w : n * panel_w + (n - 1.0) * kPanelGap) + kPanelGap + kLegendWidth;
-      const double h = kTitleHeight + std::max(stacked ? n * panel_h + (n - 1.0) * kPanelGap : panel_h, legend_height());
+      const double h =
+          kTitleHeight + std::max(stacked ? n * panel_h + (n - 1.0) * kPanelGap : panel_h, legend_height());
       return std::make_pair(w + 2.0 * kPageMargin, h + 2.0 * kPageMargin);
     };
     const auto [wide_w, wide_h] = page(false);
     const auto [tall_w, tall_h] = page(true);
-    const bool stacked = std::max(tall_w / tall_h, tall_h / tall_w) < std::max(wide_w / wide_h, wide_h / wide_w);
+    const bool stacked =
+        std::max(tall_w / tall_h, tall_h / tall_w) < std::max(wide_w / wide_h, wide_h / wide_w);
     std::tie(page_w_, page_h_) = stacked ? std::make_pair(tall_w, tall_h) : std::make_pair(wide_w, wide_h);
 
     // Lowest level first (left or top).
@@ -413,15 +416,17 @@ class SceneDrawer {
   }
 
   double legend_height() const { return (legend_rows() + kLegendTitleRows) * kLegendRow; }
-  int legend_rows() const { return kLegendFixedRows + (voxels_.empty() ? 0 : 1) + (scene_.people.empty() ? 0 : 1); }
+  int legend_rows() const {
+    return kLegendFixedRows + (voxels_.empty() ? 0 : 1) + (scene_.people.empty() ? 0 : 1);
+  }
 
   void open_document() {
-    out_ += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(page_w_) + "\" height=\"" + num(page_h_) +
-            "\" viewBox=\"0 0 " + num(page_w_) + " " + num(page_h_) + "\">\n";
+    out_ += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(page_w_) + "\" height=\"" +
+            num(page_h_) + "\" viewBox=\"0 0 " + num(page_w_) + " " + num(page_h_) + "\">\n";
     out_ += "<title>" + xml_escape(scene_.name) + "</title>\n";
     write_defs();
-    out_ += "<rect class=\"background\" x=\"0\" y=\"0\" width=\"" + num(page_w_) + "\" height=\"" + num(page_h_) +
-            "\" fill=\"" + kBackground + "\"/>\n";
+    out_ += "<rect class=\"background\" x=\"0\" y=\"0\" width=\"" + num(page_w_) + "\" height=\"" +
+            num(page_h_) + "\" fill=\"" + kBackground + "\"/>\n";
     out_ += text(kPageMargin, kPageMargin + kTitleBaseline, "scene-title", scene_.name);
     const double lap_s = path_.empty() ? 0.0 : path_.back().t;
     const double lap_m = path_.empty() ? 0.0 : path_.back().s;
@@ -447,7 +452,8 @@ class SceneDrawer {
     out_ += std::string(".voxels { fill: ") + kVoxelFill + "; stroke: none; }\n";
     out_ += std::string(".box { fill: ") + kBoxFill + "; fill-opacity: 0.85; stroke: " + kBoxStroke +
             "; stroke-width: 1; }\n";
-    out_ += std::string(".wall.full { fill: ") + kWallFill + "; stroke: " + kWallFill + "; stroke-width: 0.5; }\n";
+    out_ += std::string(".wall.full { fill: ") + kWallFill + "; stroke: " + kWallFill +
+            "; stroke-width: 0.5; }\n";
     out_ += std::string(".wall.header { fill: none; stroke: ") + kWallFill +
             "; stroke-width: 0.8; stroke-dasharray: 3 2; }\n";
     out_ += std::string(".wall.sill { fill: ") + kWindowSillFill + "; stroke: " + kWindowColour +
@@ -460,8 +466,8 @@ class SceneDrawer {
     out_ += std::string(".railing.glass { stroke: ") + kGlassColour + "; stroke-linecap: butt; }\n";
     out_ += std::string(".person { fill: none; stroke: ") + kPersonColour +
             "; stroke-width: 1.5; stroke-dasharray: 4 3; }\n";
-    out_ += std::string(".person-start { fill: ") + kPersonColour + "; fill-opacity: 0.5; stroke: " + kPersonColour +
-            "; stroke-width: 1; }\n";
+    out_ += std::string(".person-start { fill: ") + kPersonColour +
+            "; fill-opacity: 0.5; stroke: " + kPersonColour + "; stroke-width: 1; }\n";
     out_ += std::string(".path-casing { fill: none; stroke: ") + kPathCasing +
             "; stroke-width: 6; stroke-linejoin: round; stroke-linecap: round; }\n";
     out_ += ".path { fill: none; stroke-width: 3; stroke-linejoin: round; stroke-linecap: round; }\n";
@@ -480,9 +486,9 @@ class SceneDrawer {
     out_ += "</style>\n<defs>\n";
     const std::string h = num(kHatchSpacing);
     out_ += "<pattern id=\"void-hatch\" patternUnits=\"userSpaceOnUse\" width=\"" + h + "\" height=\"" + h +
-            "\" patternTransform=\"rotate(45)\"><rect width=\"" + h + "\" height=\"" + h + "\" fill=\"" + kVoidFill +
-            "\"/><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"" + h + "\" stroke=\"" + kVoidHatch + "\" stroke-width=\"" +
-            num(kHatchWidth) + "\"/></pattern>\n";
+            "\" patternTransform=\"rotate(45)\"><rect width=\"" + h + "\" height=\"" + h + "\" fill=\"" +
+            kVoidFill + "\"/><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"" + h + "\" stroke=\"" + kVoidHatch +
+            "\" stroke-width=\"" + num(kHatchWidth) + "\"/></pattern>\n";
     out_ += "<linearGradient id=\"path-ramp\">";
     for (const ColourStop& c : kPathRamp) {
       out_ += "<stop offset=\"" + num(c.at) + "\" stop-color=\"" + hex_colour(c.r, c.g, c.b) + "\"/>";
@@ -528,9 +534,10 @@ class SceneDrawer {
     for (const Polygon2& v : l.voids) {
       out_ += "<polygon class=\"void\" points=\"" + points_attr(f, v) + "\"/>\n";
       const Vec2 at = label_point(v);
-      const bool under_ramp = std::any_of(scene_.ramps.begin(), scene_.ramps.end(), [&](const scene::Ramp& r) {
-        return (r.from_level == level || r.to_level == level) && contains(r.polygon, at);
-      });
+      const bool under_ramp =
+          std::any_of(scene_.ramps.begin(), scene_.ramps.end(), [&](const scene::Ramp& r) {
+            return (r.from_level == level || r.to_level == level) && contains(r.polygon, at);
+          });
       if (!under_ramp) labels_.push_back({at, "void", "void-name"});
     }
     out_ += "</g>\n";
@@ -563,18 +570,21 @@ class SceneDrawer {
       const Vec2 across = c - c.dot(up) * up;  // the centre line's offset from the origin
       const Vec2 low = across + lo * up, high = across + hi * up;
       const std::string id = "ramp-" + std::to_string(i) + "-on-" + std::to_string(level);
-      out_ += "<linearGradient id=\"" + id + "\" gradientUnits=\"userSpaceOnUse\" x1=\"" + num(f.px(low).x()) +
-              "\" y1=\"" + num(f.px(low).y()) + "\" x2=\"" + num(f.px(high).x()) + "\" y2=\"" +
-              num(f.px(high).y()) + "\"><stop offset=\"0.00\" stop-color=\"" + kRampLow +
+      out_ += "<linearGradient id=\"" + id + "\" gradientUnits=\"userSpaceOnUse\" x1=\"" +
+              num(f.px(low).x()) + "\" y1=\"" + num(f.px(low).y()) + "\" x2=\"" + num(f.px(high).x()) +
+              "\" y2=\"" + num(f.px(high).y()) + "\"><stop offset=\"0.00\" stop-color=\"" + kRampLow +
               "\"/><stop offset=\"1.00\" stop-color=\"" + kRampHigh + "\"/></linearGradient>\n";
-      out_ += "<polygon class=\"ramp\" fill=\"url(#" + id + ")\" points=\"" + points_attr(f, r.polygon) + "\"/>\n";
+      out_ += "<polygon class=\"ramp\" fill=\"url(#" + id + ")\" points=\"" + points_attr(f, r.polygon) +
+              "\"/>\n";
       const double half = 0.5 * kRampArrowFraction * (hi - lo);
-      out_ += "<path class=\"ramp-arrow\" d=\"" + arrow_path(f.px(c - half * up), f.px(c + half * up)) + "\"/>\n";
+      out_ +=
+          "<path class=\"ramp-arrow\" d=\"" + arrow_path(f.px(c - half * up), f.px(c + half * up)) + "\"/>\n";
       // The label stands where one steps onto the ramp from this level.
       const int other = r.from_level == level ? r.to_level : r.from_level;
       const bool here_low = scene_.levels[level].elevation <= scene_.levels[other].elevation;
       const Vec2 entry = here_low ? Vec2(low - kRampLabelGapM * up) : Vec2(high + kRampLabelGapM * up);
-      labels_.push_back({entry, "ramp to " + scene_.levels[other].name + (here_low ? " (up)" : " (down)"), "ramp-name"});
+      labels_.push_back(
+          {entry, "ramp to " + scene_.levels[other].name + (here_low ? " (up)" : " (down)"), "ramp-name"});
     }
     out_ += "</g>\n";
   }
@@ -600,7 +610,8 @@ class SceneDrawer {
         for (++it; it != v.cells.end() && it->first == row && it->second == last + 1; ++it) ++last;
         const Vec2 a = f.px(Vec2((first - 0.5) * v.cell, (row + 0.5) * v.cell));
         const Vec2 b = f.px(Vec2((last + 0.5) * v.cell, (row - 0.5) * v.cell));
-        d += "M" + xy(a) + "h" + num(b.x() - a.x()) + "v" + num(b.y() - a.y()) + "h" + num(a.x() - b.x()) + "z";
+        d += "M" + xy(a) + "h" + num(b.x() - a.x()) + "v" + num(b.y() - a.y()) + "h" + num(a.x() - b.x()) +
+             "z";
       }
       out_ += "<path class=\"voxels\" d=\"" + d + "\"/>\n";
     }
@@ -616,7 +627,8 @@ class SceneDrawer {
         continue;
       }
       out_ += "<polygon class=\"box\" points=\"" + points_attr(f, box_corners(b)) + "\"/>\n";
-      if (!b.label.empty()) labels_.push_back({0.5 * (b.min.head<2>() + b.max.head<2>()), b.label, "box-name"});
+      if (!b.label.empty())
+        labels_.push_back({0.5 * (b.min.head<2>() + b.max.head<2>()), b.label, "box-name"});
     }
     out_ += "</g>\n";
   }
@@ -652,8 +664,10 @@ class SceneDrawer {
     for (const scene::Wall& w : scene_.walls) {
       if (w.level != level) continue;
       for (const scene::Opening& o : w.openings) {
-        if (o.sill > 0.0) out_ += window(f, w, o);
-        else if (!has_leaf(w, o)) out_ += door(f, w, o);  // a door whose leaf is in the scene shows that
+        if (o.sill > 0.0)
+          out_ += window(f, w, o);
+        else if (!has_leaf(w, o))
+          out_ += door(f, w, o);  // a door whose leaf is in the scene shows that
       }
     }
     out_ += "</g>\n";
@@ -709,7 +723,8 @@ class SceneDrawer {
       if (r.style != scene::RailingStyle::kBars) {
         const double width = std::max(scene::RailingGeometry::kSolidThickness * scale_, kMinRailingWidth);
         const char* cls = r.style == scene::RailingStyle::kGlass ? "railing glass" : "railing solid";
-        out_ += std::string("<line class=\"") + cls + "\" " + ends + " stroke-width=\"" + num(width) + "\"/>\n";
+        out_ +=
+            std::string("<line class=\"") + cls + "\" " + ends + " stroke-width=\"" + num(width) + "\"/>\n";
       } else {
         out_ += "<g class=\"railing bars\">" + bars_lines(ends) + "</g>\n";
       }
@@ -719,9 +734,9 @@ class SceneDrawer {
 
   /// The two lines of a bars railing between the given x1..y2 attributes.
   static std::string bars_lines(const std::string& ends) {
-    return "<line " + ends + " stroke-width=\"" + num(kBarsRailWidth) + "\"/><line " + ends + " stroke-width=\"" +
-           num(kBarsDotSize) + "\" stroke-linecap=\"round\" stroke-dasharray=\"0.01 " + num(kBarsDotSpacing) +
-           "\"/>";
+    return "<line " + ends + " stroke-width=\"" + num(kBarsRailWidth) + "\"/><line " + ends +
+           " stroke-width=\"" + num(kBarsDotSize) + "\" stroke-linecap=\"round\" stroke-dasharray=\"0.01 " +
+           num(kBarsDotSpacing) + "\"/>";
   }
 
   /// The part of the first lap on this level: a white casing, then one polyline per second
@@ -744,11 +759,13 @@ class SceneDrawer {
     for (const auto& [first, last] : runs) {
       out_ += "<polyline class=\"path-casing\" points=\"" + path_points(f, first, last) + "\"/>\n";
     }
-    auto chunk_of = [&](std::size_t i) { return static_cast<long>(std::floor(path_[i].t / kPathChunkS + kEps)); };
+    auto chunk_of = [&](std::size_t i) {
+      return static_cast<long>(std::floor(path_[i].t / kPathChunkS + kEps));
+    };
     for (const auto& [first, last] : runs) {
       if (first == last) {
-        out_ += "<polyline class=\"path\" stroke=\"" + path_colour(path_[first].t / duration) + "\" points=\"" +
-                path_points(f, first, last) + "\"/>\n";
+        out_ += "<polyline class=\"path\" stroke=\"" + path_colour(path_[first].t / duration) +
+                "\" points=\"" + path_points(f, first, last) + "\"/>\n";
         continue;
       }
       // One polyline per chunk, ending on the next chunk's first sample so they join.
@@ -774,8 +791,8 @@ class SceneDrawer {
     if (s1.level == level && (s1.xy - s0.xy).norm() >= kEndMinDistanceM) {
       const Vec2 c = f.px(s1.xy);
       out_ += "<rect class=\"end\" stroke=\"" + path_colour(1.0) + "\" x=\"" + num(c.x() - kEndHalfSize) +
-              "\" y=\"" + num(c.y() - kEndHalfSize) + "\" width=\"" + num(2.0 * kEndHalfSize) + "\" height=\"" +
-              num(2.0 * kEndHalfSize) + "\"/>\n";
+              "\" y=\"" + num(c.y() - kEndHalfSize) + "\" width=\"" + num(2.0 * kEndHalfSize) +
+              "\" height=\"" + num(2.0 * kEndHalfSize) + "\"/>\n";
     }
     if (s0.level == level) {
       const Vec2 c = f.px(s0.xy);
@@ -827,8 +844,8 @@ class SceneDrawer {
           std::abs(p.y() - start.y()) < 0.5 * kLabelLineHeight + kStartRadius) {
         p.y() = start.y() + kLabelMarkerShift;
       }
-      out_ += "<text class=\"label " + l.cls + "\" x=\"" + num(p.x()) + "\" y=\"" + num(p.y() + kLabelBaseline) +
-              "\">" + xml_escape(l.text) + "</text>\n";
+      out_ += "<text class=\"label " + l.cls + "\" x=\"" + num(p.x()) + "\" y=\"" +
+              num(p.y() + kLabelBaseline) + "\">" + xml_escape(l.text) + "</text>\n";
     }
     out_ += "</g>\n";
   }
@@ -854,8 +871,8 @@ class SceneDrawer {
     const double x = legend_x_;
     double y = kPageMargin + kTitleHeight;
     out_ += "<g class=\"legend\">\n";
-    out_ += "<rect class=\"panel-border\" x=\"" + num(x) + "\" y=\"" + num(y) + "\" width=\"" + num(kLegendWidth) +
-            "\" height=\"" + num(legend_height()) + "\"/>\n";
+    out_ += "<rect class=\"panel-border\" x=\"" + num(x) + "\" y=\"" + num(y) + "\" width=\"" +
+            num(kLegendWidth) + "\" height=\"" + num(legend_height()) + "\"/>\n";
     out_ += text(x + kLegendInset, y + kLegendRow - kLabelBaseline, "legend-title", "Legend");
     y += kLegendTitleRows * kLegendRow;
     const double sx = x + kLegendInset, sw = kLegendSwatch;
@@ -878,9 +895,10 @@ class SceneDrawer {
     row(rect("class=\"wall header\"", kSwatchThin), "wall above an opening");
     {
       const double r = kLegendDoorRadius;
-      const Vec2 hinge(sx + kLegendInset, y + 0.5 * kSwatchTall), open = hinge - Vec2(0.0, r), jamb = hinge + Vec2(r, 0.0);
-      row("<path class=\"door\" d=\"M" + xy(hinge) + " L" + xy(open) + " A" + num(r) + "," + num(r) + " 0 0,1 " +
-              xy(jamb) + "\"/>\n",
+      const Vec2 hinge(sx + kLegendInset, y + 0.5 * kSwatchTall), open = hinge - Vec2(0.0, r),
+                                                                  jamb = hinge + Vec2(r, 0.0);
+      row("<path class=\"door\" d=\"M" + xy(hinge) + " L" + xy(open) + " A" + num(r) + "," + num(r) +
+              " 0 0,1 " + xy(jamb) + "\"/>\n",
           "door (leaf and swing)");
     }
     row(rect("class=\"wall sill\"", kSwatchThin) + "<line class=\"window\" " + ends() + "/>\n", "window");
@@ -901,8 +919,8 @@ class SceneDrawer {
     row("<polygon class=\"arrow\" fill=\"" + path_colour(0.5) + "\" points=\"" +
             arrowhead_points(Vec2(mid.x(), y), Vec2(1.0, 0.0)) + "\"/>\n",
         "direction, every " + short_num(kArrowSpacingM) + " m");
-    row("<circle class=\"start\" stroke=\"" + path_colour(0.0) + "\" cx=\"" + num(mid.x()) + "\" cy=\"" + num(y) +
-            "\" r=\"" + num(kStartRadius) + "\"/>\n",
+    row("<circle class=\"start\" stroke=\"" + path_colour(0.0) + "\" cx=\"" + num(mid.x()) + "\" cy=\"" +
+            num(y) + "\" r=\"" + num(kStartRadius) + "\"/>\n",
         "start (square: end)");
     out_ += "</g>\n";
   }

@@ -34,13 +34,15 @@ constexpr const char* kCss =
     ".runs figure { flex: 0 1 440px; min-width: 260px; }\n"
     "svg { max-width: 100%; height: auto; display: block; }\n";
 
-std::string value_text(const eval::CaseMethod& run, const char* key) { return eval::case_figure_text(run, key); }
+std::string value_text(const eval::CaseMethod& run, const char* key) {
+  return eval::case_figure_text(run, key);
+}
 
 std::string run_caption(const eval::CaseMethod& run) {
   return run.method.name + ": rooms F1 " + value_text(run, "rooms_gt.f1") + ", f_re " +
          value_text(run, "consistency.f_re") + ", DCS " + value_text(run, "consistency.dcs") + ", d_center " +
-         value_text(run, "consistency.d_center") + " m, unsupported " + value_text(run, "rooms_gt.unsupported") +
-         ", ATE " + value_text(run, "trajectory.ate_rmse") + " m";
+         value_text(run, "consistency.d_center") + " m, unsupported " +
+         value_text(run, "rooms_gt.unsupported") + ", ATE " + value_text(run, "trajectory.ate_rmse") + " m";
 }
 
 /// What the case ran on: "office, seed 3, platform handheld, vlp-16 at 1.50 m".
@@ -58,15 +60,16 @@ std::string case_subtitle(const eval::CaseRecord& c) {
 }
 
 std::string summary_table(const eval::MethodSummary& s) {
-  std::string out = "<table class=\"suite\">\n<thead><tr><th>figure</th><th>better (worst decile)</th><th>median</th>"
-                    "<th>worst decile</th><th>worst</th><th>worst case</th><th>cases</th></tr></thead>\n<tbody>\n";
+  std::string out =
+      "<table class=\"suite\">\n<thead><tr><th>figure</th><th>better (worst decile)</th><th>median</th>"
+      "<th>worst decile</th><th>worst</th><th>worst case</th><th>cases</th></tr></thead>\n<tbody>\n";
   for (std::size_t k = 0; k < eval::suite_figures().size(); ++k) {
     const eval::SuiteFigure& f = eval::suite_figures()[k];
     const eval::FigureStats& st = s.stats[k];
     out += "<tr><td>" + xml_escape(f.header) + "</td><td>" + xml_escape(eval::better_text(f.better)) +
-           "</td><td class=\"value\">" + eval::figure_text(st.median, f.decimals) + "</td><td class=\"value\">" +
-           eval::figure_text(st.worst_decile, f.decimals) + "</td><td class=\"value\">" +
-           eval::figure_text(st.worst, f.decimals) + "</td><td>" +
+           "</td><td class=\"value\">" + eval::figure_text(st.median, f.decimals) +
+           "</td><td class=\"value\">" + eval::figure_text(st.worst_decile, f.decimals) +
+           "</td><td class=\"value\">" + eval::figure_text(st.worst, f.decimals) + "</td><td>" +
            xml_escape(st.worst_case.empty() ? "-" : st.worst_case) + "</td><td class=\"value\">" +
            std::to_string(st.n) + "</td></tr>\n";
   }
@@ -90,25 +93,30 @@ std::string suite_report_html(const eval::SuiteResults& results, const BirdseyeS
   for (const eval::CaseRecord& c : results.cases) (c.done() ? done : failed) += 1;
   std::string methods;
   for (const eval::SuiteMethod& m : results.methods) methods += (methods.empty() ? "" : ", ") + m.name;
-  out += "<p>" + eval::cases_text(results.cases.size() + results.pending.size()) + ": " + std::to_string(done) +
-         " counted, " + std::to_string(failed) + " failed, " + std::to_string(results.pending.size()) +
-         " not run yet. Methods: " + xml_escape(methods) + ".</p>\n";
-  out += "<p class=\"note\">Per method and figure, over the counted cases that have the figure: the median, the "
-         "worst decile (the 10th percentile where higher is better, the 90th where lower is better), the worst value "
-         "and the first case with it. DCS, d_center and mean IoU exist only where rooms were paired or matched; "
-         "rooms F1 is 0 where a run has no final room.</p>\n";
+  out += "<p>" + eval::cases_text(results.cases.size() + results.pending.size()) + ": " +
+         std::to_string(done) + " counted, " + std::to_string(failed) + " failed, " +
+         std::to_string(results.pending.size()) + " not run yet. Methods: " + xml_escape(methods) + ".</p>\n";
+  out +=
+      "<p class=\"note\">Per method and figure, over the counted cases that have the figure: the median, the "
+      "worst decile (the 10th percentile where higher is better, the 90th where lower is better), the worst "
+      "value "
+      "and the first case with it. DCS, d_center and mean IoU exist only where rooms were paired or matched; "
+      "rooms F1 is 0 where a run has no final room.</p>\n";
   for (const eval::MethodSummary& s : eval::summarise(results)) {
-    out += "<section class=\"method\">\n<h2>" + xml_escape(s.method.name) + "</h2>\n<p>" + eval::cases_text(s.counted) +
-           " counted, " + std::to_string(s.failed) + " failed.</p>\n" + summary_table(s) + "</section>\n";
+    out += "<section class=\"method\">\n<h2>" + xml_escape(s.method.name) + "</h2>\n<p>" +
+           eval::cases_text(s.counted) + " counted, " + std::to_string(s.failed) + " failed.</p>\n" +
+           summary_table(s) + "</section>\n";
   }
 
   const std::string key = eval::key_method(results);
   out += "<h2>Cases, worst first</h2>\n<p class=\"note\">Sorted by the " + xml_escape(key) +
-         " run's rooms F1, then its f_re; failed cases first. True rooms are dashed, each found room is labelled "
+         " run's rooms F1, then its f_re; failed cases first. True rooms are dashed, each found room is "
+         "labelled "
          "with its id and the lap of its first extraction.</p>\n";
   for (const eval::CaseRecord* c : eval::worst_first(results)) {
     out += "<section class=\"case\">\n<h3>" + xml_escape(c->id) + "</h3>\n";
-    if (const std::string sub = case_subtitle(*c); !sub.empty()) out += "<p class=\"note\">" + xml_escape(sub) + "</p>\n";
+    if (const std::string sub = case_subtitle(*c); !sub.empty())
+      out += "<p class=\"note\">" + xml_escape(sub) + "</p>\n";
     if (!c->done()) {
       out += "<p class=\"failed\">failed: " + xml_escape(c->message) + "</p>\n</section>\n";
       continue;
@@ -133,9 +141,11 @@ std::string read_birdseye(const std::string& run_dir) {
   return s.str();
 }
 
-void write_suite_report(const std::string& path, const std::string& suite_dir, const eval::SuiteResults& results) {
+void write_suite_report(const std::string& path, const std::string& suite_dir,
+                        const eval::SuiteResults& results) {
   const std::filesystem::path cases = std::filesystem::path(suite_dir) / eval::suite_files::kCases;
-  io::write_file_atomic(path, suite_report_html(results, [&](const eval::CaseRecord& c, const std::string& slug) {
+  io::write_file_atomic(path,
+                        suite_report_html(results, [&](const eval::CaseRecord& c, const std::string& slug) {
                           return read_birdseye((cases / c.id / slug).string());
                         }));
 }

@@ -22,6 +22,7 @@ std::string read_birdseye(const std::string& run_dir);
 
 /// Writes `path` (whole or not at all) from the cases under `suite_dir`: each run's
 /// bird's-eye from suite_dir/cases/ID/<slug>/birdseye.svg.
-void write_suite_report(const std::string& path, const std::string& suite_dir, const eval::SuiteResults& results);
+void write_suite_report(const std::string& path, const std::string& suite_dir,
+                        const eval::SuiteResults& results);
 
 }  // namespace tsgraphs::report

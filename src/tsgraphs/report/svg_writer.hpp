@@ -50,12 +50,28 @@ inline std::string xml_escape(std::string_view text) {
   for (std::size_t i = 0; i < text.size();) {
     const char c = text[i];
     switch (c) {
-      case '&': out += "&amp;"; ++i; continue;
-      case '<': out += "&lt;"; ++i; continue;
-      case '>': out += "&gt;"; ++i; continue;
-      case '"': out += "&quot;"; ++i; continue;
-      case '\'': out += "&apos;"; ++i; continue;
-      default: break;
+      case '&':
+        out += "&amp;";
+        ++i;
+        continue;
+      case '<':
+        out += "&lt;";
+        ++i;
+        continue;
+      case '>':
+        out += "&gt;";
+        ++i;
+        continue;
+      case '"':
+        out += "&quot;";
+        ++i;
+        continue;
+      case '\'':
+        out += "&apos;";
+        ++i;
+        continue;
+      default:
+        break;
     }
     const std::size_t n = utf8_length(text, i);
     const bool control = n == 1 && static_cast<unsigned char>(c) < 0x20 && c != '\t';
@@ -91,12 +107,24 @@ inline std::string hsl_colour(double hue_deg, double saturation, double lightnes
   const double m = lightness - 0.5 * c;
   double r = 0, g = 0, b = 0;
   switch (static_cast<int>(h)) {
-    case 0: r = c, g = x; break;
-    case 1: r = x, g = c; break;
-    case 2: g = c, b = x; break;
-    case 3: g = x, b = c; break;
-    case 4: r = x, b = c; break;
-    default: r = c, b = x; break;
+    case 0:
+      r = c, g = x;
+      break;
+    case 1:
+      r = x, g = c;
+      break;
+    case 2:
+      g = c, b = x;
+      break;
+    case 3:
+      g = x, b = c;
+      break;
+    case 4:
+      r = x, b = c;
+      break;
+    default:
+      r = c, b = x;
+      break;
   }
   return hex_colour(255.0 * (r + m), 255.0 * (g + m), 255.0 * (b + m));
 }
@@ -128,7 +156,8 @@ inline double drawing_scale(const Extent& e, double preferred) {
 
 /// A text element of class `cls` with its baseline starting at (x, y).
 inline std::string text(double x, double y, const std::string& cls, const std::string& what) {
-  return "<text class=\"" + cls + "\" x=\"" + num(x) + "\" y=\"" + num(y) + "\">" + xml_escape(what) + "</text>\n";
+  return "<text class=\"" + cls + "\" x=\"" + num(x) + "\" y=\"" + num(y) + "\">" + xml_escape(what) +
+         "</text>\n";
 }
 
 /// How a scale bar looks: `metres` long, alternating ink and paper metres, labelled 0, 1
@@ -136,9 +165,9 @@ inline std::string text(double x, double y, const std::string& cls, const std::s
 struct ScaleBarStyle {
   double px_per_metre = 40.0;
   int metres = 5;
-  double thickness = 6.0;    ///< of the bar, px
-  double text_gap = 12.0;    ///< between the bar and its numbers' baseline
-  double text_shift = 3.0;   ///< numbers start this far left of their tick
+  double thickness = 6.0;   ///< of the bar, px
+  double text_gap = 12.0;   ///< between the bar and its numbers' baseline
+  double text_shift = 3.0;  ///< numbers start this far left of their tick
   const char* ink = "#222222";
   const char* paper = "#ffffff";
 };
@@ -148,14 +177,15 @@ struct ScaleBarStyle {
 inline std::string scale_bar(double x, double y, const ScaleBarStyle& s) {
   std::string out = "<g class=\"scale-bar\">\n";
   for (int m = 0; m < s.metres; ++m) {
-    out += "<rect x=\"" + num(x + m * s.px_per_metre) + "\" y=\"" + num(y) + "\" width=\"" + num(s.px_per_metre) +
-           "\" height=\"" + num(s.thickness) + "\" fill=\"" + (m % 2 == 0 ? s.ink : s.paper) + "\" stroke=\"" + s.ink +
-           "\" stroke-width=\"0.8\"/>\n";
+    out += "<rect x=\"" + num(x + m * s.px_per_metre) + "\" y=\"" + num(y) + "\" width=\"" +
+           num(s.px_per_metre) + "\" height=\"" + num(s.thickness) + "\" fill=\"" +
+           (m % 2 == 0 ? s.ink : s.paper) + "\" stroke=\"" + s.ink + "\" stroke-width=\"0.8\"/>\n";
   }
   const double ty = y + s.thickness + s.text_gap;
   out += text(x - s.text_shift, ty, "scale-text", "0");
   out += text(x + s.px_per_metre - s.text_shift, ty, "scale-text", "1");
-  out += text(x + s.metres * s.px_per_metre - s.text_shift, ty, "scale-text", std::to_string(s.metres) + " m");
+  out +=
+      text(x + s.metres * s.px_per_metre - s.text_shift, ty, "scale-text", std::to_string(s.metres) + " m");
   out += "</g>\n";
   return out;
 }

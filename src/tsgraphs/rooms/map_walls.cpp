@@ -14,9 +14,9 @@ namespace tsgraphs::rooms {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
-constexpr double kSearchStepDeg = 0.5;    // the coarse search over half a turn
-constexpr double kRefineSpanDeg = 1.0;    // ...then within this of each direction found
-constexpr double kRefineStepDeg = 0.05;   // ...in these steps
+constexpr double kSearchStepDeg = 0.5;   // the coarse search over half a turn
+constexpr double kRefineSpanDeg = 1.0;   // ...then within this of each direction found
+constexpr double kRefineStepDeg = 0.05;  // ...in these steps
 
 /// An edge cell: blocked, with the free space one step along `side` * normal.
 struct EdgeCell {
@@ -58,7 +58,8 @@ Edge edge_of(const GridFrame& f, const std::vector<std::uint8_t>& free, const st
       if (!of[f.index(c, r)] || free[f.index(c, r)]) continue;
       bool beside = false;
       for (int dr = -1; dr <= 1 && !beside; ++dr)
-        for (int dc = -1; dc <= 1 && !beside; ++dc) beside = f.inside(c + dc, r + dr) && free[f.index(c + dc, r + dr)];
+        for (int dc = -1; dc <= 1 && !beside; ++dc)
+          beside = f.inside(c + dc, r + dr) && free[f.index(c + dc, r + dr)];
       if (beside) e.cells.push_back(f.index(c, r));
     }
   }
@@ -85,7 +86,8 @@ std::vector<EdgeCell> edge_cells(const Edge& edge, double theta, int side) {
 
 /// The runs along of `along` (sorted) with gaps of at most max_gap cells that are at least
 /// min_piece cells long, at `offset`.
-void runs_of(const std::vector<double>& along, double offset, double max_gap, double min_piece, std::vector<Piece>* out) {
+void runs_of(const std::vector<double>& along, double offset, double max_gap, double min_piece,
+             std::vector<Piece>* out) {
   for (std::size_t a = 0; a < along.size();) {
     std::size_t b = a;
     while (b + 1 < along.size() && along[b + 1] - along[b] <= max_gap + 1.0) ++b;
@@ -124,7 +126,8 @@ std::vector<Piece> pieces_of(const std::vector<EdgeCell>& cells, double max_gap,
     for (const Piece& q : p.pieces) p.length += q.length();
     if (p.length > 0.0) pairs.push_back(std::move(p));
   }
-  std::stable_sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.length > b.length; });
+  std::stable_sort(pairs.begin(), pairs.end(),
+                   [](const Pair& a, const Pair& b) { return a.length > b.length; });
   std::set<long> used;
   std::vector<Piece> out;
   for (const Pair& p : pairs) {
@@ -133,7 +136,9 @@ std::vector<Piece> pieces_of(const std::vector<EdgeCell>& cells, double max_gap,
     used.insert(p.bin + 1);
     out.insert(out.end(), p.pieces.begin(), p.pieces.end());
   }
-  std::sort(out.begin(), out.end(), [](const Piece& a, const Piece& b) { return a.offset != b.offset ? a.offset < b.offset : a.t0 < b.t0; });
+  std::sort(out.begin(), out.end(), [](const Piece& a, const Piece& b) {
+    return a.offset != b.offset ? a.offset < b.offset : a.t0 < b.t0;
+  });
   return out;
 }
 
@@ -152,7 +157,8 @@ double sharpness(const Edge& edge, double theta) {
   double total = 0.0;
   for (int side : {1, -1}) {
     std::map<long, double> count;
-    for (const EdgeCell& e : edge_cells(edge, theta, side)) count[static_cast<long>(std::floor(e.offset))] += 1.0;
+    for (const EdgeCell& e : edge_cells(edge, theta, side))
+      count[static_cast<long>(std::floor(e.offset))] += 1.0;
     for (const auto& [bin, n] : count) total += n * n;
   }
   return total;
@@ -179,10 +185,12 @@ double refined(const Edge& edge, double theta) {
 
 /// Step 2: the wall directions (normals' angles), best first. Walls mostly meet at right angles:
 /// the best direction's perpendicular comes next; then any other that explains enough.
-std::vector<double> wall_directions(const Edge& edge, const MapWallsConfig& cfg, double max_gap, double min_piece) {
+std::vector<double> wall_directions(const Edge& edge, const MapWallsConfig& cfg, double max_gap,
+                                    double min_piece) {
   const int steps = static_cast<int>(std::lround(180.0 / kSearchStepDeg));
   std::vector<double> score(static_cast<std::size_t>(steps));
-  for (int k = 0; k < steps; ++k) score[static_cast<std::size_t>(k)] = explained(edge, k * kSearchStepDeg * kDegToRad, max_gap, min_piece);
+  for (int k = 0; k < steps; ++k)
+    score[static_cast<std::size_t>(k)] = explained(edge, k * kSearchStepDeg * kDegToRad, max_gap, min_piece);
   std::vector<int> order(static_cast<std::size_t>(steps));
   for (int k = 0; k < steps; ++k) order[static_cast<std::size_t>(k)] = k;
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return score[a] > score[b]; });
@@ -191,9 +199,12 @@ std::vector<double> wall_directions(const Edge& edge, const MapWallsConfig& cfg,
   if (best <= 0.0) return out;
   const double separation = cfg.min_direction_separation_deg * kDegToRad;
   const auto take = [&](double theta) {
-    if (std::any_of(out.begin(), out.end(), [&](double t) { return line_angle_between(t, theta) < separation; })) return;
+    if (std::any_of(out.begin(), out.end(),
+                    [&](double t) { return line_angle_between(t, theta) < separation; }))
+      return;
     const double t = refined(edge, theta);
-    if (out.empty() || explained(edge, t, max_gap, min_piece) >= cfg.min_direction_share * best) out.push_back(t);
+    if (out.empty() || explained(edge, t, max_gap, min_piece) >= cfg.min_direction_share * best)
+      out.push_back(t);
   };
   take(order[0] * kSearchStepDeg * kDegToRad);
   take(out.front() + M_PI / 2.0);
@@ -204,7 +215,8 @@ std::vector<double> wall_directions(const Edge& edge, const MapWallsConfig& cfg,
   return out;
 }
 
-WallCandidate wall_of(const GridFrame& f, double theta, int side, double offset, const Piece& p, int id, double height) {
+WallCandidate wall_of(const GridFrame& f, double theta, int side, double offset, const Piece& p, int id,
+                      double height) {
   const Vec2 n(std::cos(theta), std::sin(theta)), u(-n.y(), n.x());
   const Vec2 a = f.origin + f.resolution * (n * offset + u * p.t0);
   const Vec2 b = f.origin + f.resolution * (n * offset + u * p.t1);
@@ -225,8 +237,10 @@ WallCandidate wall_of(const GridFrame& f, double theta, int side, double offset,
 
 void MapWallsConfig::validate() const { check_ranges(*this, "MapWallsConfig"); }
 
-std::vector<std::uint8_t> open_free_space(const GridFrame& frame, const std::vector<std::uint8_t>& free, double radius) {
-  if (free.size() != frame.size()) throw std::invalid_argument("open_free_space: the mask does not match the frame");
+std::vector<std::uint8_t> open_free_space(const GridFrame& frame, const std::vector<std::uint8_t>& free,
+                                          double radius) {
+  if (free.size() != frame.size())
+    throw std::invalid_argument("open_free_space: the mask does not match the frame");
   const std::vector<float> clearance = distance_transform(frame, free);
   std::vector<std::uint8_t> away(free.size(), 1);  // 0 on the cells the disc's centre may take
   for (std::size_t i = 0; i < free.size(); ++i)
@@ -241,8 +255,8 @@ std::vector<WallCandidate> map_walls(const GridFrame& frame, const std::vector<s
                                      const MapWallsConfig& config) {
   config.validate();
   if (free.size() != frame.size())
-    throw std::invalid_argument("map_walls: the mask has " + std::to_string(free.size()) + " cells, the frame " +
-                                std::to_string(frame.size()));
+    throw std::invalid_argument("map_walls: the mask has " + std::to_string(free.size()) +
+                                " cells, the frame " + std::to_string(frame.size()));
   const std::vector<std::uint8_t> open = open_free_space(frame, free, config.robot_radius);
   const double res = frame.resolution;
   const double min_piece = config.min_piece / res;
@@ -253,10 +267,12 @@ std::vector<WallCandidate> map_walls(const GridFrame& frame, const std::vector<s
   const Edge walls = edge_of(frame, open, joined), furniture = edge_of(frame, open, apart);
   // Walls joined to the structure, and faces of what stands free longer than furniture is (a
   // partition, a row of cabinets).
-  for (const auto& [edge, min_length] : {std::make_pair(&walls, config.min_wall), std::make_pair(&furniture, config.min_free_standing)}) {
+  for (const auto& [edge, min_length] :
+       {std::make_pair(&walls, config.min_wall), std::make_pair(&furniture, config.min_free_standing)}) {
     for (double theta : wall_directions(walls, config, config.max_gap, min_piece)) {
       for (int side : {1, -1}) {
-        const std::vector<Piece> pieces = pieces_of(edge_cells(*edge, theta, side), config.max_gap, min_piece);
+        const std::vector<Piece> pieces =
+            pieces_of(edge_cells(*edge, theta, side), config.max_gap, min_piece);
         // A face's pieces share its offset; a face whose pieces add up to min_length is a wall.
         for (std::size_t i = 0; i < pieces.size();) {
           std::size_t j = i;
@@ -264,7 +280,8 @@ std::vector<WallCandidate> map_walls(const GridFrame& frame, const std::vector<s
           for (; j < pieces.size() && pieces[j].offset == pieces[i].offset; ++j) length += pieces[j].length();
           if (length * res >= min_length)
             for (std::size_t k = i; k < j; ++k)
-              out.push_back(wall_of(frame, theta, side, pieces[k].offset, pieces[k], static_cast<int>(out.size()), config.wall_height));
+              out.push_back(wall_of(frame, theta, side, pieces[k].offset, pieces[k],
+                                    static_cast<int>(out.size()), config.wall_height));
           i = j;
         }
       }

@@ -30,15 +30,16 @@
 namespace tsgraphs::rooms {
 
 struct MapWallsConfig {
-  double robot_radius = 0.2;              ///< m: the free space is opened by a disc of this radius (step 1)
-  double min_piece = 0.5;                 ///< m: a straight run of edge shorter than this is clutter, no wall
-  double min_wall = 1.0;                  ///< m: a face's pieces add up to at least this (a door post alone is none)
-  double min_free_standing = 2.5;         ///< m: ...and a face of what stands free to this: longer than furniture (a table,
-                                          ///< a desk is at most 2 m), a partition or a row of cabinets
-  double max_gap = 2.0;                   ///< cells: a run of edge continues over gaps this small (a ragged laser edge)
-  double min_direction_share = 0.25;      ///< a further direction explains this share of the best one's wall length
+  double robot_radius = 0.2;       ///< m: the free space is opened by a disc of this radius (step 1)
+  double min_piece = 0.5;          ///< m: a straight run of edge shorter than this is clutter, no wall
+  double min_wall = 1.0;           ///< m: a face's pieces add up to at least this (a door post alone is none)
+  double min_free_standing = 2.5;  ///< m: ...and a face of what stands free to this: longer than furniture (a
+                                   ///< table, a desk is at most 2 m), a partition or a row of cabinets
+  double max_gap = 2.0;  ///< cells: a run of edge continues over gaps this small (a ragged laser edge)
+  double min_direction_share =
+      0.25;  ///< a further direction explains this share of the best one's wall length
   double min_direction_separation_deg = 10.0;  ///< directions are at least this far apart (deg)
-  double wall_height = 2.6;               ///< m: the height given to the walls (a map's walls reach the ceiling)
+  double wall_height = 2.6;  ///< m: the height given to the walls (a map's walls reach the ceiling)
 
   void validate() const;
 
@@ -57,7 +58,8 @@ struct MapWallsConfig {
 
 /// The free space opened by a disc of `radius` (m): the cells within radius of a cell whose
 /// centre is farther than radius from every blocked cell (free[i] == 0).
-std::vector<std::uint8_t> open_free_space(const GridFrame& frame, const std::vector<std::uint8_t>& free, double radius);
+std::vector<std::uint8_t> open_free_space(const GridFrame& frame, const std::vector<std::uint8_t>& free,
+                                          double radius);
 
 /// The walls of the map whose free cells are `free` (one per cell of `frame`): vertical planes
 /// from the floor (z 0) to config.wall_height, each normal pointing to the free side, with the

@@ -20,7 +20,8 @@ namespace tsgraphs::rooms {
 /// Labels the cells of `walkable` (per cell of `frame`) by space, 0..n-1 in the order of their
 /// first cell, -1 elsewhere; returns n. `max_half_width` (m), `narrowing` (0-1) and
 /// `max_island_area` (m^2) as above.
-int split_at_narrowings(const GridFrame& frame, const std::vector<std::uint8_t>& walkable, double max_half_width,
-                        double narrowing, double max_island_area, std::vector<int>* label);
+int split_at_narrowings(const GridFrame& frame, const std::vector<std::uint8_t>& walkable,
+                        double max_half_width, double narrowing, double max_island_area,
+                        std::vector<int>* label);
 
 }  // namespace tsgraphs::rooms

@@ -10,7 +10,8 @@ namespace tsgraphs::rooms {
 
 RoomMap::RoomMap(RoomAssociationConfig config) : config_(std::move(config)) {
   if (config_.footprint != "first" && config_.footprint != "latest" && config_.footprint != "largest")
-    throw std::invalid_argument("footprint must be first, latest or largest, not '" + config_.footprint + "'");
+    throw std::invalid_argument("footprint must be first, latest or largest, not '" + config_.footprint +
+                                "'");
   if (!(config_.min_overlap > 0.0 && config_.min_overlap <= 1.0))
     throw std::invalid_argument("min_overlap must be in (0, 1]");
   if (!(config_.room_dist_threshold >= 0.0)) throw std::invalid_argument("room_dist_threshold must be >= 0");
@@ -67,7 +68,8 @@ int RoomMap::match(const Polygon2& footprint, const Vec2& center, int level) con
 
 RoomAssociation RoomMap::add_extraction(const ExtractedRoom& room, int level) {
   const Polygon2 footprint = footprint_of(room.rect, room.outline);
-  const int id = match(footprint, room.outline.size() >= 3 ? centroid(room.outline) : room.rect.center, level);
+  const int id =
+      match(footprint, room.outline.size() >= 3 ? centroid(room.outline) : room.rect.center, level);
   if (id >= 0) {
     MappedRoom& mapped = rooms_.at(id);
     ++mapped.extraction_count;
@@ -90,7 +92,8 @@ RoomAssociation RoomMap::add_extraction(const ExtractedRoom& room, int level) {
   return {mapped.id, true};
 }
 
-std::vector<int> RoomMap::follow_segmentation(const std::vector<ExtractedRoom>& spaces, int level, double min_support) {
+std::vector<int> RoomMap::follow_segmentation(const std::vector<ExtractedRoom>& spaces, int level,
+                                              double min_support) {
   std::vector<Polygon2> footprints;
   std::vector<double> areas;
   for (const ExtractedRoom& s : spaces) {
@@ -123,8 +126,10 @@ std::vector<int> RoomMap::follow_segmentation(const std::vector<ExtractedRoom>& 
     // since); it is a stale view of the space it shares the most with.
     const double own = area(mine);
     int successor = -1;
-    if (held >= 2) successor = held_best;
-    else if (best >= 0 && supported < min_support * own) successor = best;
+    if (held >= 2)
+      successor = held_best;
+    else if (best >= 0 && supported < min_support * own)
+      successor = best;
     if (successor < 0) continue;
     room.rect = spaces[static_cast<std::size_t>(successor)].rect;
     room.outline = spaces[static_cast<std::size_t>(successor)].outline;
@@ -171,7 +176,8 @@ void RoomMap::merge(int keep, int drop) {
   const MappedRoom& dropped = rooms_.at(drop);
   kept.extraction_count += dropped.extraction_count;
   for (int w : dropped.wall_ids) {
-    if (std::find(kept.wall_ids.begin(), kept.wall_ids.end(), w) == kept.wall_ids.end()) kept.wall_ids.push_back(w);
+    if (std::find(kept.wall_ids.begin(), kept.wall_ids.end(), w) == kept.wall_ids.end())
+      kept.wall_ids.push_back(w);
   }
   rooms_.erase(drop);
 }

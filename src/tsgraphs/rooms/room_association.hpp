@@ -16,11 +16,12 @@
 namespace tsgraphs::rooms {
 
 struct RoomAssociationConfig {
-  double min_overlap = 0.5;          ///< footprints of which the smaller has this share of its area inside the other
-                                     ///< are one room (a room seen first from its door, later whole; spaces of one
-                                     ///< segmentation never overlap)...
+  double min_overlap = 0.5;  ///< footprints of which the smaller has this share of its area inside the other
+                             ///< are one room (a room seen first from its door, later whole; spaces of one
+                             ///< segmentation never overlap)...
   double room_dist_threshold = 1.0;  ///< ...or centres within this distance (m)
-  bool match_by_footprint = true;    ///< false: centres only (S-Graphs+); set by the room layer from its mode, not a file key
+  bool match_by_footprint =
+      true;  ///< false: centres only (S-Graphs+); set by the room layer from its mode, not a file key
   /// What a re-detection does to the mapped footprint: "first" keeps it, "latest" replaces it,
   /// "largest" replaces it when the new one is larger (a room seen more completely).
   std::string footprint = "largest";
@@ -36,7 +37,7 @@ struct RoomAssociationConfig {
 struct MappedRoom {
   int id = -1;
   OrientedRect rect;
-  Polygon2 outline;          ///< the footprint when it is no rectangle (empty: rect)
+  Polygon2 outline;  ///< the footprint when it is no rectangle (empty: rect)
   int level = 0;
   RoomKind kind = RoomKind::room;
   std::vector<int> wall_ids;
@@ -72,7 +73,8 @@ class RoomMap {
   /// extracted; one that the spaces cover less than `min_support` of (a stale view over a void or
   /// across a wall) takes the footprint of the space it shares the most with, and is merged as a
   /// duplicate if another room holds that space. Returns the ids it changed.
-  std::vector<int> follow_segmentation(const std::vector<ExtractedRoom>& spaces, int level, double min_support = 0.0);
+  std::vector<int> follow_segmentation(const std::vector<ExtractedRoom>& spaces, int level,
+                                       double min_support = 0.0);
   /// Pairs (keep, drop) of mapped rooms of one level that match each other; keep is the one with
   /// more extractions (the lower id on a tie). Rooms linked by a chain of matches form one group
   /// with one keep, so every pair can be merged in turn; sorted by (keep, drop).

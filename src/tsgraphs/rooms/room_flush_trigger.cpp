@@ -93,9 +93,10 @@ FlushReason RoomFlushTrigger::update(const AisleMeasurement& aisle, bool passed_
     // A blip much narrower than the space on both sides of it is a doorway between two spaces
     // (two rooms, too wide for their width change to count); any other blip joins the segment.
     const double around = std::min(segment_median_width(), aisle.width);
-    const bool doorway = !pending_.empty() && std::all_of(pending_.begin(), pending_.end(), [&](const AisleMeasurement& a) {
-      return a.width < config_.doorway_ratio * around;
-    });
+    const bool doorway =
+        !pending_.empty() && std::all_of(pending_.begin(), pending_.end(), [&](const AisleMeasurement& a) {
+          return a.width < config_.doorway_ratio * around;
+        });
     if (doorway) {
       reset();
       accumulate(aisle);

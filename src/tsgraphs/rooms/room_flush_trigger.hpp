@@ -13,13 +13,16 @@
 namespace tsgraphs::rooms {
 
 struct AisleMeasureConfig {
-  double neighbourhood_radius = 3.0;  ///< cluster points within this of the robot give the aisle direction (m)
-  double min_anisotropy = 1.5;        ///< principal std ratio below this: no defined direction (an open room)
-  double slice_half_width = 0.3;      ///< cross-section: cluster points within this of the line through the robot (m)
-  double max_gap = 0.5;               ///< the cross-section ends at a gap wider than this between points (m)
-  int min_points = 40;                ///< fewer neighbourhood points: no measurement (the map near the robot is still filling in)
-  int width_directions = 4;           ///< the width is the shortest cross-section over this many directions, evenly
-                                      ///< spaced from across the axis: a room's width does not flip with its axis
+  double neighbourhood_radius =
+      3.0;                      ///< cluster points within this of the robot give the aisle direction (m)
+  double min_anisotropy = 1.5;  ///< principal std ratio below this: no defined direction (an open room)
+  double slice_half_width =
+      0.3;               ///< cross-section: cluster points within this of the line through the robot (m)
+  double max_gap = 0.5;  ///< the cross-section ends at a gap wider than this between points (m)
+  int min_points =
+      40;  ///< fewer neighbourhood points: no measurement (the map near the robot is still filling in)
+  int width_directions = 4;  ///< the width is the shortest cross-section over this many directions, evenly
+                             ///< spaced from across the axis: a room's width does not flip with its axis
 
   template <class V>
   void visit(V& v) {
@@ -34,10 +37,10 @@ struct AisleMeasureConfig {
 
 /// The aisle at the robot: its width and (undirected) direction.
 struct AisleMeasurement {
-  bool valid = false;            ///< false when too few cluster points are near the robot
-  double width = 0.0;            ///< shortest cross-section of the cluster through the robot (m)
-  Vec2 direction = Vec2::UnitX();///< unit principal axis of the cluster near the robot, map x-y
-  bool direction_defined = false;///< false when the cluster near the robot has no dominant axis
+  bool valid = false;              ///< false when too few cluster points are near the robot
+  double width = 0.0;              ///< shortest cross-section of the cluster through the robot (m)
+  Vec2 direction = Vec2::UnitX();  ///< unit principal axis of the cluster near the robot, map x-y
+  bool direction_defined = false;  ///< false when the cluster near the robot has no dominant axis
 };
 
 /// Measures the aisle from the free-space cluster (map frame) and the robot's position: its axis
@@ -48,12 +51,16 @@ AisleMeasurement measure_aisle(const std::vector<Eigen::Vector3d>& cluster, cons
                                const AisleMeasureConfig& config = {});
 
 struct RoomFlushConfig {
-  double width_change_ratio = 0.3;    ///< flush when |width - median| > ratio * median of the segment
-  double direction_change_deg = 30.0; ///< flush when the aisle turns by more than this from the segment's axis...
-  double max_aisle_width = 4.0;       ///< ...where it is narrower than this (m); turning in a wider space is walking a room,
-                                      ///< and widths both above it are both open space (no width change)
-  int confirm_keyframes = 2;          ///< a change must hold for this many keyframes in a row (a map still filling in is not one)
-  double doorway_ratio = 0.3;         ///< a blip narrower than this share of the space on both sides is a doorway (flush)
+  double width_change_ratio = 0.3;  ///< flush when |width - median| > ratio * median of the segment
+  double direction_change_deg =
+      30.0;  ///< flush when the aisle turns by more than this from the segment's axis...
+  double max_aisle_width =
+      4.0;  ///< ...where it is narrower than this (m); turning in a wider space is walking a room,
+            ///< and widths both above it are both open space (no width change)
+  int confirm_keyframes =
+      2;  ///< a change must hold for this many keyframes in a row (a map still filling in is not one)
+  double doorway_ratio =
+      0.3;  ///< a blip narrower than this share of the space on both sides is a doorway (flush)
 
   template <class V>
   void visit(V& v) {

@@ -80,8 +80,8 @@ bool in_line(const WallLine& p, const WallLine& q, double offset, double gap, do
 /// does not see); else every vertical plane of min_wall_height that comes
 /// down to the level (they may carry a footprint's side: a low sensor sees a small room's walls
 /// only up to its head height plus a little).
-std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, double floor_z, const RoomSegmentationConfig& cfg,
-                                  bool reaching = true) {
+std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, double floor_z,
+                                  const RoomSegmentationConfig& cfg, bool reaching = true) {
   std::vector<WallLine> out, unseen_top;
   for (const WallCandidate& w : walls) {
     if (!of_level(w, floor_z, cfg)) continue;
@@ -118,7 +118,8 @@ std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, doubl
 /// Along each line, a gap between consecutive walls is closed when it is no wider than a door or
 /// than `opening_share` of the length the line's walls cover (an opening in a long wall); a wide
 /// gap between the walls of two far rooms on one line stays open.
-std::vector<std::pair<Vec2, Vec2>> line_openings(const std::vector<WallLine>& walls, const RoomSegmentationConfig& cfg) {
+std::vector<std::pair<Vec2, Vec2>> line_openings(const std::vector<WallLine>& walls,
+                                                 const RoomSegmentationConfig& cfg) {
   const double cos_parallel = std::cos(cfg.parallel_tolerance_deg * kDegToRad);
   struct Line {
     Vec2 origin, along;
@@ -141,7 +142,8 @@ std::vector<std::pair<Vec2, Vec2>> line_openings(const std::vector<WallLine>& wa
   std::vector<std::pair<Vec2, Vec2>> out;
   for (Line& l : lines) {
     const auto t = [&](const Vec2& p) { return l.along.dot(p - l.origin); };
-    std::stable_sort(l.walls.begin(), l.walls.end(), [&](const auto& x, const auto& y) { return t(x.first) < t(y.first); });
+    std::stable_sort(l.walls.begin(), l.walls.end(),
+                     [&](const auto& x, const auto& y) { return t(x.first) < t(y.first); });
     double support = 0.0, reach = -std::numeric_limits<double>::infinity();
     for (const auto& [a, b] : l.walls) {
       support += std::max(0.0, t(b) - std::max(t(a), reach));
@@ -163,7 +165,8 @@ std::vector<std::pair<Vec2, Vec2>> line_openings(const std::vector<WallLine>& wa
 /// at least min_door_post long that it crosses (a pillar's face is no wall to close a gap to);
 /// and, besides, to the corner where it and such a wall would cross within wall_joint_gap of
 /// both their ends.
-std::vector<std::pair<Vec2, Vec2>> door_closures(const std::vector<WallLine>& walls, const RoomSegmentationConfig& cfg) {
+std::vector<std::pair<Vec2, Vec2>> door_closures(const std::vector<WallLine>& walls,
+                                                 const RoomSegmentationConfig& cfg) {
   const double cos_parallel = std::cos(cfg.parallel_tolerance_deg * kDegToRad);
   std::vector<std::pair<Vec2, Vec2>> out;
   for (std::size_t i = 0; i < walls.size(); ++i) {
@@ -201,8 +204,8 @@ std::vector<std::pair<Vec2, Vec2>> door_closures(const std::vector<WallLine>& wa
               best = along;
               to = at;
             }
-          } else if (segments_intersect(from, from + cfg.wall_joint_gap * out_dir, o.a - cfg.wall_joint_gap * u,
-                                        o.b + cfg.wall_joint_gap * u, &at)) {
+          } else if (segments_intersect(from, from + cfg.wall_joint_gap * out_dir,
+                                        o.a - cfg.wall_joint_gap * u, o.b + cfg.wall_joint_gap * u, &at)) {
             // A corner whose two walls were both mapped short of it (each ends within
             // wall_joint_gap of where they would cross): closed as well, not instead of a
             // door farther on.
@@ -262,7 +265,8 @@ int merge_small_regions(const GridFrame& f, double min_cells, int n_labels, std:
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return cells[a] < cells[b]; });
   for (int k : order) {
     const int rk = root(k);
-    if (static_cast<double>(cells[static_cast<std::size_t>(rk)]) >= min_cells) continue;  // grown by an earlier merge
+    if (static_cast<double>(cells[static_cast<std::size_t>(rk)]) >= min_cells)
+      continue;  // grown by an earlier merge
     std::map<int, std::size_t> by_root;
     for (const auto& [pair, count] : shared) {
       const int a = root(pair.first), b = root(pair.second);
@@ -305,7 +309,8 @@ int merge_small_regions(const GridFrame& f, double min_cells, int n_labels, std:
 /// frontier: outwards, within `reach` cells, a cell nothing has seen (no ray, no ground, no wall)
 /// comes before a wall, a region or a seen cell.
 std::vector<double> frontier_shares(const GridFrame& f, const std::vector<int>& label, int n,
-                                    const std::vector<std::uint8_t>& wall, const std::vector<std::uint8_t>& ground,
+                                    const std::vector<std::uint8_t>& wall,
+                                    const std::vector<std::uint8_t>& ground,
                                     const std::vector<std::uint8_t>& known, int reach) {
   static const int kDc[4] = {1, -1, 0, 0};
   static const int kDr[4] = {0, 0, 1, -1};
@@ -419,7 +424,8 @@ RegionInBox region_in_box(const GridFrame& f, const std::vector<int>& lab, int k
   std::vector<std::uint8_t> filled = out.in;
   for (std::size_t i = 0; i < out.parts.size(); ++i) {
     const int p = out.parts[i];
-    if (p >= 0 && p != out.outside && static_cast<double>(out.sizes[static_cast<std::size_t>(p)]) < min_cells) filled[i] = 1;
+    if (p >= 0 && p != out.outside && static_cast<double>(out.sizes[static_cast<std::size_t>(p)]) < min_cells)
+      filled[i] = 1;
   }
   const std::vector<float> clearance = distance_transform(out.box, filled);
   out.width = 2.0 * *std::max_element(clearance.begin(), clearance.end());
@@ -445,8 +451,8 @@ bool corridor_like(const RegionInBox& region, double corridor_aspect) {
 /// simplification's angular error of a wall's direction (`wall_directions`, unit) takes it,
 /// and is as long as the straight run of edges it then belongs to.
 /// Cut cells lose their label; returns whether any was cut.
-bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cells, double tolerance_cells, double min_turn,
-               const std::vector<Vec2>& wall_directions, std::vector<int>* label) {
+bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cells, double tolerance_cells,
+               double min_turn, const std::vector<Vec2>& wall_directions, std::vector<int>* label) {
   std::vector<int>& lab = *label;
   bool cut = false;
   for (int k = 0; k < n; ++k) {
@@ -458,7 +464,9 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
     const std::vector<std::size_t>& sizes = region.sizes;
     const int outside = region.outside, c0 = region.c0, r0 = region.r0;
     const double width = region.width;
-    const auto counted = [&](int p) { return p == outside || static_cast<double>(sizes[static_cast<std::size_t>(p)]) >= min_cells; };
+    const auto counted = [&](int p) {
+      return p == outside || static_cast<double>(sizes[static_cast<std::size_t>(p)]) >= min_cells;
+    };
     // Its outline, counter-clockwise, and its holes' outlines, each clockwise round the hole:
     // the region lies left of every edge, and an inner corner is a right turn.
     std::vector<Polygon2> loops;
@@ -524,11 +532,14 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
       };
       for (std::size_t i = 0; i < m; ++i) {
         const std::size_t e_in = (i + m - 1) % m, e_out = i;
-        const Vec2 raw_in = (loop[i] - loop[e_in]).normalized(), raw_out = (loop[(i + 1) % m] - loop[i]).normalized();
+        const Vec2 raw_in = (loop[i] - loop[e_in]).normalized(),
+                   raw_out = (loop[(i + 1) % m] - loop[i]).normalized();
         const double turn = raw_in.x() * raw_out.y() - raw_in.y() * raw_out.x();
         if (turn > -std::sin(min_turn)) continue;  // not an inner corner turning min_turn or more
-        if (dir[e_in].x() * dir[e_out].y() - dir[e_in].y() * dir[e_out].x() > -std::sin(min_turn)) continue;  // nor along the walls
-        corners.push_back({loop[i], dir[e_in], dir[e_out], run_length(e_in, true), run_length(e_out, false), false});
+        if (dir[e_in].x() * dir[e_out].y() - dir[e_in].y() * dir[e_out].x() > -std::sin(min_turn))
+          continue;  // nor along the walls
+        corners.push_back(
+            {loop[i], dir[e_in], dir[e_out], run_length(e_in, true), run_length(e_out, false), false});
       }
     }
     // A walk on from a corner along `d`, the edge it draws on having the region on its `left`:
@@ -576,13 +587,17 @@ bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cel
       // runs on across the bay's opening. Else d_in, not the longer edge: which of two legs
       // is longer changes as the map grows, the outline's turning sense does not, so a
       // corner stays with the same leg.
-      if (mouth_in != mouth_out) corner.drawn_back = mouth_out;
-      else if (end_in.has_value() != end_out.has_value()) corner.drawn_back = end_out.has_value();
-      else if (end_in) corner.drawn_back = corner.len_out >= corridor_aspect * corner.len_in;
+      if (mouth_in != mouth_out)
+        corner.drawn_back = mouth_out;
+      else if (end_in.has_value() != end_out.has_value())
+        corner.drawn_back = end_out.has_value();
+      else if (end_in)
+        corner.drawn_back = corner.len_out >= corridor_aspect * corner.len_in;
     }
     for (const Corner& corner : corners) {
       const Vec2 d = corner.drawn_back ? Vec2(-corner.d_out) : corner.d_in;
-      if (!walk(corner, d, !corner.drawn_back, &run)) continue;  // not within the width, or a mouth already cut
+      if (!walk(corner, d, !corner.drawn_back, &run))
+        continue;  // not within the width, or a mouth already cut
       for (std::size_t j : run) lab[j] = -1;
       cut = true;
     }
@@ -718,8 +733,8 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   }
   for (const std::vector<std::uint8_t>* cells : {&in.seen, &in.known}) {
     if (!cells->empty() && cells->size() != f.size())
-      throw std::invalid_argument("segment_rooms: a cell mask has " + std::to_string(cells->size()) + " cells, the frame " +
-                                  std::to_string(f.size()));
+      throw std::invalid_argument("segment_rooms: a cell mask has " + std::to_string(cells->size()) +
+                                  " cells, the frame " + std::to_string(f.size()));
   }
   out.frame = f;
 
@@ -747,8 +762,8 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   // 3. The parts of the walkable cells that only narrowings join (wall cells carry no label);
   // small ones join the neighbour they share the most cell edges with, or go.
   std::vector<int> label;
-  const int n_spaces =
-      split_at_narrowings(f, ground, 0.5 * cfg.max_door_width, cfg.door_narrowing, cfg.min_region_area, &label);
+  const int n_spaces = split_at_narrowings(f, ground, 0.5 * cfg.max_door_width, cfg.door_narrowing,
+                                           cfg.min_region_area, &label);
   // A region the robot does not fit in (a strip of cells just past a wall's line, between a
   // wall's two faces) is no space.
   {
@@ -757,7 +772,9 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
     const std::vector<float> clearance = distance_transform(f, mask);
     std::vector<float> widest(static_cast<std::size_t>(n_spaces), 0.0f);
     for (std::size_t i = 0; i < f.size(); ++i)
-      if (label[i] >= 0) widest[static_cast<std::size_t>(label[i])] = std::max(widest[static_cast<std::size_t>(label[i])], clearance[i]);
+      if (label[i] >= 0)
+        widest[static_cast<std::size_t>(label[i])] =
+            std::max(widest[static_cast<std::size_t>(label[i])], clearance[i]);
     for (int& l : label)
       if (l >= 0 && widest[static_cast<std::size_t>(l)] < cfg.min_fit_share * in.free_radius) l = -1;
   }
@@ -793,11 +810,12 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
     frontier = frontier_shares(f, label, n, wall, ground, in.known, reach_cells);
     // A leg cut off a region that is still being explored is too: the cut is no wall.
     if (!before_cut.empty()) {
-      const std::vector<double> whole = frontier_shares(f, before_cut, n_before_cut, wall, ground, in.known, reach_cells);
+      const std::vector<double> whole =
+          frontier_shares(f, before_cut, n_before_cut, wall, ground, in.known, reach_cells);
       for (std::size_t i = 0; i < f.size(); ++i)
         if (label[i] >= 0 && before_cut[i] >= 0)
-          frontier[static_cast<std::size_t>(label[i])] =
-              std::max(frontier[static_cast<std::size_t>(label[i])], whole[static_cast<std::size_t>(before_cut[i])]);
+          frontier[static_cast<std::size_t>(label[i])] = std::max(
+              frontier[static_cast<std::size_t>(label[i])], whole[static_cast<std::size_t>(before_cut[i])]);
     }
   }
   for (int k = 0; k < n; ++k) {
@@ -819,7 +837,8 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
       return na != nullptr && nb != nullptr && na->dot(*nb) < 0.0;
     };
     const bool long_along_x = rect.size.x() >= rect.size.y();
-    const double length = std::max(rect.size.x(), rect.size.y()), width = std::min(rect.size.x(), rect.size.y());
+    const double length = std::max(rect.size.x(), rect.size.y()),
+                 width = std::min(rect.size.x(), rect.size.y());
     s.room.kind = length >= cfg.corridor_aspect * width ? RoomKind::corridor : RoomKind::room;
     const auto take_outline = [&] {
       s.room.outline = outline;
@@ -829,8 +848,9 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
     s.room.rect = rect;
     if (rectangular) {
       // The room-planes factor: four walls for a room, the two long sides for a corridor.
-      if (s.room.kind == RoomKind::room && std::all_of(on.begin(), on.end(), [](int id) { return id >= 0; }) &&
-          faces(on[0], on[1]) && faces(on[2], on[3])) {
+      if (s.room.kind == RoomKind::room &&
+          std::all_of(on.begin(), on.end(), [](int id) { return id >= 0; }) && faces(on[0], on[1]) &&
+          faces(on[2], on[3])) {
         s.room.wall_ids = {on[0], on[1], on[2], on[3]};
       } else if (s.room.kind == RoomKind::corridor) {
         const int a = long_along_x ? 2 : 0;  // the sides along the corridor's length

@@ -34,7 +34,9 @@ int class_of(const Vec2& n) {
 }
 
 /// Coordinate along `axis` where the line crosses the line through `c` along `axis`.
-double position_along(const Trace& t, int axis, const Vec2& c) { return c[axis] - (t.n.dot(c) + t.d) / t.n[axis]; }
+double position_along(const Trace& t, int axis, const Vec2& c) {
+  return c[axis] - (t.n.dot(c) + t.d) / t.n[axis];
+}
 
 /// Distance from q to the segment a-b (a point when a == b).
 double segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
@@ -47,7 +49,8 @@ double segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
 /// Per class, the plane with the most cluster points within point_distance of its face (either
 /// side: S-Graphs measures to the plane's nearest point); ties go to the lower id.
 std::array<Winner, 4> class_winners(const std::vector<Vec2>& points, double mean_z,
-                                    const std::vector<WallCandidate>& walls, const SgraphsRoomExtractionConfig& cfg) {
+                                    const std::vector<WallCandidate>& walls,
+                                    const SgraphsRoomExtractionConfig& cfg) {
   std::array<Winner, 4> winners;
   for (const WallCandidate& w : walls) {
     const Vec2 horizontal = w.plane.n.head<2>();
@@ -62,7 +65,8 @@ std::array<Winner, 4> class_winners(const std::vector<Vec2>& points, double mean
       if (segment_distance(q, w.end_a, w.end_b) < cfg.point_distance) ++near;
     }
     Winner& best = winners[static_cast<std::size_t>(class_of(t.n))];
-    if (!best.found || near > best.points || (near == best.points && t.id < best.trace.id)) best = {true, t, near};
+    if (!best.found || near > best.points || (near == best.points && t.id < best.trace.id))
+      best = {true, t, near};
   }
   return winners;
 }

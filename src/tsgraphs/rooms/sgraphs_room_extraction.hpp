@@ -6,8 +6,9 @@
 /// last keyframe. Each plane is an x-plane or a y-plane by the larger of |n.x|, |n.y| in the map
 /// frame, and falls in one of four classes by the sign of that component (x+, x-, y+, y-). Per
 /// class the plane with the most cluster points within `point_distance` of its face (the
-/// segment of its points, on either side; S-Graphs measures to the plane's nearest point) wins. Two winners of one axis that face each other and are far enough apart make a pair; two
-/// pairs make a room, one pair a corridor whose length is the cluster's extent along it.
+/// segment of its points, on either side; S-Graphs measures to the plane's nearest point) wins. Two winners
+/// of one axis that face each other and are far enough apart make a pair; two pairs make a room, one pair a
+/// corridor whose length is the cluster's extent along it.
 ///
 /// Where it differs from TS-graphs' room segmentation: the classes are the map axes, so a room rotated
 /// in the map is still split by map x and y and its footprint is an axis-aligned rectangle; and a
@@ -25,12 +26,16 @@
 namespace tsgraphs::rooms {
 
 struct SgraphsRoomExtractionConfig {
-  double point_distance = 1.5;      ///< a cluster point this close to a plane (either side) counts for it (m; S-Graphs: 1.5)
-  int min_points = 2;               ///< a class's winning plane needs at least this many points (S-Graphs' vertex_neigh_thres: 2)
-  double min_width = 1.0;           ///< a pair's planes closer than this are no room or corridor (m; S-Graphs: 1.0)
-  double min_cluster_extent = 0.5;  ///< a cluster narrower than this along map x or y gives nothing (m; S-Graphs: 0.5)
-  double max_center_offset = 0.5;   ///< the footprint's centre must lie this close to a cluster point (m; S-Graphs: 0.5)
-  double max_normal_z = 0.2;        ///< |n.z| above this: not a vertical plane, ignored
+  double point_distance =
+      1.5;  ///< a cluster point this close to a plane (either side) counts for it (m; S-Graphs: 1.5)
+  int min_points =
+      2;  ///< a class's winning plane needs at least this many points (S-Graphs' vertex_neigh_thres: 2)
+  double min_width = 1.0;  ///< a pair's planes closer than this are no room or corridor (m; S-Graphs: 1.0)
+  double min_cluster_extent =
+      0.5;  ///< a cluster narrower than this along map x or y gives nothing (m; S-Graphs: 0.5)
+  double max_center_offset =
+      0.5;  ///< the footprint's centre must lie this close to a cluster point (m; S-Graphs: 0.5)
+  double max_normal_z = 0.2;  ///< |n.z| above this: not a vertical plane, ignored
 
   template <class V>
   void visit(V& v) {

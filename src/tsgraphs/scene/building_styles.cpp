@@ -8,18 +8,18 @@
 namespace tsgraphs::scene {
 namespace {
 
-constexpr double kRoomMin = 2.5;           // m: the narrowest room (issue's range 2.5-12 m)
-constexpr double kRoomMax = 12.0;          // m: the widest and deepest room
-constexpr double kTwoRowsAbove = 7.0;      // m: a block this deep may hold two rows of rooms
-constexpr double kTwoRowChance = 0.35;     // of such a block
-constexpr double kSplitJitter = 0.35;      // relative spread of the pieces of a split length
+constexpr double kRoomMin = 2.5;        // m: the narrowest room (issue's range 2.5-12 m)
+constexpr double kRoomMax = 12.0;       // m: the widest and deepest room
+constexpr double kTwoRowsAbove = 7.0;   // m: a block this deep may hold two rows of rooms
+constexpr double kTwoRowChance = 0.35;  // of such a block
+constexpr double kSplitJitter = 0.35;   // relative spread of the pieces of a split length
 // generate --realistic: a block's front row as small offices.
-constexpr double kSmallOfficeChance = 0.5;     // of a block's front row being small offices
-constexpr double kSmallOfficeAreaMin = 6.0;    // m^2 of floor (the ground truth's, inside the walls)
+constexpr double kSmallOfficeChance = 0.5;   // of a block's front row being small offices
+constexpr double kSmallOfficeAreaMin = 6.0;  // m^2 of floor (the ground truth's, inside the walls)
 constexpr double kSmallOfficeAreaMax = 12.0;
-constexpr double kSmallOfficeDepthMax = 4.0;   // m: deeper, a room is no small office
-constexpr double kWallsMax = 0.25;             // m two half walls take from a room's side at most (facade + interior)...
-constexpr double kWallsMin = 0.1;              // ...and at least
+constexpr double kSmallOfficeDepthMax = 4.0;  // m: deeper, a room is no small office
+constexpr double kWallsMax = 0.25;  // m two half walls take from a room's side at most (facade + interior)...
+constexpr double kWallsMin = 0.1;   // ...and at least
 
 /// The depth of a block's front row of small offices, or 0 when the block holds none.
 double small_office_depth(double depth, Rng& rng) {
@@ -58,7 +58,9 @@ std::vector<double> split_length(double length, double lo, double hi, Rng& rng) 
 
 DoorSpec random_door(int a, int b, Rng& rng) {
   const double u = rng.unit();
-  const double width = u < 0.7 ? rng.uniform(0.85, 1.2) : u < 0.9 ? rng.uniform(1.2, 1.6) : rng.uniform(1.6, 2.0);
+  const double width = u < 0.7   ? rng.uniform(0.85, 1.2)
+                       : u < 0.9 ? rng.uniform(1.2, 1.6)
+                                 : rng.uniform(1.6, 2.0);
   return {a, b, width, rng.uniform(0.15, 0.85)};
 }
 
@@ -71,15 +73,20 @@ std::vector<int> fill_block(FloorPlan* plan, const Region& block, Side side, int
   // World rectangle of [u0, u1] along the side and [v0, v1] away from it.
   const auto rect = [&](double u0, double u1, double v0, double v1) {
     switch (side) {
-      case Side::kSouth: return Region{{block.lo.x() + u0, block.lo.y() + v0}, {block.lo.x() + u1, block.lo.y() + v1}};
-      case Side::kNorth: return Region{{block.lo.x() + u0, block.hi.y() - v1}, {block.lo.x() + u1, block.hi.y() - v0}};
-      case Side::kWest: return Region{{block.lo.x() + v0, block.lo.y() + u0}, {block.lo.x() + v1, block.lo.y() + u1}};
-      case Side::kEast: break;
+      case Side::kSouth:
+        return Region{{block.lo.x() + u0, block.lo.y() + v0}, {block.lo.x() + u1, block.lo.y() + v1}};
+      case Side::kNorth:
+        return Region{{block.lo.x() + u0, block.hi.y() - v1}, {block.lo.x() + u1, block.hi.y() - v0}};
+      case Side::kWest:
+        return Region{{block.lo.x() + v0, block.lo.y() + u0}, {block.lo.x() + v1, block.lo.y() + u1}};
+      case Side::kEast:
+        break;
     }
     return Region{{block.hi.x() - v1, block.lo.y() + u0}, {block.hi.x() - v0, block.lo.y() + u1}};
   };
   std::vector<double> rows = {depth};
-  const double small = plan->realistic && rng.chance(kSmallOfficeChance) ? small_office_depth(depth, rng) : 0.0;
+  const double small =
+      plan->realistic && rng.chance(kSmallOfficeChance) ? small_office_depth(depth, rng) : 0.0;
   if (small > 0.0) {
     rows = {small};
     if (depth - small > 1e-9) rows.push_back(depth - small);
@@ -101,8 +108,8 @@ std::vector<int> fill_block(FloorPlan* plan, const Region& block, Side side, int
     double u = 0.0;
     for (double w : split_length(length, lo, hi, rng)) {
       const Region r = rect(u, u + w, v, v + rows[row]);
-      const int id = plan->add_rect(prefix + "room" + std::to_string(plan->spaces.size()), SpaceKind::kRoom, r.lo, r.hi,
-                                    furnishing);
+      const int id = plan->add_rect(prefix + "room" + std::to_string(plan->spaces.size()), SpaceKind::kRoom,
+                                    r.lo, r.hi, furnishing);
       out.push_back(id);
       if (row == 0) {
         if (corridor >= 0) plan->doors.push_back(random_door(id, corridor, rng));

@@ -13,26 +13,28 @@
 namespace tsgraphs::scene {
 namespace {
 
-constexpr int kPieceDraws = 3;              // kinds tried at one place of a run before it is left a gap
-constexpr double kRunChanceRoom = 0.8;      // of a room's wall getting a run of furniture
-constexpr double kRunChanceHall = 0.5;      // of a hall's (its middle has shelves or desks already)
-constexpr double kRunChanceCorridor = 0.3;  // of a corridor's (cabinets, printers, bins where it is wide enough)
-constexpr double kRunEdgeMin = 1.0;         // m: a shorter wall gets no run
-constexpr double kWallGap = 0.03;           // m between a piece and the wall behind it (furnishing's)
-constexpr double kTouchGap = 0.02;          // m: pieces of a run stand this close, or farther
-constexpr double kRunGapChance = 0.35;      // of a gap in a run (the wall shows there)
-constexpr double kRunGapMin = 0.3;          // m
+constexpr int kPieceDraws = 3;          // kinds tried at one place of a run before it is left a gap
+constexpr double kRunChanceRoom = 0.8;  // of a room's wall getting a run of furniture
+constexpr double kRunChanceHall = 0.5;  // of a hall's (its middle has shelves or desks already)
+constexpr double kRunChanceCorridor =
+    0.3;                                // of a corridor's (cabinets, printers, bins where it is wide enough)
+constexpr double kRunEdgeMin = 1.0;     // m: a shorter wall gets no run
+constexpr double kWallGap = 0.03;       // m between a piece and the wall behind it (furnishing's)
+constexpr double kTouchGap = 0.02;      // m: pieces of a run stand this close, or farther
+constexpr double kRunGapChance = 0.35;  // of a gap in a run (the wall shows there)
+constexpr double kRunGapMin = 0.3;      // m
 constexpr double kRunGapMax = 1.5;
-constexpr double kRunStartMax = 1.0;        // m from the wall's end where a run starts, at most
-constexpr double kChairChance = 0.7;        // of a desk having its chair
-constexpr double kChairGapMin = 0.05;       // m between a desk and its chair
+constexpr double kRunStartMax = 1.0;   // m from the wall's end where a run starts, at most
+constexpr double kChairChance = 0.7;   // of a desk having its chair
+constexpr double kChairGapMin = 0.05;  // m between a desk and its chair
 constexpr double kChairGapMax = 0.35;
 constexpr double kChairTurnDeg = 25.0;      // a chair stands this far askew at most
 constexpr double kFreeAreaPerPiece = 10.0;  // m^2 of floor per free-standing piece, at most
 constexpr double kFreeChance = 0.6;         // of each such piece being there
 constexpr int kFreeDraws = 12;              // places drawn per free-standing piece before giving up
-constexpr double kReachTolerance = 0.05;    // m: an obstacle this near a wall line reaches it (stands against it)
-constexpr double kBehind = 0.02;            // m into the wall a piece stands against where the wall is looked for
+constexpr double kReachTolerance =
+    0.05;                         // m: an obstacle this near a wall line reaches it (stands against it)
+constexpr double kBehind = 0.02;  // m into the wall a piece stands against where the wall is looked for
 
 struct Kind {
   const char* label;
@@ -95,7 +97,8 @@ class Floor {
     for (const Railing& r : scene.railings) {
       if (r.level != level) continue;
       const Vec2 d = r.to - r.from;
-      obstacles_.push_back(rect(0.5 * (r.from + r.to), d.norm(), RailingGeometry::kSolidThickness, std::atan2(d.y(), d.x())));
+      obstacles_.push_back(
+          rect(0.5 * (r.from + r.to), d.norm(), RailingGeometry::kSolidThickness, std::atan2(d.y(), d.x())));
     }
     for (std::size_t k = 0; k < scene.boxes.size(); ++k) {
       const Box& b = scene.boxes[k];
@@ -210,7 +213,8 @@ class Clutterer {
           l = lk;
         }
       }
-      s += (l > 0.0 ? l : kRunGapMin) + (rng_.chance(kRunGapChance) ? rng_.uniform(kRunGapMin, kRunGapMax) : kTouchGap);
+      s += (l > 0.0 ? l : kRunGapMin) +
+           (rng_.chance(kRunGapChance) ? rng_.uniform(kRunGapMin, kRunGapMax) : kTouchGap);
     }
   }
 
@@ -224,8 +228,8 @@ class Clutterer {
     const double h = rng_.uniform(kChair.height_lo, kChair.height_hi);
     const double along = rng_.uniform(-0.25, 0.25) * d.size.x();
     for (const double sign : {1.0, -1.0}) {
-      const OrientedRect r = rect(d.center + along * x + sign * (0.5 * d.size.y() + gap + 0.5 * side) * y, side, side,
-                                  d.yaw + turn);
+      const OrientedRect r = rect(d.center + along * x + sign * (0.5 * d.size.y() + gap + 0.5 * side) * y,
+                                  side, side, d.yaw + turn);
       if (floor_.fits(r, face_, passage_, desk)) {
         place(r, h, kChair.label);
         return;
@@ -288,7 +292,8 @@ class Clutterer {
 
 }  // namespace
 
-int add_clutter(const FloorPlan& plan, const PlanResult& result, int level, double passage, Rng& rng, Scene* scene) {
+int add_clutter(const FloorPlan& plan, const PlanResult& result, int level, double passage, Rng& rng,
+                Scene* scene) {
   std::vector<SharedStretch> joints;
   for (const auto& [a, b] : plan.open_joints) {
     if (!is_walkable(plan.spaces[a].kind) || !is_walkable(plan.spaces[b].kind)) continue;
@@ -301,8 +306,9 @@ int add_clutter(const FloorPlan& plan, const PlanResult& result, int level, doub
     if (kind != SpaceKind::kRoom && kind != SpaceKind::kHall && kind != SpaceKind::kCorridor) continue;
     const Polygon2& face = result.faces[s];
     Clutterer c(&floor, face, level, passage, rng, scene);
-    const double run_chance = kind == SpaceKind::kRoom ? kRunChanceRoom : kind == SpaceKind::kHall ? kRunChanceHall
-                                                                                                   : kRunChanceCorridor;
+    const double run_chance = kind == SpaceKind::kRoom   ? kRunChanceRoom
+                              : kind == SpaceKind::kHall ? kRunChanceHall
+                                                         : kRunChanceCorridor;
     for (std::size_t i = 0; i < face.size(); ++i) {
       if ((face[(i + 1) % face.size()] - face[i]).norm() < kRunEdgeMin) continue;
       if (rng.chance(run_chance)) c.wall_run(i, kind == SpaceKind::kCorridor);

@@ -14,6 +14,7 @@ namespace tsgraphs::scene {
 /// Adds clutter (boxes) to the walkable spaces of `plan` on `level` (their faces in `result`),
 /// clear of everything already there. `passage` (m) is the least width a walker needs.
 /// Returns the number of pieces placed.
-int add_clutter(const FloorPlan& plan, const PlanResult& result, int level, double passage, Rng& rng, Scene* scene);
+int add_clutter(const FloorPlan& plan, const PlanResult& result, int level, double passage, Rng& rng,
+                Scene* scene);
 
 }  // namespace tsgraphs::scene

@@ -9,23 +9,24 @@
 namespace tsgraphs::scene {
 namespace {
 
-constexpr double kSingleLeafMin = 0.85;    // m: the narrowest door a 0.3 m clearance passes beside its open leaf
-constexpr double kSingleLeafMax = 1.2;     // m: the widest one leaf (wider doors have two)
+constexpr double kSingleLeafMin =
+    0.85;                               // m: the narrowest door a 0.3 m clearance passes beside its open leaf
+constexpr double kSingleLeafMax = 1.2;  // m: the widest one leaf (wider doors have two)
 constexpr double kDoubleDoorChance = 0.1;  // of a door being a double door
 constexpr double kDoubleDoorMin = 1.4;     // m: double doors, two leaves of half the width
 constexpr double kDoubleDoorMax = 1.8;
-constexpr double kLeafThickness = 0.04;    // m: a door leaf
-constexpr double kLeafTopGap = 0.02;       // m between the leaf and the door's head
-constexpr double kLeafGap = 0.005;         // m between the two leaves of a double door (and each from its jamb)
-constexpr double kAngleMinDeg = 30.0;      // a leaf is open this far at least (ajar)...
-constexpr double kAngleMaxDeg = 120.0;     // ...and at most (swung back towards its wall)
-constexpr int kAngleDraws = 8;             // angles drawn per hinge and side before the next is tried
-constexpr double kSweepStepDeg = 10.0;     // the swing is checked at this step: a leaf never went through a wall
+constexpr double kLeafThickness = 0.04;  // m: a door leaf
+constexpr double kLeafTopGap = 0.02;     // m between the leaf and the door's head
+constexpr double kLeafGap = 0.005;       // m between the two leaves of a double door (and each from its jamb)
+constexpr double kAngleMinDeg = 30.0;    // a leaf is open this far at least (ajar)...
+constexpr double kAngleMaxDeg = 120.0;   // ...and at most (swung back towards its wall)
+constexpr int kAngleDraws = 8;           // angles drawn per hinge and side before the next is tried
+constexpr double kSweepStepDeg = 10.0;  // the swing is checked at this step: a leaf never went through a wall
 constexpr double kProbeBeyondWall = 0.05;  // m past a wall's face where the space on that side is looked up
 constexpr double kOnLine = 1e-6;           // m: a face edge this close to the door's wall line is that wall
 
 struct Door {
-  Vec2 center, u;   ///< the opening's centre on the wall's centre line, the wall's direction
+  Vec2 center, u;  ///< the opening's centre on the wall's centre line, the wall's direction
   double width, height, half_wall;
 };
 
@@ -135,9 +136,11 @@ class LeafCheck {
 double random_angle(Rng& rng) { return rng.uniform(kAngleMinDeg, kAngleMaxDeg) * M_PI / 180.0; }
 
 /// The swings of a door's leaves on side `n` that pass `check`, or nothing.
-std::optional<std::vector<Swing>> swing_leaves(const Door& door, const Vec2& n, const LeafCheck& check, Rng& rng) {
+std::optional<std::vector<Swing>> swing_leaves(const Door& door, const Vec2& n, const LeafCheck& check,
+                                               Rng& rng) {
   const Vec2 off = (door.half_wall + kLeafThickness) * n;
-  const Vec2 left = door.center - 0.5 * door.width * door.u + off, right = door.center + 0.5 * door.width * door.u + off;
+  const Vec2 left = door.center - 0.5 * door.width * door.u + off,
+             right = door.center + 0.5 * door.width * door.u + off;
   if (door.width > kSingleLeafMax + 1e-9) {
     const double length = 0.5 * door.width - kLeafGap;
     for (int k = 0; k < kAngleDraws; ++k) {
@@ -150,7 +153,8 @@ std::optional<std::vector<Swing>> swing_leaves(const Door& door, const Vec2& n, 
   }
   const bool left_first = rng.chance(0.5);
   for (const bool at_left : {left_first, !left_first}) {
-    const Swing base = at_left ? Swing{left, door.u, door.width - kLeafGap, 0.0} : Swing{right, -door.u, door.width - kLeafGap, 0.0};
+    const Swing base = at_left ? Swing{left, door.u, door.width - kLeafGap, 0.0}
+                               : Swing{right, -door.u, door.width - kLeafGap, 0.0};
     for (int k = 0; k < kAngleDraws; ++k) {
       Swing s = base;
       s.angle = random_angle(rng);

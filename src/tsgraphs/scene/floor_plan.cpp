@@ -52,7 +52,8 @@ class Subdivision {
         std::vector<double> cuts = {0.0, 1.0};
         for (const Vec2& v : vertices) {
           const double t = (v - p).dot(q - p) / (len * len);
-          if (t > kEps / len && t < 1.0 - kEps / len && distance_to_segment(v, p, q) < kEps) cuts.push_back(t);
+          if (t > kEps / len && t < 1.0 - kEps / len && distance_to_segment(v, p, q) < kEps)
+            cuts.push_back(t);
         }
         std::sort(cuts.begin(), cuts.end());
         for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
@@ -105,7 +106,8 @@ class Subdivision {
     std::map<std::tuple<int, int, int>, std::vector<const Elementary*>> groups;
     for (const Elementary& piece : pieces_) {
       if (piece.kind == EdgeKind::kOpen) continue;
-      groups[{std::min(piece.a, piece.b), std::max(piece.a, piece.b), static_cast<int>(piece.kind)}].push_back(&piece);
+      groups[{std::min(piece.a, piece.b), std::max(piece.a, piece.b), static_cast<int>(piece.kind)}]
+          .push_back(&piece);
     }
     std::vector<Run> out;
     for (const auto& [key, pieces] : groups) {
@@ -122,7 +124,8 @@ class Subdivision {
     if (in_pairs(plan_.open_joints, piece.a, piece.b)) return EdgeKind::kOpen;
     const bool void_a = ka == SpaceKind::kVoid, void_b = kb == SpaceKind::kVoid;
     if (void_a && void_b) return EdgeKind::kOpen;
-    if (void_a || void_b) return in_pairs(plan_.no_railing, piece.a, piece.b) ? EdgeKind::kOpen : EdgeKind::kRailing;
+    if (void_a || void_b)
+      return in_pairs(plan_.no_railing, piece.a, piece.b) ? EdgeKind::kOpen : EdgeKind::kRailing;
     return EdgeKind::kWall;
   }
 
@@ -158,8 +161,9 @@ class Subdivision {
       }
       out.push_back({a, b});
     }
-    std::stable_sort(out.begin(), out.end(),
-                     [](const SharedStretch& x, const SharedStretch& y) { return (x.b - x.a).norm() > (y.b - y.a).norm(); });
+    std::stable_sort(out.begin(), out.end(), [](const SharedStretch& x, const SharedStretch& y) {
+      return (x.b - x.a).norm() > (y.b - y.a).norm();
+    });
     return out;
   }
 
@@ -170,10 +174,14 @@ class Subdivision {
 
 double thickness_of(EdgeKind kind, const FloorPlanRules& rules) {
   switch (kind) {
-    case EdgeKind::kWall: return rules.interior_wall;
-    case EdgeKind::kFacade: return rules.exterior_wall;
-    case EdgeKind::kRailing: return RailingGeometry::kSolidThickness;
-    case EdgeKind::kOpen: break;
+    case EdgeKind::kWall:
+      return rules.interior_wall;
+    case EdgeKind::kFacade:
+      return rules.exterior_wall;
+    case EdgeKind::kRailing:
+      return RailingGeometry::kSolidThickness;
+    case EdgeKind::kOpen:
+      break;
   }
   return 0.0;
 }
@@ -199,7 +207,8 @@ int FloorPlan::add(const std::string& name, SpaceKind kind, const Polygon2& outl
   return static_cast<int>(spaces.size()) - 1;
 }
 
-int FloorPlan::add_rect(const std::string& name, SpaceKind kind, const Vec2& lo, const Vec2& hi, Furnishing f) {
+int FloorPlan::add_rect(const std::string& name, SpaceKind kind, const Vec2& lo, const Vec2& hi,
+                        Furnishing f) {
   return add(name, kind, {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}}, f);
 }
 
@@ -239,7 +248,8 @@ void connect_spaces(FloorPlan* plan, Rng& rng) {
   for (;;) {
     std::vector<int> roots;
     for (std::size_t i = 0; i < n; ++i) {
-      if (is_walkable(plan->spaces[i].kind) && std::find(roots.begin(), roots.end(), find(static_cast<int>(i))) == roots.end())
+      if (is_walkable(plan->spaces[i].kind) &&
+          std::find(roots.begin(), roots.end(), find(static_cast<int>(i))) == roots.end())
         roots.push_back(find(static_cast<int>(i)));
     }
     if (roots.size() <= 1) return;
@@ -252,7 +262,8 @@ void connect_spaces(FloorPlan* plan, Rng& rng) {
       if (!is_walkable(ka) || !is_walkable(kb) || ka == SpaceKind::kRamp || kb == SpaceKind::kRamp) continue;
       if (find(piece.a) == find(piece.b)) continue;
       double len = 0.0;
-      for (const SharedStretch& s : sub.stretches(piece.a, piece.b)) len = std::max(len, door_room(s, plan->rules));
+      for (const SharedStretch& s : sub.stretches(piece.a, piece.b))
+        len = std::max(len, door_room(s, plan->rules));
       if (len < plan->rules.min_door) continue;
       const int rank = priority(ka, kb);
       if (rank < best_rank || (rank == best_rank && len > best_len + kEps)) {
@@ -329,7 +340,8 @@ PlanResult add_floor_plan(const FloorPlan& plan, int level, Scene* scene) {
         const double c = wanted + sign * k * (hi - lo) / 40.0;
         if (c < lo - kEps || c > hi + kEps) continue;
         bool clear = true;
-        for (const Opening& o : w.openings) clear = clear && std::abs(o.at - c) >= 0.5 * (o.width + width) + kDoorMinSpacing;
+        for (const Opening& o : w.openings)
+          clear = clear && std::abs(o.at - c) >= 0.5 * (o.width + width) + kDoorMinSpacing;
         if (clear) {
           at = c;
           break;
@@ -341,7 +353,8 @@ PlanResult add_floor_plan(const FloorPlan& plan, int level, Scene* scene) {
       continue;
     }
     w.openings.push_back({*at, width, std::min(rules.door_height, w.height), 0.0});
-    std::sort(w.openings.begin(), w.openings.end(), [](const Opening& x, const Opening& y) { return x.at < y.at; });
+    std::sort(w.openings.begin(), w.openings.end(),
+              [](const Opening& x, const Opening& y) { return x.at < y.at; });
     ++result.doors_made;
   }
   for (PendingWall& pw : walls) {

@@ -26,10 +26,10 @@ enum class SpaceKind {
 /// What furniture a space gets once its walls and doors are known (furnishing.hpp).
 enum class Furnishing {
   kNone,
-  kOffice,     ///< desks, shelves and cabinets against the walls
-  kShelves,    ///< a library hall: rows of free-standing shelves with aisles
-  kOpenPlan,   ///< desks in clusters, partitions lower than the ceiling, pillars
-  kLobby,      ///< a few pillars and benches
+  kOffice,    ///< desks, shelves and cabinets against the walls
+  kShelves,   ///< a library hall: rows of free-standing shelves with aisles
+  kOpenPlan,  ///< desks in clusters, partitions lower than the ceiling, pillars
+  kLobby,     ///< a few pillars and benches
 };
 
 struct Space {
@@ -51,24 +51,27 @@ struct FloorPlanRules {
   double interior_wall = 0.15;  ///< wall thickness between two spaces, m
   double exterior_wall = 0.25;  ///< facade thickness, m
   double door_height = 2.1;     ///< m
-  double jamb = 0.25;           ///< m of wall kept between a door and the end of its stretch (beyond half a wall)
-  double min_door = 0.8;        ///< m: a door narrower than this is not made
+  double jamb = 0.25;     ///< m of wall kept between a door and the end of its stretch (beyond half a wall)
+  double min_door = 0.8;  ///< m: a door narrower than this is not made
   RailingStyle railing = RailingStyle::kSolid;
-  double railing_height = 1.0;  ///< m
+  double railing_height = 1.0;      ///< m
   double glass_transmission = 0.8;  ///< share of rays a glass railing lets through
 };
 
 struct FloorPlan {
   std::vector<Space> spaces;
   std::vector<DoorSpec> doors;
-  std::vector<std::pair<int, int>> open_joints;  ///< spaces joined with no wall (corridor segments, a ramp's foot)
-  std::vector<std::pair<int, int>> no_railing;   ///< a void's edge walked over (a ramp's top edge)
+  std::vector<std::pair<int, int>>
+      open_joints;  ///< spaces joined with no wall (corridor segments, a ramp's foot)
+  std::vector<std::pair<int, int>> no_railing;  ///< a void's edge walked over (a ramp's top edge)
   FloorPlanRules rules;
   bool ground_truth = true;  ///< false for a storey the path does not walk (an atrium's lower storey)
-  bool realistic = false;    ///< generate --realistic: the styles add rows of small offices (building_styles.hpp)
+  bool realistic =
+      false;  ///< generate --realistic: the styles add rows of small offices (building_styles.hpp)
 
   int add(const std::string& name, SpaceKind kind, const Polygon2& outline, Furnishing f = Furnishing::kNone);
-  int add_rect(const std::string& name, SpaceKind kind, const Vec2& lo, const Vec2& hi, Furnishing f = Furnishing::kNone);
+  int add_rect(const std::string& name, SpaceKind kind, const Vec2& lo, const Vec2& hi,
+               Furnishing f = Furnishing::kNone);
 };
 
 /// True for spaces that are ground truth (rooms, corridor segments, halls).
@@ -100,7 +103,7 @@ struct PlanResult {
   std::vector<int> room_of_space;  ///< index into scene.rooms, -1 for voids, ramps and unwalked storeys
   std::vector<Polygon2> faces;     ///< each space's outline measured to the faces of what bounds it
   int doors_made = 0;
-  int doors_dropped = 0;           ///< doors that did not fit their boundary
+  int doors_dropped = 0;  ///< doors that did not fit their boundary
 };
 
 /// Appends level `level`'s walls, openings, railings, voids and ground-truth rooms to `scene`

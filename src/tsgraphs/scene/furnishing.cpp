@@ -56,7 +56,8 @@ class Placer {
   double distance_to_walls(const OrientedRect& r) const {
     double d = 1e18;
     for (const Vec2& p : r.corners()) {
-      for (std::size_t i = 0; i < face_.size(); ++i) d = std::min(d, distance_to_segment(p, face_[i], face_[(i + 1) % face_.size()]));
+      for (std::size_t i = 0; i < face_.size(); ++i)
+        d = std::min(d, distance_to_segment(p, face_[i], face_[(i + 1) % face_.size()]));
     }
     return d;
   }
@@ -117,7 +118,7 @@ void furnish_shelves(const Polygon2& face, int level, Rng& rng, Scene* scene,
   bounds(face, &lo, &hi);
   const bool rows_along_x = rng.chance(0.5);
   const double depth = rng.uniform(0.4, 0.6), aisle = rng.uniform(1.0, 1.8), height = rng.uniform(1.8, 2.2);
-  const double cross = rng.uniform(1.2, 1.6);       // gaps cutting the rows
+  const double cross = rng.uniform(1.2, 1.6);  // gaps cutting the rows
   const double run_lo = 2.0, run_hi = rng.uniform(3.0, 6.0);
   // Rows across the hall, kFreeStandingGap off the walls, a row every depth + aisle.
   const double a0 = (rows_along_x ? lo.y() : lo.x()) + kFreeStandingGap + rng.uniform(0.5, 1.5);
@@ -229,11 +230,20 @@ void furnish(const FloorPlan& plan, const PlanResult& result, int level, Rng& rn
   for (std::size_t s = 0; s < plan.spaces.size(); ++s) {
     const Polygon2& face = result.faces[s];
     switch (plan.spaces[s].furnishing) {
-      case Furnishing::kNone: break;
-      case Furnishing::kOffice: furnish_office(face, level, rng, scene, keep_clear); break;
-      case Furnishing::kShelves: furnish_shelves(face, level, rng, scene, keep_clear); break;
-      case Furnishing::kOpenPlan: furnish_open_plan(face, level, ceiling, rng, scene, keep_clear); break;
-      case Furnishing::kLobby: furnish_lobby(face, level, ceiling, rng, scene, keep_clear); break;
+      case Furnishing::kNone:
+        break;
+      case Furnishing::kOffice:
+        furnish_office(face, level, rng, scene, keep_clear);
+        break;
+      case Furnishing::kShelves:
+        furnish_shelves(face, level, rng, scene, keep_clear);
+        break;
+      case Furnishing::kOpenPlan:
+        furnish_open_plan(face, level, ceiling, rng, scene, keep_clear);
+        break;
+      case Furnishing::kLobby:
+        furnish_lobby(face, level, ceiling, rng, scene, keep_clear);
+        break;
     }
   }
 }

@@ -29,44 +29,46 @@ namespace tsgraphs::scene {
 namespace {
 
 // Storeys.
-constexpr double kCeilingMin = 2.6;          // m: ceiling heights
+constexpr double kCeilingMin = 2.6;  // m: ceiling heights
 constexpr double kCeilingMax = 3.4;
-constexpr double kSlabThickness = 0.3;       // m between a ceiling and the floor above
-constexpr double kInteriorWallMin = 0.1;     // m: wall thicknesses
+constexpr double kSlabThickness = 0.3;    // m between a ceiling and the floor above
+constexpr double kInteriorWallMin = 0.1;  // m: wall thicknesses
 constexpr double kInteriorWallMax = 0.2;
 constexpr double kFacadeMin = 0.2;
 constexpr double kFacadeMax = 0.3;
 constexpr double kGlassTransmissionMin = 0.5;  // glass railings let this share of rays through
 constexpr double kGlassTransmissionMax = 0.9;
-constexpr double kExtraDoorChance = 0.2;     // of a room getting a second door into a neighbour room
+constexpr double kExtraDoorChance = 0.2;  // of a room getting a second door into a neighbour room
 
 // Ramps between storeys (multi_storey).
-constexpr double kRampSlopeMin = 0.16;       // rise per run: 9 to 12 degrees (a robot's ramp, steeper than a wheelchair's)
+constexpr double kRampSlopeMin =
+    0.16;  // rise per run: 9 to 12 degrees (a robot's ramp, steeper than a wheelchair's)
 constexpr double kRampSlopeMax = 0.21;
-constexpr double kRampWidthMin = 1.8;        // m
+constexpr double kRampWidthMin = 1.8;  // m
 constexpr double kRampWidthMax = 2.4;
-constexpr double kGalleryMin = 1.6;          // m: the corridor along a ramp
+constexpr double kGalleryMin = 1.6;  // m: the corridor along a ramp
 constexpr double kGalleryMax = 2.6;
-constexpr double kRampEndMin = 3.0;          // m of storey beyond each end of a ramp
+constexpr double kRampEndMin = 3.0;  // m of storey beyond each end of a ramp
 
 // The platform.
-constexpr double kPersonSpeedMin = 0.8;      // m/s: people walk at these paces
+constexpr double kPersonSpeedMin = 0.8;  // m/s: people walk at these paces
 constexpr double kPersonSpeedMax = 1.5;
-constexpr int kPersonStretchMax = 5;         // survey waypoints one person walks between (at least 2)
-constexpr int kPersonDraws = 20;             // stretches drawn for one person before giving up on them
-constexpr double kYawRateMin = 60.0;         // deg/s at corners
+constexpr int kPersonStretchMax = 5;  // survey waypoints one person walks between (at least 2)
+constexpr int kPersonDraws = 20;      // stretches drawn for one person before giving up on them
+constexpr double kYawRateMin = 60.0;  // deg/s at corners
 constexpr double kYawRateMax = 120.0;
-constexpr double kDriftMin = 0.002;          // odometry drift per metre (and per radian) travelled
+constexpr double kDriftMin = 0.002;  // odometry drift per metre (and per radian) travelled
 constexpr double kDriftMax = 0.03;
 
 // Realistic buildings.
-constexpr double kPassageSlack = 0.3;        // m a passage left by clutter or a door leaf has beyond the path's
-                                             // two clearances: the planner's raster margin and room to turn
-constexpr std::uint64_t kRealisticSalt = 400;  // the realistic draws' own stream per storey (after 100 + i, 200 + i)
+constexpr double kPassageSlack = 0.3;  // m a passage left by clutter or a door leaf has beyond the path's
+                                       // two clearances: the planner's raster margin and room to turn
+constexpr std::uint64_t kRealisticSalt =
+    400;  // the realistic draws' own stream per storey (after 100 + i, 200 + i)
 
 // Checks.
-constexpr double kRoomOverlapArea = 1e-4;    // m^2 two ground-truth rooms may share (rounding)
-constexpr double kLevelMatch = 0.3;          // m between a pose's floor height and its level
+constexpr double kRoomOverlapArea = 1e-4;  // m^2 two ground-truth rooms may share (rounding)
+constexpr double kLevelMatch = 0.3;        // m between a pose's floor height and its level
 
 struct StyleSize {
   double w_lo, w_hi, h_lo, h_hi;
@@ -85,11 +87,16 @@ StyleSize size_of(const std::string& style, double scale) {
 
 void fill(const std::string& style, FloorPlan* plan, const Region& r, Rng& rng, const std::string& prefix,
           IrregularVariant variant = IrregularVariant::kAny) {
-  if (style == "office") fill_office(plan, r, rng, prefix);
-  else if (style == "atrium") fill_atrium(plan, r, rng, prefix);
-  else if (style == "library") fill_library(plan, r, rng, prefix);
-  else if (style == "open_plan") fill_open_plan(plan, r, rng, prefix);
-  else fill_irregular(plan, r, rng, prefix, variant);
+  if (style == "office")
+    fill_office(plan, r, rng, prefix);
+  else if (style == "atrium")
+    fill_atrium(plan, r, rng, prefix);
+  else if (style == "library")
+    fill_library(plan, r, rng, prefix);
+  else if (style == "open_plan")
+    fill_open_plan(plan, r, rng, prefix);
+  else
+    fill_irregular(plan, r, rng, prefix, variant);
 }
 
 Polygon2 rect_polygon(const Vec2& lo, const Vec2& hi) { return {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}}; }
@@ -169,7 +176,8 @@ Building single_wing(const std::string& style, double scale, bool realistic, Rng
     const double w0 = std::max(minimum_region("irregular").x(), rng.uniform(10.0, 15.0) * scale);
     const Region a{{0, 0}, {w0, r.hi.y()}}, c{{w0, 0}, {w0 + r.hi.x(), r.hi.y()}};
     fill("irregular", &s.plan, a, rng, "west_", IrregularVariant::kMergedRooms);
-    fill("irregular", &s.plan, c, rng, "east_", rng.chance(0.5) ? IrregularVariant::kDiagonal : IrregularVariant::kPentagon);
+    fill("irregular", &s.plan, c, rng, "east_",
+         rng.chance(0.5) ? IrregularVariant::kDiagonal : IrregularVariant::kPentagon);
     s.slab = rect_polygon(a.lo, c.hi);
   } else {
     fill(style, &s.plan, r, rng, "");
@@ -179,11 +187,13 @@ Building single_wing(const std::string& style, double scale, bool realistic, Rng
 }
 
 Building mixed(double scale, bool realistic, Rng& rng) {
-  static const std::vector<std::string> kWingStyles = {"office", "atrium", "library", "open_plan", "irregular"};
+  static const std::vector<std::string> kWingStyles = {"office", "atrium", "library", "open_plan",
+                                                       "irregular"};
   const int n = rng.chance(0.7) ? 2 : 3;
   std::vector<std::string> styles;
   for (int i = 0; i < n; ++i) styles.push_back(rng.pick(kWingStyles));
-  if (std::adjacent_find(styles.begin(), styles.end()) != styles.end() && n == 2) styles[1] = styles[0] == "office" ? "library" : "office";
+  if (std::adjacent_find(styles.begin(), styles.end()) != styles.end() && n == 2)
+    styles[1] = styles[0] == "office" ? "library" : "office";
   std::vector<Region> wings;
   double x = 0.0;
   for (const std::string& st : styles) {
@@ -198,13 +208,15 @@ Building mixed(double scale, bool realistic, Rng& rng) {
   Building b;
   const auto atrium = std::find(styles.begin(), styles.end(), "atrium");
   if (atrium != styles.end())
-    b.storeys.push_back(lobby_below(wings[atrium - styles.begin()], rules, rng.uniform(kCeilingMin, kCeilingMax)));
+    b.storeys.push_back(
+        lobby_below(wings[atrium - styles.begin()], rules, rng.uniform(kCeilingMin, kCeilingMax)));
   Storey s;
   s.name = "L" + std::to_string(b.storeys.size());
   s.plan.rules = rules;
   s.plan.realistic = realistic;
   s.ceiling = rng.uniform(kCeilingMin, kCeilingMax);
-  for (std::size_t i = 0; i < wings.size(); ++i) fill(styles[i], &s.plan, wings[i], rng, "wing" + std::to_string(i + 1) + "_");
+  for (std::size_t i = 0; i < wings.size(); ++i)
+    fill(styles[i], &s.plan, wings[i], rng, "wing" + std::to_string(i + 1) + "_");
   s.slab = staircase(wings);
   b.storeys.push_back(std::move(s));
   return b;
@@ -220,7 +232,8 @@ Building multi_storey(double scale, bool realistic, Rng& rng) {
   const double wr = rng.uniform(kRampWidthMin, kRampWidthMax), wg = rng.uniform(kGalleryMin, kGalleryMax);
   const double ws = wr + wg;
   const double W = run + rng.uniform(2 * kRampEndMin + 1.0, 2 * kRampEndMin + 4.0);
-  const double H = std::max(minimum_region("office").y(), rng.uniform(8.0, 13.0) * scale) + ws * (n == 3 ? 2 : 1);
+  const double H =
+      std::max(minimum_region("office").y(), rng.uniform(8.0, 13.0) * scale) + ws * (n == 3 ? 2 : 1);
   const FloorPlanRules rules = draw_rules(rng);
   Building b;
   // Ramp k joins storeys k and k + 1: along the south facade for even k, the north for odd.
@@ -229,7 +242,8 @@ Building multi_storey(double scale, bool realistic, Rng& rng) {
     double x0;
   };
   std::vector<RampPlace> places;
-  for (int k = 0; k + 1 < n; ++k) places.push_back({k % 2 == 0, rng.uniform(kRampEndMin, W - run - kRampEndMin)});
+  for (int k = 0; k + 1 < n; ++k)
+    places.push_back({k % 2 == 0, rng.uniform(kRampEndMin, W - run - kRampEndMin)});
   for (int j = 0; j < n; ++j) {
     Storey s;
     s.name = "L" + std::to_string(j);
@@ -243,16 +257,21 @@ Building multi_storey(double scale, bool realistic, Rng& rng) {
       const RampPlace& p = places[k];
       const bool lower = k == j;
       const double s0 = p.south ? 0.0 : H - wr, s1 = p.south ? wr : H;      // the ramp's strip
-      const double g0 = p.south ? wr : H - ws, g1 = p.south ? ws : H - wr;   // the gallery beside it
-      if (p.south) y_lo = ws; else y_hi = H - ws;
+      const double g0 = p.south ? wr : H - ws, g1 = p.south ? ws : H - wr;  // the gallery beside it
+      if (p.south)
+        y_lo = ws;
+      else
+        y_hi = H - ws;
       const std::string side = s.name + "_" + (p.south ? "south_" : "north_");
       const int gallery = s.plan.add_rect(side + "gallery", SpaceKind::kCorridor, {0, g0}, {W, g1});
-      const int west = s.plan.add_rect(side + (lower ? "landing" : "balcony"), SpaceKind::kCorridor, {0, s0}, {p.x0, s1});
+      const int west =
+          s.plan.add_rect(side + (lower ? "landing" : "balcony"), SpaceKind::kCorridor, {0, s0}, {p.x0, s1});
       s.plan.open_joints.push_back({gallery, west});
       if (lower) {
         const int ramp = s.plan.add_rect(side + "ramp", SpaceKind::kRamp, {p.x0, s0}, {p.x0 + run, s1});
         s.plan.open_joints.push_back({west, ramp});
-        const int store = s.plan.add_rect(side + "store", SpaceKind::kRoom, {p.x0 + run, s0}, {W, s1}, Furnishing::kOffice);
+        const int store =
+            s.plan.add_rect(side + "store", SpaceKind::kRoom, {p.x0 + run, s0}, {W, s1}, Furnishing::kOffice);
         s.plan.doors.push_back(random_door(store, gallery, rng));
         Ramp r;
         r.from_level = j;
@@ -338,8 +357,9 @@ std::vector<SurveyStop> survey_stops(const Scene& scene, const std::vector<Walka
   // Corridors first, so that the tour starts in one.
   std::vector<std::size_t> order(scene.rooms.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_partition(order.begin(), order.end(),
-                        [&](std::size_t i) { return scene.rooms[i].name.find("corridor") != std::string::npos; });
+  std::stable_partition(order.begin(), order.end(), [&](std::size_t i) {
+    return scene.rooms[i].name.find("corridor") != std::string::npos;
+  });
   for (std::size_t i : order) {
     const Room& room = scene.rooms[i];
     const int g = grid_of_level[room.level];
@@ -431,7 +451,8 @@ GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed,
     scene.levels.push_back(l);
     elevation += s.ceiling + kSlabThickness;
   }
-  for (std::size_t i = 0; i < b.storeys.size(); ++i) build_storey(&b.storeys[i], static_cast<int>(i), config, rng, &scene);
+  for (std::size_t i = 0; i < b.storeys.size(); ++i)
+    build_storey(&b.storeys[i], static_cast<int>(i), config, rng, &scene);
   scene.ramps = b.ramps;
   join_wall_ends(&scene);
   // A first path so that the scene loads; the survey path replaces it.
@@ -450,13 +471,15 @@ GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed,
     grids.push_back(rasterise_walkable(scene, static_cast<int>(i), frame));
   }
   std::vector<GridLink> links;
-  for (const Ramp& r : scene.ramps) links.push_back({grid_of_level[r.from_level], grid_of_level[r.to_level], r.polygon});
+  for (const Ramp& r : scene.ramps)
+    links.push_back({grid_of_level[r.from_level], grid_of_level[r.to_level], r.polygon});
   std::vector<std::string> names;
   const std::vector<SurveyStop> stops = survey_stops(scene, grids, grid_of_level, config, &names);
   if (stops.empty()) throw std::runtime_error("no room to visit");
   SurveyConfig survey;
   survey.clearance = config.clearance;
-  scene.trajectory.waypoints = plan_survey(grids, links, stops, survey, [&](std::size_t i) { return names[i]; });
+  scene.trajectory.waypoints =
+      plan_survey(grids, links, stops, survey, [&](std::size_t i) { return names[i]; });
   scene.trajectory.level = scene.trajectory.waypoints.front().level;
   // Exact distances where the raster says an obstacle may be near; the raster's elsewhere.
   const double near = config.clearance + 4.0 * config.grid_resolution;
@@ -467,7 +490,8 @@ GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed,
   };
   keep_clearance_on_turns(&scene, clearance_at, survey);
   scene.trajectory.laps = config.laps;
-  if (const std::string over = recording_over_limits(scene); !over.empty()) throw RecordingOverLimits("--laps: " + over);
+  if (const std::string over = recording_over_limits(scene); !over.empty())
+    throw RecordingOverLimits("--laps: " + over);
   // Last, from a draw of its own: a building with people is the same building without them.
   if (config.people > 0) {
     Rng walkers = rng.fork(300);
@@ -497,7 +521,8 @@ const std::vector<std::string>& building_style_names() {
   return names;
 }
 
-GeneratedBuilding generate_building(const std::string& style, std::uint64_t seed, const GeneratorConfig& config) {
+GeneratedBuilding generate_building(const std::string& style, std::uint64_t seed,
+                                    const GeneratorConfig& config) {
   const auto& names = building_style_names();
   if (std::find(names.begin(), names.end(), style) == names.end()) {
     std::string list;
@@ -539,8 +564,8 @@ std::vector<std::string> check_building(const Scene& scene, double clearance) {
   const PathClearance c = path_clearance(scene, clearance_at, step);
   if (c.min_clearance < clearance) {
     std::ostringstream s;
-    s << "the path comes " << c.min_clearance << " m from an obstacle at [" << c.where.x() << ", " << c.where.y()
-      << "] (level " << scene.levels[c.level].name << "), less than " << clearance << " m";
+    s << "the path comes " << c.min_clearance << " m from an obstacle at [" << c.where.x() << ", "
+      << c.where.y() << "] (level " << scene.levels[c.level].name << "), less than " << clearance << " m";
     problems.push_back(s.str());
   }
   // Every room entered: a true pose inside it, on its level.
@@ -548,10 +573,11 @@ std::vector<std::string> check_building(const Scene& scene, double clearance) {
   const double dt = step / scene.trajectory.speed;
   for (double t = 0.0; t <= trajectory.duration(); t += dt) {
     const Pose3 p = trajectory.body_pose(t);
-    const int level = level_under(scene, p.translation().head<2>(), p.translation().z() - scene.sensor.mount_height,
-                                  kLevelMatch, -1);
+    const int level = level_under(scene, p.translation().head<2>(),
+                                  p.translation().z() - scene.sensor.mount_height, kLevelMatch, -1);
     for (std::size_t i = 0; i < scene.rooms.size(); ++i) {
-      if (!entered[i] && scene.rooms[i].level == level && contains(scene.rooms[i].polygon, p.translation().head<2>()))
+      if (!entered[i] && scene.rooms[i].level == level &&
+          contains(scene.rooms[i].polygon, p.translation().head<2>()))
         entered[i] = true;
     }
   }

@@ -16,18 +16,19 @@ namespace tsgraphs::scene {
 const std::vector<std::string>& building_style_names();
 
 struct GeneratorConfig {
-  double clearance = 0.3;          ///< m the survey path keeps from every obstacle (a door is >= 0.8 m)
-  double grid_resolution = 0.05;   ///< m: the planning raster
-  int laps = 2;                    ///< laps of the survey path
-  double size = 1.0;               ///< (0, 1]: scales the building's extent (never below what its style needs)
-  int max_attempts = 20;           ///< layouts drawn for one seed before giving up
-  double mount_height_min = 0.3;   ///< m: sensor heights drawn from [min, max]
+  double clearance = 0.3;         ///< m the survey path keeps from every obstacle (a door is >= 0.8 m)
+  double grid_resolution = 0.05;  ///< m: the planning raster
+  int laps = 2;                   ///< laps of the survey path
+  double size = 1.0;              ///< (0, 1]: scales the building's extent (never below what its style needs)
+  int max_attempts = 20;          ///< layouts drawn for one seed before giving up
+  double mount_height_min = 0.3;  ///< m: sensor heights drawn from [min, max]
   double mount_height_max = 1.8;
-  double speed_min = 0.5;          ///< m/s: path speeds drawn from [min, max]
+  double speed_min = 0.5;  ///< m/s: path speeds drawn from [min, max]
   double speed_max = 1.5;
-  double coverage_spacing = 8.0;   ///< m: a hall gets a stop in every tile of this size
-  double coverage_area = 60.0;     ///< m^2: rooms larger than this get coverage stops too
-  int people = 0;                  ///< people walking stretches of the survey path (scene people:), at most kMaxGeneratedPeople
+  double coverage_spacing = 8.0;  ///< m: a hall gets a stop in every tile of this size
+  double coverage_area = 60.0;    ///< m^2: rooms larger than this get coverage stops too
+  int people =
+      0;  ///< people walking stretches of the survey path (scene people:), at most kMaxGeneratedPeople
   /// generate --realistic: clutter and furniture against the walls, open door leaves, windows,
   /// rooms that are not rectangles and rows of small offices (docs/generator.md, "Realistic
   /// buildings"). Without it a building is what it always was, byte for byte.
@@ -38,14 +39,15 @@ struct GeneratorConfig {
 constexpr int kMaxGeneratedPeople = 50;
 
 struct GeneratedBuilding {
-  Scene scene;        ///< parsed from `yaml`, exactly what a scene file of it loads to
-  std::string yaml;   ///< the scene file's text
-  int attempts = 1;   ///< layouts drawn until one passed every check
+  Scene scene;       ///< parsed from `yaml`, exactly what a scene file of it loads to
+  std::string yaml;  ///< the scene file's text
+  int attempts = 1;  ///< layouts drawn until one passed every check
 };
 
 /// The building of `style` for `seed`: the same style, seed and config give the same text.
 /// Throws InputError for an unknown style, std::runtime_error when no attempt passes.
-GeneratedBuilding generate_building(const std::string& style, std::uint64_t seed, const GeneratorConfig& config = {});
+GeneratedBuilding generate_building(const std::string& style, std::uint64_t seed,
+                                    const GeneratorConfig& config = {});
 
 /// What the generator checks before it hands a building out; each problem one line, empty
 /// when sound: the loader's and the path's warnings; the path's clearance along all laps

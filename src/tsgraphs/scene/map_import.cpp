@@ -22,8 +22,9 @@
 namespace tsgraphs::scene {
 namespace {
 
-constexpr double kCellEdgeBound = 0.71;  // cells from a cell's centre to its farthest point (half diagonal, rounded up)
-constexpr double kCellsSlack = 1e-9;     // a width that is a whole number of cells stays that number
+constexpr double kCellEdgeBound =
+    0.71;  // cells from a cell's centre to its farthest point (half diagonal, rounded up)
+constexpr double kCellsSlack = 1e-9;  // a width that is a whole number of cells stays that number
 
 using Cell = std::array<int, 2>;
 
@@ -44,7 +45,7 @@ std::string fmt(double v, int digits = 2) {
 
 /// The scene's floor on the map's raster.
 struct Floor {
-  std::vector<std::uint8_t> slab;  ///< per cell: on the slab
+  std::vector<std::uint8_t> slab;   ///< per cell: on the slab
   std::vector<std::uint8_t> speck;  ///< per cell: in an unknown hole too small to be a void (floor)
   std::vector<Polygon2> outlines;   ///< cell units: [0] the slab, then the voids
 };
@@ -71,8 +72,8 @@ std::vector<std::uint8_t> known_and_fringe(const MapRaster& map, const MapImport
 /// The slab's holes: 8-connected regions of other cells that do not reach the raster's edge.
 /// Those larger than min_void_area are voids (their index per cell, -1 elsewhere); the smaller
 /// ones are floor (`floor->speck`). Returns the number of voids.
-int find_voids(const MapRaster& map, const MapImportConfig& config, Floor* floor, std::vector<int>* void_label,
-               MapImportStats* stats) {
+int find_voids(const MapRaster& map, const MapImportConfig& config, Floor* floor,
+               std::vector<int>* void_label, MapImportStats* stats) {
   const int cols = map.cols, rows = map.rows;
   const std::size_t n = map.cells.size();
   std::vector<std::uint8_t> off_slab(n);
@@ -173,7 +174,8 @@ std::vector<Eigen::Vector3f> wall_voxels(const MapRaster& map, const std::vector
     for (int c = 0; c < cols; ++c) {
       if (!is_wall(c, r)) continue;
       bool skin = false;
-      for (const Cell& d : {Cell{1, 0}, Cell{-1, 0}, Cell{0, 1}, Cell{0, -1}}) skin = skin || !is_wall(c + d[0], r + d[1]);
+      for (const Cell& d : {Cell{1, 0}, Cell{-1, 0}, Cell{0, 1}, Cell{0, -1}})
+        skin = skin || !is_wall(c + d[0], r + d[1]);
       if (!skin) continue;
       ++stats->skin_cells;
       for (int k = 0; k < n_z; ++k)
@@ -187,14 +189,15 @@ std::vector<Eigen::Vector3f> wall_voxels(const MapRaster& map, const std::vector
 
 /// Each room's polygon in the map frame (metres), traced round its region and simplified with
 /// the others so that none crosses another; empty for a room left without a cell.
-std::vector<Polygon2> room_polygons(const MapRaster& map, const std::vector<int>& room_of_cell, int room_count,
-                                    const MapImportConfig& config, MapImportStats* stats) {
+std::vector<Polygon2> room_polygons(const MapRaster& map, const std::vector<int>& room_of_cell,
+                                    int room_count, const MapImportConfig& config, MapImportStats* stats) {
   if (room_count == 0) return {};
-  const MapRoomRegions regions = room_regions(room_of_cell, room_count, map.cols, map.rows,
-                                              0.5 * config.room_closing / map.resolution);
+  const MapRoomRegions regions =
+      room_regions(room_of_cell, room_count, map.cols, map.rows, 0.5 * config.room_closing / map.resolution);
   for (std::size_t k : regions.labelled_out) stats->room_cells_left_out += k;
   stats->room_slits = regions.slits;
-  std::vector<Polygon2> out = simplify_outlines(trace_outlines(regions.region, map.cols, map.rows, room_count, true), 1.0);
+  std::vector<Polygon2> out =
+      simplify_outlines(trace_outlines(regions.region, map.cols, map.rows, room_count, true), 1.0);
   for (Polygon2& p : out)
     for (Vec2& q : p) q *= map.resolution;
   return out;
@@ -210,17 +213,20 @@ WalkableGrid walkable_grid(const MapRaster& map, const Floor& floor, const std::
   grid.frame.cols = map.cols;
   grid.frame.rows = map.rows;
   grid.free.assign(map.cells.size(), 0);
-  for (std::size_t i = 0; i < grid.free.size(); ++i) grid.free[i] = (floor.slab[i] && !wall[i]) || floor.speck[i];
+  for (std::size_t i = 0; i < grid.free.size(); ++i)
+    grid.free[i] = (floor.slab[i] && !wall[i]) || floor.speck[i];
   compute_clearance(&grid);
   return grid;
 }
 
 /// The tour's region: the region of the cells that keep the planning clearance holding the most
 /// rooms' most interior points (ties: the largest). Its grid is free only there.
-WalkableGrid tour_region(const WalkableGrid& grid, const std::vector<Polygon2>& rooms, double plan_clearance) {
+WalkableGrid tour_region(const WalkableGrid& grid, const std::vector<Polygon2>& rooms,
+                         double plan_clearance) {
   const GridFrame& f = grid.frame;
   std::vector<std::uint8_t> passable(f.size());
-  for (std::size_t i = 0; i < passable.size(); ++i) passable[i] = grid.free[i] && grid.clearance[i] >= plan_clearance;
+  for (std::size_t i = 0; i < passable.size(); ++i)
+    passable[i] = grid.free[i] && grid.clearance[i] >= plan_clearance;
   std::vector<std::size_t> sizes;
   const std::vector<int> region = label_regions(passable, f.cols, f.rows, false, &sizes);
   if (sizes.empty())
@@ -236,7 +242,8 @@ WalkableGrid tour_region(const WalkableGrid& grid, const std::vector<Polygon2>& 
   }
   int main_id = 0;
   for (std::size_t id = 1; id < sizes.size(); ++id) {
-    if (std::tie(rooms_in[id], sizes[id]) > std::tie(rooms_in[main_id], sizes[main_id])) main_id = static_cast<int>(id);
+    if (std::tie(rooms_in[id], sizes[id]) > std::tie(rooms_in[main_id], sizes[main_id]))
+      main_id = static_cast<int>(id);
   }
   WalkableGrid reach = grid;  // clearances unchanged
   for (std::size_t i = 0; i < reach.free.size(); ++i) reach.free[i] = region[i] == main_id;
@@ -281,7 +288,8 @@ void add_far_end(const WalkableGrid& reach, Stops* out) {
     const double d = (reach.frame.center(i) - out->stops[0].xy).squaredNorm();
     if (d > best_d) best_d = d, best = i;
   }
-  if (best_d < 1e-12) throw InputError("the free space that keeps the clearance is a single cell: no survey path");
+  if (best_d < 1e-12)
+    throw InputError("the free space that keeps the clearance is a single cell: no survey path");
   out->stops.push_back({0, reach.frame.center(best)});
   out->names.push_back("the far end of the free space");
 }
@@ -293,7 +301,8 @@ Stops room_stops(const MapRaster& map, const std::vector<Polygon2>& rooms, const
   for (std::size_t k = 0; k < rooms.size(); ++k) {
     const std::string name = "room_" + std::to_string(k + 1);
     if (rooms[k].empty()) {
-      out->warnings.push_back("room '" + name + "' keeps no cell of its own (its labels touch other rooms' only): left out");
+      out->warnings.push_back("room '" + name +
+                              "' keeps no cell of its own (its labels touch other rooms' only): left out");
       continue;
     }
     Room room;
@@ -306,9 +315,10 @@ Stops room_stops(const MapRaster& map, const std::vector<Polygon2>& rooms, const
       s.names.push_back(room.name);
     } else {
       const Vec2 at = centroid(room.polygon);
-      out->warnings.push_back("room '" + room.name + "' (centre [" + fmt(at.x()) + ", " + fmt(at.y()) + "], " +
-                              fmt(area(room.polygon), 1) + " m²) cannot be reached keeping " +
-                              fmt(config.clearance) + " m from every wall and unmapped cell: left out of the survey path");
+      out->warnings.push_back("room '" + room.name + "' (centre [" + fmt(at.x()) + ", " + fmt(at.y()) +
+                              "], " + fmt(area(room.polygon), 1) + " m²) cannot be reached keeping " +
+                              fmt(config.clearance) +
+                              " m from every wall and unmapped cell: left out of the survey path");
     }
     out->scene.rooms.push_back(room);
   }
@@ -319,8 +329,8 @@ Stops room_stops(const MapRaster& map, const std::vector<Polygon2>& rooms, const
 }
 
 /// The level, the wall voxel map and the sensor of the scene, in the world frame.
-void add_level_and_walls(const MapRaster& map, const Floor& floor, bool has_walls, const MapImportConfig& config,
-                         Scene* scene) {
+void add_level_and_walls(const MapRaster& map, const Floor& floor, bool has_walls,
+                         const MapImportConfig& config, Scene* scene) {
   scene->name = config.name;
   if (!apply_preset(config.sensor_preset, &scene->sensor))
     throw InputError("--sensor: unknown sensor preset '" + config.sensor_preset + "'");
@@ -378,13 +388,14 @@ void add_path(const MapRaster& map, const WalkableGrid& grid, const WalkableGrid
   out->stats.min_path_clearance = worst.min_clearance;
   if (worst.min_clearance < config.clearance) {
     // Millimetres: at centimetres a path 0.349 m from a wall read "0.35 m, less than 0.35 m".
-    out->warnings.push_back("the survey path comes " + fmt(worst.min_clearance, 3) + " m from a wall or unmapped cell at [" +
-                            fmt(worst.where.x()) + ", " + fmt(worst.where.y()) + "], less than " +
-                            fmt(config.clearance, 3) + " m");
+    out->warnings.push_back("the survey path comes " + fmt(worst.min_clearance, 3) +
+                            " m from a wall or unmapped cell at [" + fmt(worst.where.x()) + ", " +
+                            fmt(worst.where.y()) + "], less than " + fmt(config.clearance, 3) + " m");
   }
   out->stats.path_length = Trajectory(scene).length() / t.laps;
   t.laps = config.laps;
-  if (const std::string over = recording_over_limits(scene); !over.empty()) throw InputError("--laps: " + over);
+  if (const std::string over = recording_over_limits(scene); !over.empty())
+    throw InputError("--laps: " + over);
 }
 
 /// Refuses a map whose corners lie beyond a scene's coordinates (core/limits.hpp): its scene
@@ -403,16 +414,17 @@ void check_extent(const MapRaster& map) {
                        g(limits::kMaxSceneCoordinate) + " m of the scene's origin");
   }
   if (!(size.maxCoeff() <= limits::kMaxSceneExtent))
-    throw InputError("the map spans " + g(size.maxCoeff()) + " m, more than a scene's " + g(limits::kMaxSceneExtent) +
-                     " m");
+    throw InputError("the map spans " + g(size.maxCoeff()) + " m, more than a scene's " +
+                     g(limits::kMaxSceneExtent) + " m");
 }
 
 /// Why the scene has no wall, when it has none.
 std::string no_wall_warning(const MapImportStats& stats, const MapImportConfig& config) {
-  if (stats.occupied_cells + stats.occupied_off_slab == 0) return "the map has no occupied cell: the scene has no wall";
+  if (stats.occupied_cells + stats.occupied_off_slab == 0)
+    return "the map has no occupied cell: the scene has no wall";
   return "none of the map's " + std::to_string(stats.occupied_off_slab) +
-         " occupied cells lies on the slab (the known area, gaps of unknown up to " + fmt(config.fringe_width) +
-         " m bridged): the scene has no wall";
+         " occupied cells lies on the slab (the known area, gaps of unknown up to " +
+         fmt(config.fringe_width) + " m bridged): the scene has no wall";
 }
 
 }  // namespace
@@ -445,7 +457,8 @@ ImportedMap import_map(const MapRaster& map, const std::vector<int>& room_of_cel
 
   const WalkableGrid grid = walkable_grid(map, floor, wall);
   SurveyConfig survey;
-  const WalkableGrid reach = tour_region(grid, rooms, config.clearance + survey.plan_margin_cells * map.resolution);
+  const WalkableGrid reach =
+      tour_region(grid, rooms, config.clearance + survey.plan_margin_cells * map.resolution);
   const Stops stops = room_stops(map, rooms, reach, config, &out);
   add_level_and_walls(map, floor, !out.voxels.empty(), config, &out.scene);
   add_path(map, grid, reach, stops, config, &out);

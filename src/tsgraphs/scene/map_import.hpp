@@ -35,12 +35,14 @@ struct MapRaster {
 };
 
 struct MapImportConfig {
-  std::string name = "imported_map";     ///< the scene's name
-  std::string voxel_file = "walls.pcd";  ///< the voxel map's file as the scene names it (relative to the scene)
-  double ceiling = 2.6;                  ///< m: the level's ceiling and the walls' height
-  double clearance = 0.35;               ///< m the survey path keeps from every wall and unmapped cell
-  int laps = 2;                          ///< laps of the survey path
-  double min_void_area = 1.0;  ///< m²: unknown holes in the known area larger than this are voids; smaller ones floor
+  std::string name = "imported_map";  ///< the scene's name
+  std::string voxel_file =
+      "walls.pcd";          ///< the voxel map's file as the scene names it (relative to the scene)
+  double ceiling = 2.6;     ///< m: the level's ceiling and the walls' height
+  double clearance = 0.35;  ///< m the survey path keeps from every wall and unmapped cell
+  int laps = 2;             ///< laps of the survey path
+  double min_void_area =
+      1.0;  ///< m²: unknown holes in the known area larger than this are voids; smaller ones floor
   /// m: runs of unknown up to this long between known cells next to a wall are bridged (the slab
   /// spans them; between occupied cells they are wall): the band of uncertain occupancy a laser map
   /// leaves at a wall's face (range noise, beam width and pose error, a few centimetres each; 1-4
@@ -62,22 +64,24 @@ struct MapImportStats {
   std::size_t known_cells = 0;     ///< cells of the slab (known cells and the unknown gaps it bridges)
   std::size_t bridged_cells = 0;   ///< unknown cells of the slab: the fringe and the walls' gaps
   std::size_t occupied_cells = 0;  ///< occupied cells on the slab
-  std::size_t occupied_off_slab = 0;  ///< occupied cells off it (beyond more than fringe_width of unknown): no walls
+  std::size_t occupied_off_slab =
+      0;  ///< occupied cells off it (beyond more than fringe_width of unknown): no walls
   std::size_t wall_gap_cells = 0;  ///< unknown cells of the slab in the gaps between occupied ones: wall too
   std::size_t skin_cells = 0;      ///< wall cells next to a cell that is not wall: the ones that get voxels
   std::size_t voxels = 0;          ///< cubes written
   int small_holes = 0;             ///< unknown holes of at most min_void_area, left as floor
   std::size_t slab_vertices = 0;
-  double path_length = 0.0;         ///< m, one lap
-  double min_path_clearance = 0.0;  ///< m, along the driven path (all laps), to the nearest cell edge
+  double path_length = 0.0;             ///< m, one lap
+  double min_path_clearance = 0.0;      ///< m, along the driven path (all laps), to the nearest cell edge
   std::size_t room_cells_left_out = 0;  ///< labelled cells outside their room's region (scene/map_rooms.hpp)
   int room_slits = 0;                   ///< holes of rooms opened because they hold other rooms
 };
 
 struct ImportedMap {
-  Scene scene;                          ///< voxel_maps[0].file is config.voxel_file
-  std::vector<Eigen::Vector3f> voxels;  ///< voxel centres in the voxel map's frame (the map frame, z up from the floor)
-  std::vector<std::string> warnings;    ///< no wall; rooms left out of the tour, and why
+  Scene scene;  ///< voxel_maps[0].file is config.voxel_file
+  std::vector<Eigen::Vector3f>
+      voxels;  ///< voxel centres in the voxel map's frame (the map frame, z up from the floor)
+  std::vector<std::string> warnings;  ///< no wall; rooms left out of the tour, and why
   MapImportStats stats;
 };
 

@@ -23,7 +23,9 @@ struct Window {
   std::size_t size() const { return static_cast<std::size_t>(cols) * rows; }
   bool inside(int c, int r) const { return c >= 0 && r >= 0 && c < cols && r < rows; }
   std::size_t global(int c, int r) const { return static_cast<std::size_t>(r + r0) * cols_all + c + c0; }
-  std::size_t global(std::size_t j) const { return global(static_cast<int>(j % cols), static_cast<int>(j / cols)); }
+  std::size_t global(std::size_t j) const {
+    return global(static_cast<int>(j % cols), static_cast<int>(j / cols));
+  }
 };
 
 /// Each room's cells' bounding window grown by `margin` cells (clipped to the raster); an
@@ -67,14 +69,16 @@ std::vector<float> distance_in(const Window& w, Pred is_source, bool border_is_s
 std::vector<int> close_rooms(const std::vector<int>& label, int count, int cols, int rows, double radius) {
   if (!(radius > 0.0)) return label;
   const float r = static_cast<float>(radius) + kDistanceSlack;
-  const std::vector<Window> windows = room_windows(label, count, cols, rows, static_cast<int>(std::ceil(radius)) + 1);
+  const std::vector<Window> windows =
+      room_windows(label, count, cols, rows, static_cast<int>(std::ceil(radius)) + 1);
   // Dilation: each unlabelled cell within the radius of a room goes to the nearest.
   std::vector<float> nearest(label.size(), std::numeric_limits<float>::infinity());
   std::vector<int> share = label;
   for (int k = 0; k < count; ++k) {
     const Window& w = windows[k];
     if (w.size() == 0) continue;
-    const std::vector<float> d = distance_in(w, [&](std::size_t i) { return label[i] == k; }, false);
+    const std::vector<float> d = distance_in(
+        w, [&](std::size_t i) { return label[i] == k; }, false);
     for (std::size_t j = 0; j < d.size(); ++j) {
       const std::size_t i = w.global(j);
       if (label[i] < 0 && d[j] <= r && d[j] < nearest[i]) {
@@ -88,7 +92,8 @@ std::vector<int> close_rooms(const std::vector<int>& label, int count, int cols,
   for (int k = 0; k < count; ++k) {
     const Window& w = windows[k];
     if (w.size() == 0) continue;
-    const std::vector<float> d = distance_in(w, [&](std::size_t i) { return share[i] != k; }, true);
+    const std::vector<float> d = distance_in(
+        w, [&](std::size_t i) { return share[i] != k; }, true);
     for (std::size_t j = 0; j < d.size(); ++j) {
       const std::size_t i = w.global(j);
       if (label[i] < 0 && share[i] == k && d[j] > r) out[i] = k;
@@ -141,8 +146,8 @@ void keep_largest_pieces(std::vector<int>* label, int count, int cols, int rows)
 /// The holes of one room in its window: 4-connected regions of other cells that do not reach
 /// the window's edge.
 struct Holes {
-  std::vector<int> id;              ///< per window cell: its region of other cells, or -1 (the room's cells)
-  std::vector<std::uint8_t> outside;  ///< per region: reaches the window's edge (or has been opened)
+  std::vector<int> id;  ///< per window cell: its region of other cells, or -1 (the room's cells)
+  std::vector<std::uint8_t> outside;     ///< per region: reaches the window's edge (or has been opened)
   std::vector<std::uint8_t> holds_room;  ///< per region: holds a cell of another room
 };
 
@@ -173,7 +178,9 @@ void open_hole(std::vector<int>* label, const Window& w, int k, int hole, Holes*
   const std::size_t none = std::numeric_limits<std::size_t>::max();
   std::vector<std::size_t> parent(w.size(), none);
   std::deque<std::size_t> queue;
-  const auto passable = [&](std::size_t j) { return h->id[j] < 0 || (h->id[j] != hole && !h->outside[h->id[j]]); };
+  const auto passable = [&](std::size_t j) {
+    return h->id[j] < 0 || (h->id[j] != hole && !h->outside[h->id[j]]);
+  };
   for (std::size_t j = 0; j < w.size(); ++j) {
     if (h->id[j] != hole) continue;
     const int c = static_cast<int>(j % w.cols), r = static_cast<int>(j / w.cols);
@@ -208,7 +215,8 @@ void open_hole(std::vector<int>* label, const Window& w, int k, int hole, Holes*
       }
     }
   }
-  if (end == none) throw std::logic_error("room_regions: a hole with no way out");  // the window's edge is outside
+  if (end == none)
+    throw std::logic_error("room_regions: a hole with no way out");  // the window's edge is outside
   h->outside[hole] = 1;
   for (std::size_t j = end;; j = parent[j]) {
     if (h->id[j] >= 0) h->outside[h->id[j]] = 1;

@@ -25,10 +25,10 @@
 namespace tsgraphs::scene {
 
 struct MapRoomRegions {
-  std::vector<int> region;                  ///< per cell: the room whose region holds it, or -1
-  std::vector<std::size_t> cells;           ///< per room: its region's cells
-  std::vector<std::size_t> labelled_out;    ///< per room: labelled cells its region does not hold
-  int slits = 0;                            ///< holes opened because they hold other rooms
+  std::vector<int> region;                ///< per cell: the room whose region holds it, or -1
+  std::vector<std::size_t> cells;         ///< per room: its region's cells
+  std::vector<std::size_t> labelled_out;  ///< per room: labelled cells its region does not hold
+  int slits = 0;                          ///< holes opened because they hold other rooms
 };
 
 /// The regions of `count` rooms given per cell by `room_of_cell` (-1 none; cols x rows).

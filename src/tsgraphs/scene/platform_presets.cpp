@@ -34,9 +34,12 @@ PlatformSpec platform_defaults(PlatformType type) {
 
 const char* platform_name(PlatformType type) {
   switch (type) {
-    case PlatformType::kHandheld: return "handheld";
-    case PlatformType::kLegged: return "legged";
-    case PlatformType::kWheeled: break;
+    case PlatformType::kHandheld:
+      return "handheld";
+    case PlatformType::kLegged:
+      return "legged";
+    case PlatformType::kWheeled:
+      break;
   }
   return "wheeled";
 }

@@ -7,22 +7,23 @@
 namespace tsgraphs::scene {
 namespace {
 
-constexpr double kShapeChance = 0.4;      // of a room or hall losing a piece (most real rooms are rectangles)
+constexpr double kShapeChance = 0.4;  // of a room or hall losing a piece (most real rooms are rectangles)
 constexpr double kCornerNotchShare = 0.45;  // of the cuts: a notch at a corner (an L-shaped room)
-constexpr double kChamferShare = 0.3;     // a chamfered corner; the rest: a notch in the middle of a wall
-constexpr double kNotchMin = 0.6;         // m: a notch's shortest side (a riser one sees as a corner)
-constexpr double kNotchMax = 2.5;         // m: its longest (a closet)
-constexpr double kNotchShare = 0.4;       // of a wall's length a corner notch takes at most (the room stays a room)
-constexpr double kChamferMin = 0.8;       // m: the legs of a chamfer, as a diagonal wall across a corner
+constexpr double kChamferShare = 0.3;       // a chamfered corner; the rest: a notch in the middle of a wall
+constexpr double kNotchMin = 0.6;           // m: a notch's shortest side (a riser one sees as a corner)
+constexpr double kNotchMax = 2.5;           // m: its longest (a closet)
+constexpr double kNotchShare =
+    0.4;  // of a wall's length a corner notch takes at most (the room stays a room)
+constexpr double kChamferMin = 0.8;  // m: the legs of a chamfer, as a diagonal wall across a corner
 constexpr double kChamferMax = 1.8;
-constexpr double kPierWidthMin = 0.5;     // m: a pilaster or riser standing out of a wall
+constexpr double kPierWidthMin = 0.5;  // m: a pilaster or riser standing out of a wall
 constexpr double kPierWidthMax = 1.5;
-constexpr double kPierDepthMin = 0.3;     // m it stands out
+constexpr double kPierDepthMin = 0.3;  // m it stands out
 constexpr double kPierDepthMax = 0.8;
-constexpr double kShapedAreaMin = 6.0;    // m^2 a reshaped room keeps (the smallest office)
-constexpr double kPieceShareMax = 0.2;    // of a room's area its piece takes at most
-constexpr double kProbe = 0.05;           // m beyond a wall where its other side is looked up
-constexpr double kRightAngle = 1e-6;      // |cos| of a corner taken as a right angle
+constexpr double kShapedAreaMin = 6.0;  // m^2 a reshaped room keeps (the smallest office)
+constexpr double kPieceShareMax = 0.2;  // of a room's area its piece takes at most
+constexpr double kProbe = 0.05;         // m beyond a wall where its other side is looked up
+constexpr double kRightAngle = 1e-6;    // |cos| of a corner taken as a right angle
 
 Vec2 outward(const Vec2& p, const Vec2& q) {
   const Vec2 d = (q - p).normalized();
@@ -79,7 +80,8 @@ std::optional<Cut> corner_cut(const FloorPlan& plan, int self, std::size_t i, bo
     sa = rng.uniform(kNotchMin, ha);
     sb = rng.uniform(kNotchMin, hb);
   }
-  if (!backs_onto_room_or_facade(plan, self, v + sa * a, v) || !backs_onto_room_or_facade(plan, self, v, v + sb * b))
+  if (!backs_onto_room_or_facade(plan, self, v + sa * a, v) ||
+      !backs_onto_room_or_facade(plan, self, v, v + sb * b))
     return std::nullopt;
   Cut cut;
   for (std::size_t k = 0; k < n; ++k) {
@@ -91,7 +93,8 @@ std::optional<Cut> corner_cut(const FloorPlan& plan, int self, std::size_t i, bo
       cut.room.insert(cut.room.end(), {v + sa * a, v + sa * a + sb * b, v + sb * b});
     }
   }
-  cut.shaft = chamfer ? Polygon2{v, v + sb * b, v + sa * a} : Polygon2{v, v + sb * b, v + sa * a + sb * b, v + sa * a};
+  cut.shaft = chamfer ? Polygon2{v, v + sb * b, v + sa * a}
+                      : Polygon2{v, v + sb * b, v + sa * a + sb * b, v + sa * a};
   return cut;
 }
 
@@ -100,7 +103,8 @@ std::optional<Cut> wall_notch(const FloorPlan& plan, int self, std::size_t i, Rn
   const Polygon2& poly = plan.spaces[self].outline;
   const Vec2 p = poly[i], q = poly[(i + 1) % poly.size()];
   const double length = (q - p).norm();
-  const double width = rng.uniform(kPierWidthMin, kPierWidthMax), depth = rng.uniform(kPierDepthMin, kPierDepthMax);
+  const double width = rng.uniform(kPierWidthMin, kPierWidthMax),
+               depth = rng.uniform(kPierDepthMin, kPierDepthMax);
   if (length < 2.0 * kNotchMin + width) return std::nullopt;
   const Vec2 u = (q - p) / length, in(-u.y(), u.x());
   const double s = rng.uniform(kNotchMin, length - kNotchMin - width);
@@ -132,8 +136,8 @@ int shape_rooms(FloorPlan* plan, Rng& rng) {
       const std::size_t i = corners[rng.integer(0, static_cast<int>(corners.size()) - 1)];
       cut = corner_cut(*plan, static_cast<int>(s), i, u >= kCornerNotchShare, rng);
     } else {
-      cut = wall_notch(*plan, static_cast<int>(s), static_cast<std::size_t>(rng.integer(0, static_cast<int>(poly.size()) - 1)),
-                       rng);
+      cut = wall_notch(*plan, static_cast<int>(s),
+                       static_cast<std::size_t>(rng.integer(0, static_cast<int>(poly.size()) - 1)), rng);
     }
     if (!cut || find_self_intersection(cut->room)) continue;
     const double before = area(poly), piece = area(cut->shaft);

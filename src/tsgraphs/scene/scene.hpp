@@ -12,22 +12,23 @@ namespace tsgraphs::scene {
 
 /// The LiDAR model. Defaults are the scene format's (an OS1-64-like sensor).
 struct SensorSpec {
-  std::string preset;                 ///< os1-64 | os0-128 | vlp-16 | hesai-xt32, or "" when given by hand
-  int channels = 64;                  ///< rows of the scan
-  int columns = 1024;                 ///< firings per revolution
+  std::string preset;                   ///< os1-64 | os0-128 | vlp-16 | hesai-xt32, or "" when given by hand
+  int channels = 64;                    ///< rows of the scan
+  int columns = 1024;                   ///< firings per revolution
   double vertical_fov_min_deg = -22.5;  ///< lowest beam
   double vertical_fov_max_deg = 22.5;   ///< highest beam
   /// Elevation of each beam, top to bottom, degrees. Filled by the loader from the preset's
   /// published table, from `vertical_angles_deg`, or evenly over the field of view.
   std::vector<double> vertical_angles_deg;
-  double max_range = 60.0;            ///< returns beyond are lost, m
-  double min_range = 0.3;             ///< returns closer are lost, m
-  double rate_hz = 10.0;              ///< revolutions (sweeps) per second
-  double record_hz = 0.0;             ///< scans kept per second, <= rate_hz (a recording of every n-th sweep); 0: rate_hz
-  double range_noise_std = 0.015;     ///< gaussian range noise, m
-  double dropout = 0.0;               ///< probability that a return is lost
-  double mount_height = 0.55;         ///< sensor above the walkable surface, m
-  double tilt_deg = 0.0;              ///< pitch about the sensor's y axis
+  double max_range = 60.0;  ///< returns beyond are lost, m
+  double min_range = 0.3;   ///< returns closer are lost, m
+  double rate_hz = 10.0;    ///< revolutions (sweeps) per second
+  double record_hz =
+      0.0;  ///< scans kept per second, <= rate_hz (a recording of every n-th sweep); 0: rate_hz
+  double range_noise_std = 0.015;  ///< gaussian range noise, m
+  double dropout = 0.0;            ///< probability that a return is lost
+  double mount_height = 0.55;      ///< sensor above the walkable surface, m
+  double tilt_deg = 0.0;           ///< pitch about the sensor's y axis
 };
 
 /// What carries the sensor (scene format `platform:`): the motion it adds to the path's, and
@@ -35,43 +36,44 @@ struct SensorSpec {
 enum class PlatformType { kWheeled, kHandheld, kLegged };
 struct PlatformSpec {
   PlatformType type = PlatformType::kWheeled;
-  double bob = 0.0;                  ///< m, amplitude of the vertical bob, once per step
-  double step_hz = 0.0;              ///< steps per second: bob and pitch at this rate, roll at half of it
-  double sway_deg = 0.0;             ///< amplitude of the roll sway (pitch: half of it)
-  double yaw_jitter_deg = 0.0;       ///< amplitude of the heading's wander about the path's
-  double vibration = 0.0;            ///< m, amplitude of the mount's vertical vibration (a trot's impacts)
-  double vibration_hz = 0.0;         ///< its frequency
-  bool motion_distortion = false;    ///< a scan is swept over its period, each column at its time (per-point times)
+  double bob = 0.0;             ///< m, amplitude of the vertical bob, once per step
+  double step_hz = 0.0;         ///< steps per second: bob and pitch at this rate, roll at half of it
+  double sway_deg = 0.0;        ///< amplitude of the roll sway (pitch: half of it)
+  double yaw_jitter_deg = 0.0;  ///< amplitude of the heading's wander about the path's
+  double vibration = 0.0;       ///< m, amplitude of the mount's vertical vibration (a trot's impacts)
+  double vibration_hz = 0.0;    ///< its frequency
+  bool motion_distortion =
+      false;  ///< a scan is swept over its period, each column at its time (per-point times)
 };
 
 /// How odometry drifts from truth: random walks, std growing with sqrt(distance or angle).
 struct OdometryNoise {
-  double trans_noise_per_m = 0.01;    ///< translation std per axis after 1 m (sqrt(m) scaling)
-  double yaw_noise_per_rad = 0.01;    ///< yaw std after turning 1 rad
-  double yaw_noise_per_m = 0.002;     ///< yaw std after travelling 1 m
+  double trans_noise_per_m = 0.01;  ///< translation std per axis after 1 m (sqrt(m) scaling)
+  double yaw_noise_per_rad = 0.01;  ///< yaw std after turning 1 rad
+  double yaw_noise_per_m = 0.002;   ///< yaw std after travelling 1 m
 };
 
 struct Level {
   std::string name;
-  double elevation = 0.0;             ///< z of the walkable floor surface
-  double ceiling = 3.0;               ///< ceiling height above the floor surface
-  Polygon2 slab;                      ///< outline of the walkable floor
-  std::vector<Polygon2> voids;        ///< holes in the slab, open to the storey below
-  int line = 0;                       ///< line in the scene file, for messages
+  double elevation = 0.0;       ///< z of the walkable floor surface
+  double ceiling = 3.0;         ///< ceiling height above the floor surface
+  Polygon2 slab;                ///< outline of the walkable floor
+  std::vector<Polygon2> voids;  ///< holes in the slab, open to the storey below
+  int line = 0;                 ///< line in the scene file, for messages
 };
 
 struct Opening {
-  double at = 0.0;                    ///< distance of the opening's centre from the wall's `from`
+  double at = 0.0;  ///< distance of the opening's centre from the wall's `from`
   double width = 0.9;
   double height = 2.1;
-  double sill = 0.0;                  ///< 0 for a door
+  double sill = 0.0;  ///< 0 for a door
   /// A glass pane filling the opening: the probability that a ray passes it (a return behind
   /// it), as a glass railing's; 1 (the default): no pane, an open door or window.
   double transmission = 1.0;
 };
 
 struct Wall {
-  int level = 0;                      ///< index into Scene::levels
+  int level = 0;                                ///< index into Scene::levels
   Vec2 from = Vec2::Zero(), to = Vec2::Zero();  ///< centre line
   double thickness = 0.2;
   double height = 3.0;
@@ -90,7 +92,7 @@ struct Railing {
   Vec2 from = Vec2::Zero(), to = Vec2::Zero();
   double height = 1.0;
   RailingStyle style = RailingStyle::kSolid;
-  double transmission = 0.8;          ///< glass: probability that a ray passes through (a return behind it)
+  double transmission = 0.8;  ///< glass: probability that a ray passes through (a return behind it)
   int line = 0;
 };
 
@@ -98,8 +100,8 @@ struct Box {
   int level = 0;
   Eigen::Vector3d min = Eigen::Vector3d::Zero();  ///< relative to the level's elevation
   Eigen::Vector3d max = Eigen::Vector3d::Zero();
-  double yaw_deg = 0.0;               ///< rotation about the box centre
-  std::string label;                  ///< free text (bookshelf, pillar, ...)
+  double yaw_deg = 0.0;  ///< rotation about the box centre
+  std::string label;     ///< free text (bookshelf, pillar, ...)
   int line = 0;
 };
 
@@ -107,20 +109,20 @@ struct Box {
 enum class VoxelLabel { kWall, kBox, kRailing, kAuto };
 
 struct VoxelMap {
-  std::string file;                   ///< resolved path of the PCD
-  double voxel_size = 0.1;            ///< edge of each cube
+  std::string file;         ///< resolved path of the PCD
+  double voxel_size = 0.1;  ///< edge of each cube
   int level = 0;
   VoxelLabel label = VoxelLabel::kAuto;
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
-  double yaw_deg = 0.0;               ///< rotation about z, applied before the offset
+  double yaw_deg = 0.0;  ///< rotation about z, applied before the offset
   int line = 0;
 };
 
 struct Ramp {
-  int from_level = 0;                 ///< the ramp's low end is at this level's elevation
-  int to_level = 0;                   ///< its high end at this one's
-  Polygon2 polygon;                   ///< footprint
-  Vec2 axis = Vec2::UnitY();          ///< unit direction of ascent
+  int from_level = 0;         ///< the ramp's low end is at this level's elevation
+  int to_level = 0;           ///< its high end at this one's
+  Polygon2 polygon;           ///< footprint
+  Vec2 axis = Vec2::UnitY();  ///< unit direction of ascent
   int line = 0;
 };
 
@@ -134,9 +136,9 @@ struct Room {
 /// level's floor, walking its path to the end and back, over and over.
 struct Person {
   int level = 0;
-  std::vector<Vec2> path;             ///< two or more points
-  double speed = 1.2;                 ///< m/s
-  double offset = 0.0;                ///< m walked along path (there and back) at time 0
+  std::vector<Vec2> path;  ///< two or more points
+  double speed = 1.2;      ///< m/s
+  double offset = 0.0;     ///< m walked along path (there and back) at time 0
   double height = 1.75;
   double radius = 0.25;
   int line = 0;
@@ -144,17 +146,17 @@ struct Person {
 
 struct Waypoint {
   Vec2 xy = Vec2::Zero();
-  int level = 0;                      ///< the level the waypoint stands on
+  int level = 0;  ///< the level the waypoint stands on
   int line = 0;
 };
 
 struct TrajectorySpec {
-  int level = 0;                      ///< level of the first waypoint
+  int level = 0;  ///< level of the first waypoint
   std::vector<Waypoint> waypoints;
-  bool closed = true;                 ///< return to the first waypoint at the end of each lap
-  int laps = 2;                       ///< repeats of the path
-  double speed = 1.0;                 ///< m/s, horizontal
-  double yaw_rate_deg = 90.0;         ///< max turn rate, deg/s
+  bool closed = true;          ///< return to the first waypoint at the end of each lap
+  int laps = 2;                ///< repeats of the path
+  double speed = 1.0;          ///< m/s, horizontal
+  double yaw_rate_deg = 90.0;  ///< max turn rate, deg/s
 };
 
 struct Scene {
@@ -172,8 +174,8 @@ struct Scene {
   std::vector<Room> rooms;
   std::vector<Person> people;
   TrajectorySpec trajectory;
-  std::string file;                   ///< the scene file it was loaded from (or "builtin:NAME")
-  std::string source_text;            ///< the YAML text it was read from (copied to sequences)
+  std::string file;         ///< the scene file it was loaded from (or "builtin:NAME")
+  std::string source_text;  ///< the YAML text it was read from (copied to sequences)
   /// Things that load but look wrong ("file:line: key: what"): a path through a wall, a box
   /// or a void, a ceiling above the next storey's floor. Front ends print them.
   std::vector<std::string> warnings;

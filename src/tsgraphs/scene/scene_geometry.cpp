@@ -27,7 +27,8 @@ std::vector<GlassPane> glass_panes(const Wall& wall) {
   std::vector<GlassPane> panes;
   for (const Opening& o : wall.openings) {
     if (o.transmission < 1.0)
-      panes.push_back({o.at - 0.5 * o.width, o.at + 0.5 * o.width, o.sill, o.sill + o.height, o.transmission});
+      panes.push_back(
+          {o.at - 0.5 * o.width, o.at + 0.5 * o.width, o.sill, o.sill + o.height, o.transmission});
   }
   return panes;
 }
@@ -41,7 +42,8 @@ std::vector<Polygon2> ceiling_holes(const Scene& scene, int level) {
     const double zi = scene.levels[i].elevation;
     if (zi > z && (above < 0 || zi < scene.levels[above].elevation)) above = static_cast<int>(i);
   }
-  if (above >= 0) holes.insert(holes.end(), scene.levels[above].voids.begin(), scene.levels[above].voids.end());
+  if (above >= 0)
+    holes.insert(holes.end(), scene.levels[above].voids.begin(), scene.levels[above].voids.end());
   return holes;
 }
 

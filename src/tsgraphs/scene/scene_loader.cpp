@@ -53,8 +53,8 @@ class SceneParser {
   SceneParser(const YamlMap& root, std::string base_dir) : root_(root), base_dir_(std::move(base_dir)) {}
 
   Scene parse() {
-    root_.check_keys({"name", "seed", "sensor", "platform", "odometry", "levels", "walls", "railings", "boxes",
-                      "voxel_maps", "ramps", "rooms", "people", "trajectory"});
+    root_.check_keys({"name", "seed", "sensor", "platform", "odometry", "levels", "walls", "railings",
+                      "boxes", "voxel_maps", "ramps", "rooms", "people", "trajectory"});
     scene_.file = root_.file();
     scene_.name = root_.get<std::string>("name", std::filesystem::path(root_.file()).stem().string());
     const long long seed = root_.get<long long>("seed", 0);
@@ -140,8 +140,9 @@ class SceneParser {
       const auto [i, j] = *bad;
       const std::size_t n = poly.size();
       if (i == j) {
-        throw input_error(m.file(), line, where + ": repeated vertex " + fmt_point(poly[i]) + " (points " +
-                                              std::to_string(i) + " and " + std::to_string((i + 1) % n) + ")");
+        throw input_error(m.file(), line,
+                          where + ": repeated vertex " + fmt_point(poly[i]) + " (points " +
+                              std::to_string(i) + " and " + std::to_string((i + 1) % n) + ")");
       }
       throw input_error(m.file(), line,
                         where + ": self-intersecting polygon: edge " + fmt_point(poly[i]) + "-" +
@@ -158,7 +159,8 @@ class SceneParser {
 
   void parse_sensor(const YamlMap& m) {
     m.check_keys({"preset", "channels", "columns", "vertical_fov_deg", "vertical_angles_deg", "max_range",
-                  "min_range", "rate_hz", "record_hz", "range_noise_std", "dropout", "mount_height", "tilt_deg"});
+                  "min_range", "rate_hz", "record_hz", "range_noise_std", "dropout", "mount_height",
+                  "tilt_deg"});
     SensorSpec& s = scene_.sensor;
     if (m.has("preset")) {
       const std::string name = m.require<std::string>("preset");
@@ -180,14 +182,17 @@ class SceneParser {
     const bool layout_overridden = m.has("channels") || m.has("vertical_fov_deg");
     if (m.has("vertical_fov_deg")) {
       const Vec2 fov = m.vec2("vertical_fov_deg");
-      if (!(fov.x() < fov.y()) && s.channels > 1) throw m.error("vertical_fov_deg", "expected [lowest, highest] with lowest < highest");
-      if (fov.x() < -90.0 || fov.y() > 90.0) throw m.error("vertical_fov_deg", "angles must lie in [-90, 90]");
+      if (!(fov.x() < fov.y()) && s.channels > 1)
+        throw m.error("vertical_fov_deg", "expected [lowest, highest] with lowest < highest");
+      if (fov.x() < -90.0 || fov.y() > 90.0)
+        throw m.error("vertical_fov_deg", "angles must lie in [-90, 90]");
       s.vertical_fov_min_deg = fov.x();
       s.vertical_fov_max_deg = fov.y();
     }
     if (m.has("vertical_angles_deg")) {
       const YAML::Node n = m.raw("vertical_angles_deg");
-      if (!n.IsSequence() || n.size() == 0) throw m.error("vertical_angles_deg", "expected a list of beam elevations");
+      if (!n.IsSequence() || n.size() == 0)
+        throw m.error("vertical_angles_deg", "expected a list of beam elevations");
       s.vertical_angles_deg.clear();
       for (std::size_t i = 0; i < n.size(); ++i) {
         const double a = m.as<double>(n[i], m.key_path("vertical_angles_deg"));
@@ -203,7 +208,8 @@ class SceneParser {
       s.vertical_fov_min_deg = s.vertical_angles_deg.back();
       s.vertical_fov_max_deg = s.vertical_angles_deg.front();
     } else if (layout_overridden || s.vertical_angles_deg.empty()) {
-      s.vertical_angles_deg = evenly_spaced_angles(s.channels, s.vertical_fov_min_deg, s.vertical_fov_max_deg);
+      s.vertical_angles_deg =
+          evenly_spaced_angles(s.channels, s.vertical_fov_min_deg, s.vertical_fov_max_deg);
     }
     s.max_range = m.get<double>("max_range", s.max_range);
     s.min_range = m.get<double>("min_range", s.min_range);
@@ -245,7 +251,9 @@ class SceneParser {
     p.motion_distortion = m.get<bool>("motion_distortion", p.motion_distortion);
     // Bounds that keep a sensor a sensor: a bob beyond half a metre, a sway past 30 degrees or
     // a vibration beyond 100 Hz describe no platform that walks a building.
-    const auto within = [&m](const char* key, double v, double lo, double hi) { require_within(m, key, v, lo, hi); };
+    const auto within = [&m](const char* key, double v, double lo, double hi) {
+      require_within(m, key, v, lo, hi);
+    };
     within("bob", p.bob, 0.0, 0.5);
     within("step_hz", p.step_hz, 0.0, 10.0);
     within("sway_deg", p.sway_deg, 0.0, 30.0);
@@ -254,7 +262,8 @@ class SceneParser {
     within("vibration_hz", p.vibration_hz, 0.0, 100.0);
     if (p.bob > 0.0 && p.step_hz <= 0.0) throw m.error("step_hz", "must be > 0 when bob is");
     if (p.sway_deg > 0.0 && p.step_hz <= 0.0) throw m.error("step_hz", "must be > 0 when sway_deg is");
-    if (p.vibration > 0.0 && p.vibration_hz <= 0.0) throw m.error("vibration_hz", "must be > 0 when vibration is");
+    if (p.vibration > 0.0 && p.vibration_hz <= 0.0)
+      throw m.error("vibration_hz", "must be > 0 when vibration is");
   }
 
   void parse_odometry(const YamlMap& m) {
@@ -307,7 +316,8 @@ class SceneParser {
     check_extent(m, "from", {w.from});
     check_extent(m, "to", {w.to});
     const double length = (w.to - w.from).norm();
-    if (length < 1e-6) throw m.error("to", "zero-length wall: from and to are the same point " + fmt_point(w.from));
+    if (length < 1e-6)
+      throw m.error("to", "zero-length wall: from and to are the same point " + fmt_point(w.from));
     w.thickness = m.get<double>("thickness", 0.2);
     w.height = m.get<double>("height", scene_.levels[w.level].ceiling);
     require_positive(m, "thickness", w.thickness);
@@ -321,7 +331,8 @@ class SceneParser {
       o.height = om.get<double>("height", 2.1);
       o.sill = om.get<double>("sill", 0.0);
       o.transmission = om.get<double>("transmission", 1.0);
-      if (!(o.transmission >= 0.0 && o.transmission <= 1.0)) throw om.error("transmission", "must lie in [0, 1]");
+      if (!(o.transmission >= 0.0 && o.transmission <= 1.0))
+        throw om.error("transmission", "must lie in [0, 1]");
       require_positive(om, "width", o.width);
       require_positive(om, "height", o.height);
       require_non_negative(om, "sill", o.sill);
@@ -347,7 +358,8 @@ class SceneParser {
       spans.emplace_back(o.at - 0.5 * o.width, o.at + 0.5 * o.width);
       w.openings.push_back(o);
     }
-    std::sort(w.openings.begin(), w.openings.end(), [](const Opening& a, const Opening& b) { return a.at < b.at; });
+    std::sort(w.openings.begin(), w.openings.end(),
+              [](const Opening& a, const Opening& b) { return a.at < b.at; });
     scene_.walls.push_back(std::move(w));
   }
 
@@ -364,14 +376,19 @@ class SceneParser {
     r.height = m.get<double>("height", 1.0);
     require_positive(m, "height", r.height);
     const std::string style = m.get<std::string>("style", "solid");
-    if (style == "solid") r.style = RailingStyle::kSolid;
-    else if (style == "bars") r.style = RailingStyle::kBars;
-    else if (style == "glass") r.style = RailingStyle::kGlass;
-    else throw m.error("style", "unknown railing style '" + style + "' (solid, bars, glass)");
+    if (style == "solid")
+      r.style = RailingStyle::kSolid;
+    else if (style == "bars")
+      r.style = RailingStyle::kBars;
+    else if (style == "glass")
+      r.style = RailingStyle::kGlass;
+    else
+      throw m.error("style", "unknown railing style '" + style + "' (solid, bars, glass)");
     if (m.has("transmission") && r.style != RailingStyle::kGlass)
       throw m.error("transmission", "only a glass railing lets rays through (style: glass)");
     r.transmission = m.get<double>("transmission", r.transmission);
-    if (!(r.transmission >= 0.0 && r.transmission <= 1.0)) throw m.error("transmission", "must lie in [0, 1]");
+    if (!(r.transmission >= 0.0 && r.transmission <= 1.0))
+      throw m.error("transmission", "must lie in [0, 1]");
     scene_.railings.push_back(r);
   }
 
@@ -406,17 +423,23 @@ class SceneParser {
     v.line = m.line();
     const std::string file = m.require<std::string>("file");
     const std::filesystem::path p(file);
-    v.file = p.is_absolute() ? p.string() : (std::filesystem::path(base_dir_) / p).lexically_normal().string();
+    v.file =
+        p.is_absolute() ? p.string() : (std::filesystem::path(base_dir_) / p).lexically_normal().string();
     if (!std::filesystem::is_regular_file(v.file)) throw m.error("file", "no such file: " + v.file);
     v.voxel_size = m.require<double>("voxel_size");
     require_positive(m, "voxel_size", v.voxel_size);
     v.level = level_index(m, "level");
     const std::string label = m.get<std::string>("label", "auto");
-    if (label == "wall") v.label = VoxelLabel::kWall;
-    else if (label == "box") v.label = VoxelLabel::kBox;
-    else if (label == "railing") v.label = VoxelLabel::kRailing;
-    else if (label == "auto") v.label = VoxelLabel::kAuto;
-    else throw m.error("label", "unknown voxel label '" + label + "' (wall, box, railing, auto)");
+    if (label == "wall")
+      v.label = VoxelLabel::kWall;
+    else if (label == "box")
+      v.label = VoxelLabel::kBox;
+    else if (label == "railing")
+      v.label = VoxelLabel::kRailing;
+    else if (label == "auto")
+      v.label = VoxelLabel::kAuto;
+    else
+      throw m.error("label", "unknown voxel label '" + label + "' (wall, box, railing, auto)");
     v.offset = m.has("offset") ? vec3(m, "offset") : Eigen::Vector3d::Zero();
     check_extent(m, "offset", {v.offset.head<2>()});
     require_within(m, "offset", v.offset.z(), -kMaxSceneExtent, kMaxSceneExtent);
@@ -458,12 +481,14 @@ class SceneParser {
     for (std::size_t i = 0; i < path.size(); ++i) {
       const std::string where = m.key_path("path") + "[" + std::to_string(i) + "]";
       const int line = path[i].Mark().line + 1;
-      if (!path[i].IsSequence() || path[i].size() != 2) throw input_error(m.file(), line, where + ": expected [x, y]");
+      if (!path[i].IsSequence() || path[i].size() != 2)
+        throw input_error(m.file(), line, where + ": expected [x, y]");
       const Vec2 xy(m.as<double>(path[i][0], where), m.as<double>(path[i][1], where));
       double z = 0.0;
       if (!walkable_height(scene_, p.level, xy, &z))
-        throw input_error(m.file(), line, where + ": " + fmt_point(xy) + " is outside every slab of level " +
-                                              scene_.levels[p.level].name + " (or over one of its voids)");
+        throw input_error(m.file(), line,
+                          where + ": " + fmt_point(xy) + " is outside every slab of level " +
+                              scene_.levels[p.level].name + " (or over one of its voids)");
       if (!p.path.empty() && (xy - p.path.back()).norm() < 1e-6)
         throw input_error(m.file(), line, where + ": repeats the previous point");
       p.path.push_back(xy);
@@ -488,10 +513,12 @@ class SceneParser {
       const Level& l = scene_.levels[w.level];
       if (h < l.ceiling) continue;
       char what[200];
-      std::snprintf(what, sizeof what, "%g m is not below the ceiling of level '%s' (%g m), which the path walks", h,
+      std::snprintf(what, sizeof what,
+                    "%g m is not below the ceiling of level '%s' (%g m), which the path walks", h,
                     l.name.c_str(), l.ceiling);
       const YamlMap m = root_.map("sensor");
-      throw m.has("mount_height") ? m.error("mount_height", what) : m.error_here(std::string("mount_height: ") + what);
+      throw m.has("mount_height") ? m.error("mount_height", what)
+                                  : m.error_here(std::string("mount_height: ") + what);
     }
   }
 
@@ -530,7 +557,8 @@ class SceneParser {
         for (std::size_t k = 0; k < scene_.levels.size(); ++k) {
           if (scene_.levels[k].name == name) level = static_cast<int>(k);
         }
-        if (level < 0) throw input_error(m.file(), line, where + ": unknown level '" + name + "'" + known_levels());
+        if (level < 0)
+          throw input_error(m.file(), line, where + ": unknown level '" + name + "'" + known_levels());
       }
       w.level = level;
       check_waypoint(w, where);
@@ -538,8 +566,9 @@ class SceneParser {
     }
     for (std::size_t i = 0; i + 1 < t.waypoints.size(); ++i) {
       if ((t.waypoints[i].xy - t.waypoints[i + 1].xy).norm() < 1e-6) {
-        throw input_error(m.file(), t.waypoints[i + 1].line,
-                          m.key_path("waypoints") + "[" + std::to_string(i + 1) + "]: repeats the previous waypoint");
+        throw input_error(
+            m.file(), t.waypoints[i + 1].line,
+            m.key_path("waypoints") + "[" + std::to_string(i + 1) + "]: repeats the previous waypoint");
       }
     }
   }
@@ -594,7 +623,8 @@ class SceneParser {
         if (w.level != a.level) continue;
         const Vec2 dir = (w.to - w.from).normalized();
         std::vector<WallPiece> pieces = wall_pieces(w);
-        for (const GlassPane& g : glass_panes(w)) pieces.push_back({g.s0, g.s1, g.z0, g.z1});  // a glazed door is shut
+        for (const GlassPane& g : glass_panes(w))
+          pieces.push_back({g.s0, g.s1, g.z0, g.z1});  // a glazed door is shut
         for (const WallPiece& p : pieces) {
           if (p.z0 > 0.0) continue;  // above a door: walked under
           OrientedRect r;
@@ -616,7 +646,8 @@ class SceneParser {
         r.size = bx.max.head<2>() - bx.min.head<2>();
         r.yaw = bx.yaw_deg * M_PI / 180.0;
         if (segment_meets(a.xy, b.xy, r)) {
-          warn(line, leg + "crosses box boxes[" + std::to_string(k) + "] (line " + std::to_string(bx.line) + ")");
+          warn(line,
+               leg + "crosses box boxes[" + std::to_string(k) + "] (line " + std::to_string(bx.line) + ")");
         }
       }
       for (const Polygon2& v : scene_.levels[a.level].voids) {
@@ -632,7 +663,8 @@ class SceneParser {
   // True when the void is the opening of a ramp joining `level` (the ramp is walked over it).
   bool void_holds_ramp(int level, const Polygon2& void_polygon) const {
     for (const Ramp& r : scene_.ramps) {
-      if ((r.from_level == level || r.to_level == level) && intersection_area(r.polygon, void_polygon) > 0.0) return true;
+      if ((r.from_level == level || r.to_level == level) && intersection_area(r.polygon, void_polygon) > 0.0)
+        return true;
     }
     return false;
   }
@@ -669,8 +701,6 @@ class SceneParser {
 
 }  // namespace
 
-
-
 Scene parse_scene(const std::string& text, const std::string& file, const std::string& base_dir) {
   const YamlMap root = YamlMap::load_string(text, file);
   Scene scene = SceneParser(root, base_dir).parse();
@@ -698,7 +728,8 @@ std::string recording_over_limits(const Scene& scene) {
   const double scans = sequence_scans(scene);
   if (scans <= limits::kMaxSequenceScans) return "";
   char what[160];
-  std::snprintf(what, sizeof what, "the path makes %.3g scans, more than %.0f", scans, limits::kMaxSequenceScans);
+  std::snprintf(what, sizeof what, "the path makes %.3g scans, more than %.0f", scans,
+                limits::kMaxSequenceScans);
   return what;
 }
 

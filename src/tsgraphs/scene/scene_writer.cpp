@@ -51,19 +51,26 @@ std::string polygon(const Polygon2& poly) {
 
 const char* railing_style(RailingStyle s) {
   switch (s) {
-    case RailingStyle::kSolid: return "solid";
-    case RailingStyle::kBars: return "bars";
-    case RailingStyle::kGlass: return "glass";
+    case RailingStyle::kSolid:
+      return "solid";
+    case RailingStyle::kBars:
+      return "bars";
+    case RailingStyle::kGlass:
+      return "glass";
   }
   return "solid";
 }
 
 const char* voxel_label(VoxelLabel l) {
   switch (l) {
-    case VoxelLabel::kWall: return "wall";
-    case VoxelLabel::kBox: return "box";
-    case VoxelLabel::kRailing: return "railing";
-    case VoxelLabel::kAuto: return "auto";
+    case VoxelLabel::kWall:
+      return "wall";
+    case VoxelLabel::kBox:
+      return "box";
+    case VoxelLabel::kRailing:
+      return "railing";
+    case VoxelLabel::kAuto:
+      return "auto";
   }
   return "auto";
 }
@@ -93,7 +100,8 @@ std::string scene_yaml(const Scene& scene, const std::string& header) {
           << fig(s.vertical_fov_max_deg) << "]\n";
     } else {
       out << "  vertical_angles_deg: [";
-      for (std::size_t i = 0; i < s.vertical_angles_deg.size(); ++i) out << (i ? ", " : "") << fig(s.vertical_angles_deg[i]);
+      for (std::size_t i = 0; i < s.vertical_angles_deg.size(); ++i)
+        out << (i ? ", " : "") << fig(s.vertical_angles_deg[i]);
       out << "]\n";
     }
   }
@@ -111,17 +119,18 @@ std::string scene_yaml(const Scene& scene, const std::string& header) {
   if (pf.type != PlatformType::kWheeled || pf.bob != wheeled.bob || pf.sway_deg != wheeled.sway_deg ||
       pf.yaw_jitter_deg != wheeled.yaw_jitter_deg || pf.vibration != wheeled.vibration ||
       pf.motion_distortion != wheeled.motion_distortion) {
-    out << "\nplatform:\n  type: " << platform_name(pf.type) << "\n  bob: " << fig(pf.bob) << "\n  step_hz: "
-        << fig(pf.step_hz) << "\n  sway_deg: " << fig(pf.sway_deg) << "\n  yaw_jitter_deg: " << fig(pf.yaw_jitter_deg)
-        << "\n  vibration: " << fig(pf.vibration) << "\n  vibration_hz: " << fig(pf.vibration_hz)
+    out << "\nplatform:\n  type: " << platform_name(pf.type) << "\n  bob: " << fig(pf.bob)
+        << "\n  step_hz: " << fig(pf.step_hz) << "\n  sway_deg: " << fig(pf.sway_deg)
+        << "\n  yaw_jitter_deg: " << fig(pf.yaw_jitter_deg) << "\n  vibration: " << fig(pf.vibration)
+        << "\n  vibration_hz: " << fig(pf.vibration_hz)
         << "\n  motion_distortion: " << (pf.motion_distortion ? "true" : "false") << "\n";
   }
   out << "\nodometry:\n  trans_noise_per_m: " << fig(scene.odometry.trans_noise_per_m)
       << "\n  yaw_noise_per_rad: " << fig(scene.odometry.yaw_noise_per_rad)
       << "\n  yaw_noise_per_m: " << fig(scene.odometry.yaw_noise_per_m) << "\n\nlevels:\n";
   for (const Level& l : scene.levels) {
-    out << "  - name: " << quoted(l.name) << "\n    elevation: " << num(l.elevation) << "\n    ceiling: " << num(l.ceiling)
-        << "\n    slab: " << polygon(l.slab) << "\n";
+    out << "  - name: " << quoted(l.name) << "\n    elevation: " << num(l.elevation)
+        << "\n    ceiling: " << num(l.ceiling) << "\n    slab: " << polygon(l.slab) << "\n";
     if (!l.voids.empty()) {
       out << "    voids:\n";
       for (const Polygon2& v : l.voids) out << "      - " << polygon(v) << "\n";
@@ -136,8 +145,8 @@ std::string scene_yaml(const Scene& scene, const std::string& header) {
         out << ", openings: [";
         for (std::size_t i = 0; i < w.openings.size(); ++i) {
           const Opening& o = w.openings[i];
-          out << (i ? ", " : "") << "{at: " << num(o.at) << ", width: " << num(o.width) << ", height: " << num(o.height)
-              << ", sill: " << num(o.sill);
+          out << (i ? ", " : "") << "{at: " << num(o.at) << ", width: " << num(o.width)
+              << ", height: " << num(o.height) << ", sill: " << num(o.sill);
           if (o.transmission < 1.0) out << ", transmission: " << num(o.transmission);
           out << "}";
         }
@@ -158,8 +167,9 @@ std::string scene_yaml(const Scene& scene, const std::string& header) {
   if (!scene.boxes.empty()) {
     out << "\nboxes:\n";
     for (const Box& b : scene.boxes) {
-      out << "  - {level: " << level_name(b.level) << ", min: [" << num(b.min.x()) << ", " << num(b.min.y()) << ", "
-          << num(b.min.z()) << "], max: [" << num(b.max.x()) << ", " << num(b.max.y()) << ", " << num(b.max.z()) << "]";
+      out << "  - {level: " << level_name(b.level) << ", min: [" << num(b.min.x()) << ", " << num(b.min.y())
+          << ", " << num(b.min.z()) << "], max: [" << num(b.max.x()) << ", " << num(b.max.y()) << ", "
+          << num(b.max.z()) << "]";
       if (b.yaw_deg != 0.0) out << ", yaw_deg: " << fig(b.yaw_deg);
       out << ", label: " << quoted(b.label) << "}\n";
     }
@@ -167,23 +177,25 @@ std::string scene_yaml(const Scene& scene, const std::string& header) {
   if (!scene.voxel_maps.empty()) {
     out << "\nvoxel_maps:\n";
     for (const VoxelMap& v : scene.voxel_maps) {
-      out << "  - {file: " << quoted(v.file) << ", voxel_size: " << fig(v.voxel_size) << ", level: " << level_name(v.level)
-          << ", label: " << voxel_label(v.label) << ", offset: [" << num(v.offset.x()) << ", " << num(v.offset.y()) << ", "
-          << num(v.offset.z()) << "], yaw_deg: " << fig(v.yaw_deg) << "}\n";
+      out << "  - {file: " << quoted(v.file) << ", voxel_size: " << fig(v.voxel_size)
+          << ", level: " << level_name(v.level) << ", label: " << voxel_label(v.label) << ", offset: ["
+          << num(v.offset.x()) << ", " << num(v.offset.y()) << ", " << num(v.offset.z())
+          << "], yaw_deg: " << fig(v.yaw_deg) << "}\n";
     }
   }
   if (!scene.ramps.empty()) {
     out << "\nramps:\n";
     for (const Ramp& r : scene.ramps) {
       out << "  - {from_level: " << level_name(r.from_level) << ", to_level: " << level_name(r.to_level)
-          << ", polygon: " << polygon(r.polygon) << ", axis: [" << fig(r.axis.x()) << ", " << fig(r.axis.y()) << "]}\n";
+          << ", polygon: " << polygon(r.polygon) << ", axis: [" << fig(r.axis.x()) << ", " << fig(r.axis.y())
+          << "]}\n";
     }
   }
   if (!scene.rooms.empty()) {
     out << "\nrooms:\n";
     for (const Room& r : scene.rooms)
-      out << "  - {name: " << quoted(r.name) << ", level: " << level_name(r.level) << ", polygon: " << polygon(r.polygon)
-          << "}\n";
+      out << "  - {name: " << quoted(r.name) << ", level: " << level_name(r.level)
+          << ", polygon: " << polygon(r.polygon) << "}\n";
   }
   if (!scene.people.empty()) {
     out << "\npeople:\n";
@@ -204,8 +216,8 @@ std::string scene_yaml(const Scene& scene, const std::string& header) {
     level = w.level;
     out << "]\n";
   }
-  out << "  closed: " << (t.closed ? "true" : "false") << "\n  laps: " << t.laps << "\n  speed: " << fig(t.speed)
-      << "\n  yaw_rate_deg: " << fig(t.yaw_rate_deg) << "\n";
+  out << "  closed: " << (t.closed ? "true" : "false") << "\n  laps: " << t.laps
+      << "\n  speed: " << fig(t.speed) << "\n  yaw_rate_deg: " << fig(t.yaw_rate_deg) << "\n";
   return out.str();
 }
 

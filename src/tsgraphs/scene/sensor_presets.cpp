@@ -6,7 +6,7 @@ namespace {
 struct Preset {
   const char* name;
   int channels;
-  int columns;          // at 10 Hz
+  int columns;  // at 10 Hz
   double fov_min_deg;
   double fov_max_deg;
   double beam_step_deg;  // > 0: the datasheet's fixed spacing from fov_max down
@@ -40,8 +40,8 @@ const std::vector<std::string>& preset_names() {
 std::vector<double> evenly_spaced_angles(int channels, double min_deg, double max_deg) {
   std::vector<double> angles(static_cast<std::size_t>(std::max(channels, 0)));
   for (int i = 0; i < channels; ++i) {
-    angles[i] = channels == 1 ? 0.5 * (min_deg + max_deg)
-                              : max_deg - (max_deg - min_deg) * i / (channels - 1.0);
+    angles[i] =
+        channels == 1 ? 0.5 * (min_deg + max_deg) : max_deg - (max_deg - min_deg) * i / (channels - 1.0);
   }
   return angles;
 }

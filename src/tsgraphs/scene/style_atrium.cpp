@@ -6,16 +6,16 @@
 namespace tsgraphs::scene {
 namespace {
 
-constexpr double kRingMin = 1.8;        // m: ring corridor widths
+constexpr double kRingMin = 1.8;  // m: ring corridor widths
 constexpr double kRingMax = 3.5;
-constexpr double kRoomDepthMin = 3.0;   // m: rooms off the ring
+constexpr double kRoomDepthMin = 3.0;  // m: rooms off the ring
 constexpr double kRoomDepthMax = 8.0;
-constexpr double kVoidMin = 3.0;        // m: the smallest side of a void
-constexpr double kBridgeMin = 1.5;      // m: a bridge between two voids
+constexpr double kVoidMin = 3.0;    // m: the smallest side of a void
+constexpr double kBridgeMin = 1.5;  // m: a bridge between two voids
 constexpr double kBridgeMax = 3.0;
 constexpr double kTwoVoidChance = 0.35;
-constexpr double kLongSideRooms = 0.85; // chance of rooms along each long side
-constexpr double kShortSideRooms = 0.5; // along each short side
+constexpr double kLongSideRooms = 0.85;  // chance of rooms along each long side
+constexpr double kShortSideRooms = 0.5;  // along each short side
 
 }  // namespace
 
@@ -39,8 +39,10 @@ void fill_atrium(FloorPlan* plan, const Region& region, Rng& rng, const std::str
   const double xw = x0 + dw, xe = x1 - de, ys = y0 + ds, yn = y1 - dn;
   const int s = plan->add_rect(prefix + "corridor_south", SpaceKind::kCorridor, {xw, ys}, {xe, ys + cw});
   const int n = plan->add_rect(prefix + "corridor_north", SpaceKind::kCorridor, {xw, yn - cw}, {xe, yn});
-  const int w = plan->add_rect(prefix + "corridor_west", SpaceKind::kCorridor, {xw, ys + cw}, {xw + cw, yn - cw});
-  const int e = plan->add_rect(prefix + "corridor_east", SpaceKind::kCorridor, {xe - cw, ys + cw}, {xe, yn - cw});
+  const int w =
+      plan->add_rect(prefix + "corridor_west", SpaceKind::kCorridor, {xw, ys + cw}, {xw + cw, yn - cw});
+  const int e =
+      plan->add_rect(prefix + "corridor_east", SpaceKind::kCorridor, {xe - cw, ys + cw}, {xe, yn - cw});
   plan->open_joints.insert(plan->open_joints.end(), {{s, w}, {s, e}, {n, w}, {n, e}});
   const double vx0 = xw + cw, vx1 = xe - cw, vy0 = ys + cw, vy1 = yn - cw;
   const double cb = rng.uniform(kBridgeMin, kBridgeMax);

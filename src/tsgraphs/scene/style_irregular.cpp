@@ -8,14 +8,14 @@
 namespace tsgraphs::scene {
 namespace {
 
-constexpr double kDiagonalMinDeg = 30.0;   // the corridor's angle to the facade (the 30-60 degrees)
+constexpr double kDiagonalMinDeg = 30.0;  // the corridor's angle to the facade (the 30-60 degrees)
 constexpr double kDiagonalMaxDeg = 60.0;
-constexpr double kCorridorMin = 1.5;       // m: corridor widths of this style
+constexpr double kCorridorMin = 1.5;  // m: corridor widths of this style
 constexpr double kCorridorMax = 3.0;
-constexpr double kCutMin = 3.0;            // m between the walls that cut a side into rooms
+constexpr double kCutMin = 3.0;  // m between the walls that cut a side into rooms
 constexpr double kCutMax = 7.0;
-constexpr double kRoomAreaMin = 5.0;       // m^2: a smaller piece joins its neighbour
-constexpr double kCornerGapMin = 2.8;      // m from the pentagon's corners to the facade
+constexpr double kRoomAreaMin = 5.0;   // m^2: a smaller piece joins its neighbour
+constexpr double kCornerGapMin = 2.8;  // m from the pentagon's corners to the facade
 constexpr double kCornerGapMax = 4.0;
 constexpr double kCoreMin = 2.2;           // m: the central room's smallest radius
 constexpr double kSplitCornerArea = 55.0;  // m^2: a corner room this large is cut in two
@@ -30,7 +30,8 @@ void fill_diagonal(FloorPlan* plan, const Region& region, Rng& rng, const std::s
   const double cw = rng.uniform(kCorridorMin, kCorridorMax);
   const Vec2 d(std::cos(a), std::sin(a)), n(-d.y(), d.x());
   const Vec2 c = 0.5 * (region.lo + region.hi) + rng.uniform(-0.15, 0.15) * region.width() * Vec2::UnitX();
-  const Polygon2 rect = {region.lo, {region.hi.x(), region.lo.y()}, region.hi, {region.lo.x(), region.hi.y()}};
+  const Polygon2 rect = {
+      region.lo, {region.hi.x(), region.lo.y()}, region.hi, {region.lo.x(), region.hi.y()}};
   const Polygon2 strip = clip_half_plane(clip_half_plane(rect, c - 0.5 * cw * n, n), c + 0.5 * cw * n, -n);
   const int corridor = plan->add(prefix + "corridor_diagonal", SpaceKind::kCorridor, strip);
   for (const double sign : {1.0, -1.0}) {
@@ -71,7 +72,8 @@ void fill_diagonal(FloorPlan* plan, const Region& region, Rng& rng, const std::s
 
 void fill_pentagon(FloorPlan* plan, const Region& region, Rng& rng, const std::string& prefix) {
   const Vec2 c = 0.5 * (region.lo + region.hi);
-  const double r_out = 0.5 * std::min(region.width(), region.depth()) - rng.uniform(kCornerGapMin, kCornerGapMax);
+  const double r_out =
+      0.5 * std::min(region.width(), region.depth()) - rng.uniform(kCornerGapMin, kCornerGapMax);
   double cw = rng.uniform(kCorridorMin, kCorridorMax);
   const double apothem = std::cos(M_PI / 5.0);
   double r_in = r_out - cw / apothem;
@@ -102,7 +104,8 @@ void fill_pentagon(FloorPlan* plan, const Region& region, Rng& rng, const std::s
     if (std::abs(p.y() - region.hi.y()) < 1e-9) return W + H + (region.hi.x() - p.x());
     return 2 * W + H + (region.hi.y() - p.y());
   };
-  const Vec2 corners[4] = {region.lo, {region.hi.x(), region.lo.y()}, region.hi, {region.lo.x(), region.hi.y()}};
+  const Vec2 corners[4] = {
+      region.lo, {region.hi.x(), region.lo.y()}, region.hi, {region.lo.x(), region.hi.y()}};
   const double corner_s[4] = {0.0, W, W + H, 2 * W + H};
   const auto hit = [&](const Vec2& from) {
     const Vec2 dir = (from - c).normalized();
@@ -152,7 +155,8 @@ void fill_merged_rooms(FloorPlan* plan, const Region& region, Rng& rng, const st
   const double cw = std::min(rng.uniform(kCorridorMin, kCorridorMax), H - 4 * kRowMin);
   const double d1 = 0.5 * (H - cw) + rng.uniform(-0.1, 0.1) * (H - cw);
   const double x0 = region.lo.x(), y0 = region.lo.y();
-  const int corridor = plan->add_rect(prefix + "corridor", SpaceKind::kCorridor, {x0, y0 + d1}, {x0 + W, y0 + d1 + cw});
+  const int corridor =
+      plan->add_rect(prefix + "corridor", SpaceKind::kCorridor, {x0, y0 + d1}, {x0 + W, y0 + d1 + cw});
   // Each side: a front row on the corridor and a back row, cut independently.
   for (const bool south : {true, false}) {
     const double depth = south ? d1 : H - d1 - cw;
@@ -184,13 +188,14 @@ void fill_merged_rooms(FloorPlan* plan, const Region& region, Rng& rng, const st
       int room;
       if (best >= 0 && overlap >= kMergeStep && rng.chance(kMergeChance)) {
         back_taken[best] = true;
-        const Polygon2 outline = south ? stacked_outline(bx[best], bx[best + 1], by0, by1, fx[i], fx[i + 1], fy1)
-                                       : stacked_outline(fx[i], fx[i + 1], fy0, fy1, bx[best], bx[best + 1], by1);
+        const Polygon2 outline =
+            south ? stacked_outline(bx[best], bx[best + 1], by0, by1, fx[i], fx[i + 1], fy1)
+                  : stacked_outline(fx[i], fx[i + 1], fy0, fy1, bx[best], bx[best + 1], by1);
         room = plan->add(prefix + "room" + std::to_string(plan->spaces.size()), SpaceKind::kRoom, outline,
                          Furnishing::kOffice);
       } else {
-        room = plan->add_rect(prefix + "room" + std::to_string(plan->spaces.size()), SpaceKind::kRoom, {fx[i], fy0},
-                              {fx[i + 1], fy1}, Furnishing::kOffice);
+        room = plan->add_rect(prefix + "room" + std::to_string(plan->spaces.size()), SpaceKind::kRoom,
+                              {fx[i], fy0}, {fx[i + 1], fy1}, Furnishing::kOffice);
       }
       plan->doors.push_back(random_door(room, corridor, rng));
     }
@@ -208,13 +213,21 @@ void fill_irregular(FloorPlan* plan, const Region& region, Rng& rng, const std::
                     IrregularVariant variant) {
   if (variant == IrregularVariant::kAny) {
     const double u = rng.unit();
-    variant = u < 0.4 ? IrregularVariant::kDiagonal : u < 0.75 ? IrregularVariant::kPentagon : IrregularVariant::kMergedRooms;
+    variant = u < 0.4    ? IrregularVariant::kDiagonal
+              : u < 0.75 ? IrregularVariant::kPentagon
+                         : IrregularVariant::kMergedRooms;
   }
   switch (variant) {
-    case IrregularVariant::kDiagonal: fill_diagonal(plan, region, rng, prefix); break;
-    case IrregularVariant::kPentagon: fill_pentagon(plan, region, rng, prefix); break;
+    case IrregularVariant::kDiagonal:
+      fill_diagonal(plan, region, rng, prefix);
+      break;
+    case IrregularVariant::kPentagon:
+      fill_pentagon(plan, region, rng, prefix);
+      break;
     case IrregularVariant::kMergedRooms:
-    case IrregularVariant::kAny: fill_merged_rooms(plan, region, rng, prefix); break;
+    case IrregularVariant::kAny:
+      fill_merged_rooms(plan, region, rng, prefix);
+      break;
   }
 }
 

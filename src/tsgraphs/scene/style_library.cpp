@@ -7,16 +7,16 @@
 namespace tsgraphs::scene {
 namespace {
 
-constexpr double kNarrowMin = 1.2;      // m: the narrow part of the corridor
+constexpr double kNarrowMin = 1.2;  // m: the narrow part of the corridor
 constexpr double kNarrowMax = 1.8;
-constexpr double kWideMin = 2.5;        // m: its wide part
+constexpr double kWideMin = 2.5;  // m: its wide part
 constexpr double kWideMax = 4.0;
-constexpr double kHallMin = 6.0;        // m: the smallest hall side
-constexpr double kHallMax = 18.0;       // m: halls wider than this are split
+constexpr double kHallMin = 6.0;            // m: the smallest hall side
+constexpr double kHallMax = 18.0;           // m: halls wider than this are split
 constexpr double kReadingRoomChance = 0.5;  // of a row of small rooms along the far facade
 constexpr double kReadingDepthMin = 3.0;
 constexpr double kReadingDepthMax = 5.0;
-constexpr double kSecondDoorChance = 0.5;   // of a hall having two doors onto the corridor
+constexpr double kSecondDoorChance = 0.5;  // of a hall having two doors onto the corridor
 
 }  // namespace
 
@@ -41,8 +41,8 @@ void fill_library(FloorPlan* plan, const Region& region, Rng& rng, const std::st
   const auto halls = [&](double x0, double x1, double y, int corridor) {
     double x = x0;
     for (double w : split_length(x1 - x0, kHallMin, kHallMax, rng)) {
-      const int h = plan->add_rect(prefix + "hall" + std::to_string(plan->spaces.size()), SpaceKind::kHall, P(x, y),
-                                   P(x + w, top), Furnishing::kShelves);
+      const int h = plan->add_rect(prefix + "hall" + std::to_string(plan->spaces.size()), SpaceKind::kHall,
+                                   P(x, y), P(x + w, top), Furnishing::kShelves);
       plan->doors.push_back(random_door(h, corridor, rng));
       if (rng.chance(kSecondDoorChance)) plan->doors.push_back(random_door(h, corridor, rng));
       x += w;

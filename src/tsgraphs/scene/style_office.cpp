@@ -8,8 +8,8 @@ namespace {
 
 constexpr double kCorridorMin = 1.2;  // m: corridor widths drawn from [1.2, 3.5] (the range)
 constexpr double kCorridorMax = 3.5;
-constexpr double kRoomMin = 2.5;      // m: a block is at least one room deep
-constexpr double kBlockMax = 20.0;    // m: the deepest block (two rows of rooms)
+constexpr double kRoomMin = 2.5;    // m: a block is at least one room deep
+constexpr double kBlockMax = 20.0;  // m: the deepest block (two rows of rooms)
 
 enum class Layout { kDouble, kSingle, kBent, kBranch };
 
@@ -22,7 +22,8 @@ void fill_office(FloorPlan* plan, const Region& region, Rng& rng, const std::str
   const double cw = std::min(rng.uniform(kCorridorMin, kCorridorMax), H - kRoomMin);
   std::vector<Layout> layouts = {Layout::kSingle};
   if (H >= cw + 2 * kRoomMin) layouts.insert(layouts.end(), {Layout::kDouble, Layout::kDouble});
-  if (H >= cw + 2 * kRoomMin && W >= cw + 2 * kRoomMin) layouts.insert(layouts.end(), {Layout::kBent, Layout::kBranch});
+  if (H >= cw + 2 * kRoomMin && W >= cw + 2 * kRoomMin)
+    layouts.insert(layouts.end(), {Layout::kBent, Layout::kBranch});
   const Layout layout = rng.pick(layouts);
   const auto P = [&](double x, double y) { return Vec2(o.x() + x, o.y() + y); };
   const auto corridor = [&](const std::string& name, double x0, double y0, double x1, double y1) {

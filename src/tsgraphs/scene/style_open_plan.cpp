@@ -7,10 +7,10 @@
 namespace tsgraphs::scene {
 namespace {
 
-constexpr double kMeetingChance = 0.6;     // of a row of meeting rooms along one side
-constexpr double kMeetingDepthMin = 3.0;   // m
+constexpr double kMeetingChance = 0.6;    // of a row of meeting rooms along one side
+constexpr double kMeetingDepthMin = 3.0;  // m
 constexpr double kMeetingDepthMax = 5.0;
-constexpr double kHallMin = 10.0;          // m: what the hall keeps of the region's depth
+constexpr double kHallMin = 10.0;  // m: what the hall keeps of the region's depth
 
 }  // namespace
 
@@ -44,7 +44,8 @@ void fill_open_plan(FloorPlan* plan, const Region& region, Rng& rng, const std::
     }
   }
   const int h = plan->add_rect(prefix + "hall", SpaceKind::kHall, hall.lo, hall.hi, Furnishing::kOpenPlan);
-  if (hall.lo != region.lo || hall.hi != region.hi) fill_block(plan, rooms, side, h, rng, prefix + "meeting_");
+  if (hall.lo != region.lo || hall.hi != region.hi)
+    fill_block(plan, rooms, side, h, rng, prefix + "meeting_");
 }
 
 }  // namespace tsgraphs::scene

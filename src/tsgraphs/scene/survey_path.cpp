@@ -23,12 +23,12 @@ constexpr double kLevelMatch = 0.3;            // m between a pose's floor heigh
 /// a link's area, to the same cell of the linked grid.
 class PlanningGraph {
  public:
-  PlanningGraph(const std::vector<WalkableGrid>& grids, const std::vector<GridLink>& links, double min_clearance,
-                double centre_weight)
+  PlanningGraph(const std::vector<WalkableGrid>& grids, const std::vector<GridLink>& links,
+                double min_clearance, double centre_weight)
       : n_(grids.front().frame.size()), frame_(grids.front().frame) {
     for (const WalkableGrid& g : grids) {
-      if (g.frame.cols != frame_.cols || g.frame.rows != frame_.rows || g.frame.resolution != frame_.resolution ||
-          g.frame.origin != frame_.origin)
+      if (g.frame.cols != frame_.cols || g.frame.rows != frame_.rows ||
+          g.frame.resolution != frame_.resolution || g.frame.origin != frame_.origin)
         throw std::invalid_argument("survey path: the grids of all levels must share one frame");
     }
     passable_.assign(grids.size() * n_, 0);
@@ -85,7 +85,8 @@ class PlanningGraph {
       const std::size_t nb = g * n_ + frame_.index(cc, rr);
       if (!passable(nb)) continue;
       // Diagonal steps only where both straight neighbours are open: no cutting a corner.
-      if (k >= 4 && (!passable(g * n_ + frame_.index(cc, r)) || !passable(g * n_ + frame_.index(c, rr)))) continue;
+      if (k >= 4 && (!passable(g * n_ + frame_.index(cc, r)) || !passable(g * n_ + frame_.index(c, rr))))
+        continue;
       const double len = (k >= 4 ? M_SQRT2 : 1.0) * frame_.resolution;
       f(nb, 0.5 * len * (w0 + weight_[nb]));
     }
@@ -108,7 +109,8 @@ using QueueItem = std::pair<double, std::size_t>;
 
 /// Costs from `source` to each of `targets` (kInf where unreachable): Dijkstra, stopped once
 /// every target is settled.
-std::vector<double> costs_to(const PlanningGraph& graph, std::size_t source, const std::vector<std::size_t>& targets) {
+std::vector<double> costs_to(const PlanningGraph& graph, std::size_t source,
+                             const std::vector<std::size_t>& targets) {
   std::vector<double> cost(graph.num_nodes(), kInf);
   std::vector<std::uint8_t> is_target(graph.num_nodes(), 0);
   for (std::size_t t : targets) is_target[t] = 1;
@@ -213,8 +215,8 @@ bool line_passable(const PlanningGraph& graph, int grid, const Vec2& a, const Ve
 
 /// Douglas-Peucker on points[i..j] of one grid, splitting also where a straight leg would
 /// leave the passable cells; appends the kept points after i (i itself is already out).
-void simplify(const PlanningGraph& graph, int grid, const std::vector<Vec2>& pts, std::size_t i, std::size_t j,
-              double tolerance, std::vector<Vec2>* out) {
+void simplify(const PlanningGraph& graph, int grid, const std::vector<Vec2>& pts, std::size_t i,
+              std::size_t j, double tolerance, std::vector<Vec2>* out) {
   if (j <= i + 1) {
     if (j > i) out->push_back(pts[j]);
     return;
@@ -307,8 +309,8 @@ std::vector<Waypoint> plan_survey(const std::vector<WalkableGrid>& grids, const 
     for (std::size_t j = 0; j < stops.size(); ++j) {
       cost[i][j] = c[j];
       if (!std::isfinite(cost[i][j]))
-        throw std::invalid_argument("survey path: " + name(j) + " cannot be reached from " + name(i) + " with " +
-                                    std::to_string(config.clearance) + " m clearance");
+        throw std::invalid_argument("survey path: " + name(j) + " cannot be reached from " + name(i) +
+                                    " with " + std::to_string(config.clearance) + " m clearance");
     }
   }
   const std::vector<std::size_t> tour = order_stops(cost);
@@ -340,16 +342,19 @@ std::vector<Waypoint> plan_survey(const std::vector<WalkableGrid>& grids, const 
       std::vector<Vec2> kept;
       simplify(graph, grid, pts, 0, pts.size() - 1, config.simplify_tolerance, &kept);
       for (const Vec2& p : kept) push(p, grid);
-      if (b + 1 < chain.size()) push(lap.back().xy, graph.grid_of(chain[b + 1]));  // cross to the linked grid here
+      if (b + 1 < chain.size())
+        push(lap.back().xy, graph.grid_of(chain[b + 1]));  // cross to the linked grid here
       a = b + 1 < chain.size() ? b + 1 : b;
     }
   }
-  if (lap.size() > 1 && (lap.back().xy - lap.front().xy).norm() < 1e-9) lap.pop_back();  // closed: returns by itself
+  if (lap.size() > 1 && (lap.back().xy - lap.front().xy).norm() < 1e-9)
+    lap.pop_back();  // closed: returns by itself
   // Drop waypoints on a straight line (not where the level changes).
   std::vector<Waypoint> out;
   for (std::size_t i = 0; i < lap.size(); ++i) {
     const Waypoint& w = lap[i];
-    if (i > 0 && i + 1 < lap.size() && !out.empty() && out.back().level == w.level && lap[i + 1].level == w.level) {
+    if (i > 0 && i + 1 < lap.size() && !out.empty() && out.back().level == w.level &&
+        lap[i + 1].level == w.level) {
       const Vec2 d0 = (w.xy - out.back().xy).normalized(), d1 = (lap[i + 1].xy - w.xy).normalized();
       if (std::abs(d0.x() * d1.y() - d0.y() * d1.x()) < kCollinearSin && d0.dot(d1) > 0.0) continue;
     }

@@ -15,10 +15,10 @@ struct SurveyConfig {
   double clearance = 0.35;          ///< m kept from every obstacle by the whole path
   double plan_margin_cells = 1.0;   ///< planned this many cells wider still: the raster's error
   double simplify_tolerance = 0.2;  ///< m a straight leg may stray from the raster's shortest path
-  double centre_weight = 0.3;       ///< m: a step costs (1 + centre_weight / clearance), so paths keep mid-aisle
-  double stub_length = 0.1;         ///< m before a corner where the path stops to turn in place
-  int max_turn_fixes = 200;         ///< corners made turns in place at most, per path
-  double check_step = 0.02;         ///< m of travel between the poses whose clearance is checked
+  double centre_weight = 0.3;  ///< m: a step costs (1 + centre_weight / clearance), so paths keep mid-aisle
+  double stub_length = 0.1;    ///< m before a corner where the path stops to turn in place
+  int max_turn_fixes = 200;    ///< corners made turns in place at most, per path
+  double check_step = 0.02;    ///< m of travel between the poses whose clearance is checked
 };
 
 /// A place the tour must visit: a point on grid `grid` (an index into the grids given).

@@ -10,10 +10,10 @@
 namespace tsgraphs::scene {
 namespace {
 
-constexpr double kHeightStep = 0.05;       // m of travel between samples of the surface height
+constexpr double kHeightStep = 0.05;                     // m of travel between samples of the surface height
 constexpr double kMaxArcTurnRad = 170.0 * M_PI / 180.0;  // sharper corners turn in place
-constexpr double kMinTurnRad = 1e-6;       // straighter corners need no turn at all
-constexpr double kMaxStep = 0.25;          // m of height change between two samples that is a fall, not a slope
+constexpr double kMinTurnRad = 1e-6;                     // straighter corners need no turn at all
+constexpr double kMaxStep = 0.25;  // m of height change between two samples that is a fall, not a slope
 
 double heading(const Vec2& a, const Vec2& b) { return std::atan2(b.y() - a.y(), b.x() - a.x()); }
 
@@ -57,7 +57,8 @@ Trajectory::Trajectory(const Scene& scene)
   for (std::size_t i = 0; i + 1 < m; ++i) {
     if (lap_index < lap_vertex.size() && lap_vertex[lap_index] == i) {
       // A lap starts at this corner: at the arc's middle or when the turn in place begins.
-      lap_starts_.push_back(i == 0 ? 0.0 : (cut[i] > 0.0 ? duration_ - 0.5 * std::abs(turn[i]) / yaw_rate_ : duration_));
+      lap_starts_.push_back(
+          i == 0 ? 0.0 : (cut[i] > 0.0 ? duration_ - 0.5 * std::abs(turn[i]) / yaw_rate_ : duration_));
       ++lap_index;
     }
     if (i > 0 && cut[i] < 0.0) {
@@ -117,7 +118,8 @@ Vec2 Trajectory::xy_at(const Piece& p, double u, double* yaw) const {
 }
 
 const Trajectory::Piece& Trajectory::piece_at(double t) const {
-  auto it = std::upper_bound(pieces_.begin(), pieces_.end(), t, [](double v, const Piece& p) { return v < p.t0; });
+  auto it =
+      std::upper_bound(pieces_.begin(), pieces_.end(), t, [](double v, const Piece& p) { return v < p.t0; });
   return it == pieces_.begin() ? *it : *std::prev(it);
 }
 
@@ -169,10 +171,12 @@ void Trajectory::plan_heights(const Scene& scene) {
       char where[160];
       const bool off = !std::isfinite(best_gap);
       if (off && !was_off) {
-        std::snprintf(where, sizeof(where), "the path leaves every walkable surface at [%.2f, %.2f]", xy.x(), xy.y());
+        std::snprintf(where, sizeof(where), "the path leaves every walkable surface at [%.2f, %.2f]", xy.x(),
+                      xy.y());
         warnings_.emplace_back(where);
       } else if (!off && k > 0 && best_gap > kMaxStep) {
-        std::snprintf(where, sizeof(where), "the path %s %.2f m at [%.2f, %.2f] (off a ramp's side or into a void?)",
+        std::snprintf(where, sizeof(where),
+                      "the path %s %.2f m at [%.2f, %.2f] (off a ramp's side or into a void?)",
                       best < z ? "drops" : "jumps up", std::abs(best - z), xy.x(), xy.y());
         warnings_.emplace_back(where);
       }

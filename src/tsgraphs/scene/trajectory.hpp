@@ -41,10 +41,10 @@ class Trajectory {
   struct Piece {
     enum Kind { kLine, kArc, kTurn } kind;
     double t0, duration;
-    double s0;                     // distance travelled at the start
-    Vec2 p0, p1;                   // line: ends; arc: centre in p0; turn: place in p0
-    double yaw0, dyaw;             // heading at start and signed change
-    double radius;                 // arc
+    double s0;          // distance travelled at the start
+    Vec2 p0, p1;        // line: ends; arc: centre in p0; turn: place in p0
+    double yaw0, dyaw;  // heading at start and signed change
+    double radius;      // arc
   };
   void add_line(const Vec2& a, const Vec2& b);
   void add_arc(const Vec2& centre, double radius, double yaw0, double dyaw);
@@ -64,8 +64,8 @@ class Trajectory {
   double length_ = 0.0;
   int arc_turns_ = 0;
   int in_place_turns_ = 0;
-  double height_step_;             // spacing of the height profile, m
-  std::vector<double> heights_;    // surface height every height_step_ metres of travel
+  double height_step_;           // spacing of the height profile, m
+  std::vector<double> heights_;  // surface height every height_step_ metres of travel
   std::vector<std::string> warnings_;
 };
 

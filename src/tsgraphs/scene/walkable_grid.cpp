@@ -9,10 +9,12 @@
 namespace tsgraphs::scene {
 namespace {
 
-constexpr double kHalfDiagonal = 0.7072;  // of a cell, in cells: a shape within it of a centre touches the cell
-constexpr int kProbeRings = 4;            // rings of obstacle_distance's walkable-surface probe
-constexpr int kProbeDirections = 24;      // probes per ring (15 degrees apart)
-constexpr int kEdgeBisections = 12;       // halvings that place a surface edge between two rings (to 1e-4 of a ring)
+constexpr double kHalfDiagonal =
+    0.7072;                           // of a cell, in cells: a shape within it of a centre touches the cell
+constexpr int kProbeRings = 4;        // rings of obstacle_distance's walkable-surface probe
+constexpr int kProbeDirections = 24;  // probes per ring (15 degrees apart)
+constexpr int kEdgeBisections =
+    12;  // halvings that place a surface edge between two rings (to 1e-4 of a ring)
 
 /// An oriented rectangle: centre, unit axis along its length, half length and half width, and
 /// the heights it spans (relative to its level's floor).
@@ -36,11 +38,13 @@ std::vector<Slab2> blocking_shapes(const Scene& scene, int level, const Walkable
     const Vec2 dir = (w.to - w.from).normalized();
     for (const WallPiece& p : wall_pieces(w)) {
       if (p.z0 >= rules.headroom) continue;  // a lintel: walked under
-      shapes.push_back({w.from + 0.5 * (p.s0 + p.s1) * dir, dir, 0.5 * (p.s1 - p.s0), 0.5 * w.thickness, p.z0, p.z1});
+      shapes.push_back(
+          {w.from + 0.5 * (p.s0 + p.s1) * dir, dir, 0.5 * (p.s1 - p.s0), 0.5 * w.thickness, p.z0, p.z1});
     }
     for (const GlassPane& g : glass_panes(w)) {  // glass stops a walker as the wall does
       if (g.z0 >= rules.headroom) continue;
-      shapes.push_back({w.from + 0.5 * (g.s0 + g.s1) * dir, dir, 0.5 * (g.s1 - g.s0), 0.5 * w.thickness, g.z0, g.z1});
+      shapes.push_back(
+          {w.from + 0.5 * (g.s0 + g.s1) * dir, dir, 0.5 * (g.s1 - g.s0), 0.5 * w.thickness, g.z0, g.z1});
     }
   }
   for (const Railing& r : scene.railings) {
@@ -53,8 +57,8 @@ std::vector<Slab2> blocking_shapes(const Scene& scene, int level, const Walkable
     if (b.level != level || b.min.z() >= rules.headroom || b.max.z() <= 0.0) continue;
     const double yaw = b.yaw_deg * M_PI / 180.0;
     const Vec2 half = 0.5 * (b.max.head<2>() - b.min.head<2>());
-    shapes.push_back({0.5 * (b.min.head<2>() + b.max.head<2>()), Vec2(std::cos(yaw), std::sin(yaw)), half.x(), half.y(),
-                      b.min.z(), b.max.z()});
+    shapes.push_back({0.5 * (b.min.head<2>() + b.max.head<2>()), Vec2(std::cos(yaw), std::sin(yaw)), half.x(),
+                      half.y(), b.min.z(), b.max.z()});
   }
   return shapes;
 }
@@ -78,7 +82,8 @@ double WalkableGrid::clearance_at(const Vec2& p) const {
   return clearance[frame.index(c, r)];
 }
 
-WalkableGrid rasterise_walkable(const Scene& scene, int level, const GridFrame& frame, const WalkableRules& rules) {
+WalkableGrid rasterise_walkable(const Scene& scene, int level, const GridFrame& frame,
+                                const WalkableRules& rules) {
   WalkableGrid g;
   g.level = level;
   g.frame = frame;
@@ -94,10 +99,16 @@ WalkableGrid rasterise_walkable(const Scene& scene, int level, const GridFrame& 
   for (const Slab2& s : blocking_shapes(scene, level, rules)) {
     const double reach = std::abs(s.u.x()) * s.hl + std::abs(s.u.y()) * s.hw + touch;
     const double reach_y = std::abs(s.u.y()) * s.hl + std::abs(s.u.x()) * s.hw + touch;
-    const int c0 = std::max(0, static_cast<int>(std::floor((s.c.x() - reach - frame.origin.x()) / frame.resolution)));
-    const int c1 = std::min(frame.cols - 1, static_cast<int>(std::floor((s.c.x() + reach - frame.origin.x()) / frame.resolution)));
-    const int r0 = std::max(0, static_cast<int>(std::floor((s.c.y() - reach_y - frame.origin.y()) / frame.resolution)));
-    const int r1 = std::min(frame.rows - 1, static_cast<int>(std::floor((s.c.y() + reach_y - frame.origin.y()) / frame.resolution)));
+    const int c0 =
+        std::max(0, static_cast<int>(std::floor((s.c.x() - reach - frame.origin.x()) / frame.resolution)));
+    const int c1 =
+        std::min(frame.cols - 1,
+                 static_cast<int>(std::floor((s.c.x() + reach - frame.origin.x()) / frame.resolution)));
+    const int r0 =
+        std::max(0, static_cast<int>(std::floor((s.c.y() - reach_y - frame.origin.y()) / frame.resolution)));
+    const int r1 =
+        std::min(frame.rows - 1,
+                 static_cast<int>(std::floor((s.c.y() + reach_y - frame.origin.y()) / frame.resolution)));
     for (int r = r0; r <= r1; ++r) {
       for (int c = c0; c <= c1; ++c) {
         if (s.distance(frame.center(c, r)) <= touch) g.free[frame.index(c, r)] = 0;
@@ -123,7 +134,8 @@ double obstacle_distance(const Scene& scene, const Vec2& xy, double floor_z, dou
   const auto walkable = [&](const Vec2& p) {
     for (std::size_t l = 0; l < scene.levels.size(); ++l) {
       double z;
-      if (walkable_height(scene, static_cast<int>(l), p, &z) && std::abs(z - floor_z) <= rules.step) return true;
+      if (walkable_height(scene, static_cast<int>(l), p, &z) && std::abs(z - floor_z) <= rules.step)
+        return true;
     }
     return false;
   };
@@ -132,7 +144,8 @@ double obstacle_distance(const Scene& scene, const Vec2& xy, double floor_z, dou
     const double radius = ring * probe_radius / kProbeRings;
     double edge = std::numeric_limits<double>::infinity();
     for (int k = 0; k < kProbeDirections; ++k) {
-      const Vec2 dir(std::cos(2.0 * M_PI * k / kProbeDirections), std::sin(2.0 * M_PI * k / kProbeDirections));
+      const Vec2 dir(std::cos(2.0 * M_PI * k / kProbeDirections),
+                     std::sin(2.0 * M_PI * k / kProbeDirections));
       if (walkable(xy + radius * dir)) continue;
       // The edge lies between the last ring and this one: find it along this direction.
       double lo = (ring - 1) * probe_radius / kProbeRings, hi = radius;

@@ -18,7 +18,7 @@ GridFrame frame_covering(const Scene& scene, double resolution, double margin);
 
 /// One level's free space for planning.
 struct WalkableGrid {
-  int level = 0;                 ///< index into Scene::levels (or 0 for an imported map)
+  int level = 0;  ///< index into Scene::levels (or 0 for an imported map)
   GridFrame frame;
   std::vector<std::uint8_t> free;  ///< 1 where one may stand, one per cell
   std::vector<float> clearance;    ///< m from the cell's centre to the nearest blocked cell's centre
@@ -30,16 +30,18 @@ struct WalkableGrid {
 
 /// Heights that decide what blocks a walker (a robot or a person).
 struct WalkableRules {
-  double headroom = 2.0;  ///< m: a wall piece, box or railing starting below this blocks; above it is walked under
-  double step = 0.25;     ///< m: what ends this little above the feet is stepped over (and a surface
-                          ///< this far from them is not the walker's)
+  double headroom =
+      2.0;  ///< m: a wall piece, box or railing starting below this blocks; above it is walked under
+  double step = 0.25;  ///< m: what ends this little above the feet is stepped over (and a surface
+                       ///< this far from them is not the walker's)
 };
 
 /// The free space of `level` on `frame`: a cell is free when its centre is on the walkable
 /// surface (walkable_height) and inside no blocking wall piece (walls' solid pieces that begin
 /// below the headroom: everything but the lintels over doors), railing or box. Clearances
 /// are computed (compute_clearance).
-WalkableGrid rasterise_walkable(const Scene& scene, int level, const GridFrame& frame, const WalkableRules& rules = {});
+WalkableGrid rasterise_walkable(const Scene& scene, int level, const GridFrame& frame,
+                                const WalkableRules& rules = {});
 
 /// Fills grid->clearance with the exact Euclidean distance transform of the blocked cells
 /// (Felzenszwalb and Huttenlocher's two-pass lower envelope), in metres. Cells outside the

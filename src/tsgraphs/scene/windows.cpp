@@ -11,22 +11,22 @@ constexpr double kGlazedFrontChance = 0.25;   // of a wall between a room and a 
 constexpr double kOpenWindowChance = 0.15;    // of a window standing open (no pane)
 constexpr double kGlassMin = 0.5;             // share of rays a pane lets through, as the glass railings'
 constexpr double kGlassMax = 0.9;
-constexpr double kSillMin = 0.8;              // m: a window's sill (a desk's height and a little more)
+constexpr double kSillMin = 0.8;  // m: a window's sill (a desk's height and a little more)
 constexpr double kSillMax = 1.0;
-constexpr double kHeadMin = 2.0;              // m: its head (about a door's)
+constexpr double kHeadMin = 2.0;  // m: its head (about a door's)
 constexpr double kHeadMax = 2.2;
-constexpr double kLintelMin = 0.2;            // m of wall kept above a window's head
-constexpr double kWidthMin = 0.8;             // m: one window
+constexpr double kLintelMin = 0.2;  // m of wall kept above a window's head
+constexpr double kWidthMin = 0.8;   // m: one window
 constexpr double kWidthMax = 2.4;
-constexpr double kPierMin = 0.5;              // m of wall between two windows
+constexpr double kPierMin = 0.5;  // m of wall between two windows
 constexpr double kPierMax = 1.8;
-constexpr double kFrontSillMin = 0.9;         // m: a glazed front's sill (a parapet)
+constexpr double kFrontSillMin = 0.9;  // m: a glazed front's sill (a parapet)
 constexpr double kFrontSillMax = 1.1;
-constexpr double kFrontPaneMin = 1.0;         // m: the panes of a glazed front...
+constexpr double kFrontPaneMin = 1.0;  // m: the panes of a glazed front...
 constexpr double kFrontPaneMax = 2.5;
-constexpr double kMullion = 0.1;              // ...and the frames between them
-constexpr double kEndMargin = 0.4;            // m of solid wall (beyond half a wall) at each end: the corner
-constexpr double kDoorSpacing = 0.3;          // m of wall between a window and a door (floor_plan's spacing)
+constexpr double kMullion = 0.1;      // ...and the frames between them
+constexpr double kEndMargin = 0.4;    // m of solid wall (beyond half a wall) at each end: the corner
+constexpr double kDoorSpacing = 0.3;  // m of wall between a window and a door (floor_plan's spacing)
 
 struct Band {
   double sill, head, transmission;
@@ -46,7 +46,8 @@ bool clear_of_openings(const Wall& w, double a, double b, double* next) {
 }
 
 /// Windows along `w` between its end margins: widths and piers drawn from the given ranges.
-int glaze(Wall* w, const Band& band, double width_lo, double width_hi, double pier_lo, double pier_hi, Rng& rng) {
+int glaze(Wall* w, const Band& band, double width_lo, double width_hi, double pier_lo, double pier_hi,
+          Rng& rng) {
   const double length = (w->to - w->from).norm();
   const double margin = kEndMargin + 0.5 * w->thickness;
   const double hi = length - margin;
@@ -69,7 +70,8 @@ int glaze(Wall* w, const Band& band, double width_lo, double width_hi, double pi
     s += width + rng.uniform(pier_lo, pier_hi);
   }
   w->openings.insert(w->openings.end(), made.begin(), made.end());
-  std::sort(w->openings.begin(), w->openings.end(), [](const Opening& x, const Opening& y) { return x.at < y.at; });
+  std::sort(w->openings.begin(), w->openings.end(),
+            [](const Opening& x, const Opening& y) { return x.at < y.at; });
   return static_cast<int>(made.size());
 }
 

@@ -5,7 +5,8 @@
 
 namespace tsgraphs::sim {
 
-std::vector<Pose3> drift_odometry(const std::vector<Pose3>& truth, const scene::OdometryNoise& noise, std::uint64_t seed) {
+std::vector<Pose3> drift_odometry(const std::vector<Pose3>& truth, const scene::OdometryNoise& noise,
+                                  std::uint64_t seed) {
   std::vector<Pose3> odom;
   if (truth.empty()) return odom;
   // A stream of its own, so that range noise and drift do not share random numbers.
@@ -30,7 +31,8 @@ std::vector<Pose3> drift_odometry(const std::vector<Pose3>& truth, const scene::
     const double dyaw = gauss(rng);
     Pose3 noisy = delta;
     noisy.translation() += trans_std * dt;
-    noisy.linear() = Eigen::AngleAxisd(yaw_std * dyaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * delta.linear();
+    noisy.linear() =
+        Eigen::AngleAxisd(yaw_std * dyaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * delta.linear();
     odom.push_back(odom.back() * noisy);
   }
   return odom;

@@ -15,6 +15,7 @@ namespace tsgraphs::sim {
 /// translation std trans_noise_per_m * sqrt(d), in yaw std
 /// sqrt(yaw_noise_per_rad^2 * a + yaw_noise_per_m^2 * d). So after L metres the error of a
 /// straight run has std trans_noise_per_m * sqrt(L) per axis, whatever the scan rate.
-std::vector<Pose3> drift_odometry(const std::vector<Pose3>& truth, const scene::OdometryNoise& noise, std::uint64_t seed);
+std::vector<Pose3> drift_odometry(const std::vector<Pose3>& truth, const scene::OdometryNoise& noise,
+                                  std::uint64_t seed);
 
 }  // namespace tsgraphs::sim

@@ -10,7 +10,8 @@ People::People(const scene::Scene& scene) {
     Walker w;
     w.path = p.path;
     w.along.push_back(0.0);
-    for (std::size_t i = 1; i < p.path.size(); ++i) w.along.push_back(w.along.back() + (p.path[i] - p.path[i - 1]).norm());
+    for (std::size_t i = 1; i < p.path.size(); ++i)
+      w.along.push_back(w.along.back() + (p.path[i] - p.path[i - 1]).norm());
     w.speed = p.speed;
     w.offset = p.offset;
     w.floor = scene.levels.at(p.level).elevation;

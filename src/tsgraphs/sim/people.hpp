@@ -21,8 +21,8 @@ class People {
   /// The nearest person the ray from `origin` along unit `dir` meets at time t between
   /// min_range and the hit it has (or max_range when it has none): the hit becomes that
   /// person's (label kPerson). Returns whether it did.
-  bool occlude(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t, float min_range, float max_range,
-               RayHit* hit) const;
+  bool occlude(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t, float min_range,
+               float max_range, RayHit* hit) const;
 
  private:
   struct Walker {

@@ -12,7 +12,7 @@ namespace tsgraphs::sim {
 namespace {
 
 constexpr int kPacket = 16;
-constexpr int kMaxPassThrough = 4;     // glass panes one ray may pass before it counts as lost
+constexpr int kMaxPassThrough = 4;         // glass panes one ray may pass before it counts as lost
 constexpr float kPassThroughStep = 1e-3f;  // m beyond a pane where the ray goes on
 
 // A deterministic draw in [0, 1) for a ray meeting a pane: the same scan gives the same
@@ -53,7 +53,8 @@ BeamPattern BeamPattern::from_sensor(const scene::SensorSpec& sensor) {
     for (int c = 0; c < p.cols; ++c) {
       const double az = 2.0 * M_PI * c / p.cols;
       p.dirs[static_cast<std::size_t>(r) * p.cols + c] =
-          Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)).cast<float>();
+          Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el))
+              .cast<float>();
     }
   }
   return p;
@@ -73,8 +74,8 @@ struct RayCaster::Impl {
 
   // Fills one packet of up to 16 rays starting at column c0 of a row; ray i leaves from
   // origins[i * stride] turned by Rs[i * stride] (stride 0: one pose for the packet).
-  void trace_packet(const Eigen::Vector3f* origins, const Eigen::Matrix3f* Rs, int stride, const Eigen::Vector3f* dirs,
-                    int n, float min_range, float max_range, RayHit* out) const {
+  void trace_packet(const Eigen::Vector3f* origins, const Eigen::Matrix3f* Rs, int stride,
+                    const Eigen::Vector3f* dirs, int n, float min_range, float max_range, RayHit* out) const {
     alignas(64) int valid[kPacket];
     alignas(64) RTCRayHit16 rh;
     Eigen::Vector3f world_dir[kPacket];
@@ -105,10 +106,12 @@ struct RayCaster::Impl {
     rtcIntersect16(valid, scene, &ctx, &rh);
     for (int i = 0; i < n; ++i) {
       // A glass pane lets some rays through: follow them to what lies behind.
-      for (int pane = 0; any_glass && pane < kMaxPassThrough && rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID; ++pane) {
+      for (int pane = 0; any_glass && pane < kMaxPassThrough && rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+           ++pane) {
         const unsigned prim = rh.hit.primID[i];
         const Eigen::Vector3f origin(rh.ray.org_x[i], rh.ray.org_y[i], rh.ray.org_z[i]);
-        if (transmission[prim] <= 0.0f || pass_draw(origin, world_dir[i], prim, pane) >= transmission[prim]) break;
+        if (transmission[prim] <= 0.0f || pass_draw(origin, world_dir[i], prim, pane) >= transmission[prim])
+          break;
         RTCRayHit one;
         one.ray.org_x = origin.x();
         one.ray.org_y = origin.y();
@@ -163,8 +166,8 @@ RayCaster::RayCaster(const LabelledMesh& mesh) : impl_(std::make_unique<Impl>())
       vb[3 * i + 1] = mesh.vertices[i].y();
       vb[3 * i + 2] = mesh.vertices[i].z();
     }
-    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                              3 * sizeof(unsigned), mesh.triangles.size()));
+    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
       for (int k = 0; k < 3; ++k) ib[3 * i + k] = static_cast<unsigned>(mesh.triangles[i][k]);
     }
@@ -180,8 +183,8 @@ RayCaster::RayCaster(const LabelledMesh& mesh) : impl_(std::make_unique<Impl>())
 
 RayCaster::~RayCaster() = default;
 
-void RayCaster::cast_scan(const Pose3& sensor_pose, const BeamPattern& beams, float min_range, float max_range,
-                          std::vector<RayHit>* out) const {
+void RayCaster::cast_scan(const Pose3& sensor_pose, const BeamPattern& beams, float min_range,
+                          float max_range, std::vector<RayHit>* out) const {
   out->resize(beams.dirs.size());
   const Eigen::Vector3f origin = sensor_pose.translation().cast<float>();
   const Eigen::Matrix3f R = sensor_pose.linear().cast<float>();
@@ -190,7 +193,8 @@ void RayCaster::cast_scan(const Pose3& sensor_pose, const BeamPattern& beams, fl
       const std::size_t row0 = static_cast<std::size_t>(r) * beams.cols;
       for (int c = 0; c < beams.cols; c += kPacket) {
         const int n = std::min(kPacket, beams.cols - c);
-        impl_->trace_packet(&origin, &R, 0, &beams.dirs[row0 + c], n, min_range, max_range, &(*out)[row0 + c]);
+        impl_->trace_packet(&origin, &R, 0, &beams.dirs[row0 + c], n, min_range, max_range,
+                            &(*out)[row0 + c]);
       }
     }
   });
@@ -212,7 +216,8 @@ void RayCaster::cast_sweep(const std::vector<Pose3>& column_poses, const BeamPat
       const std::size_t row0 = static_cast<std::size_t>(r) * beams.cols;
       for (int c = 0; c < beams.cols; c += kPacket) {
         const int n = std::min(kPacket, beams.cols - c);
-        impl_->trace_packet(&origins[c], &Rs[c], 1, &beams.dirs[row0 + c], n, min_range, max_range, &(*out)[row0 + c]);
+        impl_->trace_packet(&origins[c], &Rs[c], 1, &beams.dirs[row0 + c], n, min_range, max_range,
+                            &(*out)[row0 + c]);
       }
     }
   });

@@ -42,8 +42,8 @@ class RayCaster {
 
   /// The same with column c's rays leaving from column_poses[c] (one per column): a sensor
   /// that moves while it sweeps.
-  void cast_sweep(const std::vector<Pose3>& column_poses, const BeamPattern& beams, float min_range, float max_range,
-                  std::vector<RayHit>* out) const;
+  void cast_sweep(const std::vector<Pose3>& column_poses, const BeamPattern& beams, float min_range,
+                  float max_range, std::vector<RayHit>* out) const;
 
   /// One ray in the world frame (for probes and tests).
   RayHit cast(const Eigen::Vector3f& origin, const Eigen::Vector3f& dir, float max_range) const;

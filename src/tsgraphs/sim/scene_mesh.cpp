@@ -17,8 +17,8 @@ namespace {
 
 double deg2rad(double d) { return d * M_PI / 180.0; }
 
-void add_region(LabelledMesh* mesh, const std::vector<Polygon2>& include, const std::vector<Polygon2>& exclude,
-                double z, PointLabel label) {
+void add_region(LabelledMesh* mesh, const std::vector<Polygon2>& include,
+                const std::vector<Polygon2>& exclude, double z, PointLabel label) {
   for (const Triangle2& t : triangulate_region(include, exclude)) {
     mesh->add_triangle({t[0].x(), t[0].y(), z}, {t[1].x(), t[1].y(), z}, {t[2].x(), t[2].y(), z}, label);
   }
@@ -59,8 +59,8 @@ void add_railing(LabelledMesh* mesh, const scene::Railing& r, double elevation) 
     return;
   }
   if (r.style == scene::RailingStyle::kSolid) {
-    mesh->add_box(mid, {0.5 * length, 0.5 * scene::RailingGeometry::kSolidThickness}, yaw, elevation, elevation + r.height,
-                  PointLabel::kRailing);
+    mesh->add_box(mid, {0.5 * length, 0.5 * scene::RailingGeometry::kSolidThickness}, yaw, elevation,
+                  elevation + r.height, PointLabel::kRailing);
     return;
   }
   const double top = elevation + r.height;
@@ -70,7 +70,8 @@ void add_railing(LabelledMesh* mesh, const scene::Railing& r, double elevation) 
   const int posts = static_cast<int>(std::floor(length / scene::RailingGeometry::kPostSpacing + 1e-9)) + 1;
   for (int k = 0; k < posts; ++k) {
     const double s = std::min(k * scene::RailingGeometry::kPostSpacing, length);
-    mesh->add_box(r.from + s * dir, {half_post, half_post}, yaw, elevation, rail_bottom, PointLabel::kRailing);
+    mesh->add_box(r.from + s * dir, {half_post, half_post}, yaw, elevation, rail_bottom,
+                  PointLabel::kRailing);
   }
   // A last post at the far end when the spacing does not land on it.
   if (length - (posts - 1) * scene::RailingGeometry::kPostSpacing > half_post * 2) {
@@ -96,7 +97,9 @@ void add_voxel_map(LabelledMesh* mesh, const scene::Scene& scene, const scene::V
   const double s = vm.voxel_size;
   // Exact indices (a packed key wraps far out); the shared key only hashes them.
   struct IndexHash {
-    std::size_t operator()(const Eigen::Vector3i& k) const { return KeyHash{}(voxel_key(k.x(), k.y(), k.z())); }
+    std::size_t operator()(const Eigen::Vector3i& k) const {
+      return KeyHash{}(voxel_key(k.x(), k.y(), k.z()));
+    }
   };
   std::unordered_set<Eigen::Vector3i, IndexHash> occupied;
   std::vector<Eigen::Vector3i> keys;
@@ -112,14 +115,18 @@ void add_voxel_map(LabelledMesh* mesh, const scene::Scene& scene, const scene::V
   const auto label_of = [&](const Eigen::Vector3i& k) {
     const double z_rel = origin.z() + s * k.z() + vm.offset.z();
     switch (vm.label) {
-      case scene::VoxelLabel::kWall: return PointLabel::kWall;
-      case scene::VoxelLabel::kBox: return PointLabel::kBox;
-      case scene::VoxelLabel::kRailing: return PointLabel::kRailing;
-      case scene::VoxelLabel::kAuto: break;
+      case scene::VoxelLabel::kWall:
+        return PointLabel::kWall;
+      case scene::VoxelLabel::kBox:
+        return PointLabel::kBox;
+      case scene::VoxelLabel::kRailing:
+        return PointLabel::kRailing;
+      case scene::VoxelLabel::kAuto:
+        break;
     }
-    return std::abs(z_rel) <= s                    ? PointLabel::kFloor
+    return std::abs(z_rel) <= s                   ? PointLabel::kFloor
            : std::abs(z_rel - level.ceiling) <= s ? PointLabel::kCeiling
-                                                    : PointLabel::kWall;
+                                                  : PointLabel::kWall;
   };
   // Faces between an occupied voxel and an empty one are the visible surface. The side faces
   // of a column of voxels are merged into one tall quad per run of the same label: a wall
@@ -138,7 +145,8 @@ void add_voxel_map(LabelledMesh* mesh, const scene::Scene& scene, const scene::V
   for (const Eigen::Vector3i& k : keys) {
     const PointLabel label = label_of(k);
     for (int d = 0; d < 4; ++d) {
-      if (!occupied.count(k + kSides[d])) sides.push_back({d, k.x(), k.y(), static_cast<std::uint32_t>(label), k.z()});
+      if (!occupied.count(k + kSides[d]))
+        sides.push_back({d, k.x(), k.y(), static_cast<std::uint32_t>(label), k.z()});
     }
     for (const Eigen::Vector3i& n : kUpDown) {
       if (occupied.count(k + n)) continue;
@@ -151,8 +159,8 @@ void add_voxel_map(LabelledMesh* mesh, const scene::Scene& scene, const scene::V
   std::sort(sides.begin(), sides.end());
   for (std::size_t i = 0; i < sides.size();) {
     std::size_t j = i + 1;
-    while (j < sides.size() && sides[j].dir == sides[i].dir && sides[j].x == sides[i].x && sides[j].y == sides[i].y &&
-           sides[j].label == sides[i].label && sides[j].z == sides[j - 1].z + 1)
+    while (j < sides.size() && sides[j].dir == sides[i].dir && sides[j].x == sides[i].x &&
+           sides[j].y == sides[i].y && sides[j].label == sides[i].label && sides[j].z == sides[j - 1].z + 1)
       ++j;
     const SideFace& f = sides[i];
     const Eigen::Vector3d n = kSides[f.dir].cast<double>();
@@ -180,19 +188,20 @@ void LabelledMesh::add_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d&
   transmission.push_back(transmission_);
 }
 
-void LabelledMesh::add_box(const Eigen::Vector2d& center, const Eigen::Vector2d& half_size, double yaw, double z0,
-                           double z1, PointLabel label, float transmission_) {
+void LabelledMesh::add_box(const Eigen::Vector2d& center, const Eigen::Vector2d& half_size, double yaw,
+                           double z0, double z1, PointLabel label, float transmission_) {
   const Vec2 ax(std::cos(yaw), std::sin(yaw));
   const Vec2 ay(-ax.y(), ax.x());
-  const Vec2 corners2[4] = {center - half_size.x() * ax - half_size.y() * ay,
-                            center + half_size.x() * ax - half_size.y() * ay,
-                            center + half_size.x() * ax + half_size.y() * ay,
-                            center - half_size.x() * ax + half_size.y() * ay};
+  const Vec2 corners2[4] = {
+      center - half_size.x() * ax - half_size.y() * ay, center + half_size.x() * ax - half_size.y() * ay,
+      center + half_size.x() * ax + half_size.y() * ay, center - half_size.x() * ax + half_size.y() * ay};
   const int base = static_cast<int>(vertices.size());
   for (double z : {z0, z1}) {
-    for (const Vec2& p : corners2) vertices.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(z));
+    for (const Vec2& p : corners2)
+      vertices.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(z));
   }
-  static const int kFaces[6][4] = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1}, {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}};
+  static const int kFaces[6][4] = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1},
+                                   {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}};
   for (const auto& f : kFaces) {
     triangles.emplace_back(base + f[0], base + f[1], base + f[2]);
     triangles.emplace_back(base + f[0], base + f[2], base + f[3]);
@@ -203,7 +212,6 @@ void LabelledMesh::add_box(const Eigen::Vector2d& center, const Eigen::Vector2d&
   }
 }
 
-
 // The slab between two storeys has a thickness (from the lower ceiling up to the upper
 // floor); inside a void its edge is a vertical face. Labelled wall: vertical structure, not
 // walkable ground.
@@ -211,7 +219,8 @@ static void add_void_edges(LabelledMesh* mesh, const scene::Scene& scene, int le
   const scene::Level& l = scene.levels[level];
   double below_ceiling = -std::numeric_limits<double>::infinity();
   for (const scene::Level& other : scene.levels) {
-    if (other.elevation < l.elevation) below_ceiling = std::max(below_ceiling, other.elevation + other.ceiling);
+    if (other.elevation < l.elevation)
+      below_ceiling = std::max(below_ceiling, other.elevation + other.ceiling);
   }
   if (!(below_ceiling < l.elevation)) return;  // no storey below, or no slab thickness
   for (const Polygon2& v : l.voids) {
@@ -225,7 +234,6 @@ static void add_void_edges(LabelledMesh* mesh, const scene::Scene& scene, int le
     }
   }
 }
-
 
 LabelledMesh build_scene_mesh(const scene::Scene& scene) {
   LabelledMesh mesh;

@@ -33,13 +33,15 @@ Pose3 gait(const scene::PlatformSpec& p, double t) {
   const double step = 2.0 * M_PI * p.step_hz * t;
   const double roll = p.sway_deg * kDeg * std::sin(0.5 * step);
   const double pitch = 0.5 * p.sway_deg * kDeg * std::sin(step + M_PI / 3.0);
-  const double yaw = p.yaw_jitter_deg * kDeg *
-                     (0.6 * std::sin(2.0 * M_PI * 0.23 * t + 0.4) + 0.4 * std::sin(2.0 * M_PI * 0.61 * t + 1.9));
+  const double yaw =
+      p.yaw_jitter_deg * kDeg *
+      (0.6 * std::sin(2.0 * M_PI * 0.23 * t + 0.4) + 0.4 * std::sin(2.0 * M_PI * 0.61 * t + 1.9));
   const double z = p.bob * std::sin(step) + p.vibration * std::sin(2.0 * M_PI * p.vibration_hz * t + 0.8);
   Pose3 T = Pose3::Identity();
-  T.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
+  T.linear() =
+      (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+       Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
   T.translation() = Eigen::Vector3d(0.0, 0.0, z);
   return T;
 }
@@ -48,14 +50,22 @@ Pose3 gait(const scene::PlatformSpec& p, double t) {
 
 float Reflectivity::of(std::uint32_t label) {
   switch (static_cast<PointLabel>(label)) {
-    case PointLabel::kFloor: return kFloor;
-    case PointLabel::kRamp: return kRamp;
-    case PointLabel::kCeiling: return kCeiling;
-    case PointLabel::kWall: return kWall;
-    case PointLabel::kRailing: return kRailing;
-    case PointLabel::kBox: return kBox;
-    case PointLabel::kPerson: return kPerson;
-    default: return 0.5f;
+    case PointLabel::kFloor:
+      return kFloor;
+    case PointLabel::kRamp:
+      return kRamp;
+    case PointLabel::kCeiling:
+      return kCeiling;
+    case PointLabel::kWall:
+      return kWall;
+    case PointLabel::kRailing:
+      return kRailing;
+    case PointLabel::kBox:
+      return kBox;
+    case PointLabel::kPerson:
+      return kPerson;
+    default:
+      return 0.5f;
   }
 }
 
@@ -100,7 +110,8 @@ PointCloud Simulator::scan(std::size_t k) const {
   if (!scene_.platform.motion_distortion) {
     const scene::SensorSpec& s = scene_.sensor;
     std::vector<RayHit> hits;
-    caster_->cast_scan(truth_.at(k), beams_, static_cast<float>(s.min_range), static_cast<float>(s.max_range), &hits);
+    caster_->cast_scan(truth_.at(k), beams_, static_cast<float>(s.min_range), static_cast<float>(s.max_range),
+                       &hits);
     add_people({truth_.at(k)}, times_.at(k), {}, &hits);
     return points_of(hits, k, {});
   }
@@ -122,12 +133,13 @@ PointCloud Simulator::scan(std::size_t k) const {
 PointCloud Simulator::scan_at(const Pose3& sensor_pose, std::uint64_t noise_index) const {
   const scene::SensorSpec& s = scene_.sensor;
   std::vector<RayHit> hits;
-  caster_->cast_scan(sensor_pose, beams_, static_cast<float>(s.min_range), static_cast<float>(s.max_range), &hits);
+  caster_->cast_scan(sensor_pose, beams_, static_cast<float>(s.min_range), static_cast<float>(s.max_range),
+                     &hits);
   return points_of(hits, noise_index, {});
 }
 
-void Simulator::add_people(const std::vector<Pose3>& column_poses, double stamp, const std::vector<float>& column_time,
-                           std::vector<RayHit>* hits) const {
+void Simulator::add_people(const std::vector<Pose3>& column_poses, double stamp,
+                           const std::vector<float>& column_time, std::vector<RayHit>* hits) const {
   if (people_->empty()) return;
   const scene::SensorSpec& s = scene_.sensor;
   tbb::parallel_for(0, beams_.rows, [&](int r) {
@@ -202,13 +214,14 @@ void write_sequence(const Simulator& sim, const std::string& out_dir,
   if (!scene.voxel_maps.empty()) {
     scene::Scene copy = scene;
     for (std::size_t i = 0; i < copy.voxel_maps.size(); ++i) {
-      const std::string inside =
-          "voxel_maps/" + std::to_string(i) + "_" + std::filesystem::path(copy.voxel_maps[i].file).filename().string();
+      const std::string inside = "voxel_maps/" + std::to_string(i) + "_" +
+                                 std::filesystem::path(copy.voxel_maps[i].file).filename().string();
       info.attached_files.emplace_back(copy.voxel_maps[i].file, inside);
       copy.voxel_maps[i].file = inside;
     }
-    info.scene_yaml = scene::scene_yaml(copy, "The scene " + scene.file + " as simulated into this sequence, its voxel maps "
-                                              "copied into voxel_maps/ (written by tsgraphs simulate).");
+    info.scene_yaml = scene::scene_yaml(copy, "The scene " + scene.file +
+                                                  " as simulated into this sequence, its voxel maps "
+                                                  "copied into voxel_maps/ (written by tsgraphs simulate).");
   }
   writer.commit(info);
 }

@@ -33,8 +33,8 @@ enum class NormalClass : std::uint8_t { kNone, kVertical, kHorizontal };
 // Point normals by PCA over the k nearest neighbours, oriented towards the sensor.
 struct Normals {
   std::vector<Eigen::Vector3f> normal;
-  std::vector<float> curvature;     ///< smallest eigenvalue over the sum
-  std::vector<bool> reliable;       ///< neighbourhood is plane-like, not line-like
+  std::vector<float> curvature;           ///< smallest eigenvalue over the sum
+  std::vector<bool> reliable;             ///< neighbourhood is plane-like, not line-like
   std::vector<std::uint32_t> neighbours;  ///< k per point, the kNN graph for region growing
 };
 
@@ -110,8 +110,8 @@ Normals estimate_normals(const std::vector<Eigen::Vector3f>& pts, int k) {
 // (no split for a tolerance <= 0). Groups come out ordered by their smallest point index, each
 // in increasing index order.
 std::vector<std::vector<std::uint32_t>> euclidean_clusters(const std::vector<Eigen::Vector3f>& pts,
-                                                           std::vector<std::uint32_t> idx, const Eigen::Vector3d& normal,
-                                                           double tolerance) {
+                                                           std::vector<std::uint32_t> idx,
+                                                           const Eigen::Vector3d& normal, double tolerance) {
   std::sort(idx.begin(), idx.end());
   if (!(tolerance > 0.0)) return {idx};
   const Eigen::Vector3d u = normal.unitOrthogonal();
@@ -174,7 +174,8 @@ std::vector<std::vector<std::uint32_t>> euclidean_clusters(const std::vector<Eig
     for (const std::uint32_t j : cells[c]) root_of_point[j] = find(c);
   }
   for (std::size_t j = 0; j < m; ++j) {  // increasing point index: deterministic group order
-    const auto [it, fresh] = group_of_root.emplace(root_of_point[j], static_cast<std::uint32_t>(groups.size()));
+    const auto [it, fresh] =
+        group_of_root.emplace(root_of_point[j], static_cast<std::uint32_t>(groups.size()));
     if (fresh) groups.emplace_back();
     groups[it->second].push_back(idx[j]);
   }
@@ -182,8 +183,8 @@ std::vector<std::vector<std::uint32_t>> euclidean_clusters(const std::vector<Eig
 }
 
 // Centroids of the points per voxel of edge `voxel`, in order of first appearance.
-std::vector<Eigen::Vector3f> downsample(const std::vector<Eigen::Vector3f>& pts, const std::vector<std::uint32_t>& idx,
-                                        double voxel) {
+std::vector<Eigen::Vector3f> downsample(const std::vector<Eigen::Vector3f>& pts,
+                                        const std::vector<std::uint32_t>& idx, double voxel) {
   std::vector<Eigen::Vector3f> out;
   if (!(voxel > 0.0)) {
     out.reserve(idx.size());
@@ -196,8 +197,7 @@ std::vector<Eigen::Vector3f> downsample(const std::vector<Eigen::Vector3f>& pts,
   std::vector<int> count;
   for (const std::uint32_t i : idx) {
     const Eigen::Vector3f& p = pts[i];
-    const auto [it, fresh] = slot.emplace(voxel_key(p, inv),
-                                          static_cast<std::uint32_t>(sum.size()));
+    const auto [it, fresh] = slot.emplace(voxel_key(p, inv), static_cast<std::uint32_t>(sum.size()));
     if (fresh) {
       sum.emplace_back(Eigen::Vector3d::Zero());
       count.push_back(0);
@@ -211,9 +211,9 @@ std::vector<Eigen::Vector3f> downsample(const std::vector<Eigen::Vector3f>& pts,
 }
 
 // One face: least-squares plane of its points, oriented towards the sensor (d > 0).
-bool make_observation(const std::vector<Eigen::Vector3f>& pts, const std::vector<std::uint32_t>& face, bool vertical,
-                      const Eigen::Matrix3d& R_map_keyframe, const PlaneExtractionConfig& config,
-                      PlaneObservation* obs) {
+bool make_observation(const std::vector<Eigen::Vector3f>& pts, const std::vector<std::uint32_t>& face,
+                      bool vertical, const Eigen::Matrix3d& R_map_keyframe,
+                      const PlaneExtractionConfig& config, PlaneObservation* obs) {
   const Fit fit = fit_plane(pts, face);
   if (!fit.ok) return false;
   Plane plane = Plane::from_point_normal(fit.centroid, fit.normal);
@@ -280,8 +280,10 @@ std::vector<PlaneObservation> extract_planes(const PointCloud& cloud, const Eige
   for (std::size_t i = 0; i < n; ++i) {
     if (!normals.reliable[i]) continue;
     const double nz = std::abs(normals.normal[i].dot(z_in_keyframe));
-    if (nz <= config.max_vertical_normal_z) cls[i] = NormalClass::kVertical;
-    else if (nz >= config.min_horizontal_normal_z) cls[i] = NormalClass::kHorizontal;
+    if (nz <= config.max_vertical_normal_z)
+      cls[i] = NormalClass::kVertical;
+    else if (nz >= config.min_horizontal_normal_z)
+      cls[i] = NormalClass::kHorizontal;
   }
 
   // Region growing over the kNN graph gives plane hypotheses: smoothest points seed first; a
@@ -368,8 +370,9 @@ std::vector<PlaneObservation> extract_planes(const PointCloud& cloud, const Eige
   }
 
   // Largest first; discovery order breaks ties.
-  std::stable_sort(planes.begin(), planes.end(),
-                   [](const PlaneObservation& a, const PlaneObservation& b) { return a.num_inliers > b.num_inliers; });
+  std::stable_sort(planes.begin(), planes.end(), [](const PlaneObservation& a, const PlaneObservation& b) {
+    return a.num_inliers > b.num_inliers;
+  });
   const std::size_t max_planes = static_cast<std::size_t>(std::max(0, config.max_planes));
   if (planes.size() > max_planes) planes.resize(max_planes);
   return planes;

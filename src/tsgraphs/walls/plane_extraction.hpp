@@ -13,19 +13,20 @@
 namespace tsgraphs::walls {
 
 struct PlaneExtractionConfig {
-  int normal_neighbours = 10;           ///< k nearest neighbours for point normals
-  double max_vertical_normal_z = 0.15;  ///< |n_z| (map frame) at most this: a wall candidate
-  double min_horizontal_normal_z = 0.95;///< |n_z| at least this: a floor/ceiling candidate
-  double distance_threshold = 0.05;     ///< inlier distance to a plane (m)
+  int normal_neighbours = 10;                ///< k nearest neighbours for point normals
+  double max_vertical_normal_z = 0.15;       ///< |n_z| (map frame) at most this: a wall candidate
+  double min_horizontal_normal_z = 0.95;     ///< |n_z| at least this: a floor/ceiling candidate
+  double distance_threshold = 0.05;          ///< inlier distance to a plane (m)
   double normal_angle_threshold_deg = 15.0;  ///< inlier normals within this of the plane's
-  int min_inliers = 150;                ///< smallest face kept (points after prefiltering)
-  double min_extent = 0.5;              ///< smallest horizontal length of a wall face (m): a stretch of wall between a door
-                                        ///< and a corner; a pillar's sides are faces too (the room layer does not let them
-                                        ///< narrow a space)
-  double cluster_tolerance = 0.4;       ///< Euclidean clustering gap that splits one plane into faces (m; <= 0: no split)
-  int max_planes = 30;                  ///< at most this many planes per keyframe
-  double max_range = 15.0;              ///< points farther from the sensor are not used (m)
-  double point_voxel = 0.2;             ///< inlier points kept per face are downsampled to this (m)
+  int min_inliers = 150;                     ///< smallest face kept (points after prefiltering)
+  double min_extent = 0.5;  ///< smallest horizontal length of a wall face (m): a stretch of wall between a
+                            ///< door and a corner; a pillar's sides are faces too (the room layer does not
+                            ///< let them narrow a space)
+  double cluster_tolerance =
+      0.4;                  ///< Euclidean clustering gap that splits one plane into faces (m; <= 0: no split)
+  int max_planes = 30;      ///< at most this many planes per keyframe
+  double max_range = 15.0;  ///< points farther from the sensor are not used (m)
+  double point_voxel = 0.2;  ///< inlier points kept per face are downsampled to this (m)
 
   template <class V>
   void visit(V& v) {
@@ -48,7 +49,7 @@ struct PlaneObservation {
   /// n.x + d = 0 with the S-Graphs sign convention: n points towards the sensor that saw the
   /// face, so d > 0 in the keyframe frame; the two faces of a wall are two planes.
   Plane plane;
-  bool vertical = true;                 ///< wall face; false: floor or ceiling
+  bool vertical = true;                                ///< wall face; false: floor or ceiling
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< of the inliers, keyframe frame
   int num_inliers = 0;
   double fit_rms = 0.0;                 ///< RMS distance of inliers to the plane (m)

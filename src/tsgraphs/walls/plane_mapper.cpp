@@ -17,7 +17,6 @@ Eigen::Array3i cell_of(const Eigen::Vector3f& p, double inv_size) {
   return (p.cast<double>() * inv_size).array().floor().cast<int>();
 }
 
-
 // Smallest cell of a hash (m): keeps cell keys finite for a zero radius or voxel.
 constexpr double kMinCell = 1e-3;
 
@@ -105,7 +104,8 @@ int PlaneMapper::associate(const PlaneObservation& obs, const Pose3& T_map_keyfr
   return best;
 }
 
-void PlaneMapper::add_landmark(int id, const PlaneObservation& obs, const Pose3& T_map_keyframe, int keyframe_id) {
+void PlaneMapper::add_landmark(int id, const PlaneObservation& obs, const Pose3& T_map_keyframe,
+                               int keyframe_id) {
   PlaneLandmark lm;
   lm.id = id;
   lm.plane = obs.plane.transformed(T_map_keyframe);
@@ -115,7 +115,8 @@ void PlaneMapper::add_landmark(int id, const PlaneObservation& obs, const Pose3&
   add_observation(id, obs, T_map_keyframe, keyframe_id);
 }
 
-void PlaneMapper::add_observation(int id, const PlaneObservation& obs, const Pose3& T_map_keyframe, int keyframe_id) {
+void PlaneMapper::add_observation(int id, const PlaneObservation& obs, const Pose3& T_map_keyframe,
+                                  int keyframe_id) {
   const auto it = landmarks_.find(id);
   if (it == landmarks_.end()) return;
   PlaneLandmark& lm = it->second;
@@ -215,7 +216,8 @@ std::vector<std::pair<int, int>> PlaneMapper::find_duplicates() const {
   return pairs;
 }
 
-void PlaneMapper::forget_keyframes(const std::vector<int>& keyframe_ids, const std::function<Pose3(int)>& keyframe_pose) {
+void PlaneMapper::forget_keyframes(const std::vector<int>& keyframe_ids,
+                                   const std::function<Pose3(int)>& keyframe_pose) {
   for (auto& [id, lm] : landmarks_) {
     bool forgot = false;
     for (const int keyframe_id : keyframe_ids) {

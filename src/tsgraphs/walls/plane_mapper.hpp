@@ -17,15 +17,15 @@
 namespace tsgraphs::walls {
 
 struct PlaneMapperConfig {
-  double sigma_angle_deg = 2.0;        ///< std of a plane's normal direction, for association
-  double sigma_distance = 0.05;        ///< std of a plane's offset (m), for association
-  double max_mahalanobis = 3.0;        ///< association gate on the Mahalanobis distance
-  double overlap_distance = 0.5;       ///< an observation point within this of a landmark point overlaps it (m)
-  double min_overlap_ratio = 0.05;     ///< share of observation points that must overlap
-  double merge_angle_deg = 3.0;        ///< duplicates: normals within this angle...
-  double merge_distance = 0.08;        ///< ...offsets within this (m)...
-  double merge_overlap_distance = 0.5; ///< ...and point sets within this of each other (m)
-  double landmark_voxel = 0.25;        ///< landmark point sets are downsampled to this (m)
+  double sigma_angle_deg = 2.0;     ///< std of a plane's normal direction, for association
+  double sigma_distance = 0.05;     ///< std of a plane's offset (m), for association
+  double max_mahalanobis = 3.0;     ///< association gate on the Mahalanobis distance
+  double overlap_distance = 0.5;    ///< an observation point within this of a landmark point overlaps it (m)
+  double min_overlap_ratio = 0.05;  ///< share of observation points that must overlap
+  double merge_angle_deg = 3.0;     ///< duplicates: normals within this angle...
+  double merge_distance = 0.08;     ///< ...offsets within this (m)...
+  double merge_overlap_distance = 0.5;  ///< ...and point sets within this of each other (m)
+  double landmark_voxel = 0.25;         ///< landmark point sets are downsampled to this (m)
 
   template <class V>
   void visit(V& v) {
@@ -44,7 +44,7 @@ struct PlaneMapperConfig {
 /// A mapped plane: its current value (set by the back-end) and the points seen on it.
 struct PlaneLandmark {
   int id = -1;
-  Plane plane;                          ///< map frame, normal towards the observers
+  Plane plane;  ///< map frame, normal towards the observers
   bool vertical = true;
   /// Observations: keyframe id -> inlier points in that keyframe's frame.
   std::map<int, std::vector<Eigen::Vector3f>> observations;
@@ -104,8 +104,8 @@ class PlaneMapper {
     std::map<int, Pose3> poses;
     PointHash near;
   };
-  void add_points(PlaneLandmark& lm, const std::vector<Eigen::Vector3f>& pts_keyframe, const Pose3& T_map_keyframe,
-                  int keyframe_id);
+  void add_points(PlaneLandmark& lm, const std::vector<Eigen::Vector3f>& pts_keyframe,
+                  const Pose3& T_map_keyframe, int keyframe_id);
   void rebuild(PlaneLandmark& lm, const std::function<Pose3(int)>& keyframe_pose);
 
   PlaneMapperConfig config_;
