@@ -1,0 +1,37 @@
+// `tsgraphs run`: the SLAM pipeline, scans in, a run folder out.
+#include <memory>
+#include <string>
+
+#include "command.hpp"
+#include "commands.hpp"
+#include "scan_source.hpp"
+
+namespace tsgraphs::app::cli {
+
+Command add_run(CLI::App& app, const GlobalOptions& global) {
+  struct Options {
+    ScanSourceOptions source;
+    std::string free_space;    ///< overrides room_layer.free_space_method when set
+    std::string room_trigger;  ///< overrides room_layer.room_trigger when set
+  };
+  auto opt = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand(
+      "run", "the SLAM pipeline: a sequence folder, a folder of scans or a bag in, a run folder out");
+  add_scan_source_options(*cmd, opt->source, "run folder to write");
+  cmd->add_option(
+         "--free-space", opt->free_space,
+         "traversable (TS-graphs, default) or esdf (S-Graphs+); overrides room_layer.free_space_method")
+      ->check(CLI::IsMember({"traversable", "esdf"}));
+  cmd->add_option("--room-trigger", opt->room_trigger,
+                  "flush (TS-graphs, default) or timer (S-Graphs+); overrides room_layer.room_trigger")
+      ->check(CLI::IsMember({"flush", "timer"}));
+  return {cmd, [opt, &global] {
+            ScanSource source = open_scan_source(opt->source, "run", global.quiet);
+            if (!opt->free_space.empty()) source.config.rooms.layer.free_space_method = opt->free_space;
+            if (!opt->room_trigger.empty()) source.config.rooms.layer.room_trigger = opt->room_trigger;
+            run(*source.sequence, opt->source.out, source.config, global.quiet, source.odometry);
+            return 0;
+          }};
+}
+
+}  // namespace tsgraphs::app::cli
