@@ -71,12 +71,17 @@ unsigned long long header_count(const std::string& path, int line_no, const std:
   return v;
 }
 
-// The header (PCD v0.7: every key known and given once, in the specification's order, FIELDS /
-// SIZE / TYPE / COUNT of one length, POINTS = WIDTH * HEIGHT), or an InputError at its line.
-PcdHeader parse_header(const std::string& path, const std::string& bytes) {
-  std::map<std::string, std::vector<std::string>> keys;
-  std::map<std::string, int> key_line;  // where each key was, for messages
-  PcdHeader h;
+// The header's keys as given: each one's values and its line.
+struct PcdKeys {
+  std::map<std::string, std::vector<std::string>> values;
+  std::map<std::string, int> line;  // where each key was, for messages
+};
+
+// The header's lines up to DATA (each key known and given once); sets where the body starts.
+PcdKeys read_header_keys(const std::string& path, const std::string& bytes, PcdHeader& h) {
+  PcdKeys k;
+  auto& keys = k.values;
+  auto& key_line = k.line;
   std::size_t at = 0;
   int line_no = 0;
   while (!keys.count("DATA")) {
@@ -110,6 +115,14 @@ PcdHeader parse_header(const std::string& path, const std::string& bytes) {
   }
   h.body = std::min(at, bytes.size());
   h.lines = line_no;
+  return k;
+}
+
+// The required keys there, in the specification's order, VIEWPOINT of 7 numbers and FIELDS /
+// SIZE / TYPE / COUNT of one length; `line_no` is the DATA line.
+void check_header_keys(const std::string& path, PcdKeys& k, int line_no) {
+  auto& keys = k.values;
+  auto& key_line = k.line;
   for (const char* required : {"FIELDS", "SIZE", "TYPE", "WIDTH", "POINTS"}) {
     if (!keys.count(required)) throw input_error(path, line_no, std::string("PCD header has no ") + required);
   }
@@ -132,20 +145,68 @@ PcdHeader parse_header(const std::string& path, const std::string& bytes) {
     throw input_error(path, key_line["FIELDS"],
                       "PCD header: FIELDS, SIZE, TYPE and COUNT disagree in length");
   }
-  auto number = [&](const std::string& key) -> unsigned long long {
-    if (keys[key].size() != 1)
-      throw input_error(path, key_line[key], "PCD header: " + key + " is not one number");
-    const unsigned long long v = header_count(path, key_line[key], key, keys[key][0], "");
-    if (v > kMaxPcdDimension) {
-      throw input_error(
-          path, key_line[key],
-          "PCD header: " + key + " " + keys[key][0] + " is larger than " + std::to_string(kMaxPcdDimension));
-    }
-    return v;
-  };
-  const unsigned long long width = number("WIDTH");
-  const unsigned long long height = keys.count("HEIGHT") ? number("HEIGHT") : 1;
-  h.points = number("POINTS");
+}
+
+// WIDTH, HEIGHT or POINTS: one whole number of at most 32 bits.
+unsigned long long header_dimension(const std::string& path, PcdKeys& k, const std::string& key) {
+  auto& keys = k.values;
+  auto& key_line = k.line;
+  if (keys[key].size() != 1)
+    throw input_error(path, key_line[key], "PCD header: " + key + " is not one number");
+  const unsigned long long v = header_count(path, key_line[key], key, keys[key][0], "");
+  if (v > kMaxPcdDimension) {
+    throw input_error(
+        path, key_line[key],
+        "PCD header: " + key + " " + keys[key][0] + " is larger than " + std::to_string(kMaxPcdDimension));
+  }
+  return v;
+}
+
+// Field `i`'s name, type, size and count (a PCD type, a count of 1 to 2^16); no offsets yet.
+PcdField header_field(const std::string& path, PcdKeys& k, std::size_t i) {
+  auto& keys = k.values;
+  auto& key_line = k.line;
+  PcdField f;
+  f.name = keys["FIELDS"][i];
+  const unsigned long long size = header_count(path, key_line["SIZE"], "SIZE", keys["SIZE"][i], f.name);
+  f.count =
+      keys.count("COUNT") ? header_count(path, key_line["COUNT"], "COUNT", keys["COUNT"][i], f.name) : 1;
+  const std::string& type = keys["TYPE"][i];
+  if (type != "F" && type != "I" && type != "U") {
+    throw input_error(
+        path, key_line["TYPE"],
+        "PCD header: TYPE '" + printable(type) + "' of field " + printable(f.name) + " is not F, I or U");
+  }
+  // The specification's types: floats of 4 or 8 bytes, integers of 1, 2, 4 or 8 (a 2-byte
+  // float has no C type; one was read as 4 bytes, past the last point: found by fuzzing).
+  const bool known =
+      type == "F" ? (size == 4 || size == 8) : (size == 1 || size == 2 || size == 4 || size == 8);
+  if (!known) {
+    throw input_error(path, key_line["SIZE"],
+                      "PCD header: field " + printable(f.name) + " of TYPE " + type + " and SIZE " +
+                          std::to_string(size) + ": not a PCD type (F 4 or 8, I and U 1, 2, 4 or 8)");
+  }
+  if (f.count < 1 || f.count > kMaxPcdFieldCount) {
+    throw input_error(path, key_line.count("COUNT") ? key_line["COUNT"] : key_line["FIELDS"],
+                      "PCD header: COUNT of field " + printable(f.name) + " must be 1 to " +
+                          std::to_string(kMaxPcdFieldCount));
+  }
+  f.type = type[0];
+  f.size = static_cast<unsigned>(size);
+  return f;
+}
+
+// The header (PCD v0.7: every key known and given once, in the specification's order, FIELDS /
+// SIZE / TYPE / COUNT of one length, POINTS = WIDTH * HEIGHT), or an InputError at its line.
+PcdHeader parse_header(const std::string& path, const std::string& bytes) {
+  PcdHeader h;
+  PcdKeys k = read_header_keys(path, bytes, h);
+  check_header_keys(path, k, h.lines);
+  auto& keys = k.values;
+  auto& key_line = k.line;
+  const unsigned long long width = header_dimension(path, k, "WIDTH");
+  const unsigned long long height = keys.count("HEIGHT") ? header_dimension(path, k, "HEIGHT") : 1;
+  h.points = header_dimension(path, k, "POINTS");
   if (h.points != width * height) {  // no overflow: both are at most 2^32 - 1
     throw input_error(path, key_line["POINTS"],
                       "PCD header: POINTS " + std::to_string(h.points) + " is not WIDTH * HEIGHT (" +
@@ -155,34 +216,8 @@ PcdHeader parse_header(const std::string& path, const std::string& bytes) {
   if (h.data != "ascii" && h.data != "binary" && h.data != "binary_compressed") {
     throw input_error(path, key_line["DATA"], "PCD header: DATA must be ascii, binary or binary_compressed");
   }
-  for (std::size_t i = 0; i < n_fields; ++i) {
-    PcdField f;
-    f.name = keys["FIELDS"][i];
-    const unsigned long long size = header_count(path, key_line["SIZE"], "SIZE", keys["SIZE"][i], f.name);
-    f.count =
-        keys.count("COUNT") ? header_count(path, key_line["COUNT"], "COUNT", keys["COUNT"][i], f.name) : 1;
-    const std::string& type = keys["TYPE"][i];
-    if (type != "F" && type != "I" && type != "U") {
-      throw input_error(
-          path, key_line["TYPE"],
-          "PCD header: TYPE '" + printable(type) + "' of field " + printable(f.name) + " is not F, I or U");
-    }
-    // The specification's types: floats of 4 or 8 bytes, integers of 1, 2, 4 or 8 (a 2-byte
-    // float has no C type; one was read as 4 bytes, past the last point: found by fuzzing).
-    const bool known =
-        type == "F" ? (size == 4 || size == 8) : (size == 1 || size == 2 || size == 4 || size == 8);
-    if (!known) {
-      throw input_error(path, key_line["SIZE"],
-                        "PCD header: field " + printable(f.name) + " of TYPE " + type + " and SIZE " +
-                            std::to_string(size) + ": not a PCD type (F 4 or 8, I and U 1, 2, 4 or 8)");
-    }
-    if (f.count < 1 || f.count > kMaxPcdFieldCount) {
-      throw input_error(path, key_line.count("COUNT") ? key_line["COUNT"] : key_line["FIELDS"],
-                        "PCD header: COUNT of field " + printable(f.name) + " must be 1 to " +
-                            std::to_string(kMaxPcdFieldCount));
-    }
-    f.type = type[0];
-    f.size = static_cast<unsigned>(size);
+  for (std::size_t i = 0; i < keys["FIELDS"].size(); ++i) {
+    PcdField f = header_field(path, k, i);
     f.offset = h.point_bytes;
     f.value = h.row_values;
     h.point_bytes += f.size * f.count;  // fields (< file size) x 8 x 2^16: no overflow
