@@ -119,59 +119,55 @@ std::string first_beyond(const std::vector<std::string>& files, std::size_t coun
   return std::string(": the first scan without a ") + what + " is " + files[count];
 }
 
-}  // namespace
-
-ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
-  // The scans.
-  if (!options.scans.empty()) {
-    name_ = options.scans;
-    files_ = glob_files(options.scans);
-    if (files_.empty()) throw input_error(options.scans, 0, "no scan file matches");
-  } else {
-    name_ = options.folder;
-    if (!is_folder(options.folder)) throw input_error(options.folder, 0, "not a folder");
-    files_ = scan_files_in(options.folder);
-    if (files_.empty()) files_ = scan_files_in(fs::path(options.folder) / "velodyne");
-    if (files_.empty()) {
-      // A sequence folder that lost a file: say which, not "no scans".
-      const fs::path d(options.folder);
-      const std::size_t in_scans = scan_files_in(d / "scans").size();
-      if (in_scans > 0) {
-        std::string missing;
-        for (const char* f : {"times.txt", "odom.txt"})
-          if (!is_file(d / f)) missing += std::string(missing.empty() ? "" : " and ") + f;
-        throw input_error(
-            options.folder, 0,
-            "scans/ holds " + std::to_string(in_scans) + " scans but " + missing +
-                (missing.find(" and ") != std::string::npos ? " are" : " is") +
-                " missing: a sequence folder needs times.txt and odom.txt (to run the scans alone, "
-                "--scans '" +
-                (d / "scans").string() + "/*')");
-      }
-      throw input_error(
-          options.folder, 0,
-          "no scans: neither a sequence folder (times.txt, odom.txt, scans/) nor .pcd or .bin files "
-          "(in it or in velodyne/)");
-    }
+// A sequence folder that lost a file: say which, not "no scans"; else say where scans were looked for.
+[[noreturn]] void throw_no_scans(const std::string& folder) {
+  const fs::path d(folder);
+  const std::size_t in_scans = scan_files_in(d / "scans").size();
+  if (in_scans > 0) {
+    std::string missing;
+    for (const char* f : {"times.txt", "odom.txt"})
+      if (!is_file(d / f)) missing += std::string(missing.empty() ? "" : " and ") + f;
+    throw input_error(folder, 0,
+                      "scans/ holds " + std::to_string(in_scans) + " scans but " + missing +
+                          (missing.find(" and ") != std::string::npos ? " are" : " is") +
+                          " missing: a sequence folder needs times.txt and odom.txt (to run the scans alone, "
+                          "--scans '" +
+                          (d / "scans").string() + "/*')");
   }
+  throw input_error(
+      folder, 0,
+      "no scans: neither a sequence folder (times.txt, odom.txt, scans/) nor .pcd or .bin files "
+      "(in it or in velodyne/)");
+}
+
+// The scans of `folder` or, if it has none, of its velodyne/ (KITTI's layout).
+std::vector<std::string> scans_in_folder(const std::string& folder) {
+  if (!is_folder(folder)) throw input_error(folder, 0, "not a folder");
+  std::vector<std::string> files = scan_files_in(folder);
+  if (files.empty()) files = scan_files_in(fs::path(folder) / "velodyne");
+  if (files.empty()) throw_no_scans(folder);
+  return files;
+}
+
+// Whether the scans are .pcd (else KITTI .bin); scans of both kinds, or of neither, are an error.
+bool scans_are_pcd(const std::vector<std::string>& files) {
   const auto is_pcd = [](const std::string& f) { return fs::path(f).extension() == ".pcd"; };
-  pcd_ = is_pcd(files_.front());
-  for (const std::string& f : files_) {
-    if (is_pcd(f) != pcd_)
+  const bool pcd = is_pcd(files.front());
+  for (const std::string& f : files) {
+    if (is_pcd(f) != pcd)
       throw input_error(f, 0,
-                        std::string("a ") + (pcd_ ? ".bin" : ".pcd") + " scan among " +
-                            (pcd_ ? ".pcd" : ".bin") + " scans: pass --scans GLOB");
+                        std::string("a ") + (pcd ? ".bin" : ".pcd") + " scan among " +
+                            (pcd ? ".pcd" : ".bin") + " scans: pass --scans GLOB");
     if (!is_pcd(f) && fs::path(f).extension() != ".bin")
       throw input_error(f, 0, "not a scan (.pcd or KITTI .bin): narrow --scans");
   }
-  const fs::path scan_dir = fs::path(files_.front()).parent_path();
-  const std::vector<fs::path> beside = {scan_dir, scan_dir.parent_path()};
-  const std::size_t n = files_.size();
+  return pcd;
+}
 
-  // The poses.
-  const std::string poses =
-      options.poses.empty() ? find_beside(beside, {"poses.txt", "odom.txt"}) : options.poses;
-  std::string format = poses.empty() ? "none" : options.pose_format;
+// The pose file's format: "none" without one, the one asked for, or for auto the one its first
+// line's field count tells.
+std::string pose_format(const std::string& poses, const std::string& requested) {
+  std::string format = poses.empty() ? "none" : requested;
   if (format == "auto") {
     const int fields = fields_on_first_line(poses);
     if (fields == kTumFields)
@@ -184,17 +180,77 @@ ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
                             " fields on the first line: neither TUM (8) nor KITTI (12); "
                             "set --pose-format");
   }
+  return format;
+}
+
+// The poses of `poses` into `odometry`; their stamps when they have them (TUM), else none.
+std::vector<double> read_poses(const std::string& poses, const std::string& format,
+                               std::vector<Pose3>& odometry) {
   std::vector<double> pose_stamps;
   if (format == "tum") {
     for (const StampedPose& p : read_tum(poses)) {
       pose_stamps.push_back(p.t);
-      info_.odometry.push_back(p.pose);
+      odometry.push_back(p.pose);
     }
   } else if (format == "kitti") {
-    info_.odometry = read_kitti_poses(poses);
+    odometry = read_kitti_poses(poses);
   } else if (format != "none") {
     throw input_error(poses, 0, "pose format '" + format + "': expected tum, kitti or auto");
   }
+  return pose_stamps;
+}
+
+// The times of a times file, one per scan, agreeing with the poses' stamps if they have them.
+std::vector<double> read_scan_times(const std::string& times, const std::vector<std::string>& files,
+                                    const std::string& poses, const std::vector<double>& pose_stamps) {
+  std::vector<double> scan_times = read_times(times);
+  if (scan_times.size() != files.size())
+    throw input_error(times, 0,
+                      "has " + std::to_string(scan_times.size()) + " times for " +
+                          std::to_string(files.size()) + " scans" +
+                          first_beyond(files, scan_times.size(), "time"));
+  if (!pose_stamps.empty()) check_stamps_agree(poses, pose_stamps, times, scan_times);
+  return scan_times;
+}
+
+// The poses' stamps as the scans' times: they may not go backwards.
+std::vector<double> times_of_stamps(const std::string& poses, const std::vector<double>& pose_stamps) {
+  for (std::size_t i = 1; i < pose_stamps.size(); ++i)
+    if (pose_stamps[i] < pose_stamps[i - 1])
+      throw input_error(poses, static_cast<int>(i) + 1, "times go backwards");
+  return pose_stamps;
+}
+
+// `n` times one scan period apart, from 0.
+std::vector<double> periodic_times(const std::string& name, std::size_t n, double scan_period) {
+  if (!(scan_period > 0.0)) throw input_error(name, 0, "scan period must be positive");
+  std::vector<double> times;
+  for (std::size_t i = 0; i < n; ++i) times.push_back(static_cast<double>(i) * scan_period);
+  return times;
+}
+
+}  // namespace
+
+ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
+  // The scans.
+  if (!options.scans.empty()) {
+    name_ = options.scans;
+    files_ = glob_files(options.scans);
+    if (files_.empty()) throw input_error(options.scans, 0, "no scan file matches");
+  } else {
+    name_ = options.folder;
+    files_ = scans_in_folder(options.folder);
+  }
+  pcd_ = scans_are_pcd(files_);
+  const fs::path scan_dir = fs::path(files_.front()).parent_path();
+  const std::vector<fs::path> beside = {scan_dir, scan_dir.parent_path()};
+  const std::size_t n = files_.size();
+
+  // The poses.
+  const std::string poses =
+      options.poses.empty() ? find_beside(beside, {"poses.txt", "odom.txt"}) : options.poses;
+  const std::vector<double> pose_stamps =
+      read_poses(poses, pose_format(poses, options.pose_format), info_.odometry);
   if (!poses.empty() && info_.odometry.size() != n)
     throw input_error(poses, 0,
                       "has " + std::to_string(info_.odometry.size()) + " poses for " + std::to_string(n) +
@@ -203,22 +259,12 @@ ScanFolderReader::ScanFolderReader(const ScanFolderOptions& options) {
 
   // The times.
   const std::string times = options.times.empty() ? find_beside(beside, {"times.txt"}) : options.times;
-  if (!times.empty()) {
-    info_.times = read_times(times);
-    if (info_.times.size() != n)
-      throw input_error(times, 0,
-                        "has " + std::to_string(info_.times.size()) + " times for " + std::to_string(n) +
-                            " scans" + first_beyond(files_, info_.times.size(), "time"));
-    if (!pose_stamps.empty()) check_stamps_agree(poses, pose_stamps, times, info_.times);
-  } else if (!pose_stamps.empty()) {
-    for (std::size_t i = 1; i < n; ++i)
-      if (pose_stamps[i] < pose_stamps[i - 1])
-        throw input_error(poses, static_cast<int>(i) + 1, "times go backwards");
-    info_.times = pose_stamps;
-  } else {
-    if (!(options.scan_period > 0.0)) throw input_error(name_, 0, "scan period must be positive");
-    for (std::size_t i = 0; i < n; ++i) info_.times.push_back(static_cast<double>(i) * options.scan_period);
-  }
+  if (!times.empty())
+    info_.times = read_scan_times(times, files_, poses, pose_stamps);
+  else if (!pose_stamps.empty())
+    info_.times = times_of_stamps(poses, pose_stamps);
+  else
+    info_.times = periodic_times(name_, n, options.scan_period);
 }
 
 PointCloud ScanFolderReader::scan(std::size_t index) const {
