@@ -87,6 +87,10 @@ class Reader {
   struct File;
   void read_summary_or_scan();
   bool read_index(std::string* why_not);
+  bool read_summary(std::uint64_t* summary_start, std::string* summary, std::string* why_not) const;
+  bool read_message_indexes(std::uint64_t chunk_offset,
+                            const std::map<std::uint16_t, std::uint64_t>& message_indexes,
+                            std::string* why_not);
   void scan();
   std::shared_ptr<const std::string> chunk_records(
       std::uint64_t chunk_offset) const;  // cached, one at a time

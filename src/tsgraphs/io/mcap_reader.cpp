@@ -1,48 +1,32 @@
+// MCAP files read: the summary's index when it is usable, else the data section from the start.
 #include "tsgraphs/io/mcap.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <mutex>
 #include <optional>
 #include <tuple>
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/compression.hpp"
+#include "tsgraphs/io/mcap_internal.hpp"
 
 namespace tsgraphs::io::mcap {
+
+using namespace internal;
+
 namespace {
 
-constexpr char kMagic[] = "\x89MCAP0\r\n";
-constexpr std::uint64_t kMagicBytes = 8;
-constexpr std::uint64_t kPrefixBytes = 9;          // opcode (1) and content length (8)
-constexpr std::uint64_t kFooterContentBytes = 20;  // summary_start, summary_offset_start, summary_crc
+constexpr std::uint64_t kPrefixBytes = 9;  // opcode (1) and content length (8)
 // A chunk's uncompressed records at most (as ROS1 bag chunks): a larger size word is corrupt,
 // and decompressing it would allocate what the file does not hold.
 constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{1} << 30;
-
-enum Op : std::uint8_t {
-  kHeader = 0x01,
-  kFooter = 0x02,
-  kSchema = 0x03,
-  kChannel = 0x04,
-  kMessage = 0x05,
-  kChunk = 0x06,
-  kMessageIndex = 0x07,
-  kChunkIndex = 0x08,
-  kStatistics = 0x0B,
-  kMetadata = 0x0C,
-  kMetadataIndex = 0x0D,
-  kSummaryOffset = 0x0E,
-  kDataEnd = 0x0F,
-};
 
 std::string op_name(std::uint8_t op) {
   static const char* const kNames[] = {
@@ -50,10 +34,6 @@ std::string op_name(std::uint8_t op) {
       "Chunk",    "Message Index",  "Chunk Index",    "Attachment", "Attachment Index", "Statistics",
       "Metadata", "Metadata Index", "Summary Offset", "Data End"};
   return op < sizeof kNames / sizeof kNames[0] ? kNames[op] : "opcode " + std::to_string(op);
-}
-
-std::uint32_t crc_of(const char* p, std::size_t n, std::uint32_t crc = 0) {
-  return static_cast<std::uint32_t>(::crc32_z(crc, reinterpret_cast<const Bytef*>(p), n));
 }
 
 template <class T>
@@ -146,50 +126,7 @@ std::string unpack(const std::string& compression, const char* src, std::uint64_
   return io::decompress(compression, src, n, size, path, where);
 }
 
-// ---- writing -------------------------------------------------------------------------------
-
-void put_u16(std::string& s, std::uint16_t v) { s.append({static_cast<char>(v), static_cast<char>(v >> 8)}); }
-void put_u32(std::string& s, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) s.push_back(static_cast<char>(v >> (8 * i)));
-}
-void put_u64(std::string& s, std::uint64_t v) {
-  for (int i = 0; i < 8; ++i) s.push_back(static_cast<char>(v >> (8 * i)));
-}
-void put_str(std::string& s, const std::string& v) {
-  put_u32(s, static_cast<std::uint32_t>(v.size()));
-  s += v;
-}
-void put_map(std::string& s, const std::map<std::string, std::string>& m) {
-  std::string entries;
-  for (const auto& [k, v] : m) put_str(entries, k), put_str(entries, v);
-  put_str(s, entries);
-}
-std::string record(std::uint8_t op, const std::string& content) {
-  std::string r(1, static_cast<char>(op));
-  put_u64(r, content.size());
-  return r + content;
-}
-
-std::string compress(Compression c, const std::string& in) {
-  if (c == Compression::zstd) return compress_zstd(in);
-  if (c == Compression::lz4) return compress_lz4(in);
-  return in;
-}
-
 }  // namespace
-
-const char* compression_name(Compression c) {
-  switch (c) {
-    case Compression::lz4:
-      return "lz4";
-    case Compression::zstd:
-      return "zstd";
-    default:
-      return "";
-  }
-}
-
-// ---- reading -------------------------------------------------------------------------------
 
 /// The file, read at offsets from any thread (pread).
 struct Reader::File {
@@ -273,7 +210,86 @@ void Reader::read_summary_or_scan() {
                    [&](const MessageRef& a, const MessageRef& b) { return position(a) < position(b); });
 }
 
-bool Reader::read_index(std::string* why) {
+namespace {
+
+Schema read_schema(Fields& r) {
+  Schema s;
+  s.id = r.num<std::uint16_t>("id");
+  s.name = r.str("name"), s.encoding = r.str("encoding"), s.data = r.str("data");
+  return s;
+}
+
+Channel read_channel(Fields& r) {
+  Channel c;
+  c.id = r.num<std::uint16_t>("id"), c.schema_id = r.num<std::uint16_t>("schema_id");
+  c.topic = r.str("topic"), c.message_encoding = r.str("message_encoding"),
+  c.metadata = r.string_map("metadata");
+  return c;
+}
+
+/// A Chunk Index record: its chunk, and where each channel's Message Index is.
+struct ChunkIndex {
+  std::uint64_t offset = 0, length = 0;
+  std::map<std::uint16_t, std::uint64_t> message_indexes;
+};
+
+/// The Chunk Index record `r`, whose content starts at `content`; its chunk must lie in the data
+/// section (before `summary_start`).
+ChunkIndex read_chunk_index(Fields& r, const char* content, std::uint64_t summary_start) {
+  ChunkIndex c;
+  r.num<std::uint64_t>("message_start_time"), r.num<std::uint64_t>("message_end_time");
+  c.offset = r.num<std::uint64_t>("chunk_start_offset"), c.length = r.num<std::uint64_t>("chunk_length");
+  const auto [start, count] = r.fixed_entries(10, "message_index_offsets");
+  for (std::uint64_t i = 0; i < count; ++i) {
+    const char* e = content + start + 10 * i;
+    c.message_indexes[little<std::uint16_t>(e)] = little<std::uint64_t>(e + 2);
+  }
+  if (c.offset < kMagicBytes || c.length > summary_start || c.offset > summary_start - c.length)
+    r.fail("its chunk is outside the data section");
+  return c;
+}
+
+/// What the summary section's records say of the messages.
+struct SummaryRecords {
+  std::vector<ChunkIndex> chunks;
+  std::optional<std::uint64_t> message_count;  // the Statistics record's, when there is one
+};
+
+/// The records of the summary section `summary` (at byte `summary_start`): its schemas and
+/// channels into `schemas` and `channels`, its chunk indexes and statistics returned.
+SummaryRecords read_summary_records(const std::string& summary, std::uint64_t summary_start,
+                                    const std::string& path, std::map<std::uint16_t, Schema>& schemas,
+                                    std::map<std::uint16_t, Channel>& channels) {
+  SummaryRecords out;
+  for (std::uint64_t at = 0; at < summary.size();) {
+    const std::uint64_t abs = summary_start + at;
+    if (summary.size() - at < kPrefixBytes)
+      throw input_error(path, 0, "a record at byte " + std::to_string(abs) + " is cut short");
+    const auto op = static_cast<std::uint8_t>(summary[at]);
+    const auto n = little<std::uint64_t>(summary.data() + at + 1);
+    if (n > summary.size() - at - kPrefixBytes) {
+      throw input_error(path, 0, record_at(op, abs) + " runs past the summary section");
+    }
+    Fields r(summary.data() + at + kPrefixBytes, n, path, record_at(op, abs));
+    if (op == kSchema) {
+      const Schema s = read_schema(r);
+      if (s.id != 0) schemas.emplace(s.id, s);
+    } else if (op == kChannel) {
+      const Channel c = read_channel(r);
+      channels.emplace(c.id, c);
+    } else if (op == kChunkIndex) {
+      out.chunks.push_back(read_chunk_index(r, summary.data() + at + kPrefixBytes, summary_start));
+    } else if (op == kStatistics) {
+      out.message_count = r.num<std::uint64_t>("message_count");
+    }
+    at += kPrefixBytes + n;
+  }
+  return out;
+}
+
+}  // namespace
+
+bool Reader::read_summary(std::uint64_t* summary_start, std::string* summary, std::string* why) const {
   const File& f = *file_;
   const std::uint64_t tail = kPrefixBytes + kFooterContentBytes + kMagicBytes;
   if (f.size < kMagicBytes + kPrefixBytes + tail) {
@@ -287,99 +303,69 @@ bool Reader::read_index(std::string* why) {
     *why = "it does not end in an MCAP footer (cut short?)";
     return false;
   }
-  const auto summary_start = little<std::uint64_t>(end.data() + kPrefixBytes);
+  *summary_start = little<std::uint64_t>(end.data() + kPrefixBytes);
   const auto summary_crc = little<std::uint32_t>(end.data() + kPrefixBytes + 16);
-  if (summary_start == 0) return false;  // no summary: nothing to warn about
-  if (summary_start < kMagicBytes || summary_start > footer_at) {
+  if (*summary_start == 0) return false;  // no summary: nothing to warn about
+  if (*summary_start < kMagicBytes || *summary_start > footer_at) {
     throw input_error(path_, 0,
-                      "Footer: summary_start " + std::to_string(summary_start) + " is outside the file");
+                      "Footer: summary_start " + std::to_string(*summary_start) + " is outside the file");
   }
-  const std::string summary = f.read(summary_start, footer_at - summary_start, "the summary section");
+  *summary = f.read(*summary_start, footer_at - *summary_start, "the summary section");
   if (summary_crc != 0) {
-    const std::uint32_t crc = crc_of(end.data(), kPrefixBytes + 16, crc_of(summary.data(), summary.size()));
+    const std::uint32_t crc = crc_of(end.data(), kPrefixBytes + 16, crc_of(summary->data(), summary->size()));
     if (crc != summary_crc) {
       throw input_error(path_, 0,
-                        "the summary section at byte " + std::to_string(summary_start) +
+                        "the summary section at byte " + std::to_string(*summary_start) +
                             " does not match its CRC (corrupt)");
     }
   }
-  struct ChunkIndex {
-    std::uint64_t offset = 0, length = 0;
-    std::map<std::uint16_t, std::uint64_t> message_indexes;
-  };
-  std::vector<ChunkIndex> chunks;
-  std::optional<std::uint64_t> message_count;  // the Statistics record's, when there is one
-  for (std::uint64_t at = 0; at < summary.size();) {
-    const std::uint64_t abs = summary_start + at;
-    if (summary.size() - at < kPrefixBytes)
-      throw input_error(path_, 0, "a record at byte " + std::to_string(abs) + " is cut short");
-    const auto op = static_cast<std::uint8_t>(summary[at]);
-    const auto n = little<std::uint64_t>(summary.data() + at + 1);
-    if (n > summary.size() - at - kPrefixBytes) {
-      throw input_error(path_, 0, record_at(op, abs) + " runs past the summary section");
-    }
-    Fields r(summary.data() + at + kPrefixBytes, n, path_, record_at(op, abs));
-    if (op == kSchema) {
-      Schema s;
-      s.id = r.num<std::uint16_t>("id");
-      s.name = r.str("name"), s.encoding = r.str("encoding"), s.data = r.str("data");
-      if (s.id != 0) schemas_.emplace(s.id, s);
-    } else if (op == kChannel) {
-      Channel c;
-      c.id = r.num<std::uint16_t>("id"), c.schema_id = r.num<std::uint16_t>("schema_id");
-      c.topic = r.str("topic"), c.message_encoding = r.str("message_encoding"),
-      c.metadata = r.string_map("metadata");
-      channels_.emplace(c.id, c);
-    } else if (op == kChunkIndex) {
-      ChunkIndex c;
-      r.num<std::uint64_t>("message_start_time"), r.num<std::uint64_t>("message_end_time");
-      c.offset = r.num<std::uint64_t>("chunk_start_offset"), c.length = r.num<std::uint64_t>("chunk_length");
-      const auto [start, count] = r.fixed_entries(10, "message_index_offsets");
-      for (std::uint64_t i = 0; i < count; ++i) {
-        const char* e = summary.data() + at + kPrefixBytes + start + 10 * i;
-        c.message_indexes[little<std::uint16_t>(e)] = little<std::uint64_t>(e + 2);
-      }
-      if (c.offset < kMagicBytes || c.length > summary_start || c.offset > summary_start - c.length) {
-        throw input_error(path_, 0, record_at(op, abs) + ": its chunk is outside the data section");
-      }
-      chunks.push_back(std::move(c));
-    } else if (op == kStatistics) {
-      message_count = r.num<std::uint64_t>("message_count");
-    }
-    at += kPrefixBytes + n;
+  return true;
+}
+
+bool Reader::read_message_indexes(std::uint64_t chunk_offset,
+                                  const std::map<std::uint16_t, std::uint64_t>& message_indexes,
+                                  std::string* why) {
+  if (message_indexes.empty()) {
+    *why = "the chunk at byte " + std::to_string(chunk_offset) + " has no message index";
+    return false;
   }
-  if (chunks.empty()) return false;  // unchunked (or empty): the messages are found by a scan
-  for (const ChunkIndex& c : chunks) {
-    if (c.message_indexes.empty()) {
-      *why = "the chunk at byte " + std::to_string(c.offset) + " has no message index";
+  for (const auto& [channel, offset] : message_indexes) {
+    if (!channels_.count(channel)) {
+      *why = "the summary lacks channel " + std::to_string(channel) + " of the chunk at byte " +
+             std::to_string(chunk_offset);
       return false;
     }
-    for (const auto& [channel, offset] : c.message_indexes) {
-      if (!channels_.count(channel)) {
-        *why = "the summary lacks channel " + std::to_string(channel) + " of the chunk at byte " +
-               std::to_string(c.offset);
-        return false;
-      }
-      const auto [op, content] = f.record(offset, "the Message Index of channel " + std::to_string(channel));
-      if (op != kMessageIndex) {
-        throw input_error(path_, 0,
-                          "byte " + std::to_string(offset) + ": a Chunk Index points at a " + op_name(op) +
-                              " record, not a Message Index");
-      }
-      Fields r(content.data(), content.size(), path_, record_at(op, offset));
-      if (r.num<std::uint16_t>("channel_id") != channel)
-        r.fail("its channel is not the one the Chunk Index names");
-      const auto [start, count] = r.fixed_entries(16, "records");
-      for (std::uint64_t i = 0; i < count; ++i) {
-        const char* e = content.data() + start + 16 * i;
-        messages_.push_back({channel, little<std::uint64_t>(e), c.offset, little<std::uint64_t>(e + 8)});
-      }
+    const auto [op, content] =
+        file_->record(offset, "the Message Index of channel " + std::to_string(channel));
+    if (op != kMessageIndex) {
+      throw input_error(path_, 0,
+                        "byte " + std::to_string(offset) + ": a Chunk Index points at a " + op_name(op) +
+                            " record, not a Message Index");
+    }
+    Fields r(content.data(), content.size(), path_, record_at(op, offset));
+    if (r.num<std::uint16_t>("channel_id") != channel)
+      r.fail("its channel is not the one the Chunk Index names");
+    const auto [start, count] = r.fixed_entries(16, "records");
+    for (std::uint64_t i = 0; i < count; ++i) {
+      const char* e = content.data() + start + 16 * i;
+      messages_.push_back({channel, little<std::uint64_t>(e), chunk_offset, little<std::uint64_t>(e + 8)});
     }
   }
+  return true;
+}
+
+bool Reader::read_index(std::string* why) {
+  std::uint64_t summary_start = 0;
+  std::string summary;
+  if (!read_summary(&summary_start, &summary, why)) return false;
+  const SummaryRecords records = read_summary_records(summary, summary_start, path_, schemas_, channels_);
+  if (records.chunks.empty()) return false;  // unchunked (or empty): the messages are found by a scan
+  for (const ChunkIndex& c : records.chunks)
+    if (!read_message_indexes(c.offset, c.message_indexes, why)) return false;
   // Messages outside chunks have no index: the statistics tell whether there are any.
-  if (message_count && *message_count != messages_.size()) {
+  if (records.message_count && *records.message_count != messages_.size()) {
     *why = "its index holds " + std::to_string(messages_.size()) + " of the " +
-           std::to_string(*message_count) + " messages its statistics count";
+           std::to_string(*records.message_count) + " messages its statistics count";
     return false;
   }
   return true;
@@ -391,15 +377,10 @@ void Reader::scan() {
   std::uint32_t crc = crc_of(kMagic, kMagicBytes);
   const auto define = [&](std::uint8_t op, Fields& r) {
     if (op == kSchema) {
-      Schema s;
-      s.id = r.num<std::uint16_t>("id");
-      s.name = r.str("name"), s.encoding = r.str("encoding"), s.data = r.str("data");
+      const Schema s = read_schema(r);
       if (s.id != 0) schemas_.emplace(s.id, s);
     } else {
-      Channel c;
-      c.id = r.num<std::uint16_t>("id"), c.schema_id = r.num<std::uint16_t>("schema_id");
-      c.topic = r.str("topic"), c.message_encoding = r.str("message_encoding"),
-      c.metadata = r.string_map("metadata");
+      const Channel c = read_channel(r);
       channels_.emplace(c.id, c);
     }
   };
@@ -526,200 +507,6 @@ void Reader::read_each(const std::vector<MessageRef>& refs,
                        const std::function<void(const MessageRef&, const Message&)>& f) const {
   for (const MessageRef& ref : refs)
     f(ref, read(ref));  // the one-chunk cache keeps each chunk's decompression to one per run
-}
-
-// ---- writing -------------------------------------------------------------------------------
-
-struct Writer::State {
-  std::string path, tmp;
-  WriterOptions options;
-  std::ofstream out;
-  std::uint64_t pos = 0;
-  std::uint32_t data_crc = 0;
-  bool finished = false;
-  std::vector<std::string> schema_records, channel_records;  // for the summary
-  std::map<std::uint16_t, std::uint32_t> sequences;
-  std::map<std::uint16_t, std::uint64_t> channel_counts;
-  std::uint64_t message_count = 0, start_time = 0, end_time = 0;
-  std::uint32_t chunk_count = 0, metadata_count = 0;
-  // The open chunk.
-  std::string chunk;
-  std::uint64_t chunk_start = 0, chunk_end = 0;
-  bool chunk_has_messages = false;
-  std::map<std::uint16_t, std::string> chunk_message_index;  // per channel: (log_time, offset) entries
-  std::vector<std::string> chunk_indexes, metadata_indexes;
-
-  void put(const std::string& bytes) {
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    if (!out) throw std::runtime_error(tmp + ": write failed (disk full?)");
-    pos += bytes.size();
-  }
-  void put_data(const std::string& bytes) {
-    data_crc = crc_of(bytes.data(), bytes.size(), data_crc);
-    put(bytes);
-  }
-  void flush_chunk() {
-    if (chunk.empty()) return;
-    const std::string packed = compress(options.compression, chunk);
-    std::string content;
-    put_u64(content, chunk_has_messages ? chunk_start : 0),
-        put_u64(content, chunk_has_messages ? chunk_end : 0);
-    put_u64(content, chunk.size());
-    put_u32(content, crc_of(chunk.data(), chunk.size()));
-    put_str(content, compression_name(options.compression));
-    put_u64(content, packed.size());
-    content += packed;
-    const std::uint64_t chunk_at = pos;
-    const std::string chunk_record = record(kChunk, content);
-    put_data(chunk_record);
-    const std::uint64_t indexes_at = pos;
-    std::string offsets;
-    for (const auto& [channel, entries] : chunk_message_index) {
-      put_u16(offsets, channel), put_u64(offsets, pos);
-      std::string mi;
-      put_u16(mi, channel);
-      put_str(mi, entries);
-      put_data(record(kMessageIndex, mi));
-    }
-    std::string ci;
-    put_u64(ci, chunk_has_messages ? chunk_start : 0), put_u64(ci, chunk_has_messages ? chunk_end : 0);
-    put_u64(ci, chunk_at), put_u64(ci, chunk_record.size());
-    put_str(ci, offsets);
-    put_u64(ci, pos - indexes_at);
-    put_str(ci, compression_name(options.compression));
-    put_u64(ci, packed.size()), put_u64(ci, chunk.size());
-    chunk_indexes.push_back(record(kChunkIndex, ci));
-    ++chunk_count;
-    chunk.clear(), chunk_message_index.clear();
-    chunk_has_messages = false;
-  }
-};
-
-Writer::Writer(const std::string& path, WriterOptions options) : s_(std::make_unique<State>()) {
-  s_->path = path;
-  s_->tmp = path + ".tmp-" + std::to_string(::getpid());
-  s_->options = std::move(options);
-  s_->out.open(s_->tmp, std::ios::binary | std::ios::trunc);
-  if (!s_->out) throw input_error(path, 0, "cannot create the file (no folder, or no permission?)");
-  s_->put_data(std::string(kMagic, kMagicBytes));
-  std::string header;
-  put_str(header, s_->options.profile), put_str(header, s_->options.library);
-  s_->put_data(record(kHeader, header));
-}
-
-Writer::~Writer() {
-  if (!s_->finished) {
-    s_->out.close();
-    std::error_code ec;
-    std::filesystem::remove(s_->tmp, ec);
-  }
-}
-
-std::uint16_t Writer::add_schema(const std::string& name, const std::string& encoding,
-                                 const std::string& data) {
-  const auto id = static_cast<std::uint16_t>(s_->schema_records.size() + 1);
-  std::string c;
-  put_u16(c, id), put_str(c, name), put_str(c, encoding), put_str(c, data);
-  s_->schema_records.push_back(record(kSchema, c));
-  s_->chunk += s_->schema_records.back();  // before any message that needs it
-  return id;
-}
-
-std::uint16_t Writer::add_channel(std::uint16_t schema_id, const std::string& topic,
-                                  const std::string& message_encoding,
-                                  const std::map<std::string, std::string>& metadata) {
-  const auto id = static_cast<std::uint16_t>(s_->channel_records.size() + 1);
-  std::string c;
-  put_u16(c, id), put_u16(c, schema_id), put_str(c, topic), put_str(c, message_encoding),
-      put_map(c, metadata);
-  s_->channel_records.push_back(record(kChannel, c));
-  s_->chunk += s_->channel_records.back();
-  s_->channel_counts[id] = 0;
-  return id;
-}
-
-void Writer::write(std::uint16_t channel_id, std::uint64_t log_time, std::uint64_t publish_time,
-                   const std::string& data) {
-  if (channel_id == 0 || channel_id > s_->channel_records.size())
-    throw std::invalid_argument("mcap::Writer::write: no channel " + std::to_string(channel_id));
-  State& s = *s_;
-  std::string m;
-  put_u16(m, channel_id), put_u32(m, s.sequences[channel_id]++), put_u64(m, log_time),
-      put_u64(m, publish_time);
-  m += data;
-  std::string& index = s.chunk_message_index[channel_id];
-  put_u64(index, log_time), put_u64(index, s.chunk.size());
-  s.chunk += record(kMessage, m);
-  s.chunk_start = s.chunk_has_messages ? std::min(s.chunk_start, log_time) : log_time;
-  s.chunk_end = s.chunk_has_messages ? std::max(s.chunk_end, log_time) : log_time;
-  s.chunk_has_messages = true;
-  s.start_time = s.message_count ? std::min(s.start_time, log_time) : log_time;
-  s.end_time = s.message_count ? std::max(s.end_time, log_time) : log_time;
-  ++s.message_count;
-  ++s.channel_counts[channel_id];
-  if (s.chunk.size() >= s.options.chunk_size) s.flush_chunk();
-}
-
-void Writer::add_metadata(const std::string& name, const std::map<std::string, std::string>& metadata) {
-  std::string c;
-  put_str(c, name), put_map(c, metadata);
-  const std::string r = record(kMetadata, c);
-  std::string index;
-  put_u64(index, s_->pos), put_u64(index, r.size()), put_str(index, name);
-  s_->metadata_indexes.push_back(record(kMetadataIndex, index));
-  s_->put_data(r);
-  ++s_->metadata_count;
-}
-
-void Writer::finish() {
-  State& s = *s_;
-  s.flush_chunk();
-  std::string data_end;
-  put_u32(data_end, s.data_crc);
-  s.put(record(kDataEnd, data_end));
-  // Summary: each group of one opcode together, then where each group is.
-  const std::uint64_t summary_start = s.pos;
-  std::uint32_t crc = 0;
-  std::string offsets;
-  const auto group = [&](std::uint8_t op, const std::vector<std::string>& records) {
-    if (records.empty()) return;
-    const std::uint64_t start = s.pos;
-    for (const std::string& r : records) {
-      crc = crc_of(r.data(), r.size(), crc);
-      s.put(r);
-    }
-    std::string o(1, static_cast<char>(op));
-    put_u64(o, start), put_u64(o, s.pos - start);
-    offsets += record(kSummaryOffset, o);
-  };
-  std::string stats;
-  put_u64(stats, s.message_count);
-  put_u16(stats, static_cast<std::uint16_t>(s.schema_records.size()));
-  put_u32(stats, static_cast<std::uint32_t>(s.channel_records.size()));
-  put_u32(stats, 0), put_u32(stats, s.metadata_count), put_u32(stats, s.chunk_count);
-  put_u64(stats, s.start_time), put_u64(stats, s.end_time);
-  std::string counts;
-  for (const auto& [id, n] : s.channel_counts) put_u16(counts, id), put_u64(counts, n);
-  put_str(stats, counts);
-  group(kSchema, s.schema_records);
-  group(kChannel, s.channel_records);
-  group(kChunkIndex, s.chunk_indexes);
-  group(kStatistics, {record(kStatistics, stats)});
-  group(kMetadataIndex, s.metadata_indexes);
-  const std::uint64_t offsets_start = s.pos;
-  crc = crc_of(offsets.data(), offsets.size(), crc);
-  s.put(offsets);
-  std::string footer(1, static_cast<char>(kFooter));
-  put_u64(footer, kFooterContentBytes), put_u64(footer, summary_start), put_u64(footer, offsets_start);
-  put_u32(footer, crc_of(footer.data(), footer.size(), crc));
-  s.put(footer);
-  s.put(std::string(kMagic, kMagicBytes));
-  s.out.close();
-  if (!s.out) throw std::runtime_error(s.tmp + ": write failed (disk full?)");
-  std::error_code ec;
-  std::filesystem::rename(s.tmp, s.path, ec);
-  if (ec) throw input_error(s.path, 0, "cannot rename into place: " + ec.message());
-  s.finished = true;
 }
 
 }  // namespace tsgraphs::io::mcap
