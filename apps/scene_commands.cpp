@@ -95,10 +95,7 @@ void print_summary(const ImportMapOptions& options, const io::OccupancyMap& map,
       st.min_path_clearance, seconds, options.out.c_str(), pcd.empty() ? "" : " and ", pcd.c_str());
 }
 
-}  // namespace
-
-void import_map(const ImportMapOptions& options) {
-  namespace fs = std::filesystem;
+void check_import_options(const ImportMapOptions& options) {
   if (options.map.empty()) throw input_error("import-map", 0, "give the map's YAML file");
   if (options.out.empty()) throw input_error("import-map", 0, "give --out SCENE.yaml");
   if (!(options.ceiling > 0.0 && options.ceiling <= kMaxCeiling))
@@ -114,7 +111,29 @@ void import_map(const ImportMapOptions& options) {
   }
   if (!(options.mount_height > 0.0 && options.mount_height < options.ceiling))
     throw input_error("--mount-height", 0, "must lie between 0 and the ceiling");
+}
 
+/// The scene file's header: where it came from, and its walls' file when it has walls.
+std::string import_header(const ImportMapOptions& options, const io::RoomLabels& labels,
+                          const std::string& voxel_file, bool has_walls) {
+  namespace fs = std::filesystem;
+  std::ostringstream header;
+  header << "Imported by `tsgraphs import-map` (docs/import-map.md) from "
+         << fs::path(options.map).filename().string();
+  if (!options.rooms.empty()) header << " with rooms from " << fs::path(options.rooms).filename().string();
+  if (!options.rooms.empty()) header << " (" << io::convention_name(labels.convention) << ")";
+  header << ".";
+  if (has_walls)
+    header << "\nWalls: " << voxel_file
+           << " (voxel centres, one column per wall cell next to the floor or unknown space).";
+  return header.str();
+}
+
+}  // namespace
+
+void import_map(const ImportMapOptions& options) {
+  namespace fs = std::filesystem;
+  check_import_options(options);
   const fs::path out(options.out);
   const std::string voxel_file = out.stem().string() + "_walls.pcd";  // beside the scene
   const std::string walls_pcd = (out.parent_path() / voxel_file).string();
@@ -150,16 +169,8 @@ void import_map(const ImportMapOptions& options) {
     std::fprintf(stderr, "tsgraphs: warning: %s: %s\n", options.map.c_str(), w.c_str());
 
   const bool has_walls = !imported.scene.voxel_maps.empty();  // a map without an occupied cell has none
-  std::ostringstream header;
-  header << "Imported by `tsgraphs import-map` (docs/import-map.md) from "
-         << fs::path(options.map).filename().string();
-  if (!options.rooms.empty()) header << " with rooms from " << fs::path(options.rooms).filename().string();
-  if (!options.rooms.empty()) header << " (" << io::convention_name(labels.convention) << ")";
-  header << ".";
-  if (has_walls)
-    header << "\nWalls: " << config.voxel_file
-           << " (voxel centres, one column per wall cell next to the floor or unknown space).";
-  const std::string yaml = scene::scene_yaml(imported.scene, header.str());
+  const std::string yaml =
+      scene::scene_yaml(imported.scene, import_header(options, labels, config.voxel_file, has_walls));
   const fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
   const fs::path pcd = out.parent_path() / config.voxel_file;  // beside the scene, named as the user named it
   if (has_walls) {

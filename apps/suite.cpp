@@ -227,6 +227,28 @@ int run_one_case(const Suite& suite, const SuiteOptions& options, const std::str
   return record.done() ? 0 : 1;
 }
 
+/// The record of case `c` whose process ended with `status`: the one it wrote, or, when it
+/// wrote none that reads (a crash, the OOM killer), a failed one written in its place.
+eval::CaseRecord finished_case_record(const Suite& suite, const SuiteCase& c, const std::string& out,
+                                      int status) {
+  const std::string file = case_file(out, c.id);
+  if (fs::is_regular_file(file)) {
+    try {
+      return eval::read_case_record(file);
+    } catch (const InputError&) {
+    }
+  }
+  eval::CaseRecord record;
+  record.id = c.id;
+  record.kind = c.kind;
+  record.spec = case_spec(suite, c);
+  record.status = eval::kCaseFailed;
+  record.message = "the case's process ended with " + describe_wait_status(status) + " and no record";
+  io::write_file_atomic(file, eval::case_record_json(record));
+  return record;
+}
+
+/// Runs the cases not done yet, `options.jobs` child processes at a time, then writes the tables.
 int run_all(const Suite& suite, const SuiteOptions& options, const std::string& out) {
   check_out_folder(suite, out);
   write_index(suite, out);
@@ -241,12 +263,11 @@ int run_all(const Suite& suite, const SuiteOptions& options, const std::string& 
   const bool quiet = options.quiet;
   const bool tty = ::isatty(STDERR_FILENO) != 0;
   if (!quiet) {
-    std::fprintf(stderr,
-                 "suite: %s: %s, %zu done earlier, %zu to run, %d at a time (%d thread%s each); logs "
-                 "in %s/%s/ID/%s\n",
-                 suite.name.c_str(), eval::cases_text(suite.cases.size()).c_str(),
-                 suite.cases.size() - pending.size(), pending.size(), jobs, threads, threads == 1 ? "" : "s",
-                 out.c_str(), files::kCases, files::kLog);
+    std::fprintf(
+        stderr,
+        "suite: %s: %s, %zu done earlier, %zu to run, %d at a time (%d thread%s each); logs in %s/%s/ID/%s\n",
+        suite.name.c_str(), eval::cases_text(suite.cases.size()).c_str(), suite.cases.size() - pending.size(),
+        pending.size(), jobs, threads, threads == 1 ? "" : "s", out.c_str(), files::kCases, files::kLog);
   }
   eval::SuiteResults names;
   names.methods = suite_methods(suite);
@@ -276,27 +297,8 @@ int run_all(const Suite& suite, const SuiteOptions& options, const std::string& 
     running.erase(it);
     if (ChildProcesses::signal_received() != 0) continue;  // interrupted: not recorded, rerun next time
 
-    const std::string file = case_file(out, c.id);
+    const eval::CaseRecord record = finished_case_record(suite, c, out, exit->status);
     const std::string log = (fs::path(case_dir(out, c.id)) / files::kLog).string();
-    eval::CaseRecord record;
-    bool readable = false;
-    if (fs::is_regular_file(file)) {
-      try {
-        record = eval::read_case_record(file);
-        readable = true;
-      } catch (const InputError&) {
-      }
-    }
-    if (!readable) {
-      // The process died before it could record anything (a crash, the OOM killer).
-      record.id = c.id;
-      record.kind = c.kind;
-      record.spec = case_spec(suite, c);
-      record.status = eval::kCaseFailed;
-      record.message =
-          "the case's process ended with " + describe_wait_status(exit->status) + " and no record";
-      io::write_file_atomic(file, eval::case_record_json(record));
-    }
     ++finished;
     if (quiet) continue;
     const std::string line = "suite: [" + std::to_string(finished) + "/" + std::to_string(pending.size()) +
