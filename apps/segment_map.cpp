@@ -97,6 +97,42 @@ std::string percent(const std::optional<double>& x) {
   return buf;
 }
 
+/// The map's rooms, by the parameters' room segmentation and map walls.
+rooms::MapSegmentation segment(const io::OccupancyMap& map, const pipeline::PipelineConfig& params) {
+  GridFrame frame;
+  frame.resolution = map.meta.resolution;
+  frame.cols = map.width;
+  frame.rows = map.height;
+  std::vector<std::uint8_t> free(frame.size()), occupied(frame.size());
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    free[i] = map.cells[i] == io::CellState::kFree ? 1 : 0;
+    occupied[i] = map.cells[i] == io::CellState::kOccupied ? 1 : 0;
+  }
+  rooms::MapSegmentationConfig config;
+  config.walls = params.map_walls;
+  config.segmentation = params.rooms.segmentation;
+  config.robot_radius = params.rooms.free_space.lambda_th;
+  return rooms::segment_map(frame, free, occupied, config);
+}
+
+/// The figures against the true rooms into the metrics' JSON.
+void add_figures(nlohmann::json& out, const eval::LabelFigures& figures, const io::RoomLabels& truth,
+                 const std::string& truth_file) {
+  out["truth"] = {
+      {"file", truth_file}, {"rooms", truth.count}, {"convention", io::convention_name(truth.convention)}};
+  out["ipa"] = {{"precision_micro", figure(figures.ipa.precision_micro)},
+                {"recall_micro", figure(figures.ipa.recall_micro)},
+                {"precision_macro", figure(figures.ipa.precision_macro)},
+                {"recall_macro", figure(figures.ipa.recall_macro)}};
+  out["room_match"] = {{"precision", figure(figures.rooms.precision)},
+                       {"recall", figure(figures.rooms.recall)},
+                       {"f1", figure(figures.rooms.f1)},
+                       {"mean_iou", figure(figures.rooms.mean_iou)},
+                       {"matched", figures.rooms.n_matched},
+                       {"segments", figures.rooms.n_segments},
+                       {"truth_rooms", figures.rooms.n_truth}};
+}
+
 }  // namespace
 
 void segment_map(const SegmentMapOptions& options) {
@@ -117,20 +153,7 @@ void segment_map(const SegmentMapOptions& options) {
       std::fprintf(stderr, "tsgraphs: warning: %s: %s\n", options.rooms.c_str(), w.c_str());
   }
 
-  GridFrame frame;
-  frame.resolution = map.meta.resolution;
-  frame.cols = map.width;
-  frame.rows = map.height;
-  std::vector<std::uint8_t> free(frame.size()), occupied(frame.size());
-  for (std::size_t i = 0; i < frame.size(); ++i) {
-    free[i] = map.cells[i] == io::CellState::kFree ? 1 : 0;
-    occupied[i] = map.cells[i] == io::CellState::kOccupied ? 1 : 0;
-  }
-  rooms::MapSegmentationConfig config;
-  config.walls = params.map_walls;
-  config.segmentation = params.rooms.segmentation;
-  config.robot_radius = params.rooms.free_space.lambda_th;
-  const rooms::MapSegmentation seg = rooms::segment_map(frame, free, occupied, config);
+  const rooms::MapSegmentation seg = segment(map, params);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   nlohmann::json out = {{"map", options.map},
@@ -144,20 +167,7 @@ void segment_map(const SegmentMapOptions& options) {
   std::optional<eval::LabelFigures> figures;
   if (truth) {
     figures = eval::compare_labels(seg.rooms.label, truth->room, map.width);
-    out["truth"] = {{"file", options.rooms},
-                    {"rooms", truth->count},
-                    {"convention", io::convention_name(truth->convention)}};
-    out["ipa"] = {{"precision_micro", figure(figures->ipa.precision_micro)},
-                  {"recall_micro", figure(figures->ipa.recall_micro)},
-                  {"precision_macro", figure(figures->ipa.precision_macro)},
-                  {"recall_macro", figure(figures->ipa.recall_macro)}};
-    out["room_match"] = {{"precision", figure(figures->rooms.precision)},
-                         {"recall", figure(figures->rooms.recall)},
-                         {"f1", figure(figures->rooms.f1)},
-                         {"mean_iou", figure(figures->rooms.mean_iou)},
-                         {"matched", figures->rooms.n_matched},
-                         {"segments", figures->rooms.n_segments},
-                         {"truth_rooms", figures->rooms.n_truth}};
+    add_figures(out, *figures, *truth, options.rooms);
   }
   io::write_file_atomic(options.out, io::encode_png(label_image(seg.rooms.label, map.width, map.height)));
   if (!options.metrics.empty()) {

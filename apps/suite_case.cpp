@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -217,10 +218,42 @@ bool case_done(const Suite& suite, const SuiteCase& c, const std::string& out) {
   }
 }
 
+namespace {
+
+/// Says what the case does now, in its log.
+using Step = std::function<void(const std::string&)>;
+
+/// The case's folder made ready for a case defined by `spec`: runs of another definition of the
+/// case (another size, platform, laps) must not be reused, so all but the log (open in this
+/// process) goes; an earlier attempt's record goes until this one's is written.
+void start_case_folder(const fs::path& dir, const std::string& spec, const Step& step) {
+  const fs::path spec_file = dir / eval::suite_files::kSpec;
+  fs::create_directories(dir);
+  if (fs::is_regular_file(spec_file) && read_text_file(spec_file.string()) != spec + "\n") {
+    step("the case's definition changed: its folder is started afresh");
+    for (const fs::directory_entry& e : fs::directory_iterator(dir))
+      if (e.path().filename() != eval::suite_files::kLog) fs::remove_all(e.path());
+  }
+  fs::remove(dir / eval::suite_files::kCase);
+  io::write_file_atomic(spec_file.string(), spec + "\n");
+}
+
+/// Method `m`'s figures from its run folder's metrics and run_info.
+eval::CaseMethod method_figures(const Method& m, const std::string& run_dir) {
+  eval::CaseMethod method;
+  method.method = {m.slug, m.name};
+  const std::string metrics = (fs::path(run_dir) / io::run_files::kMetrics).string();
+  method.figures = eval::flatten_metrics_json(read_text_file(metrics), metrics);
+  method.wall_s = io::read_run_summary((fs::path(run_dir) / io::run_files::kRunInfo).string()).wall_time_s;
+  return method;
+}
+
+}  // namespace
+
 eval::CaseRecord run_case(const Suite& suite, const SuiteCase& c, const CaseOptions& options) {
   const auto start = Clock::now();
   const fs::path dir = case_dir(options.out, c.id);
-  const auto step = [&](const std::string& what) {
+  const Step step = [&](const std::string& what) {
     std::fprintf(stderr, "suite: %7.1f s  %s: %s\n",
                  std::chrono::duration<double>(Clock::now() - start).count(), c.id.c_str(), what.c_str());
     std::fflush(stderr);
@@ -231,17 +264,7 @@ eval::CaseRecord run_case(const Suite& suite, const SuiteCase& c, const CaseOpti
   record.spec = case_spec(suite, c);
   CaseInput in;
   try {
-    // Runs of another definition of the case (another size, platform, laps) must not be
-    // reused: all but the log (open in this process) goes.
-    const fs::path spec_file = dir / eval::suite_files::kSpec;
-    fs::create_directories(dir);
-    if (fs::is_regular_file(spec_file) && read_text_file(spec_file.string()) != record.spec + "\n") {
-      step("the case's definition changed: its folder is started afresh");
-      for (const fs::directory_entry& e : fs::directory_iterator(dir))
-        if (e.path().filename() != eval::suite_files::kLog) fs::remove_all(e.path());
-    }
-    fs::remove(dir / eval::suite_files::kCase);  // an earlier attempt's record, until this one's
-    io::write_file_atomic(spec_file.string(), record.spec + "\n");
+    start_case_folder(dir, record.spec, step);
     step("start (" + c.where + "): " + record.spec);
     in = case_input(suite, c, dir);
     record.info = case_info(c, in.scene);
@@ -272,13 +295,7 @@ eval::CaseRecord run_case(const Suite& suite, const SuiteCase& c, const CaseOpti
         step(std::string("eval ") + m.name);
         evaluate(run_dir, in.sequence, options.quiet, false);
       }
-      eval::CaseMethod method;
-      method.method = {m.slug, m.name};
-      const std::string metrics = (fs::path(run_dir) / io::run_files::kMetrics).string();
-      method.figures = eval::flatten_metrics_json(read_text_file(metrics), metrics);
-      method.wall_s =
-          io::read_run_summary((fs::path(run_dir) / io::run_files::kRunInfo).string()).wall_time_s;
-      record.methods.push_back(std::move(method));
+      record.methods.push_back(method_figures(m, run_dir));
     }
     record.status = eval::kCaseDone;
   } catch (const std::exception& e) {
