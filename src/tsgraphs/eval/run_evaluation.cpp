@@ -6,6 +6,8 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "tsgraphs/core/error.hpp"
@@ -189,6 +191,171 @@ std::vector<FinalRoom> final_rooms_of(const io::SceneGraph& graph) {
   return rooms;
 }
 
+/// The keyframes of a scene graph: the scan each was made from and its pose (map frame).
+struct Keyframes {
+  std::vector<std::size_t> scans;
+  std::vector<Pose3> poses;
+};
+
+Keyframes keyframes_of(const io::SceneGraph& graph) {
+  Keyframes out;
+  for (const io::SceneGraph::Keyframe& k : graph.keyframes) {
+    out.scans.push_back(k.scan_index);
+    out.poses.push_back(k.pose.pose());
+  }
+  return out;
+}
+
+/// The scene graph's wall planes that have a segment and a height range.
+std::vector<MappedWall> mapped_walls(const io::SceneGraph& graph) {
+  std::vector<MappedWall> walls;
+  for (const io::SceneGraph::Plane& p : graph.planes) {
+    if (p.kind != "wall" || !p.segment || !p.z_range) continue;
+    MappedWall w;
+    w.id = p.id;
+    w.plane.n = p.n;
+    w.plane.d = p.d;
+    w.a = (*p.segment)[0];
+    w.b = (*p.segment)[1];
+    w.z0 = (*p.z_range)[0];
+    w.z1 = (*p.z_range)[1];
+    walls.push_back(w);
+  }
+  return walls;
+}
+
+/// Loop closures: the keyframes each joins, its measured relative pose, whether a room proposed it.
+struct AcceptedLoops {
+  std::vector<std::pair<int, int>> keyframes;
+  std::vector<Pose3> measurements;
+  std::vector<bool> by_room;
+};
+
+/// Loops as accepted (the graph's edges may have moved since: keyframe retirement folds them);
+/// run folders from before the list existed: the graph's loop edges.
+AcceptedLoops accepted_loops(const io::SceneGraph& graph) {
+  AcceptedLoops loops;
+  if (!graph.loop_closures.empty() || graph.loop_edges.empty()) {
+    for (const io::SceneGraph::LoopClosure& l : graph.loop_closures) {
+      loops.keyframes.emplace_back(l.from, l.to);
+      loops.measurements.push_back(l.measurement.pose());
+      loops.by_room.push_back(l.proposer == "room");
+    }
+  } else {
+    for (const io::SceneGraph::LoopEdge& e : graph.loop_edges) {
+      loops.keyframes.emplace_back(e.from, e.to);
+      loops.measurements.push_back(e.measurement.pose());
+      loops.by_room.push_back(false);
+    }
+  }
+  return loops;
+}
+
+/// The two-lap consistency from the room events, when the run has them.
+void consistency_figures(const std::string& events_file, Metrics* m) {
+  if (!fs::exists(events_file)) return;
+  const Consistency c = consistency(io::read_room_events(events_file));
+  m->consistency.N1st = c.N1st;
+  m->consistency.N2nd = c.N2nd;
+  m->consistency.N_re = c.N_re;
+  m->consistency.f_re = c.f_re;
+  if (c.dcs) m->consistency.dcs = *c.dcs;
+  if (c.d_center) m->consistency.d_center = *c.d_center;
+}
+
+/// Every keyframe's scan is indexed later (its true pose, its scan): all checked here.
+void check_keyframe_scans(const std::vector<std::size_t>& scans, const io::SequenceInfo& si,
+                          const std::string& graph_file) {
+  for (std::size_t k = 0; k < scans.size(); ++k) {
+    if (scans[k] >= si.odometry.size() || (!si.groundtruth.empty() && scans[k] >= si.groundtruth.size()))
+      throw input_error(graph_file, 0,
+                        "'keyframes[" + std::to_string(k) + "].scan_index' is " + std::to_string(scans[k]) +
+                            ": beyond the sequence's " + std::to_string(si.odometry.size()) + " scans");
+  }
+}
+
+/// A room the raster would refuse is the run's fault, not the ground truth's: an InputError
+/// naming the scene graph.
+void check_room_sizes(const std::vector<TruthFrameRoom>& placed, const std::string& graph_file) {
+  for (std::size_t i = 0; i < placed.size(); ++i) {
+    if (placed[i].rect.area() > kMaxRasterCells * kRasterCell * kRasterCell)
+      throw input_error(graph_file, 0,
+                        "'rooms[" + std::to_string(i) + "].rect.size' is too large for a room");
+    if (placed[i].polygon.empty()) continue;
+    double y_min = placed[i].polygon[0].y(), y_max = y_min;
+    for (const Vec2& p : placed[i].polygon) y_min = std::min(y_min, p.y()), y_max = std::max(y_max, p.y());
+    if (area(placed[i].polygon) > kMaxRasterCells * kRasterCell * kRasterCell ||
+        (y_max - y_min) / kRasterCell + 1 > kMaxRasterCells)
+      throw input_error(graph_file, 0, "'rooms[" + std::to_string(i) + "].polygon' is too large for a room");
+  }
+}
+
+/// The odometry the run started from against the truth: its own odometry.txt (LiDAR odometry,
+/// or a copy of the input's), or the sequence's for run folders written before it existed.
+void odometry_figures(const std::string& dir, const io::SequenceInfo& si, Metrics* m) {
+  const std::string odometry_file = dir + "/odometry.txt";
+  const std::vector<Pose3> odometry =
+      fs::exists(odometry_file) ? poses_of(io::read_tum(odometry_file)) : si.odometry;
+  if (odometry.size() != si.groundtruth.size())
+    throw input_error(odometry_file, 0,
+                      std::to_string(odometry.size()) + " poses but the sequence has " +
+                          std::to_string(si.groundtruth.size()) + " scans");
+  m->trajectory.odom_ate_rmse = ate_rmse(odometry, si.groundtruth);
+}
+
+/// Loop closures against the true relative poses of their keyframes.
+void loop_figures(const AcceptedLoops& loops, const std::vector<std::size_t>& kf_scan,
+                  const io::SequenceInfo& si, const EvalOptions& options, const std::string& graph_file,
+                  Metrics* m) {
+  double max_err_m = 0, max_err_deg = 0;
+  int correct = 0, room_correct = 0;
+  for (std::size_t i = 0; i < loops.keyframes.size(); ++i) {
+    const auto [from, to] = loops.keyframes[i];
+    if (from < 0 || to < 0 || static_cast<std::size_t>(std::max(from, to)) >= kf_scan.size())
+      throw input_error(graph_file, 0, "loop edge names an unknown keyframe");
+    const Pose3 truth = si.groundtruth[kf_scan[from]].inverse() * si.groundtruth[kf_scan[to]];
+    const Pose3 err = truth.inverse() * loops.measurements[i];
+    const double em = err.translation().norm();
+    const double ed = Eigen::AngleAxisd(err.linear()).angle() * 180.0 / M_PI;
+    max_err_m = std::max(max_err_m, em);
+    max_err_deg = std::max(max_err_deg, ed);
+    if (em <= options.loop_tolerance_m && ed <= options.loop_tolerance_deg) {
+      ++correct;
+      room_correct += loops.by_room[i] ? 1 : 0;
+    }
+  }
+  m->loops.n_loops_correct = correct;
+  m->loops.n_loops_room_correct = room_correct;
+  if (!loops.keyframes.empty()) {
+    m->loops.max_loop_err_m = max_err_m;
+    m->loops.max_loop_err_deg = max_err_deg;
+  }
+}
+
+/// Walls: faces seen from the keyframes (true poses, labelled points) against the mapped planes.
+void wall_figures(const scene::Scene& scene, const io::SequenceReader& seq, const Keyframes& keyframes,
+                  const std::vector<MappedWall>& walls, const WallMetricsConfig& config,
+                  const std::string& graph_file, Metrics* m) {
+  const io::SequenceInfo& si = seq.info();
+  const std::vector<WallFaceTruth> faces = wall_faces(scene);
+  std::vector<FaceHits> hits(faces.size());
+  for (const std::size_t scan : keyframes.scans) {
+    if (scan >= seq.size()) throw input_error(graph_file, 0, "keyframe scan index beyond the sequence");
+    count_face_hits(faces, seq.scan(scan), si.groundtruth[scan], config, &hits);
+  }
+  const Pose3 T_world_map = si.groundtruth[keyframes.scans[0]] * keyframes.poses[0].inverse();
+  const WallErrors we = wall_errors(faces, hits, walls, T_world_map, config);
+  m->walls.n_faces_seen = we.n_faces_seen;
+  m->walls.n_faces_mapped = we.n_faces_mapped;
+  m->walls.n_duplicates = we.n_duplicates;
+  if (we.n_faces_mapped > 0) {
+    m->walls.mean_dist_err = we.mean_dist_err;
+    m->walls.max_dist_err = we.max_dist_err;
+    m->walls.mean_angle_err_deg = we.mean_angle_err_deg;
+    m->walls.max_angle_err_deg = we.max_angle_err_deg;
+  }
+}
+
 }  // namespace
 
 std::vector<FinalRoom> read_final_rooms(const std::string& run_dir) {
@@ -231,59 +398,14 @@ Metrics evaluate_run(const EvalOptions& options) {
 
   const std::string graph_file = dir + "/" + io::run_files::kSceneGraph;
   const io::SceneGraph graph = io::read_scene_graph(graph_file);
-  std::vector<std::size_t> kf_scan;
-  std::vector<Pose3> kf_pose;
-  for (const io::SceneGraph::Keyframe& k : graph.keyframes) {
-    kf_scan.push_back(k.scan_index);
-    kf_pose.push_back(k.pose.pose());
-  }
-  std::vector<MappedWall> walls;
-  for (const io::SceneGraph::Plane& p : graph.planes) {
-    if (p.kind != "wall" || !p.segment || !p.z_range) continue;
-    MappedWall w;
-    w.id = p.id;
-    w.plane.n = p.n;
-    w.plane.d = p.d;
-    w.a = (*p.segment)[0];
-    w.b = (*p.segment)[1];
-    w.z0 = (*p.z_range)[0];
-    w.z1 = (*p.z_range)[1];
-    walls.push_back(w);
-  }
-  // Loops as accepted (the graph's edges may have moved since: keyframe retirement folds them);
-  // run folders from before the list existed: the graph's loop edges.
-  std::vector<std::pair<int, int>> loops;
-  std::vector<Pose3> loop_meas;
-  std::vector<bool> loop_by_room;
-  if (!graph.loop_closures.empty() || graph.loop_edges.empty()) {
-    for (const io::SceneGraph::LoopClosure& l : graph.loop_closures) {
-      loops.emplace_back(l.from, l.to);
-      loop_meas.push_back(l.measurement.pose());
-      loop_by_room.push_back(l.proposer == "room");
-    }
-  } else {
-    for (const io::SceneGraph::LoopEdge& e : graph.loop_edges) {
-      loops.emplace_back(e.from, e.to);
-      loop_meas.push_back(e.measurement.pose());
-      loop_by_room.push_back(false);
-    }
-  }
-  m.loops.n_loops = static_cast<double>(loops.size());
-  m.loops.n_loops_room = static_cast<double>(std::count(loop_by_room.begin(), loop_by_room.end(), true));
-
+  const Keyframes keyframes = keyframes_of(graph);
+  const std::vector<MappedWall> walls = mapped_walls(graph);
+  const AcceptedLoops loops = accepted_loops(graph);
+  m.loops.n_loops = static_cast<double>(loops.keyframes.size());
+  m.loops.n_loops_room = static_cast<double>(std::count(loops.by_room.begin(), loops.by_room.end(), true));
   // Rooms: the two-lap consistency from the events; the final rooms for the ground truth.
-  const std::string events_file = dir + "/" + io::run_files::kRoomEvents;
-  if (fs::exists(events_file)) {
-    const Consistency c = consistency(io::read_room_events(events_file));
-    m.consistency.N1st = c.N1st;
-    m.consistency.N2nd = c.N2nd;
-    m.consistency.N_re = c.N_re;
-    m.consistency.f_re = c.f_re;
-    if (c.dcs) m.consistency.dcs = *c.dcs;
-    if (c.d_center) m.consistency.d_center = *c.d_center;
-  }
+  consistency_figures(dir + "/" + io::run_files::kRoomEvents, &m);
   const std::vector<FinalRoom> final_rooms = final_rooms_of(graph);
-  const std::vector<double>& level_heights = graph.levels;
 
   if (options.seq_dir.empty()) return m;
   const io::SequenceReader seq(options.seq_dir);
@@ -295,29 +417,11 @@ Metrics evaluate_run(const EvalOptions& options) {
   const std::string scene_file = seq.scene_path();
   const std::optional<scene::Scene> scene =
       scene_file.empty() ? std::nullopt : std::optional<scene::Scene>(scene::load_scene(scene_file));
-  // Every keyframe's scan is indexed below (its true pose, its scan): all checked here.
-  for (std::size_t k = 0; k < kf_scan.size(); ++k) {
-    if (kf_scan[k] >= si.odometry.size() || (!si.groundtruth.empty() && kf_scan[k] >= si.groundtruth.size()))
-      throw input_error(graph_file, 0,
-                        "'keyframes[" + std::to_string(k) + "].scan_index' is " + std::to_string(kf_scan[k]) +
-                            ": beyond the sequence's " + std::to_string(si.odometry.size()) + " scans");
-  }
-  if (!kf_pose.empty() && !si.groundtruth.empty() && (si.has_rooms || scene)) {
-    const std::vector<TruthFrameRoom> placed =
-        in_truth_frame(final_rooms, level_heights, si.groundtruth[kf_scan.at(0)] * kf_pose[0].inverse());
-    // A room the raster would refuse is the run's fault, not the ground truth's (the catch below).
-    for (std::size_t i = 0; i < placed.size(); ++i) {
-      if (placed[i].rect.area() > kMaxRasterCells * kRasterCell * kRasterCell)
-        throw input_error(graph_file, 0,
-                          "'rooms[" + std::to_string(i) + "].rect.size' is too large for a room");
-      if (placed[i].polygon.empty()) continue;
-      double y_min = placed[i].polygon[0].y(), y_max = y_min;
-      for (const Vec2& p : placed[i].polygon) y_min = std::min(y_min, p.y()), y_max = std::max(y_max, p.y());
-      if (area(placed[i].polygon) > kMaxRasterCells * kRasterCell * kRasterCell ||
-          (y_max - y_min) / kRasterCell + 1 > kMaxRasterCells)
-        throw input_error(graph_file, 0,
-                          "'rooms[" + std::to_string(i) + "].polygon' is too large for a room");
-    }
+  check_keyframe_scans(keyframes.scans, si, graph_file);
+  if (!keyframes.poses.empty() && !si.groundtruth.empty() && (si.has_rooms || scene)) {
+    const std::vector<TruthFrameRoom> placed = in_truth_frame(
+        final_rooms, graph.levels, si.groundtruth[keyframes.scans.at(0)] * keyframes.poses[0].inverse());
+    check_room_sizes(placed, graph_file);
     try {
       truth_room_figures(placed, si, scene ? &*scene : nullptr, &m);
     } catch (const std::invalid_argument& e) {  // a ground-truth polygon too large to rasterise
@@ -326,61 +430,10 @@ Metrics evaluate_run(const EvalOptions& options) {
   }
   if (si.groundtruth.empty()) return m;
   m.trajectory.ate_rmse = ate_rmse(estimate, si.groundtruth);
-  // The odometry the run started from: its own odometry.txt (LiDAR odometry, or a copy of the
-  // input's), or the sequence's for run folders written before it existed.
-  const std::string odometry_file = dir + "/odometry.txt";
-  const std::vector<Pose3> odometry =
-      fs::exists(odometry_file) ? poses_of(io::read_tum(odometry_file)) : si.odometry;
-  if (odometry.size() != si.groundtruth.size())
-    throw input_error(odometry_file, 0,
-                      std::to_string(odometry.size()) + " poses but the sequence has " +
-                          std::to_string(si.groundtruth.size()) + " scans");
-  m.trajectory.odom_ate_rmse = ate_rmse(odometry, si.groundtruth);
-
-  // Loop closures against the true relative poses of their keyframes.
-  double max_err_m = 0, max_err_deg = 0;
-  int correct = 0, room_correct = 0;
-  for (std::size_t i = 0; i < loops.size(); ++i) {
-    const auto [from, to] = loops[i];
-    if (from < 0 || to < 0 || static_cast<std::size_t>(std::max(from, to)) >= kf_scan.size())
-      throw input_error(graph_file, 0, "loop edge names an unknown keyframe");
-    const Pose3 truth = si.groundtruth[kf_scan[from]].inverse() * si.groundtruth[kf_scan[to]];
-    const Pose3 err = truth.inverse() * loop_meas[i];
-    const double em = err.translation().norm();
-    const double ed = Eigen::AngleAxisd(err.linear()).angle() * 180.0 / M_PI;
-    max_err_m = std::max(max_err_m, em);
-    max_err_deg = std::max(max_err_deg, ed);
-    if (em <= options.loop_tolerance_m && ed <= options.loop_tolerance_deg) {
-      ++correct;
-      room_correct += loop_by_room[i] ? 1 : 0;
-    }
-  }
-  m.loops.n_loops_correct = correct;
-  m.loops.n_loops_room_correct = room_correct;
-  if (!loops.empty()) {
-    m.loops.max_loop_err_m = max_err_m;
-    m.loops.max_loop_err_deg = max_err_deg;
-  }
-
-  // Walls: faces seen from the keyframes (true poses, labelled points) against the mapped planes.
-  if (!scene || kf_scan.empty()) return m;
-  const std::vector<WallFaceTruth> faces = wall_faces(*scene);
-  std::vector<FaceHits> hits(faces.size());
-  for (std::size_t k = 0; k < kf_scan.size(); ++k) {
-    if (kf_scan[k] >= seq.size()) throw input_error(graph_file, 0, "keyframe scan index beyond the sequence");
-    count_face_hits(faces, seq.scan(kf_scan[k]), si.groundtruth[kf_scan[k]], options.walls, &hits);
-  }
-  const Pose3 T_world_map = si.groundtruth[kf_scan[0]] * kf_pose[0].inverse();
-  const WallErrors we = wall_errors(faces, hits, walls, T_world_map, options.walls);
-  m.walls.n_faces_seen = we.n_faces_seen;
-  m.walls.n_faces_mapped = we.n_faces_mapped;
-  m.walls.n_duplicates = we.n_duplicates;
-  if (we.n_faces_mapped > 0) {
-    m.walls.mean_dist_err = we.mean_dist_err;
-    m.walls.max_dist_err = we.max_dist_err;
-    m.walls.mean_angle_err_deg = we.mean_angle_err_deg;
-    m.walls.max_angle_err_deg = we.max_angle_err_deg;
-  }
+  odometry_figures(dir, si, &m);
+  loop_figures(loops, keyframes.scans, si, options, graph_file, &m);
+  if (!scene || keyframes.scans.empty()) return m;
+  wall_figures(*scene, seq, keyframes, walls, options.walls, graph_file, &m);
   return m;
 }
 
