@@ -7,7 +7,10 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 namespace tsgraphs::eval {
 namespace {
@@ -280,10 +283,8 @@ std::string figure_tables(const std::vector<MethodSummary>& summaries, const std
   return md;
 }
 
-}  // namespace
-
-std::string suite_markdown(const SuiteResults& results) {
-  const std::vector<MethodSummary> summaries = summarise(results);
+/// The title, the counts of cases and their wall time, the methods, and how the tables read.
+std::string suite_overview(const SuiteResults& results) {
   int done = 0, failed = 0;
   double wall = 0.0;
   for (const CaseRecord& c : results.cases) {
@@ -302,39 +303,53 @@ std::string suite_markdown(const SuiteResults& results) {
       "decile (the 10th percentile where higher is better, the 90th where lower is better; linear between "
       "ranks), the worst value and the first case with it. DCS, d_center and mean IoU exist only where "
       "rooms were paired or matched; rooms F1 is 0 where a run has no final room.\n";
-  md += figure_tables(summaries, "##");
-  if (results.groups.size() > 1) {
-    md +=
-        "\n## Case groups\n\nThe same tables over the cases of each entry of the suite file's `cases:` "
-        "alone.\n";
-    for (const CaseGroup& g : results.groups) {
-      const SuiteResults sub = group_results(results, g);
-      md += "\n### " + md_cell(g.name) + "\n\n" + cases_text(g.case_ids.size()) + ": " +
-            std::to_string(sub.cases.size()) + " with a record, " + std::to_string(sub.pending.size()) +
-            " not run yet.\n";
-      md += figure_tables(summarise(sub), "####");
-    }
-  }
+  return md;
+}
 
-  const std::string key = key_method(results);
-  std::string key_name = key;
-  for (const SuiteMethod& m : results.methods)
-    if (m.slug == key) key_name = m.name;
-  if (results.methods.size() > 1) {
-    md += "\n## T_PGO against " + md_cell(key_name) + "\n\n";
-    md += "Per case, " + md_cell(key_name) +
-          "'s T_PGO over the other method's on the same sequence (below 1: cheaper); "
-          "the worst decile is the 90th percentile.\n\n";
-    md += "| method | median | worst decile | worst | worst case | cases |\n|---|---|---|---|---|---|\n";
-    for (const SuiteMethod& m : results.methods) {
-      if (m.slug == key) continue;
-      const FigureStats st = figure_stats(pgo_ratios(results, m.slug), Better::kLower);
-      md += "| " + md_cell(m.name) + " | " + figure_text(st.median, 2) + " | " +
-            figure_text(st.worst_decile, 2) + " | " + figure_text(st.worst, 2) + " | " +
-            (st.worst_case.empty() ? "-" : md_cell(st.worst_case)) + " | " + std::to_string(st.n) + " |\n";
-    }
+/// The figure tables again over each group of cases, when the suite file has more than one.
+std::string group_tables(const SuiteResults& results) {
+  if (results.groups.size() <= 1) return "";
+  std::string md =
+      "\n## Case groups\n\nThe same tables over the cases of each entry of the suite file's `cases:` "
+      "alone.\n";
+  for (const CaseGroup& g : results.groups) {
+    const SuiteResults sub = group_results(results, g);
+    md += "\n### " + md_cell(g.name) + "\n\n" + cases_text(g.case_ids.size()) + ": " +
+          std::to_string(sub.cases.size()) + " with a record, " + std::to_string(sub.pending.size()) +
+          " not run yet.\n";
+    md += figure_tables(summarise(sub), "####");
   }
-  md += "\n## Loop closures\n\n";
+  return md;
+}
+
+/// The name of the method with this slug (the slug itself when there is none).
+std::string method_name(const SuiteResults& results, const std::string& slug) {
+  std::string name = slug;
+  for (const SuiteMethod& m : results.methods)
+    if (m.slug == slug) name = m.name;
+  return name;
+}
+
+/// Per other method, the key method's T_PGO over its on the same case.
+std::string pgo_table(const SuiteResults& results, const std::string& key, const std::string& key_name) {
+  std::string md = "\n## T_PGO against " + md_cell(key_name) + "\n\n";
+  md += "Per case, " + md_cell(key_name) +
+        "'s T_PGO over the other method's on the same sequence (below 1: cheaper); "
+        "the worst decile is the 90th percentile.\n\n";
+  md += "| method | median | worst decile | worst | worst case | cases |\n|---|---|---|---|---|---|\n";
+  for (const SuiteMethod& m : results.methods) {
+    if (m.slug == key) continue;
+    const FigureStats st = figure_stats(pgo_ratios(results, m.slug), Better::kLower);
+    md += "| " + md_cell(m.name) + " | " + figure_text(st.median, 2) + " | " +
+          figure_text(st.worst_decile, 2) + " | " + figure_text(st.worst, 2) + " | " +
+          (st.worst_case.empty() ? "-" : md_cell(st.worst_case)) + " | " + std::to_string(st.n) + " |\n";
+  }
+  return md;
+}
+
+/// Per method, the loop closures found and correct, in all and as the room rule proposed them.
+std::string loop_table(const SuiteResults& results) {
+  std::string md = "\n## Loop closures\n\n";
   md +=
       "Summed over the counted cases: found and correct (eval's tolerance of the truth), in all and as the "
       "room "
@@ -348,10 +363,14 @@ std::string suite_markdown(const SuiteResults& results) {
           fixed_text(t.room_found, 0) + " | " + fixed_text(t.room_correct, 0) + " | " +
           std::to_string(t.cases) + " |\n";
   }
+  return md;
+}
 
-  md += "\n## Cases, worst first\n\n";
-  md += "By the " + (key.empty() ? std::string("first method") : key) + " run's rooms F1, then its f_re.\n\n";
-  std::string header = "| case | status |", rule = "|---|---|";
+/// The columns of the cases table: per method its figures (rooms F1; the key method also its
+/// consistency), with the header and rule cells they add, T_PGO ratio included.
+std::vector<std::pair<const SuiteMethod*, std::vector<const SuiteFigure*>>> case_columns(
+    const SuiteResults& results, const std::string& key, const std::string& key_name, std::string* header,
+    std::string* rule) {
   std::vector<std::pair<const SuiteMethod*, std::vector<const SuiteFigure*>>> columns;
   for (const SuiteMethod& m : results.methods) {
     std::vector<const SuiteFigure*> figures = {&figure_by_key("rooms_gt.f1")};
@@ -360,15 +379,24 @@ std::string suite_markdown(const SuiteResults& results) {
         figures.push_back(&figure_by_key(k));
     }
     for (const SuiteFigure* f : figures) {
-      header += " " + md_cell(m.name) + " " + f->header + " |";
-      rule += "---|";
+      *header += " " + md_cell(m.name) + " " + f->header + " |";
+      *rule += "---|";
     }
     if (m.slug != key && !key.empty()) {
-      header += " T_PGO " + md_cell(key_name) + " / " + md_cell(m.name) + " |";
-      rule += "---|";
+      *header += " T_PGO " + md_cell(key_name) + " / " + md_cell(m.name) + " |";
+      *rule += "---|";
     }
     columns.emplace_back(&m, std::move(figures));
   }
+  return columns;
+}
+
+/// Every case, worst first: its status, each method's figures and T_PGO ratio, its wall time.
+std::string cases_table(const SuiteResults& results, const std::string& key, const std::string& key_name) {
+  std::string md = "\n## Cases, worst first\n\n";
+  md += "By the " + (key.empty() ? std::string("first method") : key) + " run's rooms F1, then its f_re.\n\n";
+  std::string header = "| case | status |", rule = "|---|---|";
+  const auto columns = case_columns(results, key, key_name, &header, &rule);
   md += header + " wall (s) |\n" + rule + "---|\n";
   std::vector<std::map<std::string, double>> ratios;
   for (const auto& [m, figures] : columns) {
@@ -389,7 +417,14 @@ std::string suite_markdown(const SuiteResults& results) {
     }
     md += " " + fixed_text(c->wall_s, 0) + " |\n";
   }
-  if (failed > 0) {
+  return md;
+}
+
+/// The failed cases with their messages, and the cases not run yet.
+std::string unfinished_cases(const SuiteResults& results) {
+  std::string md;
+  if (std::any_of(results.cases.begin(), results.cases.end(),
+                  [](const CaseRecord& c) { return !c.done(); })) {
     md += "\n## Failed cases\n\n";
     for (const CaseRecord& c : results.cases)
       if (!c.done()) md += "- `" + c.id + "`: " + md_cell(c.message) + "\n";
@@ -398,6 +433,22 @@ std::string suite_markdown(const SuiteResults& results) {
     md += "\n## Not run yet\n\n";
     for (const std::string& id : results.pending) md += "- `" + id + "`\n";
   }
+  return md;
+}
+
+}  // namespace
+
+std::string suite_markdown(const SuiteResults& results) {
+  const std::vector<MethodSummary> summaries = summarise(results);
+  std::string md = suite_overview(results);
+  md += figure_tables(summaries, "##");
+  md += group_tables(results);
+  const std::string key = key_method(results);
+  const std::string key_name = method_name(results, key);
+  if (results.methods.size() > 1) md += pgo_table(results, key, key_name);
+  md += loop_table(results);
+  md += cases_table(results, key, key_name);
+  md += unfinished_cases(results);
   return md;
 }
 
