@@ -220,6 +220,106 @@ json point_cloud(double t, const Eigen::Vector3d& origin, const std::vector<io::
           {"point_stride", stride},  {"fields", fields},  {"data", base64(data)}};
 }
 
+/// The height of a level of the run (0 for an unknown one).
+double level_height(const io::SceneGraph& graph, int level) {
+  return level >= 0 && static_cast<std::size_t>(level) < graph.levels.size()
+             ? graph.levels[static_cast<std::size_t>(level)]
+             : 0.0;
+}
+
+/// The channels of the export, one a topic.
+struct Channels {
+  std::uint16_t tf = 0, map = 0, nodes = 0, free_space = 0, scene = 0, rooms = 0;
+};
+
+/// A room event as the room's entity: its outline, its name and its kind, level, lap and news.
+json room_update(const io::RoomEvent& ev, const io::SceneGraph& graph) {
+  const bool corridor = ev.kind == "corridor";
+  const json colour = rgba(corridor ? kCorridorOutlineColour : kRoomOutlineColour);
+  const double z = level_height(graph, ev.level) + kOutlineLift;
+  std::vector<Eigen::Vector3d> outline;
+  for (const Vec2& v : ev.polygon.size() >= 3 ? ev.polygon : ev.rect.corners())
+    outline.emplace_back(v.x(), v.y(), z);
+  json ent = entity(ev.t, "room/" + std::to_string(ev.room_id));
+  ent["lines"].push_back(line(1, outline, colour));
+  ent["texts"].push_back(text(Eigen::Vector3d(ev.center.x(), ev.center.y(), z + kLabelLift),
+                              (corridor ? "corridor " : "room ") + std::to_string(ev.room_id), colour));
+  ent["metadata"] = json::array({{{"key", "kind"}, {"value", ev.kind}},
+                                 {{"key", "level"}, {"value", std::to_string(ev.level)}},
+                                 {{"key", "lap"}, {"value", std::to_string(ev.lap)}},
+                                 {{"key", "new"}, {"value", ev.is_new ? "true" : "false"}}});
+  return {{"deletions", json::array()}, {"entities", json::array({ent})}};
+}
+
+/// The sensor's pose in the map frame as a FrameTransform.
+json transform(const io::StampedPose& p) {
+  return {{"timestamp", time_of(p.t)},
+          {"parent_frame_id", "map"},
+          {"child_frame_id", "sensor"},
+          {"translation", vec3(p.pose.translation())},
+          {"rotation", quat(Eigen::Quaterniond(p.pose.linear()))}};
+}
+
+/// The traversable nodes as points of their colour.
+std::vector<io::MapVertex> traversable_nodes(const io::SceneGraph& graph) {
+  std::vector<io::MapVertex> nodes;
+  for (const auto& n : graph.traversable_nodes)
+    nodes.push_back(
+        {n.position, kTraversableNodeColour.r, kTraversableNodeColour.g, kTraversableNodeColour.b});
+  return nodes;
+}
+
+/// Each room's free space (its latest extraction's vertices), coloured as its outline.
+std::vector<io::MapVertex> room_free_space(const io::SceneGraph& graph) {
+  std::vector<io::MapVertex> free_space;
+  for (const auto& r : graph.rooms) {
+    const Rgb c = r.kind == "corridor" ? kCorridorOutlineColour : kRoomOutlineColour;
+    for (const Eigen::Vector3d& v : r.free_space) free_space.push_back({v, c.r, c.g, c.b});
+  }
+  return free_space;
+}
+
+/// The mapped walls as thin boxes of their colours.
+json walls_entity(const io::SceneGraph& graph, double end) {
+  json walls = entity(end, "walls");
+  for (const auto& p : graph.planes) {
+    if (p.kind != "wall" || !p.segment || !p.z_range) continue;
+    const Vec2 a = (*p.segment)[0], b = (*p.segment)[1];
+    const double z0 = (*p.z_range)[0], z1 = (*p.z_range)[1];
+    const Eigen::Quaterniond yaw(
+        Eigen::AngleAxisd(std::atan2(b.y() - a.y(), b.x() - a.x()), Eigen::Vector3d::UnitZ()));
+    walls["cubes"].push_back(
+        {{"pose",
+          pose_of(Eigen::Vector3d(0.5 * (a.x() + b.x()), 0.5 * (a.y() + b.y()), 0.5 * (z0 + z1)), yaw)},
+         {"size", vec3(Eigen::Vector3d((b - a).norm(), kWallThickness, std::max(z1 - z0, kWallThickness)))},
+         {"color", rgba(wall_colour(p.id), kWallAlpha)}});
+  }
+  return walls;
+}
+
+/// The trajectory as one line, thinned to at most kMaxTrajectoryPoints vertices (the last kept).
+json trajectory_entity(const std::vector<io::StampedPose>& trajectory, double end) {
+  json path = entity(end, "trajectory");
+  std::vector<Eigen::Vector3d> points;
+  const std::size_t step =
+      std::max<std::size_t>(1, (trajectory.size() + kMaxTrajectoryPoints - 1) / kMaxTrajectoryPoints);
+  for (std::size_t i = 0; i < trajectory.size(); i += step)
+    points.push_back(trajectory[i].pose.translation());
+  if ((trajectory.size() - 1) % step != 0) points.push_back(trajectory.back().pose.translation());
+  path["lines"].push_back(line(0, points, rgba(0.1, 0.3, 0.9)));
+  return path;
+}
+
+/// The floor nodes as labels above their levels.
+json floors_entity(const io::SceneGraph& graph, double end) {
+  json floors = entity(end, "floors");
+  for (const auto& f : graph.floors)
+    floors["texts"].push_back(
+        text(Eigen::Vector3d(f.center.x(), f.center.y(), level_height(graph, f.level) + 2 * kLabelLift),
+             "floor " + std::to_string(f.id), rgba(kFloorNodeColour)));
+  return floors;
+}
+
 }  // namespace
 
 const std::string& foxglove_schema(const std::string& type) {
@@ -232,6 +332,28 @@ const std::string& foxglove_schema(const std::string& type) {
   if (it == kSchemas.end()) throw std::invalid_argument("foxglove_schema: no schema " + type);
   return it->second;
 }
+
+namespace {
+
+/// Foxglove's schemas and the export's channels, in the order they are written.
+Channels add_channels(io::mcap::Writer& w) {
+  std::map<std::string, std::uint16_t> schema;
+  for (const char* type : {"foxglove.FrameTransform", "foxglove.PointCloud", "foxglove.SceneUpdate"})
+    schema[type] = w.add_schema(type, "jsonschema", foxglove_schema(type));
+  const auto channel = [&](const char* topic, const char* type) {
+    return w.add_channel(schema.at(type), topic, "json");
+  };
+  Channels ch;
+  ch.tf = channel("/tf", "foxglove.FrameTransform");
+  ch.map = channel("/map", "foxglove.PointCloud");
+  ch.nodes = channel("/traversable_nodes", "foxglove.PointCloud");
+  ch.free_space = channel("/free_space", "foxglove.PointCloud");
+  ch.scene = channel("/scene", "foxglove.SceneUpdate");
+  ch.rooms = channel("/rooms", "foxglove.SceneUpdate");
+  return ch;
+}
+
+}  // namespace
 
 void export_foxglove_mcap(const std::string& run_dir, const std::string& out) {
   namespace fs = std::filesystem;
@@ -247,98 +369,25 @@ void export_foxglove_mcap(const std::string& run_dir, const std::string& out) {
   const Eigen::Vector3d origin = float_safe_origin(trajectory.front().pose.translation());
 
   io::mcap::Writer w(out, {"", "tsgraphs", io::mcap::Compression::zstd, 1u << 20});
-  std::map<std::string, std::uint16_t> schema;
-  for (const char* type : {"foxglove.FrameTransform", "foxglove.PointCloud", "foxglove.SceneUpdate"})
-    schema[type] = w.add_schema(type, "jsonschema", foxglove_schema(type));
-  const auto channel = [&](const char* topic, const char* type) {
-    return w.add_channel(schema.at(type), topic, "json");
+  const Channels ch = add_channels(w);
+  const auto put = [&](std::uint16_t channel, double t, const json& message) {
+    w.write(channel, nanoseconds(t), nanoseconds(t), message.dump());
   };
-  const std::uint16_t tf = channel("/tf", "foxglove.FrameTransform"),
-                      map_ch = channel("/map", "foxglove.PointCloud"),
-                      nodes_ch = channel("/traversable_nodes", "foxglove.PointCloud"),
-                      free_ch = channel("/free_space", "foxglove.PointCloud"),
-                      scene = channel("/scene", "foxglove.SceneUpdate"),
-                      rooms = channel("/rooms", "foxglove.SceneUpdate");
-  const auto put = [&](std::uint16_t ch, double t, const json& message) {
-    w.write(ch, nanoseconds(t), nanoseconds(t), message.dump());
-  };
-
   // Messages in time order: the room events interleaved with the poses, the maps at the end.
   std::size_t e = 0;
-  const auto level_z = [&](int level) {
-    return level >= 0 && static_cast<std::size_t>(level) < graph.levels.size()
-               ? graph.levels[static_cast<std::size_t>(level)]
-               : 0.0;
-  };
-  const auto room_update = [&](const io::RoomEvent& ev) {
-    const bool corridor = ev.kind == "corridor";
-    const json colour = rgba(corridor ? kCorridorOutlineColour : kRoomOutlineColour);
-    const double z = level_z(ev.level) + kOutlineLift;
-    std::vector<Eigen::Vector3d> outline;
-    for (const Vec2& v : ev.polygon.size() >= 3 ? ev.polygon : ev.rect.corners())
-      outline.emplace_back(v.x(), v.y(), z);
-    json ent = entity(ev.t, "room/" + std::to_string(ev.room_id));
-    ent["lines"].push_back(line(1, outline, colour));
-    ent["texts"].push_back(text(Eigen::Vector3d(ev.center.x(), ev.center.y(), z + kLabelLift),
-                                (corridor ? "corridor " : "room ") + std::to_string(ev.room_id), colour));
-    ent["metadata"] = json::array({{{"key", "kind"}, {"value", ev.kind}},
-                                   {{"key", "level"}, {"value", std::to_string(ev.level)}},
-                                   {{"key", "lap"}, {"value", std::to_string(ev.lap)}},
-                                   {{"key", "new"}, {"value", ev.is_new ? "true" : "false"}}});
-    put(rooms, ev.t, {{"deletions", json::array()}, {"entities", json::array({ent})}});
-  };
   for (const io::StampedPose& p : trajectory) {
-    for (; e < events.size() && events[e].t <= p.t; ++e) room_update(events[e]);
-    put(tf, p.t,
-        {{"timestamp", time_of(p.t)},
-         {"parent_frame_id", "map"},
-         {"child_frame_id", "sensor"},
-         {"translation", vec3(p.pose.translation())},
-         {"rotation", quat(Eigen::Quaterniond(p.pose.linear()))}});
+    for (; e < events.size() && events[e].t <= p.t; ++e)
+      put(ch.rooms, events[e].t, room_update(events[e], graph));
+    put(ch.tf, p.t, transform(p));
   }
-  for (; e < events.size(); ++e) room_update(events[e]);
-
-  put(map_ch, end, point_cloud(end, origin, map, true));
-  std::vector<io::MapVertex> nodes;
-  for (const auto& n : graph.traversable_nodes)
-    nodes.push_back(
-        {n.position, kTraversableNodeColour.r, kTraversableNodeColour.g, kTraversableNodeColour.b});
-  put(nodes_ch, end, point_cloud(end, origin, nodes, false));
-  // Each room's free space (its latest extraction's vertices), coloured as its outline.
-  std::vector<io::MapVertex> free_space;
-  for (const auto& r : graph.rooms) {
-    const Rgb c = r.kind == "corridor" ? kCorridorOutlineColour : kRoomOutlineColour;
-    for (const Eigen::Vector3d& v : r.free_space) free_space.push_back({v, c.r, c.g, c.b});
-  }
-  put(free_ch, end, point_cloud(end, origin, free_space, true));
-
-  json walls = entity(end, "walls");
-  for (const auto& p : graph.planes) {
-    if (p.kind != "wall" || !p.segment || !p.z_range) continue;
-    const Vec2 a = (*p.segment)[0], b = (*p.segment)[1];
-    const double z0 = (*p.z_range)[0], z1 = (*p.z_range)[1];
-    const Eigen::Quaterniond yaw(
-        Eigen::AngleAxisd(std::atan2(b.y() - a.y(), b.x() - a.x()), Eigen::Vector3d::UnitZ()));
-    walls["cubes"].push_back(
-        {{"pose",
-          pose_of(Eigen::Vector3d(0.5 * (a.x() + b.x()), 0.5 * (a.y() + b.y()), 0.5 * (z0 + z1)), yaw)},
-         {"size", vec3(Eigen::Vector3d((b - a).norm(), kWallThickness, std::max(z1 - z0, kWallThickness)))},
-         {"color", rgba(wall_colour(p.id), kWallAlpha)}});
-  }
-  json path = entity(end, "trajectory");
-  std::vector<Eigen::Vector3d> points;
-  const std::size_t step =
-      std::max<std::size_t>(1, (trajectory.size() + kMaxTrajectoryPoints - 1) / kMaxTrajectoryPoints);
-  for (std::size_t i = 0; i < trajectory.size(); i += step)
-    points.push_back(trajectory[i].pose.translation());
-  if ((trajectory.size() - 1) % step != 0) points.push_back(trajectory.back().pose.translation());
-  path["lines"].push_back(line(0, points, rgba(0.1, 0.3, 0.9)));
-  json floors = entity(end, "floors");
-  for (const auto& f : graph.floors)
-    floors["texts"].push_back(
-        text(Eigen::Vector3d(f.center.x(), f.center.y(), level_z(f.level) + 2 * kLabelLift),
-             "floor " + std::to_string(f.id), rgba(kFloorNodeColour)));
-  put(scene, end, {{"deletions", json::array()}, {"entities", json::array({walls, path, floors})}});
+  for (; e < events.size(); ++e) put(ch.rooms, events[e].t, room_update(events[e], graph));
+  put(ch.map, end, point_cloud(end, origin, map, true));
+  put(ch.nodes, end, point_cloud(end, origin, traversable_nodes(graph), false));
+  put(ch.free_space, end, point_cloud(end, origin, room_free_space(graph), true));
+  put(ch.scene, end,
+      {{"deletions", json::array()},
+       {"entities", json::array({walls_entity(graph, end), trajectory_entity(trajectory, end),
+                                 floors_entity(graph, end)})}});
   w.finish();
 }
 
