@@ -254,30 +254,23 @@ bool make_observation(const std::vector<Eigen::Vector3f>& pts, const std::vector
   return obs->plane.n.allFinite() && std::isfinite(obs->plane.d) && std::isfinite(obs->fit_rms);
 }
 
-}  // namespace
-
-std::vector<PlaneObservation> extract_planes(const PointCloud& cloud, const Eigen::Matrix3d& R_map_keyframe,
-                                             const PlaneExtractionConfig& config) {
-  std::vector<PlaneObservation> planes;
-  const int k = std::max(3, config.normal_neighbours);
-  const int min_inliers = std::max(3, config.min_inliers);
-
-  // Finite points within range.
+/// Finite points within `max_range` of the sensor.
+std::vector<Eigen::Vector3f> points_in_range(const PointCloud& cloud, double max_range) {
   std::vector<Eigen::Vector3f> pts;
   pts.reserve(cloud.size());
-  const float max_range2 = static_cast<float>(config.max_range * config.max_range);
+  const float max_range2 = static_cast<float>(max_range * max_range);
   for (const Eigen::Vector3f& p : cloud.points) {
     if (p.allFinite() && p.squaredNorm() <= max_range2) pts.push_back(p);
   }
-  if (pts.size() < static_cast<std::size_t>(std::max(min_inliers, k))) return planes;
-  const std::size_t n = pts.size();
+  return pts;
+}
 
-  const Normals normals = estimate_normals(pts, k);
-
-  // Normal class of every point, judged in the gravity-aligned map frame.
-  std::vector<NormalClass> cls(n, NormalClass::kNone);
+/// Normal class of every point, judged in the gravity-aligned map frame.
+std::vector<NormalClass> classify_normals(const Normals& normals, const Eigen::Matrix3d& R_map_keyframe,
+                                          const PlaneExtractionConfig& config) {
+  std::vector<NormalClass> cls(normals.normal.size(), NormalClass::kNone);
   const Eigen::Vector3f z_in_keyframe = (R_map_keyframe.transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < cls.size(); ++i) {
     if (!normals.reliable[i]) continue;
     const double nz = std::abs(normals.normal[i].dot(z_in_keyframe));
     if (nz <= config.max_vertical_normal_z)
@@ -285,12 +278,17 @@ std::vector<PlaneObservation> extract_planes(const PointCloud& cloud, const Eige
     else if (nz >= config.min_horizontal_normal_z)
       cls[i] = NormalClass::kHorizontal;
   }
+  return cls;
+}
 
-  // Region growing over the kNN graph gives plane hypotheses: smoothest points seed first; a
-  // neighbour joins if its normal agrees with the seed's and it lies on the current point's
-  // tangent plane (no step onto a parallel surface in front).
-  const float cos_thr = static_cast<float>(std::cos(config.normal_angle_threshold_deg * M_PI / 180.0));
-  const float dist_thr = static_cast<float>(config.distance_threshold);
+/// Plane hypotheses by region growing over the kNN graph, largest first (discovery order on a
+/// tie): smoothest points seed first; a neighbour joins if its normal agrees with the seed's and
+/// it lies on the current point's tangent plane (no step onto a parallel surface in front).
+std::vector<std::vector<std::uint32_t>> grow_regions(const std::vector<Eigen::Vector3f>& pts,
+                                                     const Normals& normals,
+                                                     const std::vector<NormalClass>& cls, int k,
+                                                     float cos_thr, float dist_thr) {
+  const std::size_t n = pts.size();
   std::vector<std::uint32_t> order;
   order.reserve(n);
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -322,46 +320,68 @@ std::vector<PlaneObservation> extract_planes(const PointCloud& cloud, const Eige
       }
     }
   }
-  std::vector<std::uint32_t> region_order(regions.size());
-  std::iota(region_order.begin(), region_order.end(), 0u);
-  std::stable_sort(region_order.begin(), region_order.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return regions[a].size() > regions[b].size(); });
+  std::stable_sort(regions.begin(), regions.end(),
+                   [](const auto& a, const auto& b) { return a.size() > b.size(); });
+  return regions;
+}
 
-  // Per hypothesis: fit, sweep the inliers of its class over the whole cloud, refit; the
-  // inliers are then taken, and split into faces by Euclidean clustering.
-  std::vector<bool> taken(n, false);
+/// A hypothesis's plane: fit its untaken points, sweep the inliers of its class over the whole
+/// cloud, refit, kRefineRounds times; `inliers` holds the last sweep's.
+Fit refine_plane(const std::vector<Eigen::Vector3f>& pts, const Normals& normals,
+                 const std::vector<NormalClass>& cls, const std::vector<bool>& taken, NormalClass c,
+                 std::size_t min_inliers, float cos_thr, float dist_thr,
+                 std::vector<std::uint32_t>& inliers) {
+  Fit fit = fit_plane(pts, inliers);
+  for (int round = 0; round < kRefineRounds && fit.ok; ++round) {
+    const Eigen::Vector3f nf = fit.normal.cast<float>();
+    const Eigen::Vector3f cf = fit.centroid.cast<float>();
+    // The fitted normal's sign is arbitrary; point normals face the sensor.
+    const float sign = nf.dot(cf) > 0.0f ? -1.0f : 1.0f;
+    inliers.clear();
+    for (std::uint32_t i = 0; i < pts.size(); ++i) {
+      if (taken[i] || cls[i] != c) continue;
+      if (std::abs(nf.dot(pts[i] - cf)) > dist_thr) continue;
+      if (sign * nf.dot(normals.normal[i]) < cos_thr) continue;
+      inliers.push_back(i);
+    }
+    if (inliers.size() < min_inliers) break;
+    fit = fit_plane(pts, inliers);
+  }
+  return fit;
+}
+
+}  // namespace
+
+std::vector<PlaneObservation> extract_planes(const PointCloud& cloud, const Eigen::Matrix3d& R_map_keyframe,
+                                             const PlaneExtractionConfig& config) {
+  std::vector<PlaneObservation> planes;
+  const int k = std::max(3, config.normal_neighbours);
+  const std::size_t min_inliers = static_cast<std::size_t>(std::max(3, config.min_inliers));
+  const std::vector<Eigen::Vector3f> pts = points_in_range(cloud, config.max_range);
+  if (pts.size() < std::max(min_inliers, static_cast<std::size_t>(k))) return planes;
+  const Normals normals = estimate_normals(pts, k);
+  const std::vector<NormalClass> cls = classify_normals(normals, R_map_keyframe, config);
+  const float cos_thr = static_cast<float>(std::cos(config.normal_angle_threshold_deg * M_PI / 180.0));
+  const float dist_thr = static_cast<float>(config.distance_threshold);
+
+  // Per hypothesis: its plane refined over the whole cloud; the inliers are then taken, and
+  // split into faces by Euclidean clustering.
+  std::vector<bool> taken(pts.size(), false);
   std::vector<std::uint32_t> inliers;
-  for (const std::uint32_t r : region_order) {
-    const std::vector<std::uint32_t>& region = regions[r];
-    if (region.size() < static_cast<std::size_t>(min_inliers)) break;  // sorted: the rest are smaller
+  for (const std::vector<std::uint32_t>& region : grow_regions(pts, normals, cls, k, cos_thr, dist_thr)) {
+    if (region.size() < min_inliers) break;  // sorted: the rest are smaller
     inliers.clear();
     for (const std::uint32_t i : region) {
       if (!taken[i]) inliers.push_back(i);
     }
-    if (inliers.size() < static_cast<std::size_t>(min_inliers)) continue;
+    if (inliers.size() < min_inliers) continue;
     const NormalClass c = cls[region.front()];
-    Fit fit = fit_plane(pts, inliers);
-    for (int round = 0; round < kRefineRounds && fit.ok; ++round) {
-      const Eigen::Vector3f nf = fit.normal.cast<float>();
-      const Eigen::Vector3f cf = fit.centroid.cast<float>();
-      // The fitted normal's sign is arbitrary; point normals face the sensor.
-      const float sign = nf.dot(cf) > 0.0f ? -1.0f : 1.0f;
-      inliers.clear();
-      for (std::uint32_t i = 0; i < n; ++i) {
-        if (taken[i] || cls[i] != c) continue;
-        if (std::abs(nf.dot(pts[i] - cf)) > dist_thr) continue;
-        if (sign * nf.dot(normals.normal[i]) < cos_thr) continue;
-        inliers.push_back(i);
-      }
-      if (inliers.size() < static_cast<std::size_t>(min_inliers)) break;
-      fit = fit_plane(pts, inliers);
-    }
-    if (!fit.ok || inliers.size() < static_cast<std::size_t>(min_inliers)) continue;
+    const Fit fit = refine_plane(pts, normals, cls, taken, c, min_inliers, cos_thr, dist_thr, inliers);
+    if (!fit.ok || inliers.size() < min_inliers) continue;
     for (const std::uint32_t i : inliers) taken[i] = true;
-
     for (const std::vector<std::uint32_t>& face :
          euclidean_clusters(pts, inliers, fit.normal, config.cluster_tolerance)) {
-      if (face.size() < static_cast<std::size_t>(min_inliers)) continue;
+      if (face.size() < min_inliers) continue;
       PlaneObservation obs;
       if (make_observation(pts, face, c == NormalClass::kVertical, R_map_keyframe, config, &obs)) {
         planes.push_back(std::move(obs));
