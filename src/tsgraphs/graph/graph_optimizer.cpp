@@ -381,6 +381,104 @@ void check_room_edge(const RoomPlanesEdge& e, const SituationalGraph& graph) {
   }
 }
 
+/// Which blocks a solve moves. Keyframe 0 anchors the map; a local solve frees only the last
+/// local_window keyframes, the planes they see, the rooms of those planes and the floors of
+/// those rooms; a full solve frees everything.
+struct FreeBlocks {
+  int first_free = 1;
+  std::set<int> planes;
+  std::set<int> rooms;
+  std::map<int, std::set<int>> rooms_of_floor;
+
+  bool keyframe(int id) const { return id >= first_free; }
+  bool plane(int id) const { return planes.count(id) > 0; }
+  bool room(int id) const { return rooms.count(id) > 0; }
+};
+
+/// The free blocks of a solve, the edges they hang on checked.
+FreeBlocks free_blocks(const SituationalGraph& graph, bool full, int local_window) {
+  const int num_keyframes = static_cast<int>(graph.keyframes().size());
+  FreeBlocks free;
+  free.first_free = full ? 1 : std::max(1, num_keyframes - local_window);
+  for (const PlaneEdge& e : graph.plane_edges()) {
+    if (e.keyframe < 0 || e.keyframe >= num_keyframes || !graph.planes().count(e.plane) ||
+        graph.keyframes()[e.keyframe].retired)
+      throw std::invalid_argument(
+          "GraphOptimizer: plane edge with an unknown or retired keyframe, or unknown plane");
+    if (free.keyframe(e.keyframe)) free.planes.insert(e.plane);
+  }
+  // A room moves with its walls: free when one of them is (always in a full solve).
+  for (const RoomPlanesEdge& e : graph.room_edges()) {
+    check_room_edge(e, graph);
+    if (full || std::any_of(e.planes.begin(), e.planes.end(), [&](int id) { return free.plane(id); }))
+      free.rooms.insert(e.room);
+  }
+  for (const FloorRoomEdge& e : graph.floor_room_edges()) {
+    if (!graph.floors().count(e.floor) || !graph.rooms().count(e.room))
+      throw std::invalid_argument("GraphOptimizer: floor edge with unknown floor or room");
+    free.rooms_of_floor[e.floor].insert(e.room);
+  }
+  return free;
+}
+
+/// Odometry, loop and plane factors that touch a free block (so that a local problem does not
+/// grow with the run).
+void add_keyframe_factors(GraphProblem& gp, const SituationalGraph& graph, const FreeBlocks& free,
+                          const GraphOptimizerConfig& config) {
+  ceres::Problem& problem = gp.problem();
+  const auto add_between = [&](const BetweenEdge& e, double sigma_trans, double sigma_rot_deg,
+                               ceres::LossFunction* loss) {
+    check_between(e, graph);
+    if (!free.keyframe(e.from) && !free.keyframe(e.to)) return;
+    // An edge that retired keyframes were folded into carries its own, larger noise.
+    if (e.folded > 0) {
+      sigma_trans = e.sigmas.trans;
+      sigma_rot_deg = e.sigmas.rot_deg;
+    }
+    problem.AddResidualBlock(BetweenResidual::create(e.measurement, sigma_trans, sigma_rot_deg * kDegToRad),
+                             loss, gp.pose(e.from, free.keyframe(e.from)),
+                             gp.pose(e.to, free.keyframe(e.to)));
+  };
+  for (const BetweenEdge& e : graph.odometry_edges())
+    add_between(e, config.odometry_sigma_trans, config.odometry_sigma_rot_deg, nullptr);
+  for (const BetweenEdge& e : graph.loop_edges())
+    add_between(e, config.loop_sigma_trans, config.loop_sigma_rot_deg, gp.loop_loss());
+  for (const PlaneEdge& e : graph.plane_edges()) {
+    if (!free.keyframe(e.keyframe) && !free.plane(e.plane)) continue;
+    problem.AddResidualBlock(PlaneResidual::create(e.measurement, config.plane_sigma_angle_deg * kDegToRad,
+                                                   config.plane_sigma_distance),
+                             gp.plane_loss(), gp.pose(e.keyframe, free.keyframe(e.keyframe)),
+                             gp.plane(e.plane, free.plane(e.plane)));
+  }
+}
+
+/// Room and corridor factors of the free rooms, floor factors of floors with a free room.
+void add_room_factors(GraphProblem& gp, const SituationalGraph& graph, const FreeBlocks& free, bool full,
+                      const GraphOptimizerConfig& config) {
+  ceres::Problem& problem = gp.problem();
+  for (const RoomPlanesEdge& e : graph.room_edges()) {
+    if (!free.room(e.room)) continue;
+    std::vector<double*> walls;
+    for (int id : e.planes) walls.push_back(gp.plane(id, free.plane(id)));
+    double* center = gp.room(e.room, true);
+    if (e.kind == RoomKind::room)
+      problem.AddResidualBlock(RoomResidual::create(config.room_sigma), gp.room_loss(), center, walls[0],
+                               walls[1], walls[2], walls[3]);
+    else
+      problem.AddResidualBlock(
+          CorridorResidual::create(e.cluster_center, config.corridor_sigma, config.corridor_along_sigma),
+          gp.room_loss(), center, walls[0], walls[1]);
+  }
+  // A floor follows its rooms: free when one of them is (always in a full solve).
+  for (const auto& [floor, rooms] : free.rooms_of_floor) {
+    if (!full && std::none_of(rooms.begin(), rooms.end(), [&](int id) { return free.room(id); })) continue;
+    std::vector<double*> blocks{gp.floor(floor, true)};
+    for (int room : rooms) blocks.push_back(gp.room(room, free.room(room)));
+    problem.AddResidualBlock(new FloorResidual(static_cast<int>(rooms.size()), config.floor_sigma),
+                             gp.floor_loss(), blocks);
+  }
+}
+
 }  // namespace
 
 GraphOptimizer::GraphOptimizer(GraphOptimizerConfig config) : config_(std::move(config)) {
@@ -388,90 +486,14 @@ GraphOptimizer::GraphOptimizer(GraphOptimizerConfig config) : config_(std::move(
 }
 
 OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {
-  const int num_keyframes = static_cast<int>(graph.keyframes().size());
-  if (num_keyframes == 0) throw std::invalid_argument("GraphOptimizer: the graph has no keyframes");
+  if (graph.keyframes().empty()) throw std::invalid_argument("GraphOptimizer: the graph has no keyframes");
   OptimizationStats stats;
   stats.full = full;
-
-  // Keyframe 0 anchors the map; a local solve frees only the last local_window keyframes.
-  const int first_free = full ? 1 : std::max(1, num_keyframes - config_.local_window);
-  const auto keyframe_free = [first_free](int id) { return id >= first_free; };
-  std::set<int> free_planes;
-  for (const PlaneEdge& e : graph.plane_edges()) {
-    if (e.keyframe < 0 || e.keyframe >= num_keyframes || !graph.planes().count(e.plane) ||
-        graph.keyframes()[e.keyframe].retired)
-      throw std::invalid_argument(
-          "GraphOptimizer: plane edge with an unknown or retired keyframe, or unknown plane");
-    if (keyframe_free(e.keyframe)) free_planes.insert(e.plane);
-  }
-  const auto plane_free = [&free_planes](int id) { return free_planes.count(id) > 0; };
-
-  // A room moves with its walls: free when one of them is (always in a full solve).
-  std::set<int> free_rooms;
-  for (const RoomPlanesEdge& e : graph.room_edges()) {
-    check_room_edge(e, graph);
-    if (full || std::any_of(e.planes.begin(), e.planes.end(), plane_free)) free_rooms.insert(e.room);
-  }
-  const auto room_free = [&free_rooms](int id) { return free_rooms.count(id) > 0; };
-  // A floor follows its rooms: free when one of them is (always in a full solve).
-  std::map<int, std::set<int>> rooms_of_floor;
-  for (const FloorRoomEdge& e : graph.floor_room_edges()) {
-    if (!graph.floors().count(e.floor) || !graph.rooms().count(e.room))
-      throw std::invalid_argument("GraphOptimizer: floor edge with unknown floor or room");
-    rooms_of_floor[e.floor].insert(e.room);
-  }
-
+  const FreeBlocks free = free_blocks(graph, full, config_.local_window);
   GraphProblem graph_problem(graph, config_);
+  add_keyframe_factors(graph_problem, graph, free, config_);
+  add_room_factors(graph_problem, graph, free, full, config_);
   ceres::Problem& problem = graph_problem.problem();
-
-  // Only factors touching a free block enter, so a local problem does not grow with the run.
-  const auto add_between = [&](const BetweenEdge& e, double sigma_trans, double sigma_rot_deg,
-                               ceres::LossFunction* loss) {
-    check_between(e, graph);
-    if (!keyframe_free(e.from) && !keyframe_free(e.to)) return;
-    // An edge that retired keyframes were folded into carries its own, larger noise.
-    if (e.folded > 0) {
-      sigma_trans = e.sigmas.trans;
-      sigma_rot_deg = e.sigmas.rot_deg;
-    }
-    problem.AddResidualBlock(BetweenResidual::create(e.measurement, sigma_trans, sigma_rot_deg * kDegToRad),
-                             loss, graph_problem.pose(e.from, keyframe_free(e.from)),
-                             graph_problem.pose(e.to, keyframe_free(e.to)));
-  };
-  for (const BetweenEdge& e : graph.odometry_edges())
-    add_between(e, config_.odometry_sigma_trans, config_.odometry_sigma_rot_deg, nullptr);
-  for (const BetweenEdge& e : graph.loop_edges())
-    add_between(e, config_.loop_sigma_trans, config_.loop_sigma_rot_deg, graph_problem.loop_loss());
-  for (const PlaneEdge& e : graph.plane_edges()) {
-    if (!keyframe_free(e.keyframe) && !plane_free(e.plane)) continue;
-    problem.AddResidualBlock(PlaneResidual::create(e.measurement, config_.plane_sigma_angle_deg * kDegToRad,
-                                                   config_.plane_sigma_distance),
-                             graph_problem.plane_loss(),
-                             graph_problem.pose(e.keyframe, keyframe_free(e.keyframe)),
-                             graph_problem.plane(e.plane, plane_free(e.plane)));
-  }
-
-  for (const RoomPlanesEdge& e : graph.room_edges()) {
-    if (!room_free(e.room)) continue;
-    std::vector<double*> walls;
-    for (int id : e.planes) walls.push_back(graph_problem.plane(id, plane_free(id)));
-    double* center = graph_problem.room(e.room, true);
-    if (e.kind == RoomKind::room)
-      problem.AddResidualBlock(RoomResidual::create(config_.room_sigma), graph_problem.room_loss(), center,
-                               walls[0], walls[1], walls[2], walls[3]);
-    else
-      problem.AddResidualBlock(
-          CorridorResidual::create(e.cluster_center, config_.corridor_sigma, config_.corridor_along_sigma),
-          graph_problem.room_loss(), center, walls[0], walls[1]);
-  }
-  for (const auto& [floor, rooms] : rooms_of_floor) {
-    if (!full && std::none_of(rooms.begin(), rooms.end(), room_free)) continue;
-    std::vector<double*> blocks{graph_problem.floor(floor, true)};
-    for (int room : rooms) blocks.push_back(graph_problem.room(room, room_free(room)));
-    problem.AddResidualBlock(new FloorResidual(static_cast<int>(rooms.size()), config_.floor_sigma),
-                             graph_problem.floor_loss(), blocks);
-  }
-
   stats.n_variables = graph_problem.num_free();
   stats.n_factors = problem.NumResidualBlocks();
   if (stats.n_variables == 0) return stats;
