@@ -1,5 +1,5 @@
 // The HTML pages: pictures inlined as SVG (their styles are scoped to their root class, see
-// run_svg.cpp), CSS in the head, no script and no URL, so a page opens anywhere on its own.
+// run_svg.hpp), CSS in the head, no script and no URL, so a page opens anywhere on its own.
 #include "tsgraphs/report/report_html.hpp"
 
 #include <charconv>
