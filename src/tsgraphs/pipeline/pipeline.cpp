@@ -183,7 +183,23 @@ void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud,
   record.reference_keyframe = id;
   keyframe_clouds_.push_back(std::move(cloud));
 
-  // The scan's traversable nodes join the global node map, held in this keyframe's frame.
+  const std::size_t ground_nodes = fuse_ground(id);
+  const auto walls_start = std::chrono::steady_clock::now();
+  const std::size_t walls_seen = add_planes(id, record, std::move(planes));
+  record.walls_ms += ms_since(walls_start);
+  check_empty_layers(id, ground_nodes, walls_seen);
+
+  const auto rooms_start = std::chrono::steady_clock::now();
+  revisited_room_ = -1;
+  add_room_events(rooms_.update(room_input(id)));
+  record.rooms_ms = ms_since(rooms_start);
+
+  const auto loop_start = std::chrono::steady_clock::now();
+  close_loop(id);
+  record.loop_ms = ms_since(loop_start);
+}
+
+std::size_t Pipeline::fuse_ground(int id) {
   std::vector<ground::NodeObservation> nodes;
   const Eigen::Matrix3d R_sensor_level = last_ground_.R_level_sensor.transpose();
   for (const ground::GroundNode& n : last_ground_.nodes) {
@@ -192,17 +208,18 @@ void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud,
                      static_cast<double>(n.probability)});
   }
   node_map_.fuse(id, graph_.keyframes()[id].pose, nodes);
+  return nodes.size();
+}
 
-  // Walls (and floor/ceiling planes): extract, associate or create, add the factors.
-  const auto walls_start = std::chrono::steady_clock::now();
+std::size_t Pipeline::add_planes(int id, const ScanRecord& record,
+                                 std::optional<std::vector<walls::PlaneObservation>> planes) {
   const Pose3& T = graph_.keyframes()[id].pose;
   // Only the gravity direction of the rotation matters to the extraction, so planes
   // prepared ahead from the odometry's rotation are the same as those from T's.
   if (!planes)
     planes = walls::extract_planes(keyframe_clouds_.back(), record.odom.linear(), config_.plane_extraction);
-  const std::vector<walls::PlaneObservation>& observations = *planes;
   std::size_t walls_seen = 0;
-  for (const walls::PlaneObservation& obs : observations) {
+  for (const walls::PlaneObservation& obs : *planes) {
     walls_seen += obs.vertical ? 1 : 0;
     int plane_id = mapper_.associate(obs, T);
     if (plane_id < 0) {
@@ -213,16 +230,10 @@ void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud,
     }
     graph_.add_plane_edge({id, plane_id, obs.plane, obs.num_inliers});
   }
-  record.walls_ms += ms_since(walls_start);
-  check_empty_layers(id, nodes.size(), walls_seen);
+  return walls_seen;
+}
 
-  const auto rooms_start = std::chrono::steady_clock::now();
-  revisited_room_ = -1;
-  add_room_events(rooms_.update(room_input(id)));
-  record.rooms_ms = ms_since(rooms_start);
-
-  // Loop closure: a room re-detected with its walls proposes first, then the distance rule.
-  const auto loop_start = std::chrono::steady_clock::now();
+void Pipeline::close_loop(int id) {
   const auto cloud_of = [this](int k) -> const PointCloud& { return keyframe_clouds_[k]; };
   std::optional<graph::BetweenEdge> loop;
   std::string proposer = "room";
@@ -241,7 +252,6 @@ void Pipeline::add_keyframe(ScanRecord& record, PointCloud cloud,
     graph_.add_loop_edge(*loop);
     loop_closures_.push_back({*loop, proposer});
   }
-  record.loop_ms = ms_since(loop_start);
 }
 
 void Pipeline::check_empty_layers(int keyframe, std::size_t ground_nodes, std::size_t walls) {

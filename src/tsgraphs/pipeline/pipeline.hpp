@@ -113,6 +113,16 @@ class Pipeline {
  private:
   void add_keyframe(ScanRecord& record, PointCloud cloud,
                     std::optional<std::vector<walls::PlaneObservation>> planes);
+  /// The newest ground's traversable nodes into the global node map, in keyframe `id`'s frame;
+  /// how many.
+  std::size_t fuse_ground(int id);
+  /// The keyframe's wall (and floor, ceiling) planes associated or mapped, their factors added;
+  /// how many were walls.
+  std::size_t add_planes(int id, const ScanRecord& record,
+                         std::optional<std::vector<walls::PlaneObservation>> planes);
+  /// Loop closure at keyframe `id`: a room re-detected with its walls proposes first, then the
+  /// distance rule.
+  void close_loop(int id);
   RoomLayerInput room_input(int keyframe) const;
   /// Records room events and puts new rooms, and merges, into the graph.
   void add_room_events(const std::vector<RoomEventRecord>& events);
