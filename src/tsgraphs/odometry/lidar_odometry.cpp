@@ -447,59 +447,81 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan, double stamp) {
   thin(frame, frame_times, config_.voxel_size * config_.registration_voxel_factor, source, source_times);
   const bool swept = config_.sweep_motion && spans_time(frame_times);
 
-  Pose3 pose = prediction;
-  if (!map_.empty()) {
-    const double sigma = threshold();
-    const auto [start_of_search, from] = choose_start(source, prediction, sigma);
-    Pose3 start = start_of_search.pose;
-    last_icp_ = register_from(source, from, sigma);
-    last_icp_.turn_searched_deg = start_of_search.turn_deg;
-    // Far below the usual overlap ICP ran into a wrong minimum, even above min_overlap (a
-    // walker's turn and step both off the prediction).
-    const double usual = usual_overlap();
-    const bool suspect =
-        last_icp_.overlap < config_.min_overlap || last_icp_.overlap < config_.recovery_overlap_ratio * usual;
-    if (suspect && config_.recovery_search_m > 0.0) {
-      const Pose3 again = recovery_start(source, prediction);
-      const IcpResult retry = register_from(source, again, sigma);
-      if (retry.overlap > last_icp_.overlap) {
-        last_icp_ = retry;
-        last_icp_.recovered = true;
-        start = again;
-      }
-    }
-    recent_overlaps_.push_back(last_icp_.overlap);
-    if (recent_overlaps_.size() > static_cast<std::size_t>(config_.recovery_window))
-      recent_overlaps_.pop_front();
-    pose = last_icp_.pose;
-    if (swept && !last_icp_.lost) {
-      // The rigid pose fits the sweep as a whole; the sweep's own motion, found from there,
-      // gives the pose at the stamp and straightens the points the map takes.
-      SweepMotion prior;
-      prior.pose = pose;
-      // The velocity's prior is the last interval's, between the last two stamps' poses: a
-      // sweep hardly sees its velocity (deskew.velocity_sigma) and a carrier keeps it.
-      if (last_interval > 0.0 && poses_.size() >= 2) {
-        const Eigen::Vector3d moved = poses_.back().translation() - poses_[poses_.size() - 2].translation();
-        prior.velocity = pose.linear().transpose() * moved / last_interval;
-      }
-      last_sweep_ = align_sweep_to_map(source, source_times, map_, prior, sweep_);
-      if (last_sweep_.registered) pose = last_sweep_.pose;
-    }
-    const Pose3 motion = poses_.back().inverse() * pose;
-    // The threshold learns what ICP bridged: from the start it was given (a turn the search
-    // found is no deviation of the motion model to widen every later search for) to its own
-    // rigid result (the sweep's stamp pose lies a sweep's motion away from what ICP can fit).
-    threshold_.update(start.inverse() * last_icp_.pose, motion, median_range(source));
-    last_icp_.lost = last_icp_.overlap < config_.min_overlap;
-  }
+  const Pose3 pose =
+      map_.empty() ? prediction : register_to_map(source, source_times, prediction, last_interval, swept);
   if (last_icp_.lost) {
     lost_.push_back(poses_.size());
     poses_.push_back(pose);
     return pose;
   }
+  add_to_map(frame, frame_times, pose, swept && last_sweep_.registered);
+  score_tilt_predictions(pose);
+  poses_.push_back(pose);
+  return pose;
+}
 
-  if (swept && last_sweep_.registered) {
+Pose3 LidarOdometry::register_to_map(const std::vector<Eigen::Vector3d>& source,
+                                     const std::vector<double>& source_times, const Pose3& prediction,
+                                     double last_interval, bool swept) {
+  const double sigma = threshold();
+  const Pose3 start = register_rigid(source, prediction, sigma);
+  Pose3 pose = last_icp_.pose;
+  if (swept && !last_icp_.lost) {
+    // The rigid pose fits the sweep as a whole; the sweep's own motion, found from there,
+    // gives the pose at the stamp and straightens the points the map takes.
+    last_sweep_ = align_sweep_to_map(source, source_times, map_, sweep_prior(pose, last_interval), sweep_);
+    if (last_sweep_.registered) pose = last_sweep_.pose;
+  }
+  const Pose3 motion = poses_.back().inverse() * pose;
+  // The threshold learns what ICP bridged: from the start it was given (a turn the search
+  // found is no deviation of the motion model to widen every later search for) to its own
+  // rigid result (the sweep's stamp pose lies a sweep's motion away from what ICP can fit).
+  threshold_.update(start.inverse() * last_icp_.pose, motion, median_range(source));
+  last_icp_.lost = last_icp_.overlap < config_.min_overlap;
+  return pose;
+}
+
+Pose3 LidarOdometry::register_rigid(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction,
+                                    double sigma) {
+  const auto [start_of_search, from] = choose_start(source, prediction, sigma);
+  Pose3 start = start_of_search.pose;
+  last_icp_ = register_from(source, from, sigma);
+  last_icp_.turn_searched_deg = start_of_search.turn_deg;
+  // Far below the usual overlap ICP ran into a wrong minimum, even above min_overlap (a
+  // walker's turn and step both off the prediction).
+  const double usual = usual_overlap();
+  const bool suspect =
+      last_icp_.overlap < config_.min_overlap || last_icp_.overlap < config_.recovery_overlap_ratio * usual;
+  if (suspect && config_.recovery_search_m > 0.0) {
+    const Pose3 again = recovery_start(source, prediction);
+    const IcpResult retry = register_from(source, again, sigma);
+    if (retry.overlap > last_icp_.overlap) {
+      last_icp_ = retry;
+      last_icp_.recovered = true;
+      start = again;
+    }
+  }
+  recent_overlaps_.push_back(last_icp_.overlap);
+  if (recent_overlaps_.size() > static_cast<std::size_t>(config_.recovery_window))
+    recent_overlaps_.pop_front();
+  return start;
+}
+
+SweepMotion LidarOdometry::sweep_prior(const Pose3& pose, double last_interval) const {
+  SweepMotion prior;
+  prior.pose = pose;
+  // The velocity's prior is the last interval's, between the last two stamps' poses: a
+  // sweep hardly sees its velocity (deskew.velocity_sigma) and a carrier keeps it.
+  if (last_interval > 0.0 && poses_.size() >= 2) {
+    const Eigen::Vector3d moved = poses_.back().translation() - poses_[poses_.size() - 2].translation();
+    prior.velocity = pose.linear().transpose() * moved / last_interval;
+  }
+  return prior;
+}
+
+void LidarOdometry::add_to_map(std::vector<Eigen::Vector3d>& frame, const std::vector<double>& frame_times,
+                               const Pose3& pose, bool deskew) {
+  if (deskew) {
     for (std::size_t i = 0; i < frame.size(); ++i)
       frame[i] = pose * (last_sweep_.after(frame_times[i]) * frame[i]);
   } else {
@@ -507,9 +529,6 @@ Pose3 LidarOdometry::register_scan(const PointCloud& scan, double stamp) {
   }
   map_.add_points(frame);
   map_.remove_far(pose.translation(), config_.max_range);
-  score_tilt_predictions(pose);
-  poses_.push_back(pose);
-  return pose;
 }
 
 }  // namespace tsgraphs::odometry

@@ -239,6 +239,18 @@ class LidarOdometry {
   IcpResult register_from(const std::vector<Eigen::Vector3d>& source, const Pose3& start, double sigma) const;
   /// The start that overlaps the map best among turns and shifts (recovery_search_m).
   Pose3 recovery_start(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction) const;
+  /// register_scan's registration against a map that has points: ICP (register_rigid), then
+  /// the sweep's motion when `swept`; sets last_icp_ and last_sweep_, updates the threshold.
+  Pose3 register_to_map(const std::vector<Eigen::Vector3d>& source, const std::vector<double>& source_times,
+                        const Pose3& prediction, double last_interval, bool swept);
+  /// The chosen start's ICP, retried from recovery_start when its overlap is suspect; sets
+  /// last_icp_, records its overlap and returns the start it came from.
+  Pose3 register_rigid(const std::vector<Eigen::Vector3d>& source, const Pose3& prediction, double sigma);
+  /// The sweep registration's prior at `pose`: the last interval's velocity.
+  SweepMotion sweep_prior(const Pose3& pose, double last_interval) const;
+  /// Moves `frame` to the world at `pose` (de-skewed by last_sweep_ when `deskew`) into the map.
+  void add_to_map(std::vector<Eigen::Vector3d>& frame, const std::vector<double>& frame_times,
+                  const Pose3& pose, bool deskew);
   /// predict() with the tilt held or repeated.
   Pose3 predict_with(bool repeat_tilt, double seconds) const;
   /// Records how far each of the two tilt predictions was from `pose`, the next registered pose.
