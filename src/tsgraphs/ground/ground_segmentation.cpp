@@ -148,6 +148,95 @@ std::string preset_for_ring_spacing(double spacing_deg) {
   return best;
 }
 
+namespace {
+
+/// The ground plane of each traversable node: its own when the search reached it, the
+/// smoothed one when smoothing restored it.
+void ground_planes(const TriGridField& field, const std::vector<std::uint8_t>& traversable,
+                   const std::vector<std::uint8_t>& reached, const std::vector<SmoothedNode>& smoothed,
+                   std::vector<TriGridNode>* out) {
+  const std::size_t num_nodes = field.nodes.size();
+  std::vector<TriGridNode>& ground = *out;
+  ground.assign(num_nodes, TriGridNode{});
+  for (std::size_t k = 0; k < num_nodes; ++k) {
+    const TriGridNode& node = field.nodes[k];
+    if (!traversable[k] || reached[k]) {
+      ground[k] = node;
+      continue;
+    }
+    ground[k].centre = Eigen::Vector3f(node.centre.x(), node.centre.y(), smoothed[k].height);
+    ground[k].normal = smoothed[k].normal;
+  }
+}
+
+/// Labels the points ground (the ground band of traversable nodes) or obstacle (up to
+/// th_obstacle above the nearest traversable node's plane), and marks in `feet` the obstacle
+/// returns low enough to stand on a wall's or a box's foot.
+void label_points(const TriGridField& field, const std::vector<std::uint8_t>& traversable,
+                  const std::vector<TriGridNode>& ground, const std::vector<int>& nearest,
+                  const GroundConfig& config, std::vector<GroundLabel>* labels, FootMap* feet) {
+  const double foot_rise_per_metre = config.foot_rings * std::tan(config.ring_spacing_deg * M_PI / 180.0);
+  for (std::size_t i = 0; i < labels->size(); ++i) {
+    const int k = field.point_node[i];
+    if (k < 0 || nearest[k] < 0) continue;
+    const Eigen::Vector3f& p = field.points[i];
+    const TriGridNode& plane = ground[nearest[k]];
+    if (traversable[k] && std::abs(plane.distance(p)) <= config.th_dist) {
+      (*labels)[i] = GroundLabel::kGround;
+      continue;
+    }
+    const double height = p.z() - plane.height_at(p.x(), p.y());
+    if (height <= config.th_dist || height > config.th_obstacle) continue;
+    (*labels)[i] = GroundLabel::kObstacle;
+    // Far away the rings on a wall are farther apart than foot_height: reach foot_rings of them.
+    const double reach = std::max(config.foot_height, foot_rise_per_metre * p.head<2>().norm());
+    if (height <= config.th_dist + reach) feet->add(p);
+  }
+}
+
+/// Relabels as obstacle the ground points within foot_radius of a foot mark.
+void label_feet(const TriGridField& field, const FootMap& feet, std::vector<GroundLabel>* labels) {
+  for (std::size_t i = 0; i < labels->size(); ++i)
+    if ((*labels)[i] == GroundLabel::kGround && feet.near_mark(field.points[i]))
+      (*labels)[i] = GroundLabel::kObstacle;
+}
+
+/// Per node, the sum of its ground points' x and y and their count.
+void ground_sums(const TriGridField& field, const std::vector<GroundLabel>& labels,
+                 std::vector<Eigen::Vector3d>* out) {
+  std::vector<Eigen::Vector3d>& ground_sum = *out;  // x, y, count
+  ground_sum.assign(field.nodes.size(), Eigen::Vector3d::Zero());
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    if (labels[i] != GroundLabel::kGround) continue;
+    const Eigen::Vector3f& p = field.points[i];
+    ground_sum[field.point_node[i]] += Eigen::Vector3d(p.x(), p.y(), 1.0);
+  }
+}
+
+/// Node k as reported: a traversable node stands where its ground points are (a node cut by
+/// a wall or a railing edge has its ground on one side); one left with no ground point is not
+/// ground.
+GroundNode ground_node(const TriGridNode& node, bool traversable, bool reached, const SmoothedNode& smoothed,
+                       const TriGridNode& ground, const Eigen::Vector3d& ground_sum) {
+  GroundNode out;
+  out.centre = node.centre;
+  const double count = ground_sum.z();
+  if (traversable && count > 0.0) {
+    const float x = static_cast<float>(ground_sum.x() / count),
+                y = static_cast<float>(ground_sum.y() / count);
+    out.centre = Eigen::Vector3f(x, y, ground.height_at(x, y));
+    out.traversable = true;
+  }
+  out.normal = smoothed.has_surface ? smoothed.normal : node.normal;
+  out.probability = smoothed.probability;
+  out.num_points = node.num_points;
+  out.ground_like = node.ground_like;
+  out.reached = reached;
+  return out;
+}
+
+}  // namespace
+
 GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_sensor,
                           const GroundConfig& config) {
   thread_local Workspace ws;
@@ -160,79 +249,23 @@ GroundScan segment_ground(const PointCloud& cloud, const Eigen::Matrix3d& R_map_
   std::vector<SmoothedNode>& smoothed = ws.smoothed;
   bgk_smooth(field, reached, config, &smoothed);
   const std::vector<std::uint8_t> traversable = decide_traversable(field, smoothed, seeds, config);
+  ground_planes(field, traversable, reached, smoothed, &ws.ground);
 
-  // The ground plane of each traversable node: its own when the search reached it, the
-  // smoothed one when smoothing restored it.
-  const std::size_t num_nodes = field.nodes.size();
-  std::vector<TriGridNode>& ground = ws.ground;
-  ground.assign(num_nodes, TriGridNode{});
-  for (std::size_t k = 0; k < num_nodes; ++k) {
-    const TriGridNode& node = field.nodes[k];
-    if (!traversable[k] || reached[k]) {
-      ground[k] = node;
-      continue;
-    }
-    ground[k].centre = Eigen::Vector3f(node.centre.x(), node.centre.y(), smoothed[k].height);
-    ground[k].normal = smoothed[k].normal;
-  }
-
-  // Point labels: the ground band of traversable nodes, obstacles up to th_obstacle above
-  // the nearest traversable node's plane; a ground-band point under obstacle returns that rise
-  // from it (within foot_radius and foot_height) is the foot of a wall or a box.
-  std::vector<int>& nearest = ws.nearest;
-  nearest_traversable(field.grid, traversable, &nearest, &ws.queue);
+  // A ground-band point under obstacle returns that rise from it (within foot_radius and
+  // foot_height) is the foot of a wall or a box.
+  nearest_traversable(field.grid, traversable, &ws.nearest, &ws.queue);
   scan.labels.assign(cloud.size(), GroundLabel::kOther);
-  FootMap& feet = ws.feet;
-  feet.reset(config.foot_radius, config.max_range);
-  const double foot_rise_per_metre = config.foot_rings * std::tan(config.ring_spacing_deg * M_PI / 180.0);
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const int k = field.point_node[i];
-    if (k < 0 || nearest[k] < 0) continue;
-    const Eigen::Vector3f& p = field.points[i];
-    const TriGridNode& plane = ground[nearest[k]];
-    if (traversable[k] && std::abs(plane.distance(p)) <= config.th_dist) {
-      scan.labels[i] = GroundLabel::kGround;
-      continue;
-    }
-    const double height = p.z() - plane.height_at(p.x(), p.y());
-    if (height <= config.th_dist || height > config.th_obstacle) continue;
-    scan.labels[i] = GroundLabel::kObstacle;
-    // Far away the rings on a wall are farther apart than foot_height: reach foot_rings of them.
-    const double reach = std::max(config.foot_height, foot_rise_per_metre * p.head<2>().norm());
-    if (height <= config.th_dist + reach) feet.add(p);
-  }
-  feet.index();
-  for (std::size_t i = 0; i < cloud.size(); ++i)
-    if (scan.labels[i] == GroundLabel::kGround && feet.near_mark(field.points[i]))
-      scan.labels[i] = GroundLabel::kObstacle;
+  ws.feet.reset(config.foot_radius, config.max_range);
+  label_points(field, traversable, ws.ground, ws.nearest, config, &scan.labels, &ws.feet);
+  ws.feet.index();
+  label_feet(field, ws.feet, &scan.labels);
 
-  // Each node stands where its ground points are (a node cut by a wall or a railing edge has
-  // its ground on one side); a traversable node left with no ground point is not ground.
-  std::vector<Eigen::Vector3d>& ground_sum = ws.ground_sum;  // x, y, count
-  ground_sum.assign(num_nodes, Eigen::Vector3d::Zero());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    if (scan.labels[i] != GroundLabel::kGround) continue;
-    const Eigen::Vector3f& p = field.points[i];
-    ground_sum[field.point_node[i]] += Eigen::Vector3d(p.x(), p.y(), 1.0);
-  }
-  for (std::size_t k = 0; k < num_nodes; ++k) {
+  ground_sums(field, scan.labels, &ws.ground_sum);
+  for (std::size_t k = 0; k < field.nodes.size(); ++k) {
     const TriGridNode& node = field.nodes[k];
     if (node.state == NodeState::kEmpty) continue;
-    GroundNode out;
-    out.centre = node.centre;
-    const double count = ground_sum[k].z();
-    if (traversable[k] && count > 0.0) {
-      const float x = static_cast<float>(ground_sum[k].x() / count),
-                  y = static_cast<float>(ground_sum[k].y() / count);
-      out.centre = Eigen::Vector3f(x, y, ground[k].height_at(x, y));
-      out.traversable = true;
-    }
-    out.normal = smoothed[k].has_surface ? smoothed[k].normal : node.normal;
-    out.probability = smoothed[k].probability;
-    out.num_points = node.num_points;
-    out.ground_like = node.ground_like;
-    out.reached = reached[k] != 0;
-    scan.nodes.push_back(out);
+    scan.nodes.push_back(
+        ground_node(node, traversable[k] != 0, reached[k] != 0, smoothed[k], ws.ground[k], ws.ground_sum[k]));
   }
   return scan;
 }
