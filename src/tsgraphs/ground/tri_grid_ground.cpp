@@ -99,21 +99,21 @@ void lowest_per_column(const TriGrid& grid, int node_index, double column, NodeS
   }
 }
 
-void model_node(const TriGridField& field, int node_index, const GroundConfig& config, NodeScratch* scratch,
-                TriGridNode* node) {
-  std::vector<Eigen::Vector3f>& sorted = scratch->sorted;
+/// The node's points, by height.
+void points_by_height(const TriGridField& field, int node_index, std::vector<Eigen::Vector3f>* out) {
+  std::vector<Eigen::Vector3f>& sorted = *out;
   sorted.clear();
   for (int k = field.node_begin[node_index]; k < field.node_begin[node_index + 1]; ++k)
     sorted.push_back(field.points[field.node_points[k]]);
   std::sort(sorted.begin(), sorted.end(),
             [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) { return a.z() < b.z(); });
-  const bool enough_points = static_cast<int>(sorted.size()) >= config.num_min_pts;
-  lowest_per_column(field.grid, node_index, config.fit_column, scratch);
-  const std::vector<Eigen::Vector3f>& surface = scratch->surface;
-  const std::size_t m = surface.size();
+}
 
-  // Robust lowest level: the lowest point with num_lpr points (itself included) within
-  // th_outlier above it. Lone returns below it (multipath, noise) do not set the level.
+/// Robust lowest level of `surface` (by height, not empty): the lowest point with num_lpr
+/// points (itself included) within th_outlier above it. Lone returns below it (multipath,
+/// noise) do not set the level.
+float robust_lowest(const std::vector<Eigen::Vector3f>& surface, const GroundConfig& config) {
+  const std::size_t m = surface.size();
   const std::size_t support = std::min<std::size_t>(std::max(config.num_lpr, 1), m);
   std::size_t low = 0;
   for (std::size_t i = 0; i + support <= m; ++i) {
@@ -122,7 +122,73 @@ void model_node(const TriGridField& field, int node_index, const GroundConfig& c
       break;
     }
   }
-  node->lowest = surface[low].z();
+  return surface[low].z();
+}
+
+/// Lowest-point representative: the mean height of the num_lpr lowest points from `first`.
+double lowest_point_representative(const std::vector<Eigen::Vector3f>& surface, std::size_t first,
+                                   const GroundConfig& config) {
+  const std::size_t lpr_end =
+      std::min(surface.size(), first + static_cast<std::size_t>(std::max(config.num_lpr, 1)));
+  double lpr = 0.0;
+  for (std::size_t i = first; i < lpr_end; ++i) lpr += surface[i].z();
+  lpr /= static_cast<double>(lpr_end - first);
+  return lpr;
+}
+
+/// PCA rounds, starting from the level plane through the LPR: each fits the seeds
+/// surface[first, seeds_end) within th_dist of the current plane (both sides). Seeding from the
+/// lowest level keeps a wall standing in the node from tipping the plane up: only its foot is
+/// near that level. False when no round had enough points; `subset` holds the last inliers.
+bool fit_seed_plane(const std::vector<Eigen::Vector3f>& surface, std::size_t first, std::size_t seeds_end,
+                    double lpr, const GroundConfig& config, std::vector<Eigen::Vector3f>* subset,
+                    Plane* out) {
+  const float band = static_cast<float>(config.th_dist);
+  bool fitted = false;
+  Plane plane;
+  plane.mean = Eigen::Vector3d(0.0, 0.0, lpr);
+  for (int it = 0; it < config.num_iter; ++it) {
+    const Eigen::Vector3f n = plane.normal.cast<float>();
+    const Eigen::Vector3f c = plane.mean.cast<float>();
+    subset->clear();
+    for (std::size_t i = first; i < seeds_end; ++i)
+      if (std::abs(n.dot(surface[i] - c)) < band) subset->push_back(surface[i]);
+    if (subset->size() < kMinPlanePoints) break;
+    plane = fit_plane(*subset, config.plane_prior_spread);
+    fitted = true;
+  }
+  *out = plane;
+  return fitted;
+}
+
+/// Whether every point of the seeds' height range [floor_z, lpr + th_seeds), not only the
+/// column-lowest ones, stands up as a steep face (`subset` is scratch).
+bool seeds_stand_up(const std::vector<Eigen::Vector3f>& sorted, float floor_z, double lpr,
+                    const GroundConfig& config, std::vector<Eigen::Vector3f>* subset) {
+  subset->clear();
+  for (const Eigen::Vector3f& p : sorted)
+    if (p.z() >= floor_z && p.z() < lpr + config.th_seeds) subset->push_back(p);
+  return fit_plane(*subset, config.plane_prior_spread).normal.z() < config.th_normal;
+}
+
+/// The points of surface[first, end) within th_dist of the plane through `mean` with `normal`.
+int count_inliers(const std::vector<Eigen::Vector3f>& surface, std::size_t first,
+                  const Eigen::Vector3f& normal, const Eigen::Vector3f& mean, double th_dist) {
+  int inliers = 0;
+  for (std::size_t i = first; i < surface.size(); ++i)
+    if (std::abs(normal.dot(surface[i] - mean)) <= th_dist) ++inliers;
+  return inliers;
+}
+
+void model_node(const TriGridField& field, int node_index, const GroundConfig& config, NodeScratch* scratch,
+                TriGridNode* node) {
+  points_by_height(field, node_index, &scratch->sorted);
+  const bool enough_points = static_cast<int>(scratch->sorted.size()) >= config.num_min_pts;
+  lowest_per_column(field.grid, node_index, config.fit_column, scratch);
+  const std::vector<Eigen::Vector3f>& surface = scratch->surface;
+  const std::size_t m = surface.size();
+
+  node->lowest = robust_lowest(surface, config);
   const float floor_z = node->lowest - static_cast<float>(config.th_outlier);
   std::size_t first = 0;  // points below lowest - th_outlier are rejected
   while (first < m && surface[first].z() < floor_z) ++first;
@@ -134,33 +200,12 @@ void model_node(const TriGridField& field, int node_index, const GroundConfig& c
   }
   node->state = NodeState::kModelled;
 
-  // Lowest-point representative and seeds.
-  const std::size_t lpr_end = std::min(m, first + static_cast<std::size_t>(std::max(config.num_lpr, 1)));
-  double lpr = 0.0;
-  for (std::size_t i = first; i < lpr_end; ++i) lpr += surface[i].z();
-  lpr /= static_cast<double>(lpr_end - first);
+  const double lpr = lowest_point_representative(surface, first, config);
   std::size_t seeds_end = first;
   while (seeds_end < m && surface[seeds_end].z() < lpr + config.th_seeds) ++seeds_end;
   std::vector<Eigen::Vector3f>& subset = scratch->subset;
-
-  // PCA rounds, starting from the level plane through the LPR: each fits the seeds within
-  // th_dist of the current plane (both sides). Seeding from the lowest level keeps a wall
-  // standing in the node from tipping the plane up: only its foot is near that level.
-  const float band = static_cast<float>(config.th_dist);
-  bool fitted = false;
   Plane plane;
-  plane.mean = Eigen::Vector3d(0.0, 0.0, lpr);
-  for (int it = 0; it < config.num_iter; ++it) {
-    const Eigen::Vector3f n = plane.normal.cast<float>();
-    const Eigen::Vector3f c = plane.mean.cast<float>();
-    subset.clear();
-    for (std::size_t i = first; i < seeds_end; ++i)
-      if (std::abs(n.dot(surface[i] - c)) < band) subset.push_back(surface[i]);
-    if (subset.size() < kMinPlanePoints) break;
-    plane = fit_plane(subset, config.plane_prior_spread);
-    fitted = true;
-  }
-  if (!fitted) {
+  if (!fit_seed_plane(surface, first, seeds_end, lpr, config, &subset, &plane)) {
     node->centre.z() = node->lowest;
     return;
   }
@@ -170,16 +215,9 @@ void model_node(const TriGridField& field, int node_index, const GroundConfig& c
   // Inliers on one line (a scan ring) get their tilt from the prior, and the foot of a wall
   // or of a void's edge seen from above is such a line too: it is a face's foot when the
   // seeds above the line stand up as a steep face.
-  if (node->ground_like && horizontal_spread(subset) < config.plane_prior_spread) {
-    subset.clear();  // every point of the seeds' height range, not only the column-lowest ones
-    for (const Eigen::Vector3f& p : scratch->sorted)
-      if (p.z() >= floor_z && p.z() < lpr + config.th_seeds) subset.push_back(p);
-    node->face_foot = fit_plane(subset, config.plane_prior_spread).normal.z() < config.th_normal;
-  }
-  int inliers = 0;
-  for (std::size_t i = first; i < m; ++i)
-    if (std::abs(node->normal.dot(surface[i] - mean)) <= config.th_dist) ++inliers;
-  node->num_inliers = inliers;
+  if (node->ground_like && horizontal_spread(subset) < config.plane_prior_spread)
+    node->face_foot = seeds_stand_up(scratch->sorted, floor_z, lpr, config, &subset);
+  node->num_inliers = count_inliers(surface, first, node->normal, mean, config.th_dist);
   // The plane's reference point moves from the mean to the triangle's centroid.
   node->centre.z() = plane_height(mean, node->normal, node->centre.x(), node->centre.y());
 }
