@@ -87,34 +87,51 @@ void add_ramp(LabelledMesh* mesh, const scene::Scene& scene, const scene::Ramp& 
   }
 }
 
-void add_voxel_map(LabelledMesh* mesh, const scene::Scene& scene, const scene::VoxelMap& vm) {
-  const PointCloud cloud = io::read_pcd(vm.file);
-  if (cloud.empty()) throw InputError(vm.file + ": voxel map has no finite points");
-  const scene::Level& level = scene.levels[vm.level];
-  // Snap points to the voxel grid through the first point, so voxel centres stay exact and
-  // a dense cloud becomes one cube per occupied voxel.
-  const Eigen::Vector3d origin = cloud.points.front().cast<double>();
-  const double s = vm.voxel_size;
-  // Exact indices (a packed key wraps far out); the shared key only hashes them.
-  struct IndexHash {
-    std::size_t operator()(const Eigen::Vector3i& k) const {
-      return KeyHash{}(voxel_key(k.x(), k.y(), k.z()));
-    }
-  };
-  std::unordered_set<Eigen::Vector3i, IndexHash> occupied;
-  std::vector<Eigen::Vector3i> keys;
+/// Exact voxel indices (a packed key wraps far out); the shared key only hashes them.
+struct IndexHash {
+  std::size_t operator()(const Eigen::Vector3i& k) const { return KeyHash{}(voxel_key(k.x(), k.y(), k.z())); }
+};
+using VoxelSet = std::unordered_set<Eigen::Vector3i, IndexHash>;
+
+/// The voxel map's cloud snapped to the voxel grid through its first point, so voxel centres
+/// stay exact and a dense cloud becomes one cube per occupied voxel.
+struct Voxels {
+  Eigen::Vector3d origin;
+  VoxelSet occupied;
+  std::vector<Eigen::Vector3i> keys;  ///< the occupied voxels, in the order of their first point
+};
+
+Voxels snap_to_voxels(const PointCloud& cloud, double s) {
+  Voxels voxels;
+  voxels.origin = cloud.points.front().cast<double>();
   for (const Eigen::Vector3f& p : cloud.points) {
-    const Eigen::Vector3i k = ((p.cast<double>() - origin) / s).array().round().cast<int>();
-    if (occupied.insert(k).second) keys.push_back(k);
+    const Eigen::Vector3i k = ((p.cast<double>() - voxels.origin) / s).array().round().cast<int>();
+    if (voxels.occupied.insert(k).second) voxels.keys.push_back(k);
   }
-  const double c = std::cos(deg2rad(vm.yaw_deg)), sn = std::sin(deg2rad(vm.yaw_deg));
-  auto to_world = [&](const Eigen::Vector3d& p) {
-    return Eigen::Vector3d(c * p.x() - sn * p.y() + vm.offset.x(), sn * p.x() + c * p.y() + vm.offset.y(),
-                           p.z() + vm.offset.z() + level.elevation);
-  };
-  const auto label_of = [&](const Eigen::Vector3i& k) {
-    const double z_rel = origin.z() + s * k.z() + vm.offset.z();
-    switch (vm.label) {
+  return voxels;
+}
+
+/// Where the voxel map stands in the scene, and what its voxels are.
+class VoxelPlacement {
+ public:
+  VoxelPlacement(const scene::VoxelMap& vm, const scene::Level& level, const Eigen::Vector3d& origin)
+      : vm_(vm),
+        level_(level),
+        origin_(origin),
+        c_(std::cos(deg2rad(vm.yaw_deg))),
+        sn_(std::sin(deg2rad(vm.yaw_deg))) {}
+
+  Eigen::Vector3d to_world(const Eigen::Vector3d& p) const {
+    return Eigen::Vector3d(c_ * p.x() - sn_ * p.y() + vm_.offset.x(),
+                           sn_ * p.x() + c_ * p.y() + vm_.offset.y(),
+                           p.z() + vm_.offset.z() + level_.elevation);
+  }
+
+  /// The map's label, or with kAuto floor and ceiling by height and wall between.
+  PointLabel label_of(const Eigen::Vector3i& k) const {
+    const double s = vm_.voxel_size;
+    const double z_rel = origin_.z() + s * k.z() + vm_.offset.z();
+    switch (vm_.label) {
       case scene::VoxelLabel::kWall:
         return PointLabel::kWall;
       case scene::VoxelLabel::kBox:
@@ -124,38 +141,63 @@ void add_voxel_map(LabelledMesh* mesh, const scene::Scene& scene, const scene::V
       case scene::VoxelLabel::kAuto:
         break;
     }
-    return std::abs(z_rel) <= s                   ? PointLabel::kFloor
-           : std::abs(z_rel - level.ceiling) <= s ? PointLabel::kCeiling
-                                                  : PointLabel::kWall;
-  };
-  // Faces between an occupied voxel and an empty one are the visible surface. The side faces
-  // of a column of voxels are merged into one tall quad per run of the same label: a wall
-  // extruded from an occupancy map is then a few triangles per cell, not a few per voxel.
-  struct SideFace {
-    int dir, x, y;
-    std::uint32_t label;
-    int z;
-    bool operator<(const SideFace& o) const {
-      return std::tie(dir, x, y, label, z) < std::tie(o.dir, o.x, o.y, o.label, o.z);
-    }
-  };
+    return std::abs(z_rel) <= s                    ? PointLabel::kFloor
+           : std::abs(z_rel - level_.ceiling) <= s ? PointLabel::kCeiling
+                                                   : PointLabel::kWall;
+  }
+
+ private:
+  const scene::VoxelMap& vm_;
+  const scene::Level& level_;
+  Eigen::Vector3d origin_;
+  double c_, sn_;
+};
+
+/// A voxel's side face towards an empty neighbour (direction dir of side_directions()).
+struct SideFace {
+  int dir, x, y;
+  std::uint32_t label;
+  int z;
+  bool operator<(const SideFace& o) const {
+    return std::tie(dir, x, y, label, z) < std::tie(o.dir, o.x, o.y, o.label, o.z);
+  }
+};
+
+const Eigen::Vector3i* side_directions() {
   static const Eigen::Vector3i kSides[4] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
+  return kSides;
+}
+
+/// Adds the top and bottom faces between an occupied voxel and an empty one to `mesh`, and
+/// returns the side faces, to be merged per column.
+std::vector<SideFace> add_top_bottom_faces(LabelledMesh* mesh, const Voxels& voxels, double s,
+                                           const VoxelPlacement& place) {
   static const Eigen::Vector3i kUpDown[2] = {{0, 0, 1}, {0, 0, -1}};
+  const Eigen::Vector3i* sides_dir = side_directions();
   std::vector<SideFace> sides;
-  for (const Eigen::Vector3i& k : keys) {
-    const PointLabel label = label_of(k);
+  for (const Eigen::Vector3i& k : voxels.keys) {
+    const PointLabel label = place.label_of(k);
     for (int d = 0; d < 4; ++d) {
-      if (!occupied.count(k + kSides[d]))
+      if (!voxels.occupied.count(k + sides_dir[d]))
         sides.push_back({d, k.x(), k.y(), static_cast<std::uint32_t>(label), k.z()});
     }
     for (const Eigen::Vector3i& n : kUpDown) {
-      if (occupied.count(k + n)) continue;
-      const Eigen::Vector3d fc = origin + s * k.cast<double>() + 0.5 * s * n.cast<double>();
+      if (voxels.occupied.count(k + n)) continue;
+      const Eigen::Vector3d fc = voxels.origin + s * k.cast<double>() + 0.5 * s * n.cast<double>();
       const Eigen::Vector3d u = 0.5 * s * Eigen::Vector3d::UnitX(), v = 0.5 * s * Eigen::Vector3d::UnitY();
-      mesh->add_triangle(to_world(fc - u - v), to_world(fc + u - v), to_world(fc + u + v), label);
-      mesh->add_triangle(to_world(fc - u - v), to_world(fc + u + v), to_world(fc - u + v), label);
+      mesh->add_triangle(place.to_world(fc - u - v), place.to_world(fc + u - v), place.to_world(fc + u + v),
+                         label);
+      mesh->add_triangle(place.to_world(fc - u - v), place.to_world(fc + u + v), place.to_world(fc - u + v),
+                         label);
     }
   }
+  return sides;
+}
+
+/// Adds the side faces merged into one tall quad per run of the same label up a column: a
+/// wall extruded from an occupancy map is then a few triangles per cell, not a few per voxel.
+void add_side_faces(LabelledMesh* mesh, std::vector<SideFace> sides, const Eigen::Vector3d& origin, double s,
+                    const VoxelPlacement& place) {
   std::sort(sides.begin(), sides.end());
   for (std::size_t i = 0; i < sides.size();) {
     std::size_t j = i + 1;
@@ -163,16 +205,28 @@ void add_voxel_map(LabelledMesh* mesh, const scene::Scene& scene, const scene::V
            sides[j].y == sides[i].y && sides[j].label == sides[i].label && sides[j].z == sides[j - 1].z + 1)
       ++j;
     const SideFace& f = sides[i];
-    const Eigen::Vector3d n = kSides[f.dir].cast<double>();
+    const Eigen::Vector3d n = side_directions()[f.dir].cast<double>();
     const Eigen::Vector3d base = origin + s * Eigen::Vector3d(f.x, f.y, 0.0) + 0.5 * s * n;
     const Eigen::Vector3d u = 0.5 * s * (f.dir < 2 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX());
     const Eigen::Vector3d z0 = Eigen::Vector3d(0, 0, origin.z() + s * (f.z - 0.5) - base.z());
     const Eigen::Vector3d z1 = Eigen::Vector3d(0, 0, origin.z() + s * (sides[j - 1].z + 0.5) - base.z());
     const auto label = static_cast<PointLabel>(f.label);
-    mesh->add_triangle(to_world(base - u + z0), to_world(base + u + z0), to_world(base + u + z1), label);
-    mesh->add_triangle(to_world(base - u + z0), to_world(base + u + z1), to_world(base - u + z1), label);
+    mesh->add_triangle(place.to_world(base - u + z0), place.to_world(base + u + z0),
+                       place.to_world(base + u + z1), label);
+    mesh->add_triangle(place.to_world(base - u + z0), place.to_world(base + u + z1),
+                       place.to_world(base - u + z1), label);
     i = j;
   }
+}
+
+/// The faces between an occupied voxel and an empty one: the visible surface.
+void add_voxel_map(LabelledMesh* mesh, const scene::Scene& scene, const scene::VoxelMap& vm) {
+  const PointCloud cloud = io::read_pcd(vm.file);
+  if (cloud.empty()) throw InputError(vm.file + ": voxel map has no finite points");
+  const double s = vm.voxel_size;
+  const Voxels voxels = snap_to_voxels(cloud, s);
+  const VoxelPlacement place(vm, scene.levels[vm.level], voxels.origin);
+  add_side_faces(mesh, add_top_bottom_faces(mesh, voxels, s, place), voxels.origin, s, place);
 }
 
 }  // namespace
