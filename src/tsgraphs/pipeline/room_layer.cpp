@@ -121,67 +121,8 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
   // spaces either level's (a first keyframe half-way up would otherwise found a level there).
   if (!on_level_floor(floor)) return {};
   const int level = level_of(floor.z());
-  if (!esdf()) {
-    freespace::SightMapConfig sight = settings_.sight;
-    sight.floor_step = settings_.free_space.obstacle_min_height;
-    sight.headroom = settings_.free_space.obstacle_max_height;
-    auto it = sight_.find(level);
-    if (it == sight_.end())
-      it = sight_.emplace(level, freespace::SightMap(levels_[static_cast<std::size_t>(level)], sight)).first;
-    retrace(input);
-    TracedScan scan{input.keyframe, level, input.pose, {}, 0.0};
-    const Pose3 to_sensor = input.pose.inverse();
-    scan.local.reserve(input.scan_points.size());
-    for (const Eigen::Vector3d& p : input.scan_points) {
-      const Eigen::Vector3d l = to_sensor * p;
-      scan.local.push_back(l.cast<float>());
-      scan.reach = std::max(scan.reach, l.norm());
-    }
-    const std::vector<Eigen::Vector3d> points = map_points(scan);
-    it->second.add_scan(input.pose.translation(), points);
-    traced_.push_back(std::move(scan));
-    // A plane whose top no ray passed above may reach the ceiling (a low sensor sees a wall's
-    // foot); only those of this level short of wall_reach_height need the rays' word.
-    const rooms::RoomSegmentationConfig& seg = settings_.segmentation;
-    const double level_floor = levels_[static_cast<std::size_t>(level)];
-    const auto top_of = [](const rooms::WallCandidate& w) {
-      return freespace::WallTopRays::Wall{w.id, w.end_a, w.end_b, w.z1};
-    };
-    std::vector<freespace::WallTopRays::Wall> short_walls, stale_walls;
-    for (const rooms::WallCandidate& w : input.walls) {
-      if (!rooms::short_of_reach(w, level_floor, seg)) continue;
-      // A plane whose rays were recorded before kept scans were traced again is recorded anew
-      // from all of them, where their keyframes are now.
-      const auto at = wall_tops_at_.find(w.id);
-      if (at != wall_tops_at_.end() && at->second != retraced_)
-        stale_walls.push_back(top_of(w));
-      else
-        short_walls.push_back(top_of(w));
-      wall_tops_at_[w.id] = retraced_;
-    }
-    wall_tops_.add_scan(input.pose.translation(), points, short_walls, it->second, seg.wall_top_margin,
-                        seg.wall_top_beyond);
-    if (!stale_walls.empty()) {
-      for (const freespace::WallTopRays::Wall& w : stale_walls) wall_tops_.forget(w.id);
-      for (const TracedScan& kept : traced_)
-        if (kept.level == level)
-          wall_tops_.add_scan(kept.traced_at.translation(), map_points(kept), stale_walls, it->second,
-                              seg.wall_top_margin, seg.wall_top_beyond);
-    }
-    walls_ = input.walls;
-    for (rooms::WallCandidate& w : walls_)
-      w.top_seen = wall_tops_.share_above(top_of(w), seg.wall_top_margin) >= seg.wall_top_share;
-  }
-  if (settings_.layer.room_trigger == "timer") {
-    // S-Graphs+: every period, the robot's whole cluster as it is now.
-    if (!timer_trigger_.update(input.stamp)) return {};
-    KeyframeSpace space;
-    if (!robot_space(input, floor, space)) return {};
-    if (!esdf())
-      for (const auto& entry : space.cluster) free_nodes_.insert(static_cast<int>(entry.first));
-    segment_path_ = {floor};
-    return extract(input, space.cluster, level);
-  }
+  if (!esdf()) trace(input, level);
+  if (settings_.layer.room_trigger == "timer") return update_timer(input, floor, level);
   KeyframeSpace space;
   const bool in_free_space = robot_space(input, floor, space);
   if (in_free_space && !esdf())
@@ -199,22 +140,8 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
         pending_.empty() ? (last_position_ ? *last_position_ : floor) : pending_.back().position;
     const bool crossed =
         rooms::crosses_wall(from.head<2>(), floor.head<2>(), walls_, floor.z(), settings_.segmentation);
-    // A step into the other space for less than min_visit_length (a corner, a doorway's
-    // strip) is no change: the robot must walk that far in it.
-    const int now_in =
-        last_segmentation_ && last_segmentation_level_ == level ? space_of(*last_segmentation_, floor) : -1;
-    bool moved_on = false;
-    if (now_in >= 0 && last_space_ >= 0 && now_in != last_space_) {
-      const double step = (floor - from).head<2>().norm();
-      entering_length_ = now_in == entering_space_ ? entering_length_ + step : step;
-      entering_space_ = now_in;
-      moved_on = entering_length_ >= settings_.layer.min_visit_length;
-    } else {
-      entering_space_ = -1;
-      entering_length_ = 0.0;
-    }
-    if (now_in >= 0 && (last_space_ < 0 || moved_on)) last_space_ = now_in;
-    if (segment_level_ == level && (crossed || moved_on)) {
+    const bool moved = moved_on(from, floor, level);
+    if (segment_level_ == level && (crossed || moved)) {
       for (const KeyframeSpace& held : pending_) commit(held);
       pending_.clear();
       flush_trigger_.reset();
@@ -234,6 +161,92 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
   }
   if (!in_free_space) return {};
   return update_flush(input, std::move(space), level, passed_doorway);
+}
+
+void RoomLayer::trace(const RoomLayerInput& input, int level) {
+  freespace::SightMapConfig sight = settings_.sight;
+  sight.floor_step = settings_.free_space.obstacle_min_height;
+  sight.headroom = settings_.free_space.obstacle_max_height;
+  auto it = sight_.find(level);
+  if (it == sight_.end())
+    it = sight_.emplace(level, freespace::SightMap(levels_[static_cast<std::size_t>(level)], sight)).first;
+  retrace(input);
+  TracedScan scan{input.keyframe, level, input.pose, {}, 0.0};
+  const Pose3 to_sensor = input.pose.inverse();
+  scan.local.reserve(input.scan_points.size());
+  for (const Eigen::Vector3d& p : input.scan_points) {
+    const Eigen::Vector3d l = to_sensor * p;
+    scan.local.push_back(l.cast<float>());
+    scan.reach = std::max(scan.reach, l.norm());
+  }
+  const std::vector<Eigen::Vector3d> points = map_points(scan);
+  it->second.add_scan(input.pose.translation(), points);
+  traced_.push_back(std::move(scan));
+  judge_wall_tops(input, level, points, it->second);
+}
+
+void RoomLayer::judge_wall_tops(const RoomLayerInput& input, int level,
+                                const std::vector<Eigen::Vector3d>& points,
+                                const freespace::SightMap& sight) {
+  // A plane whose top no ray passed above may reach the ceiling (a low sensor sees a wall's
+  // foot); only those of this level short of wall_reach_height need the rays' word.
+  const rooms::RoomSegmentationConfig& seg = settings_.segmentation;
+  const double level_floor = levels_[static_cast<std::size_t>(level)];
+  const auto top_of = [](const rooms::WallCandidate& w) {
+    return freespace::WallTopRays::Wall{w.id, w.end_a, w.end_b, w.z1};
+  };
+  std::vector<freespace::WallTopRays::Wall> short_walls, stale_walls;
+  for (const rooms::WallCandidate& w : input.walls) {
+    if (!rooms::short_of_reach(w, level_floor, seg)) continue;
+    // A plane whose rays were recorded before kept scans were traced again is recorded anew
+    // from all of them, where their keyframes are now.
+    const auto at = wall_tops_at_.find(w.id);
+    if (at != wall_tops_at_.end() && at->second != retraced_)
+      stale_walls.push_back(top_of(w));
+    else
+      short_walls.push_back(top_of(w));
+    wall_tops_at_[w.id] = retraced_;
+  }
+  wall_tops_.add_scan(input.pose.translation(), points, short_walls, sight, seg.wall_top_margin,
+                      seg.wall_top_beyond);
+  if (!stale_walls.empty()) {
+    for (const freespace::WallTopRays::Wall& w : stale_walls) wall_tops_.forget(w.id);
+    for (const TracedScan& kept : traced_)
+      if (kept.level == level)
+        wall_tops_.add_scan(kept.traced_at.translation(), map_points(kept), stale_walls, sight,
+                            seg.wall_top_margin, seg.wall_top_beyond);
+  }
+  walls_ = input.walls;
+  for (rooms::WallCandidate& w : walls_)
+    w.top_seen = wall_tops_.share_above(top_of(w), seg.wall_top_margin) >= seg.wall_top_share;
+}
+
+std::vector<RoomEventRecord> RoomLayer::update_timer(const RoomLayerInput& input,
+                                                     const Eigen::Vector3d& floor, int level) {
+  if (!timer_trigger_.update(input.stamp)) return {};
+  KeyframeSpace space;
+  if (!robot_space(input, floor, space)) return {};
+  if (!esdf())
+    for (const auto& entry : space.cluster) free_nodes_.insert(static_cast<int>(entry.first));
+  segment_path_ = {floor};
+  return extract(input, space.cluster, level);
+}
+
+bool RoomLayer::moved_on(const Eigen::Vector3d& from, const Eigen::Vector3d& floor, int level) {
+  const int now_in =
+      last_segmentation_ && last_segmentation_level_ == level ? space_of(*last_segmentation_, floor) : -1;
+  bool moved = false;
+  if (now_in >= 0 && last_space_ >= 0 && now_in != last_space_) {
+    const double step = (floor - from).head<2>().norm();
+    entering_length_ = now_in == entering_space_ ? entering_length_ + step : step;
+    entering_space_ = now_in;
+    moved = entering_length_ >= settings_.layer.min_visit_length;
+  } else {
+    entering_space_ = -1;
+    entering_length_ = 0.0;
+  }
+  if (now_in >= 0 && (last_space_ < 0 || moved)) last_space_ = now_in;
+  return moved;
 }
 
 std::vector<RoomEventRecord> RoomLayer::update_flush(const RoomLayerInput& input, KeyframeSpace space,
@@ -396,11 +409,42 @@ RoomEventRecord RoomLayer::event_of(const RoomLayerInput& input, const rooms::Ex
   return e;
 }
 
-std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInput& input,
-                                                              const Vertices& segment,
-                                                              std::vector<Eigen::Vector3d> path, int level,
-                                                              bool final) {
-  // The floor points of spaces deferred before (the same level's) come first.
+namespace {
+
+/// The path's length in each space of `seg`.
+std::map<int, double> walked_lengths(const rooms::RoomSegmentation& seg,
+                                     const std::vector<Eigen::Vector3d>& path, double reach, double cell,
+                                     double min_visit_length) {
+  // Each step between floor points is cut into pieces of a raster cell (a keyframe's step is
+  // as long as a short visit: a step into a store and back must not count as a step through its
+  // door). A piece counts for the space of one of its
+  // step's ends only: deferred points are a subset of an earlier path, and the chord between
+  // two of them crosses what the robot walked round. The robot walks nearer the walls than
+  // lambda at times, so a point off every space takes the nearest one within lambda plus a
+  // node's reach.
+  std::map<int, double> walked;
+  // No more pieces than the raster has cells across: beyond it no space is found anyway.
+  const double across = std::max(1.0, static_cast<double>(seg.frame.cols + seg.frame.rows));
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const Vec2 a = path[k - 1].head<2>(), b = path[k].head<2>();
+    const int end_a = seg.space_at(a, reach), end_b = seg.space_at(b, reach);
+    const double length = (b - a).norm();
+    const int pieces = static_cast<int>(std::clamp(std::ceil(length / cell), 1.0, across));
+    for (int j = 0; j < pieces; ++j) {
+      const int s = seg.space_at(a + (b - a) * ((j + 0.5) / pieces), reach);
+      if (s >= 0 && (s == end_a || s == end_b)) walked[s] += length / pieces;
+    }
+  }
+  if (path.size() == 1) {
+    const int s = seg.space_at(path.front().head<2>(), reach);
+    if (s >= 0) walked[s] = min_visit_length;
+  }
+  return walked;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector3d> RoomLayer::with_deferred_path(std::vector<Eigen::Vector3d> path) {
   std::vector<Eigen::Vector3d> deferred;
   deferred.swap(deferred_path_);
   if (!path.empty()) {
@@ -410,7 +454,11 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
       (std::abs(p.z() - floor) <= settings_.layer.level_tolerance ? same : deferred_path_).push_back(p);
     path.insert(path.begin(), same.begin(), same.end());
   }
-  if (path.empty()) return {};
+  return path;
+}
+
+std::optional<rooms::SegmentationInput> RoomLayer::segmentation_input(const RoomLayerInput& input,
+                                                                      const Vertices& segment, int level) {
   // The level's floor: where the segment's free space lies (the median node height), so that a
   // sensor height off by a little does not lose the level; without free space, the level's.
   std::vector<double> heights;
@@ -466,13 +514,25 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
     lo = lo.cwiseMin(sight->second.lo());
     hi = hi.cwiseMax(sight->second.hi());
   }
-  if (!(lo.x() <= hi.x())) return {};
+  if (!(lo.x() <= hi.x())) return std::nullopt;
   in.frame = GridFrame::around(lo, hi, settings_.segmentation.cell, in.free_radius + in.ground_radius);
   if (sight != sight_.end()) {
     in.seen = sight->second.open_cells(in.frame);
     in.known = sight->second.known_cells(in.frame);
   }
-  last_segmentation_ = rooms::segment_rooms(in, settings_.segmentation);
+  return in;
+}
+
+std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInput& input,
+                                                              const Vertices& segment,
+                                                              std::vector<Eigen::Vector3d> path, int level,
+                                                              bool final) {
+  // The floor points of spaces deferred before (the same level's) come first.
+  path = with_deferred_path(std::move(path));
+  if (path.empty()) return {};
+  const std::optional<rooms::SegmentationInput> in = segmentation_input(input, segment, level);
+  if (!in) return {};
+  last_segmentation_ = rooms::segment_rooms(*in, settings_.segmentation);
   last_segmentation_level_ = level;
   const rooms::RoomSegmentation& seg = *last_segmentation_;
   // A mapped room that this segmentation divides (first seen as one space, now two: a bay
@@ -484,32 +544,9 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
     for (const rooms::SegmentedSpace& s : seg.spaces) spaces.push_back(s.room);
     map_.follow_segmentation(spaces, level, settings_.segmentation.rect_fill);
   }
-  // The path's length in each space, each step between floor points cut into pieces of a
-  // raster cell (a keyframe's step is as long as a short visit: a step into a store and back
-  // must not count as a step through its door). A piece counts for the space of one of its
-  // step's ends only: deferred points are a subset of an earlier path, and the chord between
-  // two of them crosses what the robot walked round. The robot walks nearer the walls than
-  // lambda at times, so a point off every space takes the nearest one within lambda plus a
-  // node's reach.
-  std::map<int, double> walked;
-  const double reach = in.free_radius + in.ground_radius;
-  // No more pieces than the raster has cells across: beyond it no space is found anyway.
-  const double across = std::max(1.0, static_cast<double>(seg.frame.cols + seg.frame.rows));
-  for (std::size_t k = 1; k < path.size(); ++k) {
-    const Vec2 a = path[k - 1].head<2>(), b = path[k].head<2>();
-    const int end_a = seg.space_at(a, reach), end_b = seg.space_at(b, reach);
-    const double length = (b - a).norm();
-    const int pieces =
-        static_cast<int>(std::clamp(std::ceil(length / settings_.segmentation.cell), 1.0, across));
-    for (int j = 0; j < pieces; ++j) {
-      const int s = seg.space_at(a + (b - a) * ((j + 0.5) / pieces), reach);
-      if (s >= 0 && (s == end_a || s == end_b)) walked[s] += length / pieces;
-    }
-  }
-  if (path.size() == 1) {
-    const int s = seg.space_at(path.front().head<2>(), reach);
-    if (s >= 0) walked[s] = settings_.layer.min_visit_length;
-  }
+  const double reach = in->free_radius + in->ground_radius;
+  const std::map<int, double> walked =
+      walked_lengths(seg, path, reach, settings_.segmentation.cell, settings_.layer.min_visit_length);
   // The space the robot is in is still being visited: it is extracted once the robot has left
   // it (one extraction a visit, from all it saw), or at the end.
   const Vec2 robot = (input.pose.translation() - input.sensor_height * Eigen::Vector3d::UnitZ()).head<2>();

@@ -162,6 +162,23 @@ class RoomLayer {
   bool robot_space(const RoomLayerInput& input, const Eigen::Vector3d& floor, KeyframeSpace& out);
   std::vector<RoomEventRecord> update_flush(const RoomLayerInput& input, KeyframeSpace space, int level,
                                             bool passed_doorway);
+  /// TS-graphs: the keyframe's rays into the level's sight map (kept to follow the keyframe),
+  /// and the walls' tops judged by them.
+  void trace(const RoomLayerInput& input, int level);
+  /// Whether rays passed above each wall short of the reach height (walls_' top_seen).
+  void judge_wall_tops(const RoomLayerInput& input, int level, const std::vector<Eigen::Vector3d>& points,
+                       const freespace::SightMap& sight);
+  /// S-Graphs+: every period, the robot's whole cluster as it is now.
+  std::vector<RoomEventRecord> update_timer(const RoomLayerInput& input, const Eigen::Vector3d& floor,
+                                            int level);
+  /// TS-graphs: whether the robot, stepping from `from` to `floor`, has walked min_visit_length
+  /// into another space of the latest segmentation (a corner or a doorway's strip is no change).
+  bool moved_on(const Eigen::Vector3d& from, const Eigen::Vector3d& floor, int level);
+  /// The level's segmentation input: its floor from the segment's free space, its ground and
+  /// raised ground, the free space walked, the walls and what the rays saw; none when there is
+  /// nothing to bound.
+  std::optional<rooms::SegmentationInput> segmentation_input(const RoomLayerInput& input,
+                                                             const Vertices& segment, int level);
   std::vector<RoomEventRecord> extract(const RoomLayerInput& input, const Vertices& segment, int level,
                                        bool final = false);
   /// TS-graphs: the spaces of the level's segmentation the segment's path ran in.
@@ -170,6 +187,8 @@ class RoomLayer {
   std::vector<rooms::ExtractedRoom> segmented_spaces(const RoomLayerInput& input, const Vertices& segment,
                                                      std::vector<Eigen::Vector3d> path, int level,
                                                      bool final);
+  /// The path with the deferred floor points of its level first (the others stay deferred).
+  std::vector<Eigen::Vector3d> with_deferred_path(std::vector<Eigen::Vector3d> path);
   /// The space of `seg` holding the floor point (or the nearest within a node's reach of the free space), or
   /// -1.
   int space_of(const rooms::RoomSegmentation& seg, const Eigen::Vector3d& floor) const;
