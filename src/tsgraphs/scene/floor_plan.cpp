@@ -279,17 +279,18 @@ void connect_spaces(FloorPlan* plan, Rng& rng) {
   }
 }
 
-PlanResult add_floor_plan(const FloorPlan& plan, int level, Scene* scene) {
-  const FloorPlanRules& rules = plan.rules;
-  const Subdivision sub(plan);
-  PlanResult result;
-  Level& lvl = scene->levels.at(level);
+namespace {
 
-  // Walls and railings: one per straight stretch between one pair of spaces.
-  struct PendingWall {
-    Wall wall;
-    int a, b;
-  };
+/// A wall of the plan before its doors: the spaces on either side (b = -1: the outside).
+struct PendingWall {
+  Wall wall;
+  int a, b;
+};
+
+/// The plan's walls and railings: one per straight stretch between one pair of spaces. The
+/// railings go into `scene`; the walls are returned, to take their doors first.
+std::vector<PendingWall> walls_and_railings(const Subdivision& sub, const FloorPlanRules& rules, int level,
+                                            double ceiling, Scene* scene) {
   std::vector<PendingWall> walls;
   for (const auto& run : sub.runs()) {
     if (run.kind == EdgeKind::kRailing) {
@@ -308,81 +309,121 @@ PlanResult add_floor_plan(const FloorPlan& plan, int level, Scene* scene) {
     w.from = run.s.a;
     w.to = run.s.b;
     w.thickness = thickness_of(run.kind, rules);
-    w.height = lvl.ceiling;
+    w.height = ceiling;
     walls.push_back({w, run.a, run.b});
   }
-  // Doors: on the longest stretch of their pair's wall that holds them.
-  for (const DoorSpec& d : plan.doors) {
-    PendingWall* host = nullptr;
-    double room = 0.0;
-    for (PendingWall& pw : walls) {
-      if (!((pw.a == d.a && pw.b == d.b) || (pw.a == d.b && pw.b == d.a))) continue;
-      const double r = door_room({pw.wall.from, pw.wall.to}, rules);
-      if (r > room) {
-        room = r;
-        host = &pw;
+  return walls;
+}
+
+/// The longest stretch of the door's pair's wall, and in `room` the door's room on it (0 when none).
+PendingWall* door_host(std::vector<PendingWall>& walls, const DoorSpec& d, const FloorPlanRules& rules,
+                       double* room) {
+  PendingWall* host = nullptr;
+  *room = 0.0;
+  for (PendingWall& pw : walls) {
+    if (!((pw.a == d.a && pw.b == d.b) || (pw.a == d.b && pw.b == d.a))) continue;
+    const double r = door_room({pw.wall.from, pw.wall.to}, rules);
+    if (r > *room) {
+      *room = r;
+      host = &pw;
+    }
+  }
+  return host;
+}
+
+/// Where a door of `width` fits among the wall's other doors: the wanted place (`position` of
+/// the free length), else the nearest free one; none when the wall is full.
+std::optional<double> door_place(const Wall& w, double width, double position, const FloorPlanRules& rules) {
+  const double length = (w.to - w.from).norm();
+  const double margin = rules.jamb + 0.5 * rules.interior_wall;
+  const double lo = margin + 0.5 * width, hi = length - margin - 0.5 * width;
+  const double wanted = lo + std::clamp(position, 0.0, 1.0) * (hi - lo);
+  std::optional<double> at;
+  for (int k = 0; k <= 40 && !at; ++k) {
+    for (double sign : {1.0, -1.0}) {
+      const double c = wanted + sign * k * (hi - lo) / 40.0;
+      if (c < lo - kEps || c > hi + kEps) continue;
+      bool clear = true;
+      for (const Opening& o : w.openings)
+        clear = clear && std::abs(o.at - c) >= 0.5 * (o.width + width) + kDoorMinSpacing;
+      if (clear) {
+        at = c;
+        break;
       }
     }
+  }
+  return at;
+}
+
+/// The plan's doors as openings of their walls, each on the longest stretch that holds it.
+void place_doors(const FloorPlan& plan, std::vector<PendingWall>& walls, PlanResult* result) {
+  const FloorPlanRules& rules = plan.rules;
+  for (const DoorSpec& d : plan.doors) {
+    double room = 0.0;
+    PendingWall* host = door_host(walls, d, rules, &room);
     const double width = std::min(d.width, room);
     if (!host || width < rules.min_door) {
-      ++result.doors_dropped;
+      ++result->doors_dropped;
       continue;
     }
     Wall& w = host->wall;
-    const double length = (w.to - w.from).norm();
-    const double margin = rules.jamb + 0.5 * rules.interior_wall;
-    // Where it fits among the wall's other doors: the wanted place, else the nearest free one.
-    const double lo = margin + 0.5 * width, hi = length - margin - 0.5 * width;
-    const double wanted = lo + std::clamp(d.position, 0.0, 1.0) * (hi - lo);
-    std::optional<double> at;
-    for (int k = 0; k <= 40 && !at; ++k) {
-      for (double sign : {1.0, -1.0}) {
-        const double c = wanted + sign * k * (hi - lo) / 40.0;
-        if (c < lo - kEps || c > hi + kEps) continue;
-        bool clear = true;
-        for (const Opening& o : w.openings)
-          clear = clear && std::abs(o.at - c) >= 0.5 * (o.width + width) + kDoorMinSpacing;
-        if (clear) {
-          at = c;
-          break;
-        }
-      }
-    }
+    const std::optional<double> at = door_place(w, width, d.position, rules);
     if (!at) {
-      ++result.doors_dropped;
+      ++result->doors_dropped;
       continue;
     }
     w.openings.push_back({*at, width, std::min(rules.door_height, w.height), 0.0});
     std::sort(w.openings.begin(), w.openings.end(),
               [](const Opening& x, const Opening& y) { return x.at < y.at; });
-    ++result.doors_made;
+    ++result->doors_made;
   }
-  for (PendingWall& pw : walls) {
-    const int index = static_cast<int>(scene->walls.size());
-    result.walls.push_back(pw.a < 0 ? PlanWall{index, pw.b, -1} : PlanWall{index, pw.a, pw.b});
-    scene->walls.push_back(pw.wall);
-  }
+}
 
-  // Voids, and the ground truth measured to the faces of what bounds each space.
+/// Half the thickness of the thickest wall or railing on each edge of each space's outline.
+std::vector<std::vector<double>> face_offsets(const FloorPlan& plan, const Subdivision& sub) {
   std::vector<std::vector<double>> offsets(plan.spaces.size());
   for (std::size_t s = 0; s < plan.spaces.size(); ++s) offsets[s].assign(plan.spaces[s].outline.size(), 0.0);
   for (std::size_t i = 0; i < sub.pieces().size(); ++i) {
-    const double half = 0.5 * thickness_of(sub.pieces()[i].kind, rules);
+    const double half = 0.5 * thickness_of(sub.pieces()[i].kind, plan.rules);
     for (const auto& [s, e] : sub.edges_of(i)) offsets[s][e] = std::max(offsets[s][e], half);
   }
-  result.room_of_space.assign(plan.spaces.size(), -1);
+  return offsets;
+}
+
+/// The voids into the level, and the ground truth measured to the faces of what bounds each space.
+void add_voids_and_rooms(const FloorPlan& plan, const Subdivision& sub, int level, Scene* scene,
+                         PlanResult* result) {
+  Level& lvl = scene->levels.at(level);
+  const std::vector<std::vector<double>> offsets = face_offsets(plan, sub);
+  result->room_of_space.assign(plan.spaces.size(), -1);
   for (std::size_t s = 0; s < plan.spaces.size(); ++s) {
     const Space& space = plan.spaces[s];
-    result.faces.push_back(inset_polygon(space.outline, offsets[s]));
+    result->faces.push_back(inset_polygon(space.outline, offsets[s]));
     if (space.kind == SpaceKind::kVoid) lvl.voids.push_back(space.outline);
     if (!is_ground_truth(space.kind) || !plan.ground_truth) continue;
     Room r;
     r.name = space.name;
     r.level = level;
-    r.polygon = result.faces.back();
-    result.room_of_space[s] = static_cast<int>(scene->rooms.size());
+    r.polygon = result->faces.back();
+    result->room_of_space[s] = static_cast<int>(scene->rooms.size());
     scene->rooms.push_back(r);
   }
+}
+
+}  // namespace
+
+PlanResult add_floor_plan(const FloorPlan& plan, int level, Scene* scene) {
+  const Subdivision sub(plan);
+  PlanResult result;
+  const double ceiling = scene->levels.at(level).ceiling;
+  std::vector<PendingWall> walls = walls_and_railings(sub, plan.rules, level, ceiling, scene);
+  place_doors(plan, walls, &result);
+  for (PendingWall& pw : walls) {
+    const int index = static_cast<int>(scene->walls.size());
+    result.walls.push_back(pw.a < 0 ? PlanWall{index, pw.b, -1} : PlanWall{index, pw.a, pw.b});
+    scene->walls.push_back(pw.wall);
+  }
+  add_voids_and_rooms(plan, sub, level, scene, &result);
   return result;
 }
 
