@@ -10,13 +10,15 @@
 #include <string>
 
 #include "tsgraphs/core/raster_regions.hpp"
+#include "tsgraphs/rooms/bend_cuts.hpp"
 #include "tsgraphs/rooms/narrowings.hpp"
+#include "tsgraphs/rooms/wall_lines.hpp"
 
 namespace tsgraphs::rooms {
+using namespace segmentation_steps;
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
-constexpr double kLineStep = 0.5;  // cells between the samples that draw a wall: the line stays 8-connected
 
 /// Cells within `radius` of a cell holding one of `points` (its centre within radius of one).
 std::vector<std::uint8_t> discs(const GridFrame& f, const std::vector<Vec2>& points, double radius) {
@@ -29,208 +31,6 @@ std::vector<std::uint8_t> discs(const GridFrame& f, const std::vector<Vec2>& poi
   std::vector<std::uint8_t> in(f.size(), 0);
   for (std::size_t i = 0; i < in.size(); ++i) in[i] = d[i] <= radius ? 1 : 0;
   return in;
-}
-
-/// The wall's line at floor height: unit normal n (as the plane's, horizontal) and offset d.
-struct WallLine {
-  int id = -1;
-  Vec2 n = Vec2::UnitX();
-  double d = 0.0;
-  Vec2 a = Vec2::Zero(), b = Vec2::Zero();  ///< its extent, on the line
-};
-
-WallLine line_at(const WallCandidate& w, double floor_z) {
-  WallLine l;
-  l.id = w.id;
-  const double len = w.plane.n.head<2>().norm();
-  l.n = w.plane.n.head<2>() / len;
-  l.d = (w.plane.d + w.plane.n.z() * floor_z) / len;
-  l.a = w.end_a - (l.n.dot(w.end_a) + l.d) * l.n;
-  l.b = w.end_b - (l.n.dot(w.end_b) + l.d) * l.n;
-  return l;
-}
-
-/// A vertical plane of min_wall_height whose points start below a wall's reach and rise
-/// min_wall_height above this floor (a wall of the storey below, whose top no ray from here
-/// passes above, is not this level's)...
-bool of_level(const WallCandidate& w, double floor_z, const RoomSegmentationConfig& cfg) {
-  return std::abs(w.plane.n.z()) <= cfg.max_normal_z && w.height >= cfg.min_wall_height &&
-         w.z0 <= floor_z + cfg.wall_reach_height && w.z1 >= floor_z + cfg.min_wall_height;
-}
-
-/// One of the lines ends within `gap` of the other, and they are not parallel: a corner or a T.
-bool joined(const WallLine& p, const WallLine& q, double gap, double cos_parallel) {
-  if (std::abs(p.n.dot(q.n)) >= cos_parallel) return false;
-  return distance_to_segment(p.a, q.a, q.b) <= gap || distance_to_segment(p.b, q.a, q.b) <= gap ||
-         distance_to_segment(q.a, p.a, p.b) <= gap || distance_to_segment(q.b, p.a, p.b) <= gap;
-}
-
-/// `p` lies on the line of `q` (parallel, within `offset` of it at both ends) with an end within
-/// `gap` of one of q's: the next piece of the same wall past a door.
-bool in_line(const WallLine& p, const WallLine& q, double offset, double gap, double cos_parallel) {
-  if (std::abs(p.n.dot(q.n)) < cos_parallel) return false;
-  if (std::abs(q.n.dot(p.a) + q.d) > offset || std::abs(q.n.dot(p.b) + q.d) > offset) return false;
-  return std::min({(p.a - q.a).norm(), (p.a - q.b).norm(), (p.b - q.a).norm(), (p.b - q.b).norm()}) <= gap;
-}
-
-/// The walls of the level as lines at floor height: with `reaching`, only those that bound
-/// spaces: their points span wall_reach_height, or no ray saw above their top and they join
-/// (wall_joint_gap) a wall that bounds, or lie in line with one (on its line within a raster
-/// cell, a door's width from its end: a pier between two doors, whose lintel a low sensor
-/// does not see); else every vertical plane of min_wall_height that comes
-/// down to the level (they may carry a footprint's side: a low sensor sees a small room's walls
-/// only up to its head height plus a little).
-std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, double floor_z,
-                                  const RoomSegmentationConfig& cfg, bool reaching = true) {
-  std::vector<WallLine> out, unseen_top;
-  for (const WallCandidate& w : walls) {
-    if (!of_level(w, floor_z, cfg)) continue;
-    // ...and reach wall_reach_height, or rise to where no ray saw above them.
-    if (reaching && w.z1 < floor_z + cfg.wall_reach_height) {
-      if (!w.top_seen) unseen_top.push_back(line_at(w, floor_z));
-      continue;
-    }
-    out.push_back(line_at(w, floor_z));
-  }
-  // A plane whose top is unseen bounds once it joins one that does, in the input's order.
-  const double cos_parallel = std::cos(cfg.parallel_tolerance_deg * kDegToRad);
-  std::vector<bool> taken(unseen_top.size(), false);
-  for (bool grew = true; grew;) {
-    grew = false;
-    for (std::size_t i = 0; i < unseen_top.size(); ++i) {
-      if (taken[i]) continue;
-      const bool joins = std::any_of(out.begin(), out.end(), [&](const WallLine& o) {
-        return joined(unseen_top[i], o, cfg.wall_joint_gap, cos_parallel) ||
-               in_line(unseen_top[i], o, cfg.cell, cfg.max_door_width, cos_parallel);
-      });
-      if (!joins) continue;
-      taken[i] = true;
-      out.push_back(unseen_top[i]);
-      grew = true;
-    }
-  }
-  return out;
-}
-
-/// The openings closed between the level's walls that lie on one straight line (parallel
-/// within parallel_tolerance_deg, both ends within line_tolerance of the line's first wall): a
-/// wall seen in pieces (furniture in front of it, doors in it), or the walls of a row of rooms.
-/// Along each line, a gap between consecutive walls is closed when it is no wider than a door or
-/// than `opening_share` of the length the line's walls cover (an opening in a long wall); a wide
-/// gap between the walls of two far rooms on one line stays open.
-std::vector<std::pair<Vec2, Vec2>> line_openings(const std::vector<WallLine>& walls,
-                                                 const RoomSegmentationConfig& cfg) {
-  const double cos_parallel = std::cos(cfg.parallel_tolerance_deg * kDegToRad);
-  struct Line {
-    Vec2 origin, along;
-    std::vector<std::pair<Vec2, Vec2>> walls;  // each ordered along the line
-  };
-  std::vector<Line> lines;
-  for (const WallLine& w : walls) {
-    if ((w.b - w.a).norm() <= 0.0) continue;
-    std::size_t k = 0;
-    for (; k < lines.size(); ++k) {
-      const Vec2 normal(-lines[k].along.y(), lines[k].along.x());
-      if (std::abs(normal.dot(w.n)) < cos_parallel) continue;
-      const auto off = [&](const Vec2& p) { return std::abs(normal.dot(p - lines[k].origin)); };
-      if (off(w.a) <= cfg.line_tolerance && off(w.b) <= cfg.line_tolerance) break;
-    }
-    if (k == lines.size()) lines.push_back({w.a, (w.b - w.a).normalized(), {}});
-    const bool forward = lines[k].along.dot(w.b - w.a) >= 0.0;
-    lines[k].walls.emplace_back(forward ? w.a : w.b, forward ? w.b : w.a);
-  }
-  std::vector<std::pair<Vec2, Vec2>> out;
-  for (Line& l : lines) {
-    const auto t = [&](const Vec2& p) { return l.along.dot(p - l.origin); };
-    std::stable_sort(l.walls.begin(), l.walls.end(),
-                     [&](const auto& x, const auto& y) { return t(x.first) < t(y.first); });
-    double support = 0.0, reach = -std::numeric_limits<double>::infinity();
-    for (const auto& [a, b] : l.walls) {
-      support += std::max(0.0, t(b) - std::max(t(a), reach));
-      reach = std::max(reach, t(b));
-    }
-    const double closed = std::max(cfg.max_door_width, cfg.opening_share * support);
-    const Vec2* last = nullptr;  // the far end of the walls so far
-    for (const auto& [a, b] : l.walls) {
-      if (last != nullptr && t(a) > t(*last) && t(a) - t(*last) <= closed) out.emplace_back(*last, a);
-      if (last == nullptr || t(b) > t(*last)) last = &b;
-    }
-  }
-  return out;
-}
-
-/// The segments that close the doors: from each end of a wall at least min_door_post long, on
-/// along its line to the first other wall it meets within max_door_width: one in line with it
-/// (its nearer end; a pier between two doors is part of the wall whatever its length), or one
-/// at least min_door_post long that it crosses (a pillar's face is no wall to close a gap to);
-/// and, besides, to the corner where it and such a wall would cross within wall_joint_gap of
-/// both their ends.
-std::vector<std::pair<Vec2, Vec2>> door_closures(const std::vector<WallLine>& walls,
-                                                 const RoomSegmentationConfig& cfg) {
-  const double cos_parallel = std::cos(cfg.parallel_tolerance_deg * kDegToRad);
-  std::vector<std::pair<Vec2, Vec2>> out;
-  for (std::size_t i = 0; i < walls.size(); ++i) {
-    const WallLine& w = walls[i];
-    const double length = (w.b - w.a).norm();
-    if (length < cfg.min_door_post) continue;
-    const Vec2 dir = (w.b - w.a) / length;
-    for (int end = 0; end < 2; ++end) {
-      const Vec2 from = end == 0 ? w.a : w.b;
-      const Vec2 out_dir = end == 0 ? Vec2(-dir) : dir;
-      const Vec2 far = from + cfg.max_door_width * out_dir;
-      double best = cfg.max_door_width;
-      Vec2 to = from;
-      double corner_along = cfg.wall_joint_gap;
-      std::optional<Vec2> corner;
-      for (std::size_t j = 0; j < walls.size(); ++j) {
-        const WallLine& o = walls[j];
-        if (j == i) continue;
-        Vec2 at;
-        if (std::abs(o.n.dot(w.n)) >= cos_parallel) {
-          // In line: the other wall's nearer end, if it lies on this line within a wall's thickness.
-          for (const Vec2& e : {o.a, o.b}) {
-            const double along = out_dir.dot(e - from);
-            const double side = std::abs(w.n.dot(e - from));
-            if (along > 0.0 && along < best && side <= cfg.wall_snap) {
-              best = along;
-              to = e;
-            }
-          }
-        } else if ((o.b - o.a).norm() >= cfg.min_door_post) {
-          const Vec2 u = (o.b - o.a).normalized();
-          if (segments_intersect(from, far, o.a, o.b, &at)) {
-            const double along = out_dir.dot(at - from);
-            if (along > 0.0 && along < best) {
-              best = along;
-              to = at;
-            }
-          } else if (segments_intersect(from, from + cfg.wall_joint_gap * out_dir,
-                                        o.a - cfg.wall_joint_gap * u, o.b + cfg.wall_joint_gap * u, &at)) {
-            // A corner whose two walls were both mapped short of it (each ends within
-            // wall_joint_gap of where they would cross): closed as well, not instead of a
-            // door farther on.
-            const double along = out_dir.dot(at - from);
-            if (along > 0.0 && along < corner_along) {
-              corner_along = along;
-              corner = at;
-            }
-          }
-        }
-      }
-      if (best < cfg.max_door_width) out.emplace_back(from, to);
-      if (corner) out.emplace_back(from, *corner);
-    }
-  }
-  return out;
-}
-
-void draw_line(const GridFrame& f, const Vec2& a, const Vec2& b, std::vector<std::uint8_t>* blocked) {
-  const double length = (b - a).norm();
-  const int steps = std::max(1, static_cast<int>(std::ceil(length / (kLineStep * f.resolution))));
-  for (int s = 0; s <= steps; ++s) {
-    int c, r;
-    if (f.cell_of(a + (b - a) * (static_cast<double>(s) / steps), &c, &r)) (*blocked)[f.index(c, r)] = 1;
-  }
 }
 
 /// Regions of fewer than `min_cells` cells join the neighbour they share the most cell edges
@@ -379,232 +179,6 @@ int split_regions(const GridFrame& f, std::vector<int>* label) {
   return n;
 }
 
-/// Region k of `lab` in its bounding box, one cell of margin round it (cell units), with what
-/// is not the region: the outside (`outside`) and its holes (`parts`, `sizes`). A hole smaller
-/// than a region (a pillar, a wall drawn round one) is something one walks round inside the
-/// space, not what the space runs round: it neither narrows the width nor has corners.
-struct RegionInBox {
-  GridFrame box;
-  int c0 = 0, r0 = 0;
-  std::size_t cells = 0;
-  std::vector<std::uint8_t> in;
-  std::vector<int> parts;
-  std::vector<std::size_t> sizes;
-  int outside = -1;
-  double width = 0.0;  ///< twice the largest clearance, holes smaller than a region filled (cells)
-};
-
-RegionInBox region_in_box(const GridFrame& f, const std::vector<int>& lab, int k, double min_cells) {
-  RegionInBox out;
-  int c0 = f.cols, r0 = f.rows, c1 = -1, r1 = -1;
-  for (int r = 0; r < f.rows; ++r) {
-    for (int c = 0; c < f.cols; ++c) {
-      if (lab[f.index(c, r)] != k) continue;
-      ++out.cells;
-      c0 = std::min(c0, c);
-      c1 = std::max(c1, c);
-      r0 = std::min(r0, r);
-      r1 = std::max(r1, r);
-    }
-  }
-  if (c1 < 0) return out;
-  out.c0 = c0;
-  out.r0 = r0;
-  out.box.resolution = 1.0;
-  out.box.cols = c1 - c0 + 3;
-  out.box.rows = r1 - r0 + 3;
-  out.in.assign(out.box.size(), 0);
-  for (int r = r0; r <= r1; ++r)
-    for (int c = c0; c <= c1; ++c)
-      if (lab[f.index(c, r)] == k) out.in[out.box.index(c - c0 + 1, r - r0 + 1)] = 1;
-  std::vector<std::uint8_t> other(out.box.size(), 0);
-  for (std::size_t i = 0; i < out.in.size(); ++i) other[i] = out.in[i] ? 0 : 1;
-  out.parts = label_regions(other, out.box.cols, out.box.rows, false, &out.sizes);
-  out.outside = out.parts[0];  // the margin's corner is outside the region
-  std::vector<std::uint8_t> filled = out.in;
-  for (std::size_t i = 0; i < out.parts.size(); ++i) {
-    const int p = out.parts[i];
-    if (p >= 0 && p != out.outside && static_cast<double>(out.sizes[static_cast<std::size_t>(p)]) < min_cells)
-      filled[i] = 1;
-  }
-  const std::vector<float> clearance = distance_transform(out.box, filled);
-  out.width = 2.0 * *std::max_element(clearance.begin(), clearance.end());
-  return out;
-}
-
-/// Long for its width: its area at least `corridor_aspect` times the square of its width.
-bool corridor_like(const RegionInBox& region, double corridor_aspect) {
-  return static_cast<double>(region.cells) >= corridor_aspect * region.width * region.width;
-}
-
-/// Cuts each corridor-like region (its area at least `corridor_aspect` times the square of its
-/// widest width, twice its largest clearance, holes of fewer than `min_cells` not counted: a
-/// pillar stands inside a space) into its straight legs: at every corner where its
-/// outline turns inwards (an inner corner of a bend, a corner of what it runs round: an
-/// atrium's void, a walled-off room) the outline's edge arriving there (counter-clockwise round
-/// the region, clockwise round a hole) is drawn on across the region until it leaves it, if it
-/// does within the corridor's width. Each corner square thus goes to one leg, the same way round
-/// every bend. The edge leaving the corner is drawn back instead where only it ends at another
-/// inner corner (the mouth of a side corridor: the corridor it leaves stays whole), where only
-/// it crosses the region (a step in the width), or where it is corridor_aspect times longer
-/// than the arriving edge (a corridor's side running on past a bay). An edge within its
-/// simplification's angular error of a wall's direction (`wall_directions`, unit) takes it,
-/// and is as long as the straight run of edges it then belongs to.
-/// Cut cells lose their label; returns whether any was cut.
-bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cells, double tolerance_cells,
-               double min_turn, const std::vector<Vec2>& wall_directions, std::vector<int>* label) {
-  std::vector<int>& lab = *label;
-  bool cut = false;
-  for (int k = 0; k < n; ++k) {
-    const RegionInBox region = region_in_box(f, lab, k, min_cells);
-    if (region.cells == 0 || !corridor_like(region, corridor_aspect)) continue;
-    const GridFrame& box = region.box;
-    const std::vector<std::uint8_t>& in = region.in;
-    const std::vector<int>& parts = region.parts;
-    const std::vector<std::size_t>& sizes = region.sizes;
-    const int outside = region.outside, c0 = region.c0, r0 = region.r0;
-    const double width = region.width;
-    const auto counted = [&](int p) {
-      return p == outside || static_cast<double>(sizes[static_cast<std::size_t>(p)]) >= min_cells;
-    };
-    // Its outline, counter-clockwise, and its holes' outlines, each clockwise round the hole:
-    // the region lies left of every edge, and an inner corner is a right turn.
-    std::vector<Polygon2> loops;
-    {
-      std::vector<int> only(box.size(), -1);
-      for (std::size_t i = 0; i < in.size(); ++i)
-        if (in[i]) only[i] = 0;
-      loops.push_back(trace_outlines(only, box.cols, box.rows, 1, false).front());
-    }
-    for (std::size_t p = 0; p < sizes.size(); ++p) {
-      if (static_cast<int>(p) == outside || !counted(static_cast<int>(p))) continue;
-      std::vector<int> only(box.size(), -1);
-      for (std::size_t i = 0; i < parts.size(); ++i)
-        if (parts[i] == static_cast<int>(p)) only[i] = 0;
-      Polygon2 hole = trace_outlines(only, box.cols, box.rows, 1, false).front();
-      std::reverse(hole.begin(), hole.end());
-      loops.push_back(hole);
-    }
-    // The inner corners of all its loops (box coordinates), then one cut per corner.
-    struct Corner {
-      Vec2 at, d_in, d_out;
-      double len_in = 0.0, len_out = 0.0;  ///< the arriving and leaving edges' lengths (cells)
-      bool drawn_back = false;             ///< the leaving edge drawn back, not the arriving one drawn on
-    };
-    std::vector<Corner> corners;
-    // A simplified edge's direction is known to within atan(2 tolerance / length); within that
-    // of a mapped wall's, it runs along the wall: the raggedness is the raster's (a railing's
-    // end, a ramp's top), the sides are the building's, and a cut drawn on from it follows them.
-    const auto along_walls = [&](const Vec2& d, double length) {
-      double best = std::atan2(2.0 * tolerance_cells, length);
-      Vec2 out = d;
-      for (const Vec2& w : wall_directions) {
-        const double c = d.dot(w);
-        const double angle = std::acos(std::min(1.0, std::abs(c)));
-        if (angle < best) {
-          best = angle;
-          out = c >= 0.0 ? w : Vec2(-w);
-        }
-      }
-      return out;
-    };
-    for (Polygon2& loop : loops) {
-      loop = simplify_outlines({loop}, tolerance_cells).front();
-      const std::size_t m = loop.size();
-      if (m < 3) continue;
-      // Edge i runs from vertex i to i + 1; its direction as along_walls gives it.
-      std::vector<Vec2> dir(m);
-      std::vector<double> len(m);
-      for (std::size_t i = 0; i < m; ++i) {
-        len[i] = (loop[(i + 1) % m] - loop[i]).norm();
-        dir[i] = along_walls((loop[(i + 1) % m] - loop[i]).normalized(), len[i]);
-      }
-      // The length of the straight run of edges that edge e belongs to, going back (or on):
-      // a side whose end the raster made ragged is as long as the whole side.
-      const auto run_length = [&](std::size_t e, bool back) {
-        double total = len[e];
-        for (std::size_t k = 1; k < m; ++k) {
-          const std::size_t o = back ? (e + m - k) % m : (e + k) % m;
-          if ((dir[o] - dir[e]).norm() > 1e-9) break;
-          total += len[o];
-        }
-        return total;
-      };
-      for (std::size_t i = 0; i < m; ++i) {
-        const std::size_t e_in = (i + m - 1) % m, e_out = i;
-        const Vec2 raw_in = (loop[i] - loop[e_in]).normalized(),
-                   raw_out = (loop[(i + 1) % m] - loop[i]).normalized();
-        const double turn = raw_in.x() * raw_out.y() - raw_in.y() * raw_out.x();
-        if (turn > -std::sin(min_turn)) continue;  // not an inner corner turning min_turn or more
-        if (dir[e_in].x() * dir[e_out].y() - dir[e_in].y() * dir[e_out].x() > -std::sin(min_turn))
-          continue;  // nor along the walls
-        corners.push_back(
-            {loop[i], dir[e_in], dir[e_out], run_length(e_in, true), run_length(e_out, false), false});
-      }
-    }
-    // A walk on from a corner along `d`, the edge it draws on having the region on its `left`:
-    // the region's cells it crosses, and where it left the region (empty if it did not within
-    // the corridor's width). Its cells are taken half a cell to the side that was outside along
-    // the edge, so that a walk drawing a wall on past a mouth leaves the region where the wall
-    // resumes, whichever way the outline runs.
-    const double max_walk = 1.5 * width + tolerance_cells + 2.0;
-    const auto walk = [&](const Corner& from, const Vec2& d, bool left,
-                          std::vector<std::size_t>* run) -> std::optional<Vec2> {
-      const Vec2 outside = left ? Vec2(d.y(), -d.x()) : Vec2(-d.y(), d.x());
-      const Vec2 start = Vec2(c0 - 1, r0 - 1) + from.at + 0.5 * outside;
-      run->clear();
-      for (double t = kLineStep; t <= max_walk; t += kLineStep) {
-        const Vec2 q = start + t * d;
-        const int c = static_cast<int>(std::floor(q.x())), r = static_cast<int>(std::floor(q.y()));
-        if (!f.inside(c, r) || lab[f.index(c, r)] != k) {
-          if (!run->empty()) return q - 0.5 * outside - Vec2(c0 - 1, r0 - 1);
-          if (t > tolerance_cells + 1.0) return std::nullopt;  // never entered the region
-          continue;
-        }
-        run->push_back(f.index(c, r));
-      }
-      return std::nullopt;
-    };
-    const auto at_other_corner = [&](const Corner& from, const Vec2& q) {
-      for (const Corner& o : corners)
-        if (&o != &from && (o.at - q).norm() <= tolerance_cells + 1.0) return true;
-      return false;
-    };
-    // The edge arriving at a corner drawn on (d_in), or the edge leaving it drawn back
-    // (-d_out). A cut that ends at another inner corner is the mouth between two (a side
-    // corridor's, a bridge's): both take it, so a T-junction keeps its through corridor whole.
-    // Judged before any cut, as its partner's cut would hide the mouth.
-    std::vector<std::size_t> run;
-    for (Corner& corner : corners) {
-      const std::optional<Vec2> end_in = walk(corner, corner.d_in, true, &run);
-      const std::optional<Vec2> end_out = walk(corner, -corner.d_out, false, &run);
-      const bool mouth_in = end_in && at_other_corner(corner, *end_in);
-      const bool mouth_out = end_out && at_other_corner(corner, *end_out);
-      // Else the edge that crosses the region within its width, if only one does (a step in a
-      // corridor's width: its one edge runs on along the wider part). Else the longer edge if
-      // it is corridor_aspect times the other's length: that edge is a corridor's side and the
-      // other the end of a bay open to it (a landing, a balcony beside a gallery), and the side
-      // runs on across the bay's opening. Else d_in, not the longer edge: which of two legs
-      // is longer changes as the map grows, the outline's turning sense does not, so a
-      // corner stays with the same leg.
-      if (mouth_in != mouth_out)
-        corner.drawn_back = mouth_out;
-      else if (end_in.has_value() != end_out.has_value())
-        corner.drawn_back = end_out.has_value();
-      else if (end_in)
-        corner.drawn_back = corner.len_out >= corridor_aspect * corner.len_in;
-    }
-    for (const Corner& corner : corners) {
-      const Vec2 d = corner.drawn_back ? Vec2(-corner.d_out) : corner.d_in;
-      if (!walk(corner, d, !corner.drawn_back, &run))
-        continue;  // not within the width, or a mouth already cut
-      for (std::size_t j : run) lab[j] = -1;
-      cut = true;
-    }
-  }
-  return cut;
-}
-
 /// Puts each side of the rectangle that has a wall beside it (parallel, within
 /// wall_snap, running along min_wall_overlap of it) on the nearest such wall. Returns per side
 /// (-x, +x, -y, +y of the rect's frame) the wall's id or -1.
@@ -721,10 +295,10 @@ void SegmentationInput::extend_bounds(Vec2* lo, Vec2* hi) const {
   }
 }
 
-RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentationConfig& cfg) {
-  cfg.validate();
-  RoomSegmentation out;
-  if (in.free_space.empty() && in.seen.empty()) return out;
+namespace {
+
+/// The raster's frame: the input's, or one round its points; the cell masks checked against it.
+GridFrame segmentation_frame(const SegmentationInput& in, const RoomSegmentationConfig& cfg) {
   GridFrame f = in.frame;
   if (f.size() == 0) {
     Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
@@ -736,10 +310,14 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
       throw std::invalid_argument("segment_rooms: a cell mask has " + std::to_string(cells->size()) +
                                   " cells, the frame " + std::to_string(f.size()));
   }
-  out.frame = f;
+  return f;
+}
 
-  // 1-2. The walkable cells: the opened free space, what the rays saw and the ground, all cut
-  // by the walls.
+/// 1-2. The walkable cells: the opened free space, what the rays saw and the ground, all cut by
+/// the walls, their doors and the openings of their lines (drawn into `wall`).
+std::vector<std::uint8_t> walkable_cells(const GridFrame& f, const SegmentationInput& in,
+                                         const std::vector<WallLine>& walls,
+                                         const RoomSegmentationConfig& cfg, std::vector<std::uint8_t>& wall) {
   std::vector<std::uint8_t> free = discs(f, in.free_space, in.free_radius);
   {
     // Rays pass at walking height over a ramp's first metres too: where the ground is known to
@@ -749,35 +327,118 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   }
   std::vector<std::uint8_t> ground = discs(f, in.ground, in.ground_radius);
   for (std::size_t i = 0; i < f.size(); ++i) ground[i] = ground[i] || free[i];
-  std::vector<std::uint8_t> wall(f.size(), 0);
-  const std::vector<WallLine> walls = level_walls(in.walls, in.floor_z, cfg);
-  const std::vector<WallLine> sides = level_walls(in.walls, in.floor_z, cfg, false);
+  wall.assign(f.size(), 0);
   for (const WallLine& w : walls) draw_line(f, w.a, w.b, &wall);
   for (const auto& [a, b] : door_closures(walls, cfg)) draw_line(f, a, b, &wall);
   // Openings in a long wall line (a corridor's side past a bay): the gaps between its walls.
   for (const auto& [a, b] : line_openings(walls, cfg)) draw_line(f, a, b, &wall);
   for (std::size_t i = 0; i < f.size(); ++i)
     if (wall[i]) ground[i] = 0;
+  return ground;
+}
+
+/// A region the robot does not fit in (a strip of cells just past a wall's line, between a
+/// wall's two faces: its widest clearance under `min_clearance`) is no space.
+void drop_unfit_regions(const GridFrame& f, int n_spaces, double min_clearance, std::vector<int>& label) {
+  std::vector<std::uint8_t> mask(f.size(), 0);
+  for (std::size_t i = 0; i < f.size(); ++i) mask[i] = label[i] >= 0 ? 1 : 0;
+  const std::vector<float> clearance = distance_transform(f, mask);
+  std::vector<float> widest(static_cast<std::size_t>(n_spaces), 0.0f);
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (label[i] >= 0)
+      widest[static_cast<std::size_t>(label[i])] =
+          std::max(widest[static_cast<std::size_t>(label[i])], clearance[i]);
+  for (int& l : label)
+    if (l >= 0 && widest[static_cast<std::size_t>(l)] < min_clearance) l = -1;
+}
+
+/// The spaces' outlines in the map frame; neighbouring spaces share cell edges, so each
+/// outline is simplified on its own.
+std::vector<Polygon2> space_outlines(const GridFrame& f, const std::vector<int>& label, int n,
+                                     const RoomSegmentationConfig& cfg) {
+  std::vector<Polygon2> outlines = trace_outlines(label, f.cols, f.rows, n, false);
+  for (Polygon2& p : outlines) p = simplify_outlines({p}, cfg.simplify_tolerance / cfg.cell).front();
+  for (Polygon2& p : outlines)
+    for (Vec2& v : p) v = f.origin + cfg.cell * v;
+  return outlines;
+}
+
+/// A space's footprint: its rectangle snapped to the walls beside its sides, with the walls of
+/// its room-planes factor (four for a room, the two long sides for a corridor), when it fills its
+/// rectangle and no wall runs into it; else its outline.
+SegmentedSpace footprint(const Polygon2& outline, const std::vector<WallLine>& sides,
+                         const std::vector<WallLine>& walls, const RoomSegmentationConfig& cfg) {
+  SegmentedSpace s;
+  OrientedRect rect = min_area_rect(outline);
+  const bool rectangular = rect.area() > 0.0 && area(outline) >= cfg.rect_fill * rect.area();
+  const std::array<int, 4> on = snap_to_walls(&rect, sides, cfg);
+  // A factor's pair must face each other (the back-end's room-planes factor needs it).
+  const auto faces = [&](int a, int b) {
+    const Vec2* na = nullptr;
+    const Vec2* nb = nullptr;
+    for (const WallLine& w : sides) {
+      if (w.id == a) na = &w.n;
+      if (w.id == b) nb = &w.n;
+    }
+    return na != nullptr && nb != nullptr && na->dot(*nb) < 0.0;
+  };
+  const bool long_along_x = rect.size.x() >= rect.size.y();
+  const double length = std::max(rect.size.x(), rect.size.y()),
+               width = std::min(rect.size.x(), rect.size.y());
+  s.room.kind = length >= cfg.corridor_aspect * width ? RoomKind::corridor : RoomKind::room;
+  const auto take_outline = [&] {
+    s.room.outline = outline;
+    if (signed_area(s.room.outline) < 0.0) std::reverse(s.room.outline.begin(), s.room.outline.end());
+    s.centroid = centroid(outline);
+  };
+  s.room.rect = rect;
+  if (!rectangular) {
+    take_outline();
+    return s;
+  }
+  if (s.room.kind == RoomKind::room && std::all_of(on.begin(), on.end(), [](int id) { return id >= 0; }) &&
+      faces(on[0], on[1]) && faces(on[2], on[3])) {
+    s.room.wall_ids = {on[0], on[1], on[2], on[3]};
+  } else if (s.room.kind == RoomKind::corridor) {
+    const int a = long_along_x ? 2 : 0;  // the sides along the corridor's length
+    if (on[a] >= 0 && on[a + 1] >= 0 && faces(on[a], on[a + 1])) {
+      s.room.wall_ids = {on[a], on[a + 1]};
+      // The factor's pair is along the rect's x axis: turn the rect so that x is across.
+      if (long_along_x) {
+        s.room.rect.yaw += M_PI / 2.0;
+        s.room.rect.size = Vec2(rect.size.y(), rect.size.x());
+      }
+    }
+    const int b = long_along_x ? 0 : 2;
+    for (int e : {on[b], on[b + 1]})
+      if (e >= 0) s.room.end_wall_ids.push_back(e);
+  }
+  s.centroid = s.room.rect.center;
+  // A rectangle across a wall is no footprint (the free space does not cross it): the
+  // outline is, and the rectangle's walls still make the factor.
+  if (crosses_a_wall(s.room.rect, walls, cfg.wall_snap)) take_outline();
+  return s;
+}
+
+}  // namespace
+
+RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentationConfig& cfg) {
+  cfg.validate();
+  RoomSegmentation out;
+  if (in.free_space.empty() && in.seen.empty()) return out;
+  const GridFrame f = segmentation_frame(in, cfg);
+  out.frame = f;
+  const std::vector<WallLine> walls = level_walls(in.walls, in.floor_z, cfg);
+  const std::vector<WallLine> sides = level_walls(in.walls, in.floor_z, cfg, false);
+  std::vector<std::uint8_t> wall;
+  const std::vector<std::uint8_t> ground = walkable_cells(f, in, walls, cfg, wall);
 
   // 3. The parts of the walkable cells that only narrowings join (wall cells carry no label);
   // small ones join the neighbour they share the most cell edges with, or go.
   std::vector<int> label;
   const int n_spaces = split_at_narrowings(f, ground, 0.5 * cfg.max_door_width, cfg.door_narrowing,
                                            cfg.min_region_area, &label);
-  // A region the robot does not fit in (a strip of cells just past a wall's line, between a
-  // wall's two faces) is no space.
-  {
-    std::vector<std::uint8_t> mask(f.size(), 0);
-    for (std::size_t i = 0; i < f.size(); ++i) mask[i] = label[i] >= 0 ? 1 : 0;
-    const std::vector<float> clearance = distance_transform(f, mask);
-    std::vector<float> widest(static_cast<std::size_t>(n_spaces), 0.0f);
-    for (std::size_t i = 0; i < f.size(); ++i)
-      if (label[i] >= 0)
-        widest[static_cast<std::size_t>(label[i])] =
-            std::max(widest[static_cast<std::size_t>(label[i])], clearance[i]);
-    for (int& l : label)
-      if (l >= 0 && widest[static_cast<std::size_t>(l)] < cfg.min_fit_share * in.free_radius) l = -1;
-  }
+  drop_unfit_regions(f, n_spaces, cfg.min_fit_share * in.free_radius, label);
   const double cell_area = cfg.cell * cfg.cell;
   int n = merge_small_regions(f, cfg.min_region_area / cell_area, n_spaces, &label);
   std::vector<int> before_cut = label;
@@ -796,11 +457,7 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   out.label = label;
 
   // 4. Footprints.
-  // Neighbouring spaces share cell edges, so each outline is simplified on its own.
-  std::vector<Polygon2> outlines = trace_outlines(label, f.cols, f.rows, n, false);
-  for (Polygon2& p : outlines) p = simplify_outlines({p}, cfg.simplify_tolerance / cfg.cell).front();
-  for (Polygon2& p : outlines)
-    for (Vec2& v : p) v = f.origin + cfg.cell * v;
+  const std::vector<Polygon2> outlines = space_outlines(f, label, n, cfg);
   std::vector<std::size_t> counts(static_cast<std::size_t>(n), 0);
   for (int l : label)
     if (l >= 0) ++counts[static_cast<std::size_t>(l)];
@@ -819,60 +476,9 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
     }
   }
   for (int k = 0; k < n; ++k) {
-    SegmentedSpace s;
-    const Polygon2& outline = outlines[static_cast<std::size_t>(k)];
+    SegmentedSpace s = footprint(outlines[static_cast<std::size_t>(k)], sides, walls, cfg);
     s.area = static_cast<double>(counts[static_cast<std::size_t>(k)]) * cell_area;
     s.frontier = frontier[static_cast<std::size_t>(k)];
-    OrientedRect rect = min_area_rect(outline);
-    const bool rectangular = rect.area() > 0.0 && area(outline) >= cfg.rect_fill * rect.area();
-    const std::array<int, 4> on = snap_to_walls(&rect, sides, cfg);
-    // A factor's pair must face each other (the back-end's room-planes factor needs it).
-    const auto faces = [&](int a, int b) {
-      const Vec2* na = nullptr;
-      const Vec2* nb = nullptr;
-      for (const WallLine& w : sides) {
-        if (w.id == a) na = &w.n;
-        if (w.id == b) nb = &w.n;
-      }
-      return na != nullptr && nb != nullptr && na->dot(*nb) < 0.0;
-    };
-    const bool long_along_x = rect.size.x() >= rect.size.y();
-    const double length = std::max(rect.size.x(), rect.size.y()),
-                 width = std::min(rect.size.x(), rect.size.y());
-    s.room.kind = length >= cfg.corridor_aspect * width ? RoomKind::corridor : RoomKind::room;
-    const auto take_outline = [&] {
-      s.room.outline = outline;
-      if (signed_area(s.room.outline) < 0.0) std::reverse(s.room.outline.begin(), s.room.outline.end());
-      s.centroid = centroid(outline);
-    };
-    s.room.rect = rect;
-    if (rectangular) {
-      // The room-planes factor: four walls for a room, the two long sides for a corridor.
-      if (s.room.kind == RoomKind::room &&
-          std::all_of(on.begin(), on.end(), [](int id) { return id >= 0; }) && faces(on[0], on[1]) &&
-          faces(on[2], on[3])) {
-        s.room.wall_ids = {on[0], on[1], on[2], on[3]};
-      } else if (s.room.kind == RoomKind::corridor) {
-        const int a = long_along_x ? 2 : 0;  // the sides along the corridor's length
-        if (on[a] >= 0 && on[a + 1] >= 0 && faces(on[a], on[a + 1])) {
-          s.room.wall_ids = {on[a], on[a + 1]};
-          // The factor's pair is along the rect's x axis: turn the rect so that x is across.
-          if (long_along_x) {
-            s.room.rect.yaw += M_PI / 2.0;
-            s.room.rect.size = Vec2(rect.size.y(), rect.size.x());
-          }
-        }
-        const int b = long_along_x ? 0 : 2;
-        for (int e : {on[b], on[b + 1]})
-          if (e >= 0) s.room.end_wall_ids.push_back(e);
-      }
-      s.centroid = s.room.rect.center;
-      // A rectangle across a wall is no footprint (the free space does not cross it): the
-      // outline is, and the rectangle's walls still make the factor.
-      if (crosses_a_wall(s.room.rect, walls, cfg.wall_snap)) take_outline();
-    } else {
-      take_outline();
-    }
     out.spaces.push_back(std::move(s));
   }
   return out;
