@@ -127,7 +127,7 @@ def main():
                   + ("" if limit is None else " (its allowance)"))
         elif not args.allow:
             print(f"{what}: {lines} lines")
-    for key in sorted(k for k in allowed if k not in over):
+    for key in sorted((k for k in allowed if k not in over), key=lambda k: (k[0], k[1] or "")):
         failures += 1
         print(f"{args.allow}: {key[0]} {key[1] or ''} is within the limits now: take it off the list")
     if args.allow:
