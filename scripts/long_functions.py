@@ -1,9 +1,7 @@
 #!/usr/bin/env python3
 """Lists the functions of src/ and apps/ over 80 lines (from the signature's first line to the
-closing brace) and the files over 600, longest first; exits 1 when there is one not allowed.
-Usage: scripts/long_functions.py [--max N] [--max-file N] [--allow FILE] [PATH ...]
-With --allow (scripts/long_functions.allow, run by ctest as long_functions), the listed ones may
-stay until split, never grow, and must leave the list once under the limit: the list only shrinks.
+closing brace) and the files over 600, longest first; exits 1 when there is one. Run by ctest as
+long_functions. Usage: scripts/long_functions.py [--max N] [--max-file N] [PATH ...]
 
 A function is a brace block whose header (the text since the previous ';', '{' or '}' at its
 level) ends in a parameter list: `name(...) [const] [noexcept] [override] [-> T] [: inits]`.
@@ -78,31 +76,13 @@ def functions(path):
     return found
 
 
-def read_allowed(path):
-    """{(file, function or None): lines} from an allowance file: `FILE FUNCTION LINES` for a
-    function, `FILE LINES` for a file; '#' starts a comment."""
-    allowed = {}
-    for number, line in enumerate(path.read_text().splitlines(), 1):
-        fields = line.split("#", 1)[0].split()
-        if not fields:
-            continue
-        if len(fields) not in (2, 3) or not fields[-1].isdigit():
-            sys.exit(f"{path}:{number}: expected 'FILE [FUNCTION] LINES', got '{line.strip()}'")
-        allowed[(fields[0], fields[1] if len(fields) == 3 else None)] = int(fields[-1])
-    return allowed
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--max", type=int, default=80, help="lines a function may have")
     parser.add_argument("--max-file", type=int, default=600, help="lines a file may have")
-    parser.add_argument("--allow", type=pathlib.Path,
-                        help="functions and files still over the limits, each with the length it "
-                             "may not exceed; one that shrank under the limit must leave the list")
     parser.add_argument("paths", nargs="*", default=["src", "apps"])
     args = parser.parse_args()
     root = pathlib.Path(__file__).resolve().parent.parent
-    allowed = read_allowed(args.allow) if args.allow else {}
     over = {}  # (file, function or None) -> lines
     for base in args.paths:
         base_path = root / base
@@ -116,24 +96,10 @@ def main():
             for function, _, length in functions(f):
                 if length > args.max:
                     over[(name, function)] = max(length, over.get((name, function), 0))
-    failures = 0
     for (name, function), lines in sorted(over.items(), key=lambda kv: -kv[1]):
-        limit = allowed.get((name, function))
-        what = f"{name} {function}" if function else name
-        if limit is None or lines > limit:
-            failures += 1
-            bound = args.max if function else args.max_file
-            print(f"{what}: {lines} lines, over {limit if limit is not None else bound}"
-                  + ("" if limit is None else " (its allowance)"))
-        elif not args.allow:
-            print(f"{what}: {lines} lines")
-    for key in sorted((k for k in allowed if k not in over), key=lambda k: (k[0], k[1] or "")):
-        failures += 1
-        print(f"{args.allow}: {key[0]} {key[1] or ''} is within the limits now: take it off the list")
-    if args.allow:
-        print(f"{len(over)} functions and files over {args.max} / {args.max_file} lines, "
-              f"{len(allowed)} allowed", file=sys.stderr)
-    return 1 if failures or (over and not args.allow) else 0
+        print(f"{name} {function}: {lines} lines, over {args.max}" if function
+              else f"{name}: {lines} lines, over {args.max_file}")
+    return 1 if over else 0
 
 
 if __name__ == "__main__":
