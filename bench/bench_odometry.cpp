@@ -35,7 +35,7 @@
 #include "tsgraphs/eval/trajectory_metrics.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/subsampled_sequence.hpp"
-#include "tsgraphs/odometry/lidar_odometry_sequence.hpp"
+#include "tsgraphs/pipeline/odometry_sequence.hpp"
 #include "tsgraphs/pipeline/odometry_choice.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
 
@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
   const auto start = last;
   std::vector<std::size_t> lost;
   std::vector<double> overlaps;
-  std::vector<Pose3> poses = odometry::estimate_odometry(
+  std::vector<Pose3> poses = pipeline::estimate_odometry(
       seq, lidar_odometry,
       [&](std::size_t, std::size_t) {
         const auto now = Clock::now();

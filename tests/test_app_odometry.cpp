@@ -14,7 +14,7 @@
 #include "tsgraphs/io/ros_bag.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
-#include "tsgraphs/odometry/lidar_odometry_sequence.hpp"
+#include "tsgraphs/pipeline/odometry_sequence.hpp"
 #include "tsgraphs/pipeline/odometry_choice.hpp"
 
 namespace fs = std::filesystem;
@@ -155,7 +155,7 @@ TEST_F(OdometryCli, TheLibrarysOdometryChoiceIsTheRunsOdometry) {
   EXPECT_TRUE(choice.options.estimate);
   EXPECT_TRUE(choice.options.initial_pose.isApprox(odometry_.front()));
   odometry::LidarOdometry lidar = pipeline::make_lidar_odometry(config, choice.options.initial_pose);
-  const std::vector<Pose3> poses = odometry::estimate_odometry(seq, lidar);
+  const std::vector<Pose3> poses = pipeline::estimate_odometry(seq, lidar);
   std::string err;
   ASSERT_EQ(
       cli("-q run " + (base_ / "seq").string() + " --odometry lidar --out " + (dir_ / "run").string(), &err),

@@ -13,7 +13,7 @@
 
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
-#include "tsgraphs/odometry/lidar_odometry_sequence.hpp"
+#include "tsgraphs/pipeline/odometry_sequence.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
@@ -94,7 +94,7 @@ TEST_F(OdometrySimulated, DriftIsBelowOnePercentOfThePath) {
   ASSERT_EQ(truth.size(), seq.size());
   ASSERT_GT(seq.size(), 100u);
   std::size_t reported = 0;
-  const std::vector<Pose3> poses = odometry::estimate_odometry(
+  const std::vector<Pose3> poses = pipeline::estimate_odometry(
       seq, odometry::LidarOdometryConfig{}, [&](std::size_t done, std::size_t) { reported = done; },
       truth.front());  // aligned at the first pose
   ASSERT_EQ(poses.size(), seq.size());
@@ -130,7 +130,7 @@ TEST_F(OdometrySimulated, ASweptHandHeldScanIsPlacedAtItsStamp) {
   const auto run = [&](bool sweep_motion) {
     odometry::LidarOdometryConfig config;
     config.sweep_motion = sweep_motion;
-    const std::vector<Pose3> poses = odometry::estimate_odometry(seq, config, {}, truth.front());
+    const std::vector<Pose3> poses = pipeline::estimate_odometry(seq, config, {}, truth.front());
     double worst_heading = 0.0, sum_sq = 0.0;
     for (std::size_t k = 0; k < poses.size(); ++k) {
       worst_heading =

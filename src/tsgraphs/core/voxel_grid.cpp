@@ -57,18 +57,22 @@ PointCloud voxel_downsample(const PointCloud& scan, double voxel_size, double mi
   const bool with_intensity = scan.has_intensity(), with_labels = scan.has_labels();
   const double min2 = min_range * min_range, max2 = max_range * max_range;
   std::size_t non_finite = 0;
+  // A point is kept when finite (the others are counted) and within the range band.
+  const auto in_band = [&](const Eigen::Vector3f& p) {
+    if (!p.allFinite()) {
+      ++non_finite;
+      return false;
+    }
+    const double r2 = p.squaredNorm();
+    return r2 >= min2 && r2 <= max2;
+  };
 
   PointCloud out;
   if (voxel_size <= 0.0) {
     out.reserve(scan.size(), with_intensity, with_labels);
     for (std::size_t i = 0; i < scan.size(); ++i) {
       const Eigen::Vector3f& p = scan.points[i];
-      if (!p.allFinite()) {
-        ++non_finite;
-        continue;
-      }
-      const double r2 = p.squaredNorm();
-      if (r2 < min2 || r2 > max2) continue;
+      if (!in_band(p)) continue;
       out.points.push_back(p);
       if (with_intensity) out.intensity.push_back(scan.intensity[i]);
       if (with_labels) out.labels.push_back(scan.labels[i]);
@@ -81,12 +85,7 @@ PointCloud voxel_downsample(const PointCloud& scan, double voxel_size, double mi
     voxels.reserve(scan.size() / 2);
     for (std::size_t i = 0; i < scan.size(); ++i) {
       const Eigen::Vector3f& p = scan.points[i];
-      if (!p.allFinite()) {
-        ++non_finite;
-        continue;
-      }
-      const double r2 = p.squaredNorm();
-      if (r2 < min2 || r2 > max2) continue;
+      if (!in_band(p)) continue;
       bool fresh = false;
       const std::uint32_t slot =
           index.find_or_insert(voxel_key(p, inv), static_cast<std::uint32_t>(voxels.size()), &fresh);

@@ -2,7 +2,21 @@
 
 #include <algorithm>
 
+#include "tsgraphs/core/error.hpp"
+#include "tsgraphs/io/tum.hpp"
+
 namespace tsgraphs::io {
+
+void add_tum_odometry(const BagOptions& options, std::vector<StampedBase>& odom) {
+  if (options.odom_topic.empty() && !options.odom_tum.empty()) {
+    for (const StampedPose& p : read_tum(options.odom_tum)) odom.push_back({p.t, p.pose});
+  }
+  const bool has_odometry = !options.odom_topic.empty() || !options.odom_tum.empty();
+  if (has_odometry && odom.empty())
+    throw input_error(
+        options.bag, 0,
+        "no odometry messages on " + (options.odom_topic.empty() ? options.odom_tum : options.odom_topic));
+}
 
 Pose3 interpolate(const StampedBase& a, const StampedBase& b, double t) {
   const double s = b.t > a.t ? (t - a.t) / (b.t - a.t) : 0.0;

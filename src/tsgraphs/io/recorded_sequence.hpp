@@ -58,6 +58,10 @@ struct StampedBase {
   Pose3 pose = Pose3::Identity();
 };
 
+/// Adds the TUM file's poses (options.odom_tum) when they stand for the odometry topic; odometry
+/// asked for (a topic or a file) and none found is an InputError naming the bag.
+void add_tum_odometry(const BagOptions& options, std::vector<StampedBase>& odom);
+
 /// The pose at time t between two samples: position linear, rotation slerp.
 Pose3 interpolate(const StampedBase& a, const StampedBase& b, double t);
 

@@ -23,7 +23,6 @@
 #include "tsgraphs/io/recorded_sequence.hpp"
 #include "tsgraphs/io/point_cloud2.hpp"
 #include "tsgraphs/io/ros_bag_internal.hpp"
-#include "tsgraphs/io/tum.hpp"
 
 namespace tsgraphs::io {
 
@@ -115,14 +114,8 @@ std::vector<StampedBase> read_odometry(const rosbag::Bag& bag, const BagOptions&
       else if (const auto p = m.instantiate<geometry_msgs::PoseStamped>())
         odom.push_back({p->header.stamp.toSec(), pose_of(p->pose)});
     }
-  } else if (!options.odom_tum.empty()) {
-    for (const StampedPose& p : read_tum(options.odom_tum)) odom.push_back({p.t, p.pose});
   }
-  const bool has_odometry = !options.odom_topic.empty() || !options.odom_tum.empty();
-  if (has_odometry && odom.empty())
-    throw input_error(
-        options.bag, 0,
-        "no odometry messages on " + (options.odom_topic.empty() ? options.odom_tum : options.odom_topic));
+  add_tum_odometry(options, odom);
   return odom;
 }
 

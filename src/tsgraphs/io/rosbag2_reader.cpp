@@ -10,7 +10,6 @@
 #include "tsgraphs/io/point_cloud2.hpp"
 #include "tsgraphs/io/ros2_messages.hpp"
 #include "tsgraphs/io/rosbag2_internal.hpp"
-#include "tsgraphs/io/tum.hpp"
 
 namespace tsgraphs::io {
 
@@ -106,19 +105,6 @@ FirstPass read_odometry_and_stamps(const std::vector<std::unique_ptr<Storage>>& 
     }
   }
   return out;
-}
-
-/// Adds the TUM file's poses when they stand for the odometry topic; odometry asked for and
-/// none found is an InputError.
-void add_tum_odometry(const BagOptions& options, std::vector<StampedBase>& odom) {
-  if (options.odom_topic.empty() && !options.odom_tum.empty()) {
-    for (const StampedPose& p : read_tum(options.odom_tum)) odom.push_back({p.t, p.pose});
-  }
-  const bool has_odometry = !options.odom_topic.empty() || !options.odom_tum.empty();
-  if (has_odometry && odom.empty())
-    throw input_error(
-        options.bag, 0,
-        "no odometry messages on " + (options.odom_topic.empty() ? options.odom_tum : options.odom_topic));
 }
 
 /// The sensor-to-base transform of /tf_static: the last one whose child is `cloud_frame`, if any.

@@ -1,18 +1,19 @@
-#include "tsgraphs/odometry/lidar_odometry_sequence.hpp"
+#include "tsgraphs/pipeline/odometry_sequence.hpp"
 
 #include <tbb/task_group.h>
 
-namespace tsgraphs::odometry {
+namespace tsgraphs::pipeline {
 
-std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, const LidarOdometryConfig& config,
+std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence,
+                                     const odometry::LidarOdometryConfig& config,
                                      const std::function<void(std::size_t, std::size_t)>& progress,
                                      const Pose3& initial_pose, std::vector<std::size_t>* lost,
                                      std::vector<double>* overlaps) {
-  LidarOdometry odometry(config, initial_pose);
+  odometry::LidarOdometry odometry(config, initial_pose);
   return estimate_odometry(sequence, odometry, progress, lost, overlaps);
 }
 
-std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, LidarOdometry& odometry,
+std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, odometry::LidarOdometry& odometry,
                                      const std::function<void(std::size_t, std::size_t)>& progress,
                                      std::vector<std::size_t>* lost, std::vector<double>* overlaps) {
   const std::size_t n = sequence.size();
@@ -41,4 +42,4 @@ std::vector<Pose3> estimate_odometry(const io::ScanSequence& sequence, LidarOdom
   return poses;
 }
 
-}  // namespace tsgraphs::odometry
+}  // namespace tsgraphs::pipeline
