@@ -18,6 +18,18 @@ void add_tum_odometry(const BagOptions& options, std::vector<StampedBase>& odom)
         "no odometry messages on " + (options.odom_topic.empty() ? options.odom_tum : options.odom_topic));
 }
 
+std::vector<std::size_t> RecordedSequence::place(const std::vector<double>& stamps,
+                                                 std::vector<StampedBase> odom, bool has_odometry,
+                                                 const std::string& points_topic) {
+  ScanPlacement placed = place_scans(stamps, std::move(odom), has_odometry, sensor_to_base_);
+  info_.times = std::move(placed.times);
+  info_.odometry = std::move(placed.odometry);
+  dropped_ = placed.dropped;
+  if (info_.times.empty())
+    throw input_error(name_, 0, "no scan on " + points_topic + " lies within the odometry's time span");
+  return placed.kept;
+}
+
 Pose3 interpolate(const StampedBase& a, const StampedBase& b, double t) {
   const double s = b.t > a.t ? (t - a.t) / (b.t - a.t) : 0.0;
   Pose3 T = Pose3::Identity();

@@ -25,6 +25,8 @@ struct BagOptions {
   std::optional<Pose3> sensor_to_base;
 };
 
+struct StampedBase;
+
 /// A bag's scans placed by its odometry, whatever the bag's format (BagSequence for ROS 1,
 /// Rosbag2Sequence for rosbag2): what `run` and `convert` ask of either. Scans outside the
 /// odometry's time span are left out (dropped_scans() counts them).
@@ -44,6 +46,11 @@ class RecordedSequence : public ScanSequence {
 
  protected:
   explicit RecordedSequence(std::string name) : name_(std::move(name)) {}
+  /// The clouds stamped `stamps` placed by `odom` (place_scans) into info_ and dropped_; returns
+  /// the indices of the clouds kept, in order. No cloud within the odometry's time span is an
+  /// InputError naming the bag and the points topic.
+  std::vector<std::size_t> place(const std::vector<double>& stamps, std::vector<StampedBase> odom,
+                                 bool has_odometry, const std::string& points_topic);
   std::string name_;
   SequenceInfo info_;
   Pose3 sensor_to_base_ = Pose3::Identity();

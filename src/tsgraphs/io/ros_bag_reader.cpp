@@ -216,14 +216,8 @@ BagSequence::BagSequence(const BagOptions& options)
     // run estimates it from the scans).
     std::vector<double> stamps;
     for (const BagCloud& c : clouds) stamps.push_back(c.t);
-    ScanPlacement placed = place_scans(stamps, std::move(odom), has_odometry, sensor_to_base_);
-    for (const std::size_t i : placed.kept) impl_->clouds.push_back(clouds[i].message);
-    info_.times = std::move(placed.times);
-    info_.odometry = std::move(placed.odometry);
-    dropped_ = placed.dropped;
-    if (info_.times.empty())
-      throw input_error(path, 0,
-                        "no scan on " + options.points_topic + " lies within the odometry's time span");
+    for (const std::size_t i : place(stamps, std::move(odom), has_odometry, options.points_topic))
+      impl_->clouds.push_back(clouds[i].message);
     for (const std::string& line : rosbag_lines.lines()) warnings_.push_back("rosbag: " + line);
   } catch (const ros::Exception& e) {  // rosbag's, and the deserializer's stream overruns
     throw input_error(path, 0, std::string("cannot read the bag: ") + e.what() + rosbag_lines.last());

@@ -161,14 +161,8 @@ Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options)
     }
   }
 
-  ScanPlacement placed = place_scans(pass.stamps, std::move(pass.odom), has_odometry, sensor_to_base_);
-  for (const std::size_t i : placed.kept) impl_->clouds.push_back(clouds[i]);
-  info_.times = std::move(placed.times);
-  info_.odometry = std::move(placed.odometry);
-  dropped_ = placed.dropped;
-  if (info_.times.empty())
-    throw input_error(path, 0,
-                      "no scan on " + options.points_topic + " lies within the odometry's time span");
+  for (const std::size_t i : place(pass.stamps, std::move(pass.odom), has_odometry, options.points_topic))
+    impl_->clouds.push_back(clouds[i]);
 }
 
 Rosbag2Sequence::~Rosbag2Sequence() = default;
