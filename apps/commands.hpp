@@ -8,8 +8,8 @@
 
 #include "tsgraphs/eval/metrics.hpp"
 #include "tsgraphs/eval/room_metrics.hpp"
-#include "tsgraphs/io/ros_bag.hpp"
-#include "tsgraphs/io/rosbag2.hpp"
+#include "tsgraphs/ros1_bag/ros_bag.hpp"
+#include "tsgraphs/ros2_bag/rosbag2.hpp"
 #include "tsgraphs/io/scan_folder.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
 #include "tsgraphs/pipeline/sequence_runner.hpp"

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/io/ros_bag.hpp"
-#include "tsgraphs/io/rosbag2.hpp"
+#include "tsgraphs/ros1_bag/ros_bag.hpp"
+#include "tsgraphs/ros2_bag/rosbag2.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 
 using namespace tsgraphs;

@@ -11,7 +11,7 @@
 
 #include "test_support.hpp"
 #include "tsgraphs/eval/trajectory_metrics.hpp"
-#include "tsgraphs/io/ros_bag.hpp"
+#include "tsgraphs/ros1_bag/ros_bag.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
 #include "tsgraphs/pipeline/odometry_sequence.hpp"

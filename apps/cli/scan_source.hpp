@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "tsgraphs/io/ros_bag.hpp"
+#include "tsgraphs/ros1_bag/ros_bag.hpp"
 #include "tsgraphs/io/scan_folder.hpp"
 #include "tsgraphs/pipeline/odometry_choice.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"

@@ -2,7 +2,7 @@
 /// points decoded, Odometry, PoseStamped, TFMessage) on the same bytes.
 #include "fuzz_support.hpp"
 #include "tsgraphs/io/point_cloud2.hpp"
-#include "tsgraphs/io/ros2_messages.hpp"
+#include "tsgraphs/ros2_bag/ros2_messages.hpp"
 
 namespace ros2 = tsgraphs::io::ros2;
 

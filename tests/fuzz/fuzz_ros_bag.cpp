@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "fuzz_support.hpp"
-#include "tsgraphs/io/ros_bag.hpp"
+#include "tsgraphs/ros1_bag/ros_bag.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace tsgraphs;

@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "fuzz_support.hpp"
-#include "tsgraphs/io/rosbag2.hpp"
+#include "tsgraphs/ros2_bag/rosbag2.hpp"
 
 namespace {
 

@@ -12,7 +12,7 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/core/map_style.hpp"
 #include "tsgraphs/core/pose.hpp"
-#include "tsgraphs/io/mcap.hpp"
+#include "tsgraphs/mcap/mcap.hpp"
 #include "tsgraphs/io/run_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
 

@@ -1,5 +1,5 @@
 // A rosbag2 bag folder's metadata.yaml read: its files, in order, and rosbag2's own compression.
-#include "tsgraphs/io/rosbag2.hpp"
+#include "tsgraphs/ros2_bag/rosbag2.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -12,7 +12,7 @@
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/core/printable.hpp"
-#include "tsgraphs/io/rosbag2_internal.hpp"
+#include "tsgraphs/ros2_bag/rosbag2_internal.hpp"
 
 namespace tsgraphs::io {
 

@@ -1,4 +1,4 @@
-#include "tsgraphs/io/cdr.hpp"
+#include "tsgraphs/ros2_bag/cdr.hpp"
 
 #include <cstring>
 

@@ -1,4 +1,4 @@
-// ROS1 bags (io/ros_bag.hpp) that are corrupt: a flipped byte in a chunk header, a record
+// ROS1 bags (ros1_bag/ros_bag.hpp) that are corrupt: a flipped byte in a chunk header, a record
 // header length near 2^32, a truncated file, a PointCloud2 whose lengths claim 2^31 bytes. Each
 // is read or refused with an InputError naming the bag (and the byte), never a crash (issue 18).
 #include <gmock/gmock.h>
@@ -15,7 +15,7 @@
 #include "test_support.hpp"
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/core/pose.hpp"
-#include "tsgraphs/io/ros_bag.hpp"
+#include "tsgraphs/ros1_bag/ros_bag.hpp"
 
 using namespace tsgraphs;
 using namespace tsgraphs::io;

@@ -1,5 +1,5 @@
 // MCAP files written: chunks, message indexes, the summary and every CRC.
-#include "tsgraphs/io/mcap.hpp"
+#include "tsgraphs/mcap/mcap.hpp"
 
 #include <unistd.h>
 
@@ -9,8 +9,8 @@
 #include <stdexcept>
 
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/io/compression.hpp"
-#include "tsgraphs/io/mcap_internal.hpp"
+#include "tsgraphs/mcap/compression.hpp"
+#include "tsgraphs/mcap/mcap_internal.hpp"
 
 namespace tsgraphs::io::mcap {
 

@@ -1,5 +1,5 @@
 // A sequence written as a ROS 1 bag through rosbag_storage.
-#include "tsgraphs/io/ros_bag.hpp"
+#include "tsgraphs/ros1_bag/ros_bag.hpp"
 
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -15,7 +15,7 @@
 #include <unistd.h>
 
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/io/ros_bag_internal.hpp"
+#include "tsgraphs/ros1_bag/ros_bag_internal.hpp"
 
 namespace tsgraphs::io {
 

@@ -1,5 +1,5 @@
 // ROS 1 bags read through rosbag_storage: a topic's clouds placed by the odometry.
-#include "tsgraphs/io/ros_bag.hpp"
+#include "tsgraphs/ros1_bag/ros_bag.hpp"
 
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -22,7 +22,7 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/recorded_sequence.hpp"
 #include "tsgraphs/io/point_cloud2.hpp"
-#include "tsgraphs/io/ros_bag_internal.hpp"
+#include "tsgraphs/ros1_bag/ros_bag_internal.hpp"
 
 namespace tsgraphs::io {
 

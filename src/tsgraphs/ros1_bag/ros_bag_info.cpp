@@ -1,5 +1,5 @@
 // `tsgraphs bag-info` for ROS 1 bags: each topic's type, count and rate.
-#include "tsgraphs/io/ros_bag.hpp"
+#include "tsgraphs/ros1_bag/ros_bag.hpp"
 
 #include <ros/exception.h>
 #include <rosbag/bag.h>
@@ -10,7 +10,7 @@
 #include <string>
 
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/io/ros_bag_internal.hpp"
+#include "tsgraphs/ros1_bag/ros_bag_internal.hpp"
 
 namespace tsgraphs::io {
 

@@ -1,5 +1,5 @@
 // rosbag2 recordings read as a sequence: a topic's clouds placed by the odometry.
-#include "tsgraphs/io/rosbag2.hpp"
+#include "tsgraphs/ros2_bag/rosbag2.hpp"
 
 #include <algorithm>
 #include <map>
@@ -8,8 +8,8 @@
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/io/point_cloud2.hpp"
-#include "tsgraphs/io/ros2_messages.hpp"
-#include "tsgraphs/io/rosbag2_internal.hpp"
+#include "tsgraphs/ros2_bag/ros2_messages.hpp"
+#include "tsgraphs/ros2_bag/rosbag2_internal.hpp"
 
 namespace tsgraphs::io {
 

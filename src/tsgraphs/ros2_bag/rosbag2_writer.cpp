@@ -1,5 +1,5 @@
 // A sequence written as rosbag2 writes a recording: SQLite or MCAP, a bag folder or one file.
-#include "tsgraphs/io/rosbag2.hpp"
+#include "tsgraphs/ros2_bag/rosbag2.hpp"
 
 #include <sqlite3.h>
 #include <unistd.h>
@@ -12,9 +12,9 @@
 #include <stdexcept>
 
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/io/compression.hpp"
-#include "tsgraphs/io/ros2_messages.hpp"
-#include "tsgraphs/io/rosbag2_internal.hpp"
+#include "tsgraphs/mcap/compression.hpp"
+#include "tsgraphs/ros2_bag/ros2_messages.hpp"
+#include "tsgraphs/ros2_bag/rosbag2_internal.hpp"
 
 namespace tsgraphs::io {
 

@@ -1,4 +1,4 @@
-#include "tsgraphs/io/compression.hpp"
+#include "tsgraphs/mcap/compression.hpp"
 
 #include <lz4frame.h>
 #include <zstd.h>

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "tsgraphs/io/recorded_sequence.hpp"
-#include "tsgraphs/io/mcap.hpp"
+#include "tsgraphs/mcap/mcap.hpp"
 #include "tsgraphs/io/scan_sequence.hpp"
 
 namespace tsgraphs::io {

@@ -1,4 +1,4 @@
-// MCAP files (io/mcap.hpp): written and read back in each compression, files built here byte
+// MCAP files (mcap/mcap.hpp): written and read back in each compression, files built here byte
 // by byte from the specification (mcap.dev/spec) in the layouts of its conformance suite
 // (chunked or not, with or without chunk and message indexes, padded records, summaries with
 // repeated schemas and channels, statistics and summary offsets), and damaged files.
@@ -14,7 +14,7 @@
 
 #include "test_support.hpp"
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/io/mcap.hpp"
+#include "tsgraphs/mcap/mcap.hpp"
 
 namespace fs = std::filesystem;
 using namespace tsgraphs;

@@ -1,4 +1,4 @@
-// rosbag2 recordings (io/rosbag2.hpp): a small sequence written as SQLite and MCAP files and
+// rosbag2 recordings (ros2_bag/rosbag2.hpp): a small sequence written as SQLite and MCAP files and
 // read back, also under rosbag2's own compression, and what a user gets for a topic that is
 // missing, of another type or of another definition, a damaged SQLite file, a compressed file cut
 // short, and bag folders that are not whole.
@@ -15,9 +15,9 @@
 
 #include "test_support.hpp"
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/io/mcap.hpp"
-#include "tsgraphs/io/ros2_messages.hpp"
-#include "tsgraphs/io/rosbag2.hpp"
+#include "tsgraphs/mcap/mcap.hpp"
+#include "tsgraphs/ros2_bag/ros2_messages.hpp"
+#include "tsgraphs/ros2_bag/rosbag2.hpp"
 
 namespace fs = std::filesystem;
 using namespace tsgraphs;

@@ -1,4 +1,4 @@
-// Compressed bytes (io/compression.hpp): zstd and lz4 round trips in memory and as files, and
+// Compressed bytes (mcap/compression.hpp): zstd and lz4 round trips in memory and as files, and
 // data that is cut, claims more than allowed, or is not compressed at all, each an InputError
 // naming the file.
 #include <gmock/gmock.h>
@@ -12,7 +12,7 @@
 
 #include "test_support.hpp"
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/io/compression.hpp"
+#include "tsgraphs/mcap/compression.hpp"
 
 namespace fs = std::filesystem;
 using namespace tsgraphs;

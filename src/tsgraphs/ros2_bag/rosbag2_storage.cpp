@@ -1,5 +1,5 @@
 // rosbag2's storages read: SQLite and MCAP files, rosbag2's own zstd compression, a recording's files.
-#include "tsgraphs/io/rosbag2.hpp"
+#include "tsgraphs/ros2_bag/rosbag2.hpp"
 
 #include <sqlite3.h>
 #include <unistd.h>
@@ -12,8 +12,8 @@
 #include <mutex>
 
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/io/compression.hpp"
-#include "tsgraphs/io/rosbag2_internal.hpp"
+#include "tsgraphs/mcap/compression.hpp"
+#include "tsgraphs/ros2_bag/rosbag2_internal.hpp"
 
 namespace tsgraphs::io {
 

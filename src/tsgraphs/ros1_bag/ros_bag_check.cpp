@@ -11,7 +11,7 @@
 
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/core/printable.hpp"
-#include "tsgraphs/io/ros_bag_internal.hpp"
+#include "tsgraphs/ros1_bag/ros_bag_internal.hpp"
 
 namespace tsgraphs::io::ros_bag_internal {
 

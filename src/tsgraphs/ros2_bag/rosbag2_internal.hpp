@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "tsgraphs/io/mcap.hpp"
+#include "tsgraphs/mcap/mcap.hpp"
 
 namespace tsgraphs::io::rosbag2_internal {
 

@@ -1,5 +1,5 @@
 // MCAP files read: the summary's index when it is usable, else the data section from the start.
-#include "tsgraphs/io/mcap.hpp"
+#include "tsgraphs/mcap/mcap.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -14,8 +14,8 @@
 #include <tuple>
 
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/io/compression.hpp"
-#include "tsgraphs/io/mcap_internal.hpp"
+#include "tsgraphs/mcap/compression.hpp"
+#include "tsgraphs/mcap/mcap_internal.hpp"
 
 namespace tsgraphs::io::mcap {
 

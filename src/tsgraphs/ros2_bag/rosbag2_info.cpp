@@ -1,9 +1,9 @@
 // `tsgraphs bag-info` for rosbag2 recordings: the storage files, each topic's type, count and rate.
-#include "tsgraphs/io/rosbag2.hpp"
+#include "tsgraphs/ros2_bag/rosbag2.hpp"
 
 #include <cstdio>
 
-#include "tsgraphs/io/rosbag2_internal.hpp"
+#include "tsgraphs/ros2_bag/rosbag2_internal.hpp"
 
 namespace tsgraphs::io {
 

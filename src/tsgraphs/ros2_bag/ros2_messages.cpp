@@ -1,4 +1,4 @@
-#include "tsgraphs/io/ros2_messages.hpp"
+#include "tsgraphs/ros2_bag/ros2_messages.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/io/cdr.hpp"
+#include "tsgraphs/ros2_bag/cdr.hpp"
 
 namespace tsgraphs::io::ros2 {
 namespace {

@@ -1,4 +1,4 @@
-// ROS 2 messages in CDR (io/cdr.hpp, io/ros2_messages.hpp): written and read back, a
+// ROS 2 messages in CDR (ros2_bag/cdr.hpp, ros2_bag/ros2_messages.hpp): written and read back, a
 // big-endian message built byte by byte with its alignment padding, messages cut short or
 // claiming more than they hold, and definitions checked field by field.
 #include <gmock/gmock.h>
@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "tsgraphs/core/error.hpp"
-#include "tsgraphs/io/cdr.hpp"
+#include "tsgraphs/ros2_bag/cdr.hpp"
 #include "tsgraphs/io/point_cloud2.hpp"
-#include "tsgraphs/io/ros2_messages.hpp"
+#include "tsgraphs/ros2_bag/ros2_messages.hpp"
 
 using namespace tsgraphs;
 namespace ros2 = tsgraphs::io::ros2;
