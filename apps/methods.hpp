@@ -3,20 +3,24 @@
 /// ablations (docs/demo.md), each a free-space method and a room trigger.
 #include <string>
 
+#include "tsgraphs/pipeline/room_layer_config.hpp"
+
 namespace tsgraphs::app {
 
 struct Method {
   const char* name;
   const char* slug;  ///< run folder name (suffix in the demo)
-  const char* free_space;
-  const char* room_trigger;
+  pipeline::FreeSpaceMethod free_space;
+  pipeline::RoomTrigger room_trigger;
 };
 
+using pipeline::FreeSpaceMethod;
+using pipeline::RoomTrigger;
 inline constexpr Method kMethods[] = {
-    {"TS-graphs", "ts-graphs", "traversable", "flush"},
-    {"S-Graphs+", "s-graphs-plus", "esdf", "timer"},
-    {"ablation: traversable + timer", "traversable-timer", "traversable", "timer"},
-    {"ablation: esdf + flush", "esdf-flush", "esdf", "flush"},
+    {"TS-graphs", "ts-graphs", FreeSpaceMethod::traversable, RoomTrigger::flush},
+    {"S-Graphs+", "s-graphs-plus", FreeSpaceMethod::esdf, RoomTrigger::timer},
+    {"ablation: traversable + timer", "traversable-timer", FreeSpaceMethod::traversable, RoomTrigger::timer},
+    {"ablation: esdf + flush", "esdf-flush", FreeSpaceMethod::esdf, RoomTrigger::flush},
 };
 
 /// The method of `slug`, nullptr for none.

@@ -41,7 +41,8 @@ std::vector<cli::Command> add_commands(CLI::App& app, const cli::GlobalOptions& 
       cli::add_simulate(app, global),    cli::add_generate(app, global),   cli::add_import_map(app, global),
       cli::add_segment_map(app, global), cli::add_draw_scene(app, global), cli::add_run(app, global),
       cli::add_convert(app, global),     cli::add_eval(app, global),       cli::add_bag_info(app, global),
-      cli::add_export(app, global),      cli::add_demo(app, global),       cli::add_suite(app, global)};
+      cli::add_export(app, global),      cli::add_demo(app, global),       cli::add_suite(app, global),
+      cli::add_params(app, global)};
 }
 
 /// The chosen command run; errors printed in one line with the exit status of DESIGN.md.

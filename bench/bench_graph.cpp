@@ -102,8 +102,8 @@ const SituationalGraph& drifted_graph() {
 
 GraphOptimizerConfig config_for(int back_end) {
   GraphOptimizerConfig config;
-  config.linear_solver = kBackEnds[std::size_t(back_end)].first;
-  config.sparse_library = kBackEnds[std::size_t(back_end)].second;
+  config.linear_solver = *kLinearSolvers.parse(kBackEnds[std::size_t(back_end)].first);
+  config.sparse_library = *kSparseLibraries.parse(kBackEnds[std::size_t(back_end)].second);
   return config;
 }
 

@@ -49,6 +49,15 @@ constexpr double kWrongTurnDeg = 15.0;  // a heading this far off is a wrong tur
 // Segment drift's lengths: KITTI's 100-800 m are longer than a floor's walk; these span a room
 // to a lap of a floor.
 const std::vector<double> kSegmentLengths = {10.0, 20.0, 50.0, 100.0, 200.0};
+
+odometry::TiltPrediction tilt_prediction(const std::string& word) {
+  const auto value = odometry::kTiltPredictions.parse(word);
+  if (!value) {
+    std::fprintf(stderr, "bench_odometry: --tilt %s\n", odometry::kTiltPredictions.describe().c_str());
+    std::exit(2);
+  }
+  return *value;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -93,7 +102,7 @@ int main(int argc, char** argv) {
     else if (a == "--yaw-candidates")
       lidar.yaw_search_candidates = std::atoi(argv[i + 1]);
     else if (a == "--tilt")
-      lidar.tilt_prediction = argv[i + 1];
+      lidar.tilt_prediction = tilt_prediction(argv[i + 1]);
     else if (a == "--turn-from-sweep")
       lidar.turn_from_sweep = std::atoi(argv[i + 1]) != 0;
     else if (a == "--every")

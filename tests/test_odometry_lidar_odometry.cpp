@@ -272,7 +272,7 @@ TEST(LidarOdometry, ThePredictionRepeatsTheTurnAboutZAndHoldsTheTilt) {
   second.linear() = yaw * first.linear() * Eigen::AngleAxisd(4.0 / kRadToDeg, Eigen::Vector3d::UnitX());
   const auto predict = [&](bool repeat) {
     LidarOdometryConfig config;
-    config.tilt_prediction = repeat ? "repeat" : "hold";
+    config.tilt_prediction = repeat ? odometry::TiltPrediction::repeat : odometry::TiltPrediction::hold;
     LidarOdometry odom(config, first);
     odom.register_scan(scan_at(world, first, 1));
     odom.register_scan(scan_at(world, second, 2));
@@ -375,7 +375,7 @@ TEST(LidarOdometry, RejectsBadConfigs) {
   EXPECT_THROW(LidarOdometry(bad([](auto& c) { c.recovery_points = 0; })), std::invalid_argument);
   EXPECT_THROW(LidarOdometry(bad([](auto& c) { c.yaw_search_candidates = 0; })), std::invalid_argument);
   EXPECT_THROW(LidarOdometry(bad([](auto& c) { c.min_correspondences = 3; })), std::invalid_argument);
-  EXPECT_THROW(LidarOdometry(bad([](auto& c) { c.tilt_prediction = "extrapolate"; })), std::invalid_argument);
+  EXPECT_THROW(LidarOdometry(bad([](auto& c) { c.max_range = c.min_range; })), std::invalid_argument);
   EXPECT_THROW(LidarOdometry(bad([](auto& c) { c.tilt_window = 0; })), std::invalid_argument);
   EXPECT_NO_THROW(LidarOdometry{});
 }

@@ -47,8 +47,9 @@ struct Unwrapped<std::optional<T>> {
   using type = T;
 };
 
-// Every field's declared limits (config_range.hpp), by "section.key", and the numeric fields
-// that declare none.
+// Every field's declarations (config_fields.hpp), by "section.key": the numeric fields' limits,
+// and the fields that break the protocol (a number without limits, a field without a comment,
+// an enum whose comment leaves out one of its words).
 struct DeclaredLimits {
   struct Numeric {
     std::string path;
@@ -58,25 +59,40 @@ struct DeclaredLimits {
   std::string prefix;
   std::vector<Numeric> numeric;
   std::vector<std::string> undeclared;
+  std::vector<std::string> uncommented;
+  std::vector<std::string> enums;
 
-  template <class T>
-  void operator()(const char* key, const T&) {
-    using U = typename Unwrapped<T>::type;
-    if constexpr (std::is_arithmetic_v<U> && !std::is_same_v<U, bool>) undeclared.push_back(prefix + key);
+  void comment(const std::string& path, const char* text) {
+    if (text == nullptr || std::string(text).empty()) uncommented.push_back(path);
   }
   template <class T>
-  void operator()(const char* key, const T&, const Range& range) {
-    numeric.push_back({prefix + key, range, std::is_integral_v<typename Unwrapped<T>::type>});
+  void operator()(const char* key, const T&, const char* text) {
+    if constexpr (!std::is_same_v<T, bool>) undeclared.push_back(prefix + key);
+    comment(prefix + key, text);
   }
-  template <class T>
-  void operator()(const char*, const T&, const OneOf&) {}
+  template <class T, class L>
+  void operator()(const char* key, const T&, const L& limits, const char* text) {
+    comment(prefix + key, text);
+    if constexpr (std::is_same_v<L, Range>) {
+      numeric.push_back({prefix + key, limits, std::is_integral_v<typename Unwrapped<T>::type>});
+    } else if constexpr (std::is_enum_v<T>) {
+      enums.push_back(prefix + key);
+      for (const std::string& word : limits.words())
+        if (std::string(text).find(word) == std::string::npos)
+          undeclared.push_back(prefix + key + " " + word);
+    }
+  }
   template <class S>
-  void section(const char* key, S& sub) {
-    DeclaredLimits inner{prefix + key + ".", {}, {}};
+  void section(const char* key, S& sub, const char* text) {
+    comment(prefix + key, text);
+    DeclaredLimits inner{prefix + key + ".", {}, {}, {}, {}};
     sub.visit(inner);
     numeric.insert(numeric.end(), inner.numeric.begin(), inner.numeric.end());
     undeclared.insert(undeclared.end(), inner.undeclared.begin(), inner.undeclared.end());
+    uncommented.insert(uncommented.end(), inner.uncommented.begin(), inner.uncommented.end());
+    enums.insert(enums.end(), inner.enums.begin(), inner.enums.end());
   }
+  void require(bool, const char*, const std::string&) {}
 };
 
 DeclaredLimits declared_limits() {
@@ -106,7 +122,13 @@ std::string number(double x) {
 
 }  // namespace
 
-TEST(PipelineConfig, ShippedParamsFileHasEveryKeyWithTheCodeDefault) {
+TEST(PipelineConfig, ShippedParamsFileIsTheDocumentedDefaults) {
+  std::ifstream in(kParams);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str(), documented_pipeline_config(PipelineConfig{}))
+      << "config/params.yaml differs from the code's declarations: ./build/tsgraphs params > "
+         "config/params.yaml";
   const PipelineConfig loaded = load_pipeline_config(kParams);
   EXPECT_EQ(dump_pipeline_config(loaded), dump_pipeline_config(PipelineConfig{}))
       << "config/params.yaml and the config structs' defaults disagree";
@@ -117,7 +139,7 @@ TEST(PipelineConfig, ShippedParamsFileHasEveryKeyWithTheCodeDefault) {
 TEST(PipelineConfig, DumpReadsBackToTheSameConfig) {
   PipelineConfig c;
   c.prefilter.voxel_size = 0.15;
-  c.optimizer.linear_solver = "dense_schur";
+  c.optimizer.linear_solver = graph::LinearSolver::dense_schur;
   c.loop_closure.registration.max_iterations = 7;
   c.schedule.merge_duplicate_planes = false;
   const std::string text = dump_pipeline_config(c);
@@ -149,7 +171,7 @@ TEST(PipelineConfig, ErrorsNameFileLineAndKey) {
             std::string::npos);
   EXPECT_NE(input_error_of([] {
               parse_pipeline_config("optimizer:\n  linear_solver: magic\n", "p.yaml");
-            }).find("unknown linear_solver 'magic'"),
+            }).find("p.yaml:2: optimizer.linear_solver: must be sparse_normal_cholesky, sparse_schur"),
             std::string::npos);
   EXPECT_NE(input_error_of([] {
               parse_pipeline_config("loop_closure:\n  registration:\n    voxel_size: .nan\n", "p.yaml");
@@ -181,9 +203,12 @@ TEST(PipelineConfig, ErrorsNameFileLineAndKey) {
             std::string::npos);
 }
 
-TEST(PipelineConfig, EveryNumericFieldDeclaresItsLimits) {
+TEST(PipelineConfig, EveryFieldDeclaresItsLimitsAndComment) {
   const DeclaredLimits limits = declared_limits();
-  EXPECT_TRUE(limits.undeclared.empty()) << "no limits declared in visit() for " << limits.undeclared.front();
+  EXPECT_TRUE(limits.undeclared.empty())
+      << "no limits (or an enum word not in the comment) in visit() for " << limits.undeclared.front();
+  EXPECT_TRUE(limits.uncommented.empty()) << "no comment in visit() for " << limits.uncommented.front();
+  EXPECT_GE(limits.enums.size(), 7u);  // the choices are enums, parsed once
   EXPECT_GT(limits.numeric.size(), 200u);
   // Every limit is finite at both ends: a value can neither be negative nonsense nor make a
   // loop run 2e9 times or a grid hold 1e12 cells.
@@ -238,42 +263,56 @@ TEST(PipelineConfig, ValuesThatWouldHangOrCrashARunAreRefused) {
   }
 }
 
-TEST(PipelineConfig, ConfigsBuiltInCodeAreCheckedAgainstTheSameLimits) {
+TEST(PipelineConfig, ConfigsBuiltInCodeAreCheckedAgainstTheSameDeclarations) {
   odometry::LidarOdometryConfig odometry;
   odometry.max_iterations = 0;
   try {
-    odometry.validate();
+    odometry::LidarOdometry check(odometry);
     FAIL() << "max_iterations 0 accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "LidarOdometryConfig: max_iterations must be in [1, 1000]");
   }
-  DeskewConfig deskew;
-  deskew.motion = "guess";
-  EXPECT_THROW(deskew.validate(), std::invalid_argument);
-  deskew = DeskewConfig{};
-  deskew.registration.window = 0;
+  odometry::DeskewConfig deskew;
+  deskew.registration.final_distance = 2.0 * deskew.registration.initial_distance;
   try {
-    deskew.validate();
-    FAIL() << "window 0 accepted";
+    check_config(deskew, "DeskewConfig");
+    FAIL() << "final_distance above initial_distance accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "DeskewConfig: window must be in [1, 1000]");
+    EXPECT_STREQ(e.what(), "DeskewConfig: final_distance must be <= initial_distance");
   }
-  EXPECT_NO_THROW(check_ranges(PipelineConfig{}, "PipelineConfig"));  // the defaults lie within
+  EXPECT_NO_THROW(check_config(PipelineConfig{}, "PipelineConfig"));  // the defaults lie within
   PipelineConfig c;
   c.loop_closure.registration.voxel_size = -1.0;
   try {
-    check_ranges(c, "PipelineConfig");
+    check_config(c, "PipelineConfig");
     FAIL() << "voxel_size -1 accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "PipelineConfig: loop_closure.registration.voxel_size must be in [0, 100]");
   }
 }
 
+TEST(PipelineConfig, RulesBetweenFieldsAreErrorsAtTheKeyTheyName) {
+  for (const auto& [text, where] : std::vector<std::pair<std::string, std::string>>{
+           {"prefilter:\n  max_range: 0.2\n", "p.yaml:2: prefilter.max_range: must be > min_range"},
+           {"lidar_odometry:\n  min_range: 60\n", "p.yaml:2: lidar_odometry.max_range: must be > min_range"},
+           {"floor_levelling:\n  max_range: 0.5\n",
+            "p.yaml:2: floor_levelling.max_range: must be > min_range"},
+           {"deskew:\n  final_distance: 2.0\n",
+            "p.yaml:2: deskew.final_distance: must be <= initial_distance"},
+           {"free_space:\n  obstacle_max_height: 0.1\n",
+            "p.yaml:2: free_space.obstacle_max_height: must be > obstacle_min_height"},
+           {"optimizer:\n  sparse_library: accelerate_sparse\n",
+            "p.yaml:2: optimizer.sparse_library: must be one this Ceres was built with"}}) {
+    const std::string message = test::input_error_of([&, t = text] { parse_pipeline_config(t, "p.yaml"); });
+    EXPECT_NE(message.find(where), std::string::npos) << text << " -> " << message;
+  }
+}
+
 TEST(PipelineConfig, BaselineModeIsTwoKeys) {
   const PipelineConfig c =
       parse_pipeline_config("room_layer:\n  free_space_method: esdf\n  room_trigger: timer\n", "p.yaml");
-  EXPECT_EQ(c.rooms.layer.free_space_method, "esdf");
-  EXPECT_EQ(c.rooms.layer.room_trigger, "timer");
+  EXPECT_EQ(c.rooms.layer.free_space_method, FreeSpaceMethod::esdf);
+  EXPECT_EQ(c.rooms.layer.room_trigger, RoomTrigger::timer);
   EXPECT_DOUBLE_EQ(c.rooms.timer.period_s, 1.0);
 }
 

@@ -78,7 +78,7 @@ TEST(RoomAssociation, CentreWithinThresholdAssociatesAndLevelsAreSeparate) {
 }
 
 TEST(RoomAssociation, FootprintPolicyDecidesWhatARedetectionKeeps) {
-  const auto after = [](const std::string& policy, Vec2 size) {
+  const auto after = [](FootprintPolicy policy, Vec2 size) {
     RoomAssociationConfig config;
     config.footprint = policy;
     RoomMap map(config);
@@ -87,11 +87,10 @@ TEST(RoomAssociation, FootprintPolicyDecidesWhatARedetectionKeeps) {
     EXPECT_EQ(map.rooms().at(0).extraction_count, 2);
     return map.rooms().at(0).rect.center;
   };
-  EXPECT_EQ(after("first", {5.2, 4}), Vec2(0, 0));
-  EXPECT_EQ(after("latest", {4.8, 4}), Vec2(0.3, 0.1));
-  EXPECT_EQ(after("largest", {5.2, 4}), Vec2(0.3, 0.1));  // seen more completely
-  EXPECT_EQ(after("largest", {4.8, 4}), Vec2(0, 0));
-  EXPECT_THROW(after("biggest", {5, 4}), std::invalid_argument);
+  EXPECT_EQ(after(FootprintPolicy::first, {5.2, 4}), Vec2(0, 0));
+  EXPECT_EQ(after(FootprintPolicy::latest, {4.8, 4}), Vec2(0.3, 0.1));
+  EXPECT_EQ(after(FootprintPolicy::largest, {5.2, 4}), Vec2(0.3, 0.1));  // seen more completely
+  EXPECT_EQ(after(FootprintPolicy::largest, {4.8, 4}), Vec2(0, 0));
 }
 
 TEST(RoomAssociation, CentresOnlyIgnoresTheDice) {

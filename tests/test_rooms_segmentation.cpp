@@ -796,10 +796,10 @@ TEST(WallTopRays, RaysThroughADoorDoNotShowAWallsTop) {
 TEST(RoomSegmentation, ConfigOutOfRangeIsRefused) {
   RoomSegmentationConfig c;
   c.cell = 0.0;
-  EXPECT_THROW(c.validate(), std::invalid_argument);
+  EXPECT_THROW(check_config(c, "c"), std::invalid_argument);
   c = {};
   c.rect_fill = 1.5;
-  EXPECT_THROW(c.validate(), std::invalid_argument);
+  EXPECT_THROW(check_config(c, "c"), std::invalid_argument);
   EXPECT_THROW(freespace::SightMap(0.0, freespace::SightMapConfig{0.1, 0.2, 0.1, 12.0}),
                std::invalid_argument);
 }

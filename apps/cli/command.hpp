@@ -31,5 +31,6 @@ Command add_bag_info(CLI::App& app, const GlobalOptions& global);
 Command add_export(CLI::App& app, const GlobalOptions& global);
 Command add_demo(CLI::App& app, const GlobalOptions& global);
 Command add_suite(CLI::App& app, const GlobalOptions& global);
+Command add_params(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace tsgraphs::app::cli

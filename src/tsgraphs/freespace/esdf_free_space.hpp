@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "tsgraphs/freespace/free_space.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::freespace {
 
@@ -23,12 +23,16 @@ struct EsdfFreeSpaceConfig {
 
   template <class V>
   void visit(V& v) {
-    v("voxel_size", voxel_size, between(0.02, 10.0));
-    v("max_distance", max_distance, above(0.0, 100.0));
-    v("min_free_distance", min_free_distance, between(0.0, 100.0));
-    v("slice_height", slice_height, above(0.0, 100.0));
-    v("robot_radius", robot_radius, above(0.0, 1000.0));
-    v("robot_height_tolerance", robot_height_tolerance, above(0.0, 1000.0));
+    v("voxel_size", voxel_size, between(0.02, 10.0), "voxel edge (m), S-Graphs+'s TSDF resolution");
+    v("max_distance", max_distance, above(0.0, 100.0), "ESDF distances are capped here (m)");
+    v("min_free_distance", min_free_distance, between(0.0, 100.0),
+      "free-space vertices: slice voxels farther than this from any occupied voxel (m)");
+    v("slice_height", slice_height, above(0.0, 100.0),
+      "the slice is the voxel layer holding this height above the floor (m)");
+    v("robot_radius", robot_radius, above(0.0, 1000.0),
+      "the robot's vertex: nearest vertex within this horizontally (m)...");
+    v("robot_height_tolerance", robot_height_tolerance, above(0.0, 1000.0),
+      "...and within this of the robot position's height (m)");
   }
 };
 

@@ -24,11 +24,10 @@ SightMap::SightMap(double floor_z, const SightMapConfig& config)
       config_(config),
       lo_(Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity())),
       hi_(-lo_) {
-  if (!(config.cell > 0.0)) throw std::invalid_argument("SightMapConfig: cell must be > 0");
+  check_config(config, "SightMapConfig");  // the keys; floor_step and headroom come from the free space's
   if (!(config.floor_step >= 0.0)) throw std::invalid_argument("SightMapConfig: floor_step must be >= 0");
   if (!(config.headroom > config.floor_step))
     throw std::invalid_argument("SightMapConfig: headroom must be above floor_step");
-  if (!(config.max_range > 0.0)) throw std::invalid_argument("SightMapConfig: max_range must be > 0");
 }
 
 std::size_t SightMap::index_in_tile(long c, long r) {

@@ -18,7 +18,7 @@
 #include <Eigen/Core>
 
 #include "tsgraphs/core/grid_frame.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::freespace {
 
@@ -33,8 +33,10 @@ struct SightMapConfig {
 
   template <class V>
   void visit(V& v) {
-    v("cell", cell, between(0.01, 10.0));
-    v("max_range", max_range, above(0.0, 1000.0));
+    v("cell", cell, between(0.01, 10.0), "raster cell (m), the room segmentation's");
+    v("max_range", max_range, above(0.0, 1000.0),
+      "returns farther than this horizontally are not traced (m): far returns on the floor are "
+      "tilt-sensitive");
   }
 };
 

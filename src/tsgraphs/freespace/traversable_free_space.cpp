@@ -26,9 +26,7 @@ bool blocked(const Eigen::Vector3d& vertex, const std::vector<Eigen::Vector3d>& 
 FreeSpace traversable_free_space(const std::vector<Eigen::Vector3d>& nodes,
                                  const std::vector<Eigen::Vector3d>& obstacles, const Eigen::Vector3d& robot,
                                  const TraversableFreeSpaceConfig& config) {
-  if (!(config.edge_length > 0.0) || !(config.lambda_th >= 0.0) || !(config.max_height_step >= 0.0))
-    throw std::invalid_argument(
-        "traversable_free_space: edge_length > 0, lambda_th >= 0 and max_height_step >= 0 required");
+  check_config(config, "traversable_free_space");
 
   const std::size_t n = nodes.size();
   const PlanarIndex obstacle_index(obstacles, config.lambda_th > 0.0 ? config.lambda_th : config.edge_length);

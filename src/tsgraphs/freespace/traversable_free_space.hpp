@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "tsgraphs/freespace/free_space.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::freespace {
 
@@ -30,14 +30,27 @@ struct TraversableFreeSpaceConfig {
 
   template <class V>
   void visit(V& v) {
-    v("edge_length", edge_length, above(0.0, 100.0));
-    v("max_height_step", max_height_step, between(0.0, 100.0));
-    v("lambda_th", lambda_th, between(0.0, 100.0));
-    v("obstacle_min_height", obstacle_min_height, between(0.0, 100.0));
-    v("obstacle_max_height", obstacle_max_height, above(0.0, 100.0));
-    v("ground_search_radius", ground_search_radius, between(0.0, 100.0));
-    v("robot_radius", robot_radius, between(0.0, 1000.0));
-    v("robot_height_tolerance", robot_height_tolerance, between(0.0, 1000.0));
+    v("edge_length", edge_length, above(0.0, 100.0),
+      "nodes closer than this horizontally are neighbours (m): 1.5 x the node map's 0.25 m cells, so "
+      "diagonals join");
+    v("max_height_step", max_height_step, between(0.0, 100.0),
+      "...if their heights differ by at most this (m): storeys and a bench top stay apart");
+    v("lambda_th", lambda_th, between(0.0, 100.0),
+      "vertices closer than this (horizontally) to an obstacle point are removed (m): about the robot's half "
+      "width");
+    v("obstacle_min_height", obstacle_min_height, between(0.0, 100.0),
+      "obstacle points: more than this above the local ground (m)...");
+    v("obstacle_max_height", obstacle_max_height, above(0.0, 100.0),
+      "...and at most this (m): walls, railings, furniture, not the ceiling");
+    v.require(obstacle_max_height > obstacle_min_height, "obstacle_max_height",
+              "must be > obstacle_min_height");
+    v("ground_search_radius", ground_search_radius, between(0.0, 100.0),
+      "obstacle selection: the local ground of a point is the highest node at or below it within this "
+      "horizontally (m)");
+    v("robot_radius", robot_radius, between(0.0, 1000.0),
+      "the robot's vertex: nearest kept vertex within this horizontally (m)...");
+    v("robot_height_tolerance", robot_height_tolerance, between(0.0, 1000.0),
+      "...and within this of the robot position's height (m; covers the sensor's height above the floor)");
   }
 };
 

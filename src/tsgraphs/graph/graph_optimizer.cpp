@@ -192,34 +192,22 @@ class FloorResidual : public ceres::CostFunction {
   double inv_sigma_;
 };
 
+// Ceres's own types for the config's solver and library (false: this Ceres lacks the name).
+bool to_ceres(const GraphOptimizerConfig& config, ceres::Solver::Options* options) {
+  return ceres::StringToLinearSolverType(kLinearSolvers.name(config.linear_solver),
+                                         &options->linear_solver_type) &&
+         ceres::StringToSparseLinearAlgebraLibraryType(kSparseLibraries.name(config.sparse_library),
+                                                       &options->sparse_linear_algebra_library_type);
+}
+
 ceres::Solver::Options solver_options(const GraphOptimizerConfig& config, bool full) {
   ceres::Solver::Options options;
-  if (!ceres::StringToLinearSolverType(config.linear_solver, &options.linear_solver_type))
-    throw std::invalid_argument("GraphOptimizer: unknown linear_solver '" + config.linear_solver + "'");
-  if (!ceres::StringToSparseLinearAlgebraLibraryType(config.sparse_library,
-                                                     &options.sparse_linear_algebra_library_type) ||
-      !ceres::IsSparseLinearAlgebraLibraryTypeAvailable(options.sparse_linear_algebra_library_type))
-    throw std::invalid_argument("GraphOptimizer: unknown or unavailable sparse_library '" +
-                                config.sparse_library + "'");
+  to_ceres(config, &options);
   options.max_num_iterations = full ? config.max_iterations_full : config.max_iterations;
   options.num_threads = config.num_threads;
   options.logging_type = ceres::SILENT;
   options.minimizer_progress_to_stdout = false;
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument("GraphOptimizer: " + why);
   return options;
-}
-
-void check_config(const GraphOptimizerConfig& c) {
-  solver_options(c, false);
-  solver_options(c, true);
-  const bool positive = c.odometry_sigma_trans > 0 && c.odometry_sigma_rot_deg > 0 &&
-                        c.loop_sigma_trans > 0 && c.loop_sigma_rot_deg > 0 && c.plane_sigma_angle_deg > 0 &&
-                        c.plane_sigma_distance > 0 && c.huber_plane > 0 && c.huber_loop > 0 &&
-                        c.room_sigma > 0 && c.corridor_sigma > 0 && c.corridor_along_sigma > 0 &&
-                        c.floor_sigma > 0 && c.huber_room > 0 && c.huber_floor > 0 && c.local_window > 0;
-  if (!positive)
-    throw std::invalid_argument("GraphOptimizer: sigmas, Huber deltas and local_window must be > 0");
 }
 
 PoseBlock to_block(const Pose3& pose) {
@@ -481,8 +469,23 @@ void add_room_factors(GraphProblem& gp, const SituationalGraph& graph, const Fre
 
 }  // namespace
 
+bool sparse_library_available(SparseLibrary library) {
+  ceres::SparseLinearAlgebraLibraryType type;
+  return ceres::StringToSparseLinearAlgebraLibraryType(kSparseLibraries.name(library), &type) &&
+         ceres::IsSparseLinearAlgebraLibraryTypeAvailable(type);
+}
+
+std::string solver_problem(const GraphOptimizerConfig& config) {
+  ceres::Solver::Options options;
+  std::string why;
+  if (!to_ceres(config, &options) || !sparse_library_available(config.sparse_library) ||
+      options.IsValid(&why))
+    return "";
+  return "is refused by Ceres: " + why;
+}
+
 GraphOptimizer::GraphOptimizer(GraphOptimizerConfig config) : config_(std::move(config)) {
-  check_config(config_);
+  check_config(config_, "GraphOptimizer");
 }
 
 OptimizationStats GraphOptimizer::optimize(SituationalGraph& graph, bool full) {

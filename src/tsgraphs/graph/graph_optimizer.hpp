@@ -16,9 +16,43 @@
 #include <string>
 
 #include "tsgraphs/graph/situational_graph.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::graph {
+
+/// Ceres's linear solvers, by Ceres's names.
+enum class LinearSolver {
+  sparse_normal_cholesky,
+  sparse_schur,
+  dense_schur,
+  iterative_schur,
+  dense_qr,
+  dense_normal_cholesky,
+  cgnr
+};
+inline const Choices<LinearSolver> kLinearSolvers{
+    {LinearSolver::sparse_normal_cholesky, "sparse_normal_cholesky"},
+    {LinearSolver::sparse_schur, "sparse_schur"},
+    {LinearSolver::dense_schur, "dense_schur"},
+    {LinearSolver::iterative_schur, "iterative_schur"},
+    {LinearSolver::dense_qr, "dense_qr"},
+    {LinearSolver::dense_normal_cholesky, "dense_normal_cholesky"},
+    {LinearSolver::cgnr, "cgnr"}};
+
+/// Ceres's sparse back-ends, by Ceres's names (which of them a Ceres build has varies).
+enum class SparseLibrary { eigen_sparse, suite_sparse, cx_sparse, accelerate_sparse, no_sparse };
+inline const Choices<SparseLibrary> kSparseLibraries{{SparseLibrary::eigen_sparse, "eigen_sparse"},
+                                                     {SparseLibrary::suite_sparse, "suite_sparse"},
+                                                     {SparseLibrary::cx_sparse, "cx_sparse"},
+                                                     {SparseLibrary::accelerate_sparse, "accelerate_sparse"},
+                                                     {SparseLibrary::no_sparse, "no_sparse"}};
+
+/// Whether this build of Ceres has `library`.
+bool sparse_library_available(SparseLibrary library);
+struct GraphOptimizerConfig;
+/// Why Ceres refuses the config's solver settings (e.g. a solver without the sparse library it
+/// needs); empty when it accepts them or the library is missing (sparse_library's own check).
+std::string solver_problem(const GraphOptimizerConfig& config);
 
 struct GraphOptimizerConfig {
   double odometry_sigma_trans = 0.05;   ///< std of odometry translation between keyframes (m)
@@ -38,34 +72,47 @@ struct GraphOptimizerConfig {
   int local_window = 10;                ///< keyframes freed by a local solve
   int max_iterations = 20;              ///< Ceres iterations per local solve
   int max_iterations_full = 50;         ///< Ceres iterations per full solve
-  std::string linear_solver = "sparse_normal_cholesky";  ///< or dense_schur, sparse_schur, iterative_schur
-  /// Sparse solvers' back-end, or suite_sparse, cx_sparse: Eigen's and CXSparse were the fastest
-  /// on bench_graph (2000 keyframes), SuiteSparse 10-100% slower there.
-  std::string sparse_library = "eigen_sparse";
+  LinearSolver linear_solver = LinearSolver::sparse_normal_cholesky;
+  /// Sparse solvers' back-end: Eigen's and CXSparse were the fastest on bench_graph (2000
+  /// keyframes), SuiteSparse 10-100% slower there.
+  SparseLibrary sparse_library = SparseLibrary::eigen_sparse;
   int num_threads = 1;  ///< Ceres threads (1 keeps runs byte-identical)
 
   template <class V>
   void visit(V& v) {
-    v("odometry_sigma_trans", odometry_sigma_trans, above(0.0, 1e6));
-    v("odometry_sigma_rot_deg", odometry_sigma_rot_deg, above(0.0, 1e6));
-    v("loop_sigma_trans", loop_sigma_trans, above(0.0, 1e6));
-    v("loop_sigma_rot_deg", loop_sigma_rot_deg, above(0.0, 1e6));
-    v("plane_sigma_angle_deg", plane_sigma_angle_deg, above(0.0, 1e6));
-    v("plane_sigma_distance", plane_sigma_distance, above(0.0, 1e6));
-    v("huber_plane", huber_plane, above(0.0, 1e6));
-    v("huber_loop", huber_loop, above(0.0, 1e6));
-    v("room_sigma", room_sigma, above(0.0, 1e6));
-    v("corridor_sigma", corridor_sigma, above(0.0, 1e6));
-    v("corridor_along_sigma", corridor_along_sigma, above(0.0, 1e6));
-    v("floor_sigma", floor_sigma, above(0.0, 1e6));
-    v("huber_room", huber_room, above(0.0, 1e6));
-    v("huber_floor", huber_floor, above(0.0, 1e6));
-    v("local_window", local_window, between(1, 100000));
-    v("max_iterations", max_iterations, between(1, 10000));
-    v("max_iterations_full", max_iterations_full, between(1, 10000));
-    v("linear_solver", linear_solver);
-    v("sparse_library", sparse_library);
-    v("num_threads", num_threads, between(1, 256));
+    v("odometry_sigma_trans", odometry_sigma_trans, above(0.0, 1e6),
+      "m; std of odometry translation between keyframes");
+    v("odometry_sigma_rot_deg", odometry_sigma_rot_deg, above(0.0, 1e6),
+      "deg; std of odometry rotation between keyframes");
+    v("loop_sigma_trans", loop_sigma_trans, above(0.0, 1e6), "m; std of a loop closure's translation");
+    v("loop_sigma_rot_deg", loop_sigma_rot_deg, above(0.0, 1e6), "deg; std of a loop closure's rotation");
+    v("plane_sigma_angle_deg", plane_sigma_angle_deg, above(0.0, 1e6),
+      "deg; std of a measured plane's normal");
+    v("plane_sigma_distance", plane_sigma_distance, above(0.0, 1e6), "m; std of a measured plane's offset");
+    v("huber_plane", huber_plane, above(0.0, 1e6), "Huber delta on keyframe-plane factors (whitened units)");
+    v("huber_loop", huber_loop, above(0.0, 1e6), "Huber delta on loop factors (whitened units)");
+    v("room_sigma", room_sigma, above(0.0, 1e6), "m; std of a room centre off its walls' mid-planes");
+    v("corridor_sigma", corridor_sigma, above(0.0, 1e6),
+      "m; std of a corridor centre from its walls' midline");
+    v("corridor_along_sigma", corridor_along_sigma, above(0.0, 1e6),
+      "m; std of a corridor centre along it, from the cluster centre");
+    v("floor_sigma", floor_sigma, above(0.0, 1e6), "m; std of a floor centre from its rooms' mean centre");
+    v("huber_room", huber_room, above(0.0, 1e6), "Huber delta on room and corridor factors (whitened units)");
+    v("huber_floor", huber_floor, above(0.0, 1e6), "Huber delta on floor factors (whitened units)");
+    v("local_window", local_window, between(1, 100000), "keyframes freed by a local solve");
+    v("max_iterations", max_iterations, between(1, 10000), "Ceres iterations per local solve");
+    v("max_iterations_full", max_iterations_full, between(1, 10000), "Ceres iterations per full solve");
+    v("linear_solver", linear_solver, kLinearSolvers,
+      "Ceres's: sparse_normal_cholesky, sparse_schur, dense_schur, iterative_schur, dense_qr, "
+      "dense_normal_cholesky or cgnr");
+    v("sparse_library", sparse_library, kSparseLibraries,
+      "the sparse solvers' back-end: eigen_sparse, suite_sparse, cx_sparse, accelerate_sparse or no_sparse, "
+      "one this Ceres has (speeds: docs/benchmarks.md)");
+    v("num_threads", num_threads, between(1, 256), "Ceres threads; 1 keeps runs byte-identical");
+    v.require(sparse_library_available(sparse_library), "sparse_library",
+              "must be one this Ceres was built with");
+    const std::string problem = solver_problem(*this);
+    v.require(problem.empty(), "linear_solver", problem);
   }
 };
 
@@ -81,8 +128,7 @@ struct OptimizationStats {
 
 class GraphOptimizer {
  public:
-  /// Throws std::invalid_argument for an unknown linear_solver or sparse_library, or a sigma,
-  /// Huber delta or local_window that is not positive.
+  /// Throws std::invalid_argument for a config its visit() refuses (check_config).
   explicit GraphOptimizer(GraphOptimizerConfig config = {});
   /// Optimises `graph` in place (keyframe poses, planes, rooms, floors). With `full` false, only
   /// the last `local_window` keyframes, the planes they observe, the rooms with one of those

@@ -10,8 +10,7 @@ namespace tsgraphs::graph {
 std::vector<Retirement> redundant_keyframes(const SituationalGraph& graph, const std::vector<int>& candidates,
                                             const KeyframeRetirementConfig& config,
                                             const std::function<bool(int)>& in_mapped_space) {
-  if (!(config.radius > 0.0) || !(config.min_travel > 0.0))
-    throw std::invalid_argument("keyframe_retirement: radius and min_travel must be > 0");
+  check_config(config, "keyframe_retirement");
   const auto& keyframes = graph.keyframes();
   const int newest = static_cast<int>(keyframes.size()) - 1;
   std::vector<int> ids;

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "tsgraphs/graph/situational_graph.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::graph {
 
@@ -29,10 +29,14 @@ struct KeyframeRetirementConfig {
 
   template <class V>
   void visit(V& v) {
-    v("enabled", enabled);
-    v("radius", radius, above(0.0, 1000.0));
-    v("min_travel", min_travel, above(0.0, 1e6));
-    v("rooms_only", rooms_only);
+    v("enabled", enabled,
+      "retire a keyframe near a kept one of an earlier pass that saw no wall the map lacks");
+    v("radius", radius, above(0.0, 1000.0),
+      "m; the kept keyframe of the earlier pass is this near (the keyframe spacing, keyframes.delta_trans)");
+    v("min_travel", min_travel, above(0.0, 1e6),
+      "m travelled since that pass (loop_closure.min_travel's rule)");
+    v("rooms_only", rooms_only,
+      "only inside a mapped room or corridor, whose factor holds its walls together");
   }
 };
 

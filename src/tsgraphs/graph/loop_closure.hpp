@@ -9,7 +9,7 @@
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/graph/situational_graph.hpp"
 #include "tsgraphs/registration/registration.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::graph {
 
@@ -35,16 +35,25 @@ struct LoopClosureConfig {
 
   template <class V>
   void visit(V& v) {
-    v("max_distance", max_distance, between(0.0, 1000.0));
-    v("min_travel", min_travel, between(0.0, 1e6));
-    v("min_loop_interval", min_loop_interval, between(0.0, 1e6));
-    v("max_candidates", max_candidates, between(0, 100));
-    v("max_fitness", max_fitness, above(0.0, 100.0));
-    v("min_inlier_ratio", min_inlier_ratio, between(0.0, 1.0));
-    v("max_correction", max_correction, above(0.0, 1000.0));
-    v("min_facing_share", min_facing_share, between(0.0, 1.0));
-    v("max_reverse_disagreement", max_reverse_disagreement, above(0.0, 1000.0));
-    v.section("registration", registration);
+    v("max_distance", max_distance, between(0.0, 1000.0),
+      "m; candidates nearer than this to the new keyframe");
+    v("min_travel", min_travel, between(0.0, 1e6), "m; and at least this far back in travelled distance");
+    v("min_loop_interval", min_loop_interval, between(0.0, 1e6),
+      "m travelled since the last accepted loop before trying again");
+    v("max_candidates", max_candidates, between(0, 100), "nearest candidates registered per keyframe");
+    v("max_fitness", max_fitness, above(0.0, 100.0),
+      "m^2; accept when the mean squared match distance is below this");
+    v("min_inlier_ratio", min_inlier_ratio, between(0.0, 1.0),
+      "and this share of points found a close match");
+    v("max_correction", max_correction, above(0.0, 1000.0),
+      "m; reject when registration moves the guess more than this");
+    v("min_facing_share", min_facing_share, between(0.0, 1.0),
+      "reject when fewer matched points than this share face the direction they pin least (a corridor's "
+      "length: the match slides)");
+    v("max_reverse_disagreement", max_reverse_disagreement, above(0.0, 1000.0),
+      "m; reject when the pair registered the other way round (from the inverse guess) ends farther than "
+      "this from the first match");
+    v.section("registration", registration, "GICP");
   }
 };
 

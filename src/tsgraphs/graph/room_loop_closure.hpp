@@ -10,7 +10,7 @@
 
 #include "tsgraphs/core/polygon.hpp"
 #include "tsgraphs/graph/situational_graph.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::graph {
 
@@ -23,10 +23,14 @@ struct RoomLoopClosureConfig {
 
   template <class V>
   void visit(V& v) {
-    v("enabled", enabled);
-    v("max_candidates", max_candidates, between(1, 100));
-    v("min_common_walls", min_common_walls, between(1, 4));
-    v("max_height_difference", max_height_difference, above(0.0, 1000.0));
+    v("enabled", enabled,
+      "tried before the distance rule at the keyframe that re-detected it; verified by loop_closure's "
+      "registration and checks");
+    v("max_candidates", max_candidates, between(1, 100), "keyframes in the room registered, nearest first");
+    v("min_common_walls", min_common_walls, between(1, 4),
+      "walls the re-detection shares with the room's previous extraction");
+    v("max_height_difference", max_height_difference, above(0.0, 1000.0),
+      "m; candidates on the room's level (storeys are >= 2.5 m apart)");
   }
 };
 

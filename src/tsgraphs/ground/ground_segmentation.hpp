@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "tsgraphs/core/point_cloud.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::ground {
 
@@ -76,32 +76,55 @@ struct GroundConfig {
   /// pipeline's `platform` section measures or takes them).
   template <class V>
   void visit(V& v) {
-    v("resolution", resolution, between(0.05, 10.0));
-    v("min_range", min_range, between(0.0, 1000.0));
-    v("max_range", max_range, above(0.0, 1000.0));
-    v("num_iter", num_iter, between(1, 100));
-    v("num_lpr", num_lpr, between(1, 10000));
-    v("num_min_pts", num_min_pts, between(3, 1000000));
-    v("sparse_min_pts", sparse_min_pts, between(1, 1000000));
-    v("th_seeds", th_seeds, between(0.0, 100.0));
-    v("th_dist", th_dist, above(0.0, 10.0));
-    v("th_outlier", th_outlier, between(0.0, 100.0));
-    v("fit_column", fit_column, between(0.001, 10.0));
-    v("plane_prior_spread", plane_prior_spread, between(0.0, 10.0));
-    v("th_normal", th_normal, between(0.0, 1.0));
-    v("th_lcc_normal", th_lcc_normal, between(0.0, 2.0));
-    v("th_lcc_planar", th_lcc_planar, between(0.0, 3.2));
-    v("th_obstacle", th_obstacle, above(0.0, 100.0));
-    v("foot_radius", foot_radius, between(0.0, 10.0));
-    v("foot_height", foot_height, between(0.0, 100.0));
-    v("foot_rings", foot_rings, between(0.0, 1000.0));
-    v("seed_height_tolerance", seed_height_tolerance, above(0.0, 100.0));
-    v("seed_max_slope", seed_max_slope, above(0.0, 100.0));
-    v("max_gap", max_gap, between(0.0, 100.0));
-    v("bgk_length_scale", bgk_length_scale, above(0.0, 100.0));
-    v("bgk_prior", bgk_prior, between(0.0, 1e6));
-    v("th_traversable", th_traversable, between(0.0, 1.0));
-    v("bgk_max_height_gap", bgk_max_height_gap, above(0.0, 100.0));
+    v("resolution", resolution, between(0.05, 10.0),
+      "m; tri-grid cell, split into 4 triangles by its diagonals");
+    v("min_range", min_range, between(0.0, 1000.0), "m; nearer points are not used");
+    v("max_range", max_range, above(0.0, 1000.0),
+      "m; nor farther ones (ground precision / recall are scored over this range)");
+    v("num_iter", num_iter, between(1, 100), "PCA rounds per node");
+    v("num_lpr", num_lpr, between(1, 10000), "points averaged for the lowest-point representative");
+    v("num_min_pts", num_min_pts, between(3, 1000000), "fewer points: the node is unknown");
+    v("sparse_min_pts", sparse_min_pts, between(1, 1000000),
+      "a node not joined by its plane joins the ground reaching it with this many points at that ground's "
+      "level, none below (far rings)");
+    v("th_seeds", th_seeds, between(0.0, 100.0),
+      "m; seeds lie within this above the lowest-point representative");
+    v("th_dist", th_dist, above(0.0, 10.0),
+      "m; plane inliers and ground points lie within this of the node plane");
+    v("th_outlier", th_outlier, between(0.0, 100.0),
+      "m; points this far below the node's robust lowest level are rejected");
+    v("fit_column", fit_column, between(0.001, 10.0),
+      "m; planes are fitted to the lowest point of each column this wide (a wall adds only its foot)");
+    v("plane_prior_spread", plane_prior_spread, between(0.0, 10.0),
+      "m; horizontal spread added to each node's PCA (points on one scan ring get the flattest plane)");
+    v("th_normal", th_normal, between(0.0, 1.0), "ground-like: normal z at least this");
+    v("th_lcc_normal", th_lcc_normal, between(0.0, 2.0),
+      "local convexity/concavity, normal term (TRAVEL's 0.03 is for 2 m cells)");
+    v("th_lcc_planar", th_lcc_planar, between(0.0, 3.2),
+      "rad; local convexity/concavity, plane distance term");
+    v("th_obstacle", th_obstacle, above(0.0, 100.0),
+      "m; obstacle points lie at most this above the local ground");
+    v("foot_radius", foot_radius, between(0.0, 10.0),
+      "m; a ground-band point with obstacle points this near (horizontally)...");
+    v("foot_height", foot_height, between(0.0, 100.0),
+      "m; ...and up to this above the band is a wall's or a box's foot: an obstacle");
+    v("foot_rings", foot_rings, between(0.0, 1000.0),
+      "...or as high as this many rings above it reach on a wall at its range (far rings are farther apart)");
+    v("seed_height_tolerance", seed_height_tolerance, above(0.0, 100.0),
+      "m; the search starts at ground-like nodes within platform.seed_radius whose plane passes this near "
+      "the floor under the robot");
+    v("seed_max_slope", seed_max_slope, above(0.0, 100.0),
+      "rise per m; ...whose plane is no steeper, nor its height farther from that floor than the tolerance "
+      "plus this per metre (a robot's steepest ramp, 12 deg)");
+    v("max_gap", max_gap, between(0.0, 100.0),
+      "m; the search links nodes across empty or unknown nodes up to this far (far rings are sparse)");
+    v("bgk_length_scale", bgk_length_scale, above(0.0, 100.0), "m; support of BGK's sparse kernel");
+    v("bgk_prior", bgk_prior, between(0.0, 1e6),
+      "BGK prior weight (pseudo-observations at traversability 0.5)");
+    v("th_traversable", th_traversable, between(0.0, 1.0),
+      "a node is traversable when its smoothed probability is at least this...");
+    v("bgk_max_height_gap", bgk_max_height_gap, above(0.0, 100.0),
+      "m; ...and its own height is within this of the smoothed surface");
   }
 };
 

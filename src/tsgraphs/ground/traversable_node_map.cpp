@@ -34,10 +34,7 @@ Eigen::Vector3d to_frame(const Pose3& T, const Eigen::Vector3d& p) {
 }  // namespace
 
 TraversableNodeMap::TraversableNodeMap(NodeMapConfig config) : config_(std::move(config)) {
-  if (!(config_.cell_size > 0.0)) throw std::invalid_argument("TraversableNodeMap: cell_size must be > 0");
-  if (!(config_.level_tolerance >= 0.0)) {
-    throw std::invalid_argument("TraversableNodeMap: level_tolerance must be >= 0");
-  }
+  check_config(config_, "TraversableNodeMap");
 }
 
 std::uint64_t TraversableNodeMap::cell_key(const Eigen::Vector3d& p) const {

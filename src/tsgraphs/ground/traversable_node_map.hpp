@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "tsgraphs/core/pose.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::ground {
 
@@ -24,10 +24,13 @@ struct NodeMapConfig {
 
   template <class V>
   void visit(V& v) {
-    v("cell_size", cell_size, between(0.01, 100.0));
-    v("level_tolerance", level_tolerance, above(0.0, 100.0));
-    v("max_keyframes_per_node", max_keyframes_per_node, between(1, 10000));
-    v("min_probability", min_probability, between(0.0, 1.0));
+    v("cell_size", cell_size, between(0.01, 100.0), "m; grid cell of the global map");
+    v("level_tolerance", level_tolerance, above(0.0, 100.0),
+      "m; observations this near a node's height fuse with it; farther: another layer (storey)");
+    v("max_keyframes_per_node", max_keyframes_per_node, between(1, 10000),
+      "the most recent keyframes that saw a node, kept per node");
+    v("min_probability", min_probability, between(0.0, 1.0),
+      "only observations at least this traversable are fused");
   }
 };
 

@@ -17,12 +17,6 @@ namespace {
 constexpr int kRefitRounds = 5;  // least-squares refits at most (they settle in two or three)
 }  // namespace
 
-void FloorLevellingConfig::validate() const {
-  check_ranges(*this, "FloorLevellingConfig");  // each field's limits, declared in visit()
-  if (!(max_range > min_range))
-    throw std::invalid_argument("FloorLevellingConfig: max_range must be > min_range");
-}
-
 namespace {
 
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
@@ -115,7 +109,7 @@ Cloud::Ptr lowest_per_cell(const Cloud& cloud, const PlaneFit& plane, double cel
 }  // namespace
 
 FloorLevel level_from_floor(const PointCloud& scan, const FloorLevellingConfig& config) {
-  config.validate();
+  check_config(config, "FloorLevellingConfig");
   FloorLevel level;
   // Candidates: returns below the sensor, within the range band.
   Cloud::Ptr candidates(new Cloud);

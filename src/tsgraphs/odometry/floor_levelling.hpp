@@ -6,7 +6,7 @@
 
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/core/pose.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::odometry {
 
@@ -27,20 +27,26 @@ struct FloorLevellingConfig {
 
   template <class V>
   void visit(V& v) {
-    v("min_range", min_range, between(0.0, 1000.0));
-    v("max_range", max_range, above(0.0, 1000.0));
-    v("min_depth", min_depth, between(0.0, 100.0));
-    v("max_tilt_deg", max_tilt_deg, above(0.0, 89.0));
-    v("distance_threshold", distance_threshold, above(0.0, 10.0));
-    v("min_inliers", min_inliers, between(3, 10000000));
-    v("cell_size", cell_size, between(0.01, 10.0));
-    v("min_cells", min_cells, between(3, 10000000));
-    v("below_margin", below_margin, between(0.0, 100.0));
-    v("max_iterations", max_iterations, between(1, 1000000));
-    v("ransac_probability", ransac_probability, above(0.0, 0.999999999));
+    v("min_range", min_range, between(0.0, 1000.0),
+      "m; floor points nearer than this are not used (the platform, the operator's feet)");
+    v("max_range", max_range, above(0.0, 1000.0), "m; nor farther ones");
+    v.require(max_range > min_range, "max_range", "must be > min_range");
+    v("min_depth", min_depth, between(0.0, 100.0),
+      "m; the floor lies at least this far below the sensor (along its z)");
+    v("max_tilt_deg", max_tilt_deg, above(0.0, 89.0),
+      "the floor's normal is within this of the sensor's z axis");
+    v("distance_threshold", distance_threshold, above(0.0, 10.0), "m; RANSAC inlier distance");
+    v("min_inliers", min_inliers, between(3, 10000000),
+      "fewer inliers: no floor found (the map frame is then the first scan's)");
+    v("cell_size", cell_size, between(0.01, 10.0),
+      "m; grid cell of the lowest points the floor is fitted to");
+    v("min_cells", min_cells, between(3, 10000000), "fewer cells on the floor: no floor found");
+    v("below_margin", below_margin, between(0.0, 100.0),
+      "m; returns this far below a plane are beneath it: a floor has fewer than it holds");
+    v("max_iterations", max_iterations, between(1, 1000000), "RANSAC iterations at most");
+    v("ransac_probability", ransac_probability, above(0.0, 0.999999999),
+      "RANSAC stops once this sure to have drawn one all-floor sample");
   }
-  /// Throws std::invalid_argument naming the first field out of range ("FloorLevellingConfig: key ...").
-  void validate() const;
 };
 
 /// The floor under a scan, and the sensor's pose in a frame level with it.

@@ -24,7 +24,7 @@ constexpr double kDegToRad = M_PI / 180.0;
 
 template <class Config>
 const Config& validated(const Config& c) {
-  c.validate();
+  check_config(c, "LidarOdometryConfig");
   return c;
 }
 
@@ -126,12 +126,6 @@ std::vector<std::size_t> in_range(const PointCloud& cloud, double min_range, dou
   return out;
 }
 
-void LidarOdometryConfig::validate() const {
-  check_ranges(*this, "LidarOdometryConfig");  // each field's limits, declared in visit()
-  if (!(max_range > min_range))
-    throw std::invalid_argument("LidarOdometryConfig: max_range must be > min_range");
-}
-
 IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHashMap& map,
                        const Pose3& initial_guess, double max_correspondence_distance, double kernel_scale,
                        const LidarOdometryConfig& config) {
@@ -227,7 +221,8 @@ Pose3 LidarOdometry::last_motion() const {
 Pose3 LidarOdometry::predict(double seconds) const { return predict_with(repeats_tilt(), seconds); }
 
 bool LidarOdometry::repeats_tilt() const {
-  if (config_.tilt_prediction != "auto") return config_.tilt_prediction == "repeat";
+  if (config_.tilt_prediction != TiltPrediction::automatic)
+    return config_.tilt_prediction == TiltPrediction::repeat;
   if (tilt_errors_.size() < static_cast<std::size_t>(config_.tilt_window)) return false;
   double held = 0.0, repeated = 0.0;
   for (const auto& [h, r] : tilt_errors_) {

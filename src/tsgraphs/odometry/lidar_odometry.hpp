@@ -17,9 +17,20 @@
 #include "tsgraphs/odometry/adaptive_threshold.hpp"
 #include "tsgraphs/odometry/sweep_registration.hpp"
 #include "tsgraphs/odometry/voxel_hash_map.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::odometry {
+
+/// What the constant-velocity prediction does with roll and pitch (it repeats the last turn
+/// about z and the last step).
+enum class TiltPrediction {
+  hold,      ///< holds them: a carried sensor's tilt swings back at every step (repeating its
+             ///< change doubles the error at 2 Hz)
+  repeat,    ///< repeats their last change: at 10 Hz the sway goes on between scans
+  automatic  ///< whichever predicted the last tilt_window scans' tilt better (hold until it knows)
+};
+inline const Choices<TiltPrediction> kTiltPredictions{
+    {TiltPrediction::automatic, "auto"}, {TiltPrediction::hold, "hold"}, {TiltPrediction::repeat, "repeat"}};
 
 struct LidarOdometryConfig {
   double min_range = 0.5;         ///< returns nearer than this are dropped (m): the robot and its operator
@@ -39,22 +50,17 @@ struct LidarOdometryConfig {
                                 ///< prediction, and the kernel (a third of the threshold) must still reach it
   double fine_threshold = 0.5;  ///< once converged, ICP goes on with this threshold (m) when its own was
                                 ///< wider, so that the wrong pairs a wide start let in stop pulling (0: off)
-  std::string tilt_prediction = "auto";  ///< the prediction repeats the last turn about z and the last step,
-                                         ///< and of roll and pitch: "hold" holds them (a carried sensor's
-                                         ///< tilt swings back at every step: repeating its change doubles the
-                                         ///< error at 2 Hz), "repeat" repeats their last change (at 10 Hz the
-                                         ///< sway goes on between scans), "auto" does whichever predicted the
-                                         ///< last tilt_window scans' tilt better (hold until it knows)
-  int tilt_window = 10;                  ///< registered scans whose tilt errors "auto" compares
-  bool turn_from_sweep = true;           ///< when the last scan's sweep registration found its turn rate, the
+  TiltPrediction tilt_prediction = TiltPrediction::automatic;
+  int tilt_window = 10;         ///< registered scans whose tilt errors "auto" compares
+  bool turn_from_sweep = true;  ///< when the last scan's sweep registration found its turn rate, the
                                 ///< scans' stamps are given and the tilt is held, the prediction turns at
                                 ///< that rate until the next stamp (the turn now) instead of repeating the
                                 ///< last turn (the turn half an interval ago: at 2 Hz a walker's turn
                                 ///< changes within that)
-  bool sweep_motion = true;  ///< a scan with per-point times is registered once more with the sensor's
-                             ///< motion during its sweep among the unknowns (sweep_registration.hpp):
-                             ///< its pose is then the stamp's and the map takes it de-skewed
-  double min_motion = 0.1;   ///< a scan teaches the threshold only if it moved this much (m, at max_range)
+  bool sweep_motion = true;     ///< a scan with per-point times is registered once more with the sensor's
+                                ///< motion during its sweep among the unknowns (sweep_registration.hpp):
+                                ///< its pose is then the stamp's and the map takes it de-skewed
+  double min_motion = 0.1;      ///< a scan teaches the threshold only if it moved this much (m, at max_range)
   double correspondence_factor = 3.0;   ///< correspondences farther than threshold * this are ignored
   double kernel_divisor = 3.0;          ///< Geman-McClure kernel scale = threshold / this (m)
   int max_iterations = 50;              ///< Gauss-Newton iterations per scan at most (more: it oscillates)
@@ -93,46 +99,93 @@ struct LidarOdometryConfig {
 
   template <class V>
   void visit(V& v) {
-    v("min_range", min_range, between(0.0, 10000.0));
-    v("max_range", max_range, above(0.0, 10000.0));
-    v("voxel_size", voxel_size, between(0.01, 100.0));
-    v("map_voxel_factor", map_voxel_factor, between(0.1, 10.0));
-    v("registration_voxel_factor", registration_voxel_factor, between(0.1, 10.0));
-    v("max_points_per_voxel", max_points_per_voxel, between(1, 1000));
-    v("point_to_plane", point_to_plane);
-    v("plane_min_points", plane_min_points, between(3, 1000));
-    v("plane_min_spread_factor", plane_min_spread_factor, above(0.0, 1.0));
-    v("plane_max_thickness_ratio", plane_max_thickness_ratio, above(0.0, 1.0));
-    v("initial_threshold", initial_threshold, above(0.0, 100.0));
-    v("min_threshold", min_threshold, between(0.0, 100.0));
-    v("fine_threshold", fine_threshold, between(0.0, 100.0));
-    v("tilt_prediction", tilt_prediction, OneOf{"auto", "hold", "repeat"});
-    v("tilt_window", tilt_window, between(1, 10000));
-    v("turn_from_sweep", turn_from_sweep);
-    v("sweep_motion", sweep_motion);
-    v("min_motion", min_motion, between(0.0, 100.0));
-    v("correspondence_factor", correspondence_factor, above(0.0, 100.0));
-    v("kernel_divisor", kernel_divisor, above(0.0, 1000.0));
-    v("max_iterations", max_iterations, between(1, 1000));
-    v("convergence_criterion", convergence_criterion, above(0.0, 1.0));
-    v("min_correspondences", min_correspondences, between(6, 1000000));
-    v("yaw_search_deg", yaw_search_deg, between(0.0, 180.0));
-    v("yaw_search_step_deg", yaw_search_step_deg, between(0.5, 90.0));
-    v("yaw_search_points", yaw_search_points, between(10, 1000000));
-    v("yaw_search_candidates", yaw_search_candidates, between(1, 100));
-    v("yaw_search_candidate_iterations", yaw_search_candidate_iterations, between(1, 1000));
-    v("yaw_search_margin", yaw_search_margin, between(0.0, 1.0));
-    v("min_overlap", min_overlap, between(0.0, 1.0));
-    v("recovery_search_m", recovery_search_m, between(0.0, 10.0));
-    v("recovery_turn_step_deg", recovery_turn_step_deg, between(0.5, 90.0));
-    v("recovery_overlap_ratio", recovery_overlap_ratio, between(0.0, 1.0));
-    v("recovery_window", recovery_window, between(1, 10000));
-    v("recovery_points", recovery_points, between(10, 1000000));
-    v("reduction_grain", reduction_grain, between(1, 1000000));
+    v("min_range", min_range, between(0.0, 10000.0),
+      "m; nearer returns are dropped (the platform, its operator)");
+    v("max_range", max_range, above(0.0, 10000.0),
+      "m; farther returns are dropped; also the local map's radius");
+    v.require(max_range > min_range, "max_range", "must be > min_range");
+    v("voxel_size", voxel_size, between(0.01, 100.0), "m; edge of the local map's voxels");
+    v("map_voxel_factor", map_voxel_factor, between(0.1, 10.0),
+      "the scan added to the map is downsampled to voxel_size * this");
+    v("registration_voxel_factor", registration_voxel_factor, between(0.1, 10.0),
+      "the scan registered is downsampled to voxel_size * this (coarser: faster)");
+    v("max_points_per_voxel", max_points_per_voxel, between(1, 1000), "local map points kept per voxel");
+    v("point_to_plane", point_to_plane,
+      "point-to-plane on flat voxels (false: KISS-ICP's point-to-point everywhere)");
+    v("plane_min_points", plane_min_points, between(3, 1000), "a voxel with fewer points is not matched");
+    v("plane_min_spread_factor", plane_min_spread_factor, above(0.0, 1.0),
+      "a flat voxel spreads >= voxel_size * this (sd) both ways; less is a line (one ring)");
+    v("plane_max_thickness_ratio", plane_max_thickness_ratio, above(0.0, 1.0),
+      "a flat voxel is at most this thick (sd) for its width (sd)");
+    v("initial_threshold", initial_threshold, above(0.0, 100.0),
+      "m; correspondence threshold until the sensor has moved");
+    v("min_threshold", min_threshold, between(0.0, 100.0),
+      "m; the adaptive threshold never goes below this: at 2 Hz a carrier 1 m/s off the constant velocity is "
+      "0.5 m off the prediction, within the kernel's reach (a third of it)");
+    v("fine_threshold", fine_threshold, between(0.0, 100.0),
+      "m; once converged, ICP goes on with this threshold when its own was wider (0: off): wrong pairs a "
+      "wide start let in stop pulling");
+    v("tilt_prediction", tilt_prediction, kTiltPredictions,
+      "of roll and pitch the prediction holds (hold: a carried sensor's tilt swings back at every step, at 2 "
+      "Hz repeating it doubles the error), repeats the last change (repeat: at 10 Hz the sway goes on), or "
+      "does whichever predicted the last tilt_window scans better (auto)");
+    v("tilt_window", tilt_window, between(1, 10000), "registered scans whose tilt errors auto compares");
+    v("turn_from_sweep", turn_from_sweep,
+      "with the scans' stamps and the tilt held, the prediction turns at the last sweep's turn rate until "
+      "the next stamp (the turn now) rather than repeating the last turn (half an interval ago)");
+    v("sweep_motion", sweep_motion,
+      "a scan with per-point times is registered once more with the motion during its sweep (deskew's "
+      "registration fields): its pose is the stamp's, the map takes it de-skewed");
+    v("min_motion", min_motion, between(0.0, 100.0),
+      "m; a scan teaches the threshold only if it moved this much (at max_range)");
+    v("correspondence_factor", correspondence_factor, above(0.0, 100.0),
+      "pairs farther than threshold * this are ignored");
+    v("kernel_divisor", kernel_divisor, above(0.0, 1000.0), "Geman-McClure kernel scale = threshold / this");
+    v("max_iterations", max_iterations, between(1, 1000),
+      "Gauss-Newton iterations per scan at most (more: it oscillates)");
+    v("convergence_criterion", convergence_criterion, above(0.0, 1.0),
+      "stop when the update's norm (rad and m) falls below this");
+    v("min_correspondences", min_correspondences, between(6, 1000000),
+      "fewer pairs: keep the constant-velocity prediction");
+    visit_search(v);
   }
 
-  /// Throws std::invalid_argument naming the first field out of range.
-  void validate() const;
+  /// The fields of the searches for a start (a turn the prediction missed, a scan lost).
+  template <class V>
+  void visit_search(V& v) {
+    v("yaw_search_deg", yaw_search_deg, between(0.0, 180.0),
+      "the start of ICP is searched among turns up to this either side of the prediction and of standing "
+      "still (0: off): a hand-held sensor at 2 Hz turns 45 deg between scans");
+    v("yaw_search_step_deg", yaw_search_step_deg, between(0.5, 90.0),
+      "turns tried this far apart (ICP closes the rest)");
+    v("yaw_search_points", yaw_search_points, between(10, 1000000),
+      "scan points scored per guess (the share in occupied map voxels)");
+    v("yaw_search_candidates", yaw_search_candidates, between(1, 100),
+      "when the search moves the start, ICP runs from its best turn, the prediction and the next best turns "
+      "apart, this many in all, and goes on from the result that overlaps the map most (1: the best turn "
+      "alone)");
+    v("yaw_search_candidate_iterations", yaw_search_candidate_iterations, between(1, 1000),
+      "ICP iterations each of those starts gets before one is chosen");
+    v("yaw_search_margin", yaw_search_margin, between(0.0, 1.0),
+      "a guess replaces the prediction when its share is this much larger (at 10 Hz the prediction stays)");
+    v("min_overlap", min_overlap, between(0.0, 1.0),
+      "a scan with a smaller share of its points in occupied map voxels is reported lost and not added to "
+      "the map");
+    v("recovery_search_m", recovery_search_m, between(0.0, 10.0),
+      "m; a lost scan is registered again from the best-overlapping of turns (up to yaw_search_deg) and "
+      "horizontal shifts this far (one voxel apart) of the prediction and the last pose (0: off)");
+    v("recovery_turn_step_deg", recovery_turn_step_deg, between(0.5, 90.0),
+      "the turns tried there are this far apart (ICP closes the rest)");
+    v("recovery_overlap_ratio", recovery_overlap_ratio, between(0.0, 1.0),
+      "a scan is searched again too when its overlap ends below this share of the recent scans' median (a "
+      "wrong minimum; 0: off)");
+    v("recovery_window", recovery_window, between(1, 10000), "scans whose overlaps make that median");
+    v("recovery_points", recovery_points, between(10, 1000000),
+      "scan points scored per guess there (a few thousand guesses)");
+    v("reduction_grain", reduction_grain, between(1, 1000000),
+      "points per block of the parallel sums (fixed: same sums whatever the threads)");
+  }
+
   /// The map's surface fit from the plane_* fields.
   SurfaceConfig surface() const {
     return {plane_min_points, plane_min_spread_factor, plane_max_thickness_ratio};
@@ -177,7 +230,7 @@ IcpResult align_to_map(const std::vector<Eigen::Vector3d>& source, const VoxelHa
 
 class LidarOdometry {
  public:
-  /// std::invalid_argument for a config out of range (LidarOdometryConfig::validate).
+  /// std::invalid_argument for a config out of range (check_config).
   /// `first_pose`: the first scan's pose in the odometry frame. The frame's z is taken as up
   /// (the yaw search turns about it, the prediction holds the tilt against it), so a caller that
   /// knows the gravity (floor_levelling.hpp, a level mount) passes a pose that levels the map.

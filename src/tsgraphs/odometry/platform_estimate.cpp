@@ -22,12 +22,8 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-void PlatformEstimateConfig::validate() const {
-  check_ranges(*this, "PlatformEstimateConfig");  // each field's limits, declared in visit()
-}
-
 BeamLayout measure_beam_layout(const PointCloud& scan, const PlatformEstimateConfig& config) {
-  config.validate();
+  check_config(config, "PlatformEstimateConfig");
   constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
   std::vector<double> elevations;
   elevations.reserve(scan.size());
@@ -91,8 +87,8 @@ std::vector<Eigen::Vector3d> lowest_per_cell(const PointCloud& scan, const Eigen
 
 FloorHeight floor_height(const PointCloud& scan, const Eigen::Vector3d& up, bool fit_tilt,
                          const FloorLevellingConfig& levelling, const PlatformEstimateConfig& config) {
-  config.validate();
-  levelling.validate();
+  check_config(config, "PlatformEstimateConfig");
+  check_config(levelling, "FloorLevellingConfig");
   FloorHeight out;
   Eigen::Vector3d normal = up.normalized();
   double height = 0.0;
@@ -151,7 +147,7 @@ PlatformEstimate estimate_platform(const std::vector<PointCloud>& scans,
                                    const FloorLevellingConfig& levelling,
                                    const PlatformEstimateConfig& config,
                                    const std::vector<Eigen::Vector3d>& ups) {
-  config.validate();
+  check_config(config, "PlatformEstimateConfig");
   if (!ups.empty() && ups.size() != scans.size())
     throw std::invalid_argument("estimate_platform: " + std::to_string(ups.size()) + " up directions for " +
                                 std::to_string(scans.size()) + " scans");

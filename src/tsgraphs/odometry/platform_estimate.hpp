@@ -8,7 +8,7 @@
 
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/odometry/floor_levelling.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::odometry {
 
@@ -27,14 +27,17 @@ struct PlatformEstimateConfig {
 
   template <class V>
   void visit(V& v) {
-    v("scans", scans, between(1, 1000));
-    v("floor_bin", floor_bin, between(0.001, 1.0));
-    v("ring_gap_deg", ring_gap_deg, above(0.0, 10.0));
-    v("ring_min_range", ring_min_range, between(0.0, 1000.0));
-    v("ring_min_points", ring_min_points, between(1, 1000000));
+    v("scans", scans, between(1, 1000),
+      "scans measured, spread evenly over the run (a median: a hand-held sensor bobs and tilts within a "
+      "sweep, a room may show little floor)");
+    v("floor_bin", floor_bin, between(0.001, 1.0),
+      "m; height bins of each scan's lowest returns: the fullest is the floor");
+    v("ring_gap_deg", ring_gap_deg, above(0.0, 10.0),
+      "returns whose elevations are this close belong to one ring");
+    v("ring_min_range", ring_min_range, between(0.0, 1000.0),
+      "m; nearer returns are not used for rings (a beam's offset bends their elevation)");
+    v("ring_min_points", ring_min_points, between(1, 1000000), "a ring holds at least this many returns");
   }
-  /// Throws std::invalid_argument naming the first field out of range ("PlatformEstimateConfig: key ...").
-  void validate() const;
 };
 
 /// The rings of a spinning LiDAR: the elevations of its beams as seen in a scan's returns.

@@ -9,7 +9,7 @@ namespace tsgraphs::odometry {
 namespace {
 
 const SweepRegistrationConfig& validated(const SweepRegistrationConfig& c) {
-  c.validate();
+  check_config(c, "SweepRegistrationConfig");
   return c;
 }
 

@@ -34,12 +34,6 @@ Eigen::Matrix3d turn(const Eigen::Vector3d& rotation_vector) {
 
 }  // namespace
 
-void SweepRegistrationConfig::validate() const {
-  check_ranges(*this, "SweepRegistrationConfig");  // each field's limits, declared in visit()
-  if (!(initial_distance >= final_distance))
-    throw std::invalid_argument("SweepRegistrationConfig: initial_distance must be >= final_distance");
-}
-
 Pose3 SweepMotion::after(double seconds) const {
   Pose3 out = Pose3::Identity();
   out.linear() = turn(turn_rate * seconds);

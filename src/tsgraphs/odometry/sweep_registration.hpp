@@ -14,7 +14,7 @@
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/odometry/voxel_hash_map.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::odometry {
 
@@ -46,24 +46,38 @@ struct SweepRegistrationConfig {
 
   template <class V>
   void visit(V& v) {
-    v("voxel_size", voxel_size, above(0.0, 10.0));
-    v("initial_distance", initial_distance, above(0.0, 100.0));
-    v("final_distance", final_distance, above(0.0, 10.0));
-    v("kernel_divisor", kernel_divisor, above(0.0, 1000.0));
-    v("point_sigma", point_sigma, above(0.0, 10.0));
-    v("turn_rate_sigma", turn_rate_sigma, above(0.0, 1e6));
-    v("velocity_sigma", velocity_sigma, above(0.0, 1e6));
-    v("pose_sigma_deg", pose_sigma_deg, above(0.0, 1e6));
-    v("pose_sigma", pose_sigma, above(0.0, 1e6));
-    v("max_iterations", max_iterations, between(1, 1000));
-    v("convergence_criterion", convergence_criterion, above(0.0, 1.0));
-    v("min_correspondences", min_correspondences, between(12, 1000000));
-    v("window", window, between(1, 1000));
-    v("reduction_grain", reduction_grain, between(1, 1000000));
+    v("voxel_size", voxel_size, above(0.0, 10.0), "m; registration: one point of the sweep per voxel");
+    v("initial_distance", initial_distance, above(0.0, 100.0),
+      "m; registration: pairs farther apart are ignored at first (a 4 deg unmodelled turn moves a point 10 m "
+      "away by 0.7 m)...");
+    v("final_distance", final_distance, above(0.0, 10.0), "m; ...halved at each convergence down to this");
+    v.require(initial_distance >= final_distance, "final_distance", "must be <= initial_distance");
+    v("kernel_divisor", kernel_divisor, above(0.0, 1000.0),
+      "registration: Geman-McClure kernel scale = pair distance / this");
+    v("point_sigma", point_sigma, above(0.0, 10.0),
+      "m; registration: a point's distance to the map is trusted to this, against the priors");
+    v("turn_rate_sigma", turn_rate_sigma, above(0.0, 1e6),
+      "rad/s; registration: the turn rate is expected within this of the poses' (decides what the sweep "
+      "observes weakly: a tilting, seen on floor and ceiling only)");
+    v("velocity_sigma", velocity_sigma, above(0.0, 1e6),
+      "m/s; registration: the velocity, within this of the poses' (a carrier's bob changes it by a few "
+      "tenths within a step; held loosely, it takes up the tilting a sweep sees weakly)");
+    v("pose_sigma_deg", pose_sigma_deg, above(0.0, 1e6),
+      "deg; registration: the pose at the stamp, within this of the odometry's...");
+    v("pose_sigma", pose_sigma, above(0.0, 1e6),
+      "m; ...and this (a sweep's tilt and its tilting during the sweep are told apart only weakly)");
+    v("max_iterations", max_iterations, between(1, 1000),
+      "registration: Gauss-Newton iterations per pair distance at most");
+    v("convergence_criterion", convergence_criterion, above(0.0, 1.0),
+      "registration: a distance is done when the update's norm falls below this");
+    v("min_correspondences", min_correspondences, between(12, 1000000),
+      "registration: fewer pairs: the poses' motion is kept");
+    v("window", window, between(1, 1000),
+      "registration: the map holds the last this many sweeps (each sweep's error averages out, the first "
+      "ones' do not stay for good)");
+    v("reduction_grain", reduction_grain, between(1, 1000000),
+      "registration: points per block of the parallel sums (fixed: same order whatever the threads)");
   }
-
-  /// Throws std::invalid_argument naming the first field out of range.
-  void validate() const;
 };
 
 /// A sweep's pose and the motion during it.

@@ -3,7 +3,7 @@
 #include <optional>
 
 #include "tsgraphs/core/pose.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::pipeline {
 
@@ -14,8 +14,9 @@ struct KeyframeConfig {
 
   template <class V>
   void visit(V& v) {
-    v("delta_trans", delta_trans, above(0.0, 1000.0));
-    v("delta_angle_deg", delta_angle_deg, above(0.0, 360.0));
+    v("delta_trans", delta_trans, above(0.0, 1000.0), "m of motion since the last keyframe (S-Graphs: 2.0)");
+    v("delta_angle_deg", delta_angle_deg, above(0.0, 360.0),
+      "deg of rotation since the last keyframe (S-Graphs: 2 rad)");
   }
 };
 

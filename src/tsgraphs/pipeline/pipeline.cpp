@@ -459,7 +459,7 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
   for (const Eigen::Vector3f& p : voxel_downsample(near, config_.rooms.layer.obstacle_voxel).points)
     in.obstacle_candidates.push_back(p.cast<double>());
   // This keyframe's rays for the sight map (TS-graphs).
-  if (config_.rooms.layer.free_space_method == "traversable") {
+  if (config_.rooms.layer.free_space_method == FreeSpaceMethod::traversable) {
     PointCloud own;
     const Eigen::Isometry3f T = kf.pose.cast<float>();
     for (const Eigen::Vector3f& p : keyframe_clouds_[keyframe].points) own.points.push_back(T * p);

@@ -10,6 +10,7 @@
 #include "tsgraphs/graph/keyframe_retirement.hpp"
 #include "tsgraphs/graph/loop_closure.hpp"
 #include "tsgraphs/graph/room_loop_closure.hpp"
+#include "tsgraphs/odometry/deskew_config.hpp"
 #include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/lidar_odometry.hpp"
 #include "tsgraphs/odometry/sweep_registration.hpp"
@@ -20,7 +21,7 @@
 #include "tsgraphs/rooms/map_walls.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
 #include "tsgraphs/walls/plane_mapper.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::pipeline {
 
@@ -38,34 +39,18 @@ struct ScheduleConfig {
 
   template <class V>
   void visit(V& v) {
-    v("optimize_every_keyframes", optimize_every_keyframes, between(1, 100000));
-    v("full_every_keyframes", full_every_keyframes, between(0, 100000));
-    v("full_solve_loop_sigmas", full_solve_loop_sigmas, between(0.0, 1e6));
-    v("merge_duplicate_planes", merge_duplicate_planes);
+    v("optimize_every_keyframes", optimize_every_keyframes, between(1, 100000),
+      "a local solve after this many new keyframes");
+    v("full_every_keyframes", full_every_keyframes, between(0, 100000),
+      "a full solve after the graph grew by this many keyframes (retired ones leave it; 0 = only after loops "
+      "and at the end)");
+    v("full_solve_loop_sigmas", full_solve_loop_sigmas, between(0.0, 1e6),
+      "a loop this many sigmas from the estimate asks for a full solve (sigmas: the loop's, with the "
+      "odometry's since the last correction when it lies in the local window); a nearer one, a local solve "
+      "(0: every loop)");
+    v("merge_duplicate_planes", merge_duplicate_planes,
+      "merge mapped planes found to be one face after each solve");
   }
-};
-
-/// De-skewing of scans that carry per-point times (odometry/deskew.hpp, sweep_registration.hpp).
-struct DeskewConfig {
-  bool enabled = true;          ///< de-skew scans with per-point times
-  std::string motion = "auto";  ///< the motion during a sweep: "poses" (from the poses around the scan, or
-                                ///< the LiDAR odometry's last motion), "registration" (each sweep registered
-                                ///< to a map of the ones before, the motion among the unknowns), "auto"
-  double max_interval_ratio =
-      1.5;  ///< auto registers the sweeps when scans are farther apart than this times a
-            ///< sweep's duration: the poses then do not sample the motion inside a sweep
-  odometry::SweepRegistrationConfig registration;  ///< the sweep registration's fields
-
-  template <class V>
-  void visit(V& v) {
-    v("enabled", enabled);
-    v("motion", motion, OneOf{"auto", "poses", "registration"});
-    v("max_interval_ratio", max_interval_ratio, between(1.0, 1000.0));
-    registration.visit(v);
-  }
-
-  /// Throws std::invalid_argument("DeskewConfig: <key> ...") for the first field out of range.
-  void validate() const;
 };
 
 /// What the pipeline says about layers that stay empty.
@@ -75,13 +60,15 @@ struct DiagnosticsConfig {
 
   template <class V>
   void visit(V& v) {
-    v("empty_layer_keyframes", empty_layer_keyframes, between(0, 1000000));
+    v("empty_layer_keyframes", empty_layer_keyframes, between(0, 1000000),
+      "warn when no traversable ground or no wall came for this many keyframes, or a run this long has no "
+      "room (0: never)");
   }
 };
 
 struct PipelineConfig {
   PlatformConfig platform;  ///< the sensor's height, seed radius and ground preset: measured unless given
-  DeskewConfig deskew;      ///< step 1: scans moved into the frame of their stamp
+  odometry::DeskewConfig deskew;  ///< step 1: scans moved into the frame of their stamp
   odometry::LidarOdometryConfig
       lidar_odometry;  ///< step 2 when the input has no odometry (or `run --odometry lidar`)
   odometry::FloorLevellingConfig
@@ -106,33 +93,53 @@ struct PipelineConfig {
 
   template <class V>
   void visit(V& v) {
-    v.section("platform", platform);
-    v.section("deskew", deskew);
-    v.section("prefilter", prefilter);
-    v.section("lidar_odometry", lidar_odometry);
-    v.section("floor_levelling", floor_levelling);
-    v.section("keyframes", keyframes);
-    v.section("ground", ground);
-    v.section("node_map", node_map);
-    v.section("plane_extraction", plane_extraction);
-    v.section("plane_mapping", plane_mapping);
-    v.section("optimizer", optimizer);
-    v.section("loop_closure", loop_closure);
-    v.section("room_loop_closure", room_loop_closure);
-    v.section("keyframe_retirement", keyframe_retirement);
-    v.section("schedule", schedule);
-    v.section("room_layer", rooms.layer);
-    v.section("free_space", rooms.free_space);
-    v.section("esdf_free_space", rooms.esdf);
-    v.section("sight_map", rooms.sight);
-    v.section("aisle", rooms.aisle);
-    v.section("room_flush", rooms.flush);
-    v.section("room_timer", rooms.timer);
-    v.section("room_segmentation", rooms.segmentation);
-    v.section("sgraphs_room_extraction", rooms.sgraphs_extraction);
-    v.section("room_association", rooms.association);
-    v.section("diagnostics", diagnostics);
-    v.section("map_walls", map_walls);
+    v.section(
+        "platform", platform,
+        "the sensor on its platform: measured from scans spread over the run unless given (docs/run.md)");
+    v.section("deskew", deskew,
+              "step 1, every scan with per-point times (PCD/PointCloud2 fields t, time, timestamp, "
+              "offset_time; a sequence's .time files)");
+    v.section("prefilter", prefilter, "step 1, every keyframe (only keyframes' clouds are used)");
+    v.section("lidar_odometry", lidar_odometry,
+              "step 2, every scan, when the input has no odometry (or run --odometry lidar): KISS-ICP style");
+    v.section("floor_levelling", floor_levelling,
+              "step 2, once, when LiDAR odometry has nothing to start from (no poses, no sensor mount)");
+    v.section("keyframes", keyframes, "step 3");
+    v.section("ground", ground,
+              "step 4, every keyframe: tri-grid traversable ground (TRAVEL) from the robot, BGK");
+    v.section("node_map", node_map, "step 4, at keyframes: the global traversable node map");
+    v.section("plane_extraction", plane_extraction, "step 5, every keyframe");
+    v.section("plane_mapping", plane_mapping, "step 5, association of observed planes with mapped ones");
+    v.section("optimizer", optimizer, "step 9, the Ceres back-end");
+    v.section("loop_closure", loop_closure, "step 9, hdl_graph_slam's rule plus a registration check");
+    v.section("room_loop_closure", room_loop_closure,
+              "step 9: a mapped room re-detected with its walls proposes the earlier pass's keyframes in it "
+              "(graph/room_loop_closure.hpp)");
+    v.section("keyframe_retirement", keyframe_retirement,
+              "keyframe management: on revisits, keyframes that add nothing leave the graph "
+              "(graph/keyframe_retirement.hpp)");
+    v.section("schedule", schedule, "when the back-end runs");
+    v.section(
+        "room_layer", rooms.layer,
+        "steps 6-7 at keyframes: the room layer (free space, trigger, extraction); DESIGN \"Baseline mode\"");
+    v.section("free_space", rooms.free_space, "step 6: free space on traversable nodes");
+    v.section("esdf_free_space", rooms.esdf, "baseline (S-Graphs+): free space from an ESDF slice");
+    v.section("sight_map", rooms.sight,
+              "step 6 (TS-graphs): where the rays passed at walking height over a floor (heights: "
+              "free_space's obstacle_min/max_height)");
+    v.section("aisle", rooms.aisle,
+              "step 7: the aisle at the robot (width and direction) for the flush rule");
+    v.section("room_flush", rooms.flush, "step 7: the flush rule");
+    v.section("room_timer", rooms.timer, "baseline (S-Graphs+): the timer trigger");
+    v.section("room_segmentation", rooms.segmentation,
+              "step 7 (TS-graphs): spaces = the free space walked, cut by the mapped walls (doors closed), "
+              "grown back to the walls");
+    v.section("sgraphs_room_extraction", rooms.sgraphs_extraction,
+              "baseline (S-Graphs+): planes paired by counting cluster points near them");
+    v.section("room_association", rooms.association, "step 7: re-detections and duplicates");
+    v.section("diagnostics", diagnostics, "what the run says about layers that stay empty");
+    v.section("map_walls", map_walls,
+              "segment-map only: the walls of a 2-D occupancy map (the straight edges of its free space)");
   }
 };
 
@@ -142,7 +149,11 @@ struct PipelineConfig {
 PipelineConfig load_pipeline_config(const std::string& file);
 /// The same from text (for tests); `name` is used in messages.
 PipelineConfig parse_pipeline_config(const std::string& text, const std::string& name);
-/// The whole configuration as YAML, every key, in the order of the sections.
+/// The whole configuration as YAML, every key, in the order of the sections (a run folder's
+/// params.yaml).
 std::string dump_pipeline_config(const PipelineConfig& config);
+/// The same with each key's comment and a header: config/params.yaml is this of the defaults
+/// (`tsgraphs params`).
+std::string documented_pipeline_config(const PipelineConfig& config);
 
 }  // namespace tsgraphs::pipeline

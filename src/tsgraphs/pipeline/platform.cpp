@@ -20,14 +20,10 @@ std::string fixed(double v, int digits) {
 
 }  // namespace
 
-void PlatformConfig::validate() const {
-  check_ranges(*this, "PlatformConfig");  // each field's limits (and measure's), declared in visit()
-}
-
 Platform resolve_platform(const PlatformConfig& config, const odometry::FloorLevellingConfig& levelling,
                           const ground::GroundConfig& ground, const std::vector<PointCloud>& scans,
                           const std::vector<Eigen::Vector3d>& ups) {
-  config.validate();
+  check_config(config, "PlatformConfig");
   Platform p;
   p.estimate = odometry::estimate_platform(scans, levelling, config.measure, ups);
   const odometry::PlatformEstimate& e = p.estimate;

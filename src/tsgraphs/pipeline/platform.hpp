@@ -12,7 +12,7 @@
 #include "tsgraphs/ground/ground_segmentation.hpp"
 #include "tsgraphs/odometry/floor_levelling.hpp"
 #include "tsgraphs/odometry/platform_estimate.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::pipeline {
 
@@ -35,16 +35,21 @@ struct PlatformConfig {
 
   template <class V>
   void visit(V& v) {
-    v("sensor_height", sensor_height, above(0.0, 100.0));
-    v("seed_radius", seed_radius, above(0.0, 1000.0));
-    v("preset", preset, OneOf{"auto", "none", "os1-64", "os0-128", "vlp-16", "hesai-xt32"});
-    v("seed_radius_margin", seed_radius_margin, between(0.0, 100.0));
-    v("min_seed_radius", min_seed_radius, above(0.0, 1000.0));
-    v("fallback_sensor_height", fallback_sensor_height, above(0.0, 100.0));
+    v("sensor_height", sensor_height, above(0.0, 100.0),
+      "m above the floor under the robot; auto: the median floor under the scans measured");
+    v("seed_radius", seed_radius, above(0.0, 1000.0),
+      "m; the ground search starts within this; auto: where the lowest beam meets the floor + "
+      "seed_radius_margin");
+    v("preset", preset, Words{"auto", "none", "os1-64", "os0-128", "vlp-16", "hesai-xt32"},
+      "the ground's ring-density settings: auto (from the measured ring spacing) | os1-64 | os0-128 | vlp-16 "
+      "| hesai-xt32 | none");
+    v("seed_radius_margin", seed_radius_margin, between(0.0, 100.0),
+      "m beyond the first floor ring (it is thin: seeds come from the next rings too)");
+    v("min_seed_radius", min_seed_radius, above(0.0, 1000.0), "m; an auto seed radius is never smaller");
+    v("fallback_sensor_height", fallback_sensor_height, above(0.0, 100.0),
+      "m; used, with a warning, when no floor is found under the scans measured");
     measure.visit(v);
   }
-  /// Throws std::invalid_argument naming the first field out of range ("PlatformConfig: key ...").
-  void validate() const;
 };
 
 /// The platform resolved: every value the pipeline uses, and where each came from.

@@ -3,7 +3,7 @@
 #include <cstddef>
 
 #include "tsgraphs/core/point_cloud.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::pipeline {
 
@@ -14,9 +14,11 @@ struct PrefilterConfig {
 
   template <class V>
   void visit(V& v) {
-    v("min_range", min_range, between(0.0, 10000.0));
-    v("max_range", max_range, above(0.0, 10000.0));
-    v("voxel_size", voxel_size, between(0.0, 100.0));
+    v("min_range", min_range, between(0.0, 10000.0), "m; nearer points (the platform itself) are dropped");
+    v("max_range", max_range, above(0.0, 10000.0), "m; farther points are dropped: sparse and noisy indoors");
+    v.require(max_range > min_range, "max_range", "must be > min_range");
+    v("voxel_size", voxel_size, between(0.0, 100.0),
+      "m; one point (the centroid) per voxel; 0 = no downsampling");
   }
 };
 

@@ -14,14 +14,12 @@ namespace tsgraphs::pipeline {
 
 namespace {
 
-rooms::RoomAssociationConfig association_for(rooms::RoomAssociationConfig config, const std::string& method) {
-  config.match_by_footprint = method != "esdf";  // S-Graphs+ associates by centre distance only
+rooms::RoomAssociationConfig association_for(rooms::RoomAssociationConfig config, FreeSpaceMethod method) {
+  config.match_by_footprint =
+      method != FreeSpaceMethod::esdf;  // S-Graphs+ associates by centre distance only
   // TS-graphs segments the whole level's free space each time: the latest footprint is the
   // most complete one, and one that a newly mapped wall cut smaller is the right one.
-  if (method != "esdf") {
-    rooms::RoomMap check(config);  // the key's value is still checked
-    config.footprint = "latest";
-  }
+  if (method != FreeSpaceMethod::esdf) config.footprint = rooms::FootprintPolicy::latest;
   return config;
 }
 
@@ -46,14 +44,7 @@ RoomLayer::RoomLayer(RoomLayerSettings settings)
       timer_trigger_(settings_.timer),
       map_(association_for(settings_.association, settings_.layer.free_space_method)),
       wall_tops_(settings_.sight.cell) {
-  const RoomLayerConfig& c = settings_.layer;
-  if (c.free_space_method != "traversable" && c.free_space_method != "esdf")
-    throw std::invalid_argument("free_space_method must be traversable or esdf, not '" + c.free_space_method +
-                                "'");
-  if (c.room_trigger != "flush" && c.room_trigger != "timer")
-    throw std::invalid_argument("room_trigger must be flush or timer, not '" + c.room_trigger + "'");
-  if (!(c.max_floor_slope > 0.0)) throw std::invalid_argument("max_floor_slope must be > 0");
-  if (!(c.floor_window > 0.0)) throw std::invalid_argument("floor_window must be > 0");
+  check_config(settings_.layer, "RoomLayer");
 }
 
 bool RoomLayer::on_level_floor(const Eigen::Vector3d& floor) {
@@ -122,7 +113,7 @@ std::vector<RoomEventRecord> RoomLayer::update(const RoomLayerInput& input) {
   if (!on_level_floor(floor)) return {};
   const int level = level_of(floor.z());
   if (!esdf()) trace(input, level);
-  if (settings_.layer.room_trigger == "timer") return update_timer(input, floor, level);
+  if (settings_.layer.room_trigger == RoomTrigger::timer) return update_timer(input, floor, level);
   KeyframeSpace space;
   const bool in_free_space = robot_space(input, floor, space);
   if (in_free_space && !esdf())
@@ -333,7 +324,7 @@ void RoomLayer::clear_segment() {
 }
 
 std::vector<RoomEventRecord> RoomLayer::finish(const RoomLayerInput& input) {
-  if (settings_.layer.room_trigger != "flush") return {};
+  if (settings_.layer.room_trigger != RoomTrigger::flush) return {};
   for (const KeyframeSpace& space : pending_) commit(space);
   pending_.clear();
   std::vector<RoomEventRecord> events;

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "tsgraphs/core/pose.hpp"
+#include "tsgraphs/pipeline/room_layer_config.hpp"
 #include "tsgraphs/freespace/esdf_free_space.hpp"
 #include "tsgraphs/freespace/sight_map.hpp"
 #include "tsgraphs/freespace/wall_top_rays.hpp"
@@ -34,51 +35,9 @@
 #include "tsgraphs/rooms/room_segmentation.hpp"
 #include "tsgraphs/rooms/room_timer_trigger.hpp"
 #include "tsgraphs/rooms/sgraphs_room_extraction.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::pipeline {
-
-struct RoomLayerConfig {
-  std::string free_space_method = "traversable";  ///< "traversable" (TS-graphs) or "esdf" (S-Graphs+)
-  std::string room_trigger = "flush";             ///< "flush" (TS-graphs) or "timer" (S-Graphs+)
-  double free_space_radius = 8.0;                 ///< free space is computed within this of the robot (m)
-  int obstacle_keyframes = 5;    ///< obstacle points come from the clouds of this many latest keyframes
-  double level_tolerance = 1.5;  ///< floors within this height of a known level belong to it (m)
-  double obstacle_voxel = 0.2;   ///< obstacle candidate points are thinned to this (m)
-  double segment_radius = 2.5;   ///< flush: only the cluster's vertices this near the robot along the free
-                                 ///< space join the segment (m): the aisle it walks, not everything in view
-  double min_segment_length = 2.0;  ///< flush: a segment walked less than this (a corner, a doorway passed
-                                    ///< through) is not extracted but carried into the next one (m)
-  double min_visit_length = 1.0;  ///< flush: a space the segment's path runs this far in is extracted (m); a
-                                  ///< step through a doorway is no visit
-  double max_frontier = 0.1;  ///< flush: a space more than this share of whose edge borders the unseen waits
-                              ///< for a later flush (or the end): its footprint is still growing
-  double level_band = 0.3;    ///< flush: ground within this height of the walked floor is the level's (m):
-                              ///< steps, not a ramp's rise
-  double max_floor_slope =
-      0.05;  ///< a level's floor rises less than this per metre walked (1:20, where building codes
-             ///< call a walk a ramp); on a steeper path (ramp, stairs) the robot is between levels,
-             ///< and steeper ground round a node (a ramp's foot) is no floor of the level
-  double floor_window = 2.0;  ///< the floor's rise is measured over this much of the path, the ground's over
-                              ///< this square round a node (m)
-
-  template <class V>
-  void visit(V& v) {
-    v("free_space_method", free_space_method, OneOf{"traversable", "esdf"});
-    v("room_trigger", room_trigger, OneOf{"flush", "timer"});
-    v("free_space_radius", free_space_radius, above(0.0, 100.0));
-    v("obstacle_keyframes", obstacle_keyframes, between(1, 1000));
-    v("level_tolerance", level_tolerance, above(0.0, 100.0));
-    v("obstacle_voxel", obstacle_voxel, between(0.01, 10.0));
-    v("segment_radius", segment_radius, between(0.0, 1000.0));
-    v("min_segment_length", min_segment_length, between(0.0, 1000.0));
-    v("min_visit_length", min_visit_length, between(0.0, 1000.0));
-    v("max_frontier", max_frontier, between(0.0, 1.0));
-    v("level_band", level_band, between(0.0, 100.0));
-    v("max_floor_slope", max_floor_slope, between(0.0, 100.0));
-    v("floor_window", floor_window, above(0.0, 1000.0));
-  }
-};
 
 /// Every parameter the room layer uses, one struct per module.
 struct RoomLayerSettings {
@@ -128,7 +87,7 @@ struct RoomLayerInput {
 
 class RoomLayer {
  public:
-  /// Throws std::invalid_argument for an unknown free_space_method, room_trigger or footprint policy.
+  /// Throws std::invalid_argument for a layer or association config out of its limits.
   explicit RoomLayer(RoomLayerSettings settings);
 
   /// Processes one keyframe; returns the room events it produced (0 or 1).
@@ -157,7 +116,7 @@ class RoomLayer {
     Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< the robot's floor point
   };
 
-  bool esdf() const { return settings_.layer.free_space_method == "esdf"; }
+  bool esdf() const { return settings_.layer.free_space_method == FreeSpaceMethod::esdf; }
   /// The robot's free-space cluster at this keyframe; false when the robot is in none.
   bool robot_space(const RoomLayerInput& input, const Eigen::Vector3d& floor, KeyframeSpace& out);
   std::vector<RoomEventRecord> update_flush(const RoomLayerInput& input, KeyframeSpace space, int level,

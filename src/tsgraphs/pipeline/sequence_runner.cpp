@@ -260,7 +260,8 @@ class SequenceRun {
   /// Registration, or the poses' motion: auto registers when scans are farther apart than the
   /// sweep lasts by max_interval_ratio, as then the poses miss the motion inside a sweep.
   bool register_sweep(std::size_t i, const PointCloud& scan) const {
-    if (deskew_.motion != "auto") return deskew_.motion == "registration";
+    if (deskew_.motion != odometry::DeskewMotion::automatic)
+      return deskew_.motion == odometry::DeskewMotion::registration;
     if (info_.times.size() < 2) return false;
     const std::size_t a = i + 1 < info_.times.size() ? i : i - 1;
     const double interval = info_.times[a + 1] - info_.times[a];
@@ -273,7 +274,7 @@ class SequenceRun {
   const io::SequenceInfo& info_;
   Pipeline& pipeline_;
   const RunCallbacks& callbacks_;
-  const DeskewConfig& deskew_;
+  const odometry::DeskewConfig& deskew_;
   KeyframeSelector candidates_;  // guesses the keyframes from odometry alone
   const bool presence_first_;
   RunInfo run_;

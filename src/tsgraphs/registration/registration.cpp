@@ -27,22 +27,6 @@ namespace {
 using PclPoint = pcl::PointXYZ;
 using PclCloud = pcl::PointCloud<PclPoint>;
 
-// A point's covariance needs at least this many neighbours to be a 3-D spread (GICP).
-constexpr int kMinCovarianceNeighbours = 3;
-
-void check_config(const RegistrationConfig& c) {
-  const auto fail = [](const std::string& what) {
-    throw std::invalid_argument("RegistrationConfig: " + what);
-  };
-  if (!(c.voxel_size >= 0.0) || !std::isfinite(c.voxel_size)) fail("voxel_size must be >= 0");
-  if (!(c.max_correspondence_distance > 0.0)) fail("max_correspondence_distance must be > 0");
-  if (!(c.fine_correspondence_distance >= 0.0)) fail("fine_correspondence_distance must be >= 0");
-  if (c.max_iterations < 1) fail("max_iterations must be >= 1");
-  if (c.k_correspondences < kMinCovarianceNeighbours) fail("k_correspondences must be >= 3");
-  if (!(c.transformation_epsilon > 0.0)) fail("transformation_epsilon must be > 0");
-  if (!(c.fitness_distance > 0.0)) fail("fitness_distance must be > 0");
-}
-
 // GICP's covariance of a point: its neighbourhood's principal directions, with the two largest
 // spreads set to 1 and the smallest to this (the surface's thickness relative to its extent):
 // PCL's default, which the registration used before covariances were prepared here.
@@ -190,7 +174,7 @@ PreparedCloud& PreparedCloud::operator=(const PreparedCloud&) = default;
 std::size_t PreparedCloud::size() const { return data_ ? data_->cloud->size() : 0; }
 
 PreparedCloud prepare_cloud(const PointCloud& cloud, const RegistrationConfig& config) {
-  check_config(config);
+  check_config(config, "RegistrationConfig");
   auto data = std::make_shared<PreparedCloud::Data>();
   data->voxel_size = config.voxel_size;
   data->k = config.k_correspondences;
@@ -209,7 +193,7 @@ PreparedCloud prepare_cloud(const PointCloud& cloud, const RegistrationConfig& c
 
 RegistrationResult register_clouds(const PreparedCloud& source, const PreparedCloud& target,
                                    const Pose3& initial_guess, const RegistrationConfig& config) {
-  check_config(config);
+  check_config(config, "RegistrationConfig");
   for (const PreparedCloud* c : {&source, &target}) {
     if (!c->data_) throw std::invalid_argument("register_clouds: a cloud was not prepared");
     if (c->data_->voxel_size != config.voxel_size || c->data_->k != config.k_correspondences)

@@ -6,7 +6,7 @@
 
 #include "tsgraphs/core/point_cloud.hpp"
 #include "tsgraphs/core/pose.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::registration {
 
@@ -22,13 +22,17 @@ struct RegistrationConfig {
 
   template <class V>
   void visit(V& v) {
-    v("voxel_size", voxel_size, between(0.0, 100.0));
-    v("max_correspondence_distance", max_correspondence_distance, above(0.0, 100.0));
-    v("fine_correspondence_distance", fine_correspondence_distance, between(0.0, 100.0));
-    v("max_iterations", max_iterations, between(1, 1000));
-    v("k_correspondences", k_correspondences, between(3, 100));
-    v("transformation_epsilon", transformation_epsilon, above(0.0, 1.0));
-    v("fitness_distance", fitness_distance, above(0.0, 100.0));
+    v("voxel_size", voxel_size, between(0.0, 100.0), "m; both clouds are thinned to this; 0 = keep all");
+    v("max_correspondence_distance", max_correspondence_distance, above(0.0, 100.0),
+      "m; correspondence gate of the first pass");
+    v("fine_correspondence_distance", fine_correspondence_distance, between(0.0, 100.0),
+      "m; gate of the second pass, for precision");
+    v("max_iterations", max_iterations, between(1, 1000), "GICP iterations");
+    v("k_correspondences", k_correspondences, between(3, 100), "neighbours for each point's covariance");
+    v("transformation_epsilon", transformation_epsilon, above(0.0, 1.0),
+      "convergence: change of the transform between iterations");
+    v("fitness_distance", fitness_distance, above(0.0, 100.0),
+      "m; only matches nearer than this count in the fitness");
   }
 };
 

@@ -235,8 +235,6 @@ WallCandidate wall_of(const GridFrame& f, double theta, int side, double offset,
 
 }  // namespace
 
-void MapWallsConfig::validate() const { check_ranges(*this, "MapWallsConfig"); }
-
 std::vector<std::uint8_t> open_free_space(const GridFrame& frame, const std::vector<std::uint8_t>& free,
                                           double radius) {
   if (free.size() != frame.size())
@@ -253,7 +251,7 @@ std::vector<std::uint8_t> open_free_space(const GridFrame& frame, const std::vec
 
 std::vector<WallCandidate> map_walls(const GridFrame& frame, const std::vector<std::uint8_t>& free,
                                      const MapWallsConfig& config) {
-  config.validate();
+  check_config(config, "MapWallsConfig");
   if (free.size() != frame.size())
     throw std::invalid_argument("map_walls: the mask has " + std::to_string(free.size()) +
                                 " cells, the frame " + std::to_string(frame.size()));

@@ -23,7 +23,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 #include "tsgraphs/core/grid_frame.hpp"
 #include "tsgraphs/rooms/room.hpp"
 
@@ -41,18 +41,25 @@ struct MapWallsConfig {
   double min_direction_separation_deg = 10.0;  ///< directions are at least this far apart (deg)
   double wall_height = 2.6;  ///< m: the height given to the walls (a map's walls reach the ceiling)
 
-  void validate() const;
-
   template <class V>
   void visit(V& v) {
-    v("robot_radius", robot_radius, between(0.0, 10.0));
-    v("min_piece", min_piece, above(0.0, 100.0));
-    v("min_wall", min_wall, above(0.0, 1000.0));
-    v("min_free_standing", min_free_standing, above(0.0, 1000.0));
-    v("max_gap", max_gap, between(0.0, 100.0));
-    v("min_direction_share", min_direction_share, above(0.0, 1.0));
-    v("min_direction_separation_deg", min_direction_separation_deg, above(0.0, 90.0));
-    v("wall_height", wall_height, above(0.0, 100.0));
+    v("robot_radius", robot_radius, between(0.0, 10.0),
+      "the free space is opened by a disc of this radius (m): laser fans and ragged fringes have no edge");
+    v("min_piece", min_piece, above(0.0, 100.0),
+      "a straight run of edge shorter than this is clutter, no wall (m)");
+    v("min_wall", min_wall, above(0.0, 1000.0),
+      "a wall face's pieces add up to at least this (m): a door post alone is none");
+    v("min_free_standing", min_free_standing, above(0.0, 1000.0),
+      "...and a face of what stands free to this (m): longer than furniture (a partition, cabinets in a "
+      "row)");
+    v("max_gap", max_gap, between(0.0, 100.0),
+      "a run of edge continues over gaps of this many cells (a ragged laser edge)");
+    v("min_direction_share", min_direction_share, above(0.0, 1.0),
+      "a further wall direction explains this share of the best one's wall length");
+    v("min_direction_separation_deg", min_direction_separation_deg, above(0.0, 90.0),
+      "wall directions are at least this far apart (deg)");
+    v("wall_height", wall_height, above(0.0, 100.0),
+      "the height given to a map's walls (m): they reach the ceiling");
   }
 };
 

@@ -9,12 +9,7 @@
 namespace tsgraphs::rooms {
 
 RoomMap::RoomMap(RoomAssociationConfig config) : config_(std::move(config)) {
-  if (config_.footprint != "first" && config_.footprint != "latest" && config_.footprint != "largest")
-    throw std::invalid_argument("footprint must be first, latest or largest, not '" + config_.footprint +
-                                "'");
-  if (!(config_.min_overlap > 0.0 && config_.min_overlap <= 1.0))
-    throw std::invalid_argument("min_overlap must be in (0, 1]");
-  if (!(config_.room_dist_threshold >= 0.0)) throw std::invalid_argument("room_dist_threshold must be >= 0");
+  check_config(config_, "RoomMap");
 }
 
 namespace {
@@ -74,7 +69,8 @@ RoomAssociation RoomMap::add_extraction(const ExtractedRoom& room, int level) {
     MappedRoom& mapped = rooms_.at(id);
     ++mapped.extraction_count;
     const bool larger = area(footprint) > area(mapped.footprint());
-    if (config_.footprint == "latest" || (config_.footprint == "largest" && larger)) {
+    if (config_.footprint == FootprintPolicy::latest ||
+        (config_.footprint == FootprintPolicy::largest && larger)) {
       mapped.rect = room.rect;
       mapped.outline = room.outline;
     }

@@ -11,9 +11,19 @@
 
 #include "tsgraphs/core/rect.hpp"
 #include "tsgraphs/rooms/room.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::rooms {
+
+/// What a re-detection does to the mapped footprint.
+enum class FootprintPolicy {
+  first,   ///< keeps it
+  latest,  ///< replaces it
+  largest  ///< replaces it when the new one is larger (a room seen more completely)
+};
+inline const Choices<FootprintPolicy> kFootprintPolicies{{FootprintPolicy::first, "first"},
+                                                         {FootprintPolicy::latest, "latest"},
+                                                         {FootprintPolicy::largest, "largest"}};
 
 struct RoomAssociationConfig {
   double min_overlap = 0.5;  ///< footprints of which the smaller has this share of its area inside the other
@@ -22,15 +32,18 @@ struct RoomAssociationConfig {
   double room_dist_threshold = 1.0;  ///< ...or centres within this distance (m)
   bool match_by_footprint =
       true;  ///< false: centres only (S-Graphs+); set by the room layer from its mode, not a file key
-  /// What a re-detection does to the mapped footprint: "first" keeps it, "latest" replaces it,
-  /// "largest" replaces it when the new one is larger (a room seen more completely).
-  std::string footprint = "largest";
+  FootprintPolicy footprint = FootprintPolicy::largest;
 
   template <class V>
   void visit(V& v) {
-    v("min_overlap", min_overlap, above(0.0, 1.0));
-    v("room_dist_threshold", room_dist_threshold, between(0.0, 1000.0));
-    v("footprint", footprint, OneOf{"first", "latest", "largest"});
+    v("min_overlap", min_overlap, above(0.0, 1.0),
+      "footprints of which the smaller has this share of its area inside the other are one room (a room seen "
+      "first from its door, later whole; spaces of one segmentation never overlap)");
+    v("room_dist_threshold", room_dist_threshold, between(0.0, 1000.0),
+      "...or centres within this distance (m); in esdf mode the centre rule alone (S-Graphs+)");
+    v("footprint", footprint, kFootprintPolicies,
+      "S-Graphs+ mode: a re-detection's footprint: first keeps the mapped one, latest replaces it, largest "
+      "replaces it when larger (TS-graphs always takes the latest segmentation)");
   }
 };
 

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 
 #include "tsgraphs/core/polygon.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::rooms {
 
@@ -26,12 +26,19 @@ struct AisleMeasureConfig {
 
   template <class V>
   void visit(V& v) {
-    v("neighbourhood_radius", neighbourhood_radius, above(0.0, 100.0));
-    v("min_anisotropy", min_anisotropy, between(1.0, 1e6));
-    v("slice_half_width", slice_half_width, above(0.0, 100.0));
-    v("max_gap", max_gap, above(0.0, 100.0));
-    v("min_points", min_points, between(1, 10000000));
-    v("width_directions", width_directions, between(1, 360));
+    v("neighbourhood_radius", neighbourhood_radius, above(0.0, 100.0),
+      "cluster points within this of the robot give the aisle direction (m)");
+    v("min_anisotropy", min_anisotropy, between(1.0, 1e6),
+      "principal std ratio below this: no defined direction (an open room)");
+    v("slice_half_width", slice_half_width, above(0.0, 100.0),
+      "cross-section: cluster points within this of the line through the robot (m)");
+    v("max_gap", max_gap, above(0.0, 100.0),
+      "the cross-section ends at a gap wider than this between points (m)");
+    v("min_points", min_points, between(1, 10000000),
+      "fewer neighbourhood points: no measurement (the map near the robot is still filling in)");
+    v("width_directions", width_directions, between(1, 360),
+      "the width is the shortest cross-section over this many directions: a room's width does not flip with "
+      "its axis");
   }
 };
 
@@ -64,11 +71,17 @@ struct RoomFlushConfig {
 
   template <class V>
   void visit(V& v) {
-    v("width_change_ratio", width_change_ratio, between(0.0, 100.0));
-    v("direction_change_deg", direction_change_deg, between(0.0, 180.0));
-    v("max_aisle_width", max_aisle_width, above(0.0, 1000.0));
-    v("confirm_keyframes", confirm_keyframes, between(1, 1000));
-    v("doorway_ratio", doorway_ratio, between(0.0, 1.0));
+    v("width_change_ratio", width_change_ratio, between(0.0, 100.0),
+      "flush when |width - median| > ratio * median of the segment");
+    v("direction_change_deg", direction_change_deg, between(0.0, 180.0),
+      "flush when the aisle turns by more than this from the segment's axis...");
+    v("max_aisle_width", max_aisle_width, above(0.0, 1000.0),
+      "...where it is narrower than this (m); turning in a wider space is walking a room, and widths both "
+      "above it are both open space (no width change)");
+    v("confirm_keyframes", confirm_keyframes, between(1, 1000),
+      "a change must hold for this many keyframes in a row (a map still filling in is not one)");
+    v("doorway_ratio", doorway_ratio, between(0.0, 1.0),
+      "a blip narrower than this share of the space on both sides is a doorway (flush)");
   }
 };
 

@@ -249,10 +249,6 @@ bool crosses_a_wall(const OrientedRect& rect, const std::vector<WallLine>& walls
 
 }  // namespace
 
-void RoomSegmentationConfig::validate() const {
-  check_ranges(*this, "RoomSegmentationConfig");  // each field's limits, declared in visit()
-}
-
 bool short_of_reach(const WallCandidate& wall, double floor_z, const RoomSegmentationConfig& cfg) {
   return of_level(wall, floor_z, cfg) && wall.z1 < floor_z + cfg.wall_reach_height;
 }
@@ -423,7 +419,7 @@ SegmentedSpace footprint(const Polygon2& outline, const std::vector<WallLine>& s
 }  // namespace
 
 RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentationConfig& cfg) {
-  cfg.validate();
+  check_config(cfg, "RoomSegmentationConfig");
   RoomSegmentation out;
   if (in.free_space.empty() && in.seen.empty()) return out;
   const GridFrame f = segmentation_frame(in, cfg);

@@ -24,7 +24,7 @@
 
 #include "tsgraphs/core/grid_frame.hpp"
 #include "tsgraphs/rooms/room.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::rooms {
 
@@ -88,35 +88,72 @@ struct RoomSegmentationConfig {
       0.3;  ///< rays end on a wall's face short of a space grown to its line: an unseen strip
             ///< this wide (m) at a region's edge before a wall or seen space is no frontier
 
-  /// Throws std::invalid_argument("RoomSegmentationConfig: KEY must ...") for a value out of range.
-  void validate() const;
-
   template <class V>
   void visit(V& v) {
-    v("cell", cell, between(0.02, 10.0));
-    v("max_normal_z", max_normal_z, between(0.0, 0.99));
-    v("min_wall_height", min_wall_height, between(0.0, 100.0));
-    v("wall_reach_height", wall_reach_height, between(0.0, 100.0));
-    v("wall_top_margin", wall_top_margin, between(0.0, 100.0));
-    v("wall_top_beyond", wall_top_beyond, between(0.0, 100.0));
-    v("wall_top_share", wall_top_share, above(0.0, 1.0));
-    v("wall_joint_gap", wall_joint_gap, between(0.0, 100.0));
-    v("max_door_width", max_door_width, between(0.0, 100.0));
-    v("door_narrowing", door_narrowing, between(0.0, 1.0));
-    v("min_door_post", min_door_post, between(0.0, 100.0));
-    v("opening_share", opening_share, between(0.0, 1.0));
-    v("line_tolerance", line_tolerance, between(0.0, 10.0));
-    v("min_region_area", min_region_area, between(0.0, 1e6));
-    v("rect_fill", rect_fill, above(0.0, 1.0));
-    v("wall_snap", wall_snap, between(0.0, 100.0));
-    v("parallel_tolerance_deg", parallel_tolerance_deg, between(0.0, 89.0));
-    v("min_wall_overlap", min_wall_overlap, between(0.0, 1.0));
-    v("corridor_aspect", corridor_aspect, between(1.0, 1e6));
-    v("simplify_tolerance", simplify_tolerance, between(0.0, 100.0));
-    v("bend_tolerance", bend_tolerance, between(0.0, 100.0));
-    v("min_bend_deg", min_bend_deg, above(0.0, 179.0));
-    v("min_fit_share", min_fit_share, between(0.0, 100.0));
-    v("frontier_reach", frontier_reach, between(0.0, 100.0));
+    v("cell", cell, between(0.02, 10.0),
+      "raster cell (m): an eighth of the narrowest door, finer than the node map");
+    v("max_normal_z", max_normal_z, between(0.0, 0.99), "|n.z| above this: not a vertical plane, no wall");
+    v("min_wall_height", min_wall_height, between(0.0, 100.0),
+      "lower planes are desks and tables, not walls (m); a plane short of wall_reach_height bounds only if "
+      "no ray saw above its top");
+    v("wall_reach_height", wall_reach_height, between(0.0, 100.0),
+      "a wall bounds a level when its points span this height above the floor (m), or no ray saw above its "
+      "top (wall_top_*): above a door's lintel and the tallest furniture (shelves end by 2.2 m), below the "
+      "ceiling; a lintel, the storey above, a shelf row or a railing does not");
+    v("wall_top_margin", wall_top_margin, between(0.0, 100.0),
+      "a ray this far above a plane's highest point over its line saw above it (m)");
+    v("wall_top_beyond", wall_top_beyond, between(0.0, 100.0),
+      "...if it ends at least this far past the plane's line (m): not on its face");
+    v("wall_top_share", wall_top_share, above(0.0, 1.0),
+      "...along this share of its length: its top is seen (a shelf, a partition), it bounds a level only if "
+      "it spans wall_reach_height; an unseen top (a low sensor sees a wall's foot) may reach the ceiling: it "
+      "bounds the level");
+    v("wall_joint_gap", wall_joint_gap, between(0.0, 100.0),
+      "...if one of its ends is this close to another wall of the level, across it (a corner, a T; m): walls "
+      "join into one structure, a free-standing shelf row or screen one walks round does not; two walls that "
+      "would cross within this of both their ends meet at a corner (both mapped short of it: it is closed)");
+    v("max_door_width", max_door_width, between(0.0, 100.0),
+      "a wall that ends this close to another wall has a door (or an opening) between them: it is drawn on "
+      "to it (m)");
+    v("door_narrowing", door_narrowing, between(0.0, 1.0),
+      "spaces meeting where the clearance is at most this share of the smaller one's widest clearance (and "
+      "at most max_door_width / 2) meet at a door (rooms/narrowings)");
+    v("min_door_post", min_door_post, between(0.0, 100.0),
+      "...when it is at least this long, and so is a wall it meets across (m): a pillar's face is no wall to "
+      "close a gap to; a wall in line with it (a pier between two doors) is a door post whatever its length");
+    v("opening_share", opening_share, between(0.0, 1.0),
+      "walls on one line (within line_tolerance) also close the openings between them narrower than this "
+      "share of the length they cover: a wide opening in a long wall (a corridor's side past a bay)");
+    v("line_tolerance", line_tolerance, between(0.0, 10.0),
+      "walls whose ends lie this close to one line are on it: one wall seen in pieces, a row of rooms (m)");
+    v("min_region_area", min_region_area, between(0.0, 1e6),
+      "m^2: a smaller region (a doorway's strip between a wall's two faces, a corner square cut off) is no "
+      "space of its own: it joins the one it opens to");
+    v("rect_fill", rect_fill, above(0.0, 1.0),
+      "a region filling this share of its smallest enclosing rectangle has it as footprint (else its "
+      "outline)");
+    v("wall_snap", wall_snap, between(0.0, 100.0),
+      "a rectangle's side this near a parallel wall facing into it lies on the wall (m): the grown free "
+      "space stops up to a node cell and a raster cell short of it");
+    v("parallel_tolerance_deg", parallel_tolerance_deg, between(0.0, 89.0),
+      "a wall is parallel to a side within this");
+    v("min_wall_overlap", min_wall_overlap, between(0.0, 1.0),
+      "...and runs along at least this share of the side");
+    v("corridor_aspect", corridor_aspect, between(1.0, 1e6),
+      "a region this many times longer than wide is a corridor segment");
+    v("simplify_tolerance", simplify_tolerance, between(0.0, 100.0),
+      "an outline strays at most this from the region's cell edges (m)");
+    v("bend_tolerance", bend_tolerance, between(0.0, 100.0),
+      "a corridor's outline, for finding its bends, strays at most this (m): a chair's or a door jamb's "
+      "notch is no bend");
+    v("min_bend_deg", min_bend_deg, above(0.0, 179.0),
+      "a corridor's inner corner turning at least this is a bend it is cut at");
+    v("min_fit_share", min_fit_share, between(0.0, 100.0),
+      "a region narrower everywhere than this share of the robot's width (2 lambda) is no space: a strip "
+      "past a wall's line");
+    v("frontier_reach", frontier_reach, between(0.0, 100.0),
+      "rays end on a wall's face short of a space grown to its line: an unseen strip this wide (m) at a "
+      "region's edge is no frontier");
   }
 };
 
@@ -169,7 +206,7 @@ bool short_of_reach(const WallCandidate& wall, double floor_z, const RoomSegment
 bool crosses_wall(const Vec2& a, const Vec2& b, const std::vector<WallCandidate>& walls, double floor_z,
                   const RoomSegmentationConfig& config = {});
 
-/// Segments one level (config.validate() first). Deterministic: the same input gives the same spaces in the
+/// Segments one level (check_config first). Deterministic: the same input gives the same spaces in the
 /// same order (by their first cell).
 RoomSegmentation segment_rooms(const SegmentationInput& input, const RoomSegmentationConfig& config = {});
 

@@ -1,6 +1,6 @@
 #pragma once
 /// The S-Graphs+ baseline's room trigger: extract rooms at a fixed period of the data's time.
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::rooms {
 
@@ -9,7 +9,7 @@ struct RoomTimerConfig {
 
   template <class V>
   void visit(V& v) {
-    v("period_s", period_s, above(0.0, 1e6));
+    v("period_s", period_s, above(0.0, 1e6), "extraction period (s), S-Graphs+'s 1.0 s");
   }
 };
 

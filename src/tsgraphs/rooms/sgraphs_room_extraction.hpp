@@ -21,7 +21,7 @@
 #include <Eigen/Core>
 
 #include "tsgraphs/rooms/room.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::rooms {
 
@@ -39,12 +39,17 @@ struct SgraphsRoomExtractionConfig {
 
   template <class V>
   void visit(V& v) {
-    v("point_distance", point_distance, above(0.0, 100.0));
-    v("min_points", min_points, between(1, 10000000));
-    v("min_width", min_width, between(0.0, 1000.0));
-    v("min_cluster_extent", min_cluster_extent, between(0.0, 1000.0));
-    v("max_center_offset", max_center_offset, above(0.0, 1000.0));
-    v("max_normal_z", max_normal_z, above(0.0, 0.99));
+    v("point_distance", point_distance, above(0.0, 100.0),
+      "a cluster point this close to a plane (either side) counts for it (m; S-Graphs: 1.5)");
+    v("min_points", min_points, between(1, 10000000),
+      "a class's winning plane needs at least this many points (S-Graphs' vertex_neigh_thres: 2)");
+    v("min_width", min_width, between(0.0, 1000.0),
+      "a pair's planes closer than this are no room or corridor (m; S-Graphs: 1.0)");
+    v("min_cluster_extent", min_cluster_extent, between(0.0, 1000.0),
+      "a cluster narrower than this along map x or y gives nothing (m; S-Graphs: 0.5)");
+    v("max_center_offset", max_center_offset, above(0.0, 1000.0),
+      "the footprint's centre must lie this close to a cluster point (m; S-Graphs: 0.5)");
+    v("max_normal_z", max_normal_z, above(0.0, 0.99), "|n.z| above this: not a vertical plane, ignored");
   }
 };
 

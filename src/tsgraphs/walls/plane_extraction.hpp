@@ -8,7 +8,7 @@
 
 #include "tsgraphs/core/plane.hpp"
 #include "tsgraphs/core/point_cloud.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::walls {
 
@@ -30,17 +30,23 @@ struct PlaneExtractionConfig {
 
   template <class V>
   void visit(V& v) {
-    v("normal_neighbours", normal_neighbours, between(3, 100));
-    v("max_vertical_normal_z", max_vertical_normal_z, between(0.0, 1.0));
-    v("min_horizontal_normal_z", min_horizontal_normal_z, between(0.0, 1.0));
-    v("distance_threshold", distance_threshold, above(0.0, 10.0));
-    v("normal_angle_threshold_deg", normal_angle_threshold_deg, above(0.0, 90.0));
-    v("min_inliers", min_inliers, between(3, 10000000));
-    v("min_extent", min_extent, between(0.0, 1000.0));
-    v("cluster_tolerance", cluster_tolerance, between(0.0, 100.0));
-    v("max_planes", max_planes, between(1, 1000));
-    v("max_range", max_range, above(0.0, 10000.0));
-    v("point_voxel", point_voxel, between(0.01, 100.0));
+    v("normal_neighbours", normal_neighbours, between(3, 100), "k nearest neighbours for point normals");
+    v("max_vertical_normal_z", max_vertical_normal_z, between(0.0, 1.0),
+      "|n_z| at most this: a wall candidate");
+    v("min_horizontal_normal_z", min_horizontal_normal_z, between(0.0, 1.0),
+      "|n_z| at least this: a floor or ceiling candidate");
+    v("distance_threshold", distance_threshold, above(0.0, 10.0), "m; RANSAC inlier distance");
+    v("normal_angle_threshold_deg", normal_angle_threshold_deg, above(0.0, 90.0),
+      "inlier normals within this of the plane's");
+    v("min_inliers", min_inliers, between(3, 10000000), "smallest face kept (points after prefiltering)");
+    v("min_extent", min_extent, between(0.0, 1000.0),
+      "m; shortest horizontal length of a wall face: a stretch of wall between a door and a corner (a "
+      "pillar's sides are faces too)");
+    v("cluster_tolerance", cluster_tolerance, between(0.0, 100.0),
+      "m; a gap this wide splits one plane into two faces");
+    v("max_planes", max_planes, between(1, 1000), "at most this many planes per keyframe");
+    v("max_range", max_range, above(0.0, 10000.0), "m; farther points are not used for planes");
+    v("point_voxel", point_voxel, between(0.01, 100.0), "m; inlier points kept per face are thinned to this");
   }
 };
 

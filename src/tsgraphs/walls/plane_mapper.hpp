@@ -12,7 +12,7 @@
 
 #include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
-#include "tsgraphs/core/config_range.hpp"
+#include "tsgraphs/core/config_fields.hpp"
 
 namespace tsgraphs::walls {
 
@@ -29,15 +29,19 @@ struct PlaneMapperConfig {
 
   template <class V>
   void visit(V& v) {
-    v("sigma_angle_deg", sigma_angle_deg, above(0.0, 90.0));
-    v("sigma_distance", sigma_distance, above(0.0, 100.0));
-    v("max_mahalanobis", max_mahalanobis, above(0.0, 1e6));
-    v("overlap_distance", overlap_distance, between(0.01, 100.0));
-    v("min_overlap_ratio", min_overlap_ratio, between(0.0, 1.0));
-    v("merge_angle_deg", merge_angle_deg, between(0.0, 90.0));
-    v("merge_distance", merge_distance, between(0.0, 100.0));
-    v("merge_overlap_distance", merge_overlap_distance, between(0.01, 100.0));
-    v("landmark_voxel", landmark_voxel, between(0.01, 100.0));
+    v("sigma_angle_deg", sigma_angle_deg, above(0.0, 90.0), "std of a plane's normal direction");
+    v("sigma_distance", sigma_distance, above(0.0, 100.0), "m; std of a plane's offset");
+    v("max_mahalanobis", max_mahalanobis, above(0.0, 1e6), "association gate on the Mahalanobis distance");
+    v("overlap_distance", overlap_distance, between(0.01, 100.0),
+      "m; an observed point this near a mapped point overlaps it");
+    v("min_overlap_ratio", min_overlap_ratio, between(0.0, 1.0),
+      "share of observed points that must overlap");
+    v("merge_angle_deg", merge_angle_deg, between(0.0, 90.0), "duplicates: normals within this angle,");
+    v("merge_distance", merge_distance, between(0.0, 100.0), "m; offsets within this,");
+    v("merge_overlap_distance", merge_overlap_distance, between(0.01, 100.0),
+      "m; and point sets within this of each other");
+    v("landmark_voxel", landmark_voxel, between(0.01, 100.0),
+      "m; a mapped plane's points are thinned to this");
   }
 };
 
