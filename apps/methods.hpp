@@ -3,19 +3,19 @@
 /// ablations (docs/demo.md), each a free-space method and a room trigger.
 #include <string>
 
-#include "tsgraphs/pipeline/room_layer_config.hpp"
+#include "tsgraphs/room_layer/room_layer_config.hpp"
 
 namespace tsgraphs::app {
 
 struct Method {
   const char* name;
   const char* slug;  ///< run folder name (suffix in the demo)
-  pipeline::FreeSpaceMethod free_space;
-  pipeline::RoomTrigger room_trigger;
+  room_layer::FreeSpaceMethod free_space;
+  room_layer::RoomTrigger room_trigger;
 };
 
-using pipeline::FreeSpaceMethod;
-using pipeline::RoomTrigger;
+using room_layer::FreeSpaceMethod;
+using room_layer::RoomTrigger;
 inline constexpr Method kMethods[] = {
     {"TS-graphs", "ts-graphs", FreeSpaceMethod::traversable, RoomTrigger::flush},
     {"S-Graphs+", "s-graphs-plus", FreeSpaceMethod::esdf, RoomTrigger::timer},

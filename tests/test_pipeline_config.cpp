@@ -311,8 +311,8 @@ TEST(PipelineConfig, RulesBetweenFieldsAreErrorsAtTheKeyTheyName) {
 TEST(PipelineConfig, BaselineModeIsTwoKeys) {
   const PipelineConfig c =
       parse_pipeline_config("room_layer:\n  free_space_method: esdf\n  room_trigger: timer\n", "p.yaml");
-  EXPECT_EQ(c.rooms.layer.free_space_method, FreeSpaceMethod::esdf);
-  EXPECT_EQ(c.rooms.layer.room_trigger, RoomTrigger::timer);
+  EXPECT_EQ(c.rooms.layer.free_space_method, room_layer::FreeSpaceMethod::esdf);
+  EXPECT_EQ(c.rooms.layer.room_trigger, room_layer::RoomTrigger::timer);
   EXPECT_DOUBLE_EQ(c.rooms.timer.period_s, 1.0);
 }
 

@@ -176,8 +176,8 @@ TEST_F(PlatformTest, NoWallSaysSoAndARunWithoutARoomSaysWhyAtItsEnd) {
   config.diagnostics.empty_layer_keyframes = 5;
   // The S-Graphs+ mode: rooms from walls only (the traversable mode's sight map makes a space of
   // rays alone, even under a bare ceiling: see the note).
-  config.rooms.layer.free_space_method = FreeSpaceMethod::esdf;
-  config.rooms.layer.room_trigger = RoomTrigger::timer;
+  config.rooms.layer.free_space_method = room_layer::FreeSpaceMethod::esdf;
+  config.rooms.layer.room_trigger = room_layer::RoomTrigger::timer;
   Pipeline p(config);
   // Only the ceiling's returns: nothing to walk on, nothing standing.
   walk(p, 8, [this](double x) {

@@ -21,17 +21,17 @@ Command add_run(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option(
          "--free-space", opt->free_space,
          "traversable (TS-graphs, default) or esdf (S-Graphs+); overrides room_layer.free_space_method")
-      ->check(CLI::IsMember(pipeline::kFreeSpaceMethods.words()));
+      ->check(CLI::IsMember(room_layer::kFreeSpaceMethods.words()));
   cmd->add_option("--room-trigger", opt->room_trigger,
                   "flush (TS-graphs, default) or timer (S-Graphs+); overrides room_layer.room_trigger")
-      ->check(CLI::IsMember(pipeline::kRoomTriggers.words()));
+      ->check(CLI::IsMember(room_layer::kRoomTriggers.words()));
   return {cmd, [opt, &global] {
             ScanSource source = open_scan_source(opt->source, "run", global.quiet);
-            pipeline::RoomLayerConfig& layer = source.config.rooms.layer;
+            room_layer::RoomLayerConfig& layer = source.config.rooms.layer;
             if (!opt->free_space.empty())
-              layer.free_space_method = *pipeline::kFreeSpaceMethods.parse(opt->free_space);
+              layer.free_space_method = *room_layer::kFreeSpaceMethods.parse(opt->free_space);
             if (!opt->room_trigger.empty())
-              layer.room_trigger = *pipeline::kRoomTriggers.parse(opt->room_trigger);
+              layer.room_trigger = *room_layer::kRoomTriggers.parse(opt->room_trigger);
             run(*source.sequence, opt->source.out, source.config, global.quiet, source.odometry);
             return 0;
           }};

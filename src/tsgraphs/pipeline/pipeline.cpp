@@ -436,9 +436,9 @@ void Pipeline::finish() {
   }
 }
 
-RoomLayerInput Pipeline::room_input(int keyframe) const {
+room_layer::RoomLayerInput Pipeline::room_input(int keyframe) const {
   const graph::KeyframeNode& kf = graph_.keyframes()[keyframe];
-  RoomLayerInput in;
+  room_layer::RoomLayerInput in;
   in.stamp = kf.stamp;
   in.keyframe = keyframe;
   in.pose = kf.pose;
@@ -459,7 +459,7 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
   for (const Eigen::Vector3f& p : voxel_downsample(near, config_.rooms.layer.obstacle_voxel).points)
     in.obstacle_candidates.push_back(p.cast<double>());
   // This keyframe's rays for the sight map (TS-graphs).
-  if (config_.rooms.layer.free_space_method == FreeSpaceMethod::traversable) {
+  if (config_.rooms.layer.free_space_method == room_layer::FreeSpaceMethod::traversable) {
     PointCloud own;
     const Eigen::Isometry3f T = kf.pose.cast<float>();
     for (const Eigen::Vector3f& p : keyframe_clouds_[keyframe].points) own.points.push_back(T * p);
@@ -483,8 +483,8 @@ RoomLayerInput Pipeline::room_input(int keyframe) const {
   return in;
 }
 
-void Pipeline::add_room_events(const std::vector<RoomEventRecord>& events) {
-  for (const RoomEventRecord& e : events) {
+void Pipeline::add_room_events(const std::vector<room_layer::RoomEventRecord>& events) {
+  for (const room_layer::RoomEventRecord& e : events) {
     room_events_.push_back(e);
     // A re-detection with the walls of the room's previous extraction: a room-based loop candidate.
     const auto previous = room_walls_.find(e.room_id);

@@ -89,14 +89,14 @@ class Pipeline {
   const walls::PlaneMapper& plane_map() const { return mapper_; }
   const ground::TraversableNodeMap& node_map() const { return node_map_; }
   const rooms::RoomMap& room_map() const { return rooms_.room_map(); }
-  const RoomLayer& room_layer() const { return rooms_; }
+  const room_layer::RoomLayer& room_layer() const { return rooms_; }
   /// The graph room node of mapped room `room_id`, -1 if it has none (a one-sided corridor).
   int room_node_of(int room_id) const {
     const auto it = room_nodes_.find(room_id);
     return it == room_nodes_.end() ? -1 : it->second.node;
   }
   /// Every room extraction so far, in time order.
-  const std::vector<RoomEventRecord>& room_events() const { return room_events_; }
+  const std::vector<room_layer::RoomEventRecord>& room_events() const { return room_events_; }
   /// The ground of the newest keyframe (level frame of its scan), for callers that draw it.
   const ground::GroundScan& last_ground() const { return last_ground_; }
   /// Every scan processed so far, in order (spilled to a temporary file beyond the newest).
@@ -123,9 +123,9 @@ class Pipeline {
   /// Loop closure at keyframe `id`: a room re-detected with its walls proposes first, then the
   /// distance rule.
   void close_loop(int id);
-  RoomLayerInput room_input(int keyframe) const;
+  room_layer::RoomLayerInput room_input(int keyframe) const;
   /// Records room events and puts new rooms, and merges, into the graph.
-  void add_room_events(const std::vector<RoomEventRecord>& events);
+  void add_room_events(const std::vector<room_layer::RoomEventRecord>& events);
   void move_rooms_with_graph();
   /// Prefilter, ground (scored against the scan's labels) and wall planes: what a keyframe uses.
   void run_keyframe_steps(const PointCloud& scan, const Pose3& odom, PreparedScan* out) const;
@@ -160,8 +160,8 @@ class Pipeline {
   KeyframeSelector selector_;
   walls::PlaneMapper mapper_;
   ground::TraversableNodeMap node_map_;
-  RoomLayer rooms_;
-  std::vector<RoomEventRecord> room_events_;
+  room_layer::RoomLayer rooms_;
+  std::vector<room_layer::RoomEventRecord> room_events_;
   struct RoomNodeLink {
     int node = -1;               ///< graph room id
     Vec2 center = Vec2::Zero();  ///< its centre when the room map last followed it

@@ -17,7 +17,7 @@
 #include "tsgraphs/pipeline/keyframe_selector.hpp"
 #include "tsgraphs/pipeline/platform.hpp"
 #include "tsgraphs/pipeline/prefilter.hpp"
-#include "tsgraphs/pipeline/room_layer.hpp"
+#include "tsgraphs/room_layer/room_layer.hpp"
 #include "tsgraphs/rooms/map_walls.hpp"
 #include "tsgraphs/walls/plane_extraction.hpp"
 #include "tsgraphs/walls/plane_mapper.hpp"
@@ -84,7 +84,7 @@ struct PipelineConfig {
   graph::RoomLoopClosureConfig room_loop_closure;       ///< loop candidates from room re-detections
   graph::KeyframeRetirementConfig keyframe_retirement;  ///< revisits' redundant keyframes leave the graph
   ScheduleConfig schedule;
-  RoomLayerSettings rooms;  ///< free space, triggers, extraction and association (room_layer.hpp)
+  room_layer::RoomLayerSettings rooms;  ///< free space, triggers, extraction and association (room_layer.hpp)
   DiagnosticsConfig diagnostics;
   rooms::MapWallsConfig map_walls;  ///< segment-map only: the walls of a 2-D occupancy map (map_walls.hpp)
   /// The ground keys a parameter file set ("num_min_pts", ...): the platform's preset does not

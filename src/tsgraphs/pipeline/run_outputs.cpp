@@ -128,7 +128,7 @@ io::SceneGraph scene_graph_of(const Pipeline& pipeline, const Eigen::Vector3d& o
   for (const auto& [id, f] : g.floors()) out.floors.push_back({id, f.level, f.center});
   // Each room's free space: the vertices of its latest extraction (for drawing).
   std::map<int, const std::vector<Eigen::Vector3d>*> free_space;
-  for (const RoomEventRecord& e : pipeline.room_events()) free_space[e.room_id] = &e.free_space;
+  for (const room_layer::RoomEventRecord& e : pipeline.room_events()) free_space[e.room_id] = &e.free_space;
   for (const auto& [id, r] : pipeline.room_map().rooms()) {
     io::SceneGraph::Room room;
     room.id = id;
@@ -186,7 +186,7 @@ std::vector<io::RoomEvent> room_events_of(const Pipeline& pipeline, const std::v
   pipeline.scan_log().for_each([&](const ScanRecord& s) { stamps.push_back(s.stamp); });
   const std::vector<int> laps = laps_of(stamps, pipeline.trajectory(), lap_starts);
   std::vector<io::RoomEvent> events;
-  for (const RoomEventRecord& e : pipeline.room_events()) {
+  for (const room_layer::RoomEventRecord& e : pipeline.room_events()) {
     const std::size_t scan = pipeline.graph().keyframes()[e.keyframe].scan_index;
     io::RoomEvent ev;
     ev.t = e.stamp;

@@ -1,4 +1,4 @@
-#include "tsgraphs/pipeline/room_layer.hpp"
+#include "tsgraphs/room_layer/room_layer.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "tsgraphs/freespace/obstacle_points.hpp"
 #include "tsgraphs/ground/ground_slope.hpp"
 
-namespace tsgraphs::pipeline {
+namespace tsgraphs::room_layer {
 
 namespace {
 
@@ -559,4 +559,4 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
   return out;
 }
 
-}  // namespace tsgraphs::pipeline
+}  // namespace tsgraphs::room_layer

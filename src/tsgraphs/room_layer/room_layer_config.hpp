@@ -3,7 +3,7 @@
 /// S-Graphs+ or an ablation), and how levels are told apart.
 #include "tsgraphs/core/config_fields.hpp"
 
-namespace tsgraphs::pipeline {
+namespace tsgraphs::room_layer {
 
 /// Where rooms are segmented from.
 enum class FreeSpaceMethod {
@@ -78,4 +78,4 @@ struct RoomLayerConfig {
   }
 };
 
-}  // namespace tsgraphs::pipeline
+}  // namespace tsgraphs::room_layer

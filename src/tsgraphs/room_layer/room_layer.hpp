@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "tsgraphs/core/pose.hpp"
-#include "tsgraphs/pipeline/room_layer_config.hpp"
+#include "tsgraphs/room_layer/room_layer_config.hpp"
 #include "tsgraphs/freespace/esdf_free_space.hpp"
 #include "tsgraphs/freespace/sight_map.hpp"
 #include "tsgraphs/freespace/wall_top_rays.hpp"
@@ -37,7 +37,7 @@
 #include "tsgraphs/rooms/sgraphs_room_extraction.hpp"
 #include "tsgraphs/core/config_fields.hpp"
 
-namespace tsgraphs::pipeline {
+namespace tsgraphs::room_layer {
 
 /// Every parameter the room layer uses, one struct per module.
 struct RoomLayerSettings {
@@ -208,4 +208,4 @@ class RoomLayer {
   std::size_t last_cluster_size_ = 0;
 };
 
-}  // namespace tsgraphs::pipeline
+}  // namespace tsgraphs::room_layer

@@ -2,9 +2,9 @@
 // through on a ramp or stairs.
 #include <gtest/gtest.h>
 
-#include "tsgraphs/pipeline/room_layer.hpp"
+#include "tsgraphs/room_layer/room_layer.hpp"
 
-namespace tsgraphs::pipeline {
+namespace tsgraphs::room_layer {
 namespace {
 
 /// Walks `layer` along x with a keyframe every 0.5 m, the floor at floor(s) (m).
@@ -50,4 +50,4 @@ TEST(RoomLayer, FloorSlopeOutOfRangeIsRefused) {
 }
 
 }  // namespace
-}  // namespace tsgraphs::pipeline
+}  // namespace tsgraphs::room_layer
