@@ -22,7 +22,7 @@
 #include "tsgraphs/io/atomic_write.hpp"
 #include "tsgraphs/io/run_folder.hpp"
 #include "tsgraphs/io/scan_folder.hpp"
-#include "tsgraphs/scene/generator.hpp"
+#include "tsgraphs/generator/generator.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/scene/scene_writer.hpp"
 #include "tsgraphs/scene/platform_presets.hpp"

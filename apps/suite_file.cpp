@@ -14,7 +14,7 @@
 #include "tsgraphs/core/yaml_map.hpp"
 #include "tsgraphs/io/scan_folder.hpp"
 #include "tsgraphs/scene/builtin_scenes.hpp"
-#include "tsgraphs/scene/generator.hpp"
+#include "tsgraphs/generator/generator.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/scene/platform_presets.hpp"
 #include "tsgraphs/scene/sensor_presets.hpp"

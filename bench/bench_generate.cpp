@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "tsgraphs/scene/generator.hpp"
+#include "tsgraphs/generator/generator.hpp"
 #include "tsgraphs/scene/trajectory.hpp"
 
 using namespace tsgraphs;

@@ -10,7 +10,7 @@
 #include "tsgraphs/ground/ground_segmentation.hpp"
 #include "tsgraphs/io/pcd.hpp"
 #include "tsgraphs/odometry/platform_estimate.hpp"
-#include "tsgraphs/scene/generator.hpp"
+#include "tsgraphs/generator/generator.hpp"
 #include "tsgraphs/scene/platform_presets.hpp"
 #include "tsgraphs/scene/scene_loader.hpp"
 #include "tsgraphs/scene/sensor_presets.hpp"

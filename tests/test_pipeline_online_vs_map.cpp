@@ -16,7 +16,7 @@
 #include "tsgraphs/io/pcd.hpp"
 #include "tsgraphs/pipeline/pipeline.hpp"
 #include "tsgraphs/rooms/map_segmentation.hpp"
-#include "tsgraphs/scene/map_import.hpp"
+#include "tsgraphs/map_import/map_import.hpp"
 #include "tsgraphs/sim/simulator.hpp"
 
 namespace tsgraphs {

@@ -7,7 +7,7 @@
 #include <cstring>
 
 #include "fuzz_support.hpp"
-#include "tsgraphs/scene/generator.hpp"
+#include "tsgraphs/generator/generator.hpp"
 
 namespace {
 

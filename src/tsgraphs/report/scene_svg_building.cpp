@@ -6,7 +6,6 @@
 #include <string>
 
 #include "tsgraphs/report/scene_drawing.hpp"
-#include "tsgraphs/scene/door_leaves.hpp"
 
 namespace tsgraphs::report::scene_drawing {
 

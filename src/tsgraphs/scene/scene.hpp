@@ -105,6 +105,9 @@ struct Box {
   int line = 0;
 };
 
+/// Box label of a door's leaf (generate --realistic hangs them; drawings show them as doors).
+inline constexpr const char* kDoorLeafLabel = "door";
+
 /// Point label given to the cubes of a voxel map.
 enum class VoxelLabel { kWall, kBox, kRailing, kAuto };
 
