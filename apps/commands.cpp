@@ -121,21 +121,22 @@ void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::
   try {
     const io::SequenceReader sequence(folder);
     if (format == "ros1") {
-      io::write_bag(sequence, bag,
-                    c == "bz2"   ? io::BagCompression::bz2
-                    : c == "lz4" ? io::BagCompression::lz4
-                                 : io::BagCompression::none,
-                    sensor_to_base);
+      ros1_bag::write_bag(sequence, bag,
+                          c == "bz2"   ? ros1_bag::BagCompression::bz2
+                          : c == "lz4" ? ros1_bag::BagCompression::lz4
+                                       : ros1_bag::BagCompression::none,
+                          sensor_to_base);
     } else {
-      io::write_rosbag2(sequence, bag,
-                        format == "ros2-mcap" ? io::Rosbag2Storage::mcap : io::Rosbag2Storage::sqlite,
-                        c == "zstd"  ? io::mcap::Compression::zstd
-                        : c == "lz4" ? io::mcap::Compression::lz4
-                                     : io::mcap::Compression::none,
-                        sensor_to_base,
-                        c == "zstd-file"      ? io::Rosbag2Compression::file
-                        : c == "zstd-message" ? io::Rosbag2Compression::message
-                                              : io::Rosbag2Compression::none);
+      ros2_bag::write_rosbag2(
+          sequence, bag,
+          format == "ros2-mcap" ? ros2_bag::Rosbag2Storage::mcap : ros2_bag::Rosbag2Storage::sqlite,
+          c == "zstd"  ? mcap::Compression::zstd
+          : c == "lz4" ? mcap::Compression::lz4
+                       : mcap::Compression::none,
+          sensor_to_base,
+          c == "zstd-file"      ? ros2_bag::Rosbag2Compression::file
+          : c == "zstd-message" ? ros2_bag::Rosbag2Compression::message
+                                : ros2_bag::Rosbag2Compression::none);
     }
   } catch (...) {
     if (seq_dir.empty()) fs::remove_all(folder);
@@ -174,7 +175,8 @@ void export_mcap(const std::string& run_dir, const std::string& out, bool quiet)
 }
 
 void print_bag_info(const std::string& bag) {
-  std::printf("%s", (io::is_rosbag2(bag) ? io::rosbag2_info(bag) : io::bag_info(bag)).c_str());
+  std::printf("%s",
+              (ros2_bag::is_rosbag2(bag) ? ros2_bag::rosbag2_info(bag) : ros1_bag::bag_info(bag)).c_str());
 }
 
 void draw_scene(const scene::Scene& scene, const std::string& out, bool quiet) {
@@ -216,12 +218,12 @@ OpenedBag opened(std::unique_ptr<io::RecordedSequence> bag, const io::BagOptions
 }  // namespace
 
 OpenedBag open_bag(const io::BagOptions& options, bool quiet) {
-  if (io::is_rosbag2(options.bag)) {
-    auto bag = std::make_unique<io::Rosbag2Sequence>(options);
+  if (ros2_bag::is_rosbag2(options.bag)) {
+    auto bag = std::make_unique<ros2_bag::Rosbag2Sequence>(options);
     print_warnings("", bag->warnings());  // each names its file
     return opened(std::move(bag), options, quiet);
   }
-  auto bag = std::make_unique<io::BagSequence>(options);
+  auto bag = std::make_unique<ros1_bag::BagSequence>(options);
   print_warnings(options.bag + ": ", bag->warnings());
   return opened(std::move(bag), options, quiet);
 }

@@ -27,8 +27,8 @@ void print_warnings(const std::string& where, const std::vector<std::string>& wa
 /// `simulate`: the scene's sequence folder at `out` (laps <= 0: the scene's).
 void simulate(const scene::Scene& scene, const std::string& out, std::uint64_t seed, int laps, bool quiet);
 /// `simulate --bag`: the simulated sequence as a bag, through a sequence folder at `seq_dir`
-/// (kept) or, when it is empty, a temporary one. `format`: ros1 (io::write_bag), ros2-mcap or
-/// ros2-sqlite (io::write_rosbag2), or auto (by the file's extension: .bag, .mcap, .db3).
+/// (kept) or, when it is empty, a temporary one. `format`: ros1 (ros1_bag::write_bag), ros2-mcap or
+/// ros2-sqlite (ros2_bag::write_rosbag2), or auto (by the file's extension: .bag, .mcap, .db3).
 /// `compression`: "" for the format's default (ros1 lz4, ros2-mcap zstd, ros2-sqlite none),
 /// else none, bz2 or lz4 for ros1, none, lz4 or zstd for ros2-mcap, none for ros2-sqlite.
 void simulate_bag(const scene::Scene& scene, const std::string& bag, const std::string& seq_dir,

@@ -26,14 +26,14 @@ void generate(const GenerateOptions& options) {
   if (options.out.empty()) throw input_error("generate", 0, "give --out SCENE.yaml");
   if (options.laps < 1) throw input_error("--laps", 0, "must be >= 1");
   if (!(options.size > 0.0 && options.size <= 1.0)) throw input_error("--size", 0, "must lie in (0, 1]");
-  scene::GeneratorConfig config;
+  generator::GeneratorConfig config;
   config.laps = options.laps;
   config.size = options.size;
   config.people = options.people;
   config.realistic = options.realistic;
   if (options.seed < 0) throw input_error("--seed", 0, "must be >= 0");
-  const scene::GeneratedBuilding b =
-      scene::generate_building(options.style, static_cast<std::uint64_t>(options.seed), config);
+  const generator::GeneratedBuilding b =
+      generator::generate_building(options.style, static_cast<std::uint64_t>(options.seed), config);
   io::write_file_atomic(options.out, b.yaml);
   if (!options.quiet) {
     const scene::Scene& s = b.scene;
@@ -53,8 +53,8 @@ constexpr double kMaxCeiling = 20.0;   // m: an atrium's height, well beyond any
 constexpr double kMaxClearance = 5.0;  // m: more than half of any corridor's width
 
 /// The map's cells for the scene builder (the same raster, the classes renamed).
-scene::MapRaster raster_of(const io::OccupancyMap& m) {
-  scene::MapRaster r;
+map_import::MapRaster raster_of(const io::OccupancyMap& m) {
+  map_import::MapRaster r;
   r.cols = m.width;
   r.rows = m.height;
   r.resolution = m.meta.resolution;
@@ -62,17 +62,17 @@ scene::MapRaster raster_of(const io::OccupancyMap& m) {
   r.yaw = m.meta.origin_yaw;
   r.cells.resize(m.cells.size());
   for (std::size_t i = 0; i < m.cells.size(); ++i) {
-    r.cells[i] = m.cells[i] == io::CellState::kFree       ? scene::MapCell::kFree
-                 : m.cells[i] == io::CellState::kOccupied ? scene::MapCell::kOccupied
-                                                          : scene::MapCell::kUnknown;
+    r.cells[i] = m.cells[i] == io::CellState::kFree       ? map_import::MapCell::kFree
+                 : m.cells[i] == io::CellState::kOccupied ? map_import::MapCell::kOccupied
+                                                          : map_import::MapCell::kUnknown;
   }
   return r;
 }
 
 /// The one-line summary of an import (docs/import-map.md, the worked example).
 void print_summary(const ImportMapOptions& options, const io::OccupancyMap& map, const io::RoomLabels& labels,
-                   const scene::ImportedMap& imported, const std::string& pcd, double seconds) {
-  const scene::MapImportStats& st = imported.stats;
+                   const map_import::ImportedMap& imported, const std::string& pcd, double seconds) {
+  const map_import::MapImportStats& st = imported.stats;
   const scene::Scene& s = imported.scene;
   std::string rooms;
   if (!options.rooms.empty()) {
@@ -151,7 +151,7 @@ void import_map(const ImportMapOptions& options) {
       std::fprintf(stderr, "tsgraphs: warning: %s: %s\n", options.rooms.c_str(), w.c_str());
   }
 
-  scene::MapImportConfig config;
+  map_import::MapImportConfig config;
   config.name = fs::path(options.map).stem().string();
   config.voxel_file = voxel_file;
   config.ceiling = options.ceiling;
@@ -159,9 +159,9 @@ void import_map(const ImportMapOptions& options) {
   config.laps = options.laps;
   config.sensor_preset = options.sensor;
   config.mount_height = options.mount_height;
-  scene::ImportedMap imported;
+  map_import::ImportedMap imported;
   try {
-    imported = scene::import_map(raster_of(map), labels.room, labels.count, config);
+    imported = map_import::import_map(raster_of(map), labels.room, labels.count, config);
   } catch (const InputError& e) {
     throw input_error(options.map, 0, e.what());
   }

@@ -7,7 +7,7 @@
 namespace tsgraphs::app {
 
 struct GenerateOptions {
-  std::string style;       ///< building style (scene::building_style_names())
+  std::string style;       ///< building style (generator::building_style_names())
   long long seed = 1;      ///< >= 0
   std::string out;         ///< scene file to write
   int laps = 2;            ///< laps of the survey path

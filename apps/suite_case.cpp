@@ -66,12 +66,12 @@ struct CaseInput {
 /// The generated building of the case with its platform's overrides; the text written as
 /// scene.yaml is what is simulated.
 scene::Scene generated_scene(const Suite& suite, const SuiteCase& c, const fs::path& dir) {
-  scene::GeneratorConfig config;
+  generator::GeneratorConfig config;
   if (suite.laps > 0) config.laps = suite.laps;
   config.size = c.size;
   config.people = c.people;
   config.realistic = c.realistic;
-  const scene::GeneratedBuilding b = scene::generate_building(c.style, c.seed, config);
+  const generator::GeneratedBuilding b = generator::generate_building(c.style, c.seed, config);
   const std::string file = (dir / eval::suite_files::kScene).string();
   std::string text = b.yaml;
   if (!c.platform.name.empty()) {

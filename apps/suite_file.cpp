@@ -108,7 +108,7 @@ std::vector<std::string> read_styles(const YamlMap& g) {
     styles.emplace_back(scalar(g, node, what), node.Mark().line + 1);
   }
   if (styles.empty()) throw input_error(g.file(), node.Mark().line + 1, what + ": no style");
-  const std::vector<std::string>& known = scene::building_style_names();
+  const std::vector<std::string>& known = generator::building_style_names();
   std::vector<std::string> out;
   for (const auto& [style, line] : styles) {
     if (std::find(known.begin(), known.end(), style) == known.end())
@@ -193,8 +193,8 @@ void add_generate_cases(const YamlMap& entry, Suite* suite) {
   const double size = g.get<double>("size", 1.0);
   if (!(size > 0.0 && size <= 1.0)) throw g.error("size", "must lie in (0, 1]");
   const int people = g.get<int>("people", 0);
-  if (people < 0 || people > scene::kMaxGeneratedPeople)
-    throw g.error("people", "must lie in [0, " + std::to_string(scene::kMaxGeneratedPeople) + "]");
+  if (people < 0 || people > generator::kMaxGeneratedPeople)
+    throw g.error("people", "must lie in [0, " + std::to_string(generator::kMaxGeneratedPeople) + "]");
   const bool realistic = g.get<bool>("realistic", false);
   const std::vector<SuitePlatform> platforms = read_platforms(g);
   for (const std::string& style : styles) {

@@ -59,16 +59,17 @@ int main(int argc, char** argv) {
       bags.push_back(to + "/" + name);
       return !std::filesystem::exists(bags.back());
     };
-    for (const auto& [name, c] : {std::pair{"ros1_none.bag", io::BagCompression::none},
-                                  std::pair{"ros1_lz4.bag", io::BagCompression::lz4},
-                                  std::pair{"ros1_bz2.bag", io::BagCompression::bz2}})
-      if (out(name)) io::write_bag(seq, bags.back(), c, mount);
+    for (const auto& [name, c] : {std::pair{"ros1_none.bag", ros1_bag::BagCompression::none},
+                                  std::pair{"ros1_lz4.bag", ros1_bag::BagCompression::lz4},
+                                  std::pair{"ros1_bz2.bag", ros1_bag::BagCompression::bz2}})
+      if (out(name)) ros1_bag::write_bag(seq, bags.back(), c, mount);
     if (out("ros2_sqlite.db3"))
-      io::write_rosbag2(seq, bags.back(), io::Rosbag2Storage::sqlite, io::mcap::Compression::none, mount);
-    for (const auto& [name, c] : {std::pair{"ros2_mcap_none.mcap", io::mcap::Compression::none},
-                                  std::pair{"ros2_mcap_lz4.mcap", io::mcap::Compression::lz4},
-                                  std::pair{"ros2_mcap_zstd.mcap", io::mcap::Compression::zstd}})
-      if (out(name)) io::write_rosbag2(seq, bags.back(), io::Rosbag2Storage::mcap, c, mount);
+      ros2_bag::write_rosbag2(seq, bags.back(), ros2_bag::Rosbag2Storage::sqlite, mcap::Compression::none,
+                              mount);
+    for (const auto& [name, c] : {std::pair{"ros2_mcap_none.mcap", mcap::Compression::none},
+                                  std::pair{"ros2_mcap_lz4.mcap", mcap::Compression::lz4},
+                                  std::pair{"ros2_mcap_zstd.mcap", mcap::Compression::zstd}})
+      if (out(name)) ros2_bag::write_rosbag2(seq, bags.back(), ros2_bag::Rosbag2Storage::mcap, c, mount);
   }
   std::printf("%-28s %9s %8s %8s %8s %9s\n", "bag", "MB", "open s", "read s", "MB/s", "scans/s");
   for (const std::string& bag : bags) {
@@ -76,10 +77,10 @@ int main(int argc, char** argv) {
     try {
       const auto t0 = std::chrono::steady_clock::now();
       std::unique_ptr<io::ScanSequence> seq;
-      if (io::is_rosbag2(bag))
-        seq = std::make_unique<io::Rosbag2Sequence>(options);
+      if (ros2_bag::is_rosbag2(bag))
+        seq = std::make_unique<ros2_bag::Rosbag2Sequence>(options);
       else
-        seq = std::make_unique<io::BagSequence>(options);
+        seq = std::make_unique<ros1_bag::BagSequence>(options);
       const auto t1 = std::chrono::steady_clock::now();
       std::size_t points = 0;
       for (std::size_t i = 0; i < seq->size(); ++i) points += seq->scan(i).size();

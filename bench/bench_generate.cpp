@@ -16,7 +16,7 @@ void BM_Generate(benchmark::State& state, const std::string& style) {
   std::uint64_t seed = 1;
   double rooms = 0.0, lap_m = 0.0, attempts = 0.0;
   for (auto _ : state) {
-    const scene::GeneratedBuilding b = scene::generate_building(style, seed);
+    const generator::GeneratedBuilding b = generator::generate_building(style, seed);
     rooms += static_cast<double>(b.scene.rooms.size());
     lap_m += scene::Trajectory(b.scene).length() / b.scene.trajectory.laps;
     attempts += b.attempts;

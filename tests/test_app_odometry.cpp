@@ -174,8 +174,8 @@ TEST_F(OdometryCli, BagWithoutAnOdometryTopicStartsAtTheSensorsMount) {
   // The sensor 0.3 m above and 0.1 m ahead of base_link (/tf_static); no --odom-topic.
   const Pose3 sensor_to_base = make_pose(Eigen::Vector3d(0.1, 0.0, 0.3), 0.0);
   const fs::path bag = dir_ / "scans.bag", out = dir_ / "run";
-  io::write_bag(io::SequenceReader((base_ / "seq").string()), bag.string(), io::BagCompression::lz4,
-                sensor_to_base);
+  ros1_bag::write_bag(io::SequenceReader((base_ / "seq").string()), bag.string(),
+                      ros1_bag::BagCompression::lz4, sensor_to_base);
   std::string err;
   ASSERT_EQ(cli("-q run --bag " + bag.string() + " --points-topic /points --out " + out.string(), &err), 0)
       << err;

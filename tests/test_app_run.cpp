@@ -227,11 +227,11 @@ TEST_F(RunCli, BagOfTheSequenceInEachCompressionGivesTheSameRun) {
   const Pose3 sensor_to_base = make_pose(Eigen::Vector3d(0.1, 0.0, 0.3), 0.2);
   const io::SequenceReader reader(seq.string());
   for (const auto& [name, compression] :
-       {std::pair{"none", io::BagCompression::none}, std::pair{"bz2", io::BagCompression::bz2},
-        std::pair{"lz4", io::BagCompression::lz4}}) {
+       {std::pair{"none", ros1_bag::BagCompression::none}, std::pair{"bz2", ros1_bag::BagCompression::bz2},
+        std::pair{"lz4", ros1_bag::BagCompression::lz4}}) {
     SCOPED_TRACE(name);
     const fs::path bag = dir_ / (std::string(name) + ".bag"), out = dir_ / (std::string("bag_") + name);
-    io::write_bag(reader, bag.string(), compression, sensor_to_base);
+    ros1_bag::write_bag(reader, bag.string(), compression, sensor_to_base);
     ASSERT_EQ(cli("-q run --bag " + bag.string() + " --points-topic /points --odom-topic /odom --out " +
                       out.string(),
                   &err),
@@ -336,17 +336,17 @@ TEST_F(RunCli, Ros2BagsInEveryStorageRunAsTheRos1Bag) {
         << name << ": " << err;
     return out;
   };
-  io::write_bag(reader, (dir_ / "ros1.bag").string(), io::BagCompression::lz4, sensor_to_base);
+  ros1_bag::write_bag(reader, (dir_ / "ros1.bag").string(), ros1_bag::BagCompression::lz4, sensor_to_base);
   const fs::path ros1 = run_bag(dir_ / "ros1.bag", "ros1");
   std::vector<std::pair<std::string, fs::path>> bags;
-  io::write_rosbag2(reader, (dir_ / "ros2.db3").string(), io::Rosbag2Storage::sqlite,
-                    io::mcap::Compression::none, sensor_to_base);
+  ros2_bag::write_rosbag2(reader, (dir_ / "ros2.db3").string(), ros2_bag::Rosbag2Storage::sqlite,
+                          mcap::Compression::none, sensor_to_base);
   bags.emplace_back("sqlite", dir_ / "ros2.db3");
   for (const auto& [name, c] :
-       {std::pair{"none", io::mcap::Compression::none}, std::pair{"lz4", io::mcap::Compression::lz4},
-        std::pair{"zstd", io::mcap::Compression::zstd}}) {
+       {std::pair{"none", mcap::Compression::none}, std::pair{"lz4", mcap::Compression::lz4},
+        std::pair{"zstd", mcap::Compression::zstd}}) {
     const fs::path bag = dir_ / (std::string("ros2_") + name + ".mcap");
-    io::write_rosbag2(reader, bag.string(), io::Rosbag2Storage::mcap, c, sensor_to_base);
+    ros2_bag::write_rosbag2(reader, bag.string(), ros2_bag::Rosbag2Storage::mcap, c, sensor_to_base);
     bags.emplace_back(std::string("mcap_") + name, bag);
   }
   // A rosbag2 folder: metadata.yaml naming its file.
@@ -357,16 +357,16 @@ TEST_F(RunCli, Ros2BagsInEveryStorageRunAsTheRos1Bag) {
          "    - folder_bag_0.mcap\n  compression_format: \"\"\n  compression_mode: \"\"\n";
   bags.emplace_back("folder", dir_ / "folder_bag");
   // And as rosbag2 writes one: metadata.yaml and NAME_0.db3.
-  io::write_rosbag2(reader, (dir_ / "written_bag").string(), io::Rosbag2Storage::sqlite,
-                    io::mcap::Compression::none, sensor_to_base);
+  ros2_bag::write_rosbag2(reader, (dir_ / "written_bag").string(), ros2_bag::Rosbag2Storage::sqlite,
+                          mcap::Compression::none, sensor_to_base);
   ASSERT_TRUE(fs::exists(dir_ / "written_bag" / "written_bag_0.db3"));
   bags.emplace_back("written_folder", dir_ / "written_bag");
   // Under rosbag2's own compression: the SQLite file compressed whole, MCAP messages one by one.
-  io::write_rosbag2(reader, (dir_ / "file_bag").string(), io::Rosbag2Storage::sqlite,
-                    io::mcap::Compression::none, sensor_to_base, io::Rosbag2Compression::file);
+  ros2_bag::write_rosbag2(reader, (dir_ / "file_bag").string(), ros2_bag::Rosbag2Storage::sqlite,
+                          mcap::Compression::none, sensor_to_base, ros2_bag::Rosbag2Compression::file);
   bags.emplace_back("zstd_file_folder", dir_ / "file_bag");
-  io::write_rosbag2(reader, (dir_ / "message_bag").string(), io::Rosbag2Storage::mcap,
-                    io::mcap::Compression::none, sensor_to_base, io::Rosbag2Compression::message);
+  ros2_bag::write_rosbag2(reader, (dir_ / "message_bag").string(), ros2_bag::Rosbag2Storage::mcap,
+                          mcap::Compression::none, sensor_to_base, ros2_bag::Rosbag2Compression::message);
   bags.emplace_back("zstd_message_folder", dir_ / "message_bag");
   for (const auto& [name, bag] : bags) {
     SCOPED_TRACE(name);
@@ -471,13 +471,13 @@ TEST_F(RunCli, ExportWritesARunForFoxgloveWithEveryMessageOfItsSchema) {
   std::string err;
   ASSERT_EQ(cli("-q run " + (base_ / "seq").string() + " --out " + run.string(), &err), 0) << err;
   ASSERT_EQ(cli("-q export " + run.string() + " --mcap " + out.string(), &err), 0) << err;
-  const io::mcap::Reader mcap(out.string());
+  const mcap::Reader mcap(out.string());
   EXPECT_TRUE(mcap.indexed());
   std::map<std::string, std::size_t> count;
   std::map<std::string, nlohmann::json> last;
-  mcap.read_each(mcap.messages(), [&](const io::mcap::MessageRef& ref, const io::mcap::Message& m) {
-    const io::mcap::Channel& c = mcap.channels().at(ref.channel_id);
-    const io::mcap::Schema& s = mcap.schemas().at(c.schema_id);
+  mcap.read_each(mcap.messages(), [&](const mcap::MessageRef& ref, const mcap::Message& m) {
+    const mcap::Channel& c = mcap.channels().at(ref.channel_id);
+    const mcap::Schema& s = mcap.schemas().at(c.schema_id);
     EXPECT_EQ(c.message_encoding, "json");
     EXPECT_EQ(s.encoding, "jsonschema");
     const auto message = nlohmann::json::parse(m.data);

@@ -20,6 +20,7 @@
 
 using namespace tsgraphs;
 using namespace tsgraphs::scene;
+using namespace tsgraphs::generator;
 using ::testing::HasSubstr;
 
 namespace {

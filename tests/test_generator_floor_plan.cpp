@@ -10,6 +10,7 @@
 
 using namespace tsgraphs;
 using namespace tsgraphs::scene;
+using namespace tsgraphs::generator;
 
 namespace {
 

@@ -15,6 +15,7 @@
 
 using namespace tsgraphs;
 using namespace tsgraphs::scene;
+using namespace tsgraphs::generator;
 
 namespace {
 

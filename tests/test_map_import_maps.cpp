@@ -24,6 +24,7 @@
 namespace fs = std::filesystem;
 using namespace tsgraphs;
 using namespace tsgraphs::scene;
+using namespace tsgraphs::map_import;
 using test::DrawnMap;
 using test::kMapRes;
 using Cell2 = std::array<int, 2>;

@@ -12,7 +12,7 @@
 #include "tsgraphs/map_import/map_rooms.hpp"
 
 using namespace tsgraphs;
-using namespace tsgraphs::scene;
+using namespace tsgraphs::map_import;
 
 namespace {
 

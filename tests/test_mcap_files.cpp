@@ -18,7 +18,6 @@
 
 namespace fs = std::filesystem;
 using namespace tsgraphs;
-namespace mcap = tsgraphs::io::mcap;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;

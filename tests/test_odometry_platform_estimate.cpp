@@ -173,7 +173,7 @@ TEST(PlatformEstimate, SweptHandHeldScansOfAGeneratedBuilding) {
   // A person walking a generated mixed building (small rooms off corridors) with a 32-beam
   // sensor at 1.5 m: its floor rings start 5.2 m out, where the tilting within a sweep moves
   // the floor by tens of centimetres in single scans; the median of the default 30 holds.
-  scene::Scene scene = scene::generate_building("mixed", 1).scene;
+  scene::Scene scene = generator::generate_building("mixed", 1).scene;
   scene::apply_preset("hesai-xt32", &scene.sensor);
   scene.sensor.preset = "hesai-xt32";
   scene.sensor.mount_height = 1.5;

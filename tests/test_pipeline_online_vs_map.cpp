@@ -25,16 +25,16 @@ namespace {
 using test::DrawnFloor;
 using test::FloorCell;
 
-scene::MapRaster raster_of(const DrawnFloor &d) {
-  scene::MapRaster r;
+map_import::MapRaster raster_of(const DrawnFloor &d) {
+  map_import::MapRaster r;
   r.cols = d.frame.cols;
   r.rows = d.frame.rows;
   r.resolution = d.frame.resolution;
   r.cells.resize(d.cells.size());
   for (std::size_t i = 0; i < d.cells.size(); ++i)
-    r.cells[i] = d.cells[i] == FloorCell::kFree       ? scene::MapCell::kFree
-                 : d.cells[i] == FloorCell::kOccupied ? scene::MapCell::kOccupied
-                                                      : scene::MapCell::kUnknown;
+    r.cells[i] = d.cells[i] == FloorCell::kFree       ? map_import::MapCell::kFree
+                 : d.cells[i] == FloorCell::kOccupied ? map_import::MapCell::kOccupied
+                                                      : map_import::MapCell::kUnknown;
   return r;
 }
 
@@ -64,10 +64,10 @@ TEST(OnlineVsMap, TheRoomLayerOnASurveyGivesSegmentMapsRooms) {
   const rooms::MapSegmentation offline =
       rooms::segment_map(d.frame, d.mask(FloorCell::kFree), d.mask(FloorCell::kOccupied));
 
-  scene::MapImportConfig config;
+  map_import::MapImportConfig config;
   config.laps = 1;
-  scene::ImportedMap imported =
-      scene::import_map(raster_of(d), d.truth, static_cast<int>(d.names.size()), config);
+  map_import::ImportedMap imported =
+      map_import::import_map(raster_of(d), d.truth, static_cast<int>(d.names.size()), config);
   ASSERT_EQ(imported.scene.voxel_maps.size(), 1u);
   const std::filesystem::path dir = test::fresh_temp_dir();
   const std::string pcd = (dir / "walls.pcd").string();

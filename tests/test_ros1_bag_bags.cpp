@@ -19,6 +19,7 @@
 
 using namespace tsgraphs;
 using namespace tsgraphs::io;
+using namespace tsgraphs::ros1_bag;
 using test::cli;
 using test::input_error_of;
 using test::read_file;

@@ -16,7 +16,7 @@
 #include "tsgraphs/ros2_bag/ros2_messages.hpp"
 
 using namespace tsgraphs;
-namespace ros2 = tsgraphs::io::ros2;
+namespace ros2 = tsgraphs::ros2_bag::ros2;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 

@@ -56,12 +56,12 @@ class FiveScans : public io::ScanSequence {
 
 class Rosbag2 : public test::TempDirTest {
  protected:
-  std::string write(const std::string& name, io::Rosbag2Storage storage,
-                    io::Rosbag2Compression compression = io::Rosbag2Compression::none,
+  std::string write(const std::string& name, ros2_bag::Rosbag2Storage storage,
+                    ros2_bag::Rosbag2Compression compression = ros2_bag::Rosbag2Compression::none,
                     double start = 100.0) const {
     const std::string path = (dir_ / name).string();
-    io::write_rosbag2(FiveScans(start), path, storage, io::mcap::Compression::zstd, Pose3::Identity(),
-                      compression);
+    ros2_bag::write_rosbag2(FiveScans(start), path, storage, mcap::Compression::zstd, Pose3::Identity(),
+                            compression);
     return path;
   }
   static io::BagOptions options(const std::string& bag, const std::string& odom = "/odom") {
@@ -73,7 +73,7 @@ class Rosbag2 : public test::TempDirTest {
   }
   static std::string error_of(const io::BagOptions& o) {
     try {
-      const io::Rosbag2Sequence s(o);
+      const ros2_bag::Rosbag2Sequence s(o);
       for (std::size_t i = 0; i < s.size(); ++i) s.scan(i);
     } catch (const InputError& e) {
       return e.what();
@@ -86,10 +86,11 @@ class Rosbag2 : public test::TempDirTest {
 
 TEST_F(Rosbag2, BothStoragesReadBackTheSequence) {
   const FiveScans five;
-  for (const auto storage : {io::Rosbag2Storage::sqlite, io::Rosbag2Storage::mcap}) {
-    const std::string path = write(storage == io::Rosbag2Storage::sqlite ? "five.db3" : "five.mcap", storage);
-    EXPECT_TRUE(io::is_rosbag2(path));
-    const io::Rosbag2Sequence s(options(path));
+  for (const auto storage : {ros2_bag::Rosbag2Storage::sqlite, ros2_bag::Rosbag2Storage::mcap}) {
+    const std::string path =
+        write(storage == ros2_bag::Rosbag2Storage::sqlite ? "five.db3" : "five.mcap", storage);
+    EXPECT_TRUE(ros2_bag::is_rosbag2(path));
+    const ros2_bag::Rosbag2Sequence s(options(path));
     ASSERT_EQ(s.size(), 5u);
     EXPECT_TRUE(s.sensor_to_base_known());
     for (std::size_t i = 0; i < 5; ++i) {
@@ -100,11 +101,11 @@ TEST_F(Rosbag2, BothStoragesReadBackTheSequence) {
       EXPECT_EQ(c.points[3], five.scan(i).points[3]);
     }
     EXPECT_THAT(
-        io::rosbag2_info(path),
+        ros2_bag::rosbag2_info(path),
         HasSubstr("/points                  sensor_msgs/msg/PointCloud2             5 msgs     10.00 Hz"));
   }
   // A bag folder: metadata.yaml (rosbag2's BagMetadata) naming its one file, with the counts.
-  write("folder", io::Rosbag2Storage::mcap);
+  write("folder", ros2_bag::Rosbag2Storage::mcap);
   const YAML::Node meta =
       YAML::LoadFile((dir_ / "folder" / "metadata.yaml").string())["rosbag2_bagfile_information"];
   EXPECT_EQ(meta["storage_identifier"].as<std::string>(), "mcap");
@@ -113,16 +114,16 @@ TEST_F(Rosbag2, BothStoragesReadBackTheSequence) {
   EXPECT_EQ(meta["topics_with_message_count"][0]["topic_metadata"]["type"].as<std::string>(),
             "sensor_msgs/msg/PointCloud2");
   EXPECT_EQ(meta["duration"]["nanoseconds"].as<std::uint64_t>(), 400000000u);
-  EXPECT_EQ(io::Rosbag2Sequence(options((dir_ / "folder").string())).size(), 5u);
+  EXPECT_EQ(ros2_bag::Rosbag2Sequence(options((dir_ / "folder").string())).size(), 5u);
   // A bag folder is not written over.
-  EXPECT_THROW(write("folder", io::Rosbag2Storage::sqlite), InputError);
-  EXPECT_FALSE(io::is_rosbag2((dir_ / "none.db3").string()));
+  EXPECT_THROW(write("folder", ros2_bag::Rosbag2Storage::sqlite), InputError);
+  EXPECT_FALSE(ros2_bag::is_rosbag2((dir_ / "none.db3").string()));
   std::ofstream(dir_ / "text.db3") << "not a database";
-  EXPECT_FALSE(io::is_rosbag2((dir_ / "text.db3").string()));
+  EXPECT_FALSE(ros2_bag::is_rosbag2((dir_ / "text.db3").string()));
 }
 
 TEST_F(Rosbag2, TopicsMissingOrOfAnotherTypeOrDefinitionAreNamed) {
-  const std::string path = write("five.mcap", io::Rosbag2Storage::mcap);
+  const std::string path = write("five.mcap", ros2_bag::Rosbag2Storage::mcap);
   EXPECT_EQ(error_of(options(path, "/nope")), path + ": no topic /nope (topics: /odom, /points, /tf_static)");
   EXPECT_EQ(error_of(options(path, "/points")), path +
                                                     ": /points is sensor_msgs/msg/PointCloud2, expected "
@@ -130,11 +131,11 @@ TEST_F(Rosbag2, TopicsMissingOrOfAnotherTypeOrDefinitionAreNamed) {
   // A topic named PointCloud2 whose recorded definition is another message's.
   const std::string other = (dir_ / "other.mcap").string();
   {
-    io::mcap::Writer w(other, {"ros2", "test", io::mcap::Compression::none, 1 << 20});
-    const auto schema =
-        w.add_schema(io::ros2::kPointCloud2, "ros2msg", io::ros2::definition(io::ros2::kPoseStamped));
+    mcap::Writer w(other, {"ros2", "test", mcap::Compression::none, 1 << 20});
+    const auto schema = w.add_schema(ros2_bag::ros2::kPointCloud2, "ros2msg",
+                                     ros2_bag::ros2::definition(ros2_bag::ros2::kPoseStamped));
     w.write(w.add_channel(schema, "/points", "cdr"), 1, 1,
-            io::ros2::encode_pose_stamped({1.0, "map", "", Pose3::Identity()}));
+            ros2_bag::ros2::encode_pose_stamped({1.0, "map", "", Pose3::Identity()}));
     w.finish();
   }
   io::BagOptions o = options(other, "");
@@ -146,7 +147,7 @@ TEST_F(Rosbag2, TopicsMissingOrOfAnotherTypeOrDefinitionAreNamed) {
 }
 
 TEST_F(Rosbag2, DamagedFilesAndIncompleteFoldersAreNamed) {
-  const std::string db = write("five.db3", io::Rosbag2Storage::sqlite);
+  const std::string db = write("five.db3", ros2_bag::Rosbag2Storage::sqlite);
   std::string bytes;
   {
     std::ifstream in(db, std::ios::binary);
@@ -157,10 +158,10 @@ TEST_F(Rosbag2, DamagedFilesAndIncompleteFoldersAreNamed) {
   EXPECT_THAT(error_of(options(cut)), StartsWith(cut + ": "));
   // Folders: no metadata.yaml is no rosbag2 bag; one naming a file it lacks, or compressed.
   fs::create_directories(dir_ / "bag");
-  EXPECT_FALSE(io::is_rosbag2((dir_ / "bag").string()));
+  EXPECT_FALSE(ros2_bag::is_rosbag2((dir_ / "bag").string()));
   const std::string metadata = (dir_ / "bag" / "metadata.yaml").string();
   std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [bag_0.db3]\n";
-  EXPECT_TRUE(io::is_rosbag2((dir_ / "bag").string()));
+  EXPECT_TRUE(ros2_bag::is_rosbag2((dir_ / "bag").string()));
   EXPECT_EQ(error_of(options((dir_ / "bag").string())),
             metadata + ":2: lists bag_0.db3, which is not in the folder");
   // rosbag2 compresses with zstd only; a mode it does not have is named with its line.
@@ -179,7 +180,7 @@ TEST_F(Rosbag2, DamagedFilesAndIncompleteFoldersAreNamed) {
 // Issue 52: a folder whose metadata.yaml listed its file twice was read twice (42 scans from
 // 21, time going back). A file listed again, under any spelling, is refused naming the line.
 TEST_F(Rosbag2, AFileListedTwiceInMetadataIsRefusedNamingTheRepeat) {
-  write("folder", io::Rosbag2Storage::sqlite);
+  write("folder", ros2_bag::Rosbag2Storage::sqlite);
   const fs::path folder = dir_ / "folder";
   const std::string metadata = (folder / "metadata.yaml").string();
   const auto listing = [&](const std::string& files) {
@@ -187,7 +188,7 @@ TEST_F(Rosbag2, AFileListedTwiceInMetadataIsRefusedNamingTheRepeat) {
     return error_of(options(folder.string()));
   };
   EXPECT_EQ(listing("    - folder_0.db3\n"), "");
-  EXPECT_EQ(io::read_rosbag2_metadata(folder.string()).files,
+  EXPECT_EQ(ros2_bag::read_rosbag2_metadata(folder.string()).files,
             std::vector<std::string>{(folder / "folder_0.db3").string()});
   EXPECT_EQ(listing("    - folder_0.db3\n    - folder_0.db3\n"),
             metadata + ":4: lists folder_0.db3 again (as folder_0.db3 on line 3): each file is read once");
@@ -201,7 +202,7 @@ TEST_F(Rosbag2, AFileListedTwiceInMetadataIsRefusedNamingTheRepeat) {
   EXPECT_EQ(listing("    - link.db3\n    - folder_0.db3\n"),
             metadata + ":4: lists folder_0.db3 again (as link.db3 on line 3): each file is read once");
   // bag-info reads the same list.
-  EXPECT_EQ(test::input_error_of([&] { io::rosbag2_info(folder.string()); }),
+  EXPECT_EQ(test::input_error_of([&] { ros2_bag::rosbag2_info(folder.string()); }),
             metadata + ":4: lists folder_0.db3 again (as link.db3 on line 3): each file is read once");
   // A name outside the bag folder (absolute, or climbing out of it) would read a file elsewhere.
   const std::string absolute = listing("    - " + (folder / "folder_0.db3").string() + "\n");
@@ -226,26 +227,27 @@ TEST_F(Rosbag2, AFileListedTwiceInMetadataIsRefusedNamingTheRepeat) {
 // of the file before it is refused naming both: by metadata.yaml's `files` times before any file
 // is opened, else by the files' own times as they are opened. A split in time order reads whole.
 TEST_F(Rosbag2, ASplitFileStartingBeforeTheLastOfThePreviousIsRefused) {
-  for (const auto storage : {io::Rosbag2Storage::sqlite, io::Rosbag2Storage::mcap}) {
-    const std::string ext = storage == io::Rosbag2Storage::sqlite ? ".db3" : ".mcap";
+  for (const auto storage : {ros2_bag::Rosbag2Storage::sqlite, ros2_bag::Rosbag2Storage::mcap}) {
+    const std::string ext = storage == ros2_bag::Rosbag2Storage::sqlite ? ".db3" : ".mcap";
     SCOPED_TRACE(ext);
     const fs::path split = dir_ / ("split" + ext);
     fs::create_directories(split);
     fs::copy_file(fs::path(write("first" + ext + "_bag", storage)) / ("first" + ext + "_bag_0" + ext),
                   split / ("split_0" + ext));
-    const std::string later = write("later" + ext + "_bag", storage, io::Rosbag2Compression::none, 101.0);
+    const std::string later =
+        write("later" + ext + "_bag", storage, ros2_bag::Rosbag2Compression::none, 101.0);
     fs::copy_file(fs::path(later) / ("later" + ext + "_bag_0" + ext), split / ("split_1" + ext));
     const std::string metadata = (split / "metadata.yaml").string();
     std::ofstream(metadata) << "rosbag2_bagfile_information:\n  relative_file_paths: [split_0" << ext
                             << ", split_1" << ext << "]\n";
-    EXPECT_EQ(io::Rosbag2Sequence(options(split.string())).size(), 10u);
+    EXPECT_EQ(ros2_bag::Rosbag2Sequence(options(split.string())).size(), 10u);
 
     fs::copy_file(split / ("split_0" + ext), split / ("split_1" + ext), fs::copy_options::overwrite_existing);
     const std::string repeated = metadata + ": split_1" + ext +
                                  ": its first message (t 100.000000000 s) is before the last of split_0" +
                                  ext + " (t 100.400000000 s): a file repeated?";
     EXPECT_EQ(error_of(options(split.string())), repeated);
-    EXPECT_EQ(test::input_error_of([&] { io::rosbag2_info(split.string()); }), repeated);
+    EXPECT_EQ(test::input_error_of([&] { ros2_bag::rosbag2_info(split.string()); }), repeated);
   }
   // metadata.yaml's times (rosbag2 >= Humble): refused at the later file's entry, unopened.
   const fs::path split = dir_ / "split.db3";
@@ -258,7 +260,7 @@ TEST_F(Rosbag2, ASplitFileStartingBeforeTheLastOfThePreviousIsRefused) {
   std::ofstream(metadata)
       << "rosbag2_bagfile_information:\n  relative_file_paths: [split_0.db3, split_1.db3]\n  files:\n"
       << file_entry("split_0.db3", "100000000000") << file_entry("split_1.db3", "100000000000");
-  EXPECT_EQ(test::input_error_of([&] { io::read_rosbag2_metadata(split.string()); }),
+  EXPECT_EQ(test::input_error_of([&] { ros2_bag::read_rosbag2_metadata(split.string()); }),
             metadata +
                 ":10: split_1.db3: its first message (t 100.000000000 s) is before the last of split_0.db3 "
                 "(t 100.400000000 s): a file repeated?");
@@ -281,10 +283,10 @@ TEST_F(Rosbag2, RosbagsOwnCompressionReadsBackTheSequence) {
   const std::string kept_tmpdir = old_tmpdir ? old_tmpdir : "";
   setenv("TMPDIR", tmp.c_str(), 1);
   const FiveScans five;
-  for (const auto storage : {io::Rosbag2Storage::sqlite, io::Rosbag2Storage::mcap}) {
-    const std::string ext = storage == io::Rosbag2Storage::sqlite ? ".db3" : ".mcap";
-    for (const auto mode : {io::Rosbag2Compression::file, io::Rosbag2Compression::message}) {
-      const bool file_mode = mode == io::Rosbag2Compression::file;
+  for (const auto storage : {ros2_bag::Rosbag2Storage::sqlite, ros2_bag::Rosbag2Storage::mcap}) {
+    const std::string ext = storage == ros2_bag::Rosbag2Storage::sqlite ? ".db3" : ".mcap";
+    for (const auto mode : {ros2_bag::Rosbag2Compression::file, ros2_bag::Rosbag2Compression::message}) {
+      const bool file_mode = mode == ros2_bag::Rosbag2Compression::file;
       const std::string name =
           std::string(file_mode ? "file" : "message") + (ext == ".db3" ? "_sqlite" : "_mcap");
       SCOPED_TRACE(name);
@@ -299,7 +301,7 @@ TEST_F(Rosbag2, RosbagsOwnCompressionReadsBackTheSequence) {
       EXPECT_EQ(std::distance(fs::directory_iterator(path), fs::directory_iterator()),
                 2);  // and metadata.yaml
 
-      const io::Rosbag2Sequence s(options(path));
+      const ros2_bag::Rosbag2Sequence s(options(path));
       ASSERT_EQ(s.size(), 5u);
       for (std::size_t i = 0; i < s.size(); ++i) {
         EXPECT_DOUBLE_EQ(s.info().times[i], five.info().times[i]);
@@ -308,13 +310,14 @@ TEST_F(Rosbag2, RosbagsOwnCompressionReadsBackTheSequence) {
         ASSERT_EQ(got.size(), want.size());
         for (std::size_t k = 0; k < got.size(); ++k) EXPECT_EQ(got.points[k], want.points[k]);
       }
-      EXPECT_THAT(io::rosbag2_info(path),
+      EXPECT_THAT(ros2_bag::rosbag2_info(path),
                   HasSubstr("/points                  sensor_msgs/msg/PointCloud2             5 msgs"));
       EXPECT_TRUE(fs::is_empty(tmp)) << "a decompressed file was left in TMPDIR";
     }
   }
   // Only a folder records the compression: a single file is refused before anything is written.
-  EXPECT_THROW(write("one.db3", io::Rosbag2Storage::sqlite, io::Rosbag2Compression::message), InputError);
+  EXPECT_THROW(write("one.db3", ros2_bag::Rosbag2Storage::sqlite, ros2_bag::Rosbag2Compression::message),
+               InputError);
   EXPECT_FALSE(fs::exists(dir_ / "one.db3"));
 
   // A compressed file cut short names the file; still nothing left in TMPDIR.

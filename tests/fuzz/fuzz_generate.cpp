@@ -32,15 +32,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace tsgraphs;
   std::uint8_t input[kInputBytes] = {};
   std::memcpy(input, data, std::min(size, kInputBytes));
-  const std::vector<std::string>& styles = scene::building_style_names();
+  const std::vector<std::string>& styles = generator::building_style_names();
   const std::size_t style_index = input[kStyleAt] % (styles.size() + 1);
   const std::string style = style_index < styles.size() ? styles[style_index] : "no_such_style";
-  scene::GeneratorConfig config;
+  generator::GeneratorConfig config;
   config.size = kMaxSize * (input[kSizeAt] + 1) / kSizeSteps;
   config.laps = field<std::int32_t>(input, kLapsAt);
   config.people = field<std::int8_t>(input, kPeopleAt);
   config.realistic = (input[kRealisticAt] & 1) != 0;
   const auto seed = field<std::uint64_t>(input, kSeedAt);
-  fuzz::only_input_errors("generate_building", [&] { scene::generate_building(style, seed, config); });
+  fuzz::only_input_errors("generate_building", [&] { generator::generate_building(style, seed, config); });
   return 0;
 }

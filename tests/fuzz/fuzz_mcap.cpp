@@ -6,7 +6,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string file = tsgraphs::fuzz::input_file(data, size, "bag.mcap");
   tsgraphs::fuzz::only_input_errors("mcap::Reader", [&] {
-    const tsgraphs::io::mcap::Reader reader(file);
+    const tsgraphs::mcap::Reader reader(file);
     for (const auto& ref : reader.messages()) reader.read(ref);
   });
   return 0;

@@ -4,7 +4,7 @@
 #include "tsgraphs/io/point_cloud2.hpp"
 #include "tsgraphs/ros2_bag/ros2_messages.hpp"
 
-namespace ros2 = tsgraphs::io::ros2;
+namespace ros2 = tsgraphs::ros2_bag::ros2;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string cdr(reinterpret_cast<const char*>(data), size);

@@ -29,6 +29,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace tsgraphs;
   const std::string folder = bag_folder().string();
   fuzz::input_file(data, size, "bag/metadata.yaml");
-  fuzz::only_input_errors("read_rosbag2_metadata", [&] { io::read_rosbag2_metadata(folder); });
+  fuzz::only_input_errors("read_rosbag2_metadata", [&] { ros2_bag::read_rosbag2_metadata(folder); });
   return 0;
 }

@@ -5,7 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 namespace {
 
 constexpr double kRoomMin = 2.5;        // m: the narrowest room (issue's range 2.5-12 m)
@@ -174,4 +174,4 @@ Vec2 minimum_region(const std::string& style) {
   throw std::invalid_argument("no such building style: " + style);
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

@@ -8,7 +8,7 @@
 #include "tsgraphs/generator/floor_plan.hpp"
 #include "tsgraphs/generator/random.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 
 /// An axis-aligned rectangle of a storey, [lo, hi].
 struct Region {
@@ -62,4 +62,4 @@ void mirror_spaces(FloorPlan* plan, int first, const Region& region, bool mx, bo
 /// `poly` cut to the half plane n . (p - at) >= 0 (Sutherland-Hodgman, one plane).
 Polygon2 clip_half_plane(const Polygon2& poly, const Vec2& at, const Vec2& n);
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

@@ -10,7 +10,7 @@
 #include "tsgraphs/scene/scene_geometry.hpp"
 #include "tsgraphs/scene/walkable_grid.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 namespace {
 
 constexpr int kPieceDraws = 3;          // kinds tried at one place of a run before it is left a gap
@@ -79,29 +79,29 @@ OrientedRect rect(const Vec2& center, double length, double depth, double yaw) {
 /// may go, and where it has gone.
 class Floor {
  public:
-  Floor(const Scene& scene, int level, std::vector<SharedStretch> joints, double passage)
+  Floor(const scene::Scene& scene, int level, std::vector<SharedStretch> joints, double passage)
       : approaches_(door_approaches(scene, level)), joints_(std::move(joints)), passage_(passage) {
-    const double headroom = WalkableRules{}.headroom;
-    for (const Wall& w : scene.walls) {
+    const double headroom = scene::WalkableRules{}.headroom;
+    for (const scene::Wall& w : scene.walls) {
       if (w.level != level) continue;
       const Vec2 u = (w.to - w.from).normalized();
       const double yaw = std::atan2(u.y(), u.x());
-      std::vector<WallPiece> pieces = wall_pieces(w);
-      for (const GlassPane& g : glass_panes(w)) pieces.push_back({g.s0, g.s1, g.z0, g.z1});
-      for (const WallPiece& p : pieces) {
+      std::vector<scene::WallPiece> pieces = scene::wall_pieces(w);
+      for (const scene::GlassPane& g : scene::glass_panes(w)) pieces.push_back({g.s0, g.s1, g.z0, g.z1});
+      for (const scene::WallPiece& p : pieces) {
         if (p.z0 >= headroom) continue;
         obstacles_.push_back(rect(w.from + 0.5 * (p.s0 + p.s1) * u, p.s1 - p.s0, w.thickness, yaw));
         if (p.z1 >= headroom) walls_.push_back(obstacles_.back());  // what a piece may stand against
       }
     }
-    for (const Railing& r : scene.railings) {
+    for (const scene::Railing& r : scene.railings) {
       if (r.level != level) continue;
       const Vec2 d = r.to - r.from;
-      obstacles_.push_back(
-          rect(0.5 * (r.from + r.to), d.norm(), RailingGeometry::kSolidThickness, std::atan2(d.y(), d.x())));
+      obstacles_.push_back(rect(0.5 * (r.from + r.to), d.norm(), scene::RailingGeometry::kSolidThickness,
+                                std::atan2(d.y(), d.x())));
     }
     for (std::size_t k = 0; k < scene.boxes.size(); ++k) {
-      const Box& b = scene.boxes[k];
+      const scene::Box& b = scene.boxes[k];
       if (b.level != level || b.min.z() >= headroom) continue;
       add(rect(0.5 * (b.min.head<2>() + b.max.head<2>()), b.max.x() - b.min.x(), b.max.y() - b.min.y(),
                b.yaw_deg * M_PI / 180.0),
@@ -177,8 +177,8 @@ class Floor {
   std::map<int, int> obstacle_of_box_;
 };
 
-Box box_of(const OrientedRect& r, double height, int level, const char* label) {
-  Box b;
+scene::Box box_of(const OrientedRect& r, double height, int level, const char* label) {
+  scene::Box b;
   b.level = level;
   b.min = Eigen::Vector3d(r.center.x() - 0.5 * r.size.x(), r.center.y() - 0.5 * r.size.y(), 0.0);
   b.max = Eigen::Vector3d(r.center.x() + 0.5 * r.size.x(), r.center.y() + 0.5 * r.size.y(), height);
@@ -190,7 +190,7 @@ Box box_of(const OrientedRect& r, double height, int level, const char* label) {
 /// Places the pieces of one space; each new piece becomes an obstacle of the next.
 class Clutterer {
  public:
-  Clutterer(Floor* floor, const Polygon2& face, int level, double passage, Rng& rng, Scene* scene)
+  Clutterer(Floor* floor, const Polygon2& face, int level, double passage, Rng& rng, scene::Scene* scene)
       : floor_(*floor), face_(face), level_(level), passage_(passage), rng_(rng), scene_(*scene) {}
 
   /// A run of pieces along face edge i, each with a passage free in front of it.
@@ -286,14 +286,14 @@ class Clutterer {
   int level_;
   double passage_;
   Rng& rng_;
-  Scene& scene_;
+  scene::Scene& scene_;
   int placed_ = 0;
 };
 
 }  // namespace
 
 int add_clutter(const FloorPlan& plan, const PlanResult& result, int level, double passage, Rng& rng,
-                Scene* scene) {
+                scene::Scene* scene) {
   std::vector<SharedStretch> joints;
   for (const auto& [a, b] : plan.open_joints) {
     if (!is_walkable(plan.spaces[a].kind) || !is_walkable(plan.spaces[b].kind)) continue;
@@ -316,7 +316,7 @@ int add_clutter(const FloorPlan& plan, const PlanResult& result, int level, doub
     // Chairs at the desks standing in this space (its own, and those furnish put there).
     const std::size_t boxes = scene->boxes.size();  // not the chairs added here
     for (std::size_t k = 0; k < boxes; ++k) {
-      const Box& b = scene->boxes[k];
+      const scene::Box& b = scene->boxes[k];
       if (b.level != level || b.label != kDesk) continue;
       const int desk = floor.obstacle_of_box(static_cast<int>(k));
       if (desk >= 0 && contains(face, 0.5 * (b.min.head<2>() + b.max.head<2>())) && rng.chance(kChairChance))
@@ -331,4 +331,4 @@ int add_clutter(const FloorPlan& plan, const PlanResult& result, int level, doub
   return placed;
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

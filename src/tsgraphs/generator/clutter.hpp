@@ -9,12 +9,12 @@
 #include "tsgraphs/generator/floor_plan.hpp"
 #include "tsgraphs/generator/random.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 
 /// Adds clutter (boxes) to the walkable spaces of `plan` on `level` (their faces in `result`),
 /// clear of everything already there. `passage` (m) is the least width a walker needs.
 /// Returns the number of pieces placed.
 int add_clutter(const FloorPlan& plan, const PlanResult& result, int level, double passage, Rng& rng,
-                Scene* scene);
+                scene::Scene* scene);
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

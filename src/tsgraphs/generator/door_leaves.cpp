@@ -6,7 +6,7 @@
 
 #include "tsgraphs/generator/furnishing.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 namespace {
 
 constexpr double kSingleLeafMin =
@@ -169,13 +169,13 @@ int swing_rank(SpaceKind k) {
   return k == SpaceKind::kRoom ? 0 : k == SpaceKind::kHall ? 1 : k == SpaceKind::kCorridor ? 2 : 3;
 }
 
-Box leaf_box(const OrientedRect& r, double height, int level) {
-  Box b;
+scene::Box leaf_box(const OrientedRect& r, double height, int level) {
+  scene::Box b;
   b.level = level;
   b.min = Eigen::Vector3d(r.center.x() - 0.5 * r.size.x(), r.center.y() - 0.5 * r.size.y(), 0.0);
   b.max = Eigen::Vector3d(r.center.x() + 0.5 * r.size.x(), r.center.y() + 0.5 * r.size.y(), height);
   b.yaw_deg = r.yaw * 180.0 / M_PI;
-  b.label = kDoorLeafLabel;
+  b.label = scene::kDoorLeafLabel;
   return b;
 }
 
@@ -189,14 +189,14 @@ void draw_door_widths(FloorPlan* plan, Rng& rng) {
 }
 
 std::vector<OrientedRect> hang_door_leaves(const FloorPlan& plan, const PlanResult& result, int level,
-                                           double passage, Rng& rng, Scene* scene) {
+                                           double passage, Rng& rng, scene::Scene* scene) {
   const std::vector<DoorApproach> approaches = door_approaches(*scene, level);
   std::vector<OrientedRect> leaves;
   for (const PlanWall& pw : result.walls) {
     if (pw.b < 0) continue;
-    const Wall& wall = scene->walls[pw.wall];
+    const scene::Wall& wall = scene->walls[pw.wall];
     const Vec2 u = (wall.to - wall.from).normalized(), n(-u.y(), u.x());
-    for (const Opening& o : wall.openings) {
+    for (const scene::Opening& o : wall.openings) {
       if (o.sill > 0.0) continue;
       const Door door{wall.from + o.at * u, u, o.width, o.height, 0.5 * wall.thickness};
       const Vec2 probe = door.center + (door.half_wall + kProbeBeyondWall) * n;
@@ -221,4 +221,4 @@ std::vector<OrientedRect> hang_door_leaves(const FloorPlan& plan, const PlanResu
   return leaves;
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

@@ -12,7 +12,7 @@
 #include "tsgraphs/generator/floor_plan.hpp"
 #include "tsgraphs/generator/random.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 
 /// Draws the width of every door the plan wants anew: one leaf, or (now and then) two.
 void draw_door_widths(FloorPlan* plan, Rng& rng);
@@ -21,6 +21,6 @@ void draw_door_widths(FloorPlan* plan, Rng& rng);
 /// scene->boxes. `passage` (m) is the least width a walker needs between a leaf and what is
 /// across from it. Returns the leaves' footprints.
 std::vector<OrientedRect> hang_door_leaves(const FloorPlan& plan, const PlanResult& result, int level,
-                                           double passage, Rng& rng, Scene* scene);
+                                           double passage, Rng& rng, scene::Scene* scene);
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

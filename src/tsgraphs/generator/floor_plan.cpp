@@ -8,7 +8,7 @@
 #include <tuple>
 #include <stdexcept>
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 namespace {
 
 constexpr double kEps = 1e-6;            // m: points this close are one point
@@ -179,7 +179,7 @@ double thickness_of(EdgeKind kind, const FloorPlanRules& rules) {
     case EdgeKind::kFacade:
       return rules.exterior_wall;
     case EdgeKind::kRailing:
-      return RailingGeometry::kSolidThickness;
+      return scene::RailingGeometry::kSolidThickness;
     case EdgeKind::kOpen:
       break;
   }
@@ -283,18 +283,18 @@ namespace {
 
 /// A wall of the plan before its doors: the spaces on either side (b = -1: the outside).
 struct PendingWall {
-  Wall wall;
+  scene::Wall wall;
   int a, b;
 };
 
 /// The plan's walls and railings: one per straight stretch between one pair of spaces. The
 /// railings go into `scene`; the walls are returned, to take their doors first.
 std::vector<PendingWall> walls_and_railings(const Subdivision& sub, const FloorPlanRules& rules, int level,
-                                            double ceiling, Scene* scene) {
+                                            double ceiling, scene::Scene* scene) {
   std::vector<PendingWall> walls;
   for (const auto& run : sub.runs()) {
     if (run.kind == EdgeKind::kRailing) {
-      Railing r;
+      scene::Railing r;
       r.level = level;
       r.from = run.s.a;
       r.to = run.s.b;
@@ -304,7 +304,7 @@ std::vector<PendingWall> walls_and_railings(const Subdivision& sub, const FloorP
       scene->railings.push_back(r);
       continue;
     }
-    Wall w;
+    scene::Wall w;
     w.level = level;
     w.from = run.s.a;
     w.to = run.s.b;
@@ -333,7 +333,8 @@ PendingWall* door_host(std::vector<PendingWall>& walls, const DoorSpec& d, const
 
 /// Where a door of `width` fits among the wall's other doors: the wanted place (`position` of
 /// the free length), else the nearest free one; none when the wall is full.
-std::optional<double> door_place(const Wall& w, double width, double position, const FloorPlanRules& rules) {
+std::optional<double> door_place(const scene::Wall& w, double width, double position,
+                                 const FloorPlanRules& rules) {
   const double length = (w.to - w.from).norm();
   const double margin = rules.jamb + 0.5 * rules.interior_wall;
   const double lo = margin + 0.5 * width, hi = length - margin - 0.5 * width;
@@ -344,7 +345,7 @@ std::optional<double> door_place(const Wall& w, double width, double position, c
       const double c = wanted + sign * k * (hi - lo) / 40.0;
       if (c < lo - kEps || c > hi + kEps) continue;
       bool clear = true;
-      for (const Opening& o : w.openings)
+      for (const scene::Opening& o : w.openings)
         clear = clear && std::abs(o.at - c) >= 0.5 * (o.width + width) + kDoorMinSpacing;
       if (clear) {
         at = c;
@@ -366,7 +367,7 @@ void place_doors(const FloorPlan& plan, std::vector<PendingWall>& walls, PlanRes
       ++result->doors_dropped;
       continue;
     }
-    Wall& w = host->wall;
+    scene::Wall& w = host->wall;
     const std::optional<double> at = door_place(w, width, d.position, rules);
     if (!at) {
       ++result->doors_dropped;
@@ -374,7 +375,7 @@ void place_doors(const FloorPlan& plan, std::vector<PendingWall>& walls, PlanRes
     }
     w.openings.push_back({*at, width, std::min(rules.door_height, w.height), 0.0});
     std::sort(w.openings.begin(), w.openings.end(),
-              [](const Opening& x, const Opening& y) { return x.at < y.at; });
+              [](const scene::Opening& x, const scene::Opening& y) { return x.at < y.at; });
     ++result->doors_made;
   }
 }
@@ -391,9 +392,9 @@ std::vector<std::vector<double>> face_offsets(const FloorPlan& plan, const Subdi
 }
 
 /// The voids into the level, and the ground truth measured to the faces of what bounds each space.
-void add_voids_and_rooms(const FloorPlan& plan, const Subdivision& sub, int level, Scene* scene,
+void add_voids_and_rooms(const FloorPlan& plan, const Subdivision& sub, int level, scene::Scene* scene,
                          PlanResult* result) {
-  Level& lvl = scene->levels.at(level);
+  scene::Level& lvl = scene->levels.at(level);
   const std::vector<std::vector<double>> offsets = face_offsets(plan, sub);
   result->room_of_space.assign(plan.spaces.size(), -1);
   for (std::size_t s = 0; s < plan.spaces.size(); ++s) {
@@ -401,7 +402,7 @@ void add_voids_and_rooms(const FloorPlan& plan, const Subdivision& sub, int leve
     result->faces.push_back(inset_polygon(space.outline, offsets[s]));
     if (space.kind == SpaceKind::kVoid) lvl.voids.push_back(space.outline);
     if (!is_ground_truth(space.kind) || !plan.ground_truth) continue;
-    Room r;
+    scene::Room r;
     r.name = space.name;
     r.level = level;
     r.polygon = result->faces.back();
@@ -412,7 +413,7 @@ void add_voids_and_rooms(const FloorPlan& plan, const Subdivision& sub, int leve
 
 }  // namespace
 
-PlanResult add_floor_plan(const FloorPlan& plan, int level, Scene* scene) {
+PlanResult add_floor_plan(const FloorPlan& plan, int level, scene::Scene* scene) {
   const Subdivision sub(plan);
   PlanResult result;
   const double ceiling = scene->levels.at(level).ceiling;
@@ -471,4 +472,4 @@ Polygon2 stacked_outline(double a0, double a1, double y0, double y1, double b0, 
   return simple;
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

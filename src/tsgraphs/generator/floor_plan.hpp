@@ -12,7 +12,7 @@
 #include "tsgraphs/generator/random.hpp"
 #include "tsgraphs/scene/scene.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 
 enum class SpaceKind {
   kRoom,      ///< a room: ground truth, reached through doors
@@ -53,7 +53,7 @@ struct FloorPlanRules {
   double door_height = 2.1;     ///< m
   double jamb = 0.25;     ///< m of wall kept between a door and the end of its stretch (beyond half a wall)
   double min_door = 0.8;  ///< m: a door narrower than this is not made
-  RailingStyle railing = RailingStyle::kSolid;
+  scene::RailingStyle railing = scene::RailingStyle::kSolid;
   double railing_height = 1.0;      ///< m
   double glass_transmission = 0.8;  ///< share of rays a glass railing lets through
 };
@@ -109,7 +109,7 @@ struct PlanResult {
 /// Appends level `level`'s walls, openings, railings, voids and ground-truth rooms to `scene`
 /// (the level itself, with its slab, must exist). Throws std::invalid_argument when spaces
 /// overlap.
-PlanResult add_floor_plan(const FloorPlan& plan, int level, Scene* scene);
+PlanResult add_floor_plan(const FloorPlan& plan, int level, scene::Scene* scene);
 
 /// `poly` moved inwards by offsets[i] along each edge i (vertex i to i + 1); the offsets
 /// are small against the edges.
@@ -119,4 +119,4 @@ Polygon2 inset_polygon(const Polygon2& poly, const std::vector<double>& offsets)
 /// ([a0, a1] x [y0, y1] below [b0, b1] x [y1, y2]) that overlap in x: an L, a T or a rectangle.
 Polygon2 stacked_outline(double a0, double a1, double y0, double y1, double b0, double b1, double y2);
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

@@ -5,7 +5,7 @@
 
 #include "tsgraphs/core/rect.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 namespace {
 
 constexpr double kDoorKeepOut = 1.3;        // m round a door's centre kept free (its approach, both sides)
@@ -30,7 +30,8 @@ constexpr Item kOfficeItems[] = {
 
 class Placer {
  public:
-  Placer(const Scene& scene, int level, const Polygon2& face, const std::vector<OrientedRect>& keep_clear)
+  Placer(const scene::Scene& scene, int level, const Polygon2& face,
+         const std::vector<OrientedRect>& keep_clear)
       : face_(face), doors_(door_approaches(scene, level)), placed_(keep_clear) {}
 
   /// True (and the footprint kept) when `r` lies inside the face, clear of the doors'
@@ -68,8 +69,8 @@ class Placer {
   std::vector<OrientedRect> placed_;
 };
 
-Box box_of(const OrientedRect& r, double z0, double z1, int level, const char* label) {
-  Box b;
+scene::Box box_of(const OrientedRect& r, double z0, double z1, int level, const char* label) {
+  scene::Box b;
   b.level = level;
   b.min = Eigen::Vector3d(r.center.x() - 0.5 * r.size.x(), r.center.y() - 0.5 * r.size.y(), z0);
   b.max = Eigen::Vector3d(r.center.x() + 0.5 * r.size.x(), r.center.y() + 0.5 * r.size.y(), z1);
@@ -78,7 +79,7 @@ Box box_of(const OrientedRect& r, double z0, double z1, int level, const char* l
   return b;
 }
 
-void furnish_office(const Polygon2& face, int level, Rng& rng, Scene* scene,
+void furnish_office(const Polygon2& face, int level, Rng& rng, scene::Scene* scene,
                     const std::vector<OrientedRect>& keep_clear) {
   Placer placer(*scene, level, face, keep_clear);
   const int max_items = area(face) < kSmallRoomArea ? 1 : kOfficeItemsMax;
@@ -111,7 +112,7 @@ void bounds(const Polygon2& face, Vec2* lo, Vec2* hi) {
   }
 }
 
-void furnish_shelves(const Polygon2& face, int level, Rng& rng, Scene* scene,
+void furnish_shelves(const Polygon2& face, int level, Rng& rng, scene::Scene* scene,
                      const std::vector<OrientedRect>& keep_clear) {
   Placer placer(*scene, level, face, keep_clear);
   Vec2 lo, hi;
@@ -139,7 +140,7 @@ void furnish_shelves(const Polygon2& face, int level, Rng& rng, Scene* scene,
   }
 }
 
-void furnish_open_plan(const Polygon2& face, int level, double ceiling, Rng& rng, Scene* scene,
+void furnish_open_plan(const Polygon2& face, int level, double ceiling, Rng& rng, scene::Scene* scene,
                        const std::vector<OrientedRect>& keep_clear) {
   Placer placer(*scene, level, face, keep_clear);
   Vec2 lo, hi;
@@ -173,7 +174,7 @@ void furnish_open_plan(const Polygon2& face, int level, double ceiling, Rng& rng
         desk.size = Vec2(cluster_w, desk_d);
         scene->boxes.push_back(box_of(desk, 0.0, 0.74, level, "desk"));
       }
-      Wall partition;
+      scene::Wall partition;
       partition.level = level;
       partition.from = Vec2(x, y + desk_d + 0.025);
       partition.to = Vec2(x + cluster_w, y + desk_d + 0.025);
@@ -184,7 +185,7 @@ void furnish_open_plan(const Polygon2& face, int level, double ceiling, Rng& rng
   }
 }
 
-void furnish_lobby(const Polygon2& face, int level, double ceiling, Rng& rng, Scene* scene,
+void furnish_lobby(const Polygon2& face, int level, double ceiling, Rng& rng, scene::Scene* scene,
                    const std::vector<OrientedRect>& keep_clear) {
   Placer placer(*scene, level, face, keep_clear);
   Vec2 lo, hi;
@@ -212,19 +213,19 @@ void furnish_lobby(const Polygon2& face, int level, double ceiling, Rng& rng, Sc
 
 }  // namespace
 
-std::vector<DoorApproach> door_approaches(const Scene& scene, int level) {
+std::vector<DoorApproach> door_approaches(const scene::Scene& scene, int level) {
   std::vector<DoorApproach> out;
-  for (const Wall& w : scene.walls) {
+  for (const scene::Wall& w : scene.walls) {
     if (w.level != level) continue;
     const Vec2 dir = (w.to - w.from).normalized();
-    for (const Opening& o : w.openings) {
+    for (const scene::Opening& o : w.openings) {
       if (o.sill <= 0.0) out.push_back({w.from + o.at * dir, std::max(kDoorKeepOut, 0.5 * o.width + 0.8)});
     }
   }
   return out;
 }
 
-void furnish(const FloorPlan& plan, const PlanResult& result, int level, Rng& rng, Scene* scene,
+void furnish(const FloorPlan& plan, const PlanResult& result, int level, Rng& rng, scene::Scene* scene,
              const std::vector<OrientedRect>& keep_clear) {
   const double ceiling = scene->levels.at(level).ceiling;
   for (std::size_t s = 0; s < plan.spaces.size(); ++s) {
@@ -248,4 +249,4 @@ void furnish(const FloorPlan& plan, const PlanResult& result, int level, Rng& rn
   }
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

@@ -10,12 +10,12 @@
 
 #include "tsgraphs/core/rect.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 
 /// Adds boxes (and low partitions, as walls) to `scene` for the spaces of `plan` on `level`,
 /// whose faces and doors add_floor_plan has already put there (`result`). Nothing is placed
 /// over `keep_clear` (door leaves) or within the furniture's spacing of it.
-void furnish(const FloorPlan& plan, const PlanResult& result, int level, Rng& rng, Scene* scene,
+void furnish(const FloorPlan& plan, const PlanResult& result, int level, Rng& rng, scene::Scene* scene,
              const std::vector<OrientedRect>& keep_clear = {});
 
 /// The floor kept free round a door so that one can walk up to it from either side: a disc
@@ -25,6 +25,6 @@ struct DoorApproach {
   double radius = 0.0;
 };
 /// The approaches of every door (an opening from the floor) of `level`.
-std::vector<DoorApproach> door_approaches(const Scene& scene, int level);
+std::vector<DoorApproach> door_approaches(const scene::Scene& scene, int level);
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

@@ -26,14 +26,14 @@
 #include "tsgraphs/scene/walkable_grid.hpp"
 #include "tsgraphs/generator/windows.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 namespace {
 
-using generator_internal::Building;
-using generator_internal::draw_building;
-using generator_internal::kSlabThickness;
-using generator_internal::rect_polygon;
-using generator_internal::Storey;
+using internal::Building;
+using internal::draw_building;
+using internal::kSlabThickness;
+using internal::rect_polygon;
+using internal::Storey;
 
 // Storeys.
 constexpr double kExtraDoorChance = 0.2;  // of a room getting a second door into a neighbour room
@@ -60,7 +60,7 @@ constexpr double kLevelMatch = 0.3;        // m between a pose's floor height an
 
 /// Storey `level`'s doors, walls and furniture into `scene` (its level exists); for a
 /// realistic building its rooms reshaped first, then windows, door leaves and clutter.
-void build_storey(Storey* s, int level, const GeneratorConfig& config, Rng& rng, Scene* scene) {
+void build_storey(Storey* s, int level, const GeneratorConfig& config, Rng& rng, scene::Scene* scene) {
   const std::uint64_t i = static_cast<std::uint64_t>(level);
   Rng doors = rng.fork(100 + i);
   // Drawn only for a realistic building: without it the main stream is as it always was.
@@ -97,8 +97,8 @@ void build_storey(Storey* s, int level, const GeneratorConfig& config, Rng& rng,
 }
 
 /// The platform: sensor, drift and path speed.
-void draw_platform(Scene* scene, Rng& rng, const GeneratorConfig& config) {
-  apply_preset(rng.pick(preset_names()), &scene->sensor);
+void draw_platform(scene::Scene* scene, Rng& rng, const GeneratorConfig& config) {
+  scene::apply_preset(rng.pick(scene::preset_names()), &scene->sensor);
   scene->sensor.mount_height = rng.uniform(config.mount_height_min, config.mount_height_max);
   const double drift = rng.uniform(kDriftMin, kDriftMax);
   scene->odometry.trans_noise_per_m = drift;
@@ -114,10 +114,11 @@ void draw_platform(Scene* scene, Rng& rng, const GeneratorConfig& config) {
 
 /// Places the survey path visits: every ground-truth room's most interior point, and in
 /// large rooms one more per coverage tile.
-std::vector<SurveyStop> survey_stops(const Scene& scene, const std::vector<WalkableGrid>& grids,
-                                     const std::vector<int>& grid_of_level, const GeneratorConfig& config,
-                                     std::vector<std::string>* names) {
-  std::vector<SurveyStop> stops;
+std::vector<scene::SurveyStop> survey_stops(const scene::Scene& scene,
+                                            const std::vector<scene::WalkableGrid>& grids,
+                                            const std::vector<int>& grid_of_level,
+                                            const GeneratorConfig& config, std::vector<std::string>* names) {
+  std::vector<scene::SurveyStop> stops;
   const double min_clearance = config.clearance + 2.0 * config.grid_resolution;
   // Corridors first, so that the tour starts in one.
   std::vector<std::size_t> order(scene.rooms.size());
@@ -126,10 +127,10 @@ std::vector<SurveyStop> survey_stops(const Scene& scene, const std::vector<Walka
     return scene.rooms[i].name.find("corridor") != std::string::npos;
   });
   for (std::size_t i : order) {
-    const Room& room = scene.rooms[i];
+    const scene::Room& room = scene.rooms[i];
     const int g = grid_of_level[room.level];
     Vec2 p;
-    if (g < 0 || !most_interior_point(grids[g], room.polygon, &p)) continue;
+    if (g < 0 || !scene::most_interior_point(grids[g], room.polygon, &p)) continue;
     stops.push_back({g, p});
     names->push_back(room.name);
     if (area(room.polygon) < config.coverage_area) continue;
@@ -143,7 +144,7 @@ std::vector<SurveyStop> survey_stops(const Scene& scene, const std::vector<Walka
       for (double y = lo.y(); y < hi.y() - 0.25 * t; y += t) {
         const Polygon2 tile = clip_to_convex(room.polygon, rect_polygon({x, y}, {x + t, y + t}));
         Vec2 q;
-        if (tile.size() < 3 || !most_interior_point(grids[g], tile, &q)) continue;
+        if (tile.size() < 3 || !scene::most_interior_point(grids[g], tile, &q)) continue;
         if (grids[g].clearance_at(q) < min_clearance || (q - p).norm() < 0.5 * t) continue;
         stops.push_back({g, q});
         names->push_back(room.name + " (coverage)");
@@ -163,17 +164,18 @@ std::uint64_t seed_of(const std::string& style, std::uint64_t seed, int attempt)
 /// `count` people, each walking a stretch of two to kPersonStretchMax consecutive waypoints of
 /// the survey path on one level's flat floor (clear of walls and boxes as the path is), there
 /// and back. A person whose draws all fall on ramps or level changes is left out.
-void add_people(int count, Rng& rng, Scene* scene) {
-  const std::vector<Waypoint>& w = scene->trajectory.waypoints;
+void add_people(int count, Rng& rng, scene::Scene* scene) {
+  const std::vector<scene::Waypoint>& w = scene->trajectory.waypoints;
   const auto on_flat_floor = [&](int level, const Vec2& xy) {
     double z = 0.0;
-    return walkable_height(*scene, level, xy, &z) && std::abs(z - scene->levels[level].elevation) < 1e-6;
+    return scene::walkable_height(*scene, level, xy, &z) &&
+           std::abs(z - scene->levels[level].elevation) < 1e-6;
   };
   for (int i = 0; i < count; ++i) {
     for (int draw = 0; draw < kPersonDraws; ++draw) {
       const int first = rng.integer(0, static_cast<int>(w.size()) - 2);
       const std::size_t points = static_cast<std::size_t>(rng.integer(2, kPersonStretchMax));
-      Person p;
+      scene::Person p;
       p.level = w[first].level;
       for (std::size_t k = first; k < w.size() && p.path.size() < points && w[k].level == p.level; ++k) {
         if (!on_flat_floor(p.level, w[k].xy)) break;
@@ -196,10 +198,10 @@ struct RecordingOverLimits : InputError {
 };
 
 /// The scene's levels, one per storey, each a slab above the ceiling of the one below.
-void add_levels(const Building& b, Scene* scene) {
+void add_levels(const Building& b, scene::Scene* scene) {
   double elevation = 0.0;
   for (const Storey& s : b.storeys) {
-    Level l;
+    scene::Level l;
     l.name = s.name;
     l.elevation = elevation;
     l.ceiling = s.ceiling;
@@ -211,59 +213,59 @@ void add_levels(const Building& b, Scene* scene) {
 
 /// The planning rasters of the walked storeys, and each level's index into them (-1: not walked).
 struct WalkedGrids {
-  std::vector<WalkableGrid> grids;
+  std::vector<scene::WalkableGrid> grids;
   std::vector<int> grid_of_level;
 };
 
-WalkedGrids walked_grids(const Scene& scene, const Building& b, const GeneratorConfig& config) {
-  const GridFrame frame = frame_covering(scene, config.grid_resolution, 0.5);
+WalkedGrids walked_grids(const scene::Scene& scene, const Building& b, const GeneratorConfig& config) {
+  const GridFrame frame = scene::frame_covering(scene, config.grid_resolution, 0.5);
   WalkedGrids out;
   out.grid_of_level.assign(scene.levels.size(), -1);
   for (std::size_t i = 0; i < scene.levels.size(); ++i) {
     if (!b.storeys[i].walked) continue;
     out.grid_of_level[i] = static_cast<int>(out.grids.size());
-    out.grids.push_back(rasterise_walkable(scene, static_cast<int>(i), frame));
+    out.grids.push_back(scene::rasterise_walkable(scene, static_cast<int>(i), frame));
   }
   return out;
 }
 
 /// The survey path over the walked storeys, in place of the scene's first path, its turns kept
 /// clear of obstacles.
-void plan_survey_path(const Building& b, const GeneratorConfig& config, Scene* scene) {
+void plan_survey_path(const Building& b, const GeneratorConfig& config, scene::Scene* scene) {
   const WalkedGrids walked = walked_grids(*scene, b, config);
-  const std::vector<WalkableGrid>& grids = walked.grids;
+  const std::vector<scene::WalkableGrid>& grids = walked.grids;
   const std::vector<int>& grid_of_level = walked.grid_of_level;
-  std::vector<GridLink> links;
-  for (const Ramp& r : scene->ramps)
+  std::vector<scene::GridLink> links;
+  for (const scene::Ramp& r : scene->ramps)
     links.push_back({grid_of_level[r.from_level], grid_of_level[r.to_level], r.polygon});
   std::vector<std::string> names;
-  const std::vector<SurveyStop> stops = survey_stops(*scene, grids, grid_of_level, config, &names);
+  const std::vector<scene::SurveyStop> stops = survey_stops(*scene, grids, grid_of_level, config, &names);
   if (stops.empty()) throw std::runtime_error("no room to visit");
-  SurveyConfig survey;
+  scene::SurveyConfig survey;
   survey.clearance = config.clearance;
   scene->trajectory.waypoints =
-      plan_survey(grids, links, stops, survey, [&](std::size_t i) { return names[i]; });
+      scene::plan_survey(grids, links, stops, survey, [&](std::size_t i) { return names[i]; });
   scene->trajectory.level = scene->trajectory.waypoints.front().level;
   // Exact distances where the raster says an obstacle may be near; the raster's elsewhere.
   const double near = config.clearance + 4.0 * config.grid_resolution;
   const auto clearance_at = [&](const Vec2& xy, double floor_z, int level) {
     const int g = grid_of_level[level];
     const double raster = g < 0 ? 0.0 : grids[g].clearance_at(xy);
-    return raster > near ? raster : obstacle_distance(*scene, xy, floor_z, config.clearance + 0.05);
+    return raster > near ? raster : scene::obstacle_distance(*scene, xy, floor_z, config.clearance + 0.05);
   };
-  keep_clearance_on_turns(scene, clearance_at, survey);
+  scene::keep_clearance_on_turns(scene, clearance_at, survey);
 }
 
 /// The scene file of the finished scene and what it loads to; throws when a check fails.
-GeneratedBuilding scene_file(const Scene& scene, const std::string& style, std::uint64_t seed, int attempt,
-                             const GeneratorConfig& config) {
+GeneratedBuilding scene_file(const scene::Scene& scene, const std::string& style, std::uint64_t seed,
+                             int attempt, const GeneratorConfig& config) {
   GeneratedBuilding out;
   std::ostringstream header;
   header << "Generated by `tsgraphs generate --style " << style << " --seed " << seed
          << (config.realistic ? " --realistic" : "") << "` (docs/generator.md).\n"
          << "Ground truth: every room, hall and corridor segment bounded by walls, doors and railings.";
-  out.yaml = scene_yaml(scene, header.str());
-  out.scene = parse_scene(out.yaml, scene.name + ".yaml", ".");
+  out.yaml = scene::scene_yaml(scene, header.str());
+  out.scene = scene::parse_scene(out.yaml, scene.name + ".yaml", ".");
   out.attempts = attempt + 1;
   const std::vector<std::string> problems = check_building(out.scene, config.clearance);
   if (!problems.empty()) {
@@ -276,7 +278,7 @@ GeneratedBuilding scene_file(const Scene& scene, const std::string& style, std::
 GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed, int attempt,
                                    const GeneratorConfig& config) {
   Rng rng(seed_of(style, seed, attempt));
-  Scene scene;
+  scene::Scene scene;
   scene.name = style + "_" + std::to_string(seed);
   scene.seed = seed;
   draw_platform(&scene, rng, config);
@@ -285,7 +287,7 @@ GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed,
   for (std::size_t i = 0; i < b.storeys.size(); ++i)
     build_storey(&b.storeys[i], static_cast<int>(i), config, rng, &scene);
   scene.ramps = b.ramps;
-  join_wall_ends(&scene);
+  scene::join_wall_ends(&scene);
   // A first path so that the scene loads; the survey path replaces it.
   int first_walked = 0;
   while (!b.storeys[first_walked].walked) ++first_walked;
@@ -293,7 +295,7 @@ GeneratedBuilding attempt_building(const std::string& style, std::uint64_t seed,
   scene.trajectory.waypoints = {{Vec2::Zero(), first_walked, 0}, {Vec2::Zero(), first_walked, 0}};
   plan_survey_path(b, config, &scene);
   scene.trajectory.laps = config.laps;
-  if (const std::string over = recording_over_limits(scene); !over.empty())
+  if (const std::string over = scene::recording_over_limits(scene); !over.empty())
     throw RecordingOverLimits("--laps: " + over);
   // Last, from a draw of its own: a building with people is the same building without them.
   if (config.people > 0) {
@@ -343,15 +345,15 @@ GeneratedBuilding generate_building(const std::string& style, std::uint64_t seed
                            std::to_string(config.max_attempts) + " attempts (last: " + last + ")");
 }
 
-std::vector<std::string> check_building(const Scene& scene, double clearance) {
+std::vector<std::string> check_building(const scene::Scene& scene, double clearance) {
   std::vector<std::string> problems = scene.warnings;
-  const Trajectory trajectory(scene);
+  const scene::Trajectory trajectory(scene);
   for (const std::string& w : trajectory.warnings()) problems.push_back("trajectory: " + w);
   const auto clearance_at = [&](const Vec2& xy, double floor_z, int) {
-    return obstacle_distance(scene, xy, floor_z, clearance + 0.05);
+    return scene::obstacle_distance(scene, xy, floor_z, clearance + 0.05);
   };
-  const double step = SurveyConfig{}.check_step;  // the same sampling as the planner's own check
-  const PathClearance c = path_clearance(scene, clearance_at, step);
+  const double step = scene::SurveyConfig{}.check_step;  // the same sampling as the planner's own check
+  const scene::PathClearance c = scene::path_clearance(scene, clearance_at, step);
   if (c.min_clearance < clearance) {
     std::ostringstream s;
     s << "the path comes " << c.min_clearance << " m from an obstacle at [" << c.where.x() << ", "
@@ -363,8 +365,8 @@ std::vector<std::string> check_building(const Scene& scene, double clearance) {
   const double dt = step / scene.trajectory.speed;
   for (double t = 0.0; t <= trajectory.duration(); t += dt) {
     const Pose3 p = trajectory.body_pose(t);
-    const int level = level_under(scene, p.translation().head<2>(),
-                                  p.translation().z() - scene.sensor.mount_height, kLevelMatch, -1);
+    const int level = scene::level_under(scene, p.translation().head<2>(),
+                                         p.translation().z() - scene.sensor.mount_height, kLevelMatch, -1);
     for (std::size_t i = 0; i < scene.rooms.size(); ++i) {
       if (!entered[i] && scene.rooms[i].level == level &&
           contains(scene.rooms[i].polygon, p.translation().head<2>()))
@@ -375,13 +377,13 @@ std::vector<std::string> check_building(const Scene& scene, double clearance) {
     if (!entered[i]) problems.push_back("the path does not enter room '" + scene.rooms[i].name + "'");
   }
   for (std::size_t i = 0; i < scene.rooms.size(); ++i) {
-    const Room& a = scene.rooms[i];
+    const scene::Room& a = scene.rooms[i];
     for (std::size_t j = i + 1; j < scene.rooms.size(); ++j) {
-      const Room& b = scene.rooms[j];
+      const scene::Room& b = scene.rooms[j];
       if (a.level == b.level && intersection_area(a.polygon, b.polygon) > kRoomOverlapArea)
         problems.push_back("rooms '" + a.name + "' and '" + b.name + "' overlap");
     }
-    const Level& l = scene.levels[a.level];
+    const scene::Level& l = scene.levels[a.level];
     double outside = area(a.polygon) - intersection_area(a.polygon, l.slab);
     for (const Polygon2& v : l.voids) outside += intersection_area(a.polygon, v);
     if (outside > kRoomOverlapArea) problems.push_back("room '" + a.name + "' leaves the walkable slab");
@@ -389,4 +391,4 @@ std::vector<std::string> check_building(const Scene& scene, double clearance) {
   return problems;
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

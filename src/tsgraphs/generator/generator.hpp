@@ -10,7 +10,7 @@
 
 #include "tsgraphs/scene/scene.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 
 /// office, atrium, library, open_plan, irregular, multi_storey, mixed.
 const std::vector<std::string>& building_style_names();
@@ -39,9 +39,9 @@ struct GeneratorConfig {
 constexpr int kMaxGeneratedPeople = 50;
 
 struct GeneratedBuilding {
-  Scene scene;       ///< parsed from `yaml`, exactly what a scene file of it loads to
-  std::string yaml;  ///< the scene file's text
-  int attempts = 1;  ///< layouts drawn until one passed every check
+  scene::Scene scene;  ///< parsed from `yaml`, exactly what a scene file of it loads to
+  std::string yaml;    ///< the scene file's text
+  int attempts = 1;    ///< layouts drawn until one passed every check
 };
 
 /// The building of `style` for `seed`: the same style, seed and config give the same text.
@@ -53,6 +53,6 @@ GeneratedBuilding generate_building(const std::string& style, std::uint64_t seed
 /// when sound: the loader's and the path's warnings; the path's clearance along all laps
 /// (exact geometry); a true pose inside every ground-truth room; rooms that overlap or leave
 /// the walkable slab.
-std::vector<std::string> check_building(const Scene& scene, double clearance);
+std::vector<std::string> check_building(const scene::Scene& scene, double clearance);
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

@@ -5,7 +5,7 @@
 
 #include "tsgraphs/generator/building_styles.hpp"
 
-namespace tsgraphs::scene::generator_internal {
+namespace tsgraphs::generator::internal {
 namespace {
 
 // Storeys.
@@ -82,7 +82,9 @@ FloorPlanRules draw_rules(Rng& rng) {
   r.interior_wall = rng.uniform(kInteriorWallMin, kInteriorWallMax);
   r.exterior_wall = rng.uniform(kFacadeMin, kFacadeMax);
   const double u = rng.unit();
-  r.railing = u < 1.0 / 3 ? RailingStyle::kSolid : u < 2.0 / 3 ? RailingStyle::kBars : RailingStyle::kGlass;
+  r.railing = u < 1.0 / 3   ? scene::RailingStyle::kSolid
+              : u < 2.0 / 3 ? scene::RailingStyle::kBars
+                            : scene::RailingStyle::kGlass;
   r.glass_transmission = rng.uniform(kGlassTransmissionMin, kGlassTransmissionMax);
   return r;
 }
@@ -215,7 +217,7 @@ Building multi_storey(double scale, bool realistic, Rng& rng) {
         const int store =
             s.plan.add_rect(side + "store", SpaceKind::kRoom, {p.x0 + run, s0}, {W, s1}, Furnishing::kOffice);
         s.plan.doors.push_back(random_door(store, gallery, rng));
-        Ramp r;
+        scene::Ramp r;
         r.from_level = j;
         r.to_level = j + 1;
         r.polygon = rect_polygon({p.x0, s0}, {p.x0 + run, s1});
@@ -245,4 +247,4 @@ Building draw_building(const std::string& style, double scale, bool realistic, R
                                    : single_wing(style, scale, realistic, rng);
 }
 
-}  // namespace tsgraphs::scene::generator_internal
+}  // namespace tsgraphs::generator::internal

@@ -9,7 +9,7 @@
 #include "tsgraphs/generator/random.hpp"
 #include "tsgraphs/scene/scene.hpp"
 
-namespace tsgraphs::scene::generator_internal {
+namespace tsgraphs::generator::internal {
 
 constexpr double kSlabThickness = 0.3;  // m between a ceiling and the floor above
 
@@ -26,10 +26,10 @@ struct Storey {
 
 struct Building {
   std::vector<Storey> storeys;
-  std::vector<Ramp> ramps;  ///< levels as storey indices
+  std::vector<scene::Ramp> ramps;  ///< levels as storey indices
 };
 
 /// The storeys of a building of `style` (building_style_names()), scaled by `scale`.
 Building draw_building(const std::string& style, double scale, bool realistic, Rng& rng);
 
-}  // namespace tsgraphs::scene::generator_internal
+}  // namespace tsgraphs::generator::internal

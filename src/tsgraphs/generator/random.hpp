@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 
 class Rng {
  public:
@@ -36,4 +36,4 @@ class Rng {
   std::uint64_t state_;
 };
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

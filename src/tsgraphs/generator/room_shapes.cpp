@@ -4,7 +4,7 @@
 #include <cmath>
 #include <optional>
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 namespace {
 
 constexpr double kShapeChance = 0.4;  // of a room or hall losing a piece (most real rooms are rectangles)
@@ -150,4 +150,4 @@ int shape_rooms(FloorPlan* plan, Rng& rng) {
   return shaped;
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

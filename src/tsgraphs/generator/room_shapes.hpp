@@ -9,10 +9,10 @@
 #include "tsgraphs/generator/floor_plan.hpp"
 #include "tsgraphs/generator/random.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 
 /// Reshapes some of the plan's rooms and halls (before its doors are joined up); returns the
 /// number reshaped. Only right-angled corners and straight walls are cut.
 int shape_rooms(FloorPlan* plan, Rng& rng);
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

@@ -3,7 +3,7 @@
 
 #include "tsgraphs/generator/building_styles.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 namespace {
 
 constexpr double kRingMin = 1.8;  // m: ring corridor widths
@@ -61,4 +61,4 @@ void fill_atrium(FloorPlan* plan, const Region& region, Rng& rng, const std::str
   if (de > 0) fill_block(plan, {{xe, ys}, {x1, yn}}, Side::kWest, e, rng, prefix);
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

@@ -5,7 +5,7 @@
 
 #include "tsgraphs/generator/building_styles.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 namespace {
 
 constexpr double kDiagonalMinDeg = 30.0;  // the corridor's angle to the facade (the 30-60 degrees)
@@ -231,4 +231,4 @@ void fill_irregular(FloorPlan* plan, const Region& region, Rng& rng, const std::
   }
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

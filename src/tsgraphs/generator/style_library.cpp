@@ -4,7 +4,7 @@
 
 #include "tsgraphs/generator/building_styles.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 namespace {
 
 constexpr double kNarrowMin = 1.2;  // m: the narrow part of the corridor
@@ -56,4 +56,4 @@ void fill_library(FloorPlan* plan, const Region& region, Rng& rng, const std::st
   mirror_spaces(plan, first, region, mx, my);
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

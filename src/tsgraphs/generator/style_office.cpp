@@ -3,7 +3,7 @@
 
 #include "tsgraphs/generator/building_styles.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 namespace {
 
 constexpr double kCorridorMin = 1.2;  // m: corridor widths drawn from [1.2, 3.5] (the range)
@@ -73,4 +73,4 @@ void fill_office(FloorPlan* plan, const Region& region, Rng& rng, const std::str
   mirror_spaces(plan, first, region, mx, my);
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

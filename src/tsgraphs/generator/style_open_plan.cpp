@@ -4,7 +4,7 @@
 
 #include "tsgraphs/generator/building_styles.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 namespace {
 
 constexpr double kMeetingChance = 0.6;    // of a row of meeting rooms along one side
@@ -48,4 +48,4 @@ void fill_open_plan(FloorPlan* plan, const Region& region, Rng& rng, const std::
     fill_block(plan, rooms, side, h, rng, prefix + "meeting_");
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 namespace {
 
 constexpr double kFacadeWindowChance = 0.85;  // of a facade wall having windows (the rest: blind, a store's)
@@ -34,8 +34,8 @@ struct Band {
 };
 
 /// True when [a, b] keeps kDoorSpacing from every opening of `w`; else `next` gets where to go on.
-bool clear_of_openings(const Wall& w, double a, double b, double* next) {
-  for (const Opening& o : w.openings) {
+bool clear_of_openings(const scene::Wall& w, double a, double b, double* next) {
+  for (const scene::Opening& o : w.openings) {
     const double lo = o.at - 0.5 * o.width - kDoorSpacing, hi = o.at + 0.5 * o.width + kDoorSpacing;
     if (b > lo && a < hi) {
       *next = hi;
@@ -46,12 +46,12 @@ bool clear_of_openings(const Wall& w, double a, double b, double* next) {
 }
 
 /// Windows along `w` between its end margins: widths and piers drawn from the given ranges.
-int glaze(Wall* w, const Band& band, double width_lo, double width_hi, double pier_lo, double pier_hi,
+int glaze(scene::Wall* w, const Band& band, double width_lo, double width_hi, double pier_lo, double pier_hi,
           Rng& rng) {
   const double length = (w->to - w->from).norm();
   const double margin = kEndMargin + 0.5 * w->thickness;
   const double hi = length - margin;
-  std::vector<Opening> made;
+  std::vector<scene::Opening> made;
   double s = margin + rng.uniform(0.0, pier_hi - pier_lo);
   while (s + width_lo <= hi) {
     const double width = std::min(rng.uniform(width_lo, width_hi), hi - s);
@@ -60,7 +60,7 @@ int glaze(Wall* w, const Band& band, double width_lo, double width_hi, double pi
       s = next;
       continue;
     }
-    Opening o;
+    scene::Opening o;
     o.at = s + 0.5 * width;
     o.width = width;
     o.sill = band.sill;
@@ -71,7 +71,7 @@ int glaze(Wall* w, const Band& band, double width_lo, double width_hi, double pi
   }
   w->openings.insert(w->openings.end(), made.begin(), made.end());
   std::sort(w->openings.begin(), w->openings.end(),
-            [](const Opening& x, const Opening& y) { return x.at < y.at; });
+            [](const scene::Opening& x, const scene::Opening& y) { return x.at < y.at; });
   return static_cast<int>(made.size());
 }
 
@@ -82,11 +82,11 @@ bool is_front(SpaceKind a, SpaceKind b) {
 
 }  // namespace
 
-int add_windows(const FloorPlan& plan, const PlanResult& result, Rng& rng, Scene* scene) {
+int add_windows(const FloorPlan& plan, const PlanResult& result, Rng& rng, scene::Scene* scene) {
   const double glass = rng.uniform(kGlassMin, kGlassMax);
   int made = 0;
   for (const PlanWall& pw : result.walls) {
-    Wall& w = scene->walls[pw.wall];
+    scene::Wall& w = scene->walls[pw.wall];
     const SpaceKind a = plan.spaces[pw.a].kind;
     const double top = w.height - kLintelMin;
     if (pw.b < 0) {
@@ -103,4 +103,4 @@ int add_windows(const FloorPlan& plan, const PlanResult& result, Rng& rng, Scene
   return made;
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

@@ -7,10 +7,10 @@
 #include "tsgraphs/generator/floor_plan.hpp"
 #include "tsgraphs/generator/random.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::generator {
 
 /// Adds window openings to the walls add_floor_plan made for `plan` (`result`), keeping
 /// clear of their doors. Returns the number of windows made.
-int add_windows(const FloorPlan& plan, const PlanResult& result, Rng& rng, Scene* scene);
+int add_windows(const FloorPlan& plan, const PlanResult& result, Rng& rng, scene::Scene* scene);
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::generator

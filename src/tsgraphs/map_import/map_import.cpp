@@ -19,7 +19,7 @@
 #include "tsgraphs/scene/trajectory.hpp"
 #include "tsgraphs/scene/walkable_grid.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::map_import {
 namespace {
 
 constexpr double kCellEdgeBound =
@@ -205,8 +205,9 @@ std::vector<Polygon2> room_polygons(const MapRaster& map, const std::vector<int>
 
 /// Where one may stand: the slab's floor that is no wall (its small unknown holes too: a map's
 /// speckle noise must not wall rooms off), with its clearance.
-WalkableGrid walkable_grid(const MapRaster& map, const Floor& floor, const std::vector<std::uint8_t>& wall) {
-  WalkableGrid grid;
+scene::WalkableGrid walkable_grid(const MapRaster& map, const Floor& floor,
+                                  const std::vector<std::uint8_t>& wall) {
+  scene::WalkableGrid grid;
   grid.level = 0;
   grid.frame.origin = Vec2::Zero();
   grid.frame.resolution = map.resolution;
@@ -215,14 +216,14 @@ WalkableGrid walkable_grid(const MapRaster& map, const Floor& floor, const std::
   grid.free.assign(map.cells.size(), 0);
   for (std::size_t i = 0; i < grid.free.size(); ++i)
     grid.free[i] = (floor.slab[i] && !wall[i]) || floor.speck[i];
-  compute_clearance(&grid);
+  scene::compute_clearance(&grid);
   return grid;
 }
 
 /// The tour's region: the region of the cells that keep the planning clearance holding the most
 /// rooms' most interior points (ties: the largest). Its grid is free only there.
-WalkableGrid tour_region(const WalkableGrid& grid, const std::vector<Polygon2>& rooms,
-                         double plan_clearance) {
+scene::WalkableGrid tour_region(const scene::WalkableGrid& grid, const std::vector<Polygon2>& rooms,
+                                double plan_clearance) {
   const GridFrame& f = grid.frame;
   std::vector<std::uint8_t> passable(f.size());
   for (std::size_t i = 0; i < passable.size(); ++i)
@@ -236,7 +237,7 @@ WalkableGrid tour_region(const WalkableGrid& grid, const std::vector<Polygon2>& 
   for (const Polygon2& room : rooms) {
     Vec2 p;
     int c, r;
-    if (!room.empty() && most_interior_point(grid, room, &p) && f.cell_of(p, &c, &r)) {
+    if (!room.empty() && scene::most_interior_point(grid, room, &p) && f.cell_of(p, &c, &r)) {
       if (const int id = region[f.index(c, r)]; id >= 0) ++rooms_in[id];
     }
   }
@@ -245,7 +246,7 @@ WalkableGrid tour_region(const WalkableGrid& grid, const std::vector<Polygon2>& 
     if (std::tie(rooms_in[id], sizes[id]) > std::tie(rooms_in[main_id], sizes[main_id]))
       main_id = static_cast<int>(id);
   }
-  WalkableGrid reach = grid;  // clearances unchanged
+  scene::WalkableGrid reach = grid;  // clearances unchanged
   for (std::size_t i = 0; i < reach.free.size(); ++i) reach.free[i] = region[i] == main_id;
   return reach;
 }
@@ -253,11 +254,11 @@ WalkableGrid tour_region(const WalkableGrid& grid, const std::vector<Polygon2>& 
 /// The path's stops: one in each reachable room, or without rooms one in each tile of the tour's
 /// region; with a single stop, the region's farthest cell from it as a second.
 struct Stops {
-  std::vector<SurveyStop> stops;
+  std::vector<scene::SurveyStop> stops;
   std::vector<std::string> names;
 };
 
-void add_coverage_stops(const WalkableGrid& reach, const MapImportConfig& config, Stops* out) {
+void add_coverage_stops(const scene::WalkableGrid& reach, const MapImportConfig& config, Stops* out) {
   const GridFrame& f = reach.frame;
   int c0 = f.cols, c1 = -1, r0 = f.rows, r1 = -1;
   for (std::size_t i = 0; i < reach.free.size(); ++i) {
@@ -273,14 +274,14 @@ void add_coverage_stops(const WalkableGrid& reach, const MapImportConfig& config
       const Vec2 lo = res * Vec2(c0 + tx * tile, r0 + ty * tile), hi = lo + Vec2::Constant(res * tile);
       const Polygon2 box = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
       Vec2 p;
-      if (!most_interior_point(reach, box, &p)) continue;
+      if (!scene::most_interior_point(reach, box, &p)) continue;
       out->stops.push_back({0, p});
       out->names.push_back("tile " + std::to_string(tx) + "," + std::to_string(ty));
     }
   }
 }
 
-void add_far_end(const WalkableGrid& reach, Stops* out) {
+void add_far_end(const scene::WalkableGrid& reach, Stops* out) {
   std::size_t best = 0;
   double best_d = -1.0;
   for (std::size_t i = 0; i < reach.free.size(); ++i) {
@@ -295,7 +296,7 @@ void add_far_end(const WalkableGrid& reach, Stops* out) {
 }
 
 /// The scene's rooms, and a stop in each one the tour's region reaches (a warning for the others).
-Stops room_stops(const MapRaster& map, const std::vector<Polygon2>& rooms, const WalkableGrid& reach,
+Stops room_stops(const MapRaster& map, const std::vector<Polygon2>& rooms, const scene::WalkableGrid& reach,
                  const MapImportConfig& config, ImportedMap* out) {
   Stops s;
   for (std::size_t k = 0; k < rooms.size(); ++k) {
@@ -305,12 +306,12 @@ Stops room_stops(const MapRaster& map, const std::vector<Polygon2>& rooms, const
                               "' keeps no cell of its own (its labels touch other rooms' only): left out");
       continue;
     }
-    Room room;
+    scene::Room room;
     room.name = name;
     room.level = 0;
     room.polygon = transform(rooms[k], 1.0, map);
     Vec2 p;
-    if (most_interior_point(reach, rooms[k], &p)) {
+    if (scene::most_interior_point(reach, rooms[k], &p)) {
       s.stops.push_back({0, p});
       s.names.push_back(room.name);
     } else {
@@ -330,13 +331,13 @@ Stops room_stops(const MapRaster& map, const std::vector<Polygon2>& rooms, const
 
 /// The level, the wall voxel map and the sensor of the scene, in the world frame.
 void add_level_and_walls(const MapRaster& map, const Floor& floor, bool has_walls,
-                         const MapImportConfig& config, Scene* scene) {
+                         const MapImportConfig& config, scene::Scene* scene) {
   scene->name = config.name;
-  if (!apply_preset(config.sensor_preset, &scene->sensor))
+  if (!scene::apply_preset(config.sensor_preset, &scene->sensor))
     throw InputError("--sensor: unknown sensor preset '" + config.sensor_preset + "'");
   scene->sensor.preset = config.sensor_preset;
   scene->sensor.mount_height = config.mount_height;
-  Level level;
+  scene::Level level;
   level.name = "L0";
   level.elevation = 0.0;
   level.ceiling = config.ceiling;
@@ -345,31 +346,31 @@ void add_level_and_walls(const MapRaster& map, const Floor& floor, bool has_wall
     level.voids.push_back(transform(floor.outlines[v], map.resolution, map));
   scene->levels.push_back(level);
   if (!has_walls) return;
-  VoxelMap walls;
+  scene::VoxelMap walls;
   walls.file = config.voxel_file;
   walls.voxel_size = map.resolution;
   walls.level = 0;
-  walls.label = VoxelLabel::kWall;
+  walls.label = scene::VoxelLabel::kWall;
   walls.offset = Eigen::Vector3d(map.origin.x(), map.origin.y(), 0.0);
   walls.yaw_deg = map.yaw * 180.0 / M_PI;
   scene->voxel_maps.push_back(walls);
 }
 
 /// The survey path through the stops, in the world frame, its corners kept clear of the walls.
-void add_path(const MapRaster& map, const WalkableGrid& grid, const WalkableGrid& reach, const Stops& s,
-              const MapImportConfig& config, ImportedMap* out) {
-  SurveyConfig survey;
+void add_path(const MapRaster& map, const scene::WalkableGrid& grid, const scene::WalkableGrid& reach,
+              const Stops& s, const MapImportConfig& config, ImportedMap* out) {
+  scene::SurveyConfig survey;
   survey.clearance = config.clearance;
-  std::vector<Waypoint> lap;
+  std::vector<scene::Waypoint> lap;
   try {
-    lap = plan_survey({reach}, {}, s.stops, survey, [&](std::size_t i) { return s.names[i]; });
+    lap = scene::plan_survey({reach}, {}, s.stops, survey, [&](std::size_t i) { return s.names[i]; });
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("import_map: ") + e.what());  // the stops were checked: a bug
   }
-  Scene& scene = out->scene;
-  TrajectorySpec& t = scene.trajectory;
+  scene::Scene& scene = out->scene;
+  scene::TrajectorySpec& t = scene.trajectory;
   t.level = 0;
-  for (Waypoint w : lap) {
+  for (scene::Waypoint w : lap) {
     w.xy = map.to_world(w.xy);
     t.waypoints.push_back(w);
   }
@@ -380,11 +381,11 @@ void add_path(const MapRaster& map, const WalkableGrid& grid, const WalkableGrid
   // The distance to the nearest blocked cell's edge, at most: the raster's centre-to-centre
   // distance less a half diagonal.
   const double res = map.resolution;
-  const ClearanceAt clearance_at = [&](const Vec2& xy, double, int) {
+  const scene::ClearanceAt clearance_at = [&](const Vec2& xy, double, int) {
     return grid.clearance_at(map.to_map(xy)) - kCellEdgeBound * res;
   };
-  keep_clearance_on_turns(&scene, clearance_at, survey);
-  const PathClearance worst = path_clearance(scene, clearance_at);
+  scene::keep_clearance_on_turns(&scene, clearance_at, survey);
+  const scene::PathClearance worst = scene::path_clearance(scene, clearance_at);
   out->stats.min_path_clearance = worst.min_clearance;
   if (worst.min_clearance < config.clearance) {
     // Millimetres: at centimetres a path 0.349 m from a wall read "0.35 m, less than 0.35 m".
@@ -392,9 +393,9 @@ void add_path(const MapRaster& map, const WalkableGrid& grid, const WalkableGrid
                             " m from a wall or unmapped cell at [" + fmt(worst.where.x()) + ", " +
                             fmt(worst.where.y()) + "], less than " + fmt(config.clearance, 3) + " m");
   }
-  out->stats.path_length = Trajectory(scene).length() / t.laps;
+  out->stats.path_length = scene::Trajectory(scene).length() / t.laps;
   t.laps = config.laps;
-  if (const std::string over = recording_over_limits(scene); !over.empty())
+  if (const std::string over = scene::recording_over_limits(scene); !over.empty())
     throw InputError("--laps: " + over);
 }
 
@@ -455,9 +456,9 @@ ImportedMap import_map(const MapRaster& map, const std::vector<int>& room_of_cel
   if (out.voxels.empty()) out.warnings.push_back(no_wall_warning(out.stats, config));
   const std::vector<Polygon2> rooms = room_polygons(map, room_of_cell, room_count, config, &out.stats);
 
-  const WalkableGrid grid = walkable_grid(map, floor, wall);
-  SurveyConfig survey;
-  const WalkableGrid reach =
+  const scene::WalkableGrid grid = walkable_grid(map, floor, wall);
+  scene::SurveyConfig survey;
+  const scene::WalkableGrid reach =
       tour_region(grid, rooms, config.clearance + survey.plan_margin_cells * map.resolution);
   const Stops stops = room_stops(map, rooms, reach, config, &out);
   add_level_and_walls(map, floor, !out.voxels.empty(), config, &out.scene);
@@ -465,4 +466,4 @@ ImportedMap import_map(const MapRaster& map, const std::vector<int>& room_of_cel
   return out;
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::map_import

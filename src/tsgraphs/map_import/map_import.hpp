@@ -13,7 +13,7 @@
 #include "tsgraphs/core/raster_regions.hpp"
 #include "tsgraphs/scene/scene.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::map_import {
 
 enum class MapCell : std::uint8_t { kFree = 0, kOccupied = 1, kUnknown = 2 };
 
@@ -79,7 +79,7 @@ struct MapImportStats {
 };
 
 struct ImportedMap {
-  Scene scene;  ///< voxel_maps[0].file is config.voxel_file
+  scene::Scene scene;  ///< voxel_maps[0].file is config.voxel_file
   std::vector<Eigen::Vector3f>
       voxels;  ///< voxel centres in the voxel map's frame (the map frame, z up from the floor)
   std::vector<std::string> warnings;  ///< no wall; rooms left out of the tour, and why
@@ -95,4 +95,4 @@ struct ImportedMap {
 ImportedMap import_map(const MapRaster& map, const std::vector<int>& room_of_cell, int room_count,
                        const MapImportConfig& config);
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::map_import

@@ -10,7 +10,7 @@
 #include "tsgraphs/core/grid_frame.hpp"
 #include "tsgraphs/core/raster_regions.hpp"
 
-namespace tsgraphs::scene {
+namespace tsgraphs::map_import {
 namespace {
 
 constexpr float kDistanceSlack = 1e-4f;  // distances are square roots of integers: float rounding
@@ -271,4 +271,4 @@ MapRoomRegions room_regions(const std::vector<int>& room_of_cell, int count, int
   return out;
 }
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::map_import

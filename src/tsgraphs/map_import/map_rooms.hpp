@@ -22,7 +22,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace tsgraphs::scene {
+namespace tsgraphs::map_import {
 
 struct MapRoomRegions {
   std::vector<int> region;                ///< per cell: the room whose region holds it, or -1
@@ -37,4 +37,4 @@ struct MapRoomRegions {
 MapRoomRegions room_regions(const std::vector<int>& room_of_cell, int count, int cols, int rows,
                             double closing_radius);
 
-}  // namespace tsgraphs::scene
+}  // namespace tsgraphs::map_import

@@ -11,7 +11,7 @@
 
 #include "tsgraphs/core/error.hpp"
 
-namespace tsgraphs::io {
+namespace tsgraphs::mcap {
 namespace {
 
 /// Output of at most `size` bytes that grows as a decompressor fills it: what is allocated
@@ -215,4 +215,4 @@ void compress_zstd_file(const std::string& from, const std::string& to, int leve
   if (!out) throw std::runtime_error(to + ": cannot write the compressed file");
 }
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::mcap

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-namespace tsgraphs::io {
+namespace tsgraphs::mcap {
 
 /// `src` (n bytes) decompressed to exactly `size` bytes: `compression` is "" (stored as is),
 /// "lz4" or "zstd", as an MCAP chunk names it. InputError naming `path` and `where` otherwise.
@@ -34,4 +34,4 @@ std::string compress_lz4(const std::string& in);
 /// A file compressed with zstd at `level` into `to` (created or truncated), streamed.
 void compress_zstd_file(const std::string& from, const std::string& to, int level = kZstdLevel);
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::mcap

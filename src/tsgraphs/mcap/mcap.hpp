@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace tsgraphs::io::mcap {
+namespace tsgraphs::mcap {
 
 enum class Compression { none, lz4, zstd };
 
@@ -142,4 +142,4 @@ class Writer {
   std::unique_ptr<State> s_;
 };
 
-}  // namespace tsgraphs::io::mcap
+}  // namespace tsgraphs::mcap

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
-namespace tsgraphs::io::mcap::internal {
+namespace tsgraphs::mcap::internal {
 
 constexpr char kMagic[] = "\x89MCAP0\r\n";
 constexpr std::uint64_t kMagicBytes = 8;
@@ -32,4 +32,4 @@ inline std::uint32_t crc_of(const char* p, std::size_t n, std::uint32_t crc = 0)
   return static_cast<std::uint32_t>(::crc32_z(crc, reinterpret_cast<const Bytef*>(p), n));
 }
 
-}  // namespace tsgraphs::io::mcap::internal
+}  // namespace tsgraphs::mcap::internal

@@ -17,7 +17,7 @@
 #include "tsgraphs/mcap/compression.hpp"
 #include "tsgraphs/mcap/mcap_internal.hpp"
 
-namespace tsgraphs::io::mcap {
+namespace tsgraphs::mcap {
 
 using namespace internal;
 
@@ -123,7 +123,7 @@ std::string unpack(const std::string& compression, const char* src, std::uint64_
                       where + ": uncompressed size " + std::to_string(size) + " is beyond " +
                           std::to_string(kMaxChunkBytes) + " bytes (corrupt?)");
   }
-  return io::decompress(compression, src, n, size, path, where);
+  return mcap::decompress(compression, src, n, size, path, where);
 }
 
 }  // namespace
@@ -509,4 +509,4 @@ void Reader::read_each(const std::vector<MessageRef>& refs,
     f(ref, read(ref));  // the one-chunk cache keeps each chunk's decompression to one per run
 }
 
-}  // namespace tsgraphs::io::mcap
+}  // namespace tsgraphs::mcap

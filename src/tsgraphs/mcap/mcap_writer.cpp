@@ -12,7 +12,7 @@
 #include "tsgraphs/mcap/compression.hpp"
 #include "tsgraphs/mcap/mcap_internal.hpp"
 
-namespace tsgraphs::io::mcap {
+namespace tsgraphs::mcap {
 
 using namespace internal;
 
@@ -251,4 +251,4 @@ void Writer::finish() {
   s.finished = true;
 }
 
-}  // namespace tsgraphs::io::mcap
+}  // namespace tsgraphs::mcap

@@ -336,7 +336,7 @@ const std::string& foxglove_schema(const std::string& type) {
 namespace {
 
 /// Foxglove's schemas and the export's channels, in the order they are written.
-Channels add_channels(io::mcap::Writer& w) {
+Channels add_channels(mcap::Writer& w) {
   std::map<std::string, std::uint16_t> schema;
   for (const char* type : {"foxglove.FrameTransform", "foxglove.PointCloud", "foxglove.SceneUpdate"})
     schema[type] = w.add_schema(type, "jsonschema", foxglove_schema(type));
@@ -368,7 +368,7 @@ void export_foxglove_mcap(const std::string& run_dir, const std::string& out) {
   // PointCloud positions are float32 relative to the cloud's pose, put near the run's start.
   const Eigen::Vector3d origin = float_safe_origin(trajectory.front().pose.translation());
 
-  io::mcap::Writer w(out, {"", "tsgraphs", io::mcap::Compression::zstd, 1u << 20});
+  mcap::Writer w(out, {"", "tsgraphs", mcap::Compression::zstd, 1u << 20});
   const Channels ch = add_channels(w);
   const auto put = [&](std::uint16_t channel, double t, const json& message) {
     w.write(channel, nanoseconds(t), nanoseconds(t), message.dump());

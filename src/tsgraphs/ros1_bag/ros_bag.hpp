@@ -11,17 +11,17 @@
 #include "tsgraphs/io/recorded_sequence.hpp"
 #include "tsgraphs/io/scan_sequence.hpp"
 
-namespace tsgraphs::io {
+namespace tsgraphs::ros1_bag {
 
 /// The scans of a ROS 1 bag with their odometry. Scans are read when asked for (thread-safe).
 /// Its warnings are what rosbag itself said while the bag was opened (e.g. an index entry with
 /// an invalid time: that message is not read), each "rosbag: ...".
-class BagSequence : public RecordedSequence {
+class BagSequence : public io::RecordedSequence {
  public:
   /// InputError naming the bag (and topic) for a bag that cannot be read (missing, truncated),
   /// a topic that is missing or of another type, an odometry topic or file with no pose, or no
   /// scan inside the odometry's time span.
-  explicit BagSequence(const BagOptions& options);
+  explicit BagSequence(const io::BagOptions& options);
   ~BagSequence() override;
   PointCloud scan(std::size_t index) const override;
 
@@ -40,7 +40,7 @@ enum class BagCompression { none, bz2, lz4 };
 /// inverse), /tf_static ("base_link" -> "lidar" = sensor_to_base), and /groundtruth
 /// (PoseStamped of the sensor) when the sequence has ground truth. Written under a temporary
 /// name and renamed, so a failed write leaves nothing.
-void write_bag(const ScanSequence& sequence, const std::string& path, BagCompression compression,
+void write_bag(const io::ScanSequence& sequence, const std::string& path, BagCompression compression,
                const Pose3& sensor_to_base);
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::ros1_bag

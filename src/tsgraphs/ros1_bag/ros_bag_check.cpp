@@ -13,7 +13,7 @@
 #include "tsgraphs/core/printable.hpp"
 #include "tsgraphs/ros1_bag/ros_bag_internal.hpp"
 
-namespace tsgraphs::io::ros_bag_internal {
+namespace tsgraphs::ros1_bag::ros_bag_internal {
 
 namespace {
 
@@ -356,4 +356,4 @@ bool is_bag_file(const std::string& path) {
   return fs::is_regular_file(status);
 }
 
-}  // namespace tsgraphs::io::ros_bag_internal
+}  // namespace tsgraphs::ros1_bag::ros_bag_internal

@@ -12,7 +12,7 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/ros1_bag/ros_bag_internal.hpp"
 
-namespace tsgraphs::io {
+namespace tsgraphs::ros1_bag {
 
 using ros_bag_internal::check_bag;
 using ros_bag_internal::is_bag_file;
@@ -55,4 +55,4 @@ std::string bag_info(const std::string& path) {
   }
 }
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::ros1_bag

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace tsgraphs::io::ros_bag_internal {
+namespace tsgraphs::ros1_bag::ros_bag_internal {
 
 constexpr const char* kTfStaticTopic = "/tf_static";
 constexpr std::uint64_t kLengthBytes = 4;  // every length word of the bag format
@@ -68,4 +68,4 @@ class RosbagLines {
   std::vector<std::string> lines_;
 };
 
-}  // namespace tsgraphs::io::ros_bag_internal
+}  // namespace tsgraphs::ros1_bag::ros_bag_internal

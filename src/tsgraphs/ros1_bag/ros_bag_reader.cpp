@@ -24,7 +24,7 @@
 #include "tsgraphs/io/point_cloud2.hpp"
 #include "tsgraphs/ros1_bag/ros_bag_internal.hpp"
 
-namespace tsgraphs::io {
+namespace tsgraphs::ros1_bag {
 
 using ros_bag_internal::BagLimits;
 using ros_bag_internal::check_bag;
@@ -102,9 +102,9 @@ void require_topic(const std::string& path, const std::map<std::string, std::str
 }
 
 /// Odometry of the base: from the topic or the TUM file; none asked for is none.
-std::vector<StampedBase> read_odometry(const rosbag::Bag& bag, const BagOptions& options,
-                                       const std::map<std::string, std::string>& types) {
-  std::vector<StampedBase> odom;
+std::vector<io::StampedBase> read_odometry(const rosbag::Bag& bag, const io::BagOptions& options,
+                                           const std::map<std::string, std::string>& types) {
+  std::vector<io::StampedBase> odom;
   if (!options.odom_topic.empty()) {
     require_topic(options.bag, types, options.odom_topic, {kOdometryType, kPoseType});
     rosbag::View view(bag, rosbag::TopicQuery(options.odom_topic));
@@ -115,7 +115,7 @@ std::vector<StampedBase> read_odometry(const rosbag::Bag& bag, const BagOptions&
         odom.push_back({p->header.stamp.toSec(), pose_of(p->pose)});
     }
   }
-  add_tum_odometry(options, odom);
+  io::add_tum_odometry(options, odom);
   return odom;
 }
 
@@ -126,8 +126,8 @@ struct BagCloud {
 };
 
 /// The clouds of the points topic, in file order; `cloud_frame` is the first one's frame.
-std::vector<BagCloud> read_clouds(const rosbag::Bag& bag, const BagOptions& options, const BagLimits& limits,
-                                  std::string& cloud_frame) {
+std::vector<BagCloud> read_clouds(const rosbag::Bag& bag, const io::BagOptions& options,
+                                  const BagLimits& limits, std::string& cloud_frame) {
   std::vector<BagCloud> clouds;
   rosbag::View view(bag, rosbag::TopicQuery(options.points_topic));
   for (const rosbag::MessageInstance& m : view) {
@@ -136,7 +136,7 @@ std::vector<BagCloud> read_clouds(const rosbag::Bag& bag, const BagOptions& opti
     const std::string where =
         options.bag + ": " + options.points_topic + ", message " + std::to_string(clouds.size());
     const std::vector<std::uint8_t> bytes = message_bytes(m, limits, where);
-    const PointCloud2Message c = parse_point_cloud2_message(bytes.data(), bytes.size(), where);
+    const io::PointCloud2Message c = io::parse_point_cloud2_message(bytes.data(), bytes.size(), where);
     if (cloud_frame.empty()) cloud_frame = c.frame_id;
     clouds.push_back({c.stamp, m});
   }
@@ -184,8 +184,8 @@ std::optional<Pose3> tf_static_mount(const rosbag::Bag& bag, const std::string& 
 
 }  // namespace
 
-BagSequence::BagSequence(const BagOptions& options)
-    : RecordedSequence(options.bag), impl_(std::make_unique<Impl>()) {
+BagSequence::BagSequence(const io::BagOptions& options)
+    : io::RecordedSequence(options.bag), impl_(std::make_unique<Impl>()) {
   const std::string& path = options.bag;
   if (!is_bag_file(path)) throw input_error(path, 0, "no such bag");
   if (options.points_topic.empty())
@@ -196,7 +196,7 @@ BagSequence::BagSequence(const BagOptions& options)
     impl_->bag.open(path, rosbag::bagmode::Read);
     const std::map<std::string, std::string> types = topic_types(impl_->bag);
     require_topic(path, types, options.points_topic, {kCloudType});
-    std::vector<StampedBase> odom = read_odometry(impl_->bag, options, types);
+    std::vector<io::StampedBase> odom = read_odometry(impl_->bag, options, types);
     const bool has_odometry = !options.odom_topic.empty() || !options.odom_tum.empty();
 
     // The clouds, in stamp order; their frame finds the sensor-to-base transform.
@@ -243,8 +243,8 @@ PointCloud BagSequence::scan(std::size_t index) const {
       throw input_error(where, 0, e.what() + rosbag_lines.last());
     }
   }
-  const PointCloud2Message msg = parse_point_cloud2_message(bytes.data(), bytes.size(), where);
-  return decode_point_cloud2(msg.layout, bytes.data() + msg.data_offset, msg.data_size, where);
+  const io::PointCloud2Message msg = io::parse_point_cloud2_message(bytes.data(), bytes.size(), where);
+  return io::decode_point_cloud2(msg.layout, bytes.data() + msg.data_offset, msg.data_size, where);
 }
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::ros1_bag

@@ -17,7 +17,7 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/ros1_bag/ros_bag_internal.hpp"
 
-namespace tsgraphs::io {
+namespace tsgraphs::ros1_bag {
 
 using ros_bag_internal::kTfStaticTopic;
 
@@ -43,7 +43,7 @@ ros::Time record_time(double t) { return std::max(ros::Time(t), ros::TIME_MIN); 
 
 }  // namespace
 
-void write_bag(const ScanSequence& sequence, const std::string& path, BagCompression compression,
+void write_bag(const io::ScanSequence& sequence, const std::string& path, BagCompression compression,
                const Pose3& sensor_to_base) {
   const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
   try {
@@ -51,7 +51,7 @@ void write_bag(const ScanSequence& sequence, const std::string& path, BagCompres
     bag.setCompression(compression == BagCompression::bz2   ? rosbag::compression::BZ2
                        : compression == BagCompression::lz4 ? rosbag::compression::LZ4
                                                             : rosbag::compression::Uncompressed);
-    const SequenceInfo& info = sequence.info();
+    const io::SequenceInfo& info = sequence.info();
     const double first = info.times.empty() ? 0.0 : info.times.front();
     tf2_msgs::TFMessage tf;
     geometry_msgs::TransformStamped t;
@@ -121,4 +121,4 @@ void write_bag(const ScanSequence& sequence, const std::string& path, BagCompres
   fs::rename(tmp, path);
 }
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::ros1_bag

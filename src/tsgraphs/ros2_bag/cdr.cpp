@@ -4,7 +4,7 @@
 
 #include "tsgraphs/core/error.hpp"
 
-namespace tsgraphs::io {
+namespace tsgraphs::ros2_bag {
 
 // The encapsulation header, and where the alignment is counted from.
 constexpr std::size_t kHeaderBytes = 4;
@@ -117,4 +117,4 @@ template std::uint32_t CdrReader::number<std::uint32_t>(const char*);
 template std::uint64_t CdrReader::number<std::uint64_t>(const char*);
 template void CdrWriter::number<std::uint32_t>(std::uint32_t);
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::ros2_bag

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-namespace tsgraphs::io {
+namespace tsgraphs::ros2_bag {
 
 /// Reads one message. Every length is checked against the bytes left before it is used: a
 /// message cut short or claiming more than it holds is an InputError naming `where` and the
@@ -64,4 +64,4 @@ class CdrWriter {
   std::string bytes_;
 };
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::ros2_bag

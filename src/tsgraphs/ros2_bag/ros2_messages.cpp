@@ -11,7 +11,7 @@
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/ros2_bag/cdr.hpp"
 
-namespace tsgraphs::io::ros2 {
+namespace tsgraphs::ros2_bag::ros2 {
 namespace {
 
 // Each type's fields (ros2msg), and the types it uses, by "package/Type".
@@ -163,9 +163,9 @@ std::string definition_mismatch(const std::string& type, const std::string& text
          list(expected) + ")";
 }
 
-PointCloud2Message parse_point_cloud2(const std::string& cdr, const std::string& where) {
+io::PointCloud2Message parse_point_cloud2(const std::string& cdr, const std::string& where) {
   CdrReader r(cdr, where);
-  PointCloud2Message m;
+  io::PointCloud2Message m;
   m.stamp = stamp_of(r);
   m.frame_id = r.string("header.frame_id");
   m.layout.height = r.u32("height");
@@ -173,7 +173,7 @@ PointCloud2Message parse_point_cloud2(const std::string& cdr, const std::string&
   // A field is at least a name (length and NUL), an offset, a datatype and a count.
   const std::uint32_t n = r.sequence("fields", 4 + 1 + 4 + 1 + 4);
   for (std::uint32_t i = 0; i < n; ++i) {
-    PointField2 f;
+    io::PointField2 f;
     f.name = r.string("fields[].name");
     f.offset = r.u32("fields[].offset");
     f.datatype = r.u8("fields[].datatype");
@@ -238,7 +238,7 @@ std::string encode_point_cloud2(double stamp, const std::string& frame_id, const
   const char* const names[] = {"x", "y", "z", "intensity", "time"};
   for (std::uint32_t i = 0; i < fields; ++i) {
     w.string(names[i]);
-    w.u32(4 * i), w.u8(static_cast<std::uint8_t>(FieldType::float32)), w.u32(1);
+    w.u32(4 * i), w.u8(static_cast<std::uint8_t>(io::FieldType::float32)), w.u32(1);
   }
   w.boolean(false);
   const std::uint32_t point_step = 4 * fields;
@@ -282,4 +282,4 @@ std::string encode_tf_message(const std::vector<TransformMessage>& transforms) {
   return w.bytes();
 }
 
-}  // namespace tsgraphs::io::ros2
+}  // namespace tsgraphs::ros2_bag::ros2

@@ -11,7 +11,7 @@
 #include "tsgraphs/core/pose.hpp"
 #include "tsgraphs/io/point_cloud2.hpp"
 
-namespace tsgraphs::io::ros2 {
+namespace tsgraphs::ros2_bag::ros2 {
 
 inline constexpr const char* kPointCloud2 = "sensor_msgs/msg/PointCloud2";
 inline constexpr const char* kOdometry = "nav_msgs/msg/Odometry";
@@ -32,7 +32,7 @@ std::string definition_mismatch(const std::string& type, const std::string& text
 std::uint64_t stamp_nanoseconds(double t);
 
 /// A PointCloud2 message taken apart; data_offset counts from the start of `cdr`.
-PointCloud2Message parse_point_cloud2(const std::string& cdr, const std::string& where);
+io::PointCloud2Message parse_point_cloud2(const std::string& cdr, const std::string& where);
 
 /// A pose with its stamp and frames (Odometry: child_frame_id; PoseStamped: none).
 struct StampedPoseMessage {
@@ -59,4 +59,4 @@ std::string encode_odometry(const StampedPoseMessage& m);
 std::string encode_pose_stamped(const StampedPoseMessage& m);
 std::string encode_tf_message(const std::vector<TransformMessage>& transforms);
 
-}  // namespace tsgraphs::io::ros2
+}  // namespace tsgraphs::ros2_bag::ros2

@@ -12,7 +12,7 @@
 #include "tsgraphs/mcap/mcap.hpp"
 #include "tsgraphs/io/scan_sequence.hpp"
 
-namespace tsgraphs::io {
+namespace tsgraphs::ros2_bag {
 
 /// Whether `path` is a rosbag2 recording: a folder holding metadata.yaml, or a file that
 /// starts as SQLite or MCAP files do.
@@ -21,12 +21,12 @@ bool is_rosbag2(const std::string& path);
 /// The scans of a rosbag2 recording with their odometry. Scans are read when asked for
 /// (thread-safe). Its warnings are what a storage noted while opening (an MCAP index not used,
 /// so the file was read from the start), each naming its file.
-class Rosbag2Sequence : public RecordedSequence {
+class Rosbag2Sequence : public io::RecordedSequence {
  public:
   /// InputError naming the recording (and topic, message or record) for one that cannot be
   /// read, a topic that is missing, of another type or of another definition under the type's
   /// name, an odometry topic with no pose, or no scan within the odometry's time span.
-  explicit Rosbag2Sequence(const BagOptions& options);
+  explicit Rosbag2Sequence(const io::BagOptions& options);
   ~Rosbag2Sequence() override;
   PointCloud scan(std::size_t index) const override;
 
@@ -71,8 +71,8 @@ Rosbag2Metadata read_rosbag2_metadata(const std::string& folder);
 /// ending in .db3 or .mcap is that one file; any other is a bag folder: metadata.yaml and
 /// NAME_0.db3 or NAME_0.mcap (NAME_0.db3.zstd or NAME_0.mcap.zstd under `bag_compression`
 /// file). Written under a temporary name and renamed, so a failed write leaves nothing.
-void write_rosbag2(const ScanSequence& sequence, const std::string& path, Rosbag2Storage storage,
+void write_rosbag2(const io::ScanSequence& sequence, const std::string& path, Rosbag2Storage storage,
                    mcap::Compression compression, const Pose3& sensor_to_base,
                    Rosbag2Compression bag_compression = Rosbag2Compression::none);
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::ros2_bag

@@ -5,7 +5,7 @@
 
 #include "tsgraphs/ros2_bag/rosbag2_internal.hpp"
 
-namespace tsgraphs::io {
+namespace tsgraphs::ros2_bag {
 
 using namespace rosbag2_internal;
 
@@ -31,4 +31,4 @@ std::string rosbag2_info(const std::string& path) {
   return out;
 }
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::ros2_bag

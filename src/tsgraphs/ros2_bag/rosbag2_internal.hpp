@@ -11,7 +11,7 @@
 
 #include "tsgraphs/mcap/mcap.hpp"
 
-namespace tsgraphs::io::rosbag2_internal {
+namespace tsgraphs::ros2_bag::rosbag2_internal {
 
 constexpr const char* kTfStaticTopic = "/tf_static";
 constexpr const char* kMetadataFile = "metadata.yaml";
@@ -66,4 +66,4 @@ std::vector<Located> messages_of(const std::vector<std::unique_ptr<Storage>>& st
 void check_follows(const std::string& metadata, int line, const std::string& file, const TimeSpan& span,
                    const std::string& previous_file, const TimeSpan& previous);
 
-}  // namespace tsgraphs::io::rosbag2_internal
+}  // namespace tsgraphs::ros2_bag::rosbag2_internal

@@ -14,7 +14,7 @@
 #include "tsgraphs/core/printable.hpp"
 #include "tsgraphs/ros2_bag/rosbag2_internal.hpp"
 
-namespace tsgraphs::io {
+namespace tsgraphs::ros2_bag {
 
 using namespace rosbag2_internal;
 
@@ -175,4 +175,4 @@ Rosbag2Metadata read_rosbag2_metadata(const std::string& folder) {
   return out;
 }
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::ros2_bag

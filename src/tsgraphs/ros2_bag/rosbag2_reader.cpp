@@ -11,7 +11,7 @@
 #include "tsgraphs/ros2_bag/ros2_messages.hpp"
 #include "tsgraphs/ros2_bag/rosbag2_internal.hpp"
 
-namespace tsgraphs::io {
+namespace tsgraphs::ros2_bag {
 
 using namespace rosbag2_internal;
 
@@ -77,14 +77,14 @@ std::vector<PendingRead> in_file_order(const std::vector<Located>& odom_messages
 
 /// What the first pass reads: the odometry, and the clouds' stamps and frame.
 struct FirstPass {
-  std::vector<StampedBase> odom;
+  std::vector<io::StampedBase> odom;
   std::vector<double> stamps;
   std::string cloud_frame;  // the first cloud's
 };
 
 /// The odometry (Odometry or PoseStamped messages) and the clouds' stamps, read in one pass.
 FirstPass read_odometry_and_stamps(const std::vector<std::unique_ptr<Storage>>& storages,
-                                   const BagOptions& options, bool is_odometry,
+                                   const io::BagOptions& options, bool is_odometry,
                                    const std::vector<Located>& odom_messages,
                                    const std::vector<Located>& clouds) {
   FirstPass out;
@@ -93,7 +93,7 @@ FirstPass read_odometry_and_stamps(const std::vector<std::unique_ptr<Storage>>& 
   for (const PendingRead& r : in_file_order(odom_messages, clouds)) {
     const std::string cdr = storages[r.m->file]->read(*r.m);
     if (r.cloud) {
-      const PointCloud2Message c =
+      const io::PointCloud2Message c =
           ros2::parse_point_cloud2(cdr, message_where(options.bag, options.points_topic, r.i));
       out.stamps[r.i] = c.stamp;
       if (r.i == 0) out.cloud_frame = c.frame_id;
@@ -124,8 +124,8 @@ std::optional<Pose3> tf_static_mount(const std::vector<std::unique_ptr<Storage>>
 
 }  // namespace
 
-Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options)
-    : RecordedSequence(options.bag), impl_(std::make_unique<Impl>()) {
+Rosbag2Sequence::Rosbag2Sequence(const io::BagOptions& options)
+    : io::RecordedSequence(options.bag), impl_(std::make_unique<Impl>()) {
   const std::string& path = options.bag;
   if (options.points_topic.empty())
     throw input_error(path, 0, "no points topic given (--points-topic; see bag-info)");
@@ -147,7 +147,7 @@ Rosbag2Sequence::Rosbag2Sequence(const BagOptions& options)
   const std::vector<Located> clouds = messages_of(impl_->storages, options.points_topic);
   if (clouds.empty()) throw input_error(path, 0, "no messages on " + options.points_topic);
   FirstPass pass = read_odometry_and_stamps(impl_->storages, options, is_odometry, odom_messages, clouds);
-  add_tum_odometry(options, pass.odom);
+  io::add_tum_odometry(options, pass.odom);
   const bool has_odometry = !options.odom_topic.empty() || !options.odom_tum.empty();
 
   if (options.sensor_to_base) {
@@ -171,9 +171,9 @@ PointCloud Rosbag2Sequence::scan(std::size_t index) const {
   const Located& m = impl_->clouds.at(index);
   const std::string where = name_ + ": " + impl_->topic + ", scan " + std::to_string(index);
   const std::string cdr = impl_->storages[m.file]->read(m);
-  const PointCloud2Message msg = ros2::parse_point_cloud2(cdr, where);
-  return decode_point_cloud2(msg.layout, reinterpret_cast<const std::uint8_t*>(cdr.data()) + msg.data_offset,
-                             msg.data_size, where);
+  const io::PointCloud2Message msg = ros2::parse_point_cloud2(cdr, where);
+  return io::decode_point_cloud2(
+      msg.layout, reinterpret_cast<const std::uint8_t*>(cdr.data()) + msg.data_offset, msg.data_size, where);
 }
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::ros2_bag

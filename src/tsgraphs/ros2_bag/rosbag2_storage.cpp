@@ -15,7 +15,7 @@
 #include "tsgraphs/mcap/compression.hpp"
 #include "tsgraphs/ros2_bag/rosbag2_internal.hpp"
 
-namespace tsgraphs::io {
+namespace tsgraphs::ros2_bag {
 
 using namespace rosbag2_internal;
 
@@ -226,8 +226,8 @@ class ZstdMessages : public Storage {
   }
   std::string read(const Located& m) const override {
     const std::string packed = inner_->read(m);
-    return decompress_zstd(packed.data(), packed.size(), kMaxMessageBytes, path_,
-                           "the message received at " + std::to_string(m.time) + " ns");
+    return mcap::decompress_zstd(packed.data(), packed.size(), kMaxMessageBytes, path_,
+                                 "the message received at " + std::to_string(m.time) + " ns");
   }
   std::optional<TimeSpan> time_span() const override { return inner_->time_span(); }
   std::vector<std::string> warnings() const override { return inner_->warnings(); }
@@ -261,7 +261,7 @@ std::unique_ptr<Storage> open_compressed_storage(const std::string& path) {
       fs::remove(path, ec);
     }
   } unlink{tmp};
-  decompress_zstd_file(path, tmp.string());
+  mcap::decompress_zstd_file(path, tmp.string());
   return open_storage(tmp.string(), path);
 }
 
@@ -336,4 +336,4 @@ std::vector<Located> messages_of(const std::vector<std::unique_ptr<Storage>>& st
 
 }  // namespace rosbag2_internal
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::ros2_bag

@@ -16,7 +16,7 @@
 #include "tsgraphs/ros2_bag/ros2_messages.hpp"
 #include "tsgraphs/ros2_bag/rosbag2_internal.hpp"
 
-namespace tsgraphs::io {
+namespace tsgraphs::ros2_bag {
 
 using rosbag2_internal::kMetadataFile;
 using rosbag2_internal::kTfStaticTopic;
@@ -117,13 +117,13 @@ struct Layout {
 /// Every message of `sequence` in write_bag's order: /tf_static, then per scan /points, /odom
 /// and /groundtruth; each message's data zstd-compressed in MESSAGE mode.
 template <class Sink>
-void for_each_message(const ScanSequence& sequence, const Pose3& sensor_to_base,
+void for_each_message(const io::ScanSequence& sequence, const Pose3& sensor_to_base,
                       Rosbag2Compression compression, Sink&& write) {
   const auto sink = [&](Out m) {
-    if (compression == Rosbag2Compression::message) m.cdr = compress_zstd(m.cdr);
+    if (compression == Rosbag2Compression::message) m.cdr = mcap::compress_zstd(m.cdr);
     write(m);
   };
-  const SequenceInfo& info = sequence.info();
+  const io::SequenceInfo& info = sequence.info();
   const double first = info.times.empty() ? 0.0 : info.times.front();
   const auto stamp_ns = ros2::stamp_nanoseconds;
   sink(Out{2, stamp_ns(first), ros2::encode_tf_message({{first, "base_link", "lidar", sensor_to_base}})});
@@ -140,7 +140,7 @@ void for_each_message(const ScanSequence& sequence, const Pose3& sensor_to_base,
 }
 
 /// Returns the bag's metadata (for metadata.yaml); `file` is the name it lists.
-std::string write_sqlite(const ScanSequence& sequence, const std::string& tmp, const Layout& layout,
+std::string write_sqlite(const io::ScanSequence& sequence, const std::string& tmp, const Layout& layout,
                          const std::vector<TopicToWrite>& topics, const Pose3& sensor_to_base) {
   std::string metadata;
   sqlite3* db = nullptr;
@@ -216,7 +216,7 @@ std::string write_sqlite(const ScanSequence& sequence, const std::string& tmp, c
   return metadata;
 }
 
-std::string write_mcap(const ScanSequence& sequence, const std::string& path, const Layout& layout,
+std::string write_mcap(const io::ScanSequence& sequence, const std::string& path, const Layout& layout,
                        const std::vector<TopicToWrite>& topics, mcap::Compression compression,
                        const Pose3& sensor_to_base) {
   mcap::WriterOptions o;
@@ -243,7 +243,7 @@ std::string write_mcap(const ScanSequence& sequence, const std::string& path, co
 
 }  // namespace
 
-void write_rosbag2(const ScanSequence& sequence, const std::string& path, Rosbag2Storage storage,
+void write_rosbag2(const io::ScanSequence& sequence, const std::string& path, Rosbag2Storage storage,
                    mcap::Compression compression, const Pose3& sensor_to_base,
                    Rosbag2Compression bag_compression) {
   std::vector<TopicToWrite> topics = {{"/points", ros2::kPointCloud2, false},
@@ -276,7 +276,7 @@ void write_rosbag2(const ScanSequence& sequence, const std::string& path, Rosbag
             ? write_mcap(sequence, target, layout, topics, compression, sensor_to_base)
             : write_sqlite(sequence, target, layout, topics, sensor_to_base);
     if (file_compressed) {  // as rosbag2 does once a file is closed: the file replaced by its .zstd
-      compress_zstd_file(target, target + ".zstd");
+      mcap::compress_zstd_file(target, target + ".zstd");
       fs::remove(target);
     }
     if (folder) {
@@ -295,4 +295,4 @@ void write_rosbag2(const ScanSequence& sequence, const std::string& path, Rosbag
   }
 }
 
-}  // namespace tsgraphs::io
+}  // namespace tsgraphs::ros2_bag
