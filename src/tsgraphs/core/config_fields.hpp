@@ -9,9 +9,11 @@
 ///   v.section("registration", registration, "GICP");                           // a sub-config
 ///   v.require(max_range > min_range, "max_range", "must be > min_range");      // across fields
 ///
-/// The parameter file's reader checks each at load (file:line: section.key: must be ...);
-/// check_config() checks a config built in code against the same declarations. Ranges bound
-/// work too: no value may make a loop run 2e9 times or a grid hold 1e12 cells.
+/// The struct's members hold the defaults, right above; a member's own comment is for what the
+/// one line cannot say. The parameter file's reader checks each declaration at load
+/// (file:line: section.key: must be ...); check_config() checks a config built in code against
+/// the same ones. Ranges bound work too: no value may make a loop run 2e9 times or a grid hold
+/// 1e12 cells.
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>

@@ -13,13 +13,12 @@
 namespace tsgraphs::freespace {
 
 struct EsdfFreeSpaceConfig {
-  double voxel_size = 0.2;    ///< voxel edge (m), S-Graphs+'s TSDF resolution
-  double max_distance = 5.0;  ///< ESDF distances are capped here (m)
-  double min_free_distance =
-      0.8;  ///< free-space vertices: slice voxels farther than this from any occupied voxel (m)
-  double slice_height = 1.0;  ///< the slice is the voxel layer holding this height above the floor (m)
-  double robot_radius = 1.0;  ///< the robot's vertex: nearest vertex within this horizontally (m)...
-  double robot_height_tolerance = 1.5;  ///< ...and within this of the robot position's height (m)
+  double voxel_size = 0.2;
+  double max_distance = 5.0;
+  double min_free_distance = 0.8;
+  double slice_height = 1.0;
+  double robot_radius = 1.0;
+  double robot_height_tolerance = 1.5;
 
   template <class V>
   void visit(V& v) {

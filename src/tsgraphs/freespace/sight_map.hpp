@@ -23,13 +23,12 @@
 namespace tsgraphs::freespace {
 
 struct SightMapConfig {
-  double cell = 0.1;        ///< raster cell (m), the room segmentation's
+  double cell = 0.1;
   double floor_step = 0.2;  ///< a return within this of the floor height is the floor (m); the free space's
                             ///< obstacle_min_height
   double headroom = 2.0;  ///< a ray below this above the floor passes at walking height (m); the free space's
                           ///< obstacle_max_height
-  double max_range = 20.0;  ///< returns farther than this horizontally are not traced (m): far returns on the
-                            ///< floor are tilt-sensitive
+  double max_range = 20.0;
 
   template <class V>
   void visit(V& v) {

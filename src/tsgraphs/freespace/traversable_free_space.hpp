@@ -14,19 +14,14 @@
 namespace tsgraphs::freespace {
 
 struct TraversableFreeSpaceConfig {
-  double edge_length = 0.375;  ///< nodes closer than this horizontally are neighbours (m): 1.5 x the node
-                               ///< map's 0.25 m cells, so diagonals join
-  double max_height_step =
-      0.2;  ///< ...if their heights differ by at most this (m): storeys and a bench top stay apart
-  double lambda_th = 0.4;  ///< vertices closer than this (horizontally) to an obstacle point are removed (m):
-                           ///< about the robot's half width
-  double obstacle_min_height = 0.2;  ///< obstacle points: more than this above the local ground (m)...
-  double obstacle_max_height = 2.0;  ///< ...and at most this (m): walls, railings, furniture, not the ceiling
-  double ground_search_radius = 0.75;  ///< obstacle selection: the local ground of a point is the highest
-                                       ///< node at or below it within this horizontally (m)
-  double robot_radius = 1.0;  ///< the robot's vertex: nearest kept vertex within this horizontally (m)...
-  double robot_height_tolerance = 1.0;  ///< ...and within this of the robot position's height (m; covers the
-                                        ///< sensor's height above the floor)
+  double edge_length = 0.375;
+  double max_height_step = 0.2;
+  double lambda_th = 0.4;
+  double obstacle_min_height = 0.2;
+  double obstacle_max_height = 2.0;
+  double ground_search_radius = 0.75;
+  double robot_radius = 1.0;
+  double robot_height_tolerance = 1.0;
 
   template <class V>
   void visit(V& v) {

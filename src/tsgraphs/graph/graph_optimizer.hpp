@@ -55,28 +55,28 @@ struct GraphOptimizerConfig;
 std::string solver_problem(const GraphOptimizerConfig& config);
 
 struct GraphOptimizerConfig {
-  double odometry_sigma_trans = 0.05;   ///< std of odometry translation between keyframes (m)
-  double odometry_sigma_rot_deg = 0.5;  ///< std of odometry rotation between keyframes (deg)
-  double loop_sigma_trans = 0.05;       ///< std of a loop closure's translation (m)
-  double loop_sigma_rot_deg = 0.5;      ///< std of a loop closure's rotation (deg)
-  double plane_sigma_angle_deg = 1.0;   ///< std of a measured plane's normal (deg)
-  double plane_sigma_distance = 0.02;   ///< std of a measured plane's offset (m)
-  double huber_plane = 1.0;             ///< Huber delta on keyframe-plane factors (whitened units)
-  double huber_loop = 1.0;              ///< Huber delta on loop factors (whitened units)
-  double room_sigma = 0.05;             ///< std of a room centre off its walls' mid-planes (m)
-  double corridor_sigma = 0.05;         ///< std of a corridor centre from its walls' midline (m)
-  double corridor_along_sigma = 0.5;    ///< std of a corridor centre along it, from the cluster (m)
-  double floor_sigma = 0.5;             ///< std of a floor centre from its rooms' mean centre (m)
-  double huber_room = 1.0;              ///< Huber delta on room/corridor factors (whitened units)
-  double huber_floor = 1.0;             ///< Huber delta on floor factors (whitened units)
-  int local_window = 10;                ///< keyframes freed by a local solve
-  int max_iterations = 20;              ///< Ceres iterations per local solve
-  int max_iterations_full = 50;         ///< Ceres iterations per full solve
+  double odometry_sigma_trans = 0.05;
+  double odometry_sigma_rot_deg = 0.5;
+  double loop_sigma_trans = 0.05;
+  double loop_sigma_rot_deg = 0.5;
+  double plane_sigma_angle_deg = 1.0;
+  double plane_sigma_distance = 0.02;
+  double huber_plane = 1.0;
+  double huber_loop = 1.0;
+  double room_sigma = 0.05;
+  double corridor_sigma = 0.05;
+  double corridor_along_sigma = 0.5;
+  double floor_sigma = 0.5;
+  double huber_room = 1.0;
+  double huber_floor = 1.0;
+  int local_window = 10;
+  int max_iterations = 20;
+  int max_iterations_full = 50;
   LinearSolver linear_solver = LinearSolver::sparse_normal_cholesky;
   /// Sparse solvers' back-end: Eigen's and CXSparse were the fastest on bench_graph (2000
   /// keyframes), SuiteSparse 10-100% slower there.
   SparseLibrary sparse_library = SparseLibrary::eigen_sparse;
-  int num_threads = 1;  ///< Ceres threads (1 keeps runs byte-identical)
+  int num_threads = 1;
 
   template <class V>
   void visit(V& v) {

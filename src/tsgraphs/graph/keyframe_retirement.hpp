@@ -22,10 +22,10 @@
 namespace tsgraphs::graph {
 
 struct KeyframeRetirementConfig {
-  bool enabled = true;      ///< retire the redundant keyframes of revisits
-  double radius = 1.0;      ///< m; a kept keyframe of an earlier pass this near (the keyframe spacing)
-  double min_travel = 8.0;  ///< m of travel back that makes an earlier pass (loop_closure.min_travel's rule)
-  bool rooms_only = true;   ///< only keyframes inside a mapped room or corridor
+  bool enabled = true;
+  double radius = 1.0;
+  double min_travel = 8.0;
+  bool rooms_only = true;
 
   template <class V>
   void visit(V& v) {

@@ -14,14 +14,14 @@
 namespace tsgraphs::graph {
 
 struct LoopClosureConfig {
-  double max_distance = 5.0;       ///< candidates closer than this to the new keyframe (m, current estimates)
-  double min_travel = 8.0;         ///< ...and at least this far back in accumulated travel (m)
-  double min_loop_interval = 5.0;  ///< travel since the last accepted loop before trying again (m)
-  int max_candidates = 3;          ///< nearest candidates registered per keyframe
-  double max_fitness = 0.03;       ///< accept when fitness (mean squared distance, m^2) is below this...
-  double min_inlier_ratio = 0.7;   ///< ...and this share of points found a close match (the figure that
-                                   ///< tells a wrong place: floor and ceiling match anywhere indoors)
-  double max_correction = 2.0;     ///< reject when registration moves the guess by more than this (m)
+  double max_distance = 5.0;
+  double min_travel = 8.0;
+  double min_loop_interval = 5.0;
+  int max_candidates = 3;
+  double max_fitness = 0.03;
+  double min_inlier_ratio = 0.7;  ///< ...and this share of points found a close match (the figure that
+                                  ///< tells a wrong place: floor and ceiling match anywhere indoors)
+  double max_correction = 2.0;
   double min_facing_share = 0.01;  ///< reject when fewer than this share of the matched points lie on
                                    ///< surfaces facing the direction they pin least (a corridor without its
                                    ///< ends in view: the match slides along it); 0.01 of a keyframe's few

@@ -15,11 +15,10 @@
 namespace tsgraphs::graph {
 
 struct RoomLoopClosureConfig {
-  bool enabled = true;                 ///< propose loops from room re-detections
-  int max_candidates = 3;              ///< keyframes in the room registered per re-detection, nearest first
-  int min_common_walls = 2;            ///< walls the re-detection shares with the room's last extraction
-  double max_height_difference = 1.0;  ///< m; a candidate on the room's level (storeys are >= 2.5 m apart;
-                                       ///< one sensor's height varies by centimetres)
+  bool enabled = true;
+  int max_candidates = 3;
+  int min_common_walls = 2;
+  double max_height_difference = 1.0;
 
   template <class V>
   void visit(V& v) {

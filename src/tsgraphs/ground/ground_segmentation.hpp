@@ -26,51 +26,37 @@ enum class GroundLabel : std::uint8_t {
 struct GroundConfig {
   double sensor_height = 0.55;  ///< height of the sensor above the floor under the robot (m); the pipeline
                                 ///< sets it from the platform (pipeline/platform.hpp)
-  double resolution = 0.5;  ///< tri-grid cell size (m); each cell is split into 4 triangles by its diagonals
-  double min_range = 0.5;   ///< points nearer than this are not used (m)
-  double max_range = 15.0;  ///< ...nor farther than this (m)
-  int num_iter = 3;         ///< PCA rounds per node
-  int num_lpr = 5;          ///< points averaged for the lowest-point representative
-  int num_min_pts = 10;     ///< fewer points than this: the node is unknown
-  int sparse_min_pts = 1;   ///< a node the search cannot join by its plane joins the ground reaching it when
-                            ///< this many of its points lie within th_dist of that ground's level, none below
-                            ///< (traversable_search.hpp, adopt_plane)
-  double th_seeds = 0.5;    ///< seeds: points within this above the LPR (m)
-  double th_dist = 0.06;    ///< inliers of the node plane, and ground points: within this of it (m)
-  double th_outlier = 0.3;  ///< points more than this below the node's robust lowest level are rejected (m)
-  double fit_column = 0.02;  ///< node planes are fitted to the lowest point of each column this wide (m), so
-                             ///< a wall in the node adds only its foot
-  double plane_prior_spread = 0.02;  ///< horizontal spread (m) added to every node's PCA, so points on one
-                                     ///< scan line get the least tilted plane through them
-  double th_normal = 0.94;           ///< ground-like: normal z at least this
-  double th_lcc_normal = 0.12;  ///< local convexity/concavity: normal similarity term (TRAVEL's 0.03 is for 2
-                                ///< m cells, whose centres are 4 times farther apart)
-  double th_lcc_planar = 0.2;   ///< local convexity/concavity: plane distance term (rad)
-  double th_obstacle = 2.0;     ///< obstacle points: at most this above the local ground (m)
-  double foot_radius = 0.02;    ///< a ground-band point with obstacle points within this (horizontally)...
-  double foot_height =
-      0.3;  ///< ...and this above the band is the foot of a wall or a box: an obstacle (m)...
-  double foot_rings =
-      2.0;  ///< ...or as high as this many rings above it reach on a wall at its range (ring_spacing_deg; one
-            ///< ring may be lost to dropout or land beyond foot_radius by range noise)
+  double resolution = 0.5;
+  double min_range = 0.5;
+  double max_range = 15.0;
+  int num_iter = 3;
+  int num_lpr = 5;
+  int num_min_pts = 10;
+  int sparse_min_pts = 1;
+  double th_seeds = 0.5;
+  double th_dist = 0.06;
+  double th_outlier = 0.3;
+  double fit_column = 0.02;
+  double plane_prior_spread = 0.02;
+  double th_normal = 0.94;
+  double th_lcc_normal = 0.12;
+  double th_lcc_planar = 0.2;
+  double th_obstacle = 2.0;
+  double foot_radius = 0.02;
+  double foot_height = 0.3;
+  double foot_rings = 2.0;
   double seed_radius = 3.0;  ///< the search starts at ground-like nodes within this of the robot (m; the
                              ///< pipeline sets it from the platform)...
-  double seed_height_tolerance = 0.2;  ///< ...whose plane passes within this of the floor under the robot (m)
-  double seed_max_slope =
-      0.21;  ///< ...whose plane rises no more than this per metre, nor its own height more than
-             ///< seed_height_tolerance plus this per metre of distance from that floor: the steepest ramp a
-             ///< robot climbs (12 degrees, the generator's steepest; wheelchair ramps are 1:12)
-  double max_gap =
-      2.0;  ///< the search links nodes across runs of empty or unknown nodes up to this long (m), or across
-            ///< the gap to the next floor ring out where that is longer (link_gap())
+  double seed_height_tolerance = 0.2;
+  double seed_max_slope = 0.21;
+  double max_gap = 2.0;
   double ring_spacing_deg =
       45.0 / 63.0;  ///< angle between neighbouring beams (deg; the pipeline sets it from the platform): far
                     ///< floor rings are this far apart in elevation
-  double bgk_length_scale = 1.0;     ///< BGK sparse kernel support (m)
-  double bgk_prior = 0.5;            ///< BGK prior weight (pseudo-observations) of traversability 0.5
-  double th_traversable = 0.4;       ///< a node is traversable when its smoothed probability is at least this
-                                     ///< (below 0.5: floors are seen on sparse rings, walls densely)
-  double bgk_max_height_gap = 0.25;  ///< ...and its own height is within this of the smoothed surface (m)
+  double bgk_length_scale = 1.0;
+  double bgk_prior = 0.5;
+  double th_traversable = 0.4;
+  double bgk_max_height_gap = 0.25;
 
   /// Every field but sensor_height and seed_radius, which belong to the platform (the
   /// pipeline's `platform` section measures or takes them).

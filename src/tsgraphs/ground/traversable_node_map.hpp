@@ -16,11 +16,10 @@
 namespace tsgraphs::ground {
 
 struct NodeMapConfig {
-  double cell_size = 0.25;  ///< grid cell of the global map (m)
-  double level_tolerance =
-      0.5;  ///< observations within this height of a node fuse with it (m); farther: another layer
-  int max_keyframes_per_node = 8;  ///< the most recent keyframes that saw a node, kept per node
-  double min_probability = 0.5;    ///< only observations at least this traversable are fused
+  double cell_size = 0.25;
+  double level_tolerance = 0.5;
+  int max_keyframes_per_node = 8;
+  double min_probability = 0.5;
 
   template <class V>
   void visit(V& v) {

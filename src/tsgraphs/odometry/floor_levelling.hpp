@@ -11,19 +11,17 @@
 namespace tsgraphs::odometry {
 
 struct FloorLevellingConfig {
-  double min_range =
-      1.0;  ///< floor points nearer than this are not used (m): the platform, the operator's feet
-  double max_range = 10.0;           ///< nor farther ones (m): sparse rings, other rooms
-  double min_depth = 0.2;            ///< the floor lies at least this far below the sensor (m, along its z)
-  double max_tilt_deg = 30.0;        ///< the floor's normal is within this of the sensor's z axis
-  double distance_threshold = 0.05;  ///< RANSAC inlier distance (m)
-  int min_inliers = 200;             ///< fewer inliers: no floor found
-  double cell_size = 0.25;           ///< grid cell of the lowest points the floor is fitted to (m)
-  int min_cells = 50;                ///< fewer cells on the floor: no floor found
-  double below_margin = 0.3;  ///< returns this far below a plane count as beneath it (m); a floor has fewer
-                              ///< of them than it holds itself
-  int max_iterations = 1000;  ///< RANSAC iterations at most
-  double ransac_probability = 0.9999;  ///< RANSAC stops once this sure to have drawn one all-floor sample
+  double min_range = 1.0;
+  double max_range = 10.0;  ///< nor farther ones (m): sparse rings, other rooms
+  double min_depth = 0.2;
+  double max_tilt_deg = 30.0;
+  double distance_threshold = 0.05;
+  int min_inliers = 200;
+  double cell_size = 0.25;
+  int min_cells = 50;
+  double below_margin = 0.3;
+  int max_iterations = 1000;
+  double ransac_probability = 0.9999;
 
   template <class V>
   void visit(V& v) {

@@ -33,69 +33,42 @@ inline const Choices<TiltPrediction> kTiltPredictions{
     {TiltPrediction::automatic, "auto"}, {TiltPrediction::hold, "hold"}, {TiltPrediction::repeat, "repeat"}};
 
 struct LidarOdometryConfig {
-  double min_range = 0.5;         ///< returns nearer than this are dropped (m): the robot and its operator
-  double max_range = 50.0;        ///< returns farther are dropped (m); also the local map's radius
-  double voxel_size = 0.25;       ///< edge of the local map's voxels (m)
-  double map_voxel_factor = 0.5;  ///< the scan added to the map is downsampled to voxel_size * this
-  double registration_voxel_factor =
-      1.5;  ///< the scan registered is downsampled to voxel_size * this (coarser: faster)
-  int max_points_per_voxel = 20;           ///< local map points kept per voxel; later ones are dropped
-  bool point_to_plane = true;              ///< false: KISS-ICP's point-to-point on every pair
-  int plane_min_points = 4;                ///< a map voxel with fewer points is not matched (point_to_plane)
-  double plane_min_spread_factor = 0.15;   ///< a flat voxel spreads >= voxel_size * this (m, sd) both ways
-  double plane_max_thickness_ratio = 0.3;  ///< a flat voxel is at most this thick (sd) for its width (sd)
-  double initial_threshold = 2.0;          ///< correspondence threshold (m) until the robot has moved
-  double min_threshold = 1.0;   ///< the adaptive threshold never goes below this (m): a scan 0.5 s after the
-                                ///< last, its carrier 1 m/s off the constant velocity, is 0.5 m off the
-                                ///< prediction, and the kernel (a third of the threshold) must still reach it
-  double fine_threshold = 0.5;  ///< once converged, ICP goes on with this threshold (m) when its own was
-                                ///< wider, so that the wrong pairs a wide start let in stop pulling (0: off)
+  double min_range = 0.5;
+  double max_range = 50.0;
+  double voxel_size = 0.25;
+  double map_voxel_factor = 0.5;
+  double registration_voxel_factor = 1.5;
+  int max_points_per_voxel = 20;
+  bool point_to_plane = true;
+  int plane_min_points = 4;
+  double plane_min_spread_factor = 0.15;
+  double plane_max_thickness_ratio = 0.3;
+  double initial_threshold = 2.0;
+  double min_threshold = 1.0;
+  double fine_threshold = 0.5;
   TiltPrediction tilt_prediction = TiltPrediction::automatic;
-  int tilt_window = 10;         ///< registered scans whose tilt errors "auto" compares
-  bool turn_from_sweep = true;  ///< when the last scan's sweep registration found its turn rate, the
-                                ///< scans' stamps are given and the tilt is held, the prediction turns at
-                                ///< that rate until the next stamp (the turn now) instead of repeating the
-                                ///< last turn (the turn half an interval ago: at 2 Hz a walker's turn
-                                ///< changes within that)
-  bool sweep_motion = true;     ///< a scan with per-point times is registered once more with the sensor's
-                                ///< motion during its sweep among the unknowns (sweep_registration.hpp):
-                                ///< its pose is then the stamp's and the map takes it de-skewed
-  double min_motion = 0.1;      ///< a scan teaches the threshold only if it moved this much (m, at max_range)
-  double correspondence_factor = 3.0;   ///< correspondences farther than threshold * this are ignored
-  double kernel_divisor = 3.0;          ///< Geman-McClure kernel scale = threshold / this (m)
-  int max_iterations = 50;              ///< Gauss-Newton iterations per scan at most (more: it oscillates)
-  double convergence_criterion = 1e-3;  ///< stop when the update's norm (rad and m) falls below this
-  int min_correspondences = 50;         ///< fewer correspondences than this: keep the prediction
-  double yaw_search_deg = 60.0;  ///< the initial guess is searched among turns up to this either side of the
-                                 ///< constant-velocity prediction and of standing still (0: off); a hand-held
-                                 ///< sensor at 2 Hz turns 45 deg between scans, after a standstill too
-  double yaw_search_step_deg = 5.0;  ///< the turns tried are this far apart (ICP closes the rest)
-  int yaw_search_points = 1000;      ///< scan points scored per guess (spread over the scan)
-  int yaw_search_candidates =
-      3;  ///< when the search moves the start, ICP runs from this many starts (its best
-          ///< turn, the prediction, the next best turns apart from them) and goes on
-          ///< from the result that overlaps the map most: a coarse turn's overlap can
-          ///< favour a wrong turn among repeated shelves; after ICP the right one fits
-  int yaw_search_candidate_iterations =
-      10;  ///< ICP iterations each of those starts gets before one is chosen
-  double yaw_search_margin =
-      0.1;                   ///< a guess replaces the prediction when it places this much larger a share
-                             ///< of the points in occupied map voxels (at 10 Hz the prediction stays)
-  double min_overlap = 0.3;  ///< a scan whose share of points in occupied map voxels ends below this
-                             ///< is reported lost (voxel_overlap)
-  double recovery_search_m = 1.5;  ///< a scan left lost is registered again from the best-overlapping of
-                                   ///< turns (up to yaw_search_deg) and horizontal shifts this far (m, one
-                                   ///< voxel apart) of the prediction and of the last pose (the first step of
-                                   ///< a 2 Hz walk: 0.6 m from a prediction of standing still); 0: off
-  double recovery_turn_step_deg = 10.0;  ///< the turns tried there are this far apart (ICP closes the rest)
-  double recovery_overlap_ratio =
-      0.7;                    ///< a scan is searched again too when its overlap ends below this share of
-                              ///< the median of the last recovery_window scans' (ICP ran into a wrong
-                              ///< minimum: a walker's turn and step both off the prediction); 0: off
-  int recovery_window = 20;   ///< scans whose overlaps make that median
-  int recovery_points = 250;  ///< scan points scored per guess there (a few thousand guesses)
-  int reduction_grain = 256;  ///< points per block of the parallel reduction (fixed: the sums are
-                              ///< then added in the same order whatever the threads)
+  int tilt_window = 10;
+  bool turn_from_sweep = true;
+  bool sweep_motion = true;
+  double min_motion = 0.1;
+  double correspondence_factor = 3.0;
+  double kernel_divisor = 3.0;
+  int max_iterations = 50;
+  double convergence_criterion = 1e-3;
+  int min_correspondences = 50;
+  double yaw_search_deg = 60.0;
+  double yaw_search_step_deg = 5.0;
+  int yaw_search_points = 1000;
+  int yaw_search_candidates = 3;
+  int yaw_search_candidate_iterations = 10;
+  double yaw_search_margin = 0.1;
+  double min_overlap = 0.3;
+  double recovery_search_m = 1.5;
+  double recovery_turn_step_deg = 10.0;
+  double recovery_overlap_ratio = 0.7;
+  int recovery_window = 20;
+  int recovery_points = 250;
+  int reduction_grain = 256;
 
   template <class V>
   void visit(V& v) {

@@ -13,17 +13,14 @@
 namespace tsgraphs::odometry {
 
 struct PlatformEstimateConfig {
-  int scans = 30;           ///< scans measured, spread over the run (a median over them: a hand-held sensor
-                            ///< bobs and tilts within a sweep, one room may show little floor; with 10 the
-                            ///< carriers suite's worst error was 0.08 m, with 30 0.02 m)
-  double floor_bin = 0.02;  ///< m; height bins of the lowest returns, whose fullest bin is the floor
-  double ring_gap_deg =
-      0.2;  ///< elevations closer than this belong to one ring (beams are >= 0.35 deg apart)
+  int scans = 30;
+  double floor_bin = 0.02;
+  double ring_gap_deg = 0.2;
   double ring_min_range =
       1.0;  ///< returns nearer than this are not used for rings (m): a beam's offset from the
             ///< sensor's axis (about 1.5 cm) bends a nearer return's elevation by more than
             ///< ring_gap_deg; farther, the floor's nearest rings of a low sensor still count
-  int ring_min_points = 10;  ///< a ring holds at least this many returns (fewer: stray returns between rings)
+  int ring_min_points = 10;
 
   template <class V>
   void visit(V& v) {

@@ -19,30 +19,20 @@
 namespace tsgraphs::odometry {
 
 struct SweepRegistrationConfig {
-  double voxel_size = 0.375;      ///< the sweep is registered with one point per voxel of this edge (m)
-  double initial_distance = 1.0;  ///< pairs farther apart than this are ignored at first (m): a 4 deg
-                                  ///< unmodelled turn moves a point 10 m away by 0.7 m ...
-  double final_distance = 0.25;   ///< ... halved at each convergence down to this (m)
-  double kernel_divisor = 3.0;    ///< Geman-McClure kernel scale = pair distance / this (m)
-  double point_sigma = 0.05;     ///< a point's distance to the map is trusted to this (m), against the priors
-  double turn_rate_sigma = 0.2;  ///< the turn rate is expected within this of its prior (rad/s): the prior
-                                 ///< decides what the sweep observes weakly (a tilting, seen on floor and
-                                 ///< ceiling only); a turn about the vertical is observed on every wall
-  double velocity_sigma = 0.3;   ///< the velocity, within this of its prior (m/s): a carrier's speed changes
-                                 ///< by a few tenths within a step (a 3 cm bob at 1.8 Hz is 0.34 m/s), and a
-  ///< sweep hardly sees it (0.1 m/s moves a point 1 cm in 0.1 s); held loosely,
-  ///< it takes up the tilting the sweep sees weakly
-  double pose_sigma_deg = 0.5;  ///< the pose at the stamp is expected within this of its prior (deg) ...
-  double pose_sigma = 0.1;      ///< ... and this (m): a sweep's own tilt and the tilting during it are
-                                ///< told apart only weakly, and the odometry's pose is close
-  int max_iterations = 10;      ///< Gauss-Newton iterations per pair distance at most
-  double convergence_criterion =
-      1e-4;                       ///< a distance is done when the update's norm falls below this (rad, m, /s)
-  int min_correspondences = 100;  ///< fewer pairs than this: the prior motion is kept
-  int window = 5;             ///< the map holds the last this many sweeps: each sweep's own error of motion
-                              ///< then averages out instead of the first sweeps' staying in the map for good
-  int reduction_grain = 256;  ///< points per block of the parallel reduction (fixed: the sums are added
-                              ///< in the same order whatever the threads)
+  double voxel_size = 0.375;
+  double initial_distance = 1.0;
+  double final_distance = 0.25;
+  double kernel_divisor = 3.0;
+  double point_sigma = 0.05;
+  double turn_rate_sigma = 0.2;
+  double velocity_sigma = 0.3;
+  double pose_sigma_deg = 0.5;
+  double pose_sigma = 0.1;
+  int max_iterations = 10;
+  double convergence_criterion = 1e-4;
+  int min_correspondences = 100;
+  int window = 5;
+  int reduction_grain = 256;
 
   template <class V>
   void visit(V& v) {

@@ -8,9 +8,8 @@
 namespace tsgraphs::pipeline {
 
 struct KeyframeConfig {
-  double delta_trans = 1.0;  ///< new keyframe after this much translation (m); S-Graphs uses 2.0
-  double delta_angle_deg =
-      20.0;  ///< ...or this much rotation (deg); S-Graphs uses 2 rad, too coarse for turns indoors
+  double delta_trans = 1.0;
+  double delta_angle_deg = 20.0;
 
   template <class V>
   void visit(V& v) {

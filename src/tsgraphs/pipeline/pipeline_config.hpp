@@ -27,15 +27,14 @@ namespace tsgraphs::pipeline {
 
 /// When the back-end runs.
 struct ScheduleConfig {
-  int optimize_every_keyframes = 5;  ///< a local solve after this many new keyframes
-  int full_every_keyframes = 50;  ///< a full solve after the graph grew by this many keyframes (retired ones
-                                  ///< leave it; 0 = only after loops and at the end)
+  int optimize_every_keyframes = 5;
+  int full_every_keyframes = 50;
   /// A loop this many sigmas or more from the estimate asks for a full solve (the old graph has
   /// drift to correct); a nearer one is taken in by a local solve (0: every loop a full solve).
   /// Sigmas: the loop's, with the odometry's of the keyframes since the last correction when
   /// that lies in the local window (Pipeline::loop_asks_for_full_solve).
   double full_solve_loop_sigmas = 3.0;
-  bool merge_duplicate_planes = true;  ///< merge landmarks found to be one face after each solve
+  bool merge_duplicate_planes = true;
 
   template <class V>
   void visit(V& v) {
@@ -55,8 +54,7 @@ struct ScheduleConfig {
 
 /// What the pipeline says about layers that stay empty.
 struct DiagnosticsConfig {
-  int empty_layer_keyframes = 50;  ///< warn when no ground or wall came for this many keyframes, or a run
-                                   ///< this long has no room (0: never)
+  int empty_layer_keyframes = 50;
 
   template <class V>
   void visit(V& v) {

@@ -18,19 +18,12 @@ namespace tsgraphs::pipeline {
 
 /// The `platform` section of the parameters. `auto` (unset) values are measured.
 struct PlatformConfig {
-  std::optional<double>
-      sensor_height;  ///< m above the floor under the robot; auto: the median floor under the scans measured
-  std::optional<double> seed_radius;  ///< m; auto: where the lowest beam meets the floor (on the tilted side)
-                                      ///< plus seed_radius_margin, within [min_seed_radius, ground.max_range]
-  std::string preset =
-      "auto";  ///< the ground's ring-density settings: auto (the measured ring spacing),
-               ///< os1-64, os0-128, vlp-16, hesai-xt32, or none (the ground section as it is)
-  double seed_radius_margin = 1.5;  ///< m beyond the first floor ring: that ring is thin (a node needs
-                                    ///< ground.num_min_pts points), so seeds come from the next rings out
-                                    ///< too; three tri-grid cells
-  double min_seed_radius = 3.0;     ///< m; the search may always start this far out
-  double fallback_sensor_height =
-      0.55;  ///< m; when no floor is found under the scans measured (a warning says so)
+  std::optional<double> sensor_height;
+  std::optional<double> seed_radius;
+  std::string preset = "auto";
+  double seed_radius_margin = 1.5;
+  double min_seed_radius = 3.0;
+  double fallback_sensor_height = 0.55;
   odometry::PlatformEstimateConfig measure;  ///< how the scans are measured
 
   template <class V>

@@ -8,9 +8,9 @@
 namespace tsgraphs::pipeline {
 
 struct PrefilterConfig {
-  double min_range = 0.5;   ///< points nearer the sensor are dropped: the platform itself (m)
-  double max_range = 30.0;  ///< points farther are dropped: sparse and noisy indoors (m)
-  double voxel_size = 0.1;  ///< one point (the centroid) per voxel of this size (m); 0 = no downsampling
+  double min_range = 0.5;
+  double max_range = 30.0;
+  double voxel_size = 0.1;
 
   template <class V>
   void visit(V& v) {

@@ -11,14 +11,14 @@
 namespace tsgraphs::registration {
 
 struct RegistrationConfig {
-  double voxel_size = 0.2;                    ///< both clouds are voxel-downsampled to this (m); 0 = keep all
-  double max_correspondence_distance = 1.0;   ///< GICP correspondence gate (m): the capture range
+  double voxel_size = 0.2;
+  double max_correspondence_distance = 1.0;
   double fine_correspondence_distance = 0.5;  ///< gate of a second GICP pass from the first one's result (m),
                                               ///< so that far pairs do not bias the final pose; 0 = one pass
-  int max_iterations = 64;                    ///< GICP outer iterations
-  int k_correspondences = 20;                 ///< neighbours for each point's covariance
-  double transformation_epsilon = 1e-4;       ///< convergence: change of the transform between iterations
-  double fitness_distance = 0.3;  ///< only correspondences closer than this count in `fitness` (m)
+  int max_iterations = 64;
+  int k_correspondences = 20;
+  double transformation_epsilon = 1e-4;
+  double fitness_distance = 0.3;
 
   template <class V>
   void visit(V& v) {

@@ -29,14 +29,10 @@ struct RoomLayerConfig {
   double obstacle_voxel = 0.2;
   double segment_radius = 2.5;
   double min_segment_length = 2.0;
-  double min_visit_length = 1.0;  ///< flush: a space the segment's path runs this far in is extracted (m); a
-                                  ///< step through a doorway is no visit
+  double min_visit_length = 1.0;
   double max_frontier = 0.1;
   double level_band = 0.3;
-  double max_floor_slope =
-      0.05;  ///< a level's floor rises less than this per metre walked (1:20, where building codes
-             ///< call a walk a ramp); on a steeper path (ramp, stairs) the robot is between levels,
-             ///< and steeper ground round a node (a ramp's foot) is no floor of the level
+  double max_floor_slope = 0.05;
   double floor_window = 2.0;
 
   template <class V>

@@ -30,16 +30,14 @@
 namespace tsgraphs::rooms {
 
 struct MapWallsConfig {
-  double robot_radius = 0.2;       ///< m: the free space is opened by a disc of this radius (step 1)
-  double min_piece = 0.5;          ///< m: a straight run of edge shorter than this is clutter, no wall
-  double min_wall = 1.0;           ///< m: a face's pieces add up to at least this (a door post alone is none)
-  double min_free_standing = 2.5;  ///< m: ...and a face of what stands free to this: longer than furniture (a
-                                   ///< table, a desk is at most 2 m), a partition or a row of cabinets
-  double max_gap = 2.0;  ///< cells: a run of edge continues over gaps this small (a ragged laser edge)
-  double min_direction_share =
-      0.25;  ///< a further direction explains this share of the best one's wall length
-  double min_direction_separation_deg = 10.0;  ///< directions are at least this far apart (deg)
-  double wall_height = 2.6;  ///< m: the height given to the walls (a map's walls reach the ceiling)
+  double robot_radius = 0.2;
+  double min_piece = 0.5;
+  double min_wall = 1.0;
+  double min_free_standing = 2.5;
+  double max_gap = 2.0;
+  double min_direction_share = 0.25;
+  double min_direction_separation_deg = 10.0;
+  double wall_height = 2.6;
 
   template <class V>
   void visit(V& v) {

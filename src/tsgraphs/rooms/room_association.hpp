@@ -26,10 +26,8 @@ inline const Choices<FootprintPolicy> kFootprintPolicies{{FootprintPolicy::first
                                                          {FootprintPolicy::largest, "largest"}};
 
 struct RoomAssociationConfig {
-  double min_overlap = 0.5;  ///< footprints of which the smaller has this share of its area inside the other
-                             ///< are one room (a room seen first from its door, later whole; spaces of one
-                             ///< segmentation never overlap)...
-  double room_dist_threshold = 1.0;  ///< ...or centres within this distance (m)
+  double min_overlap = 0.5;
+  double room_dist_threshold = 1.0;
   bool match_by_footprint =
       true;  ///< false: centres only (S-Graphs+); set by the room layer from its mode, not a file key
   FootprintPolicy footprint = FootprintPolicy::largest;

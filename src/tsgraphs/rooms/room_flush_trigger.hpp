@@ -13,16 +13,12 @@
 namespace tsgraphs::rooms {
 
 struct AisleMeasureConfig {
-  double neighbourhood_radius =
-      3.0;                      ///< cluster points within this of the robot give the aisle direction (m)
-  double min_anisotropy = 1.5;  ///< principal std ratio below this: no defined direction (an open room)
-  double slice_half_width =
-      0.3;               ///< cross-section: cluster points within this of the line through the robot (m)
-  double max_gap = 0.5;  ///< the cross-section ends at a gap wider than this between points (m)
-  int min_points =
-      40;  ///< fewer neighbourhood points: no measurement (the map near the robot is still filling in)
-  int width_directions = 4;  ///< the width is the shortest cross-section over this many directions, evenly
-                             ///< spaced from across the axis: a room's width does not flip with its axis
+  double neighbourhood_radius = 3.0;
+  double min_anisotropy = 1.5;
+  double slice_half_width = 0.3;
+  double max_gap = 0.5;
+  int min_points = 40;
+  int width_directions = 4;
 
   template <class V>
   void visit(V& v) {
@@ -58,16 +54,11 @@ AisleMeasurement measure_aisle(const std::vector<Eigen::Vector3d>& cluster, cons
                                const AisleMeasureConfig& config = {});
 
 struct RoomFlushConfig {
-  double width_change_ratio = 0.3;  ///< flush when |width - median| > ratio * median of the segment
-  double direction_change_deg =
-      30.0;  ///< flush when the aisle turns by more than this from the segment's axis...
-  double max_aisle_width =
-      4.0;  ///< ...where it is narrower than this (m); turning in a wider space is walking a room,
-            ///< and widths both above it are both open space (no width change)
-  int confirm_keyframes =
-      2;  ///< a change must hold for this many keyframes in a row (a map still filling in is not one)
-  double doorway_ratio =
-      0.3;  ///< a blip narrower than this share of the space on both sides is a doorway (flush)
+  double width_change_ratio = 0.3;
+  double direction_change_deg = 30.0;
+  double max_aisle_width = 4.0;
+  int confirm_keyframes = 2;
+  double doorway_ratio = 0.3;
 
   template <class V>
   void visit(V& v) {

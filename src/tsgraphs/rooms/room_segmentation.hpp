@@ -29,64 +29,30 @@
 namespace tsgraphs::rooms {
 
 struct RoomSegmentationConfig {
-  double cell = 0.1;          ///< raster cell (m): an eighth of the narrowest door, finer than the node map
-  double max_normal_z = 0.2;  ///< |n.z| above this: not a vertical plane, no wall
-  double min_wall_height =
-      1.0;  ///< lower planes are desks and tables, not walls (m); a taller one short of
-            ///< wall_reach_height bounds only if no ray saw above its top (wall_top_*): a
-            ///< low sensor sees a wall beside it only up to its own height plus a little
-  double wall_reach_height =
-      2.3;  ///< a wall bounds a level when its points span this height above the floor (m)
-            ///< or no ray saw above its top (wall_top_*):
-            ///< above a door's lintel and the tallest furniture (shelves end by 2.2 m), below the
-            ///< ceiling; a lintel, the storey above, a shelf row or a railing does not
-  double wall_top_margin =
-      0.2;  ///< a ray this far above a plane's highest point over its line saw above it (m)
-  double wall_top_beyond =
-      0.2;  ///< ...if it ends at least this far past the plane's line (m): not on its face
-  double wall_top_share =
-      0.25;  ///< ...along this share of its length: its top is seen (a shelf, a partition) and it
-             ///< bounds a level only if it spans wall_reach_height; an unseen top (a low sensor
-             ///< sees only a wall's foot) may reach the ceiling: it bounds the level
-  double wall_joint_gap =
-      0.4;  ///< ...if one of its ends is this close to another wall of the level, across it (a
-            ///< corner, a T; m): walls join into one structure, a free-standing shelf row or
-            ///< screen one walks round does not; two walls that would cross within this of
-            ///< both their ends meet at a corner (both mapped short of it: it is closed)
-  double max_door_width = 2.0;  ///< a wall that ends this close to another wall has a door (or an opening)
-                                ///< between them: it is drawn on to it (m)
-  double door_narrowing =
-      0.7;  ///< spaces meeting where the clearance is at most this share of the smaller one's
-            ///< widest clearance (and at most max_door_width / 2) meet at a door (rooms/narrowings)
-  double min_door_post = 0.8;  ///< ...when it is at least this long, and so is the wall it meets across (m):
-                               ///< a pillar's face is no wall to close a gap to; a wall in line with it (a
-                               ///< pier between two doors) is a door post whatever its length
-  double opening_share = 0.3;  ///< walls on one line (within line_tolerance) also close the openings between
-                               ///< them narrower than this share of the length they cover: a wide opening in
-                               ///< a long wall (a corridor's side past a bay, a row of cabinets along one)
-  double line_tolerance = 0.15;  ///< m: walls whose ends lie this close to one line are on it (one wall seen
-                                 ///< in pieces, a row of rooms)
-  double min_region_area =
-      2.0;  ///< m^2: a smaller region (a doorway's strip between a wall's two faces, a corner
-            ///< square cut off) is no space of its own: it joins the one it opens to
-  double rect_fill =
-      0.85;  ///< a region filling this share of its smallest enclosing rectangle has it as footprint
-  double wall_snap =
-      0.4;  ///< a rectangle's side this near a parallel wall facing into it lies on the wall (m):
-            ///< the grown free space stops up to a node cell and a raster cell short of it
-  double parallel_tolerance_deg = 10.0;  ///< a wall is parallel to a side within this
-  double min_wall_overlap = 0.3;         ///< ...and runs along at least this share of the side
-  double corridor_aspect = 3.0;          ///< a region this many times longer than wide is a corridor segment
-  double simplify_tolerance = 0.15;      ///< an outline strays at most this from the region's cell edges (m)
-  double bend_tolerance = 0.3;  ///< a corridor's outline, for finding its bends, strays at most this (m): a
-                                ///< chair's or a door jamb's notch is no bend
-  double min_bend_deg = 45.0;   ///< a corridor's inner corner turning at least this is a bend it is cut at
-  double min_fit_share =
-      0.5;  ///< a region narrower everywhere than this share of the robot's width (2 lambda)
-            ///< is no space: a strip of cells past a wall's line, between a wall's two faces
-  double frontier_reach =
-      0.3;  ///< rays end on a wall's face short of a space grown to its line: an unseen strip
-            ///< this wide (m) at a region's edge before a wall or seen space is no frontier
+  double cell = 0.1;
+  double max_normal_z = 0.2;
+  double min_wall_height = 1.0;
+  double wall_reach_height = 2.3;
+  double wall_top_margin = 0.2;
+  double wall_top_beyond = 0.2;
+  double wall_top_share = 0.25;
+  double wall_joint_gap = 0.4;
+  double max_door_width = 2.0;
+  double door_narrowing = 0.7;
+  double min_door_post = 0.8;
+  double opening_share = 0.3;
+  double line_tolerance = 0.15;
+  double min_region_area = 2.0;
+  double rect_fill = 0.85;
+  double wall_snap = 0.4;
+  double parallel_tolerance_deg = 10.0;
+  double min_wall_overlap = 0.3;
+  double corridor_aspect = 3.0;
+  double simplify_tolerance = 0.15;
+  double bend_tolerance = 0.3;
+  double min_bend_deg = 45.0;
+  double min_fit_share = 0.5;
+  double frontier_reach = 0.3;
 
   template <class V>
   void visit(V& v) {

@@ -5,7 +5,7 @@
 namespace tsgraphs::rooms {
 
 struct RoomTimerConfig {
-  double period_s = 1.0;  ///< extraction period (s), S-Graphs+'s 1.0 s
+  double period_s = 1.0;
 
   template <class V>
   void visit(V& v) {

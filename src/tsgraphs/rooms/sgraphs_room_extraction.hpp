@@ -26,16 +26,12 @@
 namespace tsgraphs::rooms {
 
 struct SgraphsRoomExtractionConfig {
-  double point_distance =
-      1.5;  ///< a cluster point this close to a plane (either side) counts for it (m; S-Graphs: 1.5)
-  int min_points =
-      2;  ///< a class's winning plane needs at least this many points (S-Graphs' vertex_neigh_thres: 2)
-  double min_width = 1.0;  ///< a pair's planes closer than this are no room or corridor (m; S-Graphs: 1.0)
-  double min_cluster_extent =
-      0.5;  ///< a cluster narrower than this along map x or y gives nothing (m; S-Graphs: 0.5)
-  double max_center_offset =
-      0.5;  ///< the footprint's centre must lie this close to a cluster point (m; S-Graphs: 0.5)
-  double max_normal_z = 0.2;  ///< |n.z| above this: not a vertical plane, ignored
+  double point_distance = 1.5;
+  int min_points = 2;
+  double min_width = 1.0;
+  double min_cluster_extent = 0.5;
+  double max_center_offset = 0.5;
+  double max_normal_z = 0.2;
 
   template <class V>
   void visit(V& v) {

@@ -13,20 +13,17 @@
 namespace tsgraphs::walls {
 
 struct PlaneExtractionConfig {
-  int normal_neighbours = 10;                ///< k nearest neighbours for point normals
-  double max_vertical_normal_z = 0.15;       ///< |n_z| (map frame) at most this: a wall candidate
-  double min_horizontal_normal_z = 0.95;     ///< |n_z| at least this: a floor/ceiling candidate
-  double distance_threshold = 0.05;          ///< inlier distance to a plane (m)
-  double normal_angle_threshold_deg = 15.0;  ///< inlier normals within this of the plane's
-  int min_inliers = 150;                     ///< smallest face kept (points after prefiltering)
-  double min_extent = 0.5;  ///< smallest horizontal length of a wall face (m): a stretch of wall between a
-                            ///< door and a corner; a pillar's sides are faces too (the room layer does not
-                            ///< let them narrow a space)
-  double cluster_tolerance =
-      0.4;                  ///< Euclidean clustering gap that splits one plane into faces (m; <= 0: no split)
-  int max_planes = 30;      ///< at most this many planes per keyframe
-  double max_range = 15.0;  ///< points farther from the sensor are not used (m)
-  double point_voxel = 0.2;  ///< inlier points kept per face are downsampled to this (m)
+  int normal_neighbours = 10;
+  double max_vertical_normal_z = 0.15;
+  double min_horizontal_normal_z = 0.95;
+  double distance_threshold = 0.05;
+  double normal_angle_threshold_deg = 15.0;
+  int min_inliers = 150;
+  double min_extent = 0.5;
+  double cluster_tolerance = 0.4;
+  int max_planes = 30;
+  double max_range = 15.0;
+  double point_voxel = 0.2;
 
   template <class V>
   void visit(V& v) {

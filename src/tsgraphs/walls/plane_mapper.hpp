@@ -17,15 +17,15 @@
 namespace tsgraphs::walls {
 
 struct PlaneMapperConfig {
-  double sigma_angle_deg = 2.0;     ///< std of a plane's normal direction, for association
-  double sigma_distance = 0.05;     ///< std of a plane's offset (m), for association
-  double max_mahalanobis = 3.0;     ///< association gate on the Mahalanobis distance
-  double overlap_distance = 0.5;    ///< an observation point within this of a landmark point overlaps it (m)
-  double min_overlap_ratio = 0.05;  ///< share of observation points that must overlap
-  double merge_angle_deg = 3.0;     ///< duplicates: normals within this angle...
-  double merge_distance = 0.08;     ///< ...offsets within this (m)...
-  double merge_overlap_distance = 0.5;  ///< ...and point sets within this of each other (m)
-  double landmark_voxel = 0.25;         ///< landmark point sets are downsampled to this (m)
+  double sigma_angle_deg = 2.0;
+  double sigma_distance = 0.05;
+  double max_mahalanobis = 3.0;
+  double overlap_distance = 0.5;
+  double min_overlap_ratio = 0.05;
+  double merge_angle_deg = 3.0;
+  double merge_distance = 0.08;
+  double merge_overlap_distance = 0.5;
+  double landmark_voxel = 0.25;
 
   template <class V>
   void visit(V& v) {
