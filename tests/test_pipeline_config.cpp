@@ -295,6 +295,7 @@ TEST(PipelineConfig, RulesBetweenFieldsAreErrorsAtTheKeyTheyName) {
   for (const auto& [text, where] : std::vector<std::pair<std::string, std::string>>{
            {"prefilter:\n  max_range: 0.2\n", "p.yaml:2: prefilter.max_range: must be > min_range"},
            {"lidar_odometry:\n  min_range: 60\n", "p.yaml:2: lidar_odometry.max_range: must be > min_range"},
+           {"ground:\n  max_range: 0.4\n", "p.yaml:2: ground.max_range: must be > min_range"},
            {"floor_levelling:\n  max_range: 0.5\n",
             "p.yaml:2: floor_levelling.max_range: must be > min_range"},
            {"deskew:\n  final_distance: 2.0\n",

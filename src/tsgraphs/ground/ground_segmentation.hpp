@@ -67,6 +67,7 @@ struct GroundConfig {
     v("min_range", min_range, between(0.0, 1000.0), "m; nearer points are not used");
     v("max_range", max_range, above(0.0, 1000.0),
       "m; nor farther ones (ground precision / recall are scored over this range)");
+    v.require(max_range > min_range, "max_range", "must be > min_range");
     v("num_iter", num_iter, between(1, 100), "PCA rounds per node");
     v("num_lpr", num_lpr, between(1, 10000), "points averaged for the lowest-point representative");
     v("num_min_pts", num_min_pts, between(3, 1000000), "fewer points: the node is unknown");
