@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "test_support.hpp"
+#include "tsgraphs/pipeline/pipeline.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
 
 using namespace tsgraphs;
@@ -288,6 +289,17 @@ TEST(PipelineConfig, ConfigsBuiltInCodeAreCheckedAgainstTheSameDeclarations) {
     FAIL() << "voxel_size -1 accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "PipelineConfig: loop_closure.registration.voxel_size must be in [0, 100]");
+  }
+}
+
+TEST(PipelineConfig, APipelineBuiltInCodeIsCheckedAsAFileIs) {
+  PipelineConfig c;
+  c.ground.max_range = c.ground.min_range;  // no module checks the ground's config itself
+  try {
+    Pipeline pipeline(c);
+    FAIL() << "ground.max_range == min_range accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "PipelineConfig: ground.max_range must be > min_range");
   }
 }
 

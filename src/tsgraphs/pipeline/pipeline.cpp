@@ -26,10 +26,17 @@ std::string fixed(double v, int digits) {
   return text;
 }
 
+// The config checked against every field's declaration before any module takes its part, so
+// that a config built in code is refused as a parameter file would be.
+PipelineConfig checked(PipelineConfig config) {
+  check_config(config, "PipelineConfig");
+  return config;
+}
+
 }  // namespace
 
 Pipeline::Pipeline(PipelineConfig config)
-    : config_(std::move(config)),
+    : config_(checked(std::move(config))),
       selector_(config_.keyframes),
       mapper_(config_.plane_mapping),
       node_map_(config_.node_map),

@@ -49,6 +49,8 @@ struct OptimizationRecord {
 
 class Pipeline {
  public:
+  /// Throws std::invalid_argument ("PipelineConfig: <section.key> must be ...") for a config
+  /// its fields' declarations refuse, as load_pipeline_config refuses such a file.
   explicit Pipeline(PipelineConfig config = {});
 
   /// Measures the platform (sensor height, seed radius, ground preset: platform.hpp) from scans
