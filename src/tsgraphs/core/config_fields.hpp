@@ -27,6 +27,9 @@
 
 namespace tsgraphs {
 
+/// What a parameter file writes for an optional field left to be measured.
+inline constexpr const char* kAutoWord = "auto";
+
 /// The numbers a parameter may take: an interval whose ends may be open or absent.
 struct Range {
   double min = -std::numeric_limits<double>::infinity();
@@ -60,6 +63,16 @@ inline Range between(double lo, double hi) { return {lo, hi, false, false}; }
 /// (lo, hi].
 inline Range above(double lo, double hi) { return {lo, hi, true, false}; }
 
+/// "must be a, b or c".
+inline std::string must_be_one_of(const std::vector<std::string>& words) {
+  std::string s = "must be ";
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    if (i > 0) s += i + 1 == words.size() ? " or " : ", ";
+    s += words[i];
+  }
+  return s;
+}
+
 /// The words an enum parameter is written as: parsed once at load, the code compares enums.
 template <class E>
 struct Choices {
@@ -92,14 +105,7 @@ struct Choices {
     return false;
   }
   /// "must be a, b or c".
-  std::string describe() const {
-    std::string s = "must be ";
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      if (i > 0) s += i + 1 == names.size() ? " or " : ", ";
-      s += names[i].second;
-    }
-    return s;
-  }
+  std::string describe() const { return must_be_one_of(words()); }
 };
 
 /// The words a text parameter may take when they name entries of a table kept elsewhere (a
@@ -112,14 +118,7 @@ struct Words {
       if (v == s) return true;
     return false;
   }
-  std::string describe() const {
-    std::string s = "must be ";
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      if (i > 0) s += i + 1 == values.size() ? " or " : ", ";
-      s += values[i];
-    }
-    return s;
-  }
+  std::string describe() const { return must_be_one_of(values); }
 };
 
 namespace detail {

@@ -15,14 +15,11 @@ namespace {
 
 using detail::IsOptional;
 
-// The value an optional field has when it is measured rather than given.
-constexpr const char* kAuto = "auto";
-
 // A value as the message about it shows it.
 template <class T>
 std::string shown(const T& value) {
   if constexpr (IsOptional<T>::value) {
-    return value ? shown(*value) : kAuto;
+    return value ? shown(*value) : kAutoWord;
   } else if constexpr (std::is_same_v<T, std::string>) {
     return "'" + value + "'";
   } else {
@@ -45,7 +42,7 @@ struct Reader {
     if constexpr (IsOptional<T>::value) {
       if (!map.has(key)) return;
       const YAML::Node node = map.raw(key);
-      if (node.IsScalar() && node.Scalar() == kAuto) {
+      if (node.IsScalar() && node.Scalar() == kAutoWord) {
         field.reset();
       } else {
         try {

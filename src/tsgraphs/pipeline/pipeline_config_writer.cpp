@@ -12,8 +12,6 @@ namespace {
 
 using detail::IsOptional;
 
-constexpr const char* kAuto = "auto";
-
 // A number as both files write it: a float keeps a '.', so that it reads back as one.
 std::string number_text(double value) {
   char buf[32];
@@ -33,7 +31,7 @@ struct Writer {
       if (field) {
         value(*field);
       } else {
-        out << kAuto;
+        out << kAutoWord;
       }
     } else if constexpr (std::is_floating_point_v<T>) {
       out << number_text(field);
@@ -80,7 +78,7 @@ struct DocumentedWriter {
   template <class T>
   static std::string text(const T& field) {
     if constexpr (IsOptional<T>::value) {
-      return field ? text(*field) : kAuto;
+      return field ? text(*field) : kAutoWord;
     } else if constexpr (std::is_same_v<T, bool>) {
       return field ? "true" : "false";
     } else if constexpr (std::is_floating_point_v<T>) {

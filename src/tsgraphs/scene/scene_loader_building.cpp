@@ -46,18 +46,23 @@ void SceneParser::parse_levels() {
   }
 }
 
+void SceneParser::read_line(const YamlMap& m, const char* what, int* level, Vec2* from, Vec2* to) {
+  *level = level_index(m, "level");
+  *from = m.vec2("from");
+  *to = m.vec2("to");
+  check_extent(m, "from", {*from});
+  check_extent(m, "to", {*to});
+  if ((*to - *from).norm() < 1e-6)
+    throw m.error(
+        "to", std::string("zero-length ") + what + ": from and to are the same point " + fmt_point(*from));
+}
+
 void SceneParser::parse_wall(const YamlMap& m) {
   m.check_keys({"level", "from", "to", "thickness", "height", "openings"});
   Wall w;
   w.line = m.line();
-  w.level = level_index(m, "level");
-  w.from = m.vec2("from");
-  w.to = m.vec2("to");
-  check_extent(m, "from", {w.from});
-  check_extent(m, "to", {w.to});
+  read_line(m, "wall", &w.level, &w.from, &w.to);
   const double length = (w.to - w.from).norm();
-  if (length < 1e-6)
-    throw m.error("to", "zero-length wall: from and to are the same point " + fmt_point(w.from));
   w.thickness = m.get<double>("thickness", 0.2);
   w.height = m.get<double>("height", scene_.levels[w.level].ceiling);
   require_positive(m, "thickness", w.thickness);
@@ -107,12 +112,7 @@ void SceneParser::parse_railing(const YamlMap& m) {
   m.check_keys({"level", "from", "to", "height", "style", "transmission"});
   Railing r;
   r.line = m.line();
-  r.level = level_index(m, "level");
-  r.from = m.vec2("from");
-  r.to = m.vec2("to");
-  check_extent(m, "from", {r.from});
-  check_extent(m, "to", {r.to});
-  if ((r.to - r.from).norm() < 1e-6) throw m.error("to", "zero-length railing");
+  read_line(m, "railing", &r.level, &r.from, &r.to);
   r.height = m.get<double>("height", 1.0);
   require_positive(m, "height", r.height);
   const std::string style = m.get<std::string>("style", "solid");

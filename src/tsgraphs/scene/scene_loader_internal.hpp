@@ -49,6 +49,8 @@ class SceneParser {
 
   // The building (scene_loader_building.cpp).
   void parse_levels();
+  /// A wall's or railing's level and two distinct ends within the extent limit.
+  void read_line(const YamlMap& m, const char* what, int* level, Vec2* from, Vec2* to);
   void parse_wall(const YamlMap& m);
   void parse_railing(const YamlMap& m);
   void parse_box(const YamlMap& m);
