@@ -49,9 +49,9 @@ RegionInBox region_in_box(const GridFrame& f, const std::vector<int>& lab, int k
   return out;
 }
 
-/// Long for its width: its area at least `corridor_aspect` times the square of its width.
-bool corridor_like(const RegionInBox& region, double corridor_aspect) {
-  return static_cast<double>(region.cells) >= corridor_aspect * region.width * region.width;
+bool corridor_like(const RegionInBox& region, double corridor_aspect, double max_width) {
+  return region.width <= max_width &&
+         static_cast<double>(region.cells) >= corridor_aspect * region.width * region.width;
 }
 
 namespace {
@@ -216,8 +216,8 @@ void choose_cut_edges(std::vector<Corner>& corners, const CornerWalk& walk, doub
 
 /// Cuts each corridor-like region (its area at least `corridor_aspect` times the square of its
 /// widest width, twice its largest clearance, holes of fewer than `min_cells` not counted: a
-/// pillar stands inside a space) into its straight legs: at every corner where its
-/// outline turns inwards (an inner corner of a bend, a corner of what it runs round: an
+/// pillar stands inside a space; that width at most `max_width_cells`) into its straight legs: at every
+/// corner where its outline turns inwards (an inner corner of a bend, a corner of what it runs round: an
 /// atrium's void, a walled-off room) the outline's edge arriving there (counter-clockwise round
 /// the region, clockwise round a hole) is drawn on across the region until it leaves it, if it
 /// does within the corridor's width. Each corner square thus goes to one leg, the same way round
@@ -228,13 +228,14 @@ void choose_cut_edges(std::vector<Corner>& corners, const CornerWalk& walk, doub
 /// simplification's angular error of a wall's direction (`wall_directions`, unit) takes it,
 /// and is as long as the straight run of edges it then belongs to.
 /// Cut cells lose their label; returns whether any was cut.
-bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cells, double tolerance_cells,
-               double min_turn, const std::vector<Vec2>& wall_directions, std::vector<int>* label) {
+bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double max_width_cells, double min_cells,
+               double tolerance_cells, double min_turn, const std::vector<Vec2>& wall_directions,
+               std::vector<int>* label) {
   std::vector<int>& lab = *label;
   bool cut = false;
   for (int k = 0; k < n; ++k) {
     const RegionInBox region = region_in_box(f, lab, k, min_cells);
-    if (region.cells == 0 || !corridor_like(region, corridor_aspect)) continue;
+    if (region.cells == 0 || !corridor_like(region, corridor_aspect, max_width_cells)) continue;
     std::vector<Polygon2> loops = region_loops(region, min_cells);
     std::vector<Corner> corners = inner_corners(loops, tolerance_cells, min_turn, wall_directions);
     const CornerWalk walk{

@@ -24,11 +24,13 @@ struct RegionInBox {
 };
 
 RegionInBox region_in_box(const GridFrame& f, const std::vector<int>& lab, int k, double min_cells);
-/// Long for its width: its area at least `corridor_aspect` times the square of its width.
-bool corridor_like(const RegionInBox& region, double corridor_aspect);
+/// Long for its width (its area at least `corridor_aspect` times the square of its width) and
+/// no wider than `max_width` (cells): a passage, not a hall.
+bool corridor_like(const RegionInBox& region, double corridor_aspect, double max_width);
 /// Cuts each corridor-like region into its straight legs (cut_bends' comment in bend_cuts.cpp);
 /// cut cells lose their label; returns whether any was cut.
-bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double min_cells, double tolerance_cells,
-               double min_turn, const std::vector<Vec2>& wall_directions, std::vector<int>* label);
+bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double max_width_cells, double min_cells,
+               double tolerance_cells, double min_turn, const std::vector<Vec2>& wall_directions,
+               std::vector<int>* label);
 
 }  // namespace tsgraphs::rooms::segmentation_steps

@@ -442,8 +442,8 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   std::vector<Vec2> wall_directions;
   for (const WallLine& w : walls)
     if ((w.b - w.a).norm() > 0.0) wall_directions.push_back((w.b - w.a).normalized());
-  if (cut_bends(f, n, cfg.corridor_aspect, cfg.min_region_area / cell_area, cfg.bend_tolerance / cfg.cell,
-                cfg.min_bend_deg * kDegToRad, wall_directions, &label)) {
+  if (cut_bends(f, n, cfg.corridor_aspect, cfg.max_corridor_width / cfg.cell, cfg.min_region_area / cell_area,
+                cfg.bend_tolerance / cfg.cell, cfg.min_bend_deg * kDegToRad, wall_directions, &label)) {
     // The legs are regions of their own.
     const int pieces = split_regions(f, &label);
     n = merge_small_regions(f, cfg.min_region_area / cell_area, pieces, &label);

@@ -48,6 +48,7 @@ struct RoomSegmentationConfig {
   double parallel_tolerance_deg = 10.0;
   double min_wall_overlap = 0.3;
   double corridor_aspect = 3.0;
+  double max_corridor_width = 5.0;
   double simplify_tolerance = 0.15;
   double bend_tolerance = 0.3;
   double min_bend_deg = 45.0;
@@ -107,6 +108,10 @@ struct RoomSegmentationConfig {
       "...and runs along at least this share of the side");
     v("corridor_aspect", corridor_aspect, between(1.0, 1e6),
       "a region this many times longer than wide is a corridor segment");
+    v("max_corridor_width", max_corridor_width, between(0.0, 1e6),
+      "...and a region cut at its bends only if no wider than this (m; twice its largest clearance): "
+      "corridors are 1.2-4 m wide, and at a corner or a junction the clearance is up to 1.3 times half "
+      "that; a longer, wider space (a hall, a long room with furniture along it) is whole");
     v("simplify_tolerance", simplify_tolerance, between(0.0, 100.0),
       "an outline strays at most this from the region's cell edges (m)");
     v("bend_tolerance", bend_tolerance, between(0.0, 100.0),
