@@ -341,28 +341,6 @@ TEST(RoomSegmentation, ARingCorridorIsCutIntoItsLegs) {
   EXPECT_EQ(std::set<int>({south, north, west, east}).size(), 4u);
 }
 
-TEST(RoomSegmentation, ALongHallWiderThanACorridorIsNotCutAtItsBend) {
-  // An L of 6 m wide legs, 24 and 18 m long: long for its width, but a hall, not a passage.
-  const Polygon2 l = {{0, 0}, {24, 0}, {24, 6}, {6, 6}, {6, 18}, {0, 18}};
-  SegmentationInput in = level();
-  add_area(l, &in);
-  for (std::size_t i = 0; i < l.size(); ++i)
-    in.walls.push_back(wall(static_cast<int>(i), l[i], l[(i + 1) % l.size()], {1, 1}));
-  const RoomSegmentation seg = segment_rooms(in);
-  ASSERT_EQ(seg.spaces.size(), 1u);
-  EXPECT_GT(iou(seg.spaces[0].room.outline, l), 0.85);
-  RoomSegmentationConfig no_limit;
-  no_limit.max_corridor_width = 1e6;  // what the width limit changes: the hall cut in two
-  EXPECT_EQ(segment_rooms(in, no_limit).spaces.size(), 2u);
-  // The same L at 2 m wide is a corridor: cut into its two legs.
-  const Polygon2 narrow = {{0, 0}, {24, 0}, {24, 2}, {2, 2}, {2, 18}, {0, 18}};
-  SegmentationInput corridor = level();
-  add_area(narrow, &corridor);
-  for (std::size_t i = 0; i < narrow.size(); ++i)
-    corridor.walls.push_back(wall(static_cast<int>(i), narrow[i], narrow[(i + 1) % narrow.size()], {1, 1}));
-  EXPECT_EQ(segment_rooms(corridor).spaces.size(), 2u);
-}
-
 /// The four mirror images a rule must hold in (x, y flipped or not): in two of them the
 /// outline runs the other way round a corner.
 const Vec2 kMirrors[4] = {{1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
@@ -383,6 +361,21 @@ SegmentationInput walled_level(const Polygon2& shape, const Vec2& m, const Vec2&
   for (std::size_t i = 0; i < c.size(); ++i)
     in.walls.push_back(wall(static_cast<int>(i), c[i], c[(i + 1) % c.size()], inside.cwiseProduct(m)));
   return in;
+}
+
+TEST(RoomSegmentation, ALongHallWiderThanACorridorIsNotCutAtItsBend) {
+  // An L of 6 m wide legs, 24 and 18 m long: long for its width, but a hall, not a passage.
+  const Polygon2 l = {{0, 0}, {24, 0}, {24, 6}, {6, 6}, {6, 18}, {0, 18}};
+  const SegmentationInput in = walled_level(l, {1, 1}, {1, 1});
+  const RoomSegmentation seg = segment_rooms(in);
+  ASSERT_EQ(seg.spaces.size(), 1u);
+  EXPECT_GT(iou(seg.spaces[0].room.outline, l), 0.85);
+  RoomSegmentationConfig no_limit;
+  no_limit.max_corridor_width = 1e6;  // what the width limit changes: the hall cut in two
+  EXPECT_EQ(segment_rooms(in, no_limit).spaces.size(), 2u);
+  // The same L at 2 m wide is a corridor: cut into its two legs.
+  const Polygon2 narrow = {{0, 0}, {24, 0}, {24, 2}, {2, 2}, {2, 18}, {0, 18}};
+  EXPECT_EQ(segment_rooms(walled_level(narrow, {1, 1}, {1, 1})).spaces.size(), 2u);
 }
 
 TEST(RoomSegmentation, ATJunctionKeepsItsThroughCorridorWhole) {
