@@ -1,6 +1,8 @@
 // The commands of the `tsgraphs` program (commands.hpp).
 #include "commands.hpp"
 
+#include "segmentation_images.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -252,7 +254,7 @@ void run(const std::string& seq_dir, const std::string& out, const pipeline::Pip
 }
 
 void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config,
-         bool quiet, const pipeline::OdometryOptions& odometry) {
+         bool quiet, const pipeline::OdometryOptions& odometry, bool segmentations) {
   const auto start = std::chrono::steady_clock::now();
   const std::string& seq_dir = sequence.dir();
   io::AtomicDirectory dir(out, pipeline::run_files::kSceneGraph);
@@ -262,7 +264,12 @@ void run(const io::ScanSequence& sequence, const std::string& out, const pipelin
   pipeline::Pipeline slam(config);
   app::Progress progress("run", quiet);
   pipeline::RunCallbacks callbacks;
-  callbacks.progress = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
+  std::optional<SegmentationImages> images;
+  if (segmentations) images.emplace((fs::path(dir.path()) / pipeline::run_files::kSegmentations).string());
+  callbacks.progress = [&](std::size_t done, std::size_t total) {
+    progress.update(done, total);
+    if (images) images->after_scan(slam);
+  };
   callbacks.warning = [](const std::string& w) {
     std::fprintf(stderr, "tsgraphs: warning: %s\n", w.c_str());
   };
@@ -278,6 +285,7 @@ void run(const io::ScanSequence& sequence, const std::string& out, const pipelin
                                 " were skipped (the warnings above say why); nothing written");
   try {
     pipeline::write_run_outputs(slam, info, dir.path());
+    if (images) images->close();
     // Ground truth for the report comes with a sequence folder only.
     const bool has_truth = dynamic_cast<const io::SequenceReader*>(&sequence) != nullptr;
     report::write_run_report(dir.path(), has_truth ? seq_dir : "", fs::path(out).filename().string());

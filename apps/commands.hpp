@@ -67,9 +67,10 @@ OpenedBag open_bag(const io::BagOptions& options, bool quiet);
 pipeline::OdometryOptions choose_odometry(const io::ScanSequence& sequence, const std::string& mode,
                                           const std::optional<Pose3>& sensor_to_base,
                                           const odometry::FloorLevellingConfig& levelling, bool quiet);
-/// `run`: a sequence through the pipeline into a run folder, written whole or not at all.
+/// `run`: a sequence through the pipeline into a run folder, written whole or not at all; with
+/// `segmentations`, the room layer's segmentations as images in OUT/segmentations/.
 void run(const io::ScanSequence& sequence, const std::string& out, const pipeline::PipelineConfig& config,
-         bool quiet, const pipeline::OdometryOptions& odometry = {});
+         bool quiet, const pipeline::OdometryOptions& odometry = {}, bool segmentations = false);
 /// `run SEQ_DIR --out OUT` (the suite's and the demo's runs): the folder opened, checked and its
 /// odometry chosen as the command does.
 void run(const std::string& seq_dir, const std::string& out, const pipeline::PipelineConfig& config,

@@ -16,75 +16,12 @@
 #include "tsgraphs/io/image.hpp"
 #include "tsgraphs/io/occupancy_map.hpp"
 #include "tsgraphs/io/room_labels.hpp"
+#include "tsgraphs/io/room_labels_writer.hpp"
 #include "tsgraphs/pipeline/pipeline_config.hpp"
 #include "tsgraphs/rooms/map_segmentation.hpp"
 
 namespace tsgraphs::app {
 namespace {
-
-/// A colour per room, far from black and from each other's neighbours in index: hues a golden
-/// angle apart, two lightness levels.
-std::array<std::uint8_t, 3> room_colour(int k) {
-  const double hue = std::fmod(k * 0.6180339887498949, 1.0) * 6.0;
-  const double value = k % 2 == 0 ? 0.95 : 0.7, saturation = 0.75;
-  const int sector = static_cast<int>(hue) % 6;
-  const double f = hue - std::floor(hue);
-  const double p = value * (1.0 - saturation), q = value * (1.0 - saturation * f),
-               t = value * (1.0 - saturation * (1.0 - f));
-  double r = value, g = t, b = p;
-  switch (sector) {
-    case 1:
-      r = q;
-      g = value;
-      b = p;
-      break;
-    case 2:
-      r = p;
-      g = value;
-      b = t;
-      break;
-    case 3:
-      r = p;
-      g = q;
-      b = value;
-      break;
-    case 4:
-      r = t;
-      g = p;
-      b = value;
-      break;
-    case 5:
-      r = value;
-      g = p;
-      b = q;
-      break;
-    default:
-      break;
-  }
-  const auto byte = [](double x) {
-    return static_cast<std::uint8_t>(std::lround(std::clamp(x, 0.0, 1.0) * 255.0));
-  };
-  return {byte(r), byte(g), byte(b)};
-}
-
-/// The labels (row 0 at the bottom) as an RGB image (row 0 at the top).
-io::Image label_image(const std::vector<int>& labels, int width, int height) {
-  io::Image img;
-  img.width = width;
-  img.height = height;
-  img.channels = 3;
-  img.samples.assign(static_cast<std::size_t>(width) * height * 3, 0);
-  for (int row = 0; row < height; ++row) {
-    for (int col = 0; col < width; ++col) {
-      const int l = labels[static_cast<std::size_t>(row) * width + col];
-      if (l < 0) continue;
-      const auto c = room_colour(l);
-      const std::size_t at = (static_cast<std::size_t>(height - 1 - row) * width + col) * 3;
-      std::copy(c.begin(), c.end(), img.samples.begin() + static_cast<long>(at));
-    }
-  }
-  return img;
-}
 
 nlohmann::json figure(const std::optional<double>& x) {
   return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
@@ -169,7 +106,8 @@ void segment_map(const SegmentMapOptions& options) {
     figures = eval::compare_labels(seg.rooms.label, truth->room, map.width);
     add_figures(out, *figures, *truth, options.rooms);
   }
-  io::write_file_atomic(options.out, io::encode_png(label_image(seg.rooms.label, map.width, map.height)));
+  io::write_file_atomic(options.out,
+                        io::encode_png(io::room_label_image(seg.rooms.label, map.width, map.height)));
   if (!options.metrics.empty()) {
     try {
       io::write_file_atomic(options.metrics, out.dump(2) + "\n");

@@ -22,6 +22,7 @@
 #include "tsgraphs/mcap/mcap.hpp"
 #include "tsgraphs/ros1_bag/ros_bag.hpp"
 #include "tsgraphs/ros2_bag/rosbag2.hpp"
+#include "tsgraphs/io/image.hpp"
 #include "tsgraphs/io/sequence_folder.hpp"
 #include "tsgraphs/io/tum.hpp"
 #include "tsgraphs/pipeline/pipeline.hpp"
@@ -152,6 +153,41 @@ TEST_F(RunCli, BaselineModeExtractsOnTheTimerAndIsRecordedInParams) {
   EXPECT_EQ(
       cli("-q run " + seq.string() + " --out " + (dir_ / "bad").string() + " --free-space voxblox", &err), 2);
   EXPECT_FALSE(fs::exists(dir_ / "bad"));
+}
+
+TEST_F(RunCli, SegmentationsAreWrittenAsLabelImagesAndChangeNoOtherOutput) {
+  const fs::path seq = base_ / "seq", plain = dir_ / "plain", out = dir_ / "run";
+  std::string err;
+  ASSERT_EQ(cli("-q run " + seq.string() + " --out " + plain.string(), &err), 0) << err;
+  ASSERT_EQ(cli("-q run " + seq.string() + " --out " + out.string() + " --segmentations", &err), 0) << err;
+  for (const char* f : {"trajectory.txt", "scene_graph.json", "rooms_events.jsonl", "map.ply"})
+    EXPECT_EQ(read_file(out / f), read_file(plain / f)) << f;
+  EXPECT_FALSE(fs::exists(plain / "segmentations"));
+  // index.csv: a header and a line per image, naming it; each image the raster it gives.
+  std::istringstream index(read_file(out / "segmentations" / "index.csv"));
+  std::string line;
+  ASSERT_TRUE(std::getline(index, line));
+  EXPECT_EQ(line, "image,keyframe,stamp,level,origin_x,origin_y,cell,cols,rows,spaces");
+  int images = 0, with_rooms = 0;
+  while (std::getline(index, line)) {
+    std::vector<std::string> field;
+    std::stringstream parts(line);
+    for (std::string v; std::getline(parts, v, ',');) field.push_back(v);
+    ASSERT_EQ(field.size(), 10u) << line;
+    const io::Image img = io::read_image((out / "segmentations" / field[0]).string());
+    EXPECT_EQ(img.width, std::stoi(field[7]));
+    EXPECT_EQ(img.height, std::stoi(field[8]));
+    EXPECT_EQ(img.channels, 3);
+    const bool coloured =
+        std::any_of(img.samples.begin(), img.samples.end(), [](std::uint8_t v) { return v > 0; });
+    EXPECT_EQ(coloured, std::stoi(field[9]) > 0) << line;
+    with_rooms += coloured ? 1 : 0;
+    ++images;
+  }
+  EXPECT_GT(images, 0);
+  EXPECT_GT(with_rooms, 0);
+  EXPECT_EQ(static_cast<std::size_t>(images) + 1,
+            static_cast<std::size_t>(std::distance(fs::directory_iterator(out / "segmentations"), {})));
 }
 
 TEST_F(RunCli, ParallelRunEqualsOneScanAtATime) {

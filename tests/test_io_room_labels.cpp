@@ -12,6 +12,7 @@
 #include "tsgraphs/io/image.hpp"
 #include "tsgraphs/io/occupancy_map.hpp"
 #include "tsgraphs/io/room_labels.hpp"
+#include "tsgraphs/io/room_labels_writer.hpp"
 
 using namespace tsgraphs;
 using namespace tsgraphs::io;
@@ -86,6 +87,23 @@ TEST(RoomLabels, ColourImageGivesOneRoomPerColourInAsManyPiecesAsItHas) {
     rgba.samples.push_back(i < 30 ? 0 : 255);
   }
   EXPECT_EQ(room_labels(rgba).room, l.room);
+}
+
+TEST(RoomLabels, WrittenLabelsReadBackAsTheSameRooms) {
+  // 31 x 8 cells, row 0 at the bottom: room 0 left, room 1 right, no room along the middle
+  // column (rooms are numbered in the image's reading order, so these keep theirs); 40 rooms'
+  // colours must differ from black and from each other.
+  const int w = 31, h = 8;
+  std::vector<int> labels(static_cast<std::size_t>(w) * h, -1);
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) labels[static_cast<std::size_t>(r) * w + c] = c < 15 ? 0 : c > 15 ? 1 : -1;
+  const RoomLabels back = room_labels(room_label_image(labels, w, h));
+  EXPECT_EQ(back.convention, RoomLabelConvention::kColour);
+  ASSERT_EQ(back.count, 2);
+  for (std::size_t i = 0; i < labels.size(); ++i) EXPECT_EQ(back.room[i], labels[i]) << "cell " << i;
+  std::vector<int> many(40 * 200);
+  for (std::size_t i = 0; i < many.size(); ++i) many[i] = static_cast<int>(i / 200);
+  EXPECT_EQ(room_labels(room_label_image(many, 200, 40)).count, 40);
 }
 
 TEST(RoomLabels, GreyImageIsTheIpaConventionAsItsEvaluationReadsIt) {

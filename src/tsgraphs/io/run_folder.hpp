@@ -32,6 +32,7 @@ inline constexpr const char* kParams = "params.yaml";
 inline constexpr const char* kRunInfo = "run_info.json";
 inline constexpr const char* kMetrics = "metrics.json";
 inline constexpr const char* kRoomEvents = "rooms_events.jsonl";
+inline constexpr const char* kSegmentations = "segmentations";  ///< a folder, with run --segmentations
 }  // namespace run_files
 
 // ---- scene_graph.json ---------------------------------------------------------------------

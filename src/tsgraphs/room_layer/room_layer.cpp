@@ -525,6 +525,7 @@ std::vector<rooms::ExtractedRoom> RoomLayer::segmented_spaces(const RoomLayerInp
   if (!in) return {};
   last_segmentation_ = rooms::segment_rooms(*in, settings_.segmentation);
   last_segmentation_level_ = level;
+  ++segmentations_;
   const rooms::RoomSegmentation& seg = *last_segmentation_;
   // A mapped room that this segmentation divides (first seen as one space, now two: a bay
   // beside a gallery) follows it, so that its parts are extracted as rooms of their own; one it

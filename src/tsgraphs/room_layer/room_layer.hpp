@@ -105,6 +105,13 @@ class RoomLayer {
   std::size_t last_cluster_size() const { return last_cluster_size_; }
   /// Floor height (map frame) of each level index, in order of first visit.
   const std::vector<double>& levels() const { return levels_; }
+  /// TS-graphs: the latest segmentation of a level (null before the first) and its level
+  /// index; `segmentations()` counts them, so a caller can tell a new one.
+  const rooms::RoomSegmentation* last_segmentation() const {
+    return last_segmentation_ ? &*last_segmentation_ : nullptr;
+  }
+  int last_segmentation_level() const { return last_segmentation_level_; }
+  std::size_t segmentations() const { return segmentations_; }
 
  private:
   /// Free space vertex key -> position: a node id (nodes move with their keyframes) or an ESDF
@@ -184,6 +191,7 @@ class RoomLayer {
   std::optional<rooms::RoomSegmentation>
       last_segmentation_;  ///< TS-graphs: the latest one, to tell a change of space
   int last_segmentation_level_ = -1;
+  std::size_t segmentations_ = 0;
   int last_space_ = -1;                         ///< the space of it the robot is in
   int entering_space_ = -1;                     ///< another space the robot has stepped into...
   double entering_length_ = 0.0;                ///< ...and how far it has walked in it (m)
