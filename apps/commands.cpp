@@ -268,7 +268,7 @@ void run(const io::ScanSequence& sequence, const std::string& out, const pipelin
   if (segmentations) images.emplace((fs::path(dir.path()) / pipeline::run_files::kSegmentations).string());
   callbacks.progress = [&](std::size_t done, std::size_t total) {
     progress.update(done, total);
-    if (images) images->after_scan(slam);
+    if (images) images->write_new(slam);
   };
   callbacks.warning = [](const std::string& w) {
     std::fprintf(stderr, "tsgraphs: warning: %s\n", w.c_str());
@@ -285,7 +285,10 @@ void run(const io::ScanSequence& sequence, const std::string& out, const pipelin
                                 " were skipped (the warnings above say why); nothing written");
   try {
     pipeline::write_run_outputs(slam, info, dir.path());
-    if (images) images->close();
+    if (images) {
+      images->write_new(slam);  // the run's last extraction
+      images->close();
+    }
     // Ground truth for the report comes with a sequence folder only.
     const bool has_truth = dynamic_cast<const io::SequenceReader*>(&sequence) != nullptr;
     report::write_run_report(dir.path(), has_truth ? seq_dir : "", fs::path(out).filename().string());

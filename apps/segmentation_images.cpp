@@ -14,7 +14,7 @@ SegmentationImages::SegmentationImages(std::string folder) : folder_(std::move(f
   index_ = "image,keyframe,stamp,level,origin_x,origin_y,cell,cols,rows,spaces\n";
 }
 
-void SegmentationImages::after_scan(const pipeline::Pipeline& slam) {
+void SegmentationImages::write_new(const pipeline::Pipeline& slam) {
   const room_layer::RoomLayer& layer = slam.room_layer();
   const rooms::RoomSegmentation* seg = layer.last_segmentation();
   if (seg == nullptr || layer.segmentations() == written_) return;

@@ -16,8 +16,9 @@ namespace tsgraphs::app {
 class SegmentationImages {
  public:
   explicit SegmentationImages(std::string folder);
-  /// After a scan: writes the room layer's segmentation if it is one not written yet.
-  void after_scan(const pipeline::Pipeline& slam);
+  /// After a scan and at the end: writes the room layer's latest segmentation if it is one not
+  /// written yet (of several in one scan, the last).
+  void write_new(const pipeline::Pipeline& slam);
   void close() const;
 
  private:
