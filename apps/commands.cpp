@@ -1,8 +1,6 @@
 // The commands of the `tsgraphs` program (commands.hpp).
 #include "commands.hpp"
 
-#include "segmentation_images.hpp"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,6 +13,7 @@
 
 #include "output_checks.hpp"
 #include "progress.hpp"
+#include "segmentation_images.hpp"
 #include "tsgraphs/core/error.hpp"
 #include "tsgraphs/eval/run_evaluation.hpp"
 #include "tsgraphs/io/atomic_write.hpp"

@@ -216,18 +216,17 @@ void choose_cut_edges(std::vector<Corner>& corners, const CornerWalk& walk, doub
 
 /// Cuts each corridor-like region (its area at least `corridor_aspect` times the square of its
 /// widest width, twice its largest clearance, holes of fewer than `min_cells` not counted: a
-/// pillar stands inside a space; that width at most `max_width_cells`) into its straight legs: at every
-/// corner where its outline turns inwards (an inner corner of a bend, a corner of what it runs round: an
-/// atrium's void, a walled-off room) the outline's edge arriving there (counter-clockwise round
-/// the region, clockwise round a hole) is drawn on across the region until it leaves it, if it
-/// does within the corridor's width. Each corner square thus goes to one leg, the same way round
-/// every bend. The edge leaving the corner is drawn back instead where only it ends at another
-/// inner corner (the mouth of a side corridor: the corridor it leaves stays whole), where only
-/// it crosses the region (a step in the width), or where it is corridor_aspect times longer
-/// than the arriving edge (a corridor's side running on past a bay). An edge within its
-/// simplification's angular error of a wall's direction (`wall_directions`, unit) takes it,
-/// and is as long as the straight run of edges it then belongs to.
-/// Cut cells lose their label; returns whether any was cut.
+/// pillar stands inside a space; that width at most `max_width_cells`) into its straight legs:
+/// at every corner where its outline turns inwards (an inner corner of a bend, a corner of what
+/// it runs round: an atrium's void, a walled-off room) the outline's edge arriving there (counter-clockwise
+/// round the region, clockwise round a hole) is drawn on across the region until it leaves it, if it does
+/// within the corridor's width. Each corner square thus goes to one leg, the same way round every bend. The
+/// edge leaving the corner is drawn back instead where only it ends at another inner corner (the mouth of a
+/// side corridor: the corridor it leaves stays whole), where only it crosses the region (a step in the
+/// width), or where it is corridor_aspect times longer than the arriving edge (a corridor's side running on
+/// past a bay). An edge within its simplification's angular error of a wall's direction (`wall_directions`,
+/// unit) takes it, and is as long as the straight run of edges it then belongs to. Cut cells lose their
+/// label; returns whether any was cut.
 bool cut_bends(const GridFrame& f, int n, double corridor_aspect, double max_width_cells, double min_cells,
                double tolerance_cells, double min_turn, const std::vector<Vec2>& wall_directions,
                std::vector<int>* label) {
