@@ -870,3 +870,41 @@ TEST(RoomSegmentation, AThinSpaceWithAShelfAlongItsMiddleKeepsAPositiveRectangle
 
 }  // namespace
 }  // namespace tsgraphs::rooms
+
+namespace tsgraphs::rooms {
+namespace {
+
+TEST(RoomSegmentation, WithEveryCellLabelledARayOutOfARoomJoinsIt) {
+  // A 5 x 4 m room seen whole and a ray out of its corner, a diagonal chain of cells (no two of
+  // them share an edge): labelling every cell, the ray is the room's; without, it is no space's.
+  GridFrame f;
+  f.resolution = 0.1;
+  f.cols = 100;
+  f.rows = 80;
+  SegmentationInput in;
+  in.frame = f;
+  in.seen.assign(f.size(), 0);
+  for (int r = 10; r < 50; ++r)
+    for (int c = 10; c < 60; ++c) in.seen[f.index(c, r)] = 1;
+  std::vector<std::size_t> ray;
+  for (int k = 0; k < 20; ++k) ray.push_back(f.index(60 + k, 50 + k));
+  for (std::size_t i : ray) in.seen[i] = 1;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (in.seen[i]) in.ground.push_back(f.center(i));
+  in.free_radius = 0.2;
+  in.ground_radius = 0.5 * f.resolution;
+  RoomSegmentationConfig cfg;
+  const RoomSegmentation apart = segment_rooms(in, cfg);
+  in.label_every_cell = true;
+  const RoomSegmentation joined = segment_rooms(in, cfg);
+  const int room = joined.label[f.index(30, 30)];
+  ASSERT_GE(room, 0);
+  ASSERT_EQ(joined.spaces.size(), 1u);
+  for (std::size_t i : ray) {
+    EXPECT_EQ(joined.label[i], room);
+    EXPECT_EQ(apart.label[i], -1);
+  }
+}
+
+}  // namespace
+}  // namespace tsgraphs::rooms

@@ -9,7 +9,7 @@ MapSegmentation segment_map(const GridFrame& frame, const std::vector<std::uint8
   if (free.size() != frame.size() || occupied.size() != frame.size())
     throw std::invalid_argument("segment_map: a mask does not match the map's raster");
   MapSegmentation out;
-  out.walls = map_walls(frame, free, config.walls);
+  out.walls = map_walls(frame, free, occupied, config.walls);
   SegmentationInput in;
   in.frame = frame;
   // The map's free cells are what the rays saw; each is a ground cell of its own.
@@ -22,6 +22,7 @@ MapSegmentation segment_map(const GridFrame& frame, const std::vector<std::uint8
   in.ground_radius = 0.5 * frame.resolution;  // a free cell covers itself
   in.floor_z = 0.0;
   in.walls = out.walls;
+  in.label_every_cell = true;
   RoomSegmentationConfig seg = config.segmentation;
   seg.cell = frame.resolution;
   out.rooms = segment_rooms(in, seg);

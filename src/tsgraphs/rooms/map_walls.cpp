@@ -31,6 +31,13 @@ struct Piece {
   double length() const { return t1 - t0; }
 };
 
+/// Per cell, the distance (m) to the nearest cell of `cells`.
+std::vector<float> distance_to(const GridFrame& f, const std::vector<std::uint8_t>& cells) {
+  std::vector<std::uint8_t> away(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) away[i] = cells[i] ? 0 : 1;
+  return distance_transform(f, away, false);
+}
+
 /// The blocked cells joined to the raster's border through blocked cells (8-connected): the
 /// building's structure, walls joined to walls and to what lies round it. What stands free
 /// inside (a table, a pillar, a chair's legs) is furniture, not wall.
@@ -250,11 +257,13 @@ std::vector<std::uint8_t> open_free_space(const GridFrame& frame, const std::vec
 }
 
 std::vector<WallCandidate> map_walls(const GridFrame& frame, const std::vector<std::uint8_t>& free,
+                                     const std::vector<std::uint8_t>& occupied,
                                      const MapWallsConfig& config) {
   check_config(config, "MapWallsConfig");
-  if (free.size() != frame.size())
-    throw std::invalid_argument("map_walls: the mask has " + std::to_string(free.size()) +
-                                " cells, the frame " + std::to_string(frame.size()));
+  for (const std::vector<std::uint8_t>* mask : {&free, &occupied})
+    if (mask->size() != frame.size())
+      throw std::invalid_argument("map_walls: a mask has " + std::to_string(mask->size()) +
+                                  " cells, the frame " + std::to_string(frame.size()));
   const std::vector<std::uint8_t> open = open_free_space(frame, free, config.robot_radius);
   const double res = frame.resolution;
   const double min_piece = config.min_piece / res;
@@ -262,7 +271,13 @@ std::vector<WallCandidate> map_walls(const GridFrame& frame, const std::vector<s
   const std::vector<std::uint8_t> joined = structure(frame, open);
   std::vector<std::uint8_t> apart(joined.size());
   for (std::size_t i = 0; i < apart.size(); ++i) apart[i] = joined[i] ? 0 : 1;
-  const Edge walls = edge_of(frame, open, joined), furniture = edge_of(frame, open, apart);
+  Edge walls = edge_of(frame, open, joined), furniture = edge_of(frame, open, apart);
+  // An edge is a wall only where the rays ended on something behind it.
+  const std::vector<float> to_hit = distance_to(frame, occupied);
+  for (Edge* e : {&walls, &furniture})
+    e->cells.erase(std::remove_if(e->cells.begin(), e->cells.end(),
+                                  [&](std::size_t i) { return to_hit[i] > config.fringe_width; }),
+                   e->cells.end());
   // Walls joined to the structure, and faces of what stands free longer than furniture is (a
   // partition, a row of cabinets).
   for (const auto& [edge, min_length] :

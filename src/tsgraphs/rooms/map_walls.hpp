@@ -8,6 +8,10 @@
 ///    joined through what is not free to the map's border (walls join walls and the unknown
 ///    round the building); what stands free inside (a table, a pillar) is furniture, no wall,
 ///    unless it is longer than furniture is (`min_free_standing`: a partition, cabinets in a row).
+///    An edge is a wall only where the rays ended on something: an occupied cell lies within
+///    `fringe_width` behind it (a laser map leaves a band of unknown at a wall's face). Where
+///    only unknown lies behind, the view ended there (a fan's side seen through a door, the
+///    map's frontier): that is no wall.
 /// 2. The directions of the walls are those along which the edge lines up best: for each
 ///    direction (degree steps over half a turn) the edge cells facing it are projected across it
 ///    into one-cell bins, and the length of their straight runs is summed. The best direction is
@@ -31,6 +35,7 @@ namespace tsgraphs::rooms {
 
 struct MapWallsConfig {
   double robot_radius = 0.2;
+  double fringe_width = 0.2;
   double min_piece = 0.5;
   double min_wall = 1.0;
   double min_free_standing = 2.5;
@@ -43,6 +48,9 @@ struct MapWallsConfig {
   void visit(V& v) {
     v("robot_radius", robot_radius, between(0.0, 10.0),
       "the free space is opened by a disc of this radius (m): laser fans and ragged fringes have no edge");
+    v("fringe_width", fringe_width, between(0.0, 10.0),
+      "an edge is a wall only with an occupied cell this near behind it (m): the band of unknown a laser map "
+      "leaves at a wall's face (as map_import's); with only unknown behind, the view ended there");
     v("min_piece", min_piece, above(0.0, 100.0),
       "a straight run of edge shorter than this is clutter, no wall (m)");
     v("min_wall", min_wall, above(0.0, 1000.0),
@@ -66,10 +74,12 @@ struct MapWallsConfig {
 std::vector<std::uint8_t> open_free_space(const GridFrame& frame, const std::vector<std::uint8_t>& free,
                                           double radius);
 
-/// The walls of the map whose free cells are `free` (one per cell of `frame`): vertical planes
-/// from the floor (z 0) to config.wall_height, each normal pointing to the free side, with the
-/// extent of its piece. Throws std::invalid_argument when `free` does not match the frame.
+/// The walls of the map whose free and occupied cells are `free` and `occupied` (one per cell of
+/// `frame`, the rest unknown): vertical planes from the floor (z 0) to config.wall_height, each
+/// normal pointing to the free side, with the extent of its piece. Throws std::invalid_argument
+/// when a mask does not match the frame.
 std::vector<WallCandidate> map_walls(const GridFrame& frame, const std::vector<std::uint8_t>& free,
+                                     const std::vector<std::uint8_t>& occupied,
                                      const MapWallsConfig& config = {});
 
 }  // namespace tsgraphs::rooms

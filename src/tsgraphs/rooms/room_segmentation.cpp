@@ -348,6 +348,37 @@ void drop_unfit_regions(const GridFrame& f, int n_spaces, double min_clearance, 
     if (l >= 0 && widest[static_cast<std::size_t>(l)] < min_clearance) l = -1;
 }
 
+/// Every walkable cell no space holds (a ray seen through a door, a pocket too small or too thin
+/// to be a space of its own) joins the space nearest to it over walkable cells, stepping
+/// diagonally too (a ray drawn on a raster is a diagonal chain of cells) but never between two
+/// wall cells: as ipa_room_segmentation grows its rooms back over the free space.
+void grow_into_unlabelled(const GridFrame& f, const std::vector<std::uint8_t>& walkable,
+                          const std::vector<std::uint8_t>& wall, std::vector<int>& label) {
+  std::vector<std::size_t> front;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (label[i] >= 0) front.push_back(i);
+  std::vector<std::size_t> next;
+  while (!front.empty()) {
+    next.clear();
+    for (std::size_t i : front) {
+      const int c = static_cast<int>(i % f.cols), r = static_cast<int>(i / f.cols);
+      for (int dr = -1; dr <= 1; ++dr) {
+        for (int dc = -1; dc <= 1; ++dc) {
+          const int cc = c + dc, rr = r + dr;
+          if ((dc == 0 && dr == 0) || !f.inside(cc, rr)) continue;
+          const std::size_t j = f.index(cc, rr);
+          if (!walkable[j] || label[j] >= 0) continue;
+          if (dc != 0 && dr != 0 && (wall[f.index(cc, r)] || wall[f.index(c, rr)])) continue;
+          label[j] = label[i];
+          next.push_back(j);
+        }
+      }
+    }
+    std::sort(next.begin(), next.end());
+    front.swap(next);
+  }
+}
+
 /// The spaces' outlines in the map frame; neighbouring spaces share cell edges, so each
 /// outline is simplified on its own.
 std::vector<Polygon2> space_outlines(const GridFrame& f, const std::vector<int>& label, int n,
@@ -450,6 +481,7 @@ RoomSegmentation segment_rooms(const SegmentationInput& in, const RoomSegmentati
   } else {
     before_cut.clear();
   }
+  if (in.label_every_cell) grow_into_unlabelled(f, ground, wall, label);
   out.label = label;
 
   // 4. Footprints.

@@ -143,6 +143,10 @@ struct SegmentationInput {
   double ground_radius = 0.25;  ///< a traversable node covers the disc of this radius (its node map cell, m)
   double floor_z = 0.0;         ///< the level's floor height, map frame (m)
   std::vector<WallCandidate> walls;  ///< mapped planes (others than vertical walls of this level are skipped)
+  /// Every walkable cell belongs to a space: those none holds (rays seen through a door, pockets
+  /// too thin or small to be spaces) join the nearest. A map's free cells are all some room's floor
+  /// (segment-map); online, cells left out are the layer's doubt and stay out.
+  bool label_every_cell = false;
 
   /// Widens [lo, hi] to hold the free-space vertices and the ground nodes.
   void extend_bounds(Vec2* lo, Vec2* hi) const;
