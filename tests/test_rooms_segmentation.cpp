@@ -832,12 +832,15 @@ SegmentationInput corridor_over_hall(double opening) {
 }
 
 TEST(RoomSegmentation, AWideOpeningInALongWallIsClosedAlongIt) {
-  // 4 m open in a wall of 20 m on one line (a corridor's side past a bay): closed, the corridor
-  // and the hall are two spaces; 12 m open in 12 m of wall: no wall there, one space.
-  const RoomSegmentation closed = segment_rooms(corridor_over_hall(4.0));
-  ASSERT_GE(closed.space_at({12, 1.2}), 0);
-  EXPECT_NE(closed.space_at({12, 1.2}), closed.space_at({12, -3}));
-  const RoomSegmentation open = segment_rooms(corridor_over_hall(12.0));
+  // 4 m open in a wall of 20 m on one line (a corridor's side past a bay), and 10 m open in 14 m
+  // of wall: closed, the corridor and the hall are two spaces; 14 m open in 10 m of wall: more
+  // opening than wall, no wall there, one space.
+  for (double opening : {4.0, 10.0}) {
+    const RoomSegmentation closed = segment_rooms(corridor_over_hall(opening));
+    ASSERT_GE(closed.space_at({12, 1.2}), 0) << opening;
+    EXPECT_NE(closed.space_at({12, 1.2}), closed.space_at({12, -3})) << opening;
+  }
+  const RoomSegmentation open = segment_rooms(corridor_over_hall(14.0));
   ASSERT_GE(open.space_at({12, 1.2}), 0);
   EXPECT_EQ(open.space_at({12, 1.2}), open.space_at({12, -3}));
 }

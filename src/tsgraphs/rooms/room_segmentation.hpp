@@ -40,7 +40,7 @@ struct RoomSegmentationConfig {
   double max_door_width = 2.0;
   double door_narrowing = 0.7;
   double min_door_post = 0.8;
-  double opening_share = 0.3;
+  double opening_share = 1.0;
   double line_tolerance = 0.15;
   double min_region_area = 2.0;
   double rect_fill = 0.85;
@@ -90,7 +90,9 @@ struct RoomSegmentationConfig {
       "close a gap to; a wall in line with it (a pier between two doors) is a door post whatever its length");
     v("opening_share", opening_share, between(0.0, 1.0),
       "walls on one line (within line_tolerance) also close the openings between them narrower than this "
-      "share of the length they cover: a wide opening in a long wall (a corridor's side past a bay)");
+      "share of the length they cover: a wide opening in a long wall (a corridor's side past a bay, a "
+      "facade's gaps where a laser saw through glass); at 1, a line with more wall than the opening is a "
+      "wall (ROSE2's wall share of a layout's edge)");
     v("line_tolerance", line_tolerance, between(0.0, 10.0),
       "walls whose ends lie this close to one line are on it: one wall seen in pieces, a row of rooms (m)");
     v("min_region_area", min_region_area, between(0.0, 1e6),
