@@ -845,6 +845,41 @@ TEST(RoomSegmentation, AWideOpeningInALongWallIsClosedAlongIt) {
   EXPECT_EQ(open.space_at({12, 1.2}), open.space_at({12, -3}));
 }
 
+TEST(RoomSegmentation, PartitionsFacingOverACorridorDoNotCutIt) {
+  // A 24 x 3 m corridor between two rows of three rooms (5 m deep, doors of 1 m): the rows'
+  // partitions at x = 8 and 16 lie on one line, 10 m of wall with a 3 m gap across the corridor,
+  // whose ends lie on the corridor's walls passing through the line. That gap is the corridor,
+  // no opening in a wall: the corridor stays one space, its rooms apart from it.
+  SegmentationInput in = level();
+  std::vector<std::pair<Vec2, Vec2>> inside;
+  for (const double y : {0.0, 3.0})
+    for (const auto& [x0, x1] : {std::pair{0.0, 3.0}, {4.0, 11.0}, {12.0, 19.0}, {20.0, 24.0}})
+      inside.emplace_back(Vec2(x0, y), Vec2(x1, y));
+  for (const double x : {8.0, 16.0}) {
+    inside.emplace_back(Vec2(x, 3), Vec2(x, 8));
+    inside.emplace_back(Vec2(x, -5), Vec2(x, 0));
+  }
+  add_area_with_walls(box(0, -5, 24, 8), inside, &in);
+  box_walls(0, -5, 24, 8, 0, &in);
+  for (const auto& [a, b] : inside)
+    in.walls.push_back(wall(static_cast<int>(in.walls.size()), a, b, {a.x() + 0.5, a.y() + 0.5}));
+  const RoomSegmentation seg = segment_rooms(in);
+  const int corridor = seg.space_at({2, 1.5});
+  ASSERT_GE(corridor, 0);
+  EXPECT_EQ(seg.space_at({22, 1.5}), corridor);
+  for (const Vec2& room : {Vec2(4, 5), Vec2(12, 5), Vec2(12, -2.5)}) EXPECT_NE(seg.space_at(room), corridor);
+  EXPECT_NE(seg.space_at({4, 5}), seg.space_at({12, 5}));
+
+  // The same line's gap in a facade, its ends on partitions that end on it (10 m open in 14 m
+  // of wall, the hall behind it in three): closed, the corridor apart from the hall's rooms.
+  SegmentationInput facade = corridor_over_hall(10.0);
+  for (const double x : {7.0, 17.0})
+    facade.walls.push_back(wall(static_cast<int>(facade.walls.size()), {x, 0}, {x, -6}, {x + 0.5, -3}));
+  const RoomSegmentation closed = segment_rooms(facade);
+  ASSERT_GE(closed.space_at({12, 1.2}), 0);
+  EXPECT_NE(closed.space_at({12, 1.2}), closed.space_at({12, -3}));
+}
+
 }  // namespace
 }  // namespace tsgraphs::rooms
 

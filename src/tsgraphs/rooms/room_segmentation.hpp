@@ -92,7 +92,8 @@ struct RoomSegmentationConfig {
       "walls on one line (within line_tolerance) also close the openings between them narrower than this "
       "share of the length they cover: a wide opening in a long wall (a corridor's side past a bay, a "
       "facade's gaps where a laser saw through glass); at 1, a line with more wall than the opening is a "
-      "wall (ROSE2's wall share of a layout's edge)");
+      "wall (ROSE2's wall share of a layout's edge); a gap whose two ends lie on walls passing through the "
+      "line (wall_joint_gap) spans the space between them, a corridor between two rows of rooms: open");
     v("line_tolerance", line_tolerance, between(0.0, 10.0),
       "walls whose ends lie this close to one line are on it: one wall seen in pieces, a row of rooms (m)");
     v("min_region_area", min_region_area, between(0.0, 1e6),

@@ -25,6 +25,18 @@ bool in_line(const WallLine& p, const WallLine& q, double offset, double gap, do
   return std::min({(p.a - q.a).norm(), (p.a - q.b).norm(), (p.b - q.a).norm(), (p.b - q.b).norm()}) <= gap;
 }
 
+/// A wall across the line (normal `normal` through `origin`) passes within `gap` of `p` and
+/// reaches more than `gap` past the line on both sides: a corridor's or a room's side that the
+/// line runs into, not a wall that ends on it.
+bool passes_through(const Vec2& p, const Vec2& origin, const Vec2& normal, const std::vector<WallLine>& walls,
+                    double gap, double cos_parallel) {
+  return std::any_of(walls.begin(), walls.end(), [&](const WallLine& o) {
+    if (std::abs(o.n.dot(normal)) >= cos_parallel || distance_to_segment(p, o.a, o.b) > gap) return false;
+    const double sa = normal.dot(o.a - origin), sb = normal.dot(o.b - origin);
+    return std::min(sa, sb) < -gap && std::max(sa, sb) > gap;
+  });
+}
+
 }  // namespace
 
 WallLine line_at(const WallCandidate& w, double floor_z) {
@@ -90,7 +102,9 @@ std::vector<WallLine> level_walls(const std::vector<WallCandidate>& walls, doubl
 /// wall seen in pieces (furniture in front of it, doors in it), or the walls of a row of rooms.
 /// Along each line, a gap between consecutive walls is closed when it is no wider than a door or
 /// than `opening_share` of the length the line's walls cover (an opening in a long wall); a wide
-/// gap between the walls of two far rooms on one line stays open.
+/// gap between the walls of two far rooms on one line stays open, and so does a wider gap whose
+/// two ends lie on walls that pass through the line (wall_joint_gap): it spans a space between
+/// those walls (the partitions of two rows of rooms facing over a corridor), no opening in one.
 std::vector<std::pair<Vec2, Vec2>> line_openings(const std::vector<WallLine>& walls,
                                                  const RoomSegmentationConfig& cfg) {
   const double cos_parallel = std::cos(cfg.parallel_tolerance_deg * kDegToRad);
@@ -123,9 +137,15 @@ std::vector<std::pair<Vec2, Vec2>> line_openings(const std::vector<WallLine>& wa
       reach = std::max(reach, t(b));
     }
     const double closed = std::max(cfg.max_door_width, cfg.opening_share * support);
+    const Vec2 normal(-l.along.y(), l.along.x());
+    const auto across = [&](const Vec2& p) {
+      return passes_through(p, l.origin, normal, walls, cfg.wall_joint_gap, cos_parallel);
+    };
     const Vec2* last = nullptr;  // the far end of the walls so far
     for (const auto& [a, b] : l.walls) {
-      if (last != nullptr && t(a) > t(*last) && t(a) - t(*last) <= closed) out.emplace_back(*last, a);
+      const double gap = last != nullptr ? t(a) - t(*last) : 0.0;
+      if (gap > 0.0 && (gap <= cfg.max_door_width || (gap <= closed && !(across(*last) && across(a)))))
+        out.emplace_back(*last, a);
       if (last == nullptr || t(b) > t(*last)) last = &b;
     }
   }
